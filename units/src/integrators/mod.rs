@@ -1,0 +1,3 @@
+//! Time integrators shared by the units; one integrator per file.
+
+pub mod newmark;

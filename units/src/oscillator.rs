@@ -1,0 +1,260 @@
+//! A single mass on a spring and damper to ground, coupled to a neighbour either
+//! through a coupling spring-damper (inputs: the neighbour's displacement and
+//! velocity) or through an interface force (input: the force).
+//!
+//! It is the building block of the coupling benchmarks B1-B3: two such units make
+//! a two-mass chain cut at the coupling spring (displacement/displacement coupling)
+//! or cut at a mass (force/displacement coupling). Integrated with Newmark average
+//! acceleration, optionally with several sub-steps per synchronisation step.
+
+use crate::hold::HeldInputs;
+use crate::integrators::newmark::{LinearNewmark, NewmarkState};
+use crate::port::{Hold, Port, PortKind};
+use crate::state::StateSlot;
+use crate::time::Time;
+use crate::unit::{
+    Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count, require_finite,
+    require_non_negative, require_positive,
+};
+use nalgebra::{DMatrix, DVector};
+use serde::Deserialize;
+
+/// How the oscillator is tied to its neighbour.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Coupling {
+    /// Through a spring-damper (`coupling_stiffness`, `coupling_damping`) whose other
+    /// end moves with the inputs `coupling_displacement` and `coupling_velocity`;
+    /// output `coupling_force` is the force the spring exerts on the neighbour.
+    #[default]
+    Spring,
+    /// Through the input `force` (N) acting on the mass.
+    Force,
+}
+
+/// Parameters of an oscillator unit (scene kind `oscillator`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OscillatorParams {
+    /// Mass (kg), > 0.
+    pub mass: f64,
+    /// Stiffness of the spring to ground (N/m), default 0.
+    #[serde(default)]
+    pub stiffness: f64,
+    /// Damping coefficient to ground (N s/m), default 0.
+    #[serde(default)]
+    pub damping: f64,
+    /// `spring` (default) or `force`.
+    #[serde(default)]
+    pub coupling: Coupling,
+    /// Coupling spring stiffness (N/m), `spring` coupling only, default 0.
+    #[serde(default)]
+    pub coupling_stiffness: f64,
+    /// Coupling damper coefficient (N s/m), `spring` coupling only, default 0.
+    #[serde(default)]
+    pub coupling_damping: f64,
+    /// Initial displacement (m), default 0.
+    #[serde(default)]
+    pub initial_displacement: f64,
+    /// Initial velocity (m/s), default 0.
+    #[serde(default)]
+    pub initial_velocity: f64,
+    /// Newmark sub-steps per synchronisation step, default 1.
+    #[serde(default = "one")]
+    pub substeps: u32,
+}
+
+fn one() -> u32 {
+    1
+}
+
+impl OscillatorParams {
+    /// Checks every parameter, naming the first bad one.
+    pub fn validate(&self) -> Result<(), UnitError> {
+        require_positive("mass", self.mass)?;
+        require_non_negative("stiffness", self.stiffness)?;
+        require_non_negative("damping", self.damping)?;
+        require_non_negative("coupling_stiffness", self.coupling_stiffness)?;
+        require_non_negative("coupling_damping", self.coupling_damping)?;
+        require_finite("initial_displacement", self.initial_displacement)?;
+        require_finite("initial_velocity", self.initial_velocity)?;
+        if self.substeps == 0 {
+            return Err(UnitError::parameter("substeps", 0, "expected at least 1"));
+        }
+        if self.coupling == Coupling::Force
+            && (self.coupling_stiffness != 0.0 || self.coupling_damping != 0.0)
+        {
+            return Err(UnitError::parameter(
+                "coupling_stiffness",
+                self.coupling_stiffness,
+                "coupling_stiffness and coupling_damping apply to `coupling = \"spring\"` only",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Everything that changes while stepping.
+#[derive(Debug)]
+struct OscillatorState {
+    motion: NewmarkState,
+    inputs: HeldInputs,
+}
+
+impl Clone for OscillatorState {
+    fn clone(&self) -> Self {
+        OscillatorState {
+            motion: self.motion.clone(),
+            inputs: self.inputs.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.motion.clone_from(&source.motion);
+        self.inputs.clone_from(&source.inputs);
+    }
+}
+
+/// The oscillator unit.
+pub struct Oscillator {
+    params: OscillatorParams,
+    description: UnitDescription,
+    integrator: LinearNewmark,
+    state: OscillatorState,
+    load: DVector<f64>,
+}
+
+impl Oscillator {
+    /// Builds the unit; fails with the first invalid parameter.
+    pub fn new(params: OscillatorParams) -> Result<Oscillator, UnitError> {
+        params.validate()?;
+        let (inputs, outputs) = match params.coupling {
+            Coupling::Spring => (
+                vec![
+                    Port::input("coupling_displacement", PortKind::Displacement),
+                    Port::input("coupling_velocity", PortKind::Velocity),
+                ],
+                vec![
+                    Port::output("displacement", PortKind::Displacement),
+                    Port::output("velocity", PortKind::Velocity),
+                    Port::output("coupling_force", PortKind::Force).with_feedthrough(&[0, 1]),
+                ],
+            ),
+            Coupling::Force => (
+                vec![Port::input("force", PortKind::Force)],
+                vec![
+                    Port::output("displacement", PortKind::Displacement),
+                    Port::output("velocity", PortKind::Velocity),
+                ],
+            ),
+        };
+        let (kc, dc) = match params.coupling {
+            Coupling::Spring => (params.coupling_stiffness, params.coupling_damping),
+            Coupling::Force => (0.0, 0.0),
+        };
+        let scalar = |x: f64| DMatrix::from_element(1, 1, x);
+        let integrator = LinearNewmark::new(
+            scalar(params.mass),
+            scalar(params.damping + dc),
+            scalar(params.stiffness + kc),
+            1.0,
+        )?;
+        let holds = vec![Hold::Ramp; inputs.len()];
+        let state = OscillatorState {
+            motion: NewmarkState {
+                u: DVector::from_element(1, params.initial_displacement),
+                v: DVector::from_element(1, params.initial_velocity),
+                a: DVector::zeros(1),
+            },
+            inputs: HeldInputs::new(holds),
+        };
+        Ok(Oscillator {
+            description: UnitDescription {
+                kind: "oscillator".into(),
+                inputs,
+                outputs,
+                capabilities: Capabilities::default(),
+            },
+            params,
+            integrator,
+            state,
+            load: DVector::zeros(1),
+        })
+    }
+
+    /// The external load on the mass (N) at fraction `s` of the step.
+    fn load_at(&self, s: f64) -> f64 {
+        let inputs = &self.state.inputs;
+        match self.params.coupling {
+            Coupling::Spring => {
+                self.params.coupling_stiffness * inputs.at(0, s)
+                    + self.params.coupling_damping * inputs.at(1, s)
+            }
+            Coupling::Force => inputs.at(0, s),
+        }
+    }
+}
+
+impl Unit for Oscillator {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
+        if port >= self.state.inputs.len() {
+            return Err(UnitError::Unsupported(format!("no input {port}")));
+        }
+        self.state.inputs.set_hold(port, hold);
+        self.description.inputs[port].hold = hold;
+        Ok(())
+    }
+
+    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
+        check_input_count(self.state.inputs.len(), values)?;
+        self.state.inputs.set_end(values);
+        Ok(())
+    }
+
+    fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
+        self.state.inputs.settle();
+        let f = DVector::from_element(1, self.load_at(1.0));
+        self.state.motion = self.integrator.initial_state(
+            DVector::from_element(1, self.params.initial_displacement),
+            DVector::from_element(1, self.params.initial_velocity),
+            &f,
+        )?;
+        Ok(())
+    }
+
+    fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
+        let n = self.params.substeps;
+        self.integrator.set_step_size(h.as_secs() / f64::from(n))?;
+        for i in 1..=n {
+            self.load[0] = self.load_at(f64::from(i) / f64::from(n));
+            self.integrator.step(&mut self.state.motion, &self.load);
+        }
+        self.state.inputs.advance();
+        Ok(StepReport::default())
+    }
+
+    fn outputs(&self, out: &mut [f64]) {
+        let (u, v) = (self.state.motion.u[0], self.state.motion.v[0]);
+        out[0] = u;
+        out[1] = v;
+        if self.params.coupling == Coupling::Spring {
+            let inputs = self.state.inputs.end();
+            out[2] = self.params.coupling_stiffness * (u - inputs[0])
+                + self.params.coupling_damping * (v - inputs[1]);
+        }
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.state);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.state.clone_from(slot.load::<OscillatorState>()?);
+        Ok(())
+    }
+}

@@ -1,0 +1,141 @@
+//! Ports: the named, typed interface variables of a unit.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// Whether the master writes the port (input) or reads it (output).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Causality {
+    Input,
+    Output,
+}
+
+/// The physical kind of a port. Connections join ports of the same kind (or a
+/// `Generic` port to anything), and the master's default convergence tolerance is
+/// chosen per kind.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PortKind {
+    /// N
+    Force,
+    /// m/s
+    Velocity,
+    /// m
+    Displacement,
+    /// rad
+    Rotation,
+    /// N m
+    Moment,
+    /// Anything else, including dimensionless signals.
+    Generic,
+}
+
+impl PortKind {
+    /// Every kind, in the order used by tables and documentation.
+    pub const ALL: [PortKind; 6] = [
+        PortKind::Force,
+        PortKind::Velocity,
+        PortKind::Displacement,
+        PortKind::Rotation,
+        PortKind::Moment,
+        PortKind::Generic,
+    ];
+
+    /// The SI unit of measure ports of this kind use ("" for generic).
+    pub fn si_unit(self) -> &'static str {
+        match self {
+            PortKind::Force => "N",
+            PortKind::Velocity => "m/s",
+            PortKind::Displacement => "m",
+            PortKind::Rotation => "rad",
+            PortKind::Moment => "N.m",
+            PortKind::Generic => "",
+        }
+    }
+
+    /// Lower-case name as used in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            PortKind::Force => "force",
+            PortKind::Velocity => "velocity",
+            PortKind::Displacement => "displacement",
+            PortKind::Rotation => "rotation",
+            PortKind::Moment => "moment",
+            PortKind::Generic => "generic",
+        }
+    }
+}
+
+impl fmt::Display for PortKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How a unit fills the inside of a step from the input values it is given for the
+/// step's end.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Hold {
+    /// The new value applies over the whole step.
+    ZeroOrder,
+    /// Linear ramp from the last accepted value (start of step) to the new value
+    /// (end of step), as in seed 000 Algorithm 1.
+    #[default]
+    Ramp,
+}
+
+/// One port of a unit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Port {
+    /// Name, unique among the unit's ports of the same causality (e.g. "top_force_x").
+    pub name: String,
+    pub causality: Causality,
+    pub kind: PortKind,
+    /// SI unit of measure, e.g. "N" or "m/s" ("" for dimensionless).
+    pub unit: String,
+    /// For outputs: indices of the inputs this output depends on directly (within
+    /// the same instant). Empty means no direct feedthrough. Unused for inputs.
+    pub depends_on: Vec<usize>,
+    /// For inputs: how the unit holds it inside a step. Unused for outputs.
+    pub hold: Hold,
+}
+
+impl Port {
+    /// An input port with the SI unit of its kind and a ramp hold.
+    pub fn input(name: &str, kind: PortKind) -> Port {
+        Port {
+            name: name.to_owned(),
+            causality: Causality::Input,
+            kind,
+            unit: kind.si_unit().to_owned(),
+            depends_on: Vec::new(),
+            hold: Hold::Ramp,
+        }
+    }
+
+    /// An output port with the SI unit of its kind and no direct feedthrough.
+    pub fn output(name: &str, kind: PortKind) -> Port {
+        Port {
+            name: name.to_owned(),
+            causality: Causality::Output,
+            kind,
+            unit: kind.si_unit().to_owned(),
+            depends_on: Vec::new(),
+            hold: Hold::Ramp,
+        }
+    }
+
+    /// This output depends directly on the given inputs (by index).
+    pub fn with_feedthrough(mut self, inputs: &[usize]) -> Port {
+        self.depends_on = inputs.to_vec();
+        self
+    }
+
+    /// Use another unit of measure than the kind's SI default (e.g. "" for a ratio).
+    pub fn with_unit(mut self, unit: &str) -> Port {
+        self.unit = unit.to_owned();
+        self
+    }
+}
