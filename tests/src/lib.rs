@@ -1,1 +1,151 @@
+//! Shared helpers of the workspace-level tests: loading scenes, running them in
+//! memory, analytic and monolithic reference solutions of the coupling benchmarks.
 
+use nalgebra::{DMatrix, DVector};
+use slender_master::run::{RunOptions, run_scene};
+use slender_master::scene::Scene;
+use slender_master::settings::{Acceleration, Scheme};
+use slender_units::integrators::newmark::LinearNewmark;
+use std::path::{Path, PathBuf};
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// Loads a scene by path relative to the workspace root.
+pub fn load(relative: &str) -> Scene {
+    let path = root().join(relative);
+    Scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Recorded time and signals of a run kept in memory.
+pub struct Series {
+    pub time: Vec<f64>,
+    pub names: Vec<String>,
+    pub columns: Vec<Vec<f64>>,
+    pub counters: slender_master::counters::Counters,
+    pub error: Option<String>,
+}
+
+impl Series {
+    /// The column of `name`.
+    pub fn get(&self, name: &str) -> &[f64] {
+        let i = self
+            .names
+            .iter()
+            .position(|n| n == name)
+            .unwrap_or_else(|| panic!("no recorded signal {name}"));
+        &self.columns[i]
+    }
+
+    /// The last value of `name`.
+    pub fn last(&self, name: &str) -> f64 {
+        *self.get(name).last().expect("nothing recorded")
+    }
+}
+
+/// Runs a scene in memory (nothing written).
+pub fn run(scene: &Scene) -> Series {
+    let result = run_scene(
+        scene,
+        &RunOptions {
+            output_dir: None,
+            progress: false,
+        },
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    Series {
+        time: result.recorder.time.clone(),
+        names: result.recorder.names.clone(),
+        columns: result.recorder.columns.clone(),
+        counters: result.summary.counters,
+        error: result.summary.error,
+    }
+}
+
+/// Runs `scene` with another scheme, acceleration and step.
+pub fn run_with(
+    scene: &mut Scene,
+    scheme: Scheme,
+    acceleration: Acceleration,
+    step: f64,
+) -> Series {
+    scene.spec.master.scheme = scheme;
+    scene.spec.master.acceleration = acceleration;
+    scene.set_step(step).unwrap_or_else(|e| panic!("{e}"));
+    run(scene)
+}
+
+/// Every scheme, without acceleration.
+pub const SCHEMES: [Scheme; 4] = [
+    Scheme::Jacobi,
+    Scheme::GaussSeidel,
+    Scheme::IterativeJacobi,
+    Scheme::IterativeGaussSeidel,
+];
+
+/// B1 exact solution (u1, u2) at time t: m = 1, k_outer = 4 pi^2, k_middle = 16 pi^2,
+/// u0 = (1, 0), v0 = 0; modes at 2 pi and 6 pi rad/s.
+pub fn b1_exact(t: f64) -> (f64, f64) {
+    let pi = std::f64::consts::PI;
+    let (a, b) = ((2.0 * pi * t).cos(), (6.0 * pi * t).cos());
+    (0.5 * (a + b), 0.5 * (a - b))
+}
+
+/// A two-mass chain: masses, springs and dampers to ground, coupling spring-damper.
+#[derive(Clone, Copy, Debug)]
+pub struct Chain {
+    pub m: [f64; 2],
+    pub k: [f64; 2],
+    pub c: [f64; 2],
+    pub kc: f64,
+    pub dc: f64,
+    pub u0: [f64; 2],
+    pub v0: [f64; 2],
+}
+
+impl Chain {
+    /// Displacements and velocities `[u1, u2, v1, v2]` after each of `steps` steps of
+    /// the monolithic system, integrated with the same Newmark scheme as the units.
+    pub fn monolithic(&self, h: f64, steps: usize) -> Vec<[f64; 4]> {
+        let m = DMatrix::from_diagonal(&DVector::from_row_slice(&self.m));
+        let k = DMatrix::from_row_slice(
+            2,
+            2,
+            &[self.k[0] + self.kc, -self.kc, -self.kc, self.k[1] + self.kc],
+        );
+        let c = DMatrix::from_row_slice(
+            2,
+            2,
+            &[self.c[0] + self.dc, -self.dc, -self.dc, self.c[1] + self.dc],
+        );
+        let mut integrator = LinearNewmark::new(m, c, k, h).expect("valid chain");
+        let f = DVector::zeros(2);
+        let mut state = integrator
+            .initial_state(
+                DVector::from_row_slice(&self.u0),
+                DVector::from_row_slice(&self.v0),
+                &f,
+            )
+            .expect("valid chain");
+        (0..steps)
+            .map(|_| {
+                integrator.step(&mut state, &f);
+                [state.u[0], state.u[1], state.v[0], state.v[1]]
+            })
+            .collect()
+    }
+
+    /// Total mechanical energy (J) of state `[u1, u2, v1, v2]`.
+    pub fn energy(&self, s: [f64; 4]) -> f64 {
+        0.5 * (self.m[0] * s[2] * s[2] + self.m[1] * s[3] * s[3])
+            + 0.5 * (self.k[0] * s[0] * s[0] + self.k[1] * s[1] * s[1])
+            + 0.5 * self.kc * (s[0] - s[1]).powi(2)
+    }
+}
+
+/// Observed order of convergence from errors at steps h and h/2.
+pub fn order(error_h: f64, error_half: f64) -> f64 {
+    (error_h / error_half).log2()
+}

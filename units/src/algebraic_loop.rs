@@ -133,7 +133,7 @@ impl SphereClosure {
     fn solve(&mut self) -> Result<(), UnitError> {
         let [a, b] = self.values.inputs;
         let rest = self.params.radius_squared - a * a - b * b;
-        if !(rest >= 0.0) {
+        if rest.is_nan() || rest < 0.0 {
             return Err(UnitError::InvalidInput {
                 port: "a".into(),
                 value: a,

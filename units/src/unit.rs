@@ -146,6 +146,8 @@ pub trait Unit: Send {
     fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError>;
 
     /// Finds the initial state at `t0` with the inputs held at their set values.
+    /// Each call starts again from the parameters: the master may call it several
+    /// times with different inputs while it makes looped initial values consistent.
     fn initialize(&mut self, t0: Time) -> Result<(), UnitError>;
 
     /// Advances from `t` to `t + h`, holding the inputs as their ports say.

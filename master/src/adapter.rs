@@ -1,0 +1,149 @@
+//! The master's side of a unit: cached port values, call-order checks, counters.
+//!
+//! Model authors implement the small [`Unit`] trait; the master only talks to units
+//! through this adapter, which enforces the call order written in the trait's
+//! documentation, checks outputs for NaN, and counts and times `do_step`.
+
+use crate::counters::UnitCounters;
+use crate::error::MasterError;
+use slender_units::{Hold, StateSlot, Time, Unit, UnitError};
+use std::time::Instant;
+
+/// Where a unit is in its life cycle.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Phase {
+    Instantiated,
+    Initialized,
+}
+
+/// A unit as the master holds it.
+pub struct UnitAdapter {
+    pub name: String,
+    unit: Box<dyn Unit>,
+    phase: Phase,
+    /// Values given to the next `set_inputs`.
+    pub inputs: Vec<f64>,
+    /// Output values after the last `initialize` or `do_step`.
+    pub outputs: Vec<f64>,
+    /// Constant values of inputs nothing drives (first guess for looped inputs).
+    pub start_inputs: Vec<f64>,
+    saved: StateSlot,
+    pub counters: UnitCounters,
+}
+
+impl UnitAdapter {
+    pub fn new(name: String, unit: Box<dyn Unit>, start_inputs: Vec<f64>) -> UnitAdapter {
+        let n_out = unit.description().outputs.len();
+        UnitAdapter {
+            counters: UnitCounters {
+                name: name.clone(),
+                ..UnitCounters::default()
+            },
+            name,
+            unit,
+            phase: Phase::Instantiated,
+            inputs: start_inputs.clone(),
+            outputs: vec![0.0; n_out],
+            start_inputs,
+            saved: StateSlot::new(),
+        }
+    }
+
+    /// The wrapped unit's description.
+    pub fn description(&self) -> &slender_units::UnitDescription {
+        self.unit.description()
+    }
+
+    fn fail(&self, call: &'static str, t: Time, iteration: u32, source: UnitError) -> MasterError {
+        MasterError::Unit {
+            unit: self.name.clone(),
+            call,
+            time: t.as_secs(),
+            iteration,
+            source,
+        }
+    }
+
+    /// Sets the hold of every input (before initialisation only).
+    pub fn set_hold_all(&mut self, hold: Hold) -> Result<(), MasterError> {
+        if self.phase != Phase::Instantiated {
+            return Err(MasterError::Invalid(format!(
+                "unit `{}`: the input hold can only change before initialisation",
+                self.name
+            )));
+        }
+        for port in 0..self.inputs.len() {
+            self.unit
+                .set_hold(port, hold)
+                .map_err(|e| self.fail("set_hold", Time::ZERO, 0, e))?;
+        }
+        Ok(())
+    }
+
+    /// `set_inputs(self.inputs)` then `initialize(t0)`, then reads the outputs; may
+    /// be repeated while the master makes looped initial values consistent.
+    pub fn initialize(&mut self, t0: Time, iteration: u32) -> Result<(), MasterError> {
+        self.unit
+            .set_inputs(&self.inputs)
+            .map_err(|e| self.fail("set_inputs", t0, iteration, e))?;
+        self.unit
+            .initialize(t0)
+            .map_err(|e| self.fail("initialize", t0, iteration, e))?;
+        self.phase = Phase::Initialized;
+        self.read_outputs(t0, iteration)
+    }
+
+    /// `set_inputs(self.inputs)`, `do_step(t, h)`, then reads the outputs at `t + h`.
+    pub fn step(&mut self, t: Time, h: Time, iteration: u32) -> Result<(), MasterError> {
+        if self.phase != Phase::Initialized {
+            return Err(MasterError::Invalid(format!(
+                "unit `{}`: do_step called before initialize",
+                self.name
+            )));
+        }
+        self.unit
+            .set_inputs(&self.inputs)
+            .map_err(|e| self.fail("set_inputs", t + h, iteration, e))?;
+        let started = Instant::now();
+        let result = self.unit.do_step(t, h);
+        self.counters.step_time_s += started.elapsed().as_secs_f64();
+        self.counters.do_step_calls += 1;
+        let report = result.map_err(|e| self.fail("do_step", t + h, iteration, e))?;
+        self.counters.solver_iterations += u64::from(report.solver_iterations);
+        self.read_outputs(t + h, iteration)
+    }
+
+    fn read_outputs(&mut self, t: Time, iteration: u32) -> Result<(), MasterError> {
+        self.unit.outputs(&mut self.outputs);
+        if let Some(port) = self.outputs.iter().position(|v| !v.is_finite()) {
+            return Err(MasterError::NonFinite {
+                unit: self.name.clone(),
+                port: self.unit.description().outputs[port].name.clone(),
+                value: self.outputs[port],
+                time: t.as_secs(),
+                iteration,
+            });
+        }
+        Ok(())
+    }
+
+    /// Saves the unit's state for a later `restore`.
+    pub fn save(&mut self, t: Time) -> Result<(), MasterError> {
+        self.unit
+            .save_state(&mut self.saved)
+            .map_err(|e| self.fail("save_state", t, 0, e))
+    }
+
+    /// Restores the state saved by the last `save`.
+    pub fn restore(&mut self, t: Time, iteration: u32) -> Result<(), MasterError> {
+        if self.saved.is_empty() {
+            return Err(MasterError::Invalid(format!(
+                "unit `{}`: restore_state called before save_state",
+                self.name
+            )));
+        }
+        self.unit
+            .restore_state(&self.saved)
+            .map_err(|e| self.fail("restore_state", t, iteration, e))
+    }
+}

@@ -1,0 +1,94 @@
+//! What a run did: steps, iterations, rollbacks, residuals and time per unit.
+
+use serde::Serialize;
+
+/// Per-unit counters.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct UnitCounters {
+    pub name: String,
+    /// `do_step` calls, including repeated and Jacobian-probing ones.
+    pub do_step_calls: u64,
+    /// Wall time spent inside `do_step` (s).
+    pub step_time_s: f64,
+    /// Internal solver iterations the unit reported (e.g. Newton iterations).
+    pub solver_iterations: u64,
+}
+
+/// Counters of a whole run.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Counters {
+    /// Iterations needed to make the initial values of loops consistent.
+    pub initialization_iterations: u32,
+    /// Residual at the exit of initialisation (see `last_residual`).
+    pub initialization_residual: f64,
+    /// Synchronisation steps taken.
+    pub steps: u64,
+    /// Iterations over all steps (1 per step for non-iterative schemes; Newton
+    /// iterations for Newton, not counting the Jacobian probes).
+    pub iterations: u64,
+    /// `iteration_histogram[k]`: steps that took k iterations.
+    pub iteration_histogram: Vec<u64>,
+    /// Units restored to the start of a step (one per unit per repetition).
+    pub rollbacks: u64,
+    /// Steps (initialisation included) accepted without meeting the tolerances
+    /// (`on_max_iterations = "accept"`).
+    pub non_converged_steps: u64,
+    /// Interface Jacobians evaluated by Newton.
+    pub jacobian_evaluations: u64,
+    /// Residual at the exit of the last step: the largest |change| / tolerance over
+    /// the connections (<= 1 means converged); 0 for non-iterative schemes.
+    pub last_residual: f64,
+    /// Largest residual at exit over all steps.
+    pub max_residual: f64,
+    pub units: Vec<UnitCounters>,
+}
+
+impl Counters {
+    /// Counters for the named units, all zero.
+    pub fn new<'a>(names: impl Iterator<Item = &'a str>) -> Counters {
+        Counters {
+            units: names
+                .map(|n| UnitCounters {
+                    name: n.to_owned(),
+                    ..UnitCounters::default()
+                })
+                .collect(),
+            ..Counters::default()
+        }
+    }
+
+    /// Records a finished step.
+    pub fn record_step(&mut self, iterations: u32, residual: f64, converged: bool) {
+        self.steps += 1;
+        self.iterations += u64::from(iterations);
+        let k = iterations as usize;
+        if self.iteration_histogram.len() <= k {
+            self.iteration_histogram.resize(k + 1, 0);
+        }
+        self.iteration_histogram[k] += 1;
+        self.last_residual = residual;
+        self.max_residual = self.max_residual.max(residual);
+        if !converged {
+            self.non_converged_steps += 1;
+        }
+    }
+
+    /// `do_step` calls of all units.
+    pub fn do_step_calls(&self) -> u64 {
+        self.units.iter().map(|u| u.do_step_calls).sum()
+    }
+
+    /// Time inside all units' `do_step` (s).
+    pub fn unit_time_s(&self) -> f64 {
+        self.units.iter().map(|u| u.step_time_s).sum()
+    }
+
+    /// Mean iterations per step.
+    pub fn mean_iterations(&self) -> f64 {
+        if self.steps == 0 {
+            0.0
+        } else {
+            self.iterations as f64 / self.steps as f64
+        }
+    }
+}

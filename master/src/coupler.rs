@@ -1,0 +1,530 @@
+//! The master: steps a coupled [`System`] with the configured scheme.
+//!
+//! One synchronisation step is one or more *sweeps*. A sweep steps every unit once
+//! (in `order`), feeding each input from its connection: torn connections (see
+//! [`crate::order::tears`]) take the current iterate `x`, the others the value just
+//! produced upstream. Non-iterative schemes do one sweep with `x` predicted from
+//! accepted values; iterative ones roll the units back and repeat until every
+//! connection changes by less than its tolerance (seed 000 Algorithm 1), updating
+//! `x` by plain fixed point, relaxation, Aitken, IQN-ILS or Newton.
+
+use crate::acceleration::{Accelerator, accelerator};
+use crate::adapter::UnitAdapter;
+use crate::counters::Counters;
+use crate::error::MasterError;
+use crate::order::{derive_order, tears};
+use crate::settings::{Acceleration, Extrapolation, MasterSettings, OnMaxIterations};
+use crate::system::{Connection, System};
+use slender_units::{Causality, Hold, Time};
+
+/// Convergence of one sweep: the largest change relative to its tolerance, and where.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Residual {
+    pub scaled: f64,
+    pub connection: usize,
+    pub change: f64,
+}
+
+/// A coupled simulation in progress.
+pub struct Master {
+    pub(crate) units: Vec<UnitAdapter>,
+    pub(crate) connections: Vec<Connection>,
+    pub(crate) settings: MasterSettings,
+    pub(crate) order: Vec<usize>,
+    /// Per unit and input: the connection driving it.
+    input_connection: Vec<Vec<Option<usize>>>,
+    /// Per unit: connections leaving it.
+    outgoing: Vec<Vec<usize>>,
+    /// Per connection: its tolerance.
+    pub(crate) tolerance: Vec<f64>,
+    /// Per connection: index in the torn vector, or `None`.
+    pub(crate) tear_index: Vec<Option<usize>>,
+    /// The torn connections, in tear order.
+    pub(crate) torn: Vec<usize>,
+    /// Connection values of the latest sweep.
+    pub(crate) value: Vec<f64>,
+    /// Connection values of the sweep before (convergence check of untorn ones).
+    pub(crate) previous: Vec<f64>,
+    /// Accepted values at the start of the current step, and of the step before.
+    accepted: Vec<f64>,
+    accepted_before: Vec<f64>,
+    /// The torn iterate `x` (physical units), the sweep result `G(x)`, scaled copies.
+    pub(crate) x: Vec<f64>,
+    pub(crate) gx: Vec<f64>,
+    pub(crate) scaled_x: Vec<f64>,
+    pub(crate) scaled_gx: Vec<f64>,
+    pub(crate) scaled_next: Vec<f64>,
+    accelerator: Box<dyn Accelerator>,
+    pub(crate) newton: Option<crate::newton::NewtonWork>,
+    pub(crate) time: Time,
+    pub(crate) step_size: Time,
+    pub(crate) counters: Counters,
+    initialized: bool,
+    /// True while `initialize` runs: sweeps call `initialize` instead of `do_step`.
+    initializing: bool,
+}
+
+impl Master {
+    /// Prepares `system` for stepping with `settings` and synchronisation step
+    /// `step_size`; checks the settings, the order and the units' capabilities.
+    pub fn new(
+        system: System,
+        settings: MasterSettings,
+        step_size: Time,
+    ) -> Result<Master, MasterError> {
+        settings.validate().map_err(MasterError::Invalid)?;
+        if step_size <= Time::ZERO {
+            return Err(MasterError::Invalid(format!(
+                "synchronisation step {step_size}: expected > 0"
+            )));
+        }
+        let n_units = system.units.len();
+        if n_units == 0 {
+            return Err(MasterError::Invalid("the system has no units".into()));
+        }
+        if settings.scheme.is_iterative() {
+            let missing = system
+                .units
+                .iter()
+                .find(|u| !u.unit.description().capabilities.rollback);
+            if let Some(u) = missing {
+                return Err(MasterError::RollbackUnsupported {
+                    unit: u.name.clone(),
+                    scheme: settings.scheme.name().into(),
+                });
+            }
+        }
+        let order = if settings.order.is_empty() {
+            derive_order(n_units, &system.connections)
+        } else {
+            explicit_order(&system, &settings.order)?
+        };
+        let sequential = settings.scheme.is_sequential();
+        let torn_flags = tears(&order, &system.connections, sequential);
+        let mut tear_index = vec![None; system.connections.len()];
+        let mut torn = Vec::new();
+        for (c, &is_torn) in torn_flags.iter().enumerate() {
+            if is_torn {
+                tear_index[c] = Some(torn.len());
+                torn.push(c);
+            }
+        }
+        let mut input_connection: Vec<Vec<Option<usize>>> = system
+            .units
+            .iter()
+            .map(|u| vec![None; u.unit.description().inputs.len()])
+            .collect();
+        let mut outgoing = vec![Vec::new(); n_units];
+        for (c, conn) in system.connections.iter().enumerate() {
+            input_connection[conn.to.unit][conn.to.port] = Some(c);
+            outgoing[conn.from.unit].push(c);
+        }
+        let tolerance: Vec<f64> = system
+            .connections
+            .iter()
+            .map(|c| c.link.tolerance.unwrap_or(settings.tolerances.of(c.kind)))
+            .collect();
+        let n_conn = system.connections.len();
+        let n_torn = torn.len();
+        let counters = Counters::new(system.unit_names());
+        let newton = match settings.acceleration {
+            Acceleration::Newton { .. } => Some(crate::newton::NewtonWork::new(n_torn)),
+            _ => None,
+        };
+        let accelerator = accelerator(&settings.acceleration, n_torn);
+        let units = system
+            .units
+            .into_iter()
+            .map(|u| UnitAdapter::new(u.name, u.unit, u.start_inputs))
+            .collect();
+        Ok(Master {
+            units,
+            connections: system.connections,
+            settings,
+            order,
+            input_connection,
+            outgoing,
+            tolerance,
+            tear_index,
+            torn,
+            value: vec![0.0; n_conn],
+            previous: vec![0.0; n_conn],
+            accepted: vec![0.0; n_conn],
+            accepted_before: vec![0.0; n_conn],
+            x: vec![0.0; n_torn],
+            gx: vec![0.0; n_torn],
+            scaled_x: vec![0.0; n_torn],
+            scaled_gx: vec![0.0; n_torn],
+            scaled_next: vec![0.0; n_torn],
+            accelerator,
+            newton,
+            time: Time::ZERO,
+            step_size,
+            counters,
+            initialized: false,
+            initializing: false,
+        })
+    }
+
+    /// Sets the input hold of every input of unit `unit` (before `initialize`).
+    pub fn set_hold(&mut self, unit: usize, hold: Hold) -> Result<(), MasterError> {
+        self.units[unit].set_hold_all(hold)
+    }
+
+    /// Initialises every unit at `t0`, in order, each fed by the units initialised
+    /// before it. Where connections form a loop, initialisation is a zero-length
+    /// step solved like the others: the torn inputs start at their start values
+    /// (scene `inputs`) and are iterated with the run's acceleration (plain fixed
+    /// point for non-iterative schemes) until consistent. `initialize` restarts a
+    /// unit from its parameters, so no rollback is needed here.
+    pub fn initialize(&mut self, t0: Time) -> Result<(), MasterError> {
+        self.time = t0;
+        self.initializing = true;
+        let outcome = self.initial_iterations();
+        self.initializing = false;
+        let (iterations, residual, converged) = outcome?;
+        self.counters.initialization_iterations = iterations;
+        self.counters.initialization_residual = residual;
+        if !converged {
+            self.counters.non_converged_steps += 1;
+        }
+        self.accepted.copy_from_slice(&self.value);
+        self.accepted_before.copy_from_slice(&self.value);
+        self.initialized = true;
+        Ok(())
+    }
+
+    fn initial_iterations(&mut self) -> Result<(u32, f64, bool), MasterError> {
+        for (k, &c) in self.torn.iter().enumerate() {
+            let to = self.connections[c].to;
+            self.x[k] = self.units[to.unit].start_inputs[to.port];
+        }
+        if self.torn.is_empty() {
+            self.sweep(1)?;
+            return Ok((1, 0.0, true));
+        }
+        // Untorn values have no earlier value yet: the first pass never converges.
+        self.previous.fill(f64::NAN);
+        if self.newton.is_some() {
+            self.step_newton()
+        } else {
+            self.step_fixed_point()
+        }
+    }
+
+    /// Advances every unit by one synchronisation step.
+    pub fn step(&mut self) -> Result<(), MasterError> {
+        if !self.initialized {
+            return Err(MasterError::Invalid(
+                "Master::step called before Master::initialize".into(),
+            ));
+        }
+        self.predict();
+        let (iterations, residual, converged) = if !self.settings.scheme.is_iterative() {
+            self.sweep(1)?;
+            (1, 0.0, true)
+        } else if self.newton.is_some() {
+            self.step_newton()?
+        } else {
+            self.step_fixed_point()?
+        };
+        self.counters.record_step(iterations, residual, converged);
+        self.accepted_before.copy_from_slice(&self.accepted);
+        self.accepted.copy_from_slice(&self.value);
+        self.time += self.step_size;
+        Ok(())
+    }
+
+    /// Steps until `end` (inclusive), calling `observe` after every step.
+    pub fn run_until(
+        &mut self,
+        end: Time,
+        mut observe: impl FnMut(&Master),
+    ) -> Result<(), MasterError> {
+        while self.time + self.step_size <= end {
+            self.step()?;
+            observe(self);
+        }
+        Ok(())
+    }
+
+    /// First iterate of the torn values: extrapolated from accepted values.
+    fn predict(&mut self) {
+        for (i, &c) in self.torn.iter().enumerate() {
+            self.x[i] = match self.settings.extrapolation {
+                Extrapolation::Constant => self.accepted[c],
+                Extrapolation::Linear => 2.0 * self.accepted[c] - self.accepted_before[c],
+            };
+        }
+        self.previous.copy_from_slice(&self.accepted);
+    }
+
+    /// Steps every unit once with the torn inputs at `self.x`; fills `self.value` and
+    /// `self.gx`.
+    pub(crate) fn sweep(&mut self, iteration: u32) -> Result<(), MasterError> {
+        let (t, h) = (self.time, self.step_size);
+        for i in 0..self.order.len() {
+            let u = self.order[i];
+            let unit = &mut self.units[u];
+            for (p, source) in self.input_connection[u].iter().enumerate() {
+                if let Some(c) = *source {
+                    unit.inputs[p] = match self.tear_index[c] {
+                        Some(k) => self.x[k],
+                        None => self.value[c],
+                    };
+                }
+            }
+            if self.initializing {
+                unit.initialize(t, iteration)?;
+            } else {
+                unit.step(t, h, iteration)?;
+            }
+            for &c in &self.outgoing[u] {
+                self.value[c] = link_value(&self.connections[c], &unit.outputs);
+            }
+        }
+        for (k, &c) in self.torn.iter().enumerate() {
+            self.gx[k] = self.value[c];
+        }
+        Ok(())
+    }
+
+    /// How far the latest sweep is from converged: torn connections compare what
+    /// came out with what went in, the others with the sweep before. Moves the
+    /// latest values to `previous`.
+    pub(crate) fn residual(&mut self) -> Residual {
+        let mut worst = Residual {
+            scaled: 0.0,
+            connection: 0,
+            change: 0.0,
+        };
+        for c in 0..self.connections.len() {
+            let reference = match self.tear_index[c] {
+                Some(k) => self.x[k],
+                None => self.previous[c],
+            };
+            let change = (self.value[c] - reference).abs();
+            let scaled = change / self.tolerance[c];
+            if scaled > worst.scaled || scaled.is_nan() {
+                worst = Residual {
+                    scaled,
+                    connection: c,
+                    change,
+                };
+            }
+        }
+        self.previous.copy_from_slice(&self.value);
+        worst
+    }
+
+    /// Saves every unit's state at the start of the step (nothing to save while
+    /// initialising).
+    pub(crate) fn save_all(&mut self) -> Result<(), MasterError> {
+        if self.initializing {
+            return Ok(());
+        }
+        for u in &mut self.units {
+            u.save(self.time)?;
+        }
+        Ok(())
+    }
+
+    /// Rolls every unit back to the start of the step.
+    pub(crate) fn restore_all(&mut self, iteration: u32) -> Result<(), MasterError> {
+        if self.initializing {
+            return Ok(());
+        }
+        for u in &mut self.units {
+            u.restore(self.time, iteration)?;
+        }
+        self.counters.rollbacks += self.units.len() as u64;
+        Ok(())
+    }
+
+    /// Iterative Jacobi or Gauss-Seidel with fixed-point updates of `x`.
+    fn step_fixed_point(&mut self) -> Result<(u32, f64, bool), MasterError> {
+        self.save_all()?;
+        self.accelerator.start_step();
+        let max = self.settings.max_iterations;
+        let mut k = 1;
+        loop {
+            if k > 1 {
+                self.restore_all(k)?;
+            }
+            self.sweep(k)?;
+            let residual = self.residual();
+            if residual.scaled <= 1.0 {
+                return Ok((k, residual.scaled, true));
+            }
+            if k == max {
+                return self.give_up(k, residual);
+            }
+            self.scale_iterate();
+            self.accelerator
+                .next(&self.scaled_x, &self.scaled_gx, &mut self.scaled_next);
+            self.unscale_next();
+            k += 1;
+        }
+    }
+
+    /// What happens when a step runs out of iterations.
+    pub(crate) fn give_up(
+        &mut self,
+        iterations: u32,
+        residual: Residual,
+    ) -> Result<(u32, f64, bool), MasterError> {
+        match self.settings.on_max_iterations {
+            OnMaxIterations::Accept => Ok((iterations, residual.scaled, false)),
+            OnMaxIterations::Error => Err(MasterError::NotConverged {
+                time: self.target_time(),
+                iterations,
+                connection: self.connections[residual.connection].label.clone(),
+                change: residual.change,
+                tolerance: self.tolerance[residual.connection],
+            }),
+        }
+    }
+
+    /// `x` and `G(x)` divided by their connections' tolerances.
+    pub(crate) fn scale_iterate(&mut self) {
+        for (k, &c) in self.torn.iter().enumerate() {
+            self.scaled_x[k] = self.x[k] / self.tolerance[c];
+            self.scaled_gx[k] = self.gx[k] / self.tolerance[c];
+        }
+    }
+
+    /// `x` from the scaled next iterate.
+    pub(crate) fn unscale_next(&mut self) {
+        for (k, &c) in self.torn.iter().enumerate() {
+            self.x[k] = self.scaled_next[k] * self.tolerance[c];
+        }
+    }
+
+    /// The time the current iterations solve for (s): the step's end, or the
+    /// initial time while initialising.
+    pub(crate) fn target_time(&self) -> f64 {
+        if self.initializing {
+            self.time.as_secs()
+        } else {
+            (self.time + self.step_size).as_secs()
+        }
+    }
+
+    /// Current synchronisation time.
+    pub fn time(&self) -> Time {
+        self.time
+    }
+
+    /// The synchronisation step.
+    pub fn step_size(&self) -> Time {
+        self.step_size
+    }
+
+    /// What the run did so far.
+    pub fn counters(&self) -> Counters {
+        let mut c = self.counters.clone();
+        c.units = self.units.iter().map(|u| u.counters.clone()).collect();
+        c
+    }
+
+    /// The settings in force.
+    pub fn settings(&self) -> &MasterSettings {
+        &self.settings
+    }
+
+    /// Unit names in the order they were added.
+    pub fn unit_names(&self) -> impl Iterator<Item = &str> {
+        self.units.iter().map(|u| u.name.as_str())
+    }
+
+    /// The order units are stepped in, by name.
+    pub fn order(&self) -> Vec<&str> {
+        self.order
+            .iter()
+            .map(|&u| self.units[u].name.as_str())
+            .collect()
+    }
+
+    /// Output values of unit `unit` at the current time.
+    pub fn outputs(&self, unit: usize) -> &[f64] {
+        &self.units[unit].outputs
+    }
+
+    /// Output value of "unit.port".
+    pub fn output(&self, path: &str) -> Result<f64, MasterError> {
+        let (unit, port) = self.find(path, Causality::Output)?;
+        Ok(self.units[unit].outputs[port])
+    }
+
+    /// Unit and port indices of "unit.port".
+    pub fn find(&self, path: &str, causality: Causality) -> Result<(usize, usize), MasterError> {
+        let not_found = || MasterError::Invalid(format!("no port `{path}`"));
+        let (u, p) = path.split_once('.').ok_or_else(not_found)?;
+        let unit = self
+            .units
+            .iter()
+            .position(|a| a.name == u)
+            .ok_or_else(not_found)?;
+        let d = self.units[unit].description();
+        let port = match causality {
+            Causality::Input => d.input_index(p),
+            Causality::Output => d.output_index(p),
+        }
+        .ok_or_else(not_found)?;
+        Ok((unit, port))
+    }
+
+    /// Labels and values of every connection, as accepted at the current time.
+    pub fn connection_values(&self) -> impl Iterator<Item = (&str, f64)> {
+        self.connections
+            .iter()
+            .zip(&self.accepted)
+            .map(|(c, &v)| (c.label.as_str(), v))
+    }
+
+    /// Number of connections.
+    pub fn connection_count(&self) -> usize {
+        self.connections.len()
+    }
+
+    /// Description of unit `unit`.
+    pub fn description(&self, unit: usize) -> &slender_units::UnitDescription {
+        self.units[unit].description()
+    }
+}
+
+/// The value a connection passes on, from its source unit's outputs.
+fn link_value(c: &Connection, outputs: &[f64]) -> f64 {
+    c.link.gain * outputs[c.from.port] + c.link.offset
+}
+
+fn explicit_order(system: &System, names: &[String]) -> Result<Vec<usize>, MasterError> {
+    let mut order = Vec::with_capacity(names.len());
+    for name in names {
+        let u = system.unit_index(name).ok_or_else(|| {
+            MasterError::Invalid(format!(
+                "order: no unit named `{name}`{}",
+                crate::error::did_you_mean(name, system.unit_names())
+            ))
+        })?;
+        if order.contains(&u) {
+            return Err(MasterError::Invalid(format!(
+                "order: unit `{name}` is listed twice"
+            )));
+        }
+        order.push(u);
+    }
+    if order.len() != system.units.len() {
+        let missing: Vec<&str> = system
+            .unit_names()
+            .enumerate()
+            .filter(|(i, _)| !order.contains(i))
+            .map(|(_, n)| n)
+            .collect();
+        return Err(MasterError::Invalid(format!(
+            "order: every unit must be listed once; missing: {}",
+            missing.join(", ")
+        )));
+    }
+    Ok(order)
+}

@@ -1,0 +1,77 @@
+//! Errors of the master, and the "did you mean" helper shared by messages.
+
+use slender_units::UnitError;
+use thiserror::Error;
+
+/// Why building or running a coupled simulation failed.
+#[derive(Debug, Error)]
+pub enum MasterError {
+    /// The system or the settings are inconsistent.
+    #[error("{0}")]
+    Invalid(String),
+    /// An iterative scheme needs a unit that cannot roll back.
+    #[error(
+        "scheme `{scheme}` repeats steps, but unit `{unit}` cannot roll back: use `jacobi` or `gauss_seidel`, or a unit with rollback"
+    )]
+    RollbackUnsupported { unit: String, scheme: String },
+    /// A unit call returned an error.
+    #[error("unit `{unit}`: {call} failed at t = {time} s (iteration {iteration}): {source}")]
+    Unit {
+        unit: String,
+        call: &'static str,
+        time: f64,
+        iteration: u32,
+        #[source]
+        source: UnitError,
+    },
+    /// A unit produced NaN or infinity.
+    #[error(
+        "unit `{unit}` produced {value} on output `{port}` at t = {time} s (iteration {iteration})"
+    )]
+    NonFinite {
+        unit: String,
+        port: String,
+        value: f64,
+        time: f64,
+        iteration: u32,
+    },
+    /// An iterative step reached its iteration cap with `on_max_iterations = "error"`.
+    #[error(
+        "the coupled values at t = {time} s did not converge in {iterations} iterations: connection `{connection}` still changes by {change:.3e} (tolerance {tolerance:.3e})"
+    )]
+    NotConverged {
+        time: f64,
+        iterations: u32,
+        connection: String,
+        change: f64,
+        tolerance: f64,
+    },
+    /// Newton's interface Jacobian could not be inverted.
+    #[error("newton: the interface Jacobian is singular at t = {time} s (iteration {iteration})")]
+    SingularJacobian { time: f64, iteration: u32 },
+}
+
+/// "; did you mean `x`?" when a candidate is close to `wrong`, else "".
+pub fn did_you_mean<'a>(wrong: &str, candidates: impl Iterator<Item = &'a str>) -> String {
+    candidates
+        .map(|c| (strsim::levenshtein(wrong, c), c))
+        .filter(|(d, c)| *d <= 2.max(c.len() / 3))
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| format!("; did you mean `{c}`?"))
+        .unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn near_misses_get_a_hint_and_far_ones_do_not() {
+        let names = ["top_force", "bottom_velocity"];
+        assert_eq!(
+            did_you_mean("top_forse", names.into_iter()),
+            "; did you mean `top_force`?"
+        );
+        assert_eq!(did_you_mean("xyz", names.into_iter()), "");
+    }
+}

@@ -1,0 +1,102 @@
+//! Recording a run: time series at synchronisation points, written as CSV while the
+//! run goes (so a failed run leaves readable partial results) and kept in memory
+//! for plots.
+
+use crate::coupler::Master;
+use crate::error::MasterError;
+use slender_units::Causality;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+/// Recorded signals: names, and one column of values per signal.
+pub struct Recorder {
+    pub names: Vec<String>,
+    ports: Vec<(usize, usize)>,
+    pub time: Vec<f64>,
+    pub columns: Vec<Vec<f64>>,
+    csv: Option<BufWriter<File>>,
+    every: u32,
+    counter: u32,
+}
+
+impl Recorder {
+    /// Records `signals` ("unit.port" outputs) every `every` steps, writing CSV to
+    /// `csv_path` when given.
+    pub fn new(
+        master: &Master,
+        signals: Vec<String>,
+        every: u32,
+        csv_path: Option<&Path>,
+    ) -> Result<Recorder, String> {
+        let ports = signals
+            .iter()
+            .map(|s| master.find(s, Causality::Output).map_err(|e| e.to_string()))
+            .collect::<Result<Vec<_>, _>>()?;
+        let csv = match csv_path {
+            Some(p) => {
+                let f = File::create(p).map_err(|e| format!("{}: {e}", p.display()))?;
+                let mut w = BufWriter::new(f);
+                let header = std::iter::once("time").chain(signals.iter().map(String::as_str));
+                writeln!(w, "{}", header.collect::<Vec<_>>().join(","))
+                    .map_err(|e| format!("{}: {e}", p.display()))?;
+                Some(w)
+            }
+            None => None,
+        };
+        Ok(Recorder {
+            columns: vec![Vec::new(); signals.len()],
+            names: signals,
+            ports,
+            time: Vec::new(),
+            csv,
+            every: every.max(1),
+            counter: 0,
+        })
+    }
+
+    /// Records the master's current outputs, honouring `every` (the first call, at
+    /// the initial time, is always recorded).
+    pub fn observe(&mut self, master: &Master) -> std::io::Result<()> {
+        let due = self.counter % self.every == 0;
+        self.counter += 1;
+        if !due {
+            return Ok(());
+        }
+        let t = master.time().as_secs();
+        self.time.push(t);
+        for (col, &(u, p)) in self.columns.iter_mut().zip(&self.ports) {
+            col.push(master.outputs(u)[p]);
+        }
+        if let Some(w) = &mut self.csv {
+            write!(w, "{t}")?;
+            for col in &self.columns {
+                write!(w, ",{:e}", col.last().copied().unwrap_or(f64::NAN))?;
+            }
+            writeln!(w)?;
+        }
+        Ok(())
+    }
+
+    /// Flushes the CSV file.
+    pub fn finish(&mut self) -> std::io::Result<()> {
+        match &mut self.csv {
+            Some(w) => w.flush(),
+            None => Ok(()),
+        }
+    }
+
+    /// The recorded column of `name`.
+    pub fn column(&self, name: &str) -> Option<&[f64]> {
+        self.names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| self.columns[i].as_slice())
+    }
+}
+
+impl From<std::io::Error> for MasterError {
+    fn from(e: std::io::Error) -> Self {
+        MasterError::Invalid(format!("writing results: {e}"))
+    }
+}

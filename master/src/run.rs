@@ -1,0 +1,237 @@
+//! Running a scene end to end: initialise, step to the end with a progress bar,
+//! record, and write `timeseries.csv`, `summary.json` and SVG plots.
+
+use crate::counters::Counters;
+use crate::coupler::Master;
+use crate::error::MasterError;
+use crate::plot;
+use crate::record::Recorder;
+use crate::scene::Scene;
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// How to run a scene.
+pub struct RunOptions {
+    /// Results folder; `None`: record in memory only, write nothing.
+    pub output_dir: Option<PathBuf>,
+    /// Show a progress bar once the run has lasted a second.
+    pub progress: bool,
+}
+
+/// What `summary.json` holds.
+#[derive(Debug, Serialize)]
+pub struct Summary {
+    pub scene: String,
+    pub title: String,
+    /// "completed" or "failed".
+    pub status: String,
+    pub error: Option<String>,
+    pub start_s: f64,
+    pub step_s: f64,
+    /// Simulated time actually covered (s).
+    pub simulated_s: f64,
+    pub wall_time_s: f64,
+    /// Wall time per simulated second (s/s).
+    pub cost_per_simulated_second: f64,
+    pub order: Vec<String>,
+    pub settings: crate::settings::MasterSettings,
+    pub counters: Counters,
+}
+
+/// The outcome of a run: the summary, the recording and the files written.
+pub struct RunResult {
+    pub summary: Summary,
+    pub recorder: Recorder,
+    pub files: Vec<PathBuf>,
+}
+
+/// Runs `scene`. A failure of the simulation itself is reported in the summary
+/// (status "failed") with the results recorded up to it; `Err` is returned only
+/// when nothing could be run or written.
+pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, String> {
+    let mut master = scene.build().map_err(|e| e.to_string())?;
+    let mut files = Vec::new();
+    let csv_path = match &options.output_dir {
+        Some(dir) => {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+            Some(dir.join("timeseries.csv"))
+        }
+        None => None,
+    };
+    let signals = scene.signals(&master);
+    let mut recorder = Recorder::new(
+        &master,
+        signals,
+        scene.spec.output.every,
+        csv_path.as_deref(),
+    )?;
+    let started = Instant::now();
+    let outcome = simulate(scene, &mut master, &mut recorder, options.progress);
+    let wall = started.elapsed().as_secs_f64();
+    recorder.finish().map_err(|e| e.to_string())?;
+    if let Some(p) = csv_path {
+        files.push(p);
+    }
+    let simulated = (master.time() - scene.start).as_secs();
+    let summary = Summary {
+        scene: scene.path.display().to_string(),
+        title: scene.spec.title.clone(),
+        status: if outcome.is_ok() {
+            "completed"
+        } else {
+            "failed"
+        }
+        .into(),
+        error: outcome.err().map(|e| e.to_string()),
+        start_s: scene.start.as_secs(),
+        step_s: scene.step.as_secs(),
+        simulated_s: simulated,
+        wall_time_s: wall,
+        cost_per_simulated_second: if simulated > 0.0 {
+            wall / simulated
+        } else {
+            f64::NAN
+        },
+        order: master.order().into_iter().map(String::from).collect(),
+        settings: master.settings().clone(),
+        counters: master.counters(),
+    };
+    if let Some(dir) = &options.output_dir {
+        let path = dir.join("summary.json");
+        let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        files.push(path);
+        if recorder.time.len() > 1 {
+            files.extend(write_plots(scene, &recorder, dir)?);
+        }
+    }
+    Ok(RunResult {
+        summary,
+        recorder,
+        files,
+    })
+}
+
+fn simulate(
+    scene: &Scene,
+    master: &mut Master,
+    recorder: &mut Recorder,
+    progress: bool,
+) -> Result<(), MasterError> {
+    master.initialize(scene.start)?;
+    recorder.observe(master)?;
+    let started = Instant::now();
+    let mut bar: Option<ProgressBar> = None;
+    for i in 0..scene.steps {
+        master.step()?;
+        recorder.observe(master)?;
+        if progress && i % 64 == 0 {
+            update_progress(&mut bar, started.elapsed(), i as u64, scene.steps as u64);
+        }
+    }
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    Ok(())
+}
+
+fn update_progress(bar: &mut Option<ProgressBar>, elapsed: Duration, done: u64, total: u64) {
+    if bar.is_none() && elapsed > Duration::from_secs(1) {
+        let b = ProgressBar::new(total);
+        if let Ok(style) = ProgressStyle::with_template(
+            "{elapsed_precise} [{bar:40}] {pos}/{len} steps, eta {eta}",
+        ) {
+            b.set_style(style);
+        }
+        *bar = Some(b);
+    }
+    if let Some(b) = bar {
+        b.set_position(done);
+    }
+}
+
+fn write_plots(scene: &Scene, recorder: &Recorder, dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let mut files = Vec::new();
+    if scene.spec.output.plots.is_empty() {
+        let path = dir.join("timeseries.svg");
+        let panels: Vec<Vec<String>> = recorder.names.iter().map(|n| vec![n.clone()]).collect();
+        plot::time_series(&path, &scene.spec.title, recorder, &panels)?;
+        files.push(path);
+    }
+    for p in &scene.spec.output.plots {
+        let path = dir.join(format!("{}.svg", p.name));
+        let title = if p.title.is_empty() {
+            &scene.spec.title
+        } else {
+            &p.title
+        };
+        plot::time_series(&path, title, recorder, &p.panels)?;
+        files.push(path);
+    }
+    Ok(files)
+}
+
+/// Cost of a scene measured over repeated runs without recording.
+#[derive(Debug, Serialize)]
+pub struct Benchmark {
+    pub repeats: usize,
+    /// Median wall time per simulated second (s/s).
+    pub median_cost_per_simulated_second: f64,
+    pub min_cost_per_simulated_second: f64,
+    /// Simulated seconds per wall-clock second (1 / median cost).
+    pub realtime_factor: f64,
+    pub steps: u64,
+    pub iterations: u64,
+    pub do_step_calls: u64,
+    pub rollbacks: u64,
+    /// Median over runs of (wall time - time inside units' do_step) divided by
+    /// (iterations x connections): the master's own cost per connection per
+    /// iteration (s), timer overhead included.
+    pub master_overhead_per_connection_iteration_s: f64,
+}
+
+/// Runs `scene` `repeats` times (plus one warm-up) and reports the median cost.
+pub fn benchmark(scene: &Scene, repeats: usize) -> Result<Benchmark, String> {
+    let repeats = repeats.max(1);
+    let mut costs = Vec::with_capacity(repeats);
+    let mut overheads = Vec::with_capacity(repeats);
+    let mut last = Counters::default();
+    for run in 0..=repeats {
+        let mut master = scene.build().map_err(|e| e.to_string())?;
+        let connections = master.connection_count();
+        let started = Instant::now();
+        master.initialize(scene.start).map_err(|e| e.to_string())?;
+        for _ in 0..scene.steps {
+            master.step().map_err(|e| e.to_string())?;
+        }
+        let wall = started.elapsed().as_secs_f64();
+        if run == 0 {
+            continue; // warm-up
+        }
+        last = master.counters();
+        let simulated = (scene.step * scene.steps).as_secs();
+        costs.push(wall / simulated);
+        let master_time = wall - last.unit_time_s();
+        let per = last.iterations as f64 * connections.max(1) as f64;
+        overheads.push(master_time / per);
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let min = costs.iter().copied().fold(f64::INFINITY, f64::min);
+    let med = median(&mut costs);
+    Ok(Benchmark {
+        repeats,
+        median_cost_per_simulated_second: med,
+        min_cost_per_simulated_second: min,
+        realtime_factor: 1.0 / med,
+        steps: last.steps,
+        iterations: last.iterations,
+        do_step_calls: last.do_step_calls(),
+        rollbacks: last.rollbacks,
+        master_overhead_per_connection_iteration_s: median(&mut overheads),
+    })
+}

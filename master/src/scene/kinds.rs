@@ -1,0 +1,78 @@
+//! The unit kinds a scene can name, and how each is built from its parameters.
+
+use serde::de::DeserializeOwned;
+use slender_units::Unit;
+use slender_units::algebraic_loop::{LinearPair, SphereClosure};
+use slender_units::oscillator::Oscillator;
+
+/// Builds a unit from its parameter table and the effects the scene asks for.
+type Builder = fn(toml::Table, &[String]) -> Result<Box<dyn Unit>, String>;
+
+/// A unit kind: its scene name, what it is, and the effects it can switch.
+pub struct Kind {
+    pub name: &'static str,
+    pub summary: &'static str,
+    pub effects: &'static [&'static str],
+    build: Builder,
+}
+
+/// Every kind, in the order `slender kinds` lists them.
+pub const KINDS: &[Kind] = &[
+    Kind {
+        name: "oscillator",
+        summary: "mass on a spring-damper to ground, coupled by a spring-damper or a force (B1-B3)",
+        effects: &[],
+        build: |p, _| {
+            Ok(Box::new(
+                Oscillator::new(parameters(p)?).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
+    Kind {
+        name: "loop_linear_pair",
+        summary: "B6 unit A: a + b + c = 0 and 2a - 3b + 2c = 9, input c, outputs a, b",
+        effects: &[],
+        build: |p, _| Ok(Box::new(LinearPair::new(parameters(p)?))),
+    },
+    Kind {
+        name: "loop_sphere",
+        summary: "B6 unit B: c from a^2 + b^2 + c^2 = r^2, inputs a, b, output c",
+        effects: &[],
+        build: |p, _| {
+            Ok(Box::new(
+                SphereClosure::new(parameters(p)?).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
+];
+
+/// The kind called `name`.
+pub fn find(name: &str) -> Option<&'static Kind> {
+    KINDS.iter().find(|k| k.name == name)
+}
+
+impl Kind {
+    /// Builds a unit of this kind, checking the effects against the kind's list.
+    pub fn build(&self, params: toml::Table, effects: &[String]) -> Result<Box<dyn Unit>, String> {
+        if let Some(bad) = effects.iter().find(|e| !self.effects.contains(&e.as_str())) {
+            return Err(if self.effects.is_empty() {
+                format!(
+                    "effect `{bad}`: kind `{}` has no switchable effects",
+                    self.name
+                )
+            } else {
+                format!(
+                    "effect `{bad}`: kind `{}` offers {}",
+                    self.name,
+                    self.effects.join(", ")
+                )
+            });
+        }
+        (self.build)(params, effects)
+    }
+}
+
+/// Reads a kind's parameter table into its typed parameters.
+fn parameters<T: DeserializeOwned>(table: toml::Table) -> Result<T, String> {
+    T::deserialize(toml::Value::Table(table)).map_err(|e| e.message().trim().to_owned())
+}

@@ -1,0 +1,273 @@
+//! Scenes: TOML files describing one run (units, effects, connections, master
+//! scheme and tolerances, time window, outputs), turned into a ready [`Master`].
+//!
+//! Errors name the file, the line where known, the key and what was expected.
+
+pub mod kinds;
+pub mod spec;
+
+use crate::coupler::Master;
+use crate::error::did_you_mean;
+use crate::system::{Link, System};
+use slender_units::{Causality, Time};
+use spec::SceneSpec;
+use std::fmt;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// A problem in a scene file.
+#[derive(Debug, Error)]
+pub struct SceneError {
+    pub file: PathBuf,
+    /// 1-based line, where known.
+    pub line: Option<usize>,
+    /// Dotted key, e.g. `units[1].parameters`; empty for whole-file problems.
+    pub key: String,
+    pub message: String,
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file.display())?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+        }
+        if !self.key.is_empty() {
+            write!(f, ": {}", self.key)?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+/// A parsed and checked scene.
+#[derive(Debug)]
+pub struct Scene {
+    pub path: PathBuf,
+    pub spec: SceneSpec,
+    source: String,
+    pub start: Time,
+    pub step: Time,
+    pub steps: i64,
+}
+
+impl Scene {
+    /// Reads and checks a scene file, and builds it once to check units and
+    /// connections.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let source = std::fs::read_to_string(path).map_err(|e| SceneError {
+            file: path.to_owned(),
+            line: None,
+            key: String::new(),
+            message: format!("cannot read the file: {e}"),
+        })?;
+        Scene::parse(path, source)
+    }
+
+    /// Checks a scene given as text; `path` names it in messages and anchors
+    /// relative output folders.
+    pub fn parse(path: &Path, source: String) -> Result<Scene, SceneError> {
+        let spec: SceneSpec = toml::from_str(&source).map_err(|e| SceneError {
+            file: path.to_owned(),
+            line: e.span().map(|s| line_of(&source, s.start)),
+            key: String::new(),
+            message: e.message().trim().to_owned(),
+        })?;
+        let mut scene = Scene {
+            path: path.to_owned(),
+            spec,
+            source,
+            start: Time::ZERO,
+            step: Time::ZERO,
+            steps: 0,
+        };
+        scene.check_time()?;
+        scene.build()?;
+        Ok(scene)
+    }
+
+    fn error(
+        &self,
+        span: Option<std::ops::Range<usize>>,
+        key: &str,
+        message: String,
+    ) -> SceneError {
+        SceneError {
+            file: self.path.clone(),
+            line: span.map(|s| line_of(&self.source, s.start)),
+            key: key.to_owned(),
+            message,
+        }
+    }
+
+    fn check_time(&mut self) -> Result<(), SceneError> {
+        let sim = &self.spec.simulation;
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !positive(sim.step) {
+            return Err(self.error(
+                None,
+                "simulation.step",
+                format!("{}: expected a finite value > 0 (s)", sim.step),
+            ));
+        }
+        if !positive(sim.duration) {
+            return Err(self.error(
+                None,
+                "simulation.duration",
+                format!("{}: expected a finite value > 0 (s)", sim.duration),
+            ));
+        }
+        let start = Time::from_secs(sim.start).ok_or_else(|| {
+            self.error(
+                None,
+                "simulation.start",
+                format!("{}: expected a finite time (s)", sim.start),
+            )
+        })?;
+        let step = Time::from_secs(sim.step)
+            .filter(|s| *s > Time::ZERO)
+            .ok_or_else(|| {
+                self.error(
+                    None,
+                    "simulation.step",
+                    format!("{}: expected at least 1 ns", sim.step),
+                )
+            })?;
+        let duration = Time::from_secs(sim.duration).ok_or_else(|| {
+            self.error(
+                None,
+                "simulation.duration",
+                format!("{}: too long", sim.duration),
+            )
+        })?;
+        if duration.as_nanos() % step.as_nanos() != 0 {
+            return Err(self.error(
+                None,
+                "simulation.duration",
+                format!(
+                    "{} s is not a whole number of steps of {} s",
+                    sim.duration, sim.step
+                ),
+            ));
+        }
+        self.start = start;
+        self.step = step;
+        self.steps = duration.as_nanos() / step.as_nanos();
+        Ok(())
+    }
+
+    /// Changes the synchronisation step (s), e.g. for a convergence study; the
+    /// duration must stay a whole number of steps.
+    pub fn set_step(&mut self, step: f64) -> Result<(), SceneError> {
+        self.spec.simulation.step = step;
+        self.check_time()
+    }
+
+    /// Start time plus duration.
+    pub fn end(&self) -> Time {
+        self.start + self.step * self.steps
+    }
+
+    /// Builds a fresh master for this scene, with every unit in its initial state
+    /// (not initialised yet).
+    pub fn build(&self) -> Result<Master, SceneError> {
+        let mut system = System::new();
+        let mut holds = Vec::new();
+        for (i, u) in self.spec.units.iter().enumerate() {
+            let key = format!("units[{i}]");
+            let kind = kinds::find(u.kind.get_ref()).ok_or_else(|| {
+                self.error(
+                    Some(u.kind.span()),
+                    &format!("{key}.kind"),
+                    format!(
+                        "unknown unit kind `{}`{}; known kinds: {}",
+                        u.kind.get_ref(),
+                        did_you_mean(u.kind.get_ref(), kinds::KINDS.iter().map(|k| k.name)),
+                        kinds::KINDS
+                            .iter()
+                            .map(|k| k.name)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )
+            })?;
+            let unit = kind.build(u.parameters.clone(), &u.effects).map_err(|m| {
+                self.error(
+                    Some(u.name.span()),
+                    &format!("{key} (\"{}\").parameters", u.name.get_ref()),
+                    m,
+                )
+            })?;
+            system
+                .add_unit(u.name.get_ref(), unit)
+                .map_err(|m| self.error(Some(u.name.span()), &format!("{key}.name"), m))?;
+            for (port, value) in &u.inputs {
+                system
+                    .set_start_input(&format!("{}.{port}", u.name.get_ref()), *value)
+                    .map_err(|m| {
+                        self.error(Some(u.name.span()), &format!("{key}.inputs.{port}"), m)
+                    })?;
+            }
+            holds.push(u.hold);
+        }
+        for (i, c) in self.spec.connections.iter().enumerate() {
+            let link = Link {
+                gain: c.gain,
+                offset: c.offset,
+                tolerance: c.tolerance,
+            };
+            system
+                .connect(c.from.get_ref(), c.to.get_ref(), link)
+                .map_err(|m| self.error(Some(c.from.span()), &format!("connections[{i}]"), m))?;
+        }
+        for (i, s) in self.spec.output.signals.iter().enumerate() {
+            system
+                .resolve(s, Causality::Output)
+                .map_err(|m| self.error(None, &format!("output.signals[{i}]"), m))?;
+        }
+        if self.spec.output.every == 0 {
+            return Err(self.error(None, "output.every", "0: expected at least 1".into()));
+        }
+        let mut master = Master::new(system, self.spec.master.clone(), self.step)
+            .map_err(|e| self.error(None, "master", e.to_string()))?;
+        for (u, hold) in holds.into_iter().enumerate() {
+            if let Some(hold) = hold {
+                master
+                    .set_hold(u, hold)
+                    .map_err(|e| self.error(None, &format!("units[{u}].hold"), e.to_string()))?;
+            }
+        }
+        Ok(master)
+    }
+
+    /// The recorded signals: those listed in `[output]`, or every output.
+    pub fn signals(&self, master: &Master) -> Vec<String> {
+        if !self.spec.output.signals.is_empty() {
+            return self.spec.output.signals.clone();
+        }
+        let mut all = Vec::new();
+        for (u, name) in master.unit_names().enumerate() {
+            for p in &master.description(u).outputs {
+                all.push(format!("{name}.{}", p.name));
+            }
+        }
+        all
+    }
+
+    /// Where results go unless the CLI says otherwise.
+    pub fn default_output_dir(&self) -> PathBuf {
+        match &self.spec.output.directory {
+            Some(d) => PathBuf::from(d),
+            None => {
+                let stem = self
+                    .path
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned());
+                Path::new("results").join(stem.unwrap_or_else(|| "scene".into()))
+            }
+        }
+    }
+}
+
+fn line_of(source: &str, offset: usize) -> usize {
+    source[..offset.min(source.len())].matches('\n').count() + 1
+}

@@ -1,0 +1,130 @@
+//! The scene file format (TOML), as serde types. Every table rejects unknown keys.
+//! `docs/scene-reference.md` documents these types field by field.
+
+use crate::settings::MasterSettings;
+use serde::Deserialize;
+use slender_units::Hold;
+use std::collections::BTreeMap;
+use toml::Spanned;
+
+/// A whole scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    /// One line saying what the scene is (printed in summaries and plots).
+    #[serde(default)]
+    pub title: String,
+    pub simulation: SimulationSpec,
+    pub master: MasterSettings,
+    #[serde(default)]
+    pub units: Vec<UnitSpec>,
+    #[serde(default)]
+    pub connections: Vec<ConnectionSpec>,
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// `[simulation]`: the time window.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimulationSpec {
+    /// Simulated time (s), > 0, a whole number of steps.
+    pub duration: f64,
+    /// Synchronisation step (s), > 0.
+    pub step: f64,
+    /// Start time (s), default 0.
+    #[serde(default)]
+    pub start: f64,
+}
+
+/// `[[units]]`: one unit.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnitSpec {
+    /// Unique name, used in connections as "name.port".
+    pub name: Spanned<String>,
+    /// Model kind, e.g. "oscillator" (`slender kinds` lists them).
+    pub kind: Spanned<String>,
+    /// Parameters of the kind (its own table, see the reference).
+    #[serde(default)]
+    pub parameters: toml::Table,
+    /// Physical effects to include, among those the kind offers; effects not
+    /// named are not computed at all.
+    #[serde(default)]
+    pub effects: Vec<String>,
+    /// Input hold for every input of the unit: "ramp" (default) or "zero_order".
+    #[serde(default)]
+    pub hold: Option<Hold>,
+    /// Constant values of inputs, by port name: used where nothing drives the input
+    /// and as the first guess of inputs fed through a loop.
+    #[serde(default)]
+    pub inputs: BTreeMap<String, f64>,
+}
+
+/// `[[connections]]`: an output driving an input, `to = gain * from + offset`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConnectionSpec {
+    /// Source output, "unit.port".
+    pub from: Spanned<String>,
+    /// Destination input, "unit.port".
+    pub to: Spanned<String>,
+    #[serde(default = "one")]
+    pub gain: f64,
+    #[serde(default)]
+    pub offset: f64,
+    /// Absolute convergence tolerance of this connection (destination's unit);
+    /// default: the master's tolerance for the destination's port kind.
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// `[output]`: what is written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Folder for results; default `results/<scene file stem>`; the CLI's `--out`
+    /// wins over both.
+    #[serde(default)]
+    pub directory: Option<String>,
+    /// Outputs to record, "unit.port"; default: every output of every unit.
+    #[serde(default)]
+    pub signals: Vec<String>,
+    /// Record every n-th synchronisation step (default 1).
+    #[serde(default = "every_step")]
+    pub every: u32,
+    /// Figures to draw; default: one figure with a panel per recorded signal.
+    #[serde(default)]
+    pub plots: Vec<PlotSpec>,
+}
+
+fn every_step() -> u32 {
+    1
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec {
+            directory: None,
+            signals: Vec::new(),
+            every: every_step(),
+            plots: Vec::new(),
+        }
+    }
+}
+
+/// `[[output.plots]]`: one SVG figure.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlotSpec {
+    /// File name without extension.
+    pub name: String,
+    #[serde(default)]
+    pub title: String,
+    /// Panels, top to bottom; each panel overlays the listed recorded signals.
+    pub panels: Vec<Vec<String>>,
+}

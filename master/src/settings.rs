@@ -1,0 +1,273 @@
+//! Master settings: scheme, iteration limits, acceleration and tolerances.
+//!
+//! These are the `[master]` table of a scene; the same types configure a master
+//! built in code.
+
+use serde::{Deserialize, Serialize};
+use slender_units::PortKind;
+
+/// How units are stepped within a synchronisation step.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Scheme {
+    /// All units step once, in parallel, with inputs predicted from step-start outputs.
+    Jacobi,
+    /// Units step once, in order; a unit uses the fresh outputs of those before it.
+    GaussSeidel,
+    /// Jacobi sweeps repeated with rollback until the interface converges.
+    IterativeJacobi,
+    /// Gauss-Seidel sweeps repeated with rollback until the interface converges
+    /// (seed 000 Algorithm 1).
+    IterativeGaussSeidel,
+}
+
+impl Scheme {
+    /// Whether the scheme repeats steps (and so needs rollback).
+    pub fn is_iterative(self) -> bool {
+        matches!(self, Scheme::IterativeJacobi | Scheme::IterativeGaussSeidel)
+    }
+
+    /// Whether units see fresh outputs of units earlier in the order.
+    pub fn is_sequential(self) -> bool {
+        matches!(self, Scheme::GaussSeidel | Scheme::IterativeGaussSeidel)
+    }
+
+    /// Name as written in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Jacobi => "jacobi",
+            Scheme::GaussSeidel => "gauss_seidel",
+            Scheme::IterativeJacobi => "iterative_jacobi",
+            Scheme::IterativeGaussSeidel => "iterative_gauss_seidel",
+        }
+    }
+}
+
+/// What to do when an iterative step reaches `max_iterations` unconverged.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OnMaxIterations {
+    /// Stop the run with an error naming the worst connection.
+    #[default]
+    Error,
+    /// Accept the last iterate, count the step as non-converged and go on.
+    Accept,
+}
+
+/// How the iterate of the coupled variables is updated between iterations.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Acceleration {
+    /// Plain fixed point: the next iterate is what the sweep returned.
+    #[default]
+    None,
+    /// Constant under-relaxation `x <- x + factor (G(x) - x)`.
+    Constant {
+        /// Relaxation factor in (0, 1] (over-relaxation up to 2 allowed).
+        factor: f64,
+    },
+    /// Aitken dynamic relaxation; the factor restarts at `initial_factor` each step.
+    Aitken {
+        #[serde(default = "half")]
+        initial_factor: f64,
+    },
+    /// Interface quasi-Newton, inverse least squares (IQN-ILS, Anderson type).
+    IqnIls {
+        /// Relaxation of the first iteration of a step (no history yet).
+        #[serde(default = "half")]
+        initial_factor: f64,
+        /// Earlier steps whose secant pairs are kept (0: only the current step).
+        #[serde(default)]
+        reuse_steps: u32,
+    },
+    /// Newton on the interface residual with a finite-difference Jacobian obtained
+    /// by rolling the units back (one extra sweep per coupled variable).
+    Newton {
+        /// Relative perturbation: delta = perturbation * max(|x|, 1) in SI units.
+        #[serde(default = "default_perturbation")]
+        perturbation: f64,
+        /// `every_iteration` (default) or `once_per_step`.
+        #[serde(default)]
+        jacobian: JacobianUpdate,
+    },
+}
+
+/// When Newton re-evaluates the interface Jacobian.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JacobianUpdate {
+    #[default]
+    EveryIteration,
+    OncePerStep,
+}
+
+fn half() -> f64 {
+    0.5
+}
+
+fn default_perturbation() -> f64 {
+    1e-7
+}
+
+impl Acceleration {
+    /// Name as written in scene files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Acceleration::None => "none",
+            Acceleration::Constant { .. } => "constant",
+            Acceleration::Aitken { .. } => "aitken",
+            Acceleration::IqnIls { .. } => "iqn_ils",
+            Acceleration::Newton { .. } => "newton",
+        }
+    }
+}
+
+/// Absolute convergence tolerance per port kind, in the kind's SI unit. A
+/// connection uses the tolerance of its destination port's kind unless it
+/// overrides it.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Tolerances {
+    /// N (seed 000: 0.1 N).
+    pub force: f64,
+    /// m/s (seed 000: 1e-6 m/s).
+    pub velocity: f64,
+    /// m.
+    pub displacement: f64,
+    /// rad.
+    pub rotation: f64,
+    /// N m.
+    pub moment: f64,
+    /// Any other quantity.
+    pub generic: f64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Tolerances {
+            force: 0.1,
+            velocity: 1e-6,
+            displacement: 1e-9,
+            rotation: 1e-9,
+            moment: 0.1,
+            generic: 1e-9,
+        }
+    }
+}
+
+impl Tolerances {
+    /// The tolerance for ports of `kind`.
+    pub fn of(&self, kind: PortKind) -> f64 {
+        match kind {
+            PortKind::Force => self.force,
+            PortKind::Velocity => self.velocity,
+            PortKind::Displacement => self.displacement,
+            PortKind::Rotation => self.rotation,
+            PortKind::Moment => self.moment,
+            PortKind::Generic => self.generic,
+        }
+    }
+}
+
+/// How the coupled values at the end of a step are predicted from accepted values
+/// (used by non-iterative schemes, and as the first iterate of iterative ones).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Extrapolation {
+    /// The value at the start of the step.
+    #[default]
+    Constant,
+    /// Linear through the values at the start of this step and of the previous one.
+    Linear,
+}
+
+/// Everything that configures the master.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MasterSettings {
+    pub scheme: Scheme,
+    /// Order of the units for Gauss-Seidel schemes, by name; empty: derived from the
+    /// connection graph (upstream first, scene order among equals).
+    #[serde(default)]
+    pub order: Vec<String>,
+    /// Iterations allowed per step for iterative schemes (default 50).
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: u32,
+    #[serde(default)]
+    pub on_max_iterations: OnMaxIterations,
+    #[serde(default)]
+    pub acceleration: Acceleration,
+    #[serde(default)]
+    pub tolerances: Tolerances,
+    #[serde(default)]
+    pub extrapolation: Extrapolation,
+}
+
+fn default_max_iterations() -> u32 {
+    50
+}
+
+impl MasterSettings {
+    /// Settings for `scheme` with every other field at its default.
+    pub fn new(scheme: Scheme) -> MasterSettings {
+        MasterSettings {
+            scheme,
+            order: Vec::new(),
+            max_iterations: default_max_iterations(),
+            on_max_iterations: OnMaxIterations::default(),
+            acceleration: Acceleration::default(),
+            tolerances: Tolerances::default(),
+            extrapolation: Extrapolation::default(),
+        }
+    }
+
+    /// Checks values that serde cannot: positive tolerances, an iteration cap of at
+    /// least 1, sensible acceleration factors, acceleration only with iteration.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.max_iterations == 0 {
+            return Err("max_iterations: expected at least 1".into());
+        }
+        for kind in PortKind::ALL {
+            let tol = self.tolerances.of(kind);
+            if !(tol.is_finite() && tol > 0.0) {
+                return Err(format!(
+                    "tolerances.{}: {tol} is not a finite value > 0",
+                    kind.name()
+                ));
+            }
+        }
+        if !self.scheme.is_iterative() && self.acceleration != Acceleration::None {
+            return Err(format!(
+                "acceleration `{}` needs an iterative scheme, but scheme is `{}`",
+                self.acceleration.name(),
+                self.scheme.name()
+            ));
+        }
+        let factor_ok = |f: f64| f.is_finite() && f > 0.0 && f <= 2.0;
+        match self.acceleration {
+            Acceleration::None => {}
+            Acceleration::Constant { factor }
+            | Acceleration::Aitken {
+                initial_factor: factor,
+            }
+            | Acceleration::IqnIls {
+                initial_factor: factor,
+                ..
+            } => {
+                if !factor_ok(factor) {
+                    return Err(format!(
+                        "acceleration factor {factor}: expected a value in (0, 2]"
+                    ));
+                }
+            }
+            Acceleration::Newton { perturbation, .. } => {
+                if !(perturbation.is_finite() && perturbation > 0.0 && perturbation < 1.0) {
+                    return Err(format!(
+                        "acceleration.perturbation {perturbation}: expected a value in (0, 1)"
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,155 @@
+//! B3: double mass-spring-damper in force/displacement coupling. Accuracy of
+//! Jacobi, Gauss-Seidel and iterative schemes against the monolithic solution, and
+//! iterations needed for a tolerance with and without acceleration.
+
+use slender_master::settings::{Acceleration, JacobianUpdate, Scheme};
+use slender_tests::{Chain, load, run_with};
+
+const SCENE: &str = "examples/b3_force_displacement.toml";
+
+fn chain() -> Chain {
+    Chain {
+        m: [1.0, 1.0],
+        k: [100.0, 100.0],
+        c: [1.0, 1.0],
+        kc: 3.0e4,
+        dc: 10.0,
+        u0: [0.01, 0.0],
+        v0: [0.0, 0.0],
+    }
+}
+
+/// Largest difference of both displacements to the monolithic solution (m).
+fn difference(s: &slender_tests::Series, h: f64) -> f64 {
+    let steps = s.time.len() - 1;
+    let reference = chain().monolithic(h, steps);
+    let (u1, u2) = (s.get("a.displacement"), s.get("b.displacement"));
+    (0..steps)
+        .map(|i| {
+            (u1[i + 1] - reference[i][0])
+                .abs()
+                .max((u2[i + 1] - reference[i][1]).abs())
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Sets the force tolerance and the matching displacement and velocity ones: the
+/// interface force changes by kc = 3e4 N per metre and dc = 10 N per m/s.
+fn tighten(scene: &mut slender_master::scene::Scene, force: f64) {
+    let t = &mut scene.spec.master.tolerances;
+    t.force = force;
+    t.displacement = force / 3e4;
+    t.velocity = force / 10.0;
+}
+
+fn accelerations() -> Vec<(&'static str, Acceleration)> {
+    vec![
+        ("none", Acceleration::None),
+        ("constant 0.7", Acceleration::Constant { factor: 0.7 }),
+        (
+            "aitken",
+            Acceleration::Aitken {
+                initial_factor: 0.5,
+            },
+        ),
+        (
+            "iqn_ils",
+            Acceleration::IqnIls {
+                initial_factor: 0.5,
+                reuse_steps: 0,
+            },
+        ),
+        (
+            "iqn_ils reuse 8",
+            Acceleration::IqnIls {
+                initial_factor: 0.5,
+                reuse_steps: 8,
+            },
+        ),
+        (
+            "newton",
+            Acceleration::Newton {
+                perturbation: 1e-7,
+                jacobian: JacobianUpdate::EveryIteration,
+            },
+        ),
+    ]
+}
+
+#[test]
+fn iterative_schemes_match_monolithic_where_explicit_ones_do_not() {
+    let h = 0.001;
+    eprintln!("B3 largest displacement difference to monolithic Newmark (h = {h} s)");
+    let mut errors = Vec::new();
+    for scheme in slender_tests::SCHEMES {
+        let mut scene = load(SCENE);
+        scene.spec.master.max_iterations = 200;
+        tighten(&mut scene, 1e-9);
+        let acc = if scheme.is_iterative() {
+            Acceleration::Aitken {
+                initial_factor: 0.5,
+            }
+        } else {
+            Acceleration::None
+        };
+        let s = run_with(&mut scene, scheme, acc, h);
+        let d = s
+            .error
+            .as_ref()
+            .map_or(difference(&s, h), |_| f64::INFINITY);
+        eprintln!(
+            "  {:<24} {d:.3e} m ({:.2} iterations/step)",
+            scheme.name(),
+            s.counters.mean_iterations()
+        );
+        errors.push((scheme, d));
+    }
+    for (scheme, d) in errors {
+        if scheme.is_iterative() {
+            assert!(d < 1e-10, "{scheme:?}: {d}");
+        } else {
+            // The explicit coupling of this stiff interface is far off (or unstable).
+            assert!(d > 1e-5, "{scheme:?}: {d}");
+        }
+    }
+}
+
+#[test]
+fn acceleration_cuts_the_iterations_needed_for_a_tolerance() {
+    let h = 0.01;
+    eprintln!("B3 mean iterations per step (iterative Gauss-Seidel, h = {h} s) by force tolerance");
+    eprintln!(
+        "  {:<16} {:>8} {:>8} {:>8}   difference to monolithic at 1e-9 N",
+        "acceleration", "1e-3 N", "1e-6 N", "1e-9 N"
+    );
+    let mut table = Vec::new();
+    for (name, acc) in accelerations() {
+        let mut means = Vec::new();
+        let mut diff = 0.0;
+        for tol in [1e-3, 1e-6, 1e-9] {
+            let mut scene = load(SCENE);
+            scene.spec.master.max_iterations = 200;
+            tighten(&mut scene, tol);
+            let s = run_with(&mut scene, Scheme::IterativeGaussSeidel, acc.clone(), h);
+            assert!(s.error.is_none(), "{name} at {tol}: {:?}", s.error);
+            assert_eq!(s.counters.non_converged_steps, 0);
+            means.push(s.counters.mean_iterations());
+            diff = difference(&s, h);
+        }
+        eprintln!(
+            "  {name:<16} {:>8.2} {:>8.2} {:>8.2}   {diff:.2e} m",
+            means[0], means[1], means[2]
+        );
+        assert!(diff < 1e-10, "{name}: {diff}");
+        table.push((name, means));
+    }
+    let plain = &table[0].1;
+    for (name, means) in &table[1..] {
+        for (m, p) in means.iter().zip(plain) {
+            assert!(
+                m < p,
+                "{name}: {m} iterations/step, not fewer than plain {p}"
+            );
+        }
+    }
+}
