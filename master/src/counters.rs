@@ -8,7 +8,8 @@ pub struct UnitCounters {
     pub name: String,
     /// `do_step` calls, including repeated and Jacobian-probing ones.
     pub do_step_calls: u64,
-    /// Wall time spent inside `do_step` (s).
+    /// Wall time of its `set_inputs`, `do_step` and `outputs` calls in the sweeps,
+    /// with the copying of its inputs (s).
     pub step_time_s: f64,
     /// Internal solver iterations the unit reported (e.g. Newton iterations).
     pub solver_iterations: u64,

@@ -16,6 +16,7 @@ use crate::order::{derive_order, tears};
 use crate::settings::{Acceleration, Extrapolation, MasterSettings, OnMaxIterations};
 use crate::system::{Connection, System};
 use slender_units::{Causality, Hold, Time};
+use std::time::Instant;
 
 /// Convergence of one sweep: the largest change relative to its tolerance, and where.
 #[derive(Copy, Clone, Debug)]
@@ -261,8 +262,13 @@ impl Master {
 
     /// Steps every unit once with the torn inputs at `self.x`; fills `self.value` and
     /// `self.gx`.
+    ///
+    /// Each unit is charged the wall time from the end of the previous unit's
+    /// outputs to the end of its own: one clock read per unit (about 26 ns here)
+    /// instead of two, at the price of counting the copying of its inputs.
     pub(crate) fn sweep(&mut self, iteration: u32) -> Result<(), MasterError> {
         let (t, h) = (self.time, self.step_size);
+        let mut stamp = Instant::now();
         for i in 0..self.order.len() {
             let u = self.order[i];
             let unit = &mut self.units[u];
@@ -278,6 +284,9 @@ impl Master {
                 unit.initialize(t, iteration)?;
             } else {
                 unit.step(t, h, iteration)?;
+                let now = Instant::now();
+                unit.step_time += now - stamp;
+                stamp = now;
             }
             for &c in &self.outgoing[u] {
                 self.value[c] = link_value(&self.connections[c], &unit.outputs);
@@ -423,7 +432,15 @@ impl Master {
     /// What the run did so far.
     pub fn counters(&self) -> Counters {
         let mut c = self.counters.clone();
-        c.units = self.units.iter().map(|u| u.counters.clone()).collect();
+        c.units = self
+            .units
+            .iter()
+            .map(|u| {
+                let mut uc = u.counters.clone();
+                uc.step_time_s = u.step_time.as_secs_f64();
+                uc
+            })
+            .collect();
         c
     }
 

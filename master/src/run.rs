@@ -186,13 +186,14 @@ pub struct Benchmark {
     pub iterations: u64,
     pub do_step_calls: u64,
     pub rollbacks: u64,
-    /// Median over runs of (wall time - time inside units' do_step) divided by
-    /// (iterations x connections): the master's own cost per connection per
-    /// iteration (s), timer overhead included.
+    /// Median over runs of (wall time - time charged to units) divided by
+    /// (iterations x connections): an upper estimate of the master's own cost per
+    /// connection per iteration (s), including the units' save/restore.
     pub master_overhead_per_connection_iteration_s: f64,
 }
 
-/// Runs `scene` `repeats` times (plus one warm-up) and reports the median cost.
+/// Runs `scene` `repeats` times (plus one warm-up) and reports the median cost of
+/// stepping (initialisation excluded).
 pub fn benchmark(scene: &Scene, repeats: usize) -> Result<Benchmark, String> {
     let repeats = repeats.max(1);
     let mut costs = Vec::with_capacity(repeats);
@@ -201,8 +202,8 @@ pub fn benchmark(scene: &Scene, repeats: usize) -> Result<Benchmark, String> {
     for run in 0..=repeats {
         let mut master = scene.build().map_err(|e| e.to_string())?;
         let connections = master.connection_count();
-        let started = Instant::now();
         master.initialize(scene.start).map_err(|e| e.to_string())?;
+        let started = Instant::now();
         for _ in 0..scene.steps {
             master.step().map_err(|e| e.to_string())?;
         }

@@ -149,3 +149,117 @@ impl Chain {
 pub fn order(error_h: f64, error_half: f64) -> f64 {
     (error_h / error_half).log2()
 }
+
+/// A scriptable test unit: integrates its input `u` (`y' = u`, exact for the
+/// hold it is given), echoes the input it saw on `u_seen` (direct feedthrough), and
+/// misbehaves on cue.
+pub mod probe {
+    use slender_units::{
+        Capabilities, HeldInputs, Hold, Port, PortKind, StateSlot, StepReport, Time, Unit,
+        UnitDescription, UnitError,
+    };
+
+    /// What the probe does at a step, decided from the step's end time (s) and the
+    /// number of `do_step` calls so far (rollbacks do not reset it).
+    pub enum Act {
+        Behave,
+        Fail(&'static str),
+        ProduceNan,
+    }
+
+    #[derive(Clone)]
+    struct State {
+        y: f64,
+        inputs: HeldInputs,
+    }
+
+    pub struct Probe {
+        description: UnitDescription,
+        state: State,
+        calls: u64,
+        nan: bool,
+        script: Box<dyn Fn(f64, u64) -> Act + Send>,
+    }
+
+    impl Probe {
+        /// A well-behaved probe.
+        pub fn new(rollback: bool) -> Probe {
+            Probe::scripted(rollback, |_, _| Act::Behave)
+        }
+
+        /// A probe following `script`.
+        pub fn scripted(
+            rollback: bool,
+            script: impl Fn(f64, u64) -> Act + Send + 'static,
+        ) -> Probe {
+            Probe {
+                description: UnitDescription {
+                    kind: "probe".into(),
+                    inputs: vec![Port::input("u", PortKind::Generic)],
+                    outputs: vec![
+                        Port::output("y", PortKind::Generic),
+                        Port::output("u_seen", PortKind::Generic).with_feedthrough(&[0]),
+                    ],
+                    capabilities: Capabilities {
+                        rollback,
+                        ..Capabilities::default()
+                    },
+                },
+                state: State {
+                    y: 0.0,
+                    inputs: HeldInputs::new(vec![Hold::Ramp]),
+                },
+                calls: 0,
+                nan: false,
+                script: Box::new(script),
+            }
+        }
+    }
+
+    impl Unit for Probe {
+        fn description(&self) -> &UnitDescription {
+            &self.description
+        }
+        fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
+            self.state.inputs.set_hold(port, hold);
+            Ok(())
+        }
+        fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
+            self.state.inputs.set_end(values);
+            Ok(())
+        }
+        fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
+            self.state.inputs.settle();
+            self.state.y = 0.0;
+            Ok(())
+        }
+        fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+            self.calls += 1;
+            match (self.script)((t + h).as_secs(), self.calls) {
+                Act::Behave => {}
+                Act::Fail(why) => return Err(UnitError::Numerical(why.into())),
+                Act::ProduceNan => self.nan = true,
+            }
+            let h = h.as_secs();
+            let i = &self.state.inputs;
+            self.state.y += h * 0.5 * (i.at(0, 0.0) + i.at(0, 1.0));
+            self.state.inputs.advance();
+            Ok(StepReport::default())
+        }
+        fn outputs(&self, out: &mut [f64]) {
+            out[0] = if self.nan { f64::NAN } else { self.state.y };
+            out[1] = self.state.inputs.end()[0];
+        }
+        fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+            if !self.description.capabilities.rollback {
+                return Err(UnitError::Unsupported("rollback".into()));
+            }
+            slot.store(&self.state);
+            Ok(())
+        }
+        fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+            self.state = slot.load::<State>()?.clone();
+            Ok(())
+        }
+    }
+}

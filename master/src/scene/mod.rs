@@ -190,9 +190,13 @@ impl Scene {
                     ),
                 )
             })?;
-            let unit = kind.build(u.parameters.clone(), &u.effects).map_err(|m| {
+            let (parameters, span) = match &u.parameters {
+                Some(p) => (p.get_ref().clone(), p.span()),
+                None => (toml::Table::new(), u.name.span()),
+            };
+            let unit = kind.build(parameters, &u.effects).map_err(|m| {
                 self.error(
-                    Some(u.name.span()),
+                    Some(span),
                     &format!("{key} (\"{}\").parameters", u.name.get_ref()),
                     m,
                 )

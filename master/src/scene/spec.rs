@@ -47,7 +47,7 @@ pub struct UnitSpec {
     pub kind: Spanned<String>,
     /// Parameters of the kind (its own table, see the reference).
     #[serde(default)]
-    pub parameters: toml::Table,
+    pub parameters: Option<Spanned<toml::Table>>,
     /// Physical effects to include, among those the kind offers; effects not
     /// named are not computed at all.
     #[serde(default)]

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Sets up and runs every check of slender: formatting, lints, the whole test suite
+# (release build: the verification runs need the speed), and the example scenes
+# through the CLI. Usage: ./scripts/test.sh   (CI runs exactly this.)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+step() { printf '\n== %s\n' "$*"; }
+
+step "toolchain"
+cargo --version
+rustc --version
+
+# Python side of the test suite (FMU cross-checks with FMPy): a local virtual
+# environment, created on first use. Nothing in it is needed until FMU export
+# exists, but setting it up here keeps this the one command to run.
+if [ -f scripts/requirements-test.txt ]; then
+    step "python test environment (.venv)"
+    if [ ! -x .venv/bin/python ]; then
+        python3 -m venv .venv
+    fi
+    .venv/bin/python -m pip install --quiet --disable-pip-version-check -r scripts/requirements-test.txt
+fi
+
+step "format"
+cargo fmt --all -- --check
+
+step "lints"
+cargo clippy --workspace --all-targets --release -- -D warnings
+
+step "tests"
+log=$(mktemp)
+cargo test --workspace --release 2>&1 | tee "$log"
+count() { awk -v what="$1" '/^test result:/ { for (i = 1; i <= NF; i++) if ($i ~ "^" what) n += $(i - 1) } END { print n + 0 }' "$log"; }
+passed=$(count passed)
+failed=$(count failed)
+ignored=$(count ignored)
+rm -f "$log"
+
+step "example scenes"
+for scene in examples/*.toml; do
+    cargo run --quiet --release -- check "$scene" > /dev/null
+done
+cargo run --quiet --release -- run examples/b1_two_masses.toml --quiet --out target/example-results/b1
+
+step "all checks passed"
+echo "tests: ${passed} passed, ${failed} failed, ${ignored} skipped"

@@ -1,0 +1,333 @@
+//! Scene files: every example loads; bad input gives an error naming the file, the
+//! place and what was expected; a run that fails leaves readable partial results.
+
+use slender_master::run::{RunOptions, run_scene};
+use slender_master::scene::{Scene, kinds::KINDS};
+use slender_tests::{load, root};
+use std::path::Path;
+
+const B1: &str = r#"
+[simulation]
+duration = 1.0
+step = 0.01
+
+[master]
+scheme = "iterative_gauss_seidel"
+
+[[units]]
+name = "left"
+kind = "oscillator"
+parameters = { mass = 1.0, stiffness = 39.5, coupling_stiffness = 158.0, initial_displacement = 1.0 }
+
+[[units]]
+name = "right"
+kind = "oscillator"
+parameters = { mass = 1.0, stiffness = 39.5, coupling_stiffness = 158.0 }
+
+[[connections]]
+from = "left.displacement"
+to = "right.coupling_displacement"
+
+[[connections]]
+from = "right.displacement"
+to = "left.coupling_displacement"
+"#;
+
+fn error_of(text: &str) -> String {
+    match Scene::parse(Path::new("bad.toml"), text.to_owned()) {
+        Ok(_) => panic!("scene accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// The B1 scene with `from` replaced by `to`.
+fn b1_with(from: &str, to: &str) -> String {
+    assert!(B1.contains(from), "{from}");
+    B1.replacen(from, to, 1)
+}
+
+fn expect(text: &str, parts: &[&str]) {
+    let e = error_of(text);
+    for p in parts {
+        assert!(e.contains(p), "error `{e}` lacks `{p}`");
+    }
+    assert!(e.starts_with("bad.toml"), "{e}");
+}
+
+#[test]
+fn every_example_scene_loads() {
+    let mut count = 0;
+    for entry in std::fs::read_dir(root().join("examples")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            count += 1;
+        }
+    }
+    assert!(count >= 4);
+    Scene::parse(Path::new("b1.toml"), B1.into()).unwrap();
+}
+
+#[test]
+fn malformed_toml_names_the_line() {
+    expect(&b1_with("step = 0.01", "step = 0.01 0.02"), &["bad.toml:4"]);
+}
+
+#[test]
+fn unknown_keys_are_rejected_everywhere() {
+    expect(
+        &b1_with("duration = 1.0", "duration = 1.0\nend = 3.0"),
+        &["unknown field `end`"],
+    );
+    expect(
+        &b1_with("scheme =", "schema = \"jacobi\"\nscheme ="),
+        &["unknown field `schema`"],
+    );
+    expect(
+        &b1_with(
+            "mass = 1.0, stiffness = 39.5, coupling_stiffness = 158.0 }",
+            "masss = 1.0 }",
+        ),
+        &[
+            "units[1] (\"right\").parameters",
+            "unknown field `masss`",
+            "bad.toml:17",
+        ],
+    );
+    expect(
+        &b1_with(
+            "to = \"right.coupling_displacement\"",
+            "to = \"right.coupling_displacement\"\ngian = 2",
+        ),
+        &["unknown field `gian`"],
+    );
+}
+
+#[test]
+fn unknown_names_get_a_did_you_mean() {
+    expect(
+        &b1_with("kind = \"oscillator\"", "kind = \"oscilator\""),
+        &[
+            "units[0].kind",
+            "unknown unit kind `oscilator`; did you mean `oscillator`?",
+        ],
+    );
+    expect(
+        &b1_with("right.coupling_displacement", "right.coupling_displacment"),
+        &["connections[0]", "did you mean `coupling_displacement`?"],
+    );
+    expect(
+        &b1_with(
+            "from = \"left.displacement\"",
+            "from = \"lefft.displacement\"",
+        ),
+        &["no unit named `lefft`; did you mean `left`?"],
+    );
+    expect(
+        &b1_with(
+            "from = \"left.displacement\"",
+            "from = \"left.coupling_velocity\"",
+        ),
+        &["is not an output of unit `left` (it is the other way round)"],
+    );
+}
+
+#[test]
+fn incompatible_or_duplicate_connections_are_rejected() {
+    expect(
+        &b1_with(
+            "to = \"right.coupling_displacement\"",
+            "to = \"right.coupling_velocity\"",
+        ),
+        &["cannot connect a displacement output (m) to a velocity input (m/s)"],
+    );
+    expect(
+        &b1_with(
+            "from = \"left.displacement\"",
+            "from = \"left.coupling_force\"",
+        ),
+        &["cannot connect a force output (N) to a displacement input (m)"],
+    );
+    expect(
+        &b1_with(
+            "to = \"left.coupling_displacement\"",
+            "to = \"right.coupling_displacement\"",
+        ),
+        &["already driven by `left.displacement -> right.coupling_displacement`"],
+    );
+    expect(
+        &b1_with("name = \"right\"", "name = \"left\""),
+        &["units[1].name", "used twice"],
+    );
+}
+
+#[test]
+fn impossible_values_are_rejected() {
+    expect(
+        &b1_with("step = 0.01", "step = 0.0"),
+        &["simulation.step", "expected a finite value > 0"],
+    );
+    expect(
+        &b1_with("step = 0.01", "step = -0.01"),
+        &["simulation.step"],
+    );
+    expect(
+        &b1_with("step = 0.01", "step = 0.03"),
+        &["simulation.duration", "not a whole number of steps"],
+    );
+    expect(
+        &b1_with(
+            "mass = 1.0, stiffness = 39.5, coupling_stiffness = 158.0, initial",
+            "mass = nan, stiffness = 39.5, coupling_stiffness = 158.0, initial",
+        ),
+        &["parameter `mass` = NaN: expected a finite value > 0"],
+    );
+    expect(
+        &b1_with(
+            "stiffness = 39.5, coupling_stiffness = 158.0 }",
+            "stiffness = -39.5, coupling_stiffness = 158.0 }",
+        ),
+        &["`stiffness` = -39.5"],
+    );
+    expect(
+        &b1_with(
+            "scheme = \"iterative_gauss_seidel\"",
+            "scheme = \"iterative_gauss_seidel\"\ntolerances = { displacement = 0.0 }",
+        ),
+        &["tolerances.displacement: 0 is not a finite value > 0"],
+    );
+    expect(
+        &b1_with(
+            "scheme = \"iterative_gauss_seidel\"",
+            "scheme = \"iterative_gauss_seidel\"\nmax_iterations = 0",
+        ),
+        &["max_iterations: expected at least 1"],
+    );
+    expect(
+        &b1_with(
+            "scheme = \"iterative_gauss_seidel\"",
+            "scheme = \"jacobi\"\nacceleration = { kind = \"aitken\" }",
+        ),
+        &["acceleration `aitken` needs an iterative scheme"],
+    );
+    expect(
+        &b1_with(
+            "scheme = \"iterative_gauss_seidel\"",
+            "scheme = \"iterative_gauss_seidel\"\nacceleration = { kind = \"constant\", factor = 3.0 }",
+        ),
+        &["expected a value in (0, 2]"],
+    );
+    expect(
+        &b1_with(
+            "kind = \"oscillator\"",
+            "kind = \"oscillator\"\neffects = [\"drag\"]",
+        ),
+        &["effect `drag`: kind `oscillator` has no switchable effects"],
+    );
+    expect(
+        &b1_with(
+            "kind = \"oscillator\"",
+            "kind = \"oscillator\"\ninputs = { force = 1.0 }",
+        ),
+        &["units[0].inputs.force", "has no input `force`"],
+    );
+    expect(
+        &B1.replace("[master]\nscheme = \"iterative_gauss_seidel\"\n", ""),
+        &["missing field `master`"],
+    );
+}
+
+#[test]
+fn a_failing_run_leaves_readable_partial_results() {
+    // Explicit Jacobi on B3's stiff interface at 1 ms is unstable: the motion
+    // overflows to infinity within 60 s.
+    let mut scene = load("examples/b3_force_displacement.toml");
+    scene.spec.master.scheme = slender_master::Scheme::Jacobi;
+    scene.spec.master.acceleration = slender_master::Acceleration::None;
+    scene.spec.simulation.duration = 60.0;
+    scene.set_step(0.001).unwrap();
+    let dir = std::env::temp_dir().join(format!("slender-partial-{}", std::process::id()));
+    let result = run_scene(
+        &scene,
+        &RunOptions {
+            output_dir: Some(dir.clone()),
+            progress: false,
+        },
+    )
+    .unwrap();
+    let error = result.summary.error.clone().expect("the run must fail");
+    assert!(
+        error.contains("produced inf") || error.contains("produced NaN"),
+        "{error}"
+    );
+    let summary = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    assert!(summary.contains("\"status\": \"failed\""), "{summary}");
+    let csv = std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        rows[0],
+        "time,a.displacement,b.displacement,a.coupling_force"
+    );
+    assert!(rows.len() > 100);
+    for row in &rows[1..] {
+        let fields: Vec<f64> = row.split(',').map(|f| f.parse().unwrap()).collect();
+        assert_eq!(fields.len(), 4);
+    }
+    let last_time: f64 = rows
+        .last()
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(last_time < 60.0 && (result.summary.simulated_s - last_time).abs() < 1e-9);
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn the_scene_reference_documents_every_kind_and_master_setting() {
+    let doc = std::fs::read_to_string(root().join("docs/scene-reference.md")).unwrap();
+    for k in KINDS {
+        assert!(
+            doc.contains(&format!("`{}`", k.name)),
+            "kind {} is not documented",
+            k.name
+        );
+    }
+    for key in [
+        "scheme",
+        "order",
+        "max_iterations",
+        "on_max_iterations",
+        "acceleration",
+        "tolerances",
+        "extrapolation",
+        "iqn_ils",
+        "reuse_steps",
+        "newton",
+        "perturbation",
+        "aitken",
+        "initial_factor",
+        "hold",
+        "inputs",
+        "effects",
+        "gain",
+        "offset",
+        "tolerance",
+        "every",
+        "plots",
+        "panels",
+        "signals",
+        "directory",
+        "coupling_stiffness",
+        "substeps",
+        "radius_squared",
+        "branch",
+    ] {
+        assert!(
+            doc.contains(&format!("`{key}`")),
+            "`{key}` is not documented"
+        );
+    }
+}
