@@ -5,8 +5,10 @@
 //! holds the physics and the numerics they share.
 
 pub mod algebraic_loop;
+pub mod cable;
 pub mod hold;
 pub mod integrators;
+pub mod numerics;
 pub mod oscillator;
 pub mod port;
 pub mod state;

@@ -3,6 +3,7 @@
 use serde::de::DeserializeOwned;
 use slender_units::Unit;
 use slender_units::algebraic_loop::{LinearPair, SphereClosure};
+use slender_units::cable::{Cable, Effects};
 use slender_units::oscillator::Oscillator;
 
 /// Builds a unit from its parameter table and the effects the scene asks for.
@@ -18,6 +19,17 @@ pub struct Kind {
 
 /// Every kind, in the order `slender kinds` lists them.
 pub const KINDS: &[Kind] = &[
+    Kind {
+        name: "cable",
+        summary: "2D bar-element cable, static equilibrium + linear dynamics with exact drag; full line or a section",
+        effects: &Effects::NAMES,
+        build: |p, effects| {
+            let effects = Effects::from_names(effects).map_err(|e| e.to_string())?;
+            Ok(Box::new(
+                Cable::new(parameters(p)?, effects).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
     Kind {
         name: "oscillator",
         summary: "mass on a spring-damper to ground, coupled by a spring-damper or a force (B1-B3)",

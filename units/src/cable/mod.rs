@@ -1,0 +1,708 @@
+//! Cable unit (seed 000's fixedFreeCableSegment): a 2D chain of bar elements
+//! (2 DOFs per node) with structural and added mass, effective weight, elastic and
+//! geometric stiffness, Rayleigh damping and Morison drag in a current.
+//!
+//! The static equilibrium under the top force is found by Newton-Raphson; the
+//! dynamics is linear about it (M, K and element directions from the static
+//! state) with the drag on the velocity relative to the water computed exactly
+//! (quadratic), integrated by Newmark average acceleration with drag iterations on
+//! one factorisation per step size.
+//!
+//! Boundary conditions are fixed-free: the bottom node's velocity is prescribed
+//! (input; zero for an anchor), the top node's force is prescribed (input). Outputs
+//! are the top velocity and the force the cable exerts on its bottom support, so
+//! two sections couple force-to-top / velocity-to-bottom at a truncation point.
+
+pub mod current;
+pub mod drag;
+pub mod elements;
+pub mod params;
+pub mod statics;
+
+use crate::hold::HeldInputs;
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
+use crate::port::{Hold, Port, PortKind};
+use crate::state::StateSlot;
+use crate::time::Time;
+use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
+use drag::Drag;
+use elements::ElementProperties;
+pub use params::{CableParams, Effects, Section};
+use statics::{StaticLoads, StaticState, straight_guess, trailing_block};
+
+/// Input indices.
+const TOP_FX: usize = 0;
+const TOP_FZ: usize = 1;
+const BOTTOM_VX: usize = 2;
+const BOTTOM_VZ: usize = 3;
+
+/// Output names, in order.
+pub const OUTPUTS: [&str; 8] = [
+    "top_velocity_x",
+    "top_velocity_z",
+    "bottom_force_x",
+    "bottom_force_z",
+    "top_displacement_x",
+    "top_displacement_z",
+    "top_tension",
+    "bottom_tension",
+];
+
+/// One mode of the linearised cable.
+#[derive(Clone, Debug)]
+pub struct Mode {
+    /// Period (s).
+    pub period: f64,
+    /// Node displacements, bottom node first (zero), scaled to a largest component of 1.
+    pub shape: Vec<[f64; 2]>,
+}
+
+/// Matrices and scratch of the linear dynamics about the static state.
+struct Dynamics {
+    statics: StaticState,
+    m_ff: SymmetricBand,
+    c_ff: SymmetricBand,
+    k_ff: SymmetricBand,
+    /// Couplings of the bottom node (rows: node 1 x, z; columns: bottom x, z).
+    m_fb: [[f64; 2]; 2],
+    c_fb: [[f64; 2]; 2],
+    k_fb: [[f64; 2]; 2],
+    m_bb: [[f64; 2]; 2],
+    c_bb: [[f64; 2]; 2],
+    k_bb: [[f64; 2]; 2],
+    drag: Option<Drag>,
+    /// Static drag of the current at each node (N).
+    static_drag: Vec<[f64; 2]>,
+    static_top_force: [f64; 2],
+    /// Force the cable exerts on its bottom support at rest (N).
+    static_support_force: [f64; 2],
+    /// Step size of `factor` (s) and the factorised effective stiffness.
+    h: f64,
+    factor: Option<BandLdlt>,
+    effective: SymmetricBand,
+    // Scratch, sized once.
+    rhs: Vec<f64>,
+    load: Vec<f64>,
+    scratch: Vec<f64>,
+    q_new: Vec<f64>,
+    v_iter: Vec<f64>,
+    node_velocity: Vec<[f64; 2]>,
+    node_drag: Vec<[f64; 2]>,
+}
+
+/// Everything that changes while stepping.
+#[derive(Debug)]
+struct CableState {
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    qb: [f64; 2],
+    vb: [f64; 2],
+    ab: [f64; 2],
+    inputs: HeldInputs,
+    bottom_force: [f64; 2],
+}
+
+impl Clone for CableState {
+    fn clone(&self) -> Self {
+        CableState {
+            q: self.q.clone(),
+            v: self.v.clone(),
+            a: self.a.clone(),
+            qb: self.qb,
+            vb: self.vb,
+            ab: self.ab,
+            inputs: self.inputs.clone(),
+            bottom_force: self.bottom_force,
+        }
+    }
+
+    fn clone_from(&mut self, s: &Self) {
+        self.q.clone_from(&s.q);
+        self.v.clone_from(&s.v);
+        self.a.clone_from(&s.a);
+        self.qb = s.qb;
+        self.vb = s.vb;
+        self.ab = s.ab;
+        self.inputs.clone_from(&s.inputs);
+        self.bottom_force = s.bottom_force;
+    }
+}
+
+/// The cable unit.
+pub struct Cable {
+    params: CableParams,
+    effects: Effects,
+    description: UnitDescription,
+    props: ElementProperties,
+    loads: StaticLoads,
+    /// First guess of the section's static positions (bottom first; the bottom node
+    /// stays fixed there).
+    guess: Vec<[f64; 2]>,
+    dynamics: Option<Dynamics>,
+    state: CableState,
+}
+
+impl Cable {
+    /// Builds the unit; for a lower or upper section solves the whole line's static
+    /// equilibrium to place the truncation point.
+    pub fn new(params: CableParams, effects: Effects) -> Result<Cable, UnitError> {
+        params.validate()?;
+        let area = std::f64::consts::PI * params.diameter * params.diameter / 4.0;
+        let (can, cat) = if effects.added_mass {
+            (params.added_mass_normal, params.added_mass_tangential)
+        } else {
+            (0.0, 0.0)
+        };
+        let props = ElementProperties {
+            length: params.length / params.elements as f64,
+            axial_stiffness: params.axial_stiffness(),
+            mass_per_length: params.mass_per_length,
+            added_mass_normal: params.water_density * area * can,
+            added_mass_tangential: params.water_density * area * cat,
+        };
+        let loads = StaticLoads {
+            weight: if effects.weight {
+                params.submerged_weight
+            } else {
+                0.0
+            },
+            current: (effects.drag && effects.current).then(|| {
+                (
+                    params.water_density,
+                    params.diameter,
+                    params.drag_normal,
+                    params.drag_tangential,
+                    params.current.clone(),
+                    params.water_depth,
+                )
+            }),
+        };
+        let guess = match (params.section, params.static_top_force) {
+            (Section::Full, f) => straight_guess(
+                &props,
+                params.anchor,
+                f.unwrap_or([0.0, 1.0]),
+                params.elements,
+            ),
+            (Section::Lower { truncation_ratio }, Some(f))
+            | (Section::Upper { truncation_ratio }, Some(f)) => {
+                let full = statics::solve(
+                    &props,
+                    &loads,
+                    f,
+                    straight_guess(&props, params.anchor, f, params.elements),
+                    params.static_tolerance,
+                )?;
+                let height = params.anchor[1] + truncation_ratio * params.water_depth;
+                let k = (1..params.elements)
+                    .min_by(|&a, &b| {
+                        (full.positions[a][1] - height)
+                            .abs()
+                            .total_cmp(&(full.positions[b][1] - height).abs())
+                    })
+                    .ok_or_else(|| {
+                        UnitError::parameter("elements", params.elements, "too few to split")
+                    })?;
+                match params.section {
+                    Section::Lower { .. } => full.positions[..=k].to_vec(),
+                    _ => full.positions[k..].to_vec(),
+                }
+            }
+            (_, None) => unreachable!("validate requires static_top_force for sections"),
+        };
+        let nodes = guess.len();
+        let inputs = vec![
+            Port::input("top_force_x", PortKind::Force),
+            Port::input("top_force_z", PortKind::Force),
+            Port::input("bottom_velocity_x", PortKind::Velocity),
+            Port::input("bottom_velocity_z", PortKind::Velocity),
+        ];
+        let kinds = [
+            PortKind::Velocity,
+            PortKind::Velocity,
+            PortKind::Force,
+            PortKind::Force,
+            PortKind::Displacement,
+            PortKind::Displacement,
+            PortKind::Force,
+            PortKind::Force,
+        ];
+        let outputs = OUTPUTS
+            .iter()
+            .zip(kinds)
+            .map(|(name, kind)| {
+                let p = Port::output(name, kind);
+                // The support force holds the bottom node's inertia and damping.
+                if name.starts_with("bottom_force") {
+                    p.with_feedthrough(&[BOTTOM_VX, BOTTOM_VZ])
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let free = 2 * (nodes - 1);
+        Ok(Cable {
+            description: UnitDescription {
+                kind: "cable".into(),
+                inputs,
+                outputs,
+                capabilities: Capabilities::default(),
+            },
+            state: CableState {
+                q: vec![0.0; free],
+                v: vec![0.0; free],
+                a: vec![0.0; free],
+                qb: [0.0; 2],
+                vb: [0.0; 2],
+                ab: [0.0; 2],
+                inputs: HeldInputs::new(vec![Hold::Ramp; 4]),
+                bottom_force: [0.0; 2],
+            },
+            params,
+            effects,
+            props,
+            loads,
+            guess,
+            dynamics: None,
+        })
+    }
+
+    /// Number of elements of this section.
+    pub fn element_count(&self) -> usize {
+        self.guess.len() - 1
+    }
+
+    /// The static state found by `initialize`.
+    pub fn static_state(&self) -> Option<&StaticState> {
+        self.dynamics.as_ref().map(|d| &d.statics)
+    }
+
+    /// Static position of the bottom node (m): the anchor, or the truncation point.
+    pub fn bottom_position(&self) -> [f64; 2] {
+        self.guess[0]
+    }
+
+    /// The first `count` modes of the linearised cable about its static state
+    /// (generalised eigenproblem K phi = w^2 M phi on the free DOFs), longest first.
+    pub fn modes(&self, count: usize) -> Result<Vec<Mode>, UnitError> {
+        let d = self
+            .dynamics
+            .as_ref()
+            .ok_or_else(|| UnitError::Unsupported("modal analysis before initialize".into()))?;
+        let m = d.m_ff.to_dense();
+        let k = d.k_ff.to_dense();
+        let chol = m
+            .cholesky()
+            .ok_or_else(|| UnitError::Numerical("mass matrix is not positive definite".into()))?;
+        let l = chol.l();
+        let linv = l
+            .clone()
+            .try_inverse()
+            .ok_or_else(|| UnitError::Numerical("mass factor is singular".into()))?;
+        let s = &linv * k * linv.transpose();
+        let s = (&s + s.transpose()) * 0.5;
+        let eig = nalgebra::SymmetricEigen::new(s);
+        let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
+        order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+        let mut modes = Vec::new();
+        for &i in order.iter().take(count) {
+            let w2 = eig.eigenvalues[i];
+            if w2 <= 0.0 {
+                return Err(UnitError::Numerical(format!(
+                    "eigenvalue {w2:.3e} <= 0: the cable has a zero-stiffness mode (geometric stiffness off?)"
+                )));
+            }
+            let y = eig.eigenvectors.column(i);
+            let phi = linv.transpose() * y;
+            let scale = phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            let mut shape = vec![[0.0; 2]];
+            for j in 0..phi.len() / 2 {
+                shape.push([phi[2 * j] / scale, phi[2 * j + 1] / scale]);
+            }
+            modes.push(Mode {
+                period: 2.0 * std::f64::consts::PI / w2.sqrt(),
+                shape,
+            });
+        }
+        Ok(modes)
+    }
+
+    fn build_dynamics(
+        &self,
+        statics: StaticState,
+        top_force: [f64; 2],
+    ) -> Result<Dynamics, UnitError> {
+        let p = &self.props;
+        let x = &statics.positions;
+        let nodes = x.len();
+        let full_m = elements::mass(p, x);
+        let full_k = elements::stiffness(p, x, self.effects.geometric_stiffness);
+        let (a1, a2) = if self.effects.structural_damping {
+            (self.params.rayleigh_mass, self.params.rayleigh_stiffness)
+        } else {
+            (0.0, 0.0)
+        };
+        let mut full_c = SymmetricBand::zeros(full_m.size(), full_m.half_bandwidth());
+        full_c.set_combination(&[(a1, &full_m), (a2, &full_k)]);
+        let block = |m: &SymmetricBand, r0: usize, c0: usize| {
+            [
+                [m.get(r0, c0), m.get(r0, c0 + 1)],
+                [m.get(r0 + 1, c0), m.get(r0 + 1, c0 + 1)],
+            ]
+        };
+        let drag = self.effects.drag.then(|| {
+            let mut dirs = Vec::with_capacity(nodes - 1);
+            let mut speeds = Vec::with_capacity(nodes - 1);
+            for e in 0..nodes - 1 {
+                let (dir, _, _) = elements::element_state(p, x[e], x[e + 1]);
+                dirs.push(dir);
+                let z = 0.5 * (x[e][1] + x[e + 1][1]);
+                speeds.push(if self.effects.current {
+                    self.params.current.speed(z, self.params.water_depth)
+                } else {
+                    0.0
+                });
+            }
+            Drag::new(
+                self.params.water_density,
+                self.params.diameter,
+                self.params.drag_normal,
+                self.params.drag_tangential,
+                p.length,
+                dirs,
+                speeds,
+            )
+        });
+        let mut static_drag = vec![[0.0; 2]; nodes];
+        if let Some(d) = &drag {
+            d.add_forces(&vec![[0.0; 2]; nodes], &mut static_drag);
+        }
+        // Support force at rest: the first element's pull, the bottom node's half
+        // weight and its share of the current drag.
+        let (e0, _, t0) = elements::element_state(p, x[0], x[1]);
+        let w0 = -0.5 * self.loads.weight * p.length;
+        let static_support_force = [
+            t0 * e0[0] + static_drag[0][0],
+            t0 * e0[1] + w0 + static_drag[0][1],
+        ];
+        let free = 2 * (nodes - 1);
+        Ok(Dynamics {
+            m_fb: block(&full_m, 2, 0),
+            c_fb: block(&full_c, 2, 0),
+            k_fb: block(&full_k, 2, 0),
+            m_bb: block(&full_m, 0, 0),
+            c_bb: block(&full_c, 0, 0),
+            k_bb: block(&full_k, 0, 0),
+            m_ff: trailing_block(&full_m, 2),
+            c_ff: trailing_block(&full_c, 2),
+            k_ff: trailing_block(&full_k, 2),
+            effective: SymmetricBand::zeros(free, elements::BAND),
+            drag,
+            static_drag,
+            static_top_force: top_force,
+            static_support_force,
+            h: 0.0,
+            factor: None,
+            statics,
+            rhs: vec![0.0; free],
+            load: vec![0.0; free],
+            scratch: vec![0.0; free],
+            q_new: vec![0.0; free],
+            v_iter: vec![0.0; free],
+            node_velocity: vec![[0.0; 2]; nodes],
+            node_drag: vec![[0.0; 2]; nodes],
+        })
+    }
+}
+
+impl Dynamics {
+    /// Factorises K + 2/h C + 4/h^2 M for step h (s) when h changed.
+    fn prepare(&mut self, h: f64) -> Result<(), UnitError> {
+        if self.factor.is_some() && self.h == h {
+            return Ok(());
+        }
+        self.effective.set_combination(&[
+            (1.0, &self.k_ff),
+            (2.0 / h, &self.c_ff),
+            (4.0 / (h * h), &self.m_ff),
+        ]);
+        self.factor = Some(BandLdlt::new(&self.effective).ok_or_else(|| {
+            UnitError::Numerical(format!(
+                "the effective stiffness for h = {h} s is not positive definite"
+            ))
+        })?);
+        self.h = h;
+        Ok(())
+    }
+
+    /// Nodal drag (N) minus its static value, for free velocities `v` and bottom
+    /// velocity `vb`, into `node_drag`.
+    fn drag_change(&mut self, v: &[f64], vb: [f64; 2]) {
+        let Some(drag) = &self.drag else { return };
+        self.node_velocity[0] = vb;
+        for (j, nv) in self.node_velocity.iter_mut().enumerate().skip(1) {
+            *nv = [v[2 * (j - 1)], v[2 * (j - 1) + 1]];
+        }
+        self.node_drag.iter_mut().for_each(|f| *f = [0.0; 2]);
+        drag.add_forces(&self.node_velocity, &mut self.node_drag);
+        for (f, s) in self.node_drag.iter_mut().zip(&self.static_drag) {
+            f[0] -= s[0];
+            f[1] -= s[1];
+        }
+    }
+}
+
+/// Solves the step for the free DOFs, iterating on the drag with the factorised
+/// effective stiffness (modified Newton). Leaves the new displacement in `q_new`,
+/// velocity in `v_iter` and acceleration in `scratch`; returns the iterations.
+fn drag_iterations(
+    d: &mut Dynamics,
+    s: &CableState,
+    factor: &BandLdlt,
+    h: f64,
+    vb: [f64; 2],
+    tolerance: f64,
+) -> Result<u32, UnitError> {
+    let n = s.q.len();
+    d.v_iter.copy_from_slice(&s.v);
+    let max_iterations = 100u32;
+    let mut iterations = 0;
+    loop {
+        iterations += 1;
+        d.load.copy_from_slice(&d.rhs);
+        if d.drag.is_some() {
+            let v_iter = std::mem::take(&mut d.v_iter);
+            d.drag_change(&v_iter, vb);
+            d.v_iter = v_iter;
+            for j in 1..d.node_drag.len() {
+                d.load[2 * (j - 1)] += d.node_drag[j][0];
+                d.load[2 * (j - 1) + 1] += d.node_drag[j][1];
+            }
+        }
+        d.q_new.copy_from_slice(&d.load);
+        factor.solve_in_place(&mut d.q_new);
+        let mut change: f64 = 0.0;
+        for i in 0..n {
+            let a_new = 4.0 / (h * h) * (d.q_new[i] - s.q[i]) - 4.0 / h * s.v[i] - s.a[i];
+            let v_new = s.v[i] + 0.5 * h * (s.a[i] + a_new);
+            change = change.max((v_new - d.v_iter[i]).abs());
+            d.v_iter[i] = v_new;
+            d.scratch[i] = a_new;
+        }
+        if !change.is_finite() {
+            return Err(UnitError::Numerical(format!(
+                "the cable's velocity became {change} in a step of {h} s"
+            )));
+        }
+        if d.drag.is_none() || change <= tolerance {
+            return Ok(iterations);
+        }
+        if iterations == max_iterations {
+            return Err(UnitError::Numerical(format!(
+                "drag iterations did not converge in {max_iterations} iterations (last velocity change {change:.3e} m/s, step {h} s)"
+            )));
+        }
+    }
+}
+
+fn mat2(m: &[[f64; 2]; 2], x: [f64; 2]) -> [f64; 2] {
+    [
+        m[0][0] * x[0] + m[0][1] * x[1],
+        m[1][0] * x[0] + m[1][1] * x[1],
+    ]
+}
+
+impl Unit for Cable {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
+        if port >= 4 {
+            return Err(UnitError::Unsupported(format!("no input {port}")));
+        }
+        self.state.inputs.set_hold(port, hold);
+        self.description.inputs[port].hold = hold;
+        Ok(())
+    }
+
+    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
+        check_input_count(4, values)?;
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(UnitError::InvalidInput {
+                port: self.description.inputs[i].name.clone(),
+                value: values[i],
+                reason: "not finite".into(),
+            });
+        }
+        self.state.inputs.set_end(values);
+        Ok(())
+    }
+
+    fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
+        self.state.inputs.settle();
+        let top = [
+            self.state.inputs.at(TOP_FX, 1.0),
+            self.state.inputs.at(TOP_FZ, 1.0),
+        ];
+        let guess = match self.params.section {
+            Section::Full if self.params.static_top_force.is_none() => {
+                straight_guess(&self.props, self.params.anchor, top, self.params.elements)
+            }
+            _ => self.guess.clone(),
+        };
+        let statics = statics::solve(
+            &self.props,
+            &self.loads,
+            top,
+            guess,
+            self.params.static_tolerance,
+        )?;
+        let d = self.build_dynamics(statics, top)?;
+        let s = &mut self.state;
+        s.q.fill(0.0);
+        s.v.fill(0.0);
+        s.a.fill(0.0);
+        s.qb = [0.0; 2];
+        s.vb = [s.inputs.at(BOTTOM_VX, 1.0), s.inputs.at(BOTTOM_VZ, 1.0)];
+        s.ab = [0.0; 2];
+        s.bottom_force = d.static_support_force;
+        self.dynamics = Some(d);
+        Ok(())
+    }
+
+    fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
+        let d = self
+            .dynamics
+            .as_mut()
+            .ok_or_else(|| UnitError::Unsupported("do_step before initialize".into()))?;
+        let h = h.as_secs();
+        d.prepare(h)?;
+        let s = &mut self.state;
+        let n = s.q.len();
+        // Prescribed bottom motion at the step's end.
+        let vb = [s.inputs.at(BOTTOM_VX, 1.0), s.inputs.at(BOTTOM_VZ, 1.0)];
+        let (qb, ab) = match self.description.inputs[BOTTOM_VX].hold {
+            Hold::Ramp => (
+                [
+                    s.qb[0] + 0.5 * h * (s.vb[0] + vb[0]),
+                    s.qb[1] + 0.5 * h * (s.vb[1] + vb[1]),
+                ],
+                [
+                    2.0 / h * (vb[0] - s.vb[0]) - s.ab[0],
+                    2.0 / h * (vb[1] - s.vb[1]) - s.ab[1],
+                ],
+            ),
+            Hold::ZeroOrder => ([s.qb[0] + h * vb[0], s.qb[1] + h * vb[1]], [0.0; 2]),
+        };
+        // Constant part of the right-hand side.
+        d.rhs.fill(0.0);
+        for i in 0..n {
+            d.scratch[i] = 4.0 / (h * h) * s.q[i] + 4.0 / h * s.v[i] + s.a[i];
+        }
+        d.m_ff.mul_add(1.0, &d.scratch, &mut d.rhs);
+        for i in 0..n {
+            d.scratch[i] = 2.0 / h * s.q[i] + s.v[i];
+        }
+        d.c_ff.mul_add(1.0, &d.scratch, &mut d.rhs);
+        d.rhs[n - 2] += s.inputs.at(TOP_FX, 1.0) - d.static_top_force[0];
+        d.rhs[n - 1] += s.inputs.at(TOP_FZ, 1.0) - d.static_top_force[1];
+        let (mfb, cfb, kfb) = (mat2(&d.m_fb, ab), mat2(&d.c_fb, vb), mat2(&d.k_fb, qb));
+        for c in 0..2 {
+            d.rhs[c] -= mfb[c] + cfb[c] + kfb[c];
+        }
+        // Newmark with drag iterations on the fixed factorisation.
+        d.v_iter.copy_from_slice(&s.v);
+        let factor = d.factor.take().expect("prepared above");
+        let drag_tolerance = self.params.drag_tolerance;
+        let outcome = drag_iterations(d, s, &factor, h, vb, drag_tolerance);
+        d.factor = Some(factor);
+        let iterations = outcome?;
+        s.q.copy_from_slice(&d.q_new);
+        s.v.copy_from_slice(&d.v_iter);
+        s.a.copy_from_slice(&d.scratch);
+        s.qb = qb;
+        s.vb = vb;
+        s.ab = ab;
+        // Force on the support: static pull minus the bottom node's dynamic
+        // equation, plus its drag change (drag_change holds the final velocities).
+        if d.drag.is_some() {
+            let v_final = std::mem::take(&mut d.v_iter);
+            d.drag_change(&v_final, vb);
+            d.v_iter = v_final;
+        }
+        let (a1, v1, q1) = ([s.a[0], s.a[1]], [s.v[0], s.v[1]], [s.q[0], s.q[1]]);
+        let t = |m: &[[f64; 2]; 2], x: [f64; 2]| {
+            [
+                m[0][0] * x[0] + m[1][0] * x[1],
+                m[0][1] * x[0] + m[1][1] * x[1],
+            ]
+        };
+        let inertia = [mat2(&d.m_bb, ab), t(&d.m_fb, a1)];
+        let damping = [mat2(&d.c_bb, vb), t(&d.c_fb, v1)];
+        let elastic = [mat2(&d.k_bb, qb), t(&d.k_fb, q1)];
+        for c in 0..2 {
+            let dyn_eq = inertia[0][c]
+                + inertia[1][c]
+                + damping[0][c]
+                + damping[1][c]
+                + elastic[0][c]
+                + elastic[1][c];
+            let drag = if d.drag.is_some() {
+                d.node_drag[0][c]
+            } else {
+                0.0
+            };
+            s.bottom_force[c] = d.static_support_force[c] - dyn_eq + drag;
+        }
+        s.inputs.advance();
+        Ok(StepReport {
+            solver_iterations: iterations,
+        })
+    }
+
+    fn outputs(&self, out: &mut [f64]) {
+        let s = &self.state;
+        let n = s.q.len();
+        out[0] = s.v[n - 2];
+        out[1] = s.v[n - 1];
+        out[2] = s.bottom_force[0];
+        out[3] = s.bottom_force[1];
+        out[4] = s.q[n - 2];
+        out[5] = s.q[n - 1];
+        let (top, bottom) = match &self.dynamics {
+            Some(d) => {
+                let x = &d.statics.positions;
+                let m = x.len() - 1;
+                let ea = self.props.axial_stiffness / self.props.length;
+                let (et, _, tt) = elements::element_state(&self.props, x[m - 1], x[m]);
+                let (eb, _, tb) = elements::element_state(&self.props, x[0], x[1]);
+                let below_top = if m >= 2 {
+                    [s.q[n - 4], s.q[n - 3]]
+                } else {
+                    s.qb
+                };
+                let dt = [s.q[n - 2] - below_top[0], s.q[n - 1] - below_top[1]];
+                let db = [s.q[0] - s.qb[0], s.q[1] - s.qb[1]];
+                (
+                    tt + ea * (et[0] * dt[0] + et[1] * dt[1]),
+                    tb + ea * (eb[0] * db[0] + eb[1] * db[1]),
+                )
+            }
+            None => (0.0, 0.0),
+        };
+        out[6] = top;
+        out[7] = bottom;
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.state);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.state.clone_from(slot.load::<CableState>()?);
+        Ok(())
+    }
+}

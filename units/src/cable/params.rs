@@ -1,0 +1,234 @@
+//! Parameters of the cable unit (scene kind `cable`), its switchable effects and the
+//! section of the line it models.
+
+use super::current::CurrentProfile;
+use crate::unit::{UnitError, require_finite, require_non_negative, require_positive};
+use serde::Deserialize;
+
+/// Properties of the whole line and of the water (SI units).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CableParams {
+    /// Unstretched length of the whole line (m).
+    pub length: f64,
+    /// Bar elements over the whole line (a section keeps its share).
+    pub elements: usize,
+    /// Hydrodynamic diameter (m), for drag, added mass and, with the Young's
+    /// modulus, the axial stiffness EA = E pi D^2 / 4.
+    pub diameter: f64,
+    /// Structural mass per unit length (kg/m).
+    pub mass_per_length: f64,
+    /// Young's modulus (Pa).
+    pub youngs_modulus: f64,
+    /// Submerged weight per unit length (N/m); used with the `weight` effect.
+    #[serde(default)]
+    pub submerged_weight: f64,
+    /// Added-mass coefficient normal to the line (`added_mass` effect).
+    #[serde(default)]
+    pub added_mass_normal: f64,
+    /// Added-mass coefficient along the line.
+    #[serde(default)]
+    pub added_mass_tangential: f64,
+    /// Drag coefficient normal to the line (`drag` effect), on the diameter.
+    #[serde(default)]
+    pub drag_normal: f64,
+    /// Drag coefficient along the line, on the circumference pi D.
+    #[serde(default)]
+    pub drag_tangential: f64,
+    /// Rayleigh damping C = rayleigh_mass M + rayleigh_stiffness K
+    /// (`structural_damping` effect): alpha1 (1/s).
+    #[serde(default)]
+    pub rayleigh_mass: f64,
+    /// alpha2 (s).
+    #[serde(default)]
+    pub rayleigh_stiffness: f64,
+    /// Sea water density (kg/m^3), default 1025.
+    #[serde(default = "seawater")]
+    pub water_density: f64,
+    /// Water depth (m): the seabed is z = 0, the free surface z = water_depth.
+    pub water_depth: f64,
+    /// Current along +x (`current` effect).
+    #[serde(default)]
+    pub current: CurrentProfile,
+    /// Anchor position [x, z] (m), default [0, 0].
+    #[serde(default)]
+    pub anchor: [f64; 2],
+    /// Static top force [fx, fz] (N) of the whole line, used to find where a section
+    /// ends; a `full` line takes its static top force from its inputs instead.
+    #[serde(default)]
+    pub static_top_force: Option<[f64; 2]>,
+    /// Which part of the line this unit models.
+    #[serde(default)]
+    pub section: Section,
+    /// Newton tolerance of the static equilibrium, relative to the top force.
+    #[serde(default = "static_tolerance")]
+    pub static_tolerance: f64,
+    /// Tolerance on the velocity change of the drag iterations inside a step (m/s).
+    #[serde(default = "drag_tolerance")]
+    pub drag_tolerance: f64,
+}
+
+fn seawater() -> f64 {
+    1025.0
+}
+
+fn static_tolerance() -> f64 {
+    1e-10
+}
+
+fn drag_tolerance() -> f64 {
+    1e-10
+}
+
+/// The part of the line a unit models, split at the node nearest to the height
+/// `truncation_ratio * water_depth` above the seabed.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(tag = "part", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Section {
+    /// The whole line, anchor to top.
+    #[default]
+    Full,
+    /// From the anchor to the truncation point (the numerical substructure).
+    Lower { truncation_ratio: f64 },
+    /// From the truncation point to the top (the physical substructure).
+    Upper { truncation_ratio: f64 },
+}
+
+/// The physical effects a scene can switch on; none is computed when off.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct Effects {
+    /// Submerged weight (static load).
+    pub weight: bool,
+    /// Added mass of the surrounding water.
+    pub added_mass: bool,
+    /// Morison drag on the velocity relative to the water.
+    pub drag: bool,
+    /// Current profile (needs `drag` to act).
+    pub current: bool,
+    /// Geometric (tension) stiffness in the dynamics; the static solution always
+    /// has it, a cable has no transverse stiffness otherwise.
+    pub geometric_stiffness: bool,
+    /// Rayleigh structural damping.
+    pub structural_damping: bool,
+}
+
+impl Effects {
+    /// Names as written in scenes.
+    pub const NAMES: [&'static str; 6] = [
+        "weight",
+        "added_mass",
+        "drag",
+        "current",
+        "geometric_stiffness",
+        "structural_damping",
+    ];
+
+    /// From scene names; unknown names are an error.
+    pub fn from_names(names: &[String]) -> Result<Effects, UnitError> {
+        let mut e = Effects::default();
+        for n in names {
+            match n.as_str() {
+                "weight" => e.weight = true,
+                "added_mass" => e.added_mass = true,
+                "drag" => e.drag = true,
+                "current" => e.current = true,
+                "geometric_stiffness" => e.geometric_stiffness = true,
+                "structural_damping" => e.structural_damping = true,
+                other => {
+                    return Err(UnitError::parameter(
+                        "effects",
+                        other,
+                        "expected weight, added_mass, drag, current, geometric_stiffness or structural_damping",
+                    ));
+                }
+            }
+        }
+        if e.current && !e.drag {
+            return Err(UnitError::parameter(
+                "effects",
+                "current",
+                "the current acts through drag: add the `drag` effect",
+            ));
+        }
+        Ok(e)
+    }
+
+    /// Every effect on.
+    pub fn all() -> Effects {
+        Effects {
+            weight: true,
+            added_mass: true,
+            drag: true,
+            current: true,
+            geometric_stiffness: true,
+            structural_damping: true,
+        }
+    }
+}
+
+impl CableParams {
+    /// Axial stiffness EA (N).
+    pub fn axial_stiffness(&self) -> f64 {
+        self.youngs_modulus * std::f64::consts::PI * self.diameter * self.diameter / 4.0
+    }
+
+    /// Checks every parameter, naming the first bad one.
+    pub fn validate(&self) -> Result<(), UnitError> {
+        require_positive("length", self.length)?;
+        if self.elements < 2 {
+            return Err(UnitError::parameter(
+                "elements",
+                self.elements,
+                "expected at least 2",
+            ));
+        }
+        if self.elements > 100_000 {
+            return Err(UnitError::parameter(
+                "elements",
+                self.elements,
+                "expected at most 100000",
+            ));
+        }
+        require_positive("diameter", self.diameter)?;
+        require_positive("mass_per_length", self.mass_per_length)?;
+        require_positive("youngs_modulus", self.youngs_modulus)?;
+        require_non_negative("submerged_weight", self.submerged_weight)?;
+        require_non_negative("added_mass_normal", self.added_mass_normal)?;
+        require_non_negative("added_mass_tangential", self.added_mass_tangential)?;
+        require_non_negative("drag_normal", self.drag_normal)?;
+        require_non_negative("drag_tangential", self.drag_tangential)?;
+        require_non_negative("rayleigh_mass", self.rayleigh_mass)?;
+        require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
+        require_positive("water_density", self.water_density)?;
+        require_positive("water_depth", self.water_depth)?;
+        require_positive("static_tolerance", self.static_tolerance)?;
+        require_positive("drag_tolerance", self.drag_tolerance)?;
+        require_finite("anchor[0]", self.anchor[0])?;
+        require_finite("anchor[1]", self.anchor[1])?;
+        if let Some(f) = self.static_top_force {
+            require_finite("static_top_force[0]", f[0])?;
+            require_finite("static_top_force[1]", f[1])?;
+        }
+        self.current.validate()?;
+        match self.section {
+            Section::Full => {}
+            Section::Lower { truncation_ratio } | Section::Upper { truncation_ratio } => {
+                if !(truncation_ratio > 0.0 && truncation_ratio < 1.0) {
+                    return Err(UnitError::parameter(
+                        "section.truncation_ratio",
+                        truncation_ratio,
+                        "expected a value in (0, 1): the share of the water column held by the lower part",
+                    ));
+                }
+                if self.static_top_force.is_none() {
+                    return Err(UnitError::parameter(
+                        "static_top_force",
+                        "missing",
+                        "a lower or upper section needs the whole line's static top force [fx, fz] to find the truncation point",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,217 @@
+//! Static equilibrium of a cable hanging from a fixed bottom node under a top
+//! force, its weight and the current drag, by Newton-Raphson with line search.
+
+use super::current::CurrentProfile;
+use super::drag::Drag;
+use super::elements::{ElementProperties, element_state, internal_forces, stiffness};
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
+use crate::unit::UnitError;
+
+/// Distributed static loads.
+#[derive(Clone, Debug)]
+pub struct StaticLoads {
+    /// Submerged weight per unit length (N/m), 0 when the effect is off.
+    pub weight: f64,
+    /// Current drag: density, diameter, normal and tangential coefficients,
+    /// profile and water depth; `None` when drag or current is off.
+    pub current: Option<(f64, f64, f64, f64, CurrentProfile, f64)>,
+}
+
+impl StaticLoads {
+    /// The static drag of the current on a cable at positions `x` (N per node).
+    pub fn drag(&self, p: &ElementProperties, x: &[[f64; 2]]) -> Option<Drag> {
+        let (rho, d, cdn, cdt, profile, depth) = self.current.as_ref()?;
+        let n = x.len() - 1;
+        let mut dirs = Vec::with_capacity(n);
+        let mut speeds = Vec::with_capacity(n);
+        for e in 0..n {
+            let (dir, _, _) = element_state(p, x[e], x[e + 1]);
+            dirs.push(dir);
+            speeds.push(profile.speed(0.5 * (x[e][1] + x[e + 1][1]), *depth));
+        }
+        Some(Drag::new(*rho, *d, *cdn, *cdt, p.length, dirs, speeds))
+    }
+
+    /// External nodal loads: weight and current drag (not the top force).
+    pub fn nodal(&self, p: &ElementProperties, x: &[[f64; 2]], out: &mut [[f64; 2]]) {
+        out.iter_mut().for_each(|f| *f = [0.0, 0.0]);
+        let half = 0.5 * self.weight * p.length;
+        for e in 0..x.len() - 1 {
+            out[e][1] -= half;
+            out[e + 1][1] -= half;
+        }
+        if let Some(drag) = self.drag(p, x) {
+            let still = vec![[0.0; 2]; x.len()];
+            drag.add_forces(&still, out);
+        }
+    }
+}
+
+/// A converged static state.
+#[derive(Clone, Debug)]
+pub struct StaticState {
+    /// Node positions (m), bottom first.
+    pub positions: Vec<[f64; 2]>,
+    /// Element tensions (N).
+    pub tensions: Vec<f64>,
+    /// Newton iterations used.
+    pub iterations: u32,
+}
+
+/// The free-DOF block (DOFs `from..`) of a banded matrix.
+pub fn trailing_block(m: &SymmetricBand, from: usize) -> SymmetricBand {
+    let n = m.size() - from;
+    let w = m.half_bandwidth();
+    let mut out = SymmetricBand::zeros(n, w);
+    for i in 0..n {
+        for k in 0..=w.min(i) {
+            out.add(i, i - k, m.get(from + i, from + i - k));
+        }
+    }
+    out
+}
+
+/// A straight first guess: from `bottom` along the top force, stretched by the
+/// top tension.
+pub fn straight_guess(
+    p: &ElementProperties,
+    bottom: [f64; 2],
+    top_force: [f64; 2],
+    elements: usize,
+) -> Vec<[f64; 2]> {
+    let f = (top_force[0].powi(2) + top_force[1].powi(2)).sqrt();
+    let dir = if f > 0.0 {
+        [top_force[0] / f, top_force[1] / f]
+    } else {
+        [0.0, 1.0]
+    };
+    let l = p.length * (1.0 + f / p.axial_stiffness);
+    (0..=elements)
+        .map(|j| {
+            [
+                bottom[0] + dir[0] * l * j as f64,
+                bottom[1] + dir[1] * l * j as f64,
+            ]
+        })
+        .collect()
+}
+
+/// Solves for the node positions with the bottom node fixed at `guess[0]` and
+/// `top_force` (N) on the last node. Fails, with the residual history, when the
+/// line goes slack or Newton does not converge in 100 iterations.
+pub fn solve(
+    p: &ElementProperties,
+    loads: &StaticLoads,
+    top_force: [f64; 2],
+    mut x: Vec<[f64; 2]>,
+    tolerance: f64,
+) -> Result<StaticState, UnitError> {
+    let nodes = x.len();
+    let m = nodes - 1;
+    let scale = (top_force[0].powi(2) + top_force[1].powi(2))
+        .sqrt()
+        .max(loads.weight * p.length * m as f64)
+        .max(1.0);
+    let mut tensions = vec![0.0; m];
+    let mut internal = vec![[0.0; 2]; nodes];
+    let mut external = vec![[0.0; 2]; nodes];
+    let mut residual = vec![0.0; 2 * m];
+    let mut history = Vec::new();
+    let residual_of = |x: &[[f64; 2]],
+                       r: &mut [f64],
+                       internal: &mut [[f64; 2]],
+                       external: &mut [[f64; 2]],
+                       tensions: &mut [f64]| {
+        internal_forces(p, x, internal, tensions);
+        loads.nodal(p, x, external);
+        external[m][0] += top_force[0];
+        external[m][1] += top_force[1];
+        let mut worst: f64 = 0.0;
+        for j in 1..nodes {
+            for c in 0..2 {
+                let v = internal[j][c] + external[j][c];
+                r[2 * (j - 1) + c] = v;
+                worst = worst.max(v.abs());
+            }
+        }
+        worst
+    };
+    let mut norm = residual_of(
+        &x,
+        &mut residual,
+        &mut internal,
+        &mut external,
+        &mut tensions,
+    );
+    // Round-off floor: positions of size |x| carry eps |x| of error, which the axial
+    // stiffness EA / L0 turns into forces.
+    let extent = x
+        .iter()
+        .fold(0.0f64, |a, p| a.max(p[0].abs()).max(p[1].abs()));
+    let floor = 1e3 * f64::EPSILON * (p.axial_stiffness / p.length) * extent.max(p.length);
+    let target = (tolerance * scale).max(floor);
+    for iteration in 0..100u32 {
+        history.push(norm);
+        if norm <= target {
+            return Ok(StaticState {
+                positions: x,
+                tensions,
+                iterations: iteration,
+            });
+        }
+        let k = trailing_block(&stiffness(p, &x, true), 2);
+        let Some(factor) = BandLdlt::new(&k) else {
+            return Err(UnitError::Numerical(format!(
+                "static equilibrium: the line is slack or in compression at Newton iteration {iteration} (smallest tension {:.3e} N); the top force ({:.4e}, {:.4e}) N cannot hold it. Residual history (N): {}",
+                tensions.iter().copied().fold(f64::INFINITY, f64::min),
+                top_force[0],
+                top_force[1],
+                format_history(&history)
+            )));
+        };
+        let mut step = residual.clone();
+        factor.solve_in_place(&mut step);
+        // Line search: halve the step while the residual grows.
+        let mut factor_len = 1.0;
+        let mut trial = x.clone();
+        let mut accepted = false;
+        for _ in 0..12 {
+            for j in 1..nodes {
+                for c in 0..2 {
+                    trial[j][c] = x[j][c] + factor_len * step[2 * (j - 1) + c];
+                }
+            }
+            let n = residual_of(
+                &trial,
+                &mut residual,
+                &mut internal,
+                &mut external,
+                &mut tensions,
+            );
+            if n.is_finite() && n < norm {
+                norm = n;
+                accepted = true;
+                break;
+            }
+            factor_len *= 0.5;
+        }
+        if !accepted {
+            return Err(UnitError::Numerical(format!(
+                "static equilibrium: Newton made no progress at iteration {iteration}. Residual history (N): {}",
+                format_history(&history)
+            )));
+        }
+        x.clone_from(&trial);
+    }
+    Err(UnitError::Numerical(format!(
+        "static equilibrium: no convergence in 100 Newton iterations. Residual history (N): {}",
+        format_history(&history)
+    )))
+}
+
+fn format_history(h: &[f64]) -> String {
+    h.iter()
+        .map(|v| format!("{v:.3e}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}

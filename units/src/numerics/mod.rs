@@ -1,0 +1,3 @@
+//! Linear algebra the units share.
+
+pub mod banded;
