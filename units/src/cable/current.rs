@@ -36,15 +36,15 @@ impl CurrentProfile {
                         "expected as many heights as speeds, at least one",
                     ));
                 }
-                if z.windows(2).any(|w| !(w[1] > w[0])) {
+                for v in z.iter().chain(speed) {
+                    require_finite("current", *v)?;
+                }
+                if z.windows(2).any(|w| w[1] <= w[0]) {
                     return Err(UnitError::parameter(
                         "current.z",
                         format!("{z:?}"),
                         "expected strictly increasing heights",
                     ));
-                }
-                for v in z.iter().chain(speed) {
-                    require_finite("current", *v)?;
                 }
                 Ok(())
             }

@@ -52,6 +52,7 @@ pub fn internal_forces(
 }
 
 /// Adds the 2x2 block `k` in the pattern [[k, -k], [-k, k]] of element e.
+#[allow(clippy::needless_range_loop)] // (r, c) index the block and the DOFs alike
 fn add_element_block(m: &mut SymmetricBand, e: usize, k: [[f64; 2]; 2], off_diagonal: f64) {
     for r in 0..2 {
         for c in 0..2 {
