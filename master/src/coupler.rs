@@ -36,6 +36,11 @@ pub struct Master {
     input_connection: Vec<Vec<Option<usize>>>,
     /// Per unit: connections leaving it.
     outgoing: Vec<Vec<usize>>,
+    /// Per unit: whether a torn value reaches it, so it must be repeated in every
+    /// iteration; the others are stepped once per step and never rolled back.
+    iterated: Vec<bool>,
+    /// Whether the current step (or initialisation) has had its first sweep.
+    first_sweep_done: bool,
     /// Per connection: its tolerance.
     pub(crate) tolerance: Vec<f64>,
     /// Per connection: index in the torn vector, or `None`.
@@ -120,6 +125,7 @@ impl Master {
             input_connection[conn.to.unit][conn.to.port] = Some(c);
             outgoing[conn.from.unit].push(c);
         }
+        let iterated = reached_by_torn(n_units, &system.connections, &torn);
         let tolerance: Vec<f64> = system
             .connections
             .iter()
@@ -145,6 +151,8 @@ impl Master {
             order,
             input_connection,
             outgoing,
+            iterated,
+            first_sweep_done: false,
             tolerance,
             tear_index,
             torn,
@@ -196,6 +204,7 @@ impl Master {
     }
 
     fn initial_iterations(&mut self) -> Result<(u32, f64, bool), MasterError> {
+        self.first_sweep_done = false;
         for (k, &c) in self.torn.iter().enumerate() {
             let to = self.connections[c].to;
             self.x[k] = self.units[to.unit].start_inputs[to.port];
@@ -221,6 +230,7 @@ impl Master {
             ));
         }
         self.predict();
+        self.first_sweep_done = false;
         let (iterations, residual, converged) = if !self.settings.scheme.is_iterative() {
             self.sweep(1)?;
             (1, 0.0, true)
@@ -269,8 +279,13 @@ impl Master {
     pub(crate) fn sweep(&mut self, iteration: u32) -> Result<(), MasterError> {
         let (t, h) = (self.time, self.step_size);
         let mut stamp = Instant::now();
+        let repeat = self.first_sweep_done;
+        self.first_sweep_done = true;
         for i in 0..self.order.len() {
             let u = self.order[i];
+            if repeat && !self.iterated[u] {
+                continue;
+            }
             let unit = &mut self.units[u];
             for (p, source) in self.input_connection[u].iter().enumerate() {
                 if let Some(c) = *source {
@@ -332,8 +347,10 @@ impl Master {
         if self.initializing {
             return Ok(());
         }
-        for u in &mut self.units {
-            u.save(self.time)?;
+        for (u, unit) in self.units.iter_mut().enumerate() {
+            if self.iterated[u] {
+                unit.save(self.time)?;
+            }
         }
         Ok(())
     }
@@ -343,10 +360,12 @@ impl Master {
         if self.initializing {
             return Ok(());
         }
-        for u in &mut self.units {
-            u.restore(self.time, iteration)?;
+        for (u, unit) in self.units.iter_mut().enumerate() {
+            if self.iterated[u] {
+                unit.restore(self.time, iteration)?;
+                self.counters.rollbacks += 1;
+            }
         }
-        self.counters.rollbacks += self.units.len() as u64;
         Ok(())
     }
 
@@ -508,6 +527,24 @@ impl Master {
     pub fn description(&self, unit: usize) -> &slender_units::UnitDescription {
         self.units[unit].description()
     }
+}
+
+/// Units a torn value reaches, directly or through other units.
+fn reached_by_torn(n_units: usize, connections: &[Connection], torn: &[usize]) -> Vec<bool> {
+    let mut reached = vec![false; n_units];
+    let mut stack: Vec<usize> = torn.iter().map(|&c| connections[c].to.unit).collect();
+    while let Some(u) = stack.pop() {
+        if !reached[u] {
+            reached[u] = true;
+            stack.extend(
+                connections
+                    .iter()
+                    .filter(|c| c.from.unit == u)
+                    .map(|c| c.to.unit),
+            );
+        }
+    }
+    reached
 }
 
 /// The value a connection passes on, from its source unit's outputs.

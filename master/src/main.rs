@@ -124,6 +124,12 @@ fn run(path: PathBuf, out: Option<PathBuf>, quiet: bool) -> ExitCode {
         c.non_converged_steps,
         c.max_residual
     );
+    for i in &s.indicators {
+        println!(
+            "indicator    {:<12} phi = {:.3}, epsilon = {:.3e}",
+            i.name, i.fidelity, i.relative_error
+        );
+    }
     for u in &c.units {
         println!(
             "unit         {:<12} {} do_step calls, {:.3} s",

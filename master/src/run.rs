@@ -38,6 +38,8 @@ pub struct Summary {
     pub order: Vec<String>,
     pub settings: crate::settings::MasterSettings,
     pub counters: Counters,
+    /// Indicators of `[[output.indicators]]` over the recorded time.
+    pub indicators: Vec<crate::indicators::Indicator>,
 }
 
 /// The outcome of a run: the summary, the recording and the files written.
@@ -97,6 +99,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, Strin
         order: master.order().into_iter().map(String::from).collect(),
         settings: master.settings().clone(),
         counters: master.counters(),
+        indicators: indicators(scene, &recorder),
     };
     if let Some(dir) = &options.output_dir {
         let path = dir.join("summary.json");
@@ -112,6 +115,26 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, Strin
         recorder,
         files,
     })
+}
+
+fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indicator> {
+    scene
+        .spec
+        .output
+        .indicators
+        .iter()
+        .filter_map(|spec| {
+            let cols = |names: &[String]| {
+                names
+                    .iter()
+                    .map(|n| recorder.column(n))
+                    .collect::<Option<Vec<_>>>()
+            };
+            let (x, r) = (cols(&spec.signals)?, cols(&spec.reference)?);
+            let s = crate::indicators::normalized_error(&recorder.time, &x, &r);
+            Some(crate::indicators::indicator(&spec.name, s))
+        })
+        .collect()
 }
 
 fn simulate(

@@ -298,6 +298,6 @@ pub fn polyester_line(elements: usize) -> slender_units::cable::CableParams {
         static_top_force: None,
         section: slender_units::cable::Section::Full,
         static_tolerance: 1e-10,
-        drag_tolerance: 1e-10,
+        drag_tolerance: 1e-9,
     }
 }

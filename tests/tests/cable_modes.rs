@@ -169,3 +169,31 @@ fn as_vec(v: &toml::Value) -> Vec<f64> {
         .map(|x| x.as_float().unwrap())
         .collect()
 }
+
+#[test]
+fn the_truncation_point_of_the_nominal_line() {
+    use slender_units::cable::Section;
+    let mut p = polyester_line(80);
+    let a = 50f64.to_radians();
+    p.static_top_force = Some([2.5e6 * a.sin(), 2.5e6 * a.cos()]);
+    p.section = Section::Lower {
+        truncation_ratio: 0.8,
+    };
+    let lower = Cable::new(p, Effects::all()).unwrap();
+    let k = lower.element_count();
+    let top = lower.bottom_position();
+    assert_eq!(top, [0.0, 0.0]);
+    let mut full = Cable::new(polyester_line(80), Effects::all()).unwrap();
+    full.set_inputs(&[2.5e6 * a.sin(), 2.5e6 * a.cos(), 0.0, 0.0])
+        .unwrap();
+    full.initialize(Time::ZERO).unwrap();
+    let x = &full.static_state().unwrap().positions;
+    let (e0, e1) = (x[k - 1], x[k + 1]);
+    let angle = (e1[1] - e0[1]).atan2(e1[0] - e0[0]).to_degrees();
+    eprintln!(
+        "truncation node {k} of 80 at ({:.1}, {:.1}) m, line at {angle:.2} deg from the horizontal (paper: 39.2); top at ({:.1}, {:.1}) m",
+        x[k][0], x[k][1], x[80][0], x[80][1]
+    );
+    assert!((x[k][1] - 960.0).abs() < 0.5 * 1934.0 / 80.0);
+    assert!((angle - 39.2).abs() < 1.0);
+}

@@ -11,6 +11,7 @@ pub mod integrators;
 pub mod numerics;
 pub mod oscillator;
 pub mod port;
+pub mod signal;
 pub mod state;
 pub mod time;
 pub mod unit;

@@ -5,6 +5,8 @@ use slender_units::Unit;
 use slender_units::algebraic_loop::{LinearPair, SphereClosure};
 use slender_units::cable::{Cable, Effects};
 use slender_units::oscillator::Oscillator;
+use slender_units::signal::artefact::Artefact;
+use slender_units::signal::characteristic_load::CharacteristicLoad;
 
 /// Builds a unit from its parameter table and the effects the scene asks for.
 type Builder = fn(toml::Table, &[String]) -> Result<Box<dyn Unit>, String>;
@@ -27,6 +29,26 @@ pub const KINDS: &[Kind] = &[
             let effects = Effects::from_names(effects).map_err(|e| e.to_string())?;
             Ok(Box::new(
                 Cable::new(parameters(p)?, effects).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
+    Kind {
+        name: "characteristic_load",
+        summary: "seed 000 top load: static tension + low- and wave-frequency sweeps (source, outputs force_x, force_z)",
+        effects: &[],
+        build: |p, _| {
+            Ok(Box::new(
+                CharacteristicLoad::new(parameters(p)?).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
+    Kind {
+        name: "artefact",
+        summary: "control-system artefacts on a signal: scale, bias, noise, delay, signal loss, zero-order hold",
+        effects: &[],
+        build: |p, _| {
+            Ok(Box::new(
+                Artefact::new(parameters(p)?).map_err(|e| e.to_string())?,
             ))
         },
     },

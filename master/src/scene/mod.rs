@@ -228,6 +228,28 @@ impl Scene {
                 .resolve(s, Causality::Output)
                 .map_err(|m| self.error(None, &format!("output.signals[{i}]"), m))?;
         }
+        for (i, ind) in self.spec.output.indicators.iter().enumerate() {
+            let key = format!("output.indicators[{i}]");
+            if ind.signals.is_empty() || ind.signals.len() != ind.reference.len() {
+                return Err(self.error(None, &key, format!(
+                    "expected as many reference signals as signals, at least one (got {} and {})",
+                    ind.signals.len(),
+                    ind.reference.len()
+                )));
+            }
+            for s in ind.signals.iter().chain(&ind.reference) {
+                system
+                    .resolve(s, Causality::Output)
+                    .map_err(|m| self.error(None, &key, m))?;
+                if !self.spec.output.signals.is_empty() && !self.spec.output.signals.contains(s) {
+                    return Err(self.error(
+                        None,
+                        &key,
+                        format!("`{s}` is not among output.signals"),
+                    ));
+                }
+            }
+        }
         if self.spec.output.every == 0 {
             return Err(self.error(None, "output.every", "0: expected at least 1".into()));
         }

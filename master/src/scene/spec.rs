@@ -100,6 +100,21 @@ pub struct OutputSpec {
     /// Figures to draw; default: one figure with a panel per recorded signal.
     #[serde(default)]
     pub plots: Vec<PlotSpec>,
+    /// Accuracy indicators computed at the end of the run.
+    #[serde(default)]
+    pub indicators: Vec<IndicatorSpec>,
+}
+
+/// `[[output.indicators]]`: phi and epsilon (seed 000 eqs. 7-8, 10-11) of recorded
+/// signals against recorded reference signals, component by component.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IndicatorSpec {
+    pub name: String,
+    /// Recorded signals, "unit.port".
+    pub signals: Vec<String>,
+    /// Recorded reference signals, one per signal.
+    pub reference: Vec<String>,
 }
 
 fn every_step() -> u32 {
@@ -113,6 +128,7 @@ impl Default for OutputSpec {
             signals: Vec::new(),
             every: every_step(),
             plots: Vec::new(),
+            indicators: Vec::new(),
         }
     }
 }

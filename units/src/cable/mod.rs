@@ -71,8 +71,6 @@ struct Dynamics {
     c_bb: [[f64; 2]; 2],
     k_bb: [[f64; 2]; 2],
     drag: Option<Drag>,
-    /// Static drag of the current at each node (N).
-    static_drag: Vec<[f64; 2]>,
     static_top_force: [f64; 2],
     /// Force the cable exerts on its bottom support at rest (N).
     static_support_force: [f64; 2],
@@ -345,6 +343,7 @@ impl Cable {
         };
         let mut full_c = SymmetricBand::zeros(full_m.size(), full_m.half_bandwidth());
         full_c.set_combination(&[(a1, &full_m), (a2, &full_k)]);
+        let structural_c = full_c.clone();
         let block = |m: &SymmetricBand, r0: usize, c0: usize| {
             [
                 [m.get(r0, c0), m.get(r0, c0 + 1)],
@@ -377,6 +376,8 @@ impl Cable {
         let mut static_drag = vec![[0.0; 2]; nodes];
         if let Some(d) = &drag {
             d.add_forces(&vec![[0.0; 2]; nodes], &mut static_drag);
+            // The drag's linearisation joins the damping the integrator factorises.
+            full_c.set_combination(&[(1.0, &structural_c), (1.0, &d.damping())]);
         }
         // Support force at rest: the first element's pull, the bottom node's half
         // weight and its share of the current drag.
@@ -399,7 +400,6 @@ impl Cable {
             k_ff: trailing_block(&full_k, 2),
             effective: SymmetricBand::zeros(free, elements::BAND),
             drag,
-            static_drag,
             static_top_force: top_force,
             static_support_force,
             h: 0.0,
@@ -436,8 +436,8 @@ impl Dynamics {
         Ok(())
     }
 
-    /// Nodal drag (N) minus its static value, for free velocities `v` and bottom
-    /// velocity `vb`, into `node_drag`.
+    /// The drag's nonlinear remainder (N per node) for free velocities `v` and
+    /// bottom velocity `vb`, into `node_drag`; its linear part is in the damping.
     fn drag_change(&mut self, v: &[f64], vb: [f64; 2]) {
         let Some(drag) = &self.drag else { return };
         self.node_velocity[0] = vb;
@@ -445,11 +445,7 @@ impl Dynamics {
             *nv = [v[2 * (j - 1)], v[2 * (j - 1) + 1]];
         }
         self.node_drag.iter_mut().for_each(|f| *f = [0.0; 2]);
-        drag.add_forces(&self.node_velocity, &mut self.node_drag);
-        for (f, s) in self.node_drag.iter_mut().zip(&self.static_drag) {
-            f[0] -= s[0];
-            f[1] -= s[1];
-        }
+        drag.add_remainder(&self.node_velocity, &mut self.node_drag);
     }
 }
 
@@ -465,7 +461,10 @@ fn drag_iterations(
     tolerance: f64,
 ) -> Result<u32, UnitError> {
     let n = s.q.len();
-    d.v_iter.copy_from_slice(&s.v);
+    // Predict the end velocity from the start acceleration.
+    for i in 0..n {
+        d.v_iter[i] = s.v[i] + h * s.a[i];
+    }
     let max_iterations = 100u32;
     let mut iterations = 0;
     loop {
@@ -584,15 +583,15 @@ impl Unit for Cable {
         // Prescribed bottom motion at the step's end.
         let vb = [s.inputs.at(BOTTOM_VX, 1.0), s.inputs.at(BOTTOM_VZ, 1.0)];
         let (qb, ab) = match self.description.inputs[BOTTOM_VX].hold {
+            // A ramp of velocity: exact displacement, acceleration = the ramp's slope.
+            // (The Newmark recursion a = 2 dv / h - a_n would never let a velocity
+            // jump, e.g. the end of a signal loss, die out.)
             Hold::Ramp => (
                 [
                     s.qb[0] + 0.5 * h * (s.vb[0] + vb[0]),
                     s.qb[1] + 0.5 * h * (s.vb[1] + vb[1]),
                 ],
-                [
-                    2.0 / h * (vb[0] - s.vb[0]) - s.ab[0],
-                    2.0 / h * (vb[1] - s.vb[1]) - s.ab[1],
-                ],
+                [(vb[0] - s.vb[0]) / h, (vb[1] - s.vb[1]) / h],
             ),
             Hold::ZeroOrder => ([s.qb[0] + h * vb[0], s.qb[1] + h * vb[1]], [0.0; 2]),
         };
@@ -613,7 +612,6 @@ impl Unit for Cable {
             d.rhs[c] -= mfb[c] + cfb[c] + kfb[c];
         }
         // Newmark with drag iterations on the fixed factorisation.
-        d.v_iter.copy_from_slice(&s.v);
         let factor = d.factor.take().expect("prepared above");
         let drag_tolerance = self.params.drag_tolerance;
         let outcome = drag_iterations(d, s, &factor, h, vb, drag_tolerance);

@@ -1,0 +1,185 @@
+//! The characteristic top load of seed 000 sec. 2.3: a static top tension plus a
+//! low-frequency component acting along the static direction and a wave-frequency
+//! component whose direction turns at a constant rate.
+//!
+//! The source does not print the sweep law or the duration; this unit uses a
+//! linear frequency sweep (chirp) from 0 Hz to the maximum frequency over
+//! `sweep_duration`, continuing at the maximum frequency afterwards:
+//! `A sin(pi f_max t^2 / T)` for t <= T. Starting at zero frequency, the load
+//! starts smoothly from its static value.
+
+use crate::port::{Port, PortKind};
+use crate::state::StateSlot;
+use crate::time::Time;
+use crate::unit::{
+    Capabilities, StepReport, Unit, UnitDescription, UnitError, require_finite,
+    require_non_negative, require_positive,
+};
+use serde::Deserialize;
+
+/// Parameters (scene kind `characteristic_load`); defaults are seed 000's values.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CharacteristicLoadParams {
+    /// Static top tension (N).
+    pub static_tension: f64,
+    /// Angle of the static tension from the vertical (deg).
+    pub static_angle_from_vertical: f64,
+    /// Low-frequency amplitude (N), along the static direction.
+    pub lf_amplitude: f64,
+    /// Low-frequency sweep end (Hz).
+    pub lf_max_frequency: f64,
+    /// Wave-frequency amplitude (N).
+    pub wf_amplitude: f64,
+    /// Wave-frequency sweep end (Hz).
+    pub wf_max_frequency: f64,
+    /// Duration of both sweeps (s).
+    pub sweep_duration: f64,
+    /// Direction of the wave-frequency load at t = 0, from the x axis (deg).
+    pub wf_initial_direction: f64,
+    /// Turning rate of the wave-frequency direction (deg/s); default one turn per
+    /// sweep.
+    pub wf_direction_rate: Option<f64>,
+}
+
+impl Default for CharacteristicLoadParams {
+    fn default() -> Self {
+        CharacteristicLoadParams {
+            static_tension: 2.5e6,
+            static_angle_from_vertical: 50.0,
+            lf_amplitude: 1.0e6,
+            lf_max_frequency: 0.02,
+            wf_amplitude: 2.5e5,
+            wf_max_frequency: 0.2,
+            sweep_duration: 200.0,
+            wf_initial_direction: 0.0,
+            wf_direction_rate: None,
+        }
+    }
+}
+
+impl CharacteristicLoadParams {
+    fn validate(&self) -> Result<(), UnitError> {
+        require_non_negative("static_tension", self.static_tension)?;
+        require_finite(
+            "static_angle_from_vertical",
+            self.static_angle_from_vertical,
+        )?;
+        require_non_negative("lf_amplitude", self.lf_amplitude)?;
+        require_non_negative("lf_max_frequency", self.lf_max_frequency)?;
+        require_non_negative("wf_amplitude", self.wf_amplitude)?;
+        require_non_negative("wf_max_frequency", self.wf_max_frequency)?;
+        require_positive("sweep_duration", self.sweep_duration)?;
+        require_finite("wf_initial_direction", self.wf_initial_direction)?;
+        if let Some(r) = self.wf_direction_rate {
+            require_finite("wf_direction_rate", r)?;
+        }
+        Ok(())
+    }
+
+    /// Phase (rad) of a sweep from 0 to `f_max` over the sweep duration, at time t.
+    fn phase(&self, f_max: f64, t: f64) -> f64 {
+        let big_t = self.sweep_duration;
+        let pi = std::f64::consts::PI;
+        if t <= big_t {
+            pi * f_max * t * t / big_t
+        } else {
+            pi * f_max * big_t + 2.0 * pi * f_max * (t - big_t)
+        }
+    }
+
+    /// The load [fx, fz] (N) at time t (s).
+    pub fn force(&self, t: f64) -> [f64; 2] {
+        let a = self.static_angle_from_vertical.to_radians();
+        let axis = [a.sin(), a.cos()];
+        let lf =
+            self.static_tension + self.lf_amplitude * self.phase(self.lf_max_frequency, t).sin();
+        let rate = self
+            .wf_direction_rate
+            .unwrap_or(360.0 / self.sweep_duration);
+        let dir = (self.wf_initial_direction + rate * t).to_radians();
+        let wf = self.wf_amplitude * self.phase(self.wf_max_frequency, t).sin();
+        [lf * axis[0] + wf * dir.cos(), lf * axis[1] + wf * dir.sin()]
+    }
+}
+
+/// The load source: no inputs, outputs `force_x`, `force_z` (N).
+pub struct CharacteristicLoad {
+    params: CharacteristicLoadParams,
+    description: UnitDescription,
+    time: f64,
+}
+
+impl CharacteristicLoad {
+    /// Builds the source.
+    pub fn new(params: CharacteristicLoadParams) -> Result<CharacteristicLoad, UnitError> {
+        params.validate()?;
+        Ok(CharacteristicLoad {
+            params,
+            description: UnitDescription {
+                kind: "characteristic_load".into(),
+                inputs: Vec::new(),
+                outputs: vec![
+                    Port::output("force_x", PortKind::Force),
+                    Port::output("force_z", PortKind::Force),
+                ],
+                capabilities: Capabilities::default(),
+            },
+            time: 0.0,
+        })
+    }
+}
+
+impl Unit for CharacteristicLoad {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
+        crate::unit::check_input_count(0, values)
+    }
+
+    fn initialize(&mut self, t0: Time) -> Result<(), UnitError> {
+        self.time = t0.as_secs();
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+        self.time = (t + h).as_secs();
+        Ok(StepReport::default())
+    }
+
+    fn outputs(&self, out: &mut [f64]) {
+        let f = self.params.force(self.time);
+        out[0] = f[0];
+        out[1] = f[1];
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.time);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.time = *slot.load::<f64>()?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn starts_at_the_static_tension_and_stays_within_the_amplitudes() {
+        let p = CharacteristicLoadParams::default();
+        let f0 = p.force(0.0);
+        assert!((f0[0] - 2.5e6 * 50f64.to_radians().sin()).abs() < 1e-6);
+        assert!((f0[1] - 2.5e6 * 50f64.to_radians().cos()).abs() < 1e-6);
+        for i in 0..4000 {
+            let f = p.force(i as f64 * 0.05);
+            let dev = ((f[0] - f0[0]).powi(2) + (f[1] - f0[1]).powi(2)).sqrt();
+            assert!(dev <= 1.25e6 + 1e-6);
+        }
+    }
+}
