@@ -26,6 +26,7 @@ pub struct Series {
     pub columns: Vec<Vec<f64>>,
     pub counters: slender_master::counters::Counters,
     pub error: Option<String>,
+    pub indicators: Vec<slender_master::indicators::Indicator>,
 }
 
 impl Series {
@@ -61,6 +62,7 @@ pub fn run(scene: &Scene) -> Series {
         columns: result.recorder.columns.clone(),
         counters: result.summary.counters,
         error: result.summary.error,
+        indicators: result.summary.indicators,
     }
 }
 

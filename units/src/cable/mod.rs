@@ -192,7 +192,19 @@ impl Cable {
                     straight_guess(&props, params.anchor, f, params.elements),
                     params.static_tolerance,
                 )?;
+                statics::check_above_seabed(&full, params.anchor[1], f, params.length)?;
                 let height = params.anchor[1] + truncation_ratio * params.water_depth;
+                let top_z = full.positions[params.elements][1];
+                let spacing = params.length / params.elements as f64;
+                if !(top_z - params.anchor[1] > truncation_ratio * params.water_depth + spacing) {
+                    return Err(UnitError::parameter(
+                        "section.truncation_ratio",
+                        truncation_ratio,
+                        &format!(
+                            "the line's static top is at z = {top_z:.1} m: it does not reach the truncation height {height:.1} m by at least one element"
+                        ),
+                    ));
+                }
                 let k = (1..params.elements)
                     .min_by(|&a, &b| {
                         (full.positions[a][1] - height)
@@ -558,6 +570,7 @@ impl Unit for Cable {
             guess,
             self.params.static_tolerance,
         )?;
+        statics::check_above_seabed(&statics, self.params.anchor[1], top, self.params.length)?;
         let d = self.build_dynamics(statics, top)?;
         let s = &mut self.state;
         s.q.fill(0.0);

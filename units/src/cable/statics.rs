@@ -209,6 +209,30 @@ pub fn solve(
     )))
 }
 
+/// Refuses a static shape that goes below the seabed: the model has no seabed
+/// contact, so such a "solution" means the top force cannot hold the line up.
+pub fn check_above_seabed(
+    state: &StaticState,
+    seabed: f64,
+    top_force: [f64; 2],
+    length: f64,
+) -> Result<(), UnitError> {
+    let (j, lowest) = state
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(j, p)| (j, p[1]))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((0, seabed));
+    if lowest < seabed - 1e-6 * length {
+        return Err(UnitError::Numerical(format!(
+            "static equilibrium: node {j} lies at z = {lowest:.2} m, below the seabed (z = {seabed} m): the top force ({:.4e}, {:.4e}) N cannot hold the line up, and the cable model has no seabed contact",
+            top_force[0], top_force[1]
+        )));
+    }
+    Ok(())
+}
+
 fn format_history(h: &[f64]) -> String {
     h.iter()
         .map(|v| format!("{v:.3e}"))

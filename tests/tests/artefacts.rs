@@ -1,0 +1,224 @@
+//! The artefact unit on a known signal, a ramp x(t) = t (seed 000 Fig. 3): each
+//! artefact alone, statistics over many samples, and exact repetition after rollback.
+
+use slender_units::signal::artefact::{Artefact, ArtefactParams};
+use slender_units::{PortKind, StateSlot, Time, Unit};
+
+const H: f64 = 0.01;
+
+fn params() -> ArtefactParams {
+    ArtefactParams {
+        quantity: PortKind::Force,
+        channels: vec!["x".into()],
+        scale: None,
+        bias: None,
+        noise_variance: None,
+        delay: 0.0,
+        hold_period: 0.0,
+        loss_probability: 0.0,
+        loss_duration_mean: 0.0,
+        seed: 7,
+    }
+}
+
+/// Drives the unit with the ramp for `steps` steps; returns (t, output) pairs.
+fn ramp(p: ArtefactParams, steps: usize) -> (Vec<(f64, f64)>, Artefact) {
+    let mut a = Artefact::new(p).unwrap();
+    a.set_inputs(&[0.0]).unwrap();
+    a.initialize(Time::ZERO).unwrap();
+    let h = Time::from_secs(H).unwrap();
+    let mut out = Vec::with_capacity(steps);
+    let mut y = [0.0];
+    for k in 0..steps {
+        let t_end = (k + 1) as f64 * H;
+        a.set_inputs(&[t_end]).unwrap();
+        a.do_step(h * k as i64, h).unwrap();
+        a.outputs(&mut y);
+        out.push((t_end, y[0]));
+    }
+    (out, a)
+}
+
+#[test]
+fn calibration_and_bias_are_exact() {
+    let (s, _) = ramp(
+        ArtefactParams {
+            scale: Some(vec![1.5]),
+            bias: Some(vec![2.0]),
+            ..params()
+        },
+        1000,
+    );
+    for (t, y) in s {
+        assert!((y - (1.5 * t + 2.0)).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn noise_has_the_asked_variance_and_zero_mean() {
+    let n = 200_000;
+    let (s, _) = ramp(
+        ArtefactParams {
+            noise_variance: Some(vec![4.0]),
+            ..params()
+        },
+        n,
+    );
+    let e: Vec<f64> = s.iter().map(|(t, y)| y - t).collect();
+    let mean = e.iter().sum::<f64>() / n as f64;
+    let var = e.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    eprintln!("noise: mean {mean:.4}, variance {var:.4} (asked 4)");
+    assert!(mean.abs() < 0.02);
+    assert!((var - 4.0).abs() < 0.04 * 4.0);
+}
+
+#[test]
+fn any_delay_shifts_the_ramp_exactly() {
+    for delay in [0.0026, 0.01, 0.026, 0.05] {
+        let (s, _) = ramp(ArtefactParams { delay, ..params() }, 500);
+        for (t, y) in s.iter().filter(|(t, _)| *t > delay + H) {
+            assert!(
+                (y - (t - delay)).abs() < 1e-12,
+                "delay {delay}: at {t}, {y}"
+            );
+        }
+    }
+}
+
+#[test]
+fn zero_order_hold_updates_every_period() {
+    let (s, _) = ramp(
+        ArtefactParams {
+            hold_period: 0.05,
+            ..params()
+        },
+        100,
+    );
+    for (t, y) in s {
+        let held = (t / 0.05 + 1e-9).floor() * 0.05;
+        assert!((y - held).abs() < 1e-9, "at {t}: {y} vs {held}");
+    }
+}
+
+#[test]
+fn signal_losses_start_and_last_as_asked() {
+    let (p, mean) = (0.01, 0.1);
+    let steps = 1_000_000;
+    let (s, a) = ramp(
+        ArtefactParams {
+            loss_probability: p,
+            loss_duration_mean: mean,
+            ..params()
+        },
+        steps,
+    );
+    let (lost_steps, losses) = a.loss_statistics();
+    // Losses start with probability p at each step not already lost.
+    let rate = losses as f64 / (steps as u64 - lost_steps) as f64;
+    // Each loss covers the steps ending before its end: about D / h + 1/2 steps.
+    let mean_steps = lost_steps as f64 / losses as f64;
+    eprintln!(
+        "{losses} losses, start probability {rate:.5} (asked {p}), {mean_steps:.2} steps each (expected {:.2})",
+        mean / H + 0.5
+    );
+    assert!((rate - p).abs() < 0.05 * p);
+    assert!((mean_steps - (mean / H + 0.5)).abs() < 0.05 * (mean / H));
+    // While lost the value is frozen.
+    let frozen = s.windows(2).filter(|w| w[1].1 == w[0].1).count() as u64;
+    assert!(frozen >= lost_steps - losses);
+}
+
+#[test]
+fn two_channels_share_losses_and_delay_but_not_calibration() {
+    let mut p = params();
+    p.channels = vec!["x".into(), "z".into()];
+    p.scale = Some(vec![2.0, 1.0]);
+    p.loss_probability = 0.05;
+    p.loss_duration_mean = 0.05;
+    let mut a = Artefact::new(p).unwrap();
+    a.set_inputs(&[0.0, 0.0]).unwrap();
+    a.initialize(Time::ZERO).unwrap();
+    let h = Time::from_secs(H).unwrap();
+    let mut y = [0.0; 2];
+    for k in 0..2000 {
+        let t = (k + 1) as f64 * H;
+        a.set_inputs(&[t, t]).unwrap();
+        a.do_step(h * k as i64, h).unwrap();
+        a.outputs(&mut y);
+        assert!(
+            (y[0] - 2.0 * y[1]).abs() < 1e-9,
+            "channels froze apart at {t}"
+        );
+    }
+    assert!(a.loss_statistics().1 > 10);
+}
+
+#[test]
+fn a_repeated_step_sees_the_same_noise_and_losses() {
+    let p = ArtefactParams {
+        noise_variance: Some(vec![1.0]),
+        loss_probability: 0.2,
+        loss_duration_mean: 0.03,
+        delay: 0.013,
+        ..params()
+    };
+    let (_, mut a) = ramp(p, 50);
+    let h = Time::from_secs(H).unwrap();
+    let mut slot = StateSlot::new();
+    let mut first = Vec::new();
+    a.save_state(&mut slot).unwrap();
+    for k in 50..80 {
+        a.set_inputs(&[k as f64 * H]).unwrap();
+        a.do_step(h * k, h).unwrap();
+        let mut y = [0.0];
+        a.outputs(&mut y);
+        first.push(y[0].to_bits());
+    }
+    a.restore_state(&slot).unwrap();
+    for (i, k) in (50..80).enumerate() {
+        a.set_inputs(&[k as f64 * H]).unwrap();
+        a.do_step(h * k, h).unwrap();
+        let mut y = [0.0];
+        a.outputs(&mut y);
+        assert_eq!(y[0].to_bits(), first[i]);
+    }
+}
+
+#[test]
+fn bad_parameters_are_refused() {
+    assert!(
+        Artefact::new(ArtefactParams {
+            loss_probability: 1.0,
+            ..params()
+        })
+        .is_err()
+    );
+    assert!(
+        Artefact::new(ArtefactParams {
+            delay: -0.1,
+            ..params()
+        })
+        .is_err()
+    );
+    assert!(
+        Artefact::new(ArtefactParams {
+            scale: Some(vec![1.0, 2.0]),
+            ..params()
+        })
+        .is_err()
+    );
+    assert!(
+        Artefact::new(ArtefactParams {
+            noise_variance: Some(vec![-1.0]),
+            ..params()
+        })
+        .is_err()
+    );
+    let e = Artefact::new(ArtefactParams {
+        loss_probability: 0.1,
+        ..params()
+    })
+    .err()
+    .unwrap();
+    assert!(e.to_string().contains("loss_duration_mean"), "{e}");
+}
