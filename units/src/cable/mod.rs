@@ -196,7 +196,9 @@ impl Cable {
                 let height = params.anchor[1] + truncation_ratio * params.water_depth;
                 let top_z = full.positions[params.elements][1];
                 let spacing = params.length / params.elements as f64;
-                if !(top_z - params.anchor[1] > truncation_ratio * params.water_depth + spacing) {
+                if top_z.is_nan()
+                    || top_z - params.anchor[1] <= truncation_ratio * params.water_depth + spacing
+                {
                     return Err(UnitError::parameter(
                         "section.truncation_ratio",
                         truncation_ratio,
