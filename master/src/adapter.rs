@@ -129,6 +129,19 @@ impl UnitAdapter {
         Ok(())
     }
 
+    /// The unit's modes about its initial state.
+    pub fn modes(&self, count: usize) -> Result<slender_units::ModalAnalysis, MasterError> {
+        if self.phase != Phase::Initialized {
+            return Err(MasterError::Invalid(format!(
+                "unit `{}`: modal analysis before initialize",
+                self.name
+            )));
+        }
+        self.unit
+            .modes(count)
+            .map_err(|e| self.fail("modes", Time::ZERO, 0, e))
+    }
+
     /// Saves the unit's state for a later `restore`.
     pub fn save(&mut self, t: Time) -> Result<(), MasterError> {
         self.unit

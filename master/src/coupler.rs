@@ -523,6 +523,22 @@ impl Master {
         self.connections.len()
     }
 
+    /// Modal analysis of the unit called `name` about its initial state (after
+    /// `initialize`).
+    pub fn modes(
+        &self,
+        name: &str,
+        count: usize,
+    ) -> Result<slender_units::ModalAnalysis, MasterError> {
+        let adapter = self.units.iter().find(|u| u.name == name).ok_or_else(|| {
+            MasterError::Invalid(format!(
+                "no unit named `{name}`{}",
+                crate::error::did_you_mean(name, self.unit_names())
+            ))
+        })?;
+        adapter.modes(count)
+    }
+
     /// Description of unit `unit`.
     pub fn description(&self, unit: usize) -> &slender_units::UnitDescription {
         self.units[unit].description()

@@ -43,6 +43,40 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Modal analysis of a structural unit about its initial (static) state:
+    /// prints the periods, writes modes.csv and modes.svg.
+    Modes {
+        scene: PathBuf,
+        /// The unit to analyse (e.g. `emulated`).
+        #[arg(long)]
+        unit: String,
+        /// Number of modes.
+        #[arg(long, default_value_t = 15)]
+        count: usize,
+        /// Folder for modes.csv and modes.svg (default: results/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Modes drawn in modes.svg.
+        #[arg(long, default_value_t = 6)]
+        plot: usize,
+    },
+    /// Convergence and cost study (seed 000 Appendix B): vary one setting at a time
+    /// and report, per run, the relative error of the scene's indicator signals
+    /// against the finest value, iterations per step and cost per simulated second.
+    /// Writes study.csv, study.md and study.svg.
+    Study {
+        scene: PathBuf,
+        /// SETTING=V1,V2,...; SETTING is elements, step, velocity_tolerance or
+        /// force_tolerance. Repeat for several sweeps.
+        #[arg(long = "vary", required = true)]
+        sweeps: Vec<slender_master::study::Sweep>,
+        /// Simulated time of each run (s); default: the scene's duration.
+        #[arg(long)]
+        duration: Option<f64>,
+        /// Results folder (default: results/<scene name>-study).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// List the unit kinds a scene can use.
     Kinds,
 }
@@ -56,6 +90,19 @@ fn main() -> ExitCode {
             repeats,
             json,
         } => bench(scene, repeats, json),
+        Command::Modes {
+            scene,
+            unit,
+            count,
+            out,
+            plot,
+        } => modes(scene, &unit, count, out, plot),
+        Command::Study {
+            scene,
+            sweeps,
+            duration,
+            out,
+        } => study(scene, &sweeps, duration, out),
         Command::Kinds => {
             for k in kinds::KINDS {
                 let effects = if k.effects.is_empty() {
@@ -219,6 +266,147 @@ fn bench(path: PathBuf, repeats: usize, json: bool) -> ExitCode {
                     "master overhead       {:.1} ns per connection per iteration",
                     b.master_overhead_per_connection_iteration_s * 1e9
                 );
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn modes(path: PathBuf, unit: &str, count: usize, out: Option<PathBuf>, plot: usize) -> ExitCode {
+    let scene = match load(&path) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let analysis = scene.build().map_err(|e| e.to_string()).and_then(|mut m| {
+        m.initialize(scene.start).map_err(|e| e.to_string())?;
+        m.modes(unit, count).map_err(|e| e.to_string())
+    });
+    let analysis = match analysis {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    println!(
+        "modes of `{unit}` in {} about its initial state",
+        path.display()
+    );
+    println!("{:>5} {:>12} {:>12}", "mode", "period (s)", "freq (Hz)");
+    for (i, m) in analysis.modes.iter().enumerate() {
+        println!("{:>5} {:>12.4} {:>12.5}", i + 1, m.period, 1.0 / m.period);
+    }
+    let dir = out.unwrap_or_else(|| scene.default_output_dir());
+    let written = (|| -> Result<Vec<PathBuf>, String> {
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let csv = dir.join("modes.csv");
+        let mut text = String::from("mode,period_s,node,x_m,z_m,shape_x,shape_z\n");
+        for (i, m) in analysis.modes.iter().enumerate() {
+            for (j, (p, d)) in analysis.positions.iter().zip(&m.shape).enumerate() {
+                text += &format!(
+                    "{},{},{j},{},{},{},{}\n",
+                    i + 1,
+                    m.period,
+                    p[0],
+                    p[1],
+                    d[0],
+                    d[1]
+                );
+            }
+        }
+        std::fs::write(&csv, text).map_err(|e| format!("{}: {e}", csv.display()))?;
+        let svg = dir.join("modes.svg");
+        let shown = slender_units::ModalAnalysis {
+            positions: analysis.positions.clone(),
+            modes: analysis.modes.iter().take(plot).cloned().collect(),
+        };
+        slender_master::plot::mode_shapes(&svg, &format!("Mode shapes of `{unit}`"), &shown)?;
+        Ok(vec![csv, svg])
+    })();
+    match written {
+        Ok(files) => {
+            for f in files {
+                println!("wrote {}", f.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn study(
+    path: PathBuf,
+    sweeps: &[slender_master::study::Sweep],
+    duration: Option<f64>,
+    out: Option<PathBuf>,
+) -> ExitCode {
+    use slender_master::study;
+    let scene = match load(&path) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let dir = out.unwrap_or_else(|| {
+        let mut d = scene.default_output_dir().into_os_string();
+        d.push("-study");
+        PathBuf::from(d)
+    });
+    println!(
+        "{:<20} {:>10}  epsilon vs finest          it/step   s per sim. s",
+        "setting", "value"
+    );
+    let rows = study::run_study(&path, sweeps, duration, |r| {
+        let eps: Vec<String> = r
+            .errors
+            .iter()
+            .map(|(n, e)| format!("{n} {e:.2e}"))
+            .collect();
+        println!(
+            "{:<20} {:>10}  {:<26} {:>6.2}   {:.3e}{}",
+            r.setting.to_string(),
+            r.value,
+            eps.join(", "),
+            r.iterations_per_step,
+            r.cost_per_simulated_second,
+            r.error
+                .as_ref()
+                .map(|e| format!("  FAILED: {e}"))
+                .unwrap_or_default()
+        );
+    });
+    let rows = match rows {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let written = (|| -> Result<Vec<PathBuf>, String> {
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let csv = dir.join("study.csv");
+        std::fs::write(&csv, study::to_csv(&rows))
+            .map_err(|e| format!("{}: {e}", csv.display()))?;
+        let md = dir.join("study.md");
+        std::fs::write(&md, study::to_markdown(&rows))
+            .map_err(|e| format!("{}: {e}", md.display()))?;
+        let svg = dir.join("study.svg");
+        slender_master::plot::study(
+            &svg,
+            &format!("Convergence and cost: {}", path.display()),
+            &rows,
+        )?;
+        Ok(vec![csv, md, svg])
+    })();
+    match written {
+        Ok(files) => {
+            for f in files {
+                println!("wrote {}", f.display());
             }
             ExitCode::SUCCESS
         }

@@ -81,3 +81,179 @@ pub fn time_series(
     }
     root.present().map_err(|e| fail(&e))
 }
+
+/// Mode shapes like seed 000 Fig. 12: each mode's displacement normal to the chord
+/// (bottom node to top node) against height z.
+pub fn mode_shapes(
+    path: &Path,
+    title: &str,
+    analysis: &slender_units::ModalAnalysis,
+) -> Result<(), String> {
+    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let x = &analysis.positions;
+    let (first, last) = match (x.first(), x.last()) {
+        (Some(a), Some(b)) if x.len() > 1 => (*a, *b),
+        _ => return Err(format!("{}: no node positions to plot", path.display())),
+    };
+    let chord = [last[0] - first[0], last[1] - first[1]];
+    let len = (chord[0] * chord[0] + chord[1] * chord[1]).sqrt();
+    let normal = [-chord[1] / len, chord[0] / len];
+    let root = SVGBackend::new(path, (700, 900)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let (zlo, zhi) = x
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p[1]), b.max(p[1]))
+        });
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(60)
+        .build_cartesian_2d(-1.1f64..1.1f64, zlo..zhi)
+        .map_err(|e| fail(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("displacement normal to the chord (scaled)")
+        .y_desc("z (m)")
+        .draw()
+        .map_err(|e| fail(&e))?;
+    for (i, m) in analysis.modes.iter().enumerate() {
+        let color = Palette99::pick(i).to_rgba();
+        let peak = m
+            .shape
+            .iter()
+            .map(|d| (d[0] * normal[0] + d[1] * normal[1]).abs())
+            .fold(0.0, f64::max)
+            .max(1e-300);
+        chart
+            .draw_series(LineSeries::new(
+                m.shape
+                    .iter()
+                    .zip(x)
+                    .map(|(d, p)| ((d[0] * normal[0] + d[1] * normal[1]) / peak, p[1])),
+                color.stroke_width(2),
+            ))
+            .map_err(|e| fail(&e))?
+            .label(format!("mode {} ({:.2} s)", i + 1, m.period))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| fail(&e))?;
+    root.present().map_err(|e| fail(&e))
+}
+
+/// Study figure: for each varied setting, the relative errors (left) and the cost
+/// per simulated second (right) against the setting's value, log-log.
+pub fn study(path: &Path, title: &str, rows: &[crate::study::StudyRow]) -> Result<(), String> {
+    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let mut knobs: Vec<crate::study::Knob> = Vec::new();
+    for r in rows {
+        if !knobs.contains(&r.setting) {
+            knobs.push(r.setting);
+        }
+    }
+    let root = SVGBackend::new(path, (1100, 60 + 300 * knobs.len() as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let root = root
+        .titled(title, ("sans-serif", 22))
+        .map_err(|e| fail(&e))?;
+    let cells = root.split_evenly((knobs.len(), 2));
+    let positive_range = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v
+            .filter(|x| x.is_finite() && *x > 0.0)
+            .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+        if lo.is_finite() {
+            (lo / 1.5, hi * 1.5)
+        } else {
+            (1e-12, 1.0)
+        }
+    };
+    for (k, knob) in knobs.iter().enumerate() {
+        let mine: Vec<&crate::study::StudyRow> =
+            rows.iter().filter(|r| r.setting == *knob).collect();
+        let (xlo, xhi) = positive_range(&mut mine.iter().map(|r| r.value));
+        // Errors.
+        let (ylo, yhi) =
+            positive_range(&mut mine.iter().flat_map(|r| r.errors.iter().map(|e| e.1)));
+        let mut chart = ChartBuilder::on(&cells[2 * k])
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(70)
+            .build_cartesian_2d((xlo..xhi).log_scale(), (ylo..yhi).log_scale())
+            .map_err(|e| fail(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc(knob.to_string())
+            .y_desc("epsilon vs finest")
+            .x_label_formatter(&|v| format!("{v:.3}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(|e| fail(&e))?;
+        let names: Vec<String> = mine
+            .first()
+            .map(|r| r.errors.iter().map(|e| e.0.clone()).collect())
+            .unwrap_or_default();
+        for (i, name) in names.iter().enumerate() {
+            let color = Palette99::pick(i).to_rgba();
+            let points: Vec<(f64, f64)> = mine
+                .iter()
+                .map(|r| (r.value, r.errors[i].1))
+                .filter(|p| p.1 > 0.0)
+                .collect();
+            chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                .map_err(|e| fail(&e))?
+                .label(name.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+            chart
+                .draw_series(
+                    points
+                        .into_iter()
+                        .map(|p| Circle::new(p, 4, color.filled())),
+                )
+                .map_err(|e| fail(&e))?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| fail(&e))?;
+        // Cost.
+        let (clo, chi) = positive_range(&mut mine.iter().map(|r| r.cost_per_simulated_second));
+        let mut chart = ChartBuilder::on(&cells[2 * k + 1])
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(70)
+            .build_cartesian_2d((xlo..xhi).log_scale(), (clo..chi).log_scale())
+            .map_err(|e| fail(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc(knob.to_string())
+            .y_desc("s per simulated s")
+            .x_label_formatter(&|v| format!("{v:.3}"))
+            .y_label_formatter(&|v| format!("{v:.1e}"))
+            .draw()
+            .map_err(|e| fail(&e))?;
+        let points: Vec<(f64, f64)> = mine
+            .iter()
+            .map(|r| (r.value, r.cost_per_simulated_second))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(points.clone(), BLACK.stroke_width(2)))
+            .map_err(|e| fail(&e))?;
+        chart
+            .draw_series(
+                points
+                    .into_iter()
+                    .map(|p| Circle::new(p, 4, BLACK.filled())),
+            )
+            .map_err(|e| fail(&e))?;
+    }
+    root.present().map_err(|e| fail(&e))
+}

@@ -123,6 +123,7 @@ fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indi
         .output
         .indicators
         .iter()
+        .filter(|spec| !spec.reference.is_empty())
         .filter_map(|spec| {
             let cols = |names: &[String]| {
                 names

@@ -17,7 +17,13 @@ fn periods(stiffness_factor: f64, effects: Effects, angle_deg: f64, elements: us
         .set_inputs(&[2.5e6 * a.sin(), 2.5e6 * a.cos(), 0.0, 0.0])
         .unwrap();
     cable.initialize(Time::ZERO).unwrap();
-    cable.modes(15).unwrap().iter().map(|m| m.period).collect()
+    cable
+        .modes(15)
+        .unwrap()
+        .modes
+        .iter()
+        .map(|m| m.period)
+        .collect()
 }
 
 fn weightless() -> Effects {

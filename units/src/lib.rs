@@ -20,4 +20,4 @@ pub use hold::HeldInputs;
 pub use port::{Causality, Hold, Port, PortKind};
 pub use state::StateSlot;
 pub use time::Time;
-pub use unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
+pub use unit::{Capabilities, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError};

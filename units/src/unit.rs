@@ -128,6 +128,23 @@ impl UnitError {
     }
 }
 
+/// One mode of a structural unit linearised about its initial state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mode {
+    /// Period (s).
+    pub period: f64,
+    /// Nodal displacement [x, z] of the mode, scaled to a largest component of 1.
+    pub shape: Vec<[f64; 2]>,
+}
+
+/// Modes of a structural unit and the node positions (m) they refer to.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModalAnalysis {
+    pub positions: Vec<[f64; 2]>,
+    /// Longest period first.
+    pub modes: Vec<Mode>,
+}
+
 /// A substructure model with an FMI-like stepping contract (see the module docs for
 /// the call order).
 pub trait Unit: Send {
@@ -161,6 +178,16 @@ pub trait Unit: Send {
 
     /// Restores a state saved by `save_state`.
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError>;
+
+    /// The first `count` modes about the initial state, for structural units
+    /// (after `initialize`); others return `Unsupported`.
+    fn modes(&self, count: usize) -> Result<ModalAnalysis, UnitError> {
+        let _ = count;
+        Err(UnitError::Unsupported(format!(
+            "modal analysis of a `{}` unit",
+            self.description().kind
+        )))
+    }
 }
 
 /// Checks the number of input values given to `set_inputs`.

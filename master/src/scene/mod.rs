@@ -230,9 +230,11 @@ impl Scene {
         }
         for (i, ind) in self.spec.output.indicators.iter().enumerate() {
             let key = format!("output.indicators[{i}]");
-            if ind.signals.is_empty() || ind.signals.len() != ind.reference.len() {
+            if ind.signals.is_empty()
+                || !(ind.reference.is_empty() || ind.signals.len() == ind.reference.len())
+            {
                 return Err(self.error(None, &key, format!(
-                    "expected as many reference signals as signals, at least one (got {} and {})",
+                    "expected at least one signal, and as many reference signals as signals or none (got {} and {})",
                     ind.signals.len(),
                     ind.reference.len()
                 )));

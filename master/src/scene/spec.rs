@@ -106,14 +106,17 @@ pub struct OutputSpec {
 }
 
 /// `[[output.indicators]]`: phi and epsilon (seed 000 eqs. 7-8, 10-11) of recorded
-/// signals against recorded reference signals, component by component.
+/// signals against recorded reference signals, component by component. Without
+/// `reference`, the signals serve `slender study`, which compares them with the
+/// finest run of a sweep.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct IndicatorSpec {
     pub name: String,
     /// Recorded signals, "unit.port".
     pub signals: Vec<String>,
-    /// Recorded reference signals, one per signal.
+    /// Recorded reference signals, one per signal (or none).
+    #[serde(default)]
     pub reference: Vec<String>,
 }
 

@@ -24,7 +24,10 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 use crate::port::{Hold, Port, PortKind};
 use crate::state::StateSlot;
 use crate::time::Time;
-use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
+use crate::unit::{
+    Capabilities, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
+    check_input_count,
+};
 use drag::Drag;
 use elements::ElementProperties;
 pub use params::{CableParams, Effects, Section};
@@ -47,15 +50,6 @@ pub const OUTPUTS: [&str; 8] = [
     "top_tension",
     "bottom_tension",
 ];
-
-/// One mode of the linearised cable.
-#[derive(Clone, Debug)]
-pub struct Mode {
-    /// Period (s).
-    pub period: f64,
-    /// Node displacements, bottom node first (zero), scaled to a largest component of 1.
-    pub shape: Vec<[f64; 2]>,
-}
 
 /// Matrices and scratch of the linear dynamics about the static state.
 struct Dynamics {
@@ -297,7 +291,7 @@ impl Cable {
 
     /// The first `count` modes of the linearised cable about its static state
     /// (generalised eigenproblem K phi = w^2 M phi on the free DOFs), longest first.
-    pub fn modes(&self, count: usize) -> Result<Vec<Mode>, UnitError> {
+    fn cable_modes(&self, count: usize) -> Result<Vec<Mode>, UnitError> {
         let d = self
             .dynamics
             .as_ref()
@@ -717,5 +711,14 @@ impl Unit for Cable {
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
         self.state.clone_from(slot.load::<CableState>()?);
         Ok(())
+    }
+
+    fn modes(&self, count: usize) -> Result<ModalAnalysis, UnitError> {
+        let modes = self.cable_modes(count)?;
+        let positions = self
+            .static_state()
+            .map(|s| s.positions.clone())
+            .unwrap_or_default();
+        Ok(ModalAnalysis { positions, modes })
     }
 }
