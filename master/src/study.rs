@@ -54,6 +54,9 @@ impl fmt::Display for Knob {
     }
 }
 
+/// An indicator's name and its recorded signal columns.
+type IndicatorColumns = (String, Vec<Vec<f64>>);
+
 /// One sweep: a setting and its values.
 #[derive(Clone, Debug)]
 pub struct Sweep {
@@ -167,7 +170,7 @@ pub fn run_study(
                 std::cmp::Ordering::Greater
             }
         });
-        let mut reference: Option<(Vec<f64>, Vec<(String, Vec<Vec<f64>>)>)> = None;
+        let mut reference: Option<(Vec<f64>, Vec<IndicatorColumns>)> = None;
         let mut sweep_rows = Vec::new();
         for value in ordered {
             let mut scene = Scene::load(path).map_err(|e| e.to_string())?;
@@ -185,7 +188,7 @@ pub fn run_study(
                 },
             )?;
             let rec = result.recorder;
-            let columns: Vec<(String, Vec<Vec<f64>>)> = scene
+            let columns: Vec<IndicatorColumns> = scene
                 .spec
                 .output
                 .indicators
@@ -229,9 +232,9 @@ pub fn run_study(
 /// interpolated at the run's recorded times.
 fn relative_errors(
     time: &[f64],
-    columns: &[(String, Vec<Vec<f64>>)],
+    columns: &[IndicatorColumns],
     ref_time: &[f64],
-    reference: &[(String, Vec<Vec<f64>>)],
+    reference: &[IndicatorColumns],
 ) -> Vec<(String, f64)> {
     columns
         .iter()
