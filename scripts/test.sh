@@ -41,7 +41,7 @@ step "example scenes"
 for scene in examples/*.toml; do
     cargo run --quiet --release -- check "$scene" > /dev/null
 done
-cargo run --quiet --release -- run examples/b1_two_masses.toml --quiet --out target/example-results/b1
+cargo run --quiet --release -- run examples/truncation_signal_loss.toml --quiet --out target/example-results/truncation_signal_loss
 
 step "all checks passed"
 echo "tests: ${passed} passed, ${failed} failed, ${ignored} skipped"

@@ -4,6 +4,16 @@ use crate::record::Recorder;
 use plotters::prelude::*;
 use std::path::Path;
 
+/// A tick label: plain for moderate magnitudes, engineering notation otherwise.
+fn tick(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-2..1e4).contains(&a) {
+        format!("{v:.2e}")
+    } else {
+        format!("{v:.3}")
+    }
+}
+
 /// Draws stacked panels; each panel overlays the named recorded signals against time.
 pub fn time_series(
     path: &Path,
@@ -59,6 +69,7 @@ pub fn time_series(
         chart
             .configure_mesh()
             .x_desc("time (s)")
+            .y_label_formatter(&|v| tick(*v))
             .draw()
             .map_err(|e| fail(&e))?;
         for (i, (name, column)) in series.iter().enumerate() {

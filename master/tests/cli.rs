@@ -88,3 +88,83 @@ fn bench_reports_cost_and_master_overhead() {
         "{json}"
     );
 }
+
+#[test]
+fn modes_prints_periods_and_refuses_units_without_modes() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-modes-{}", std::process::id()));
+    let out = slender(&[
+        "modes",
+        "examples/truncation_emulated.toml",
+        "--unit",
+        "emulated",
+        "--count",
+        "3",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    // Table 3, last column: 50.17 s.
+    let first: f64 = stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("1 "))
+        .unwrap()
+        .split_whitespace()
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((first - 50.17).abs() < 0.01 * 50.17, "{stdout}");
+    assert!(dir.join("modes.svg").exists() && dir.join("modes.csv").exists());
+    let out = slender(&[
+        "modes",
+        "examples/truncation_emulated.toml",
+        "--unit",
+        "load",
+    ]);
+    assert!(!out.status.success());
+    assert!(text(&out.stderr).contains("modal analysis of a `characteristic_load` unit"));
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn study_sweeps_a_setting_and_writes_a_table() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-study-{}", std::process::id()));
+    let out = slender(&[
+        "study",
+        "examples/truncation_study.toml",
+        "--duration",
+        "5",
+        "--vary",
+        "elements=10,20,40",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let csv = std::fs::read_to_string(dir.join("study.csv")).unwrap();
+    let eps1: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(2).unwrap().parse().unwrap())
+        .collect();
+    // Rows sorted by value: 10, 20, 40 (the reference, zero).
+    assert_eq!(eps1.len(), 3);
+    assert!(
+        eps1[0] > eps1[1] && eps1[1] > eps1[2] && eps1[2] == 0.0,
+        "{csv}"
+    );
+    assert!(dir.join("study.svg").exists() && dir.join("study.md").exists());
+    let out = slender(&[
+        "study",
+        "examples/truncation_study.toml",
+        "--vary",
+        "elemnts=10,20",
+    ]);
+    assert!(!out.status.success());
+    assert!(
+        text(&out.stderr).contains("did you mean `elements`"),
+        "{}",
+        text(&out.stderr)
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}

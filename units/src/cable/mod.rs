@@ -56,6 +56,9 @@ struct Dynamics {
     statics: StaticState,
     m_ff: SymmetricBand,
     c_ff: SymmetricBand,
+    /// Whether any damping (structural or linearised drag) exists: without it the
+    /// damping products are skipped.
+    damped: bool,
     k_ff: SymmetricBand,
     /// Couplings of the bottom node (rows: node 1 x, z; columns: bottom x, z).
     m_fb: [[f64; 2]; 2],
@@ -403,6 +406,7 @@ impl Cable {
             m_bb: block(&full_m, 0, 0),
             c_bb: block(&full_c, 0, 0),
             k_bb: block(&full_k, 0, 0),
+            damped: self.effects.structural_damping || drag.is_some(),
             m_ff: trailing_block(&full_m, 2),
             c_ff: trailing_block(&full_c, 2),
             k_ff: trailing_block(&full_k, 2),
@@ -610,10 +614,12 @@ impl Unit for Cable {
             d.scratch[i] = 4.0 / (h * h) * s.q[i] + 4.0 / h * s.v[i] + s.a[i];
         }
         d.m_ff.mul_add(1.0, &d.scratch, &mut d.rhs);
-        for i in 0..n {
-            d.scratch[i] = 2.0 / h * s.q[i] + s.v[i];
+        if d.damped {
+            for i in 0..n {
+                d.scratch[i] = 2.0 / h * s.q[i] + s.v[i];
+            }
+            d.c_ff.mul_add(1.0, &d.scratch, &mut d.rhs);
         }
-        d.c_ff.mul_add(1.0, &d.scratch, &mut d.rhs);
         d.rhs[n - 2] += s.inputs.at(TOP_FX, 1.0) - d.static_top_force[0];
         d.rhs[n - 1] += s.inputs.at(TOP_FZ, 1.0) - d.static_top_force[1];
         let (mfb, cfb, kfb) = (mat2(&d.m_fb, ab), mat2(&d.c_fb, vb), mat2(&d.k_fb, qb));
