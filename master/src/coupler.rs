@@ -369,10 +369,14 @@ impl Master {
         Ok(())
     }
 
-    /// Iterative Jacobi or Gauss-Seidel with fixed-point updates of `x`.
-    fn step_fixed_point(&mut self) -> Result<(u32, f64, bool), MasterError> {
+    /// The iteration shared by every iterative scheme: save the units, then sweep,
+    /// check convergence and, if not converged, let `update` propose the next `x`
+    /// and roll the units back, until converged or out of iterations.
+    pub(crate) fn iterate(
+        &mut self,
+        update: &mut dyn FnMut(&mut Master, u32) -> Result<(), MasterError>,
+    ) -> Result<(u32, f64, bool), MasterError> {
         self.save_all()?;
-        self.accelerator.start_step();
         let max = self.settings.max_iterations;
         let mut k = 1;
         loop {
@@ -387,12 +391,21 @@ impl Master {
             if k == max {
                 return self.give_up(k, residual);
             }
-            self.scale_iterate();
-            self.accelerator
-                .next(&self.scaled_x, &self.scaled_gx, &mut self.scaled_next);
-            self.unscale_next();
+            update(self, k)?;
             k += 1;
         }
+    }
+
+    /// Iterative Jacobi or Gauss-Seidel with fixed-point updates of `x`.
+    fn step_fixed_point(&mut self) -> Result<(u32, f64, bool), MasterError> {
+        self.accelerator.start_step();
+        self.iterate(&mut |m, _| {
+            m.scale_iterate();
+            m.accelerator
+                .next(&m.scaled_x, &m.scaled_gx, &mut m.scaled_next);
+            m.unscale_next();
+            Ok(())
+        })
     }
 
     /// What happens when a step runs out of iterations.

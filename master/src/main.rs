@@ -327,18 +327,7 @@ fn modes(path: PathBuf, unit: &str, count: usize, out: Option<PathBuf>, plot: us
         slender_master::plot::mode_shapes(&svg, &format!("Mode shapes of `{unit}`"), &shown)?;
         Ok(vec![csv, svg])
     })();
-    match written {
-        Ok(files) => {
-            for f in files {
-                println!("wrote {}", f.display());
-            }
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    report_written(written)
 }
 
 fn study(
@@ -403,6 +392,11 @@ fn study(
         )?;
         Ok(vec![csv, md, svg])
     })();
+    report_written(written)
+}
+
+/// Prints the files written, or the error that stopped the writing.
+fn report_written(written: Result<Vec<PathBuf>, String>) -> ExitCode {
     match written {
         Ok(files) => {
             for f in files {

@@ -55,42 +55,28 @@ impl Master {
         perturbation: f64,
         update: JacobianUpdate,
     ) -> Result<(u32, f64, bool), MasterError> {
-        self.save_all()?;
-        let max = self.settings.max_iterations;
-        let mut k = 1;
-        loop {
-            if k > 1 {
-                self.restore_all(k)?;
-            }
-            self.sweep(k)?;
-            let residual = self.residual();
-            if residual.scaled <= 1.0 {
-                return Ok((k, residual.scaled, true));
-            }
-            if k == max {
-                return self.give_up(k, residual);
-            }
-            work.base_gx.copy_from_slice(&self.gx);
+        self.iterate(&mut |m, k| {
+            work.base_gx.copy_from_slice(&m.gx);
             if work.factorised.is_none() || update == JacobianUpdate::EveryIteration {
-                self.probe_jacobian(work, perturbation, k)?;
+                m.probe_jacobian(work, perturbation, k)?;
             }
             // Scaled residual r = (G(x) - x) / tol; solve J dz = -r.
-            for (i, &c) in self.torn.iter().enumerate() {
-                work.correction[i] = -(work.base_gx[i] - self.x[i]) / self.tolerance[c];
+            for (i, &c) in m.torn.iter().enumerate() {
+                work.correction[i] = -(work.base_gx[i] - m.x[i]) / m.tolerance[c];
             }
             let lu = work
                 .factorised
                 .as_ref()
                 .ok_or(MasterError::SingularJacobian {
-                    time: self.target_time(),
+                    time: m.target_time(),
                     iteration: k,
                 })?;
             lu.solve_mut(&mut work.correction);
-            for (i, &c) in self.torn.iter().enumerate() {
-                self.x[i] += work.correction[i] * self.tolerance[c];
+            for (i, &c) in m.torn.iter().enumerate() {
+                m.x[i] += work.correction[i] * m.tolerance[c];
             }
-            k += 1;
-        }
+            Ok(())
+        })
     }
 
     /// Fills the scaled Jacobian of the residual, column by column, and factorises it.

@@ -174,97 +174,106 @@ pub fn study(path: &Path, title: &str, rows: &[crate::study::StudyRow]) -> Resul
         .titled(title, ("sans-serif", 22))
         .map_err(|e| fail(&e))?;
     let cells = root.split_evenly((knobs.len(), 2));
-    let positive_range = |v: &mut dyn Iterator<Item = f64>| {
-        let (lo, hi) = v
-            .filter(|x| x.is_finite() && *x > 0.0)
-            .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
-        if lo.is_finite() {
-            (lo / 1.5, hi * 1.5)
-        } else {
-            (1e-12, 1.0)
-        }
-    };
     for (k, knob) in knobs.iter().enumerate() {
         let mine: Vec<&crate::study::StudyRow> =
             rows.iter().filter(|r| r.setting == *knob).collect();
-        let (xlo, xhi) = positive_range(&mut mine.iter().map(|r| r.value));
-        // Errors.
-        let (ylo, yhi) =
-            positive_range(&mut mine.iter().flat_map(|r| r.errors.iter().map(|e| e.1)));
-        let mut chart = ChartBuilder::on(&cells[2 * k])
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(70)
-            .build_cartesian_2d((xlo..xhi).log_scale(), (ylo..yhi).log_scale())
-            .map_err(|e| fail(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc(knob.to_string())
-            .y_desc("epsilon vs finest")
-            .x_label_formatter(&|v| format!("{v:.3}"))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .draw()
-            .map_err(|e| fail(&e))?;
         let names: Vec<String> = mine
             .first()
             .map(|r| r.errors.iter().map(|e| e.0.clone()).collect())
             .unwrap_or_default();
-        for (i, name) in names.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            let points: Vec<(f64, f64)> = mine
-                .iter()
-                .map(|r| (r.value, r.errors[i].1))
-                .filter(|p| p.1 > 0.0)
-                .collect();
-            chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-                .map_err(|e| fail(&e))?
-                .label(name.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
-            chart
-                .draw_series(
-                    points
-                        .into_iter()
-                        .map(|p| Circle::new(p, 4, color.filled())),
+        let errors: Vec<(String, Vec<(f64, f64)>)> = names
+            .iter()
+            .enumerate()
+            .map(|(i, n)| {
+                (
+                    n.clone(),
+                    mine.iter()
+                        .map(|r| (r.value, r.errors[i].1))
+                        .filter(|p| p.1 > 0.0)
+                        .collect(),
                 )
-                .map_err(|e| fail(&e))?;
+            })
+            .collect();
+        let cost = vec![(
+            String::new(),
+            mine.iter()
+                .map(|r| (r.value, r.cost_per_simulated_second))
+                .collect(),
+        )];
+        log_log_panel(
+            &cells[2 * k],
+            &knob.to_string(),
+            "epsilon vs finest",
+            0,
+            &errors,
+        )
+        .map_err(|e| fail(&e))?;
+        log_log_panel(
+            &cells[2 * k + 1],
+            &knob.to_string(),
+            "s per simulated s",
+            1,
+            &cost,
+        )
+        .map_err(|e| fail(&e))?;
+    }
+    root.present().map_err(|e| fail(&e))
+}
+
+/// Bounds of the positive finite values, widened for a log axis.
+fn positive_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|x| x.is_finite() && *x > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+    if lo.is_finite() {
+        (lo / 1.5, hi * 1.5)
+    } else {
+        (1e-12, 1.0)
+    }
+}
+
+/// One log-log panel with a line and markers per named series (a legend when
+/// the series have names); y labels in engineering notation with `y_digits` decimals.
+fn log_log_panel(
+    area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    x_desc: &str,
+    y_desc: &str,
+    y_digits: usize,
+    series: &[(String, Vec<(f64, f64)>)],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let (xlo, xhi) = positive_range(series.iter().flat_map(|s| s.1.iter().map(|p| p.0)));
+    let (ylo, yhi) = positive_range(series.iter().flat_map(|s| s.1.iter().map(|p| p.1)));
+    let mut chart = ChartBuilder::on(area)
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(70)
+        .build_cartesian_2d((xlo..xhi).log_scale(), (ylo..yhi).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(&|v| format!("{v:.3}"))
+        .y_label_formatter(&|v| format!("{v:.y_digits$e}"))
+        .draw()?;
+    for (i, (name, points)) in series.iter().enumerate() {
+        let color = if name.is_empty() {
+            BLACK.to_rgba()
+        } else {
+            Palette99::pick(i).to_rgba()
+        };
+        let line = chart.draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))?;
+        if !name.is_empty() {
+            line.label(name.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
         }
+        chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
+    }
+    if series.iter().any(|s| !s.0.is_empty()) {
         chart
             .configure_series_labels()
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
-            .draw()
-            .map_err(|e| fail(&e))?;
-        // Cost.
-        let (clo, chi) = positive_range(&mut mine.iter().map(|r| r.cost_per_simulated_second));
-        let mut chart = ChartBuilder::on(&cells[2 * k + 1])
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(70)
-            .build_cartesian_2d((xlo..xhi).log_scale(), (clo..chi).log_scale())
-            .map_err(|e| fail(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc(knob.to_string())
-            .y_desc("s per simulated s")
-            .x_label_formatter(&|v| format!("{v:.3}"))
-            .y_label_formatter(&|v| format!("{v:.1e}"))
-            .draw()
-            .map_err(|e| fail(&e))?;
-        let points: Vec<(f64, f64)> = mine
-            .iter()
-            .map(|r| (r.value, r.cost_per_simulated_second))
-            .collect();
-        chart
-            .draw_series(LineSeries::new(points.clone(), BLACK.stroke_width(2)))
-            .map_err(|e| fail(&e))?;
-        chart
-            .draw_series(
-                points
-                    .into_iter()
-                    .map(|p| Circle::new(p, 4, BLACK.filled())),
-            )
-            .map_err(|e| fail(&e))?;
+            .draw()?;
     }
-    root.present().map_err(|e| fail(&e))
+    Ok(())
 }

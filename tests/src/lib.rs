@@ -276,30 +276,5 @@ pub fn published() -> toml::Table {
 /// The polyester line of seed 000 Table 1 with `elements` elements, in 1200 m of
 /// water with the 0-0.5 m/s shear current, as a full line.
 pub fn polyester_line(elements: usize) -> slender_units::cable::CableParams {
-    use slender_units::cable::current::CurrentProfile;
-    slender_units::cable::CableParams {
-        length: 1934.0,
-        elements,
-        diameter: 0.264,
-        mass_per_length: 44.7,
-        youngs_modulus: 8.513e9,
-        submerged_weight: 93.2,
-        added_mass_normal: 1.0,
-        added_mass_tangential: 0.0,
-        drag_normal: 1.6,
-        drag_tangential: 0.0,
-        rayleigh_mass: 0.0,
-        rayleigh_stiffness: 4.77e-2,
-        water_density: 1025.0,
-        water_depth: 1200.0,
-        current: CurrentProfile::Linear {
-            seabed: 0.0,
-            surface: 0.5,
-        },
-        anchor: [0.0, 0.0],
-        static_top_force: None,
-        section: slender_units::cable::Section::Full,
-        static_tolerance: 1e-10,
-        drag_tolerance: 1e-9,
-    }
+    slender_units::cable::CableParams::seed000_polyester(elements)
 }

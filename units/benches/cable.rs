@@ -2,37 +2,12 @@
 //! polyester line (seed 000, all effects, 10 ms) against element count.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use slender_units::cable::current::CurrentProfile;
-use slender_units::cable::{Cable, CableParams, Effects, Section};
+use slender_units::cable::{Cable, CableParams, Effects};
 use slender_units::{Time, Unit};
 use std::hint::black_box;
 
 fn line(elements: usize) -> Cable {
-    let p = CableParams {
-        length: 1934.0,
-        elements,
-        diameter: 0.264,
-        mass_per_length: 44.7,
-        youngs_modulus: 8.513e9,
-        submerged_weight: 93.2,
-        added_mass_normal: 1.0,
-        added_mass_tangential: 0.0,
-        drag_normal: 1.6,
-        drag_tangential: 0.0,
-        rayleigh_mass: 0.0,
-        rayleigh_stiffness: 4.77e-2,
-        water_density: 1025.0,
-        water_depth: 1200.0,
-        current: CurrentProfile::Linear {
-            seabed: 0.0,
-            surface: 0.5,
-        },
-        anchor: [0.0, 0.0],
-        static_top_force: None,
-        section: Section::Full,
-        static_tolerance: 1e-10,
-        drag_tolerance: 1e-9,
-    };
+    let p = CableParams::seed000_polyester(elements);
     let mut c = Cable::new(p, Effects::all()).unwrap();
     let a = 50f64.to_radians();
     c.set_inputs(&[2.5e6 * a.sin(), 2.5e6 * a.cos(), 0.0, 0.0])

@@ -168,6 +168,37 @@ impl Effects {
 }
 
 impl CableParams {
+    /// The taut polyester line of seed 000 (Table 1) with `elements` elements: 1934 m
+    /// in 1200 m of water, shear current 0 -> 0.5 m/s, as a full line anchored at
+    /// the origin. Rho = 1025 kg/m^3 (not printed; it reproduces Table 3).
+    pub fn seed000_polyester(elements: usize) -> CableParams {
+        CableParams {
+            length: 1934.0,
+            elements,
+            diameter: 0.264,
+            mass_per_length: 44.7,
+            youngs_modulus: 8.513e9,
+            submerged_weight: 93.2,
+            added_mass_normal: 1.0,
+            added_mass_tangential: 0.0,
+            drag_normal: 1.6,
+            drag_tangential: 0.0,
+            rayleigh_mass: 0.0,
+            rayleigh_stiffness: 4.77e-2,
+            water_density: 1025.0,
+            water_depth: 1200.0,
+            current: CurrentProfile::Linear {
+                seabed: 0.0,
+                surface: 0.5,
+            },
+            anchor: [0.0, 0.0],
+            static_top_force: None,
+            section: Section::Full,
+            static_tolerance: static_tolerance(),
+            drag_tolerance: drag_tolerance(),
+        }
+    }
+
     /// Axial stiffness EA (N).
     pub fn axial_stiffness(&self) -> f64 {
         self.youngs_modulus * std::f64::consts::PI * self.diameter * self.diameter / 4.0
