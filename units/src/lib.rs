@@ -5,7 +5,9 @@
 //! holds the physics and the numerics they share.
 
 pub mod algebraic_loop;
+pub mod beam;
 pub mod cable;
+pub mod contact;
 pub mod hold;
 pub mod integrators;
 pub mod numerics;

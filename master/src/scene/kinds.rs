@@ -3,6 +3,7 @@
 use serde::de::DeserializeOwned;
 use slender_units::Unit;
 use slender_units::algebraic_loop::{LinearPair, SphereClosure};
+use slender_units::beam::Beam;
 use slender_units::cable::{Cable, Effects};
 use slender_units::oscillator::Oscillator;
 use slender_units::signal::artefact::Artefact;
@@ -29,6 +30,16 @@ pub const KINDS: &[Kind] = &[
             let effects = Effects::from_names(effects).map_err(|e| e.to_string())?;
             Ok(Box::new(
                 Cable::new(parameters(p)?, effects).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
+    Kind {
+        name: "beam",
+        summary: "Euler-Bernoulli pipe section: Hermite elements, HHT-alpha, two conditions per end, contact with a surface",
+        effects: &[],
+        build: |p, _| {
+            Ok(Box::new(
+                Beam::new(parameters(p)?).map_err(|e| e.to_string())?,
             ))
         },
     },

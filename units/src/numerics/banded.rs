@@ -53,6 +53,23 @@ impl SymmetricBand {
         self.band[i * (self.w + 1) + (i - j)] += value;
     }
 
+    /// Replaces row and column `i` by those of the identity (a prescribed DOF).
+    pub fn set_identity_row(&mut self, i: usize) {
+        let w = self.w;
+        for k in 1..=w.min(i) {
+            self.band[i * (w + 1) + k] = 0.0;
+        }
+        for k in 1..=w.min(self.n - 1 - i) {
+            self.band[(i + k) * (w + 1) + k] = 0.0;
+        }
+        self.band[i * (w + 1)] = 1.0;
+    }
+
+    /// Copies another matrix of the same shape.
+    pub fn copy_from(&mut self, other: &SymmetricBand) {
+        self.band.copy_from_slice(&other.band);
+    }
+
     /// `self = a * x + b * y` entrywise (same shape).
     pub fn set_combination(&mut self, terms: &[(f64, &SymmetricBand)]) {
         self.band.fill(0.0);

@@ -1,0 +1,178 @@
+//! Boundary conditions of a beam end: two of deflection, rotation, moment and
+//! shear, each a function of time or a coupled input.
+
+use crate::unit::UnitError;
+use serde::Deserialize;
+
+/// The four end quantities. Moment is EI y'' (N m), shear EI y''' (N).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Quantity {
+    Deflection,
+    Rotation,
+    Moment,
+    Shear,
+}
+
+impl Quantity {
+    /// The work-conjugate quantity: prescribing both is degenerate.
+    pub fn dual(self) -> Quantity {
+        match self {
+            Quantity::Deflection => Quantity::Shear,
+            Quantity::Shear => Quantity::Deflection,
+            Quantity::Rotation => Quantity::Moment,
+            Quantity::Moment => Quantity::Rotation,
+        }
+    }
+
+    /// Name as in scenes and port names.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::Deflection => "deflection",
+            Quantity::Rotation => "rotation",
+            Quantity::Moment => "moment",
+            Quantity::Shear => "shear",
+        }
+    }
+
+    /// Whether it is kinematic (a Dirichlet condition) rather than a load.
+    pub fn is_kinematic(self) -> bool {
+        matches!(self, Quantity::Deflection | Quantity::Rotation)
+    }
+
+    /// Local DOF at the node (0: y, 1: theta) the quantity acts on.
+    pub fn dof(self) -> usize {
+        match self {
+            Quantity::Deflection | Quantity::Shear => 0,
+            Quantity::Rotation | Quantity::Moment => 1,
+        }
+    }
+}
+
+/// A prescribed value over time.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum TimeFunction {
+    /// A constant.
+    Constant(f64),
+    /// `"input"`: the value comes from a coupled input port.
+    Input(InputMarker),
+    /// `offset + amplitude sin(angular_frequency t + phase)` and/or
+    /// `+ decay_amplitude exp(-decay_rate t)`.
+    Expression(Expression),
+}
+
+/// The word "input".
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InputMarker {
+    Input,
+}
+
+/// Sum of a constant, a sine and a decaying exponential (SI units, t in s).
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Expression {
+    pub offset: f64,
+    pub amplitude: f64,
+    /// rad/s
+    pub angular_frequency: f64,
+    /// rad
+    pub phase: f64,
+    pub decay_amplitude: f64,
+    /// 1/s
+    pub decay_rate: f64,
+}
+
+impl TimeFunction {
+    /// Value and its first two time derivatives at t; `None` for an input.
+    pub fn eval(&self, t: f64) -> Option<[f64; 3]> {
+        match self {
+            TimeFunction::Constant(c) => Some([*c, 0.0, 0.0]),
+            TimeFunction::Input(_) => None,
+            TimeFunction::Expression(e) => {
+                let (w, a) = (e.angular_frequency, e.amplitude);
+                let arg = w * t + e.phase;
+                let ex = e.decay_amplitude * (-e.decay_rate * t).exp();
+                Some([
+                    e.offset + a * arg.sin() + ex,
+                    a * w * arg.cos() - e.decay_rate * ex,
+                    -a * w * w * arg.sin() + e.decay_rate * e.decay_rate * ex,
+                ])
+            }
+        }
+    }
+
+    fn validate(&self, key: &str) -> Result<(), UnitError> {
+        let ok = match self {
+            TimeFunction::Constant(c) => c.is_finite(),
+            TimeFunction::Input(_) => true,
+            TimeFunction::Expression(e) => [
+                e.offset,
+                e.amplitude,
+                e.angular_frequency,
+                e.phase,
+                e.decay_amplitude,
+                e.decay_rate,
+            ]
+            .iter()
+            .all(|v| v.is_finite()),
+        };
+        if ok {
+            Ok(())
+        } else {
+            Err(UnitError::parameter(
+                key,
+                format!("{self:?}"),
+                "expected finite values",
+            ))
+        }
+    }
+}
+
+/// One condition at an end.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Condition {
+    pub quantity: Quantity,
+    pub value: TimeFunction,
+}
+
+/// The two conditions at each end.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Boundary {
+    /// At x = 0.
+    pub left: [Condition; 2],
+    /// At x = L.
+    pub right: [Condition; 2],
+}
+
+impl Boundary {
+    /// Refuses degenerate pairs: the same quantity twice, or a quantity with its
+    /// work conjugate (deflection with shear, rotation with moment).
+    pub fn validate(&self) -> Result<(), UnitError> {
+        for (end, pair) in [("left", &self.left), ("right", &self.right)] {
+            let (a, b) = (pair[0].quantity, pair[1].quantity);
+            if a == b || a.dual() == b {
+                return Err(UnitError::parameter(
+                    &format!("boundary.{end}"),
+                    format!("{} and {}", a.name(), b.name()),
+                    "degenerate: choose two of deflection, rotation, moment, shear that are not work conjugates (deflection-shear and rotation-moment are)",
+                ));
+            }
+            for (i, c) in pair.iter().enumerate() {
+                c.value.validate(&format!("boundary.{end}[{i}].value"))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The conditions as (end: 0 left / 1 right, condition), left first.
+    pub fn all(&self) -> impl Iterator<Item = (usize, &Condition)> {
+        self.left
+            .iter()
+            .map(|c| (0, c))
+            .chain(self.right.iter().map(|c| (1, c)))
+    }
+}

@@ -1,0 +1,703 @@
+//! Beam unit (seed 004): an Euler-Bernoulli beam with Hermite cubic elements,
+//! consistent mass, Rayleigh and viscous damping, a distributed load, two boundary
+//! conditions per end (each a function of time or a coupled input), contact with a
+//! surface, and HHT-alpha time integration with Newton iterations on the contact
+//! terms. A static solver for the same model gives the equilibrium.
+//!
+//! Outputs are the four end quantities at both ends (a prescribed one as given,
+//! the others from the state or, for moment and shear at a kinematically held end,
+//! from the reaction), the energies and the contact region, so a beam can be one
+//! section of a pipe coupled to its neighbours.
+
+pub mod boundary;
+pub mod elements;
+pub mod params;
+
+use crate::contact::Law;
+use crate::contact::surface::Surface;
+use crate::hold::HeldInputs;
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
+use crate::port::{Hold, Port, PortKind};
+use crate::state::StateSlot;
+use crate::time::Time;
+use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
+use boundary::{Quantity, TimeFunction};
+pub use params::{BeamParams, ContactIntegration, ContactParams};
+
+/// Output names after the eight end quantities.
+const EXTRA_OUTPUTS: [&str; 7] = [
+    "kinetic_energy",
+    "strain_energy",
+    "contact_energy",
+    "contact_start",
+    "contact_end",
+    "contact_length",
+    "max_penetration",
+];
+
+/// A contact integration point.
+#[derive(Clone, Debug)]
+struct ContactPoint {
+    element: usize,
+    x: f64,
+    weight: f64,
+    shape: [f64; 4],
+}
+
+/// Contact evaluated at one state.
+#[derive(Clone, Debug, Default)]
+struct ContactValues {
+    /// Nodal force vector (N) of the contact law and contact damping.
+    force: Vec<f64>,
+    energy: f64,
+    start: f64,
+    end: f64,
+    length: f64,
+    max_penetration: f64,
+}
+
+/// A condition resolved to a DOF.
+#[derive(Clone, Debug)]
+struct ResolvedCondition {
+    end: usize,
+    quantity: Quantity,
+    dof: usize,
+    value: TimeFunction,
+    /// Input port index when coupled.
+    input: Option<usize>,
+}
+
+/// Everything that changes while stepping.
+#[derive(Clone, Debug)]
+struct BeamState {
+    t: f64,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    /// Lagrangian parameter per contact point.
+    lambda: Vec<f64>,
+    /// Gap per contact point at the current time (energy-conserving law).
+    gap: Vec<f64>,
+    /// Contact force vector at the current time (HHT weighting).
+    contact_force: Vec<f64>,
+    inputs: HeldInputs,
+    /// Residual at the current time (reactions at held DOFs).
+    reaction: Vec<f64>,
+    contact: [f64; 5],
+    newton_iterations: u32,
+}
+
+/// The beam unit.
+pub struct Beam {
+    params: BeamParams,
+    description: UnitDescription,
+    lengths: Vec<f64>,
+    m: SymmetricBand,
+    c: SymmetricBand,
+    k: SymmetricBand,
+    distributed: Vec<f64>,
+    conditions: Vec<ResolvedCondition>,
+    points: Vec<ContactPoint>,
+    state: BeamState,
+    // Scratch.
+    jacobian: SymmetricBand,
+    linear: SymmetricBand,
+    linear_h: f64,
+    residual: Vec<f64>,
+}
+
+fn port_kind(q: Quantity) -> PortKind {
+    match q {
+        Quantity::Deflection => PortKind::Displacement,
+        Quantity::Rotation => PortKind::Rotation,
+        Quantity::Moment => PortKind::Moment,
+        Quantity::Shear => PortKind::Force,
+    }
+}
+
+impl Beam {
+    /// Builds the unit; fails with the first bad parameter.
+    pub fn new(params: BeamParams) -> Result<Beam, UnitError> {
+        params.validate()?;
+        let lengths = params.lengths();
+        let nodes = lengths.len() + 1;
+        let n = 2 * nodes;
+        let m = elements::mass(params.mass_per_length, &lengths);
+        let k = elements::stiffness(params.flexural_rigidity, &lengths);
+        let mut c = SymmetricBand::zeros(n, elements::BAND);
+        c.set_combination(&[
+            (
+                params.rayleigh_mass + params.damping_per_length / params.mass_per_length,
+                &m,
+            ),
+            (params.rayleigh_stiffness, &k),
+        ]);
+        let mut distributed = vec![0.0; n];
+        if !params.distributed_load.is_empty() {
+            let coefficients = params.distributed_load.clone();
+            elements::load(
+                |x| params::polynomial(&coefficients, x).0,
+                &lengths,
+                &mut distributed,
+            );
+        }
+        let mut inputs = Vec::new();
+        let mut conditions = Vec::new();
+        for (end, cond) in params.boundary.all() {
+            let node = if end == 0 { 0 } else { nodes - 1 };
+            let side = if end == 0 { "left" } else { "right" };
+            let input = matches!(cond.value, TimeFunction::Input(_)).then(|| {
+                inputs.push(Port::input(
+                    &format!("{side}_{}", cond.quantity.name()),
+                    port_kind(cond.quantity),
+                ));
+                inputs.len() - 1
+            });
+            conditions.push(ResolvedCondition {
+                end,
+                quantity: cond.quantity,
+                dof: 2 * node + cond.quantity.dof(),
+                value: cond.value.clone(),
+                input,
+            });
+        }
+        let mut outputs = Vec::new();
+        for (end, side) in ["left", "right"].iter().enumerate() {
+            let held: Vec<usize> = conditions
+                .iter()
+                .filter(|c| c.end == end)
+                .filter_map(|c| c.input)
+                .collect();
+            for q in [
+                Quantity::Deflection,
+                Quantity::Rotation,
+                Quantity::Moment,
+                Quantity::Shear,
+            ] {
+                let p = Port::output(&format!("{side}_{}", q.name()), port_kind(q));
+                outputs.push(if q.is_kinematic() {
+                    p
+                } else {
+                    p.with_feedthrough(&held)
+                });
+            }
+        }
+        for name in EXTRA_OUTPUTS {
+            let unit = if name.ends_with("energy") { "J" } else { "m" };
+            outputs.push(Port::output(name, PortKind::Generic).with_unit(unit));
+        }
+        let mut points = Vec::new();
+        if let Some(contact) = &params.contact {
+            let mut x0 = 0.0;
+            for (e, &l) in lengths.iter().enumerate() {
+                let rule: &[(f64, f64)] = match contact.integration {
+                    ContactIntegration::Gauss => &elements::GAUSS,
+                    ContactIntegration::Trapezoid => &[(0.0, 0.5), (1.0, 0.5)],
+                };
+                for &(xi, w) in rule {
+                    points.push(ContactPoint {
+                        element: e,
+                        x: x0 + xi * l,
+                        weight: w * l,
+                        shape: elements::shape(xi, l),
+                    });
+                }
+                x0 += l;
+            }
+        }
+        let lambda0 = params.contact.as_ref().map_or(0.0, |c| c.method.lambda0());
+        let n_points = points.len();
+        let n_inputs = inputs.len();
+        Ok(Beam {
+            description: UnitDescription {
+                kind: "beam".into(),
+                inputs,
+                outputs,
+                capabilities: Capabilities::default(),
+            },
+            state: BeamState {
+                t: 0.0,
+                q: vec![0.0; n],
+                v: vec![0.0; n],
+                a: vec![0.0; n],
+                lambda: vec![lambda0; n_points],
+                gap: vec![0.0; n_points],
+                contact_force: vec![0.0; n],
+                inputs: HeldInputs::new(vec![Hold::Ramp; n_inputs]),
+                reaction: vec![0.0; n],
+                contact: [0.0; 5],
+                newton_iterations: 0,
+            },
+            jacobian: SymmetricBand::zeros(n, elements::BAND),
+            linear: SymmetricBand::zeros(n, elements::BAND),
+            linear_h: 0.0,
+            residual: vec![0.0; n],
+            params,
+            lengths,
+            m,
+            c,
+            k,
+            distributed,
+            conditions,
+            points,
+        })
+    }
+
+    /// Node positions x (m).
+    pub fn node_positions(&self) -> Vec<f64> {
+        let mut x = vec![0.0];
+        for l in &self.lengths {
+            x.push(x.last().copied().unwrap_or(0.0) + l);
+        }
+        x
+    }
+
+    /// Nodal deflections (m) and rotations at the current time.
+    pub fn deflections(&self) -> Vec<[f64; 2]> {
+        self.state.q.chunks(2).map(|c| [c[0], c[1]]).collect()
+    }
+
+    /// Deflection (m) at x from the element's Hermite interpolation.
+    pub fn deflection_at(&self, x: f64) -> f64 {
+        let mut x0 = 0.0;
+        for (e, &l) in self.lengths.iter().enumerate() {
+            if x <= x0 + l || e + 1 == self.lengths.len() {
+                let n = elements::shape(((x - x0) / l).clamp(0.0, 1.0), l);
+                return (0..4).map(|i| n[i] * self.state.q[2 * e + i]).sum();
+            }
+            x0 += l;
+        }
+        0.0
+    }
+
+    /// Replaces the initial state (after `initialize`) by the shape `f(x) -> (y, y')`
+    /// at rest, and recomputes the consistent initial acceleration.
+    pub fn set_initial_shape(&mut self, f: impl Fn(f64) -> (f64, f64)) -> Result<(), UnitError> {
+        for (j, x) in self.node_positions().into_iter().enumerate() {
+            let (y, slope) = f(x);
+            self.state.q[2 * j] = y;
+            self.state.q[2 * j + 1] = slope;
+        }
+        self.state.v.fill(0.0);
+        self.initial_acceleration()
+    }
+
+    /// Newton iterations of the last step or static solve.
+    pub fn last_newton_iterations(&self) -> u32 {
+        self.state.newton_iterations
+    }
+
+    /// The prescribed value, rate and acceleration of condition `c` at time t (for
+    /// inputs: end value, ramp slope, change of slope over h).
+    fn prescribed(&self, c: &ResolvedCondition, t: f64, h: f64) -> [f64; 3] {
+        match (c.value.eval(t), c.input) {
+            (Some(v), _) => v,
+            (None, Some(i)) => {
+                let value = self.state.inputs.at(i, 1.0);
+                if h > 0.0 {
+                    let rate = self.state.inputs.rate(i, h);
+                    [value, rate, (rate - self.state.v[c.dof]) / h]
+                } else {
+                    [value, 0.0, 0.0]
+                }
+            }
+            (None, None) => [0.0; 3],
+        }
+    }
+
+    /// External load vector at time t (distributed load and prescribed moment and
+    /// shear), into `out`.
+    fn external_load(&self, t: f64, h: f64, out: &mut [f64]) {
+        out.copy_from_slice(&self.distributed);
+        for c in self
+            .conditions
+            .iter()
+            .filter(|c| !c.quantity.is_kinematic())
+        {
+            let value = self.prescribed(c, t, h)[0];
+            // Boundary terms of the weak form: moment EI y'' enters theta with +
+            // at x = L and - at x = 0; shear EI y''' enters y with - at L, + at 0.
+            let sign = match (c.quantity, c.end) {
+                (Quantity::Moment, 1) | (Quantity::Shear, 0) => 1.0,
+                _ => -1.0,
+            };
+            out[c.dof] += sign * value;
+        }
+    }
+
+    /// Contact forces (and, when `tangent` is given, adds the tangent scaled by
+    /// `k_scale` for stiffness and `c_scale` for damping) at deflections `q`,
+    /// velocities `v`, time t. `penalty` overrides the law's penalty (statics).
+    #[allow(clippy::too_many_arguments)]
+    fn contact_at(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        lambda: &[f64],
+        penalty: Option<f64>,
+        mut tangent: Option<(&mut SymmetricBand, f64, f64)>,
+        out: &mut ContactValues,
+    ) {
+        out.force.clear();
+        out.force.resize(q.len(), 0.0);
+        out.energy = 0.0;
+        out.start = 0.0;
+        out.end = 0.0;
+        out.length = 0.0;
+        out.max_penetration = 0.0;
+        let Some(contact) = &self.params.contact else {
+            return;
+        };
+        let law = with_penalty(&contact.method, penalty);
+        let mut first = true;
+        for (i, p) in self.points.iter().enumerate() {
+            let Some((f, f_rate)) = contact.surface.at(p.x, t) else {
+                continue;
+            };
+            let base = 2 * p.element;
+            let y: f64 = (0..4).map(|j| p.shape[j] * q[base + j]).sum();
+            let yv: f64 = (0..4).map(|j| p.shape[j] * v[base + j]).sum();
+            let d = y - f;
+            let (xi, g, k) = law.evaluate(d, lambda[i]);
+            let mut force = g;
+            let mut damping = 0.0;
+            if contact.damping > 0.0 && d <= contact.gap_band {
+                force += contact.damping * (yv - f_rate);
+                damping = contact.damping;
+            }
+            out.energy += p.weight * xi;
+            if d <= 0.0 {
+                if first {
+                    out.start = p.x;
+                    first = false;
+                }
+                out.end = p.x;
+                out.length += p.weight;
+                out.max_penetration = out.max_penetration.max(-d);
+            }
+            for j in 0..4 {
+                out.force[base + j] += p.weight * force * p.shape[j];
+            }
+            if let Some((m, k_scale, c_scale)) = tangent.as_mut() {
+                let s = p.weight * (*k_scale * k + *c_scale * damping);
+                if s != 0.0 {
+                    for r in 0..4 {
+                        for col in 0..=r {
+                            m.add(base + r, base + col, s * p.shape[r] * p.shape[col]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Sets the kinematic conditions at time t into q, v, a.
+    fn apply_kinematics(&mut self, t: f64, h: f64) {
+        for i in 0..self.conditions.len() {
+            let c = &self.conditions[i];
+            if c.quantity.is_kinematic() {
+                let [y, v, a] = self.prescribed(c, t, h);
+                let dof = c.dof;
+                self.state.q[dof] = y;
+                self.state.v[dof] = v;
+                self.state.a[dof] = a;
+            }
+        }
+    }
+
+    fn held_dofs(&self) -> impl Iterator<Item = usize> + '_ {
+        self.conditions
+            .iter()
+            .filter(|c| c.quantity.is_kinematic())
+            .map(|c| c.dof)
+    }
+
+    /// Static equilibrium K q + F_contact(q) = F at the current time, by Newton with
+    /// penalty continuation (p0 psi^(n-1)) and lambda updates every iteration.
+    pub fn solve_static(&mut self) -> Result<u32, UnitError> {
+        let t = self.state.t;
+        self.apply_kinematics(t, 0.0);
+        let n = self.state.q.len();
+        let mut values = ContactValues::default();
+        let target = self.params.contact.as_ref().map(|c| penalty_of(&c.method));
+        let mut penalty = match (self.params.static_penalty_start, target) {
+            (Some(p0), Some(p)) => Some(p0.min(p)),
+            (_, p) => p,
+        };
+        let mut load = vec![0.0; n];
+        self.external_load(t, 0.0, &mut load);
+        let zeros = vec![0.0; n];
+        let cap = 20 * self.params.newton_max_iterations;
+        let mut history = Vec::new();
+        for iteration in 1..=cap {
+            let mut jac = self.k.clone();
+            let q = self.state.q.clone();
+            let lambda = self.state.lambda.clone();
+            self.contact_at(
+                &q,
+                &zeros,
+                t,
+                &lambda,
+                penalty,
+                Some((&mut jac, 1.0, 0.0)),
+                &mut values,
+            );
+            let mut r = vec![0.0; n];
+            self.k.mul_add(1.0, &q, &mut r);
+            for i in 0..n {
+                r[i] += values.force[i] - load[i];
+            }
+            self.state.reaction.copy_from_slice(&r);
+            for dof in self.held_dofs().collect::<Vec<_>>() {
+                jac.set_identity_row(dof);
+                r[dof] = 0.0;
+            }
+            let factor = BandLdlt::new(&jac).ok_or_else(|| {
+                UnitError::Numerical(
+                    "no static equilibrium: the boundary conditions leave the beam free to move (a rigid-body mode) and no contact holds it".into(),
+                )
+            })?;
+            for v in r.iter_mut() {
+                *v = -*v;
+            }
+            factor.solve_in_place(&mut r);
+            let step = r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            history.push(step);
+            for (q, dq) in self.state.q.iter_mut().zip(&r) {
+                *q += dq;
+            }
+            let size = self.state.q.iter().fold(1.0f64, |a, v| a.max(v.abs()));
+            if let Some(c) = &self.params.contact {
+                let law = with_penalty(&c.method, penalty);
+                self.update_lambda(&law, t);
+            }
+            let at_target = penalty == target;
+            if step < self.params.newton_tolerance * size && at_target {
+                self.state.newton_iterations = iteration;
+                self.finish_static(t, penalty);
+                return Ok(iteration);
+            }
+            if let (Some(p), Some(goal)) = (penalty, target) {
+                penalty = Some((p * self.params.static_penalty_growth).min(goal));
+            }
+        }
+        Err(UnitError::Numerical(format!(
+            "static solve: Newton did not converge in {cap} iterations; corrections: {}",
+            history
+                .iter()
+                .rev()
+                .take(8)
+                .rev()
+                .map(|v| format!("{v:.3e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )))
+    }
+
+    fn finish_static(&mut self, t: f64, penalty: Option<f64>) {
+        let n = self.state.q.len();
+        let mut values = ContactValues::default();
+        let (q, lambda) = (self.state.q.clone(), self.state.lambda.clone());
+        self.contact_at(&q, &vec![0.0; n], t, &lambda, penalty, None, &mut values);
+        self.state.contact_force.copy_from_slice(&values.force);
+        self.state.contact = [
+            values.energy,
+            values.start,
+            values.end,
+            values.length,
+            values.max_penetration,
+        ];
+        self.record_gaps(t);
+        self.state.v.fill(0.0);
+        self.state.a.fill(0.0);
+    }
+
+    fn record_gaps(&mut self, t: f64) {
+        if let Some(contact) = &self.params.contact {
+            for (i, p) in self.points.iter().enumerate() {
+                let y: f64 = (0..4)
+                    .map(|j| p.shape[j] * self.state.q[2 * p.element + j])
+                    .sum();
+                self.state.gap[i] = contact
+                    .surface
+                    .at(p.x, t)
+                    .map_or(f64::INFINITY, |(f, _)| y - f);
+            }
+        }
+    }
+
+    fn update_lambda(&mut self, law: &Law, t: f64) {
+        let Some(contact) = &self.params.contact else {
+            return;
+        };
+        if law.lambda_update().is_none() {
+            return;
+        }
+        for (i, p) in self.points.iter().enumerate() {
+            if let Some((f, _)) = contact.surface.at(p.x, t) {
+                let y: f64 = (0..4)
+                    .map(|j| p.shape[j] * self.state.q[2 * p.element + j])
+                    .sum();
+                self.state.lambda[i] = law.updated_lambda(y - f, self.state.lambda[i]);
+            }
+        }
+    }
+
+    /// Total mechanical energy (J): kinetic, strain and contact.
+    pub fn energies(&self) -> [f64; 3] {
+        let n = self.state.q.len();
+        let mut mv = vec![0.0; n];
+        self.m.mul_add(1.0, &self.state.v, &mut mv);
+        let mut kq = vec![0.0; n];
+        self.k.mul_add(1.0, &self.state.q, &mut kq);
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        [
+            0.5 * dot(&mv, &self.state.v),
+            0.5 * dot(&kq, &self.state.q),
+            self.state.contact[0],
+        ]
+    }
+}
+
+fn penalty_of(law: &Law) -> f64 {
+    match *law {
+        Law::Penalty { penalty }
+        | Law::EnergyConserving { penalty }
+        | Law::AugmentedLagrangian { penalty, .. }
+        | Law::AugmentedBarrier { penalty, .. } => penalty,
+    }
+}
+
+fn with_penalty(law: &Law, p: Option<f64>) -> Law {
+    let mut l = law.clone();
+    if let Some(p) = p {
+        match &mut l {
+            Law::Penalty { penalty }
+            | Law::EnergyConserving { penalty }
+            | Law::AugmentedLagrangian { penalty, .. }
+            | Law::AugmentedBarrier { penalty, .. } => *penalty = p,
+        }
+    }
+    l
+}
+
+mod dynamics;
+
+impl Unit for Beam {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
+        if port >= self.state.inputs.len() {
+            return Err(UnitError::Unsupported(format!("no input {port}")));
+        }
+        self.state.inputs.set_hold(port, hold);
+        self.description.inputs[port].hold = hold;
+        Ok(())
+    }
+
+    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
+        check_input_count(self.state.inputs.len(), values)?;
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(UnitError::InvalidInput {
+                port: self.description.inputs[i].name.clone(),
+                value: values[i],
+                reason: "not finite".into(),
+            });
+        }
+        self.state.inputs.set_end(values);
+        Ok(())
+    }
+
+    fn initialize(&mut self, t0: Time) -> Result<(), UnitError> {
+        self.state.inputs.settle();
+        self.state.t = t0.as_secs();
+        let x = self.node_positions();
+        for (j, &xj) in x.iter().enumerate() {
+            let (y, dy) = params::polynomial(&self.params.initial_deflection, xj);
+            let (v, dv) = params::polynomial(&self.params.initial_velocity, xj);
+            self.state.q[2 * j] = y;
+            self.state.q[2 * j + 1] = dy;
+            self.state.v[2 * j] = v;
+            self.state.v[2 * j + 1] = dv;
+        }
+        let lambda0 = self
+            .params
+            .contact
+            .as_ref()
+            .map_or(0.0, |c| c.method.lambda0());
+        self.state.lambda.fill(lambda0);
+        if self.params.static_start {
+            self.solve_static()?;
+        } else {
+            self.initial_acceleration()?;
+        }
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+        let iterations = self.hht_step(t.as_secs(), (t + h).as_secs())?;
+        self.state.inputs.advance();
+        Ok(StepReport {
+            solver_iterations: iterations,
+        })
+    }
+
+    fn outputs(&self, out: &mut [f64]) {
+        let nodes = self.state.q.len() / 2;
+        for end in 0..2 {
+            let node = if end == 0 { 0 } else { nodes - 1 };
+            let (y, th) = (self.state.q[2 * node], self.state.q[2 * node + 1]);
+            let (ry, rth) = (
+                self.state.reaction[2 * node],
+                self.state.reaction[2 * node + 1],
+            );
+            // Reaction R = support force on the beam = the boundary load it replaces.
+            let (moment, shear) = if end == 0 { (-rth, ry) } else { (rth, -ry) };
+            let base = 4 * end;
+            out[base] = y;
+            out[base + 1] = th;
+            out[base + 2] = moment;
+            out[base + 3] = shear;
+            for c in self
+                .conditions
+                .iter()
+                .filter(|c| c.end == end && !c.quantity.is_kinematic())
+            {
+                let value = self.prescribed(c, self.state.t, 0.0)[0];
+                out[base + if c.quantity == Quantity::Moment { 2 } else { 3 }] = value;
+            }
+        }
+        let e = self.energies();
+        out[8] = e[0];
+        out[9] = e[1];
+        out[10] = e[2];
+        out[11] = self.state.contact[1];
+        out[12] = self.state.contact[2];
+        out[13] = self.state.contact[3];
+        out[14] = self.state.contact[4];
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.state);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.state.clone_from(slot.load::<BeamState>()?);
+        Ok(())
+    }
+
+    fn modes(&self, count: usize) -> Result<crate::unit::ModalAnalysis, UnitError> {
+        dynamics::modes(self, count)
+    }
+}
+
+/// The contact surface, for plots and tests.
+impl Beam {
+    pub fn surface(&self) -> Option<&Surface> {
+        self.params.contact.as_ref().map(|c| &c.surface)
+    }
+}

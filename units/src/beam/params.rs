@@ -1,0 +1,209 @@
+//! Parameters of the beam unit (scene kind `beam`).
+
+use super::boundary::Boundary;
+use crate::contact::Law;
+use crate::contact::surface::Surface;
+use crate::unit::{UnitError, require_non_negative, require_positive};
+use serde::Deserialize;
+
+/// Where the contact terms are integrated on each element.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactIntegration {
+    /// Two Gauss-Legendre points per element.
+    #[default]
+    Gauss,
+    /// The element's end nodes (trapezoidal rule).
+    Trapezoid,
+}
+
+/// Contact of the beam with a surface.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactParams {
+    pub method: Law,
+    pub surface: Surface,
+    #[serde(default)]
+    pub integration: ContactIntegration,
+    /// Damping on contact c_c (N s/m per m), active where the gap <= gap_band.
+    #[serde(default)]
+    pub damping: f64,
+    /// eps_g (m).
+    #[serde(default)]
+    pub gap_band: f64,
+}
+
+/// Beam parameters (SI units).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BeamParams {
+    /// Length L (m).
+    pub length: f64,
+    /// Equal elements over the length (ignored when `element_lengths` is given).
+    #[serde(default = "default_elements")]
+    pub elements: usize,
+    /// Element lengths (m), summing to `length`, for unequal meshes.
+    #[serde(default)]
+    pub element_lengths: Option<Vec<f64>>,
+    /// EI (N m^2).
+    pub flexural_rigidity: f64,
+    /// mu (kg/m).
+    pub mass_per_length: f64,
+    /// c_d (N s/m^2): distributed viscous damping c_d y' (seed 004 eq. 2.11).
+    #[serde(default)]
+    pub damping_per_length: f64,
+    /// Rayleigh damping C += rayleigh_mass M + rayleigh_stiffness K.
+    #[serde(default)]
+    pub rayleigh_mass: f64,
+    #[serde(default)]
+    pub rayleigh_stiffness: f64,
+    /// Distributed load w(x) = sum_i c_i x^i (N/m), constant in time.
+    #[serde(default)]
+    pub distributed_load: Vec<f64>,
+    /// Initial deflection y0(x) = sum_i c_i x^i (m).
+    #[serde(default)]
+    pub initial_deflection: Vec<f64>,
+    /// Initial velocity v0(x) = sum_i c_i x^i (m/s).
+    #[serde(default)]
+    pub initial_velocity: Vec<f64>,
+    /// Start from the static equilibrium instead of `initial_deflection`.
+    #[serde(default)]
+    pub static_start: bool,
+    pub boundary: Boundary,
+    #[serde(default)]
+    pub contact: Option<ContactParams>,
+    /// HHT-alpha in [0, 1/3] (0: trapezoidal rule, no numerical damping).
+    #[serde(default)]
+    pub alpha: f64,
+    /// Newton stops when the largest correction is below this times
+    /// max(1, largest |DOF|) (relative step tolerance).
+    #[serde(default = "default_newton_tolerance")]
+    pub newton_tolerance: f64,
+    /// Newton iteration cap per step.
+    #[serde(default = "default_newton_cap")]
+    pub newton_max_iterations: u32,
+    /// Static solver: first penalty p0 and growth psi per iteration (p0 psi^(n-1),
+    /// capped at the method's penalty); default: the method's penalty from the start.
+    #[serde(default)]
+    pub static_penalty_start: Option<f64>,
+    #[serde(default = "one")]
+    pub static_penalty_growth: f64,
+}
+
+fn default_elements() -> usize {
+    25
+}
+
+fn default_newton_tolerance() -> f64 {
+    1e-10
+}
+
+fn default_newton_cap() -> u32 {
+    30
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+impl BeamParams {
+    /// The element lengths (m).
+    pub fn lengths(&self) -> Vec<f64> {
+        match &self.element_lengths {
+            Some(l) => l.clone(),
+            None => vec![self.length / self.elements as f64; self.elements],
+        }
+    }
+
+    /// Checks every parameter, naming the first bad one.
+    pub fn validate(&self) -> Result<(), UnitError> {
+        require_positive("length", self.length)?;
+        if self.elements == 0 || self.elements > 100_000 {
+            return Err(UnitError::parameter(
+                "elements",
+                self.elements,
+                "expected 1..=100000",
+            ));
+        }
+        if let Some(l) = &self.element_lengths {
+            if l.is_empty() || l.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+                return Err(UnitError::parameter(
+                    "element_lengths",
+                    format!("{l:?}"),
+                    "expected positive lengths",
+                ));
+            }
+            let sum: f64 = l.iter().sum();
+            if (sum - self.length).abs() > 1e-9 * self.length {
+                return Err(UnitError::parameter(
+                    "element_lengths",
+                    sum,
+                    &format!("expected lengths summing to length = {}", self.length),
+                ));
+            }
+        }
+        require_positive("flexural_rigidity", self.flexural_rigidity)?;
+        require_positive("mass_per_length", self.mass_per_length)?;
+        require_non_negative("damping_per_length", self.damping_per_length)?;
+        require_non_negative("rayleigh_mass", self.rayleigh_mass)?;
+        require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
+        for (name, poly) in [
+            ("distributed_load", &self.distributed_load),
+            ("initial_deflection", &self.initial_deflection),
+            ("initial_velocity", &self.initial_velocity),
+        ] {
+            if poly.iter().any(|c| !c.is_finite()) {
+                return Err(UnitError::parameter(
+                    name,
+                    format!("{poly:?}"),
+                    "expected finite coefficients",
+                ));
+            }
+        }
+        if !(0.0..=1.0 / 3.0 + 1e-12).contains(&self.alpha) {
+            return Err(UnitError::parameter(
+                "alpha",
+                self.alpha,
+                "expected a value in [0, 1/3]",
+            ));
+        }
+        require_positive("newton_tolerance", self.newton_tolerance)?;
+        if self.newton_max_iterations == 0 {
+            return Err(UnitError::parameter(
+                "newton_max_iterations",
+                0,
+                "expected at least 1",
+            ));
+        }
+        if let Some(p0) = self.static_penalty_start {
+            require_positive("static_penalty_start", p0)?;
+        }
+        if self.static_penalty_growth.is_nan() || self.static_penalty_growth < 1.0 {
+            return Err(UnitError::parameter(
+                "static_penalty_growth",
+                self.static_penalty_growth,
+                "expected psi >= 1",
+            ));
+        }
+        self.boundary.validate()?;
+        if let Some(c) = &self.contact {
+            c.method.validate()?;
+            c.surface.validate()?;
+            require_non_negative("contact.damping", c.damping)?;
+            require_non_negative("contact.gap_band", c.gap_band)?;
+        }
+        Ok(())
+    }
+}
+
+/// sum_i c_i x^i and its derivative, by Horner's rule.
+pub fn polynomial(c: &[f64], x: f64) -> (f64, f64) {
+    let value = c.iter().rev().fold(0.0, |acc, ci| acc * x + ci);
+    let slope = c
+        .iter()
+        .enumerate()
+        .skip(1)
+        .rev()
+        .fold(0.0, |acc, (i, ci)| acc * x + i as f64 * ci);
+    (value, slope)
+}
