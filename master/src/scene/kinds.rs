@@ -4,6 +4,7 @@ use serde::de::DeserializeOwned;
 use slender_units::Unit;
 use slender_units::algebraic_loop::{LinearPair, SphereClosure};
 use slender_units::beam::Beam;
+use slender_units::beam::touchdown::TouchdownEstimate;
 use slender_units::cable::{Cable, Effects};
 use slender_units::oscillator::Oscillator;
 use slender_units::signal::artefact::Artefact;
@@ -40,6 +41,16 @@ pub const KINDS: &[Kind] = &[
         build: |p, _| {
             Ok(Box::new(
                 Beam::new(parameters(p)?).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
+    Kind {
+        name: "touchdown_estimate",
+        summary: "seed 004 sec. 6.6: touchdown point x_C = -3 y(0) / y'(0) from a section's end values (valid for y > 0, y' < 0)",
+        effects: &[],
+        build: |p, _| {
+            Ok(Box::new(
+                TouchdownEstimate::new(parameters(p)?).map_err(|e| e.to_string())?,
             ))
         },
     },

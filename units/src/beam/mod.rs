@@ -12,6 +12,7 @@
 pub mod boundary;
 pub mod elements;
 pub mod params;
+pub mod touchdown;
 
 use crate::contact::Law;
 use crate::contact::surface::Surface;
@@ -185,6 +186,12 @@ impl Beam {
         for name in EXTRA_OUTPUTS {
             let unit = if name.ends_with("energy") { "J" } else { "m" };
             outputs.push(Port::output(name, PortKind::Generic).with_unit(unit));
+        }
+        for i in 0..params.stations.len() {
+            outputs.push(Port::output(
+                &format!("deflection_{}", i + 1),
+                PortKind::Displacement,
+            ));
         }
         let mut points = Vec::new();
         if let Some(contact) = &params.contact {
@@ -633,6 +640,13 @@ impl Unit for Beam {
             self.solve_static()?;
         } else {
             self.initial_acceleration()?;
+            // A penalty-type law would fire the pipe off a surface it starts deep in.
+            let depth = self.state.contact[4];
+            if depth > 0.01 * self.params.length {
+                return Err(UnitError::Numerical(format!(
+                    "the initial state penetrates the contact surface by {depth:.3} m (more than 1 % of the length): start above it or use static_start"
+                )));
+            }
         }
         Ok(())
     }
@@ -678,6 +692,9 @@ impl Unit for Beam {
         out[12] = self.state.contact[2];
         out[13] = self.state.contact[3];
         out[14] = self.state.contact[4];
+        for (i, &x) in self.params.stations.iter().enumerate() {
+            out[15 + i] = self.deflection_at(x);
+        }
     }
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {

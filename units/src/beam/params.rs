@@ -66,6 +66,10 @@ pub struct BeamParams {
     /// Initial velocity v0(x) = sum_i c_i x^i (m/s).
     #[serde(default)]
     pub initial_velocity: Vec<f64>,
+    /// Positions x (m) whose deflection is output as `deflection_1`, `deflection_2`,
+    /// ... (a profile of the pipe over time).
+    #[serde(default)]
+    pub stations: Vec<f64>,
     /// Start from the static equilibrium instead of `initial_deflection`.
     #[serde(default)]
     pub static_start: bool,
@@ -165,6 +169,17 @@ impl BeamParams {
                 "alpha",
                 self.alpha,
                 "expected a value in [0, 1/3]",
+            ));
+        }
+        if let Some(x) = self
+            .stations
+            .iter()
+            .find(|x| !(x.is_finite() && **x >= 0.0 && **x <= self.length))
+        {
+            return Err(UnitError::parameter(
+                "stations",
+                x,
+                &format!("expected positions in [0, {}]", self.length),
             ));
         }
         require_positive("newton_tolerance", self.newton_tolerance)?;

@@ -1,0 +1,86 @@
+//! Criterion benchmark of the beam unit: one 10 ms HHT-alpha step of the seed 004
+//! pipe lying down on the seabed (penalty contact, p = 1e4, support end heaving)
+//! against element count.
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use slender_units::beam::boundary::{Boundary, Condition, Expression, Quantity, TimeFunction};
+use slender_units::beam::{Beam, BeamParams, ContactIntegration, ContactParams};
+use slender_units::contact::Law;
+use slender_units::contact::surface::{Motion, Shape, Surface};
+use slender_units::{Time, Unit};
+use std::hint::black_box;
+
+fn pipe(elements: usize) -> Beam {
+    let c = |quantity, value| Condition { quantity, value };
+    let p = BeamParams {
+        length: 10.0,
+        elements,
+        element_lengths: None,
+        flexural_rigidity: 1e4,
+        mass_per_length: 10.0,
+        damping_per_length: 0.0,
+        rayleigh_mass: 0.0,
+        rayleigh_stiffness: 0.0,
+        distributed_load: vec![],
+        initial_deflection: vec![],
+        initial_velocity: vec![],
+        stations: vec![],
+        static_start: true,
+        boundary: Boundary {
+            left: [
+                c(
+                    Quantity::Deflection,
+                    TimeFunction::Expression(Expression {
+                        offset: 1.0,
+                        amplitude: 0.25,
+                        angular_frequency: 0.3,
+                        ..Default::default()
+                    }),
+                ),
+                c(Quantity::Rotation, TimeFunction::Constant(-0.5)),
+            ],
+            right: [
+                c(Quantity::Moment, TimeFunction::Constant(0.0)),
+                c(Quantity::Shear, TimeFunction::Constant(0.0)),
+            ],
+        },
+        contact: Some(ContactParams {
+            method: Law::Penalty { penalty: 1e4 },
+            surface: Surface {
+                shape: Shape::Flat { height: 0.0 },
+                motion: Motion::None,
+            },
+            integration: ContactIntegration::Gauss,
+            damping: 0.0,
+            gap_band: 0.0,
+        }),
+        alpha: 0.05,
+        newton_tolerance: 1e-8,
+        newton_max_iterations: 30,
+        static_penalty_start: None,
+        static_penalty_growth: 1.0,
+    };
+    let mut b = Beam::new(p).unwrap();
+    b.initialize(Time::ZERO).unwrap();
+    b
+}
+
+fn step(c: &mut Criterion) {
+    let h = Time::from_nanos(10_000_000);
+    let mut group = c.benchmark_group("beam_contact_step_10ms");
+    for elements in [12, 25, 50, 100] {
+        let mut beam = pipe(elements);
+        let mut k = 0i64;
+        group.bench_with_input(BenchmarkId::from_parameter(elements), &elements, |b, _| {
+            b.iter(|| {
+                beam.do_step(h * k, h).unwrap();
+                k += 1;
+                black_box(beam.last_newton_iterations())
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, step);
+criterion_main!(benches);
