@@ -26,7 +26,7 @@ use boundary::{Quantity, TimeFunction};
 pub use params::{BeamParams, ContactIntegration, ContactParams};
 
 /// Output names after the eight end quantities.
-const EXTRA_OUTPUTS: [&str; 7] = [
+const EXTRA_OUTPUTS: [&str; 8] = [
     "kinetic_energy",
     "strain_energy",
     "contact_energy",
@@ -34,6 +34,7 @@ const EXTRA_OUTPUTS: [&str; 7] = [
     "contact_end",
     "contact_length",
     "max_penetration",
+    "newton_iterations",
 ];
 
 /// A contact integration point.
@@ -184,7 +185,11 @@ impl Beam {
             }
         }
         for name in EXTRA_OUTPUTS {
-            let unit = if name.ends_with("energy") { "J" } else { "m" };
+            let unit = match name {
+                n if n.ends_with("energy") => "J",
+                "newton_iterations" => "",
+                _ => "m",
+            };
             outputs.push(Port::output(name, PortKind::Generic).with_unit(unit));
         }
         for i in 0..params.stations.len() {
@@ -692,8 +697,9 @@ impl Unit for Beam {
         out[12] = self.state.contact[2];
         out[13] = self.state.contact[3];
         out[14] = self.state.contact[4];
+        out[15] = f64::from(self.state.newton_iterations);
         for (i, &x) in self.params.stations.iter().enumerate() {
-            out[15 + i] = self.deflection_at(x);
+            out[16 + i] = self.deflection_at(x);
         }
     }
 
