@@ -14,6 +14,7 @@ pub mod numerics;
 pub mod oscillator;
 pub mod port;
 pub mod signal;
+pub mod span;
 pub mod state;
 pub mod time;
 pub mod unit;

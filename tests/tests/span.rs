@@ -1,0 +1,277 @@
+//! The span transfer function (seed 004 ch. 5): the general transfer matrix against
+//! eq. 5.9 and the FE beam, robustness for large |beta L|, resonances at the
+//! cantilever eigenvalues, and the printed order-8 approximations.
+
+use nalgebra::{Complex, DMatrix, DVector};
+use slender_units::beam::elements;
+use slender_units::span::rational::{
+    RationalX, function_pade_u2_u5, taylor_u2_u5, term_pade_u2_u5,
+};
+use slender_units::span::transfer::{C64, Span};
+
+fn bode_span(cd: f64) -> Span {
+    // Seed 004 Fig. 5.1: EI = 1e4, mu = 1e2, c_d in {0, 5}, L = 10.
+    Span {
+        flexural_rigidity: 1e4,
+        mass_per_length: 1e2,
+        damping_per_length: cd,
+        length: 10.0,
+    }
+}
+
+const U2_TO_U5: ([usize; 4], [usize; 4]) = ([1, 2, 7, 8], [3, 4, 5, 6]);
+
+fn h25(span: &Span, omega: f64) -> C64 {
+    let h = span
+        .transfer(C64::new(0.0, omega), U2_TO_U5.0, U2_TO_U5.1)
+        .unwrap();
+    h[2][1] // output U5 (third output) from input U2 (second input)
+}
+
+#[test]
+fn the_general_transfer_matrix_reproduces_eq_5_9() {
+    for cd in [0.0, 5.0] {
+        let span = bode_span(cd);
+        for omega in [0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0] {
+            let (general, closed) = (
+                h25(&span, omega),
+                span.h_u2_u5_closed_form(C64::new(0.0, omega)),
+            );
+            let rel = (general - closed).norm() / closed.norm();
+            assert!(rel < 1e-8, "c_d {cd}, omega {omega}: {general} vs {closed}");
+        }
+    }
+}
+
+#[test]
+fn large_beta_l_stays_finite_where_the_closed_form_overflows() {
+    let span = bode_span(5.0);
+    let s = C64::new(0.0, 2.0e5);
+    let h = span.transfer(s, U2_TO_U5.0, U2_TO_U5.1).unwrap();
+    assert!(
+        h.iter()
+            .flatten()
+            .all(|v| v.re.is_finite() && v.im.is_finite())
+    );
+    let closed = span.h_u2_u5_closed_form(s);
+    eprintln!(
+        "|beta L| = {:.0}: general {:.3e}, closed form {closed}",
+        (span.beta4(s).norm().powf(0.25)) * 10.0,
+        h[2][1].norm()
+    );
+    assert!(
+        !(closed.re.is_finite() && closed.im.is_finite())
+            || (closed - h[2][1]).norm() < 1e-6 * h[2][1].norm()
+    );
+}
+
+/// FE frequency response y(L) for a unit rotation at x = 0 with y(0) = 0 and a free
+/// end (same model as the beam unit: consistent mass, C = c_d / mu M).
+fn fe_h25(span: &Span, elements_count: usize, omega: f64) -> C64 {
+    let lengths = vec![span.length / elements_count as f64; elements_count];
+    let m = elements::mass(span.mass_per_length, &lengths).to_dense();
+    let k = elements::stiffness(span.flexural_rigidity, &lengths).to_dense();
+    let n = m.nrows();
+    let c = &m * (span.damping_per_length / span.mass_per_length);
+    let i = Complex::new(0.0, 1.0);
+    let a: DMatrix<C64> = DMatrix::from_fn(n, n, |r, col| {
+        Complex::from(k[(r, col)]) + i * omega * c[(r, col)]
+            - Complex::from(omega * omega * m[(r, col)])
+    });
+    // Held DOFs 0 (y = 0) and 1 (theta = 1): move to the right-hand side.
+    let free: Vec<usize> = (2..n).collect();
+    let af = DMatrix::from_fn(free.len(), free.len(), |r, col| a[(free[r], free[col])]);
+    let rhs = DVector::from_fn(free.len(), |r, _| -a[(free[r], 1)]);
+    let q = af.lu().solve(&rhs).unwrap();
+    q[n - 4] // y at the last node (DOF n - 2, index n - 4 among the free ones)
+}
+
+#[test]
+fn the_transfer_function_matches_the_fe_span_below_the_third_resonance() {
+    let span = bode_span(5.0);
+    // Third resonance: (7.85476 / L)^2 sqrt(EI / mu) = 6.17 rad/s.
+    for omega in [0.05, 0.2, 0.5, 1.0, 2.0, 4.0, 5.5] {
+        let (exact, fe) = (h25(&span, omega), fe_h25(&span, 25, omega));
+        let rel = (exact - fe).norm() / exact.norm();
+        eprintln!(
+            "omega {omega:>5}: |H| exact {:.5e}, FE (25 el) {:.5e}, relative difference {rel:.2e}",
+            exact.norm(),
+            fe.norm()
+        );
+        assert!(rel < 1e-3, "omega {omega}: {rel}");
+    }
+}
+
+#[test]
+fn undamped_resonances_are_the_cantilever_eigenvalues() {
+    let span = bode_span(0.0);
+    for nu_l in [1.8751, 4.69409, 7.85476, 10.9955] {
+        let omega = (nu_l / 10.0f64).powi(2) * (1e4f64 / 1e2).sqrt();
+        let near = h25(&span, omega * (1.0 + 1e-6)).norm();
+        let away = h25(&span, omega * 0.8).norm();
+        assert!(
+            near > 1e4 * away,
+            "nu L {nu_l}: |H| {near} near, {away} away"
+        );
+    }
+}
+
+/// Significant digits printed in a number.
+fn printed_tolerance(text: &str) -> f64 {
+    let mantissa = text
+        .split(['e', 'E'])
+        .next()
+        .unwrap()
+        .trim_start_matches('-');
+    let digits = mantissa
+        .chars()
+        .filter(|c| c.is_ascii_digit())
+        .collect::<String>();
+    let significant = digits.trim_start_matches('0').len().max(1);
+    0.5 * 10f64.powi(1 - significant as i32) * 1.0001
+}
+
+fn compare(label: &str, got: &RationalX, num: &[(&str, f64)], den: &[&str], scale: f64) {
+    for (i, (text, factor)) in num.iter().enumerate() {
+        let printed: f64 = text.parse::<f64>().unwrap() * factor * scale;
+        let rel = ((got.num[i] - printed) / printed).abs();
+        assert!(
+            rel <= printed_tolerance(text),
+            "{label} numerator x^{i}: {} vs printed {printed} ({rel:.1e})",
+            got.num[i]
+        );
+    }
+    for (i, text) in den.iter().enumerate() {
+        let printed: f64 = text.parse::<f64>().unwrap() * scale;
+        let rel = ((got.den[i] - printed) / printed).abs();
+        assert!(
+            rel <= printed_tolerance(text),
+            "{label} denominator x^{i}: {} vs printed {printed} ({rel:.1e})",
+            got.den[i]
+        );
+    }
+    eprintln!(
+        "{label}: all {} coefficients within their printed digits",
+        num.len() + den.len()
+    );
+}
+
+#[test]
+fn order_8_approximations_match_the_printed_coefficients() {
+    // Eq. 5.11: 2.7095e7 (x + 120) / (x^4 + 224 x^3 + 645120 x^2 - 2.7095e8 x + 3.2514e9).
+    let t = taylor_u2_u5(8).unwrap();
+    compare(
+        "Taylor (5.11)",
+        &t,
+        &[("2.7095e7", 120.0), ("2.7095e7", 1.0)],
+        &["3.2514e9", "-2.7095e8", "645120", "224", "1"],
+        1.0,
+    );
+    // Eq. 5.14.
+    let p = term_pade_u2_u5(8).unwrap();
+    compare(
+        "term Pade (5.14)",
+        &p,
+        &[
+            ("1.33127e9", 1.0),
+            ("1.08373e7", 1.0),
+            ("-1075.58", 1.0),
+            ("8.19418", 1.0),
+        ],
+        &["1.33127e9", "-1.11196e8", "291170", "-391.102", "1"],
+        1.0,
+    );
+    // Eq. 5.15: 0.00252093 (x^4 + 29576.5 x^3 + ...) / (x^4 - 16464.3 x^3 + ...).
+    let f = function_pade_u2_u5(8).unwrap();
+    let c = 0.00252093;
+    let num: Vec<(&str, f64)> = ["1.10323e14", "9.236e11", "3.39367e8", "29576.5", "1"]
+        .iter()
+        .map(|t| (*t, c))
+        .collect();
+    for (i, (text, factor)) in num.iter().enumerate() {
+        let printed = text.parse::<f64>().unwrap() * factor;
+        let rel = ((f.num[i] - printed) / printed).abs();
+        // The printed factor 0.00252093 has 6 digits too.
+        assert!(
+            rel <= printed_tolerance(text) + printed_tolerance("0.00252093"),
+            "function Pade numerator x^{i}: {} vs {printed}",
+            f.num[i]
+        );
+    }
+    compare(
+        "function Pade (5.15) denominator",
+        &RationalX {
+            num: vec![],
+            den: f.den.clone(),
+        },
+        &[],
+        &["2.78118e11", "-2.31658e10", "5.42916e7", "-16464.3", "1"],
+        1.0,
+    );
+}
+
+#[test]
+fn function_pade_is_the_best_order_8_approximation_undamped() {
+    let span = bode_span(0.0);
+    let approximations = [
+        ("Taylor", taylor_u2_u5(8).unwrap()),
+        ("term Pade", term_pade_u2_u5(8).unwrap()),
+        ("function Pade", function_pade_u2_u5(8).unwrap()),
+    ];
+    // Mean log-magnitude error over the Fig. 5.2 band 1e-2..2.5e2 rad/s.
+    let omegas: Vec<f64> = (0..400)
+        .map(|k| 10f64.powf(-2.0 + 4.398 * k as f64 / 399.0))
+        .collect();
+    let mut errors = Vec::new();
+    for (name, a) in &approximations {
+        let e: f64 = omegas
+            .iter()
+            .map(|&w| {
+                let s = C64::new(0.0, w);
+                (a.eval(&span, s).norm().log10() - span.h_u2_u5_closed_form(s).norm().log10()).abs()
+            })
+            .sum::<f64>()
+            / omegas.len() as f64;
+        eprintln!("{name:<14} mean |log10 |H_approx| - log10 |H||| over the band: {e:.3}");
+        errors.push(e);
+    }
+    assert!(errors[2] < errors[1] && errors[1] < errors[0], "{errors:?}");
+}
+
+#[test]
+fn bad_span_input_is_refused() {
+    let mut span = bode_span(0.0);
+    assert!(
+        span.transfer(C64::new(0.0, 1.0), [1, 1, 7, 8], [2, 3, 5, 6])
+            .is_err()
+    );
+    assert!(
+        span.transfer(C64::new(0.0, 1.0), [1, 2, 7, 9], [3, 4, 5, 6])
+            .is_err()
+    );
+    span.flexural_rigidity = 0.0;
+    assert!(span.validate().is_err());
+    assert!(taylor_u2_u5(7).is_err() && function_pade_u2_u5(0).is_err());
+    // Every choice of four distinct quantities determines the span away from s = 0:
+    // the solution map is invertible for all of them.
+    let span = bode_span(5.0);
+    let mut count = 0;
+    for a in 1..=8 {
+        for b in a + 1..=8 {
+            for c in b + 1..=8 {
+                for d in c + 1..=8 {
+                    if span.check_admissible([a, b, c, d]).is_ok() {
+                        count += 1;
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{count} of 70 input choices admissible");
+    assert_eq!(count, 70);
+    // At s = 0 (statics) forces and moments alone leave the rigid-body motions free.
+    let e = span
+        .transfer(C64::new(0.0, 0.0), [3, 4, 7, 8], [1, 2, 5, 6])
+        .unwrap_err();
+    assert!(e.to_string().contains("do not determine the span"), "{e}");
+}
