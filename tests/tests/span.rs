@@ -275,3 +275,238 @@ fn bad_span_input_is_refused() {
         .unwrap_err();
     assert!(e.to_string().contains("do not determine the span"), "{e}");
 }
+
+mod unit {
+    use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
+    use slender_units::beam::{Beam, BeamParams};
+    use slender_units::span::unit::{Approximation, SpanParams, SpanUnit};
+    use slender_units::{Time, Unit};
+
+    fn params(approximation: Approximation, order: usize, cd: f64) -> SpanParams {
+        SpanParams {
+            flexural_rigidity: 1e4,
+            mass_per_length: 1e2,
+            damping_per_length: cd,
+            length: 10.0,
+            approximation,
+            order,
+            band: 2.0 * std::f64::consts::PI * 10.0,
+        }
+    }
+
+    const ALL: [Approximation; 3] = [
+        Approximation::Taylor,
+        Approximation::TermPade,
+        Approximation::FunctionPade,
+    ];
+
+    #[test]
+    fn the_steady_state_gain_is_the_static_solution() {
+        // A rotation theta at the held end of a free span tilts it rigidly: y(L) = theta L.
+        for a in ALL {
+            for order in [2, 4, 8, 12, 16] {
+                let Ok(mut u) = SpanUnit::new(params(a, order, 5.0)) else {
+                    assert!(
+                        a == Approximation::TermPade && order % 4 != 0,
+                        "{a:?} {order} refused"
+                    );
+                    continue;
+                };
+                if u.system().repaired > 0 {
+                    continue; // a refitted model matches H over the band, not exactly at s = 0
+                }
+                u.set_inputs(&[0.01]).unwrap();
+                u.initialize(Time::ZERO).unwrap();
+                let mut y = [0.0];
+                u.outputs(&mut y);
+                assert!((y[0] - 0.1).abs() < 1e-9, "{a:?} order {order}: {}", y[0]);
+            }
+        }
+    }
+
+    #[test]
+    fn white_noise_for_1000_s_stays_bounded_for_every_order() {
+        let h = Time::from_secs(0.01).unwrap();
+        for a in ALL {
+            for order in [2, 4, 6, 8, 10, 12, 14, 16] {
+                let Ok(mut u) = SpanUnit::new(params(a, order, 5.0)) else {
+                    assert!(
+                        a == Approximation::TermPade && order % 4 != 0,
+                        "{a:?} {order} refused"
+                    );
+                    continue;
+                };
+                let repaired = u.system().repaired;
+                assert!(u.system().is_stable(), "{a:?} {order}");
+                u.set_inputs(&[0.0]).unwrap();
+                u.initialize(Time::ZERO).unwrap();
+                let mut seed = 12345u64;
+                let mut peak = 0.0f64;
+                for k in 0..100_000 {
+                    seed = seed
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
+                    let noise = ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.02;
+                    u.set_inputs(&[noise]).unwrap();
+                    u.do_step(h * k, h).unwrap();
+                    let mut y = [0.0];
+                    u.outputs(&mut y);
+                    peak = peak.max(y[0].abs());
+                }
+                eprintln!(
+                    "{a:?} order {order:>2}: {repaired} poles reflected, peak |y| {peak:.3e} m over 1000 s"
+                );
+                assert!(peak.is_finite() && peak < 100.0, "{a:?} {order}: {peak}");
+            }
+        }
+    }
+
+    fn fe_span(elements: usize) -> Beam {
+        let cond = |quantity, value| Condition { quantity, value };
+        let p = BeamParams {
+            length: 10.0,
+            elements,
+            element_lengths: None,
+            flexural_rigidity: 1e4,
+            mass_per_length: 1e2,
+            damping_per_length: 5.0,
+            rayleigh_mass: 0.0,
+            rayleigh_stiffness: 0.0,
+            distributed_load: vec![],
+            initial_deflection: vec![],
+            initial_velocity: vec![],
+            stations: vec![],
+            static_start: false,
+            boundary: Boundary {
+                left: [
+                    cond(Quantity::Deflection, TimeFunction::Constant(0.0)),
+                    cond(Quantity::Rotation, TimeFunction::Input(InputMarker::Input)),
+                ],
+                right: [
+                    cond(Quantity::Moment, TimeFunction::Constant(0.0)),
+                    cond(Quantity::Shear, TimeFunction::Constant(0.0)),
+                ],
+            },
+            contact: None,
+            alpha: 0.0,
+            newton_tolerance: 1e-10,
+            newton_max_iterations: 5,
+            static_penalty_start: None,
+            static_penalty_growth: 1.0,
+        };
+        Beam::new(p).unwrap()
+    }
+
+    #[test]
+    fn in_band_the_span_unit_follows_the_fe_span() {
+        // Rotation input: sines at 0.2, 0.7 and 2 rad/s (below the third resonance,
+        // 6.17 rad/s), faded in over 20 s; 200 s at 10 ms.
+        let input = |t: f64| {
+            (1.0 - (-t / 20.0f64).exp())
+                * 0.01
+                * ((0.2 * t).sin() + 0.5 * (0.7 * t).sin() + 0.25 * (2.0 * t).sin())
+        };
+        let h = Time::from_secs(0.01).unwrap();
+        let mut fe = fe_span(32);
+        fe.set_inputs(&[0.0]).unwrap();
+        fe.initialize(Time::ZERO).unwrap();
+        let mut reference = Vec::new();
+        for k in 0..20_000 {
+            fe.set_inputs(&[input((k + 1) as f64 * 0.01)]).unwrap();
+            fe.do_step(h * k, h).unwrap();
+            reference.push(fe.deflection_at(10.0));
+        }
+        let peak = reference.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        for a in ALL {
+            for order in [4, 6, 8, 10, 12, 14, 16] {
+                let Ok(mut u) = SpanUnit::new(params(a, order, 5.0)) else {
+                    continue;
+                };
+                u.set_inputs(&[0.0]).unwrap();
+                u.initialize(Time::ZERO).unwrap();
+                let mut worst = 0.0f64;
+                for (k, r) in reference.iter().enumerate() {
+                    u.set_inputs(&[input((k + 1) as f64 * 0.01)]).unwrap();
+                    u.do_step(h * k as i64, h).unwrap();
+                    let mut y = [0.0];
+                    u.outputs(&mut y);
+                    worst = worst.max((y[0] - r).abs());
+                }
+                eprintln!(
+                    "{a:?} order {order:>2}: largest difference to the FE span (32 el) {:.3e} m = {:.2} % of the peak {peak:.3e} m",
+                    worst,
+                    100.0 * worst / peak
+                );
+                if a == Approximation::FunctionPade && (6..=12).contains(&order) {
+                    assert!(worst < 1e-3 * peak, "{a:?} {order}: {worst}");
+                }
+                if a == Approximation::Taylor && order == 14 {
+                    assert!(worst < 0.02 * peak, "{a:?} {order}: {worst}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+#[ignore = "known gap (issue 5): function Pade orders 14 and 16 have spurious right-half-plane poles; reflecting them and refitting the residues over the band is not enough (3.7 % and 71 % off the FE span); they need pole relocation (vector fitting)"]
+fn high_order_function_pade_follows_the_fe_span() {
+    use slender_units::span::realization::StateSpace;
+    let span = bode_span(5.0);
+    for order in [14, 16] {
+        let ss = StateSpace::realize(&function_pade_u2_u5(order).unwrap(), &span, 62.8).unwrap();
+        for w in [0.1, 1.0, 5.0] {
+            let s = C64::new(0.0, w);
+            let n = ss.order();
+            let a = nalgebra::DMatrix::from_fn(n, n, |i, j| {
+                s * if i == j { 1.0 } else { 0.0 } - C64::from(ss.a[(i, j)])
+            });
+            let b = nalgebra::DVector::from_fn(n, |i, _| C64::from(ss.b[i]));
+            let x = a.lu().solve(&b).unwrap();
+            let h = (0..n).map(|i| x[i] * ss.c[i]).sum::<C64>() + ss.d;
+            let exact = h25(&span, w);
+            assert!(
+                (h - exact).norm() < 1e-2 * exact.norm(),
+                "order {order}, omega {w}"
+            );
+        }
+    }
+}
+
+#[test]
+#[ignore = "diagnostic: prints how each realisation compares with its rational function"]
+fn diagnose_realizations() {
+    use slender_units::span::realization::StateSpace;
+    let span = bode_span(5.0);
+    for order in [4, 8, 12, 16] {
+        for (name, r) in [
+            ("term", term_pade_u2_u5(order)),
+            ("function", function_pade_u2_u5(order)),
+        ] {
+            let Ok(r) = r else {
+                eprintln!("{name} {order}: {:?}", r.err());
+                continue;
+            };
+            let ss = StateSpace::realize(&r, &span, 62.8).unwrap();
+            let mut worst = 0.0f64;
+            for w in [0.1, 0.5, 1.0, 2.0, 5.0] {
+                let s = C64::new(0.0, w);
+                let n = ss.order();
+                let a = nalgebra::DMatrix::from_fn(n, n, |i, j| {
+                    C64::from(if i == j { 0.0 } else { 0.0 }) + s * if i == j { 1.0 } else { 0.0 }
+                        - C64::from(ss.a[(i, j)])
+                });
+                let b = nalgebra::DVector::from_fn(n, |i, _| C64::from(ss.b[i]));
+                let x = a.lu().solve(&b).unwrap();
+                let h = (0..n).map(|i| x[i] * ss.c[i]).sum::<C64>() + ss.d;
+                let exact = r.eval(&span, s);
+                worst = worst.max((h - exact).norm() / exact.norm());
+            }
+            eprintln!(
+                "{name} order {order}: repaired {}, realization vs rational {worst:.2e}, max |pole| {:.2e}",
+                ss.repaired,
+                ss.poles.iter().map(|p| p.norm()).fold(0.0, f64::max)
+            );
+        }
+    }
+}

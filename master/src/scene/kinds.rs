@@ -9,6 +9,7 @@ use slender_units::cable::{Cable, Effects};
 use slender_units::oscillator::Oscillator;
 use slender_units::signal::artefact::Artefact;
 use slender_units::signal::characteristic_load::CharacteristicLoad;
+use slender_units::span::unit::SpanUnit;
 
 /// Builds a unit from its parameter table and the effects the scene asks for.
 type Builder = fn(toml::Table, &[String]) -> Result<Box<dyn Unit>, String>;
@@ -41,6 +42,16 @@ pub const KINDS: &[Kind] = &[
         build: |p, _| {
             Ok(Box::new(
                 Beam::new(parameters(p)?).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
+    Kind {
+        name: "span",
+        summary: "seed 004 ch. 5: suspended span from upper rotation to lower deflection as an order-N rational transfer function",
+        effects: &[],
+        build: |p, _| {
+            Ok(Box::new(
+                SpanUnit::new(parameters(p)?).map_err(|e| e.to_string())?,
             ))
         },
     },

@@ -8,4 +8,6 @@
 //! the rest of issue 5.
 
 pub mod rational;
+pub mod realization;
 pub mod transfer;
+pub mod unit;

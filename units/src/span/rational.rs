@@ -194,9 +194,17 @@ pub fn taylor_u2_u5(order: usize) -> Result<RationalX, UnitError> {
     Ok(rational(to_x(&odd, 1)?, to_x(&even, 0)?))
 }
 
-/// Term-wise Pade approximation of order `order` in s (eq. 5.14 for order 8).
+/// Term-wise Pade approximation of order `order` in s (eq. 5.14 for order 8);
+/// orders divisible by 4 (the [k/k] approximants of sin and cos exist for even k).
 pub fn term_pade_u2_u5(order: usize) -> Result<RationalX, UnitError> {
     check_order(order)?;
+    if order % 4 != 0 {
+        return Err(UnitError::parameter(
+            "order",
+            order,
+            "the term-wise Pade approximation needs an order divisible by 4",
+        ));
+    }
     let k = order / 2;
     let p = |kind| pade(&series(kind, 2 * k), k, k);
     let ((sn, sd), (shn, shd), (cn, cd), (chn, chd)) =

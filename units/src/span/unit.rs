@@ -1,0 +1,210 @@
+//! The span unit (scene kind `span`): the suspended span's response from the
+//! rotation at its upper end (U2) to the deflection at its lower end (U5), with
+//! y(0) = 0 and a free lower end (U1 = U7 = U8 = 0), as an order-N rational
+//! approximation realised in state space and stepped exactly (matrix exponential;
+//! input ramped or held over the step).
+
+use super::rational::{RationalX, function_pade_u2_u5, taylor_u2_u5, term_pade_u2_u5};
+use super::realization::StateSpace;
+use super::transfer::Span;
+use crate::hold::HeldInputs;
+use crate::port::{Hold, Port, PortKind};
+use crate::state::StateSlot;
+use crate::time::Time;
+use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
+use nalgebra::{DMatrix, DVector};
+use serde::Deserialize;
+
+/// Which rational approximation.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Approximation {
+    Taylor,
+    TermPade,
+    #[default]
+    FunctionPade,
+}
+
+/// Parameters of the span unit.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpanParams {
+    /// EI (N m^2).
+    pub flexural_rigidity: f64,
+    /// mu (kg/m).
+    pub mass_per_length: f64,
+    /// c_d (N s/m^2), default 0.
+    #[serde(default)]
+    pub damping_per_length: f64,
+    /// L (m).
+    pub length: f64,
+    #[serde(default)]
+    pub approximation: Approximation,
+    /// Order in s (even, 2..=24), default 8.
+    #[serde(default = "eight")]
+    pub order: usize,
+    /// Band of interest (rad/s) for repairing an approximation with unstable poles;
+    /// default 2 pi 10 (10 Hz, seed 004 sec. 5.2).
+    #[serde(default = "ten_hz")]
+    pub band: f64,
+}
+
+fn ten_hz() -> f64 {
+    2.0 * std::f64::consts::PI * 10.0
+}
+
+fn eight() -> usize {
+    8
+}
+
+impl SpanParams {
+    /// The span's properties.
+    pub fn span(&self) -> Span {
+        Span {
+            flexural_rigidity: self.flexural_rigidity,
+            mass_per_length: self.mass_per_length,
+            damping_per_length: self.damping_per_length,
+            length: self.length,
+        }
+    }
+
+    /// The rational approximation asked for.
+    pub fn approximation(&self) -> Result<RationalX, UnitError> {
+        match self.approximation {
+            Approximation::Taylor => taylor_u2_u5(self.order),
+            Approximation::TermPade => term_pade_u2_u5(self.order),
+            Approximation::FunctionPade => function_pade_u2_u5(self.order),
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+struct SpanState {
+    x: DVector<f64>,
+    inputs: HeldInputs,
+}
+
+/// The span unit.
+pub struct SpanUnit {
+    description: UnitDescription,
+    system: StateSpace,
+    state: SpanState,
+    step: f64,
+    phi: DMatrix<f64>,
+    gamma1: DVector<f64>,
+    gamma2: DVector<f64>,
+    scratch: DVector<f64>,
+}
+
+impl SpanUnit {
+    /// Builds the unit; fails for bad properties or an order it cannot form.
+    pub fn new(params: SpanParams) -> Result<SpanUnit, UnitError> {
+        let span = params.span();
+        span.validate()?;
+        let system = StateSpace::realize(&params.approximation()?, &span, params.band)?;
+        let n = system.order();
+        let feedthrough: &[usize] = if system.d != 0.0 { &[0] } else { &[] };
+        Ok(SpanUnit {
+            description: UnitDescription {
+                kind: "span".into(),
+                inputs: vec![Port::input("upper_rotation", PortKind::Rotation)],
+                outputs: vec![
+                    Port::output("lower_deflection", PortKind::Displacement)
+                        .with_feedthrough(feedthrough),
+                ],
+                capabilities: Capabilities::default(),
+            },
+            state: SpanState {
+                x: DVector::zeros(n),
+                inputs: HeldInputs::new(vec![Hold::Ramp]),
+            },
+            step: 0.0,
+            phi: DMatrix::zeros(n, n),
+            gamma1: DVector::zeros(n),
+            gamma2: DVector::zeros(n),
+            scratch: DVector::zeros(n),
+            system,
+        })
+    }
+
+    /// The realised system (poles, repairs).
+    pub fn system(&self) -> &StateSpace {
+        &self.system
+    }
+}
+
+impl Unit for SpanUnit {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
+        if port != 0 {
+            return Err(UnitError::Unsupported(format!("no input {port}")));
+        }
+        self.state.inputs.set_hold(0, hold);
+        self.description.inputs[0].hold = hold;
+        Ok(())
+    }
+
+    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
+        check_input_count(1, values)?;
+        if !values[0].is_finite() {
+            return Err(UnitError::InvalidInput {
+                port: "upper_rotation".into(),
+                value: values[0],
+                reason: "not finite".into(),
+            });
+        }
+        self.state.inputs.set_end(values);
+        Ok(())
+    }
+
+    fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
+        self.state.inputs.settle();
+        // Steady state for the initial input: x = -A^-1 B u0.
+        let u0 = self.state.inputs.at(0, 0.0);
+        let rhs = &self.system.b * (-u0);
+        self.state.x = self.system.a.clone().lu().solve(&rhs).ok_or_else(|| {
+            UnitError::Numerical("the span's static gain is undefined (a pole at s = 0)".into())
+        })?;
+        Ok(())
+    }
+
+    fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
+        let h = h.as_secs();
+        if h != self.step {
+            let (phi, g1, g2) = self.system.discretize(h);
+            self.phi = phi;
+            self.gamma1 = g1;
+            self.gamma2 = g2;
+            self.step = h;
+        }
+        let (u0, u1) = (self.state.inputs.at(0, 0.0), self.state.inputs.at(0, 1.0));
+        self.scratch.gemv(1.0, &self.phi, &self.state.x, 0.0);
+        self.scratch.axpy(u0, &self.gamma1, 1.0);
+        self.scratch.axpy(u1 - u0, &self.gamma2, 1.0);
+        std::mem::swap(&mut self.scratch, &mut self.state.x);
+        if self.state.x.iter().any(|v| !v.is_finite()) {
+            return Err(UnitError::Numerical(
+                "the span's state became non-finite".into(),
+            ));
+        }
+        self.state.inputs.advance();
+        Ok(StepReport::default())
+    }
+
+    fn outputs(&self, out: &mut [f64]) {
+        out[0] = self.system.c.dot(&self.state.x) + self.system.d * self.state.inputs.end()[0];
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.state);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.state.clone_from(slot.load::<SpanState>()?);
+        Ok(())
+    }
+}
