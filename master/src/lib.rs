@@ -16,6 +16,7 @@ mod newton;
 pub mod order;
 pub mod scene;
 pub mod settings;
+pub mod span_study;
 pub mod study;
 pub mod system;
 

@@ -19,6 +19,33 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
+enum SpanAction {
+    /// Bode plot of H_{U2 -> U5}: analytic, Taylor, term and function Pade of one
+    /// order, and the FE span (seed 004 Figs. 5.1-5.2). Writes bode.svg.
+    Bode {
+        #[arg(long, default_value_t = 8)]
+        order: usize,
+        /// FE span elements.
+        #[arg(long, default_value_t = 32)]
+        elements: usize,
+    },
+    /// Time-domain error against cost per simulated second of span units (orders
+    /// 2-16) and FE spans (4-64 elements) under a sum of sines and a step, against a
+    /// fine FE reference. Writes span_study.md, span_study.json, accuracy_cost.svg.
+    Study {
+        /// Simulated time of each run (s).
+        #[arg(long, default_value_t = 100.0)]
+        duration: f64,
+        /// Step (s).
+        #[arg(long, default_value_t = 0.01)]
+        step: f64,
+        /// Elements of the reference FE span.
+        #[arg(long, default_value_t = 128)]
+        reference_elements: usize,
+    },
+}
+
+#[derive(Subcommand)]
 enum Command {
     /// Run a scene: prints a summary, writes timeseries.csv, summary.json and SVG plots.
     Run {
@@ -77,6 +104,26 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// The suspended span (seed 004 ch. 5): Bode plots and accuracy against cost.
+    Span {
+        #[command(subcommand)]
+        action: SpanAction,
+        /// EI (N m^2).
+        #[arg(long, default_value_t = 1.0e4, global = true)]
+        flexural_rigidity: f64,
+        /// mu (kg/m).
+        #[arg(long, default_value_t = 1.0e2, global = true)]
+        mass_per_length: f64,
+        /// c_d (N s/m^2).
+        #[arg(long, default_value_t = 5.0, global = true)]
+        damping: f64,
+        /// L (m).
+        #[arg(long, default_value_t = 10.0, global = true)]
+        length: f64,
+        /// Results folder.
+        #[arg(long, default_value = "results/span", global = true)]
+        out: PathBuf,
+    },
     /// List the unit kinds a scene can use.
     Kinds,
 }
@@ -103,6 +150,22 @@ fn main() -> ExitCode {
             duration,
             out,
         } => study(scene, &sweeps, duration, out),
+        Command::Span {
+            action,
+            flexural_rigidity,
+            mass_per_length,
+            damping,
+            length,
+            out,
+        } => {
+            let span = slender_units::span::transfer::Span {
+                flexural_rigidity,
+                mass_per_length,
+                damping_per_length: damping,
+                length,
+            };
+            span_command(&span, action, &out)
+        }
         Command::Kinds => {
             for k in kinds::KINDS {
                 let effects = if k.effects.is_empty() {
@@ -409,4 +472,68 @@ fn report_written(written: Result<Vec<PathBuf>, String>) -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+fn span_command(
+    span: &slender_units::span::transfer::Span,
+    action: SpanAction,
+    out: &Path,
+) -> ExitCode {
+    use slender_master::span_study;
+    if let Err(e) = span.validate() {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
+    let written = (|| -> Result<Vec<PathBuf>, String> {
+        std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+        match action {
+            SpanAction::Bode { order, elements } => {
+                let omegas: Vec<f64> = (0..600)
+                    .map(|k| 10f64.powf(-2.0 + 4.398 * k as f64 / 599.0))
+                    .collect();
+                let series = span_study::bode_series(span, order, elements, &omegas)?;
+                let path = out.join("bode.svg");
+                let title = format!(
+                    "H_U2->U5: EI = {}, mu = {}, c_d = {}, L = {}",
+                    span.flexural_rigidity,
+                    span.mass_per_length,
+                    span.damping_per_length,
+                    span.length
+                );
+                slender_master::plot::bode(&path, &title, &omegas, &series)?;
+                Ok(vec![path])
+            }
+            SpanAction::Study {
+                duration,
+                step,
+                reference_elements,
+            } => {
+                let rows = span_study::study(
+                    span,
+                    &[2, 4, 6, 8, 10, 12, 14, 16],
+                    &[4, 8, 16, 32, 64],
+                    reference_elements,
+                    duration,
+                    step,
+                )?;
+                let md = span_study::to_markdown(&rows);
+                print!("{md}");
+                let (pmd, pjson, psvg) = (
+                    out.join("span_study.md"),
+                    out.join("span_study.json"),
+                    out.join("accuracy_cost.svg"),
+                );
+                std::fs::write(&pmd, &md).map_err(|e| format!("{}: {e}", pmd.display()))?;
+                let json = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
+                std::fs::write(&pjson, json).map_err(|e| format!("{}: {e}", pjson.display()))?;
+                slender_master::plot::accuracy_cost(
+                    &psvg,
+                    "Span: error against cost per simulated second",
+                    &rows,
+                )?;
+                Ok(vec![pmd, pjson, psvg])
+            }
+        }
+    })();
+    report_written(written)
 }

@@ -277,3 +277,112 @@ fn log_log_panel(
     }
     Ok(())
 }
+
+/// Bode plot: |H| (log-log) and phase (deg) of each named frequency response.
+pub fn bode(
+    path: &Path,
+    title: &str,
+    omegas: &[f64],
+    series: &[(String, Vec<slender_units::span::transfer::C64>)],
+) -> Result<(), String> {
+    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let root = SVGBackend::new(path, (1000, 800)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let root = root
+        .titled(title, ("sans-serif", 22))
+        .map_err(|e| fail(&e))?;
+    let (top, bottom) = root.split_vertically(480);
+    let (w0, w1) = (omegas[0], omegas[omegas.len() - 1]);
+    let (lo, hi) = positive_range(series.iter().flat_map(|s| s.1.iter().map(|h| h.norm())));
+    let mut mag = ChartBuilder::on(&top)
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(70)
+        .build_cartesian_2d((w0..w1).log_scale(), (lo.max(hi * 1e-8)..hi).log_scale())
+        .map_err(|e| fail(&e))?;
+    mag.configure_mesh()
+        .x_desc("omega (rad/s)")
+        .y_desc("|H| (m/rad)")
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .draw()
+        .map_err(|e| fail(&e))?;
+    let mut phase = ChartBuilder::on(&bottom)
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(70)
+        .build_cartesian_2d((w0..w1).log_scale(), -180.0f64..180.0)
+        .map_err(|e| fail(&e))?;
+    phase
+        .configure_mesh()
+        .x_desc("omega (rad/s)")
+        .y_desc("phase (deg)")
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .draw()
+        .map_err(|e| fail(&e))?;
+    for (i, (name, h)) in series.iter().enumerate() {
+        let color = Palette99::pick(i).to_rgba();
+        mag.draw_series(LineSeries::new(
+            omegas.iter().zip(h).map(|(&w, h)| (w, h.norm().max(lo))),
+            color.stroke_width(2),
+        ))
+        .map_err(|e| fail(&e))?
+        .label(name.as_str())
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+        phase
+            .draw_series(LineSeries::new(
+                omegas
+                    .iter()
+                    .zip(h)
+                    .map(|(&w, h)| (w, h.arg().to_degrees())),
+                color.stroke_width(1),
+            ))
+            .map_err(|e| fail(&e))?;
+    }
+    mag.configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| fail(&e))?;
+    root.present().map_err(|e| fail(&e))
+}
+
+/// Error against cost per simulated second, log-log, one series per model.
+pub fn accuracy_cost(
+    path: &Path,
+    title: &str,
+    rows: &[crate::span_study::StudyRow],
+) -> Result<(), String> {
+    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let root = root
+        .titled(title, ("sans-serif", 20))
+        .map_err(|e| fail(&e))?;
+    let mut models: Vec<&str> = Vec::new();
+    for r in rows {
+        if !models.contains(&r.model.as_str()) {
+            models.push(&r.model);
+        }
+    }
+    let series: Vec<(String, Vec<(f64, f64)>)> = models
+        .iter()
+        .map(|m| {
+            let pts = rows
+                .iter()
+                .filter(|r| r.model == *m)
+                .map(|r| (r.cost_per_simulated_second, r.error_sines.max(1e-12)))
+                .collect();
+            (m.to_string(), pts)
+        })
+        .collect();
+    log_log_panel(
+        &root,
+        "cost (s per simulated s)",
+        "error vs reference (sum of sines)",
+        0,
+        &series,
+    )
+    .map_err(|e| fail(&e))?;
+    root.present().map_err(|e| fail(&e))
+}
