@@ -76,7 +76,7 @@ fn respond(
 /// One model of the study.
 #[derive(Clone, Debug, Serialize)]
 pub struct StudyRow {
-    /// "taylor", "term_pade", "function_pade" or "fe".
+    /// "taylor", "term_pade", "function_pade", "fit" or "fe".
     pub model: String,
     /// Order in s, or number of elements.
     pub size: usize,

@@ -294,10 +294,11 @@ mod unit {
         }
     }
 
-    const ALL: [Approximation; 3] = [
+    const ALL: [Approximation; 4] = [
         Approximation::Taylor,
         Approximation::TermPade,
         Approximation::FunctionPade,
+        Approximation::Fit,
     ];
 
     #[test]
@@ -312,14 +313,11 @@ mod unit {
                     );
                     continue;
                 };
-                if u.system().repaired > 0 {
-                    continue; // a refitted model matches H over the band, not exactly at s = 0
-                }
                 u.set_inputs(&[0.01]).unwrap();
                 u.initialize(Time::ZERO).unwrap();
                 let mut y = [0.0];
                 u.outputs(&mut y);
-                assert!((y[0] - 0.1).abs() < 1e-9, "{a:?} order {order}: {}", y[0]);
+                assert!((y[0] - 0.1).abs() < 1e-7, "{a:?} order {order}: {}", y[0]);
             }
         }
     }
@@ -442,6 +440,10 @@ mod unit {
                 }
                 if a == Approximation::Taylor && order == 14 {
                     assert!(worst < 0.02 * peak, "{a:?} {order}: {worst}");
+                }
+                if a == Approximation::Fit && order >= 14 {
+                    // The vector fit spreads its poles over the whole 10 Hz band.
+                    assert!(worst < 0.005 * peak, "{a:?} {order}: {worst}");
                 }
             }
         }

@@ -7,6 +7,7 @@
 //! band fit, the state-space span unit, Bode plots and the accuracy/cost study are
 //! the rest of issue 5.
 
+pub mod fit;
 pub mod rational;
 pub mod realization;
 pub mod transfer;

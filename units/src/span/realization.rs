@@ -55,7 +55,10 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
             groups.push(p);
         }
     }
-    let unknowns = 1 + groups
+    // The static gain H(0) (the rigid tilt of the span) is kept exactly: the constant
+    // is eliminated, d = H(0) - sum_k r_k b_k(0), and the residues r_k fit
+    // H(s) - H(0) on b_k(s) - b_k(0).
+    let unknowns = groups
         .iter()
         .map(|p| if p.im == 0.0 { 1 } else { 2 })
         .sum::<usize>();
@@ -63,12 +66,8 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
     let mut rows: Vec<Vec<f64>> = Vec::with_capacity(2 * samples);
     let mut rhs: Vec<f64> = Vec::with_capacity(2 * samples);
     let one = C64::new(1.0, 0.0);
-    for k in 0..samples {
-        let w = band * 10f64.powf(-4.0 + 4.0 * k as f64 / (samples - 1) as f64);
-        let s = C64::new(0.0, w);
-        let exact = span.transfer(s, [1, 2, 7, 8], [3, 4, 5, 6])?[2][1];
-        let weight = 1.0 / exact.norm().max(1e-300);
-        let mut basis: Vec<C64> = vec![one];
+    let basis_at = |s: C64| -> Vec<C64> {
+        let mut basis = Vec::with_capacity(unknowns);
         for &p in &groups {
             if p.im == 0.0 {
                 basis.push(one / (s - p));
@@ -78,10 +77,25 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
                 basis.push(C64::new(0.0, 1.0) * (a - b));
             }
         }
+        basis
+    };
+    let zero = C64::new(0.0, 0.0);
+    let dc = span.transfer(zero, [1, 2, 7, 8], [3, 4, 5, 6])?[2][1];
+    let basis0 = basis_at(zero);
+    for k in 0..samples {
+        let w = band * 10f64.powf(-4.0 + 4.0 * k as f64 / (samples - 1) as f64);
+        let s = C64::new(0.0, w);
+        let exact = span.transfer(s, [1, 2, 7, 8], [3, 4, 5, 6])?[2][1];
+        let weight = 1.0 / exact.norm().max(1e-300);
+        let basis: Vec<C64> = basis_at(s)
+            .iter()
+            .zip(&basis0)
+            .map(|(b, b0)| b - b0)
+            .collect();
         rows.push(basis.iter().map(|c| c.re * weight).collect());
         rows.push(basis.iter().map(|c| c.im * weight).collect());
-        rhs.push(exact.re * weight);
-        rhs.push(exact.im * weight);
+        rhs.push((exact - dc).re * weight);
+        rhs.push((exact - dc).im * weight);
     }
     let a = DMatrix::from_fn(rows.len(), unknowns, |r, c| rows[r][c]);
     let b = DVector::from_vec(rhs);
@@ -94,7 +108,7 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
     let mut am = DMatrix::zeros(n, n);
     let mut bm = DVector::zeros(n);
     let mut cm = DVector::zeros(n);
-    let (mut row, mut k) = (0, 1);
+    let (mut row, mut k) = (0, 0);
     for &p in &groups {
         if p.im == 0.0 {
             am[(row, row)] = p.re;
@@ -117,11 +131,17 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
             k += 2;
         }
     }
+    let d = dc.re
+        - basis0
+            .iter()
+            .zip(x.iter())
+            .map(|(b, r)| b.re * r)
+            .sum::<f64>();
     Ok(StateSpace {
         a: am,
         b: bm,
         c: cm,
-        d: x[0],
+        d,
         poles: poles.to_vec(),
         repaired: 0,
     })
@@ -215,6 +235,12 @@ impl StateSpace {
             poles,
             repaired,
         })
+    }
+
+    /// The system with the given stable poles and least-squares residues against the
+    /// exact H_{U2 -> U5} over [band / 1e4, band].
+    pub fn from_poles(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, UnitError> {
+        fit_residues(poles, span, band)
     }
 
     /// Order (number of states).

@@ -23,6 +23,8 @@ pub enum Approximation {
     TermPade,
     #[default]
     FunctionPade,
+    /// Vector fitting of the exact transfer function over `band` (beyond the source).
+    Fit,
 }
 
 /// Parameters of the span unit.
@@ -74,6 +76,9 @@ impl SpanParams {
             Approximation::Taylor => taylor_u2_u5(self.order),
             Approximation::TermPade => term_pade_u2_u5(self.order),
             Approximation::FunctionPade => function_pade_u2_u5(self.order),
+            Approximation::Fit => Err(UnitError::Unsupported(
+                "a vector fit has no rational form in x".into(),
+            )),
         }
     }
 }
@@ -101,7 +106,10 @@ impl SpanUnit {
     pub fn new(params: SpanParams) -> Result<SpanUnit, UnitError> {
         let span = params.span();
         span.validate()?;
-        let system = StateSpace::realize(&params.approximation()?, &span, params.band)?;
+        let system = match params.approximation {
+            Approximation::Fit => super::fit::fit(&span, params.order, params.band)?,
+            _ => StateSpace::realize(&params.approximation()?, &span, params.band)?,
+        };
         let n = system.order();
         let feedthrough: &[usize] = if system.d != 0.0 { &[0] } else { &[] };
         Ok(SpanUnit {
