@@ -142,6 +142,7 @@ pub fn study(
         (Approximation::Taylor, "taylor"),
         (Approximation::TermPade, "term_pade"),
         (Approximation::FunctionPade, "function_pade"),
+        (Approximation::Fit, "fit"),
     ];
     for (a, name) in approximations {
         for &order in orders {
