@@ -87,6 +87,11 @@ impl Beam {
             ((1.0 - alpha) * gamma / (beta * h), &self.c),
             (1.0 - alpha, &self.k),
         ]);
+        let mut held = self.linear.clone();
+        for d in self.held_dofs().collect::<Vec<_>>() {
+            held.set_identity_row(d);
+        }
+        self.linear_factor = BandLdlt::new(&held);
         self.linear_h = h;
     }
 
@@ -152,28 +157,39 @@ impl Beam {
         let mut converged = None;
         for iteration in 1..=cap {
             kinematics(&y, &mut v1, &mut a1);
-            self.jacobian.copy_from(&self.linear);
-            let lambda = self.state.lambda.clone();
-            let mut jac = std::mem::replace(
-                &mut self.jacobian,
-                crate::numerics::banded::SymmetricBand::zeros(0, 0),
-            );
-            if energy_conserving {
-                self.discrete_gradient(&y, t1, &mut jac, &mut values);
-            } else {
-                let c_scale = (1.0 - alpha) * gamma / (beta * h);
-                self.contact_at(
-                    &y,
-                    &v1,
-                    t1,
-                    &lambda,
-                    None,
-                    Some((&mut jac, 1.0 - alpha, c_scale)),
-                    &mut values,
+            // Without contact the Newton matrix is constant: factorised once per step
+            // size, and one correction solves the linear step exactly.
+            let linear_only = self.points.is_empty();
+            let mut fresh = None;
+            if !linear_only {
+                self.jacobian.copy_from(&self.linear);
+                let lambda = self.state.lambda.clone();
+                let mut jac = std::mem::replace(
+                    &mut self.jacobian,
+                    crate::numerics::banded::SymmetricBand::zeros(0, 0),
                 );
-                for f in values.force.iter_mut() {
-                    *f *= 1.0 - alpha;
+                if energy_conserving {
+                    self.discrete_gradient(&y, t1, &mut jac, &mut values);
+                } else {
+                    let c_scale = (1.0 - alpha) * gamma / (beta * h);
+                    self.contact_at(
+                        &y,
+                        &v1,
+                        t1,
+                        &lambda,
+                        None,
+                        Some((&mut jac, 1.0 - alpha, c_scale)),
+                        &mut values,
+                    );
+                    for f in values.force.iter_mut() {
+                        *f *= 1.0 - alpha;
+                    }
                 }
+                for &d in &held {
+                    jac.set_identity_row(d);
+                }
+                fresh = BandLdlt::new(&jac);
+                self.jacobian = jac;
             }
             let r = &mut self.residual;
             r.copy_from_slice(&constant);
@@ -184,11 +200,13 @@ impl Beam {
             self.c.mul_add(1.0 - alpha, &v1, r);
             self.k.mul_add(1.0 - alpha, &y, r);
             for &d in &held {
-                jac.set_identity_row(d);
                 r[d] = 0.0;
             }
-            let factor = BandLdlt::new(&jac);
-            self.jacobian = jac;
+            let factor = if linear_only {
+                self.linear_factor.as_ref()
+            } else {
+                fresh.as_ref()
+            };
             let factor = factor.ok_or_else(|| {
                 UnitError::Numerical(format!("beam: the Newton matrix is not positive definite at t = {t1} s (iteration {iteration})"))
             })?;
@@ -212,7 +230,7 @@ impl Beam {
             }
             // Relative to the solution's size: below ~1e-12 |y| only round-off moves.
             let size = y.iter().fold(1.0f64, |a, v| a.max(v.abs()));
-            if step < self.params.newton_tolerance * size {
+            if linear_only || step < self.params.newton_tolerance * size {
                 converged = Some(iteration);
                 break;
             }

@@ -105,6 +105,8 @@ pub struct Beam {
     jacobian: SymmetricBand,
     linear: SymmetricBand,
     linear_h: f64,
+    /// `linear` with the held DOFs as identity rows, factorised (contact-free steps).
+    linear_factor: Option<BandLdlt>,
     residual: Vec<f64>,
 }
 
@@ -243,6 +245,7 @@ impl Beam {
             jacobian: SymmetricBand::zeros(n, elements::BAND),
             linear: SymmetricBand::zeros(n, elements::BAND),
             linear_h: 0.0,
+            linear_factor: None,
             residual: vec![0.0; n],
             params,
             lengths,
