@@ -14,21 +14,12 @@ use std::time::Instant;
 /// rotation at x = 0 as input, a free lower end.
 pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, String> {
     let cond = |quantity, value| Condition { quantity, value };
-    Beam::new(BeamParams {
-        length: span.length,
+    let mut p = BeamParams::new(
+        span.length,
         elements,
-        element_lengths: None,
-        flexural_rigidity: span.flexural_rigidity,
-        mass_per_length: span.mass_per_length,
-        damping_per_length: span.damping_per_length,
-        rayleigh_mass: 0.0,
-        rayleigh_stiffness: 0.0,
-        distributed_load: vec![],
-        initial_deflection: vec![],
-        initial_velocity: vec![],
-        stations: vec![],
-        static_start: false,
-        boundary: Boundary {
+        span.flexural_rigidity,
+        span.mass_per_length,
+        Boundary {
             left: [
                 cond(Quantity::Deflection, TimeFunction::Constant(0.0)),
                 cond(Quantity::Rotation, TimeFunction::Input(InputMarker::Input)),
@@ -38,14 +29,10 @@ pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, String> {
                 cond(Quantity::Shear, TimeFunction::Constant(0.0)),
             ],
         },
-        contact: None,
-        alpha: 0.0,
-        newton_tolerance: 1e-10,
-        newton_max_iterations: 5,
-        static_penalty_start: None,
-        static_penalty_growth: 1.0,
-    })
-    .map_err(|e| e.to_string())
+    );
+    p.damping_per_length = span.damping_per_length;
+    p.newton_max_iterations = 5;
+    Beam::new(p).map_err(|e| e.to_string())
 }
 
 /// Deflection (m) at the span's lower end over time for input `u(t)` (rad), and the

@@ -17,28 +17,9 @@ fn cond(quantity: Quantity, value: f64) -> Condition {
 }
 
 fn params(elements: usize, boundary: Boundary) -> BeamParams {
-    BeamParams {
-        length: 10.0,
-        elements,
-        element_lengths: None,
-        flexural_rigidity: 1e4,
-        mass_per_length: 10.0,
-        damping_per_length: 0.0,
-        rayleigh_mass: 0.0,
-        rayleigh_stiffness: 0.0,
-        distributed_load: vec![],
-        initial_deflection: vec![],
-        initial_velocity: vec![],
-        stations: vec![],
-        static_start: false,
-        boundary,
-        contact: None,
-        alpha: 0.0,
-        newton_tolerance: 1e-10,
-        newton_max_iterations: 30,
-        static_penalty_start: None,
-        static_penalty_growth: 1.0,
-    }
+    let mut p = BeamParams::new(10.0, elements, 1e4, 10.0, boundary);
+    p.newton_tolerance = 1e-10;
+    p
 }
 
 fn cantilever() -> Boundary {

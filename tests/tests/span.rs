@@ -277,8 +277,6 @@ fn bad_span_input_is_refused() {
 }
 
 mod unit {
-    use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
-    use slender_units::beam::{Beam, BeamParams};
     use slender_units::span::unit::{Approximation, SpanParams, SpanUnit};
     use slender_units::{Time, Unit};
 
@@ -359,40 +357,14 @@ mod unit {
         }
     }
 
-    fn fe_span(elements: usize) -> Beam {
-        let cond = |quantity, value| Condition { quantity, value };
-        let p = BeamParams {
-            length: 10.0,
-            elements,
-            element_lengths: None,
+    fn fe_span(elements: usize) -> slender_units::beam::Beam {
+        let span = slender_units::span::transfer::Span {
             flexural_rigidity: 1e4,
             mass_per_length: 1e2,
             damping_per_length: 5.0,
-            rayleigh_mass: 0.0,
-            rayleigh_stiffness: 0.0,
-            distributed_load: vec![],
-            initial_deflection: vec![],
-            initial_velocity: vec![],
-            stations: vec![],
-            static_start: false,
-            boundary: Boundary {
-                left: [
-                    cond(Quantity::Deflection, TimeFunction::Constant(0.0)),
-                    cond(Quantity::Rotation, TimeFunction::Input(InputMarker::Input)),
-                ],
-                right: [
-                    cond(Quantity::Moment, TimeFunction::Constant(0.0)),
-                    cond(Quantity::Shear, TimeFunction::Constant(0.0)),
-                ],
-            },
-            contact: None,
-            alpha: 0.0,
-            newton_tolerance: 1e-10,
-            newton_max_iterations: 5,
-            static_penalty_start: None,
-            static_penalty_growth: 1.0,
+            length: 10.0,
         };
-        Beam::new(p).unwrap()
+        slender_master::span_study::fe_span(&span, elements).unwrap()
     }
 
     #[test]

@@ -12,21 +12,12 @@ use std::hint::black_box;
 
 fn pipe(elements: usize) -> Beam {
     let c = |quantity, value| Condition { quantity, value };
-    let p = BeamParams {
-        length: 10.0,
+    let mut p = BeamParams::new(
+        10.0,
         elements,
-        element_lengths: None,
-        flexural_rigidity: 1e4,
-        mass_per_length: 10.0,
-        damping_per_length: 0.0,
-        rayleigh_mass: 0.0,
-        rayleigh_stiffness: 0.0,
-        distributed_load: vec![],
-        initial_deflection: vec![],
-        initial_velocity: vec![],
-        stations: vec![],
-        static_start: true,
-        boundary: Boundary {
+        1e4,
+        10.0,
+        Boundary {
             left: [
                 c(
                     Quantity::Deflection,
@@ -44,22 +35,20 @@ fn pipe(elements: usize) -> Beam {
                 c(Quantity::Shear, TimeFunction::Constant(0.0)),
             ],
         },
-        contact: Some(ContactParams {
-            method: Law::Penalty { penalty: 1e4 },
-            surface: Surface {
-                shape: Shape::Flat { height: 0.0 },
-                motion: Motion::None,
-            },
-            integration: ContactIntegration::Gauss,
-            damping: 0.0,
-            gap_band: 0.0,
-        }),
-        alpha: 0.05,
-        newton_tolerance: 1e-8,
-        newton_max_iterations: 30,
-        static_penalty_start: None,
-        static_penalty_growth: 1.0,
-    };
+    );
+    p.static_start = true;
+    p.alpha = 0.05;
+    p.newton_tolerance = 1e-8;
+    p.contact = Some(ContactParams {
+        method: Law::Penalty { penalty: 1e4 },
+        surface: Surface {
+            shape: Shape::Flat { height: 0.0 },
+            motion: Motion::None,
+        },
+        integration: ContactIntegration::Gauss,
+        damping: 0.0,
+        gap_band: 0.0,
+    });
     let mut b = Beam::new(p).unwrap();
     b.initialize(Time::ZERO).unwrap();
     b

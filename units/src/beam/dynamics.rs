@@ -340,27 +340,10 @@ pub(super) fn modes(beam: &Beam, count: usize) -> Result<ModalAnalysis, UnitErro
         nalgebra::DMatrix::from_fn(free.len(), free.len(), |i, j| m.get(free[i], free[j]))
     };
     let (m, k) = (pick(&beam.m), pick(&beam.k));
-    let l = m
-        .cholesky()
-        .ok_or_else(|| UnitError::Numerical("mass matrix is not positive definite".into()))?
-        .l();
-    let linv = l
-        .try_inverse()
-        .ok_or_else(|| UnitError::Numerical("mass factor is singular".into()))?;
-    let s = &linv * k * linv.transpose();
-    let s = (&s + s.transpose()) * 0.5;
-    let eig = nalgebra::SymmetricEigen::new(s);
-    let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
-    order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
     let mut modes = Vec::new();
-    for &i in order.iter().take(count) {
-        let w2 = eig.eigenvalues[i];
-        if w2 <= 0.0 {
-            return Err(UnitError::Numerical(format!(
-                "eigenvalue {w2:.3e} <= 0: the beam has a rigid-body mode"
-            )));
-        }
-        let phi = linv.transpose() * eig.eigenvectors.column(i);
+    for (w2, phi) in
+        crate::numerics::modal::lowest_modes(&m, &k, count, "the beam has a rigid-body mode")?
+    {
         let mut full = vec![0.0; n];
         for (a, &d) in free.iter().enumerate() {
             full[d] = phi[a];

@@ -111,6 +111,39 @@ fn one() -> f64 {
 }
 
 impl BeamParams {
+    /// A beam of `elements` equal elements with every optional parameter at its
+    /// default: no damping, load, initial motion, contact or stations; alpha = 0.
+    pub fn new(
+        length: f64,
+        elements: usize,
+        flexural_rigidity: f64,
+        mass_per_length: f64,
+        boundary: Boundary,
+    ) -> BeamParams {
+        BeamParams {
+            length,
+            elements,
+            element_lengths: None,
+            flexural_rigidity,
+            mass_per_length,
+            damping_per_length: 0.0,
+            rayleigh_mass: 0.0,
+            rayleigh_stiffness: 0.0,
+            distributed_load: Vec::new(),
+            initial_deflection: Vec::new(),
+            initial_velocity: Vec::new(),
+            stations: Vec::new(),
+            static_start: false,
+            boundary,
+            contact: None,
+            alpha: 0.0,
+            newton_tolerance: default_newton_tolerance(),
+            newton_max_iterations: default_newton_cap(),
+            static_penalty_start: None,
+            static_penalty_growth: 1.0,
+        }
+    }
+
     /// The element lengths (m).
     pub fn lengths(&self) -> Vec<f64> {
         match &self.element_lengths {

@@ -299,31 +299,14 @@ impl Cable {
             .dynamics
             .as_ref()
             .ok_or_else(|| UnitError::Unsupported("modal analysis before initialize".into()))?;
-        let m = d.m_ff.to_dense();
-        let k = d.k_ff.to_dense();
-        let chol = m
-            .cholesky()
-            .ok_or_else(|| UnitError::Numerical("mass matrix is not positive definite".into()))?;
-        let l = chol.l();
-        let linv = l
-            .clone()
-            .try_inverse()
-            .ok_or_else(|| UnitError::Numerical("mass factor is singular".into()))?;
-        let s = &linv * k * linv.transpose();
-        let s = (&s + s.transpose()) * 0.5;
-        let eig = nalgebra::SymmetricEigen::new(s);
-        let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
-        order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+        let pairs = crate::numerics::modal::lowest_modes(
+            &d.m_ff.to_dense(),
+            &d.k_ff.to_dense(),
+            count,
+            "the cable has a zero-stiffness mode (geometric stiffness off?)",
+        )?;
         let mut modes = Vec::new();
-        for &i in order.iter().take(count) {
-            let w2 = eig.eigenvalues[i];
-            if w2 <= 0.0 {
-                return Err(UnitError::Numerical(format!(
-                    "eigenvalue {w2:.3e} <= 0: the cable has a zero-stiffness mode (geometric stiffness off?)"
-                )));
-            }
-            let y = eig.eigenvectors.column(i);
-            let phi = linv.transpose() * y;
+        for (w2, phi) in pairs {
             let scale = phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             let mut shape = vec![[0.0; 2]];
             for j in 0..phi.len() / 2 {

@@ -1,3 +1,4 @@
 //! Linear algebra the units share.
 
 pub mod banded;
+pub mod modal;
