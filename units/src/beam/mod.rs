@@ -23,7 +23,7 @@ use crate::state::StateSlot;
 use crate::time::Time;
 use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
 use boundary::{Quantity, TimeFunction};
-pub use params::{BeamParams, ContactIntegration, ContactParams};
+pub use params::{BeamParams, ContactIntegration, ContactParams, InitialShape};
 
 /// Output names after the eight end quantities.
 const EXTRA_OUTPUTS: [&str; 8] = [
@@ -644,6 +644,14 @@ impl Unit for Beam {
             .as_ref()
             .map_or(0.0, |c| c.method.lambda0());
         self.state.lambda.fill(lambda0);
+        if let Some(shape) = self.params.initial_shape.clone() {
+            for (j, x) in self.node_positions().into_iter().enumerate() {
+                let (y, slope) = shape.at(x);
+                self.state.q[2 * j] = y;
+                self.state.q[2 * j + 1] = slope;
+            }
+            self.state.v.fill(0.0);
+        }
         if self.params.static_start {
             self.solve_static()?;
         } else {

@@ -33,6 +33,38 @@ pub struct ContactParams {
     pub gap_band: f64,
 }
 
+/// Named initial shapes.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum InitialShape {
+    /// Seed 004 eq. 4.41: the static shape of a pipe held at x = 0 with deflection
+    /// `deflection` > 0 and angle `angle` < 0, lying on y = 0 from x = -3 y0 / y0'.
+    ContactReference { deflection: f64, angle: f64 },
+}
+
+impl InitialShape {
+    /// Deflection and slope at x.
+    pub fn at(&self, x: f64) -> (f64, f64) {
+        match *self {
+            InitialShape::ContactReference {
+                deflection: y0,
+                angle: t0,
+            } => {
+                if x < -3.0 * y0 / t0 {
+                    let c3 = t0.powi(3) / (27.0 * y0 * y0);
+                    let c2 = t0 * t0 / (3.0 * y0);
+                    (
+                        c3 * x.powi(3) + c2 * x * x + t0 * x + y0,
+                        3.0 * c3 * x * x + 2.0 * c2 * x + t0,
+                    )
+                } else {
+                    (0.0, 0.0)
+                }
+            }
+        }
+    }
+}
+
 /// Beam parameters (SI units).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -70,6 +102,9 @@ pub struct BeamParams {
     /// ... (a profile of the pipe over time).
     #[serde(default)]
     pub stations: Vec<f64>,
+    /// A named initial shape at rest, instead of `initial_deflection`.
+    #[serde(default)]
+    pub initial_shape: Option<InitialShape>,
     /// Start from the static equilibrium instead of `initial_deflection`.
     #[serde(default)]
     pub static_start: bool,
@@ -133,6 +168,7 @@ impl BeamParams {
             initial_deflection: Vec::new(),
             initial_velocity: Vec::new(),
             stations: Vec::new(),
+            initial_shape: None,
             static_start: false,
             boundary,
             contact: None,
@@ -222,6 +258,15 @@ impl BeamParams {
                 0,
                 "expected at least 1",
             ));
+        }
+        if let Some(InitialShape::ContactReference { deflection, angle }) = self.initial_shape {
+            if !(deflection > 0.0 && angle < 0.0 && deflection.is_finite() && angle.is_finite()) {
+                return Err(UnitError::parameter(
+                    "initial_shape",
+                    format!("deflection {deflection}, angle {angle}"),
+                    "the contact reference shape needs deflection > 0 and angle < 0",
+                ));
+            }
         }
         if let Some(p0) = self.static_penalty_start {
             require_positive("static_penalty_start", p0)?;
