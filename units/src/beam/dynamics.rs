@@ -7,6 +7,57 @@ use crate::contact::Law;
 use crate::numerics::banded::BandLdlt;
 use crate::unit::{ModalAnalysis, Mode, UnitError};
 
+/// Buffers of one HHT step, kept between steps.
+#[derive(Default)]
+pub(super) struct StepWork {
+    q0: Vec<f64>,
+    v0: Vec<f64>,
+    a0: Vec<f64>,
+    f0: Vec<f64>,
+    f1: Vec<f64>,
+    constant: Vec<f64>,
+    y: Vec<f64>,
+    v1: Vec<f64>,
+    a1: Vec<f64>,
+    held: Vec<usize>,
+    held_v: Vec<f64>,
+    held_a: Vec<f64>,
+    values: ContactValues,
+    history: Vec<f64>,
+}
+
+impl StepWork {
+    fn resize(&mut self, n: usize) {
+        for v in [
+            &mut self.q0,
+            &mut self.v0,
+            &mut self.a0,
+            &mut self.f0,
+            &mut self.f1,
+            &mut self.constant,
+            &mut self.y,
+            &mut self.v1,
+            &mut self.a1,
+        ] {
+            v.resize(n, 0.0);
+        }
+    }
+
+    /// Newmark: acceleration and velocity at the step's end from the iterate y, the
+    /// held DOFs keeping their prescribed motion.
+    fn kinematics(&mut self, h: f64, beta: f64, gamma: f64) {
+        for i in 0..self.y.len() {
+            self.a1[i] = (self.y[i] - self.q0[i] - h * self.v0[i]) / (beta * h * h)
+                - (0.5 / beta - 1.0) * self.a0[i];
+            self.v1[i] = self.v0[i] + h * ((1.0 - gamma) * self.a0[i] + gamma * self.a1[i]);
+        }
+        for (k, &d) in self.held.iter().enumerate() {
+            self.v1[d] = self.held_v[k];
+            self.a1[d] = self.held_a[k];
+        }
+    }
+}
+
 impl Beam {
     /// Newmark parameters of the HHT-alpha scheme.
     fn hht(&self) -> (f64, f64, f64) {
@@ -95,111 +146,113 @@ impl Beam {
         self.linear_h = h;
     }
 
-    /// One HHT-alpha step from t0 to t1 (s); returns the Newton iterations.
+    /// One HHT-alpha step from t0 to t1 (s); returns the Newton iterations. The step's
+    /// buffers live in `self.work` between steps, so a contact-free step allocates
+    /// nothing.
     pub(super) fn hht_step(&mut self, t0: f64, t1: f64) -> Result<u32, UnitError> {
+        let mut w = std::mem::take(&mut self.work);
+        let result = self.hht_step_with(&mut w, t0, t1);
+        self.work = w;
+        result
+    }
+
+    fn hht_step_with(&mut self, w: &mut StepWork, t0: f64, t1: f64) -> Result<u32, UnitError> {
         let h = t1 - t0;
         let (alpha, beta, gamma) = self.hht();
         self.prepare_linear(h);
         let n = self.state.q.len();
-        let (q0, v0, a0) = (
-            self.state.q.clone(),
-            self.state.v.clone(),
-            self.state.a.clone(),
-        );
+        w.resize(n);
+        w.q0.copy_from_slice(&self.state.q);
+        w.v0.copy_from_slice(&self.state.v);
+        w.a0.copy_from_slice(&self.state.a);
         let energy_conserving = matches!(
             self.params.contact.as_ref().map(|c| &c.method),
             Some(Law::EnergyConserving { .. })
         );
         // Constant part: alpha (C v0 + K q0 + Fc0) - ((1 - alpha) F1 + alpha F0).
-        let mut f0 = vec![0.0; n];
-        self.external_load(t0, h, &mut f0);
-        let mut f1 = vec![0.0; n];
-        self.external_load(t1, h, &mut f1);
-        let mut constant = vec![0.0; n];
+        self.external_load(t0, h, &mut w.f0);
+        self.external_load(t1, h, &mut w.f1);
         for i in 0..n {
             let fc0 = if energy_conserving {
                 0.0
             } else {
                 self.state.contact_force[i]
             };
-            constant[i] = alpha * fc0 - (1.0 - alpha) * f1[i] - alpha * f0[i];
+            w.constant[i] = alpha * fc0 - (1.0 - alpha) * w.f1[i] - alpha * w.f0[i];
         }
-        self.c.mul_add(alpha, &v0, &mut constant);
-        self.k.mul_add(alpha, &q0, &mut constant);
+        self.c.mul_add(alpha, &w.v0, &mut w.constant);
+        self.k.mul_add(alpha, &w.q0, &mut w.constant);
         // Held DOFs at t1 (the state's time still t0 for input rates).
         self.state.t = t1;
         self.apply_kinematics(t1, h);
-        let held: Vec<usize> = self.held_dofs().collect();
-        let (held_v, held_a): (Vec<f64>, Vec<f64>) = held
-            .iter()
-            .map(|&d| (self.state.v[d], self.state.a[d]))
-            .unzip();
-        let mut y = q0.clone();
-        for &d in &held {
-            y[d] = self.state.q[d];
+        w.held.clear();
+        w.held.extend(
+            self.conditions
+                .iter()
+                .filter(|c| c.quantity.is_kinematic())
+                .map(|c| c.dof),
+        );
+        w.held_v.clear();
+        w.held_a.clear();
+        for &d in &w.held {
+            w.held_v.push(self.state.v[d]);
+            w.held_a.push(self.state.a[d]);
         }
-        let mut v1 = vec![0.0; n];
-        let mut a1 = vec![0.0; n];
-        let kinematics = |y: &[f64], v1: &mut [f64], a1: &mut [f64]| {
-            for i in 0..n {
-                a1[i] = (y[i] - q0[i] - h * v0[i]) / (beta * h * h) - (0.5 / beta - 1.0) * a0[i];
-                v1[i] = v0[i] + h * ((1.0 - gamma) * a0[i] + gamma * a1[i]);
-            }
-            for (k, &d) in held.iter().enumerate() {
-                v1[d] = held_v[k];
-                a1[d] = held_a[k];
-            }
-        };
-        let mut values = ContactValues::default();
-        let mut history = Vec::new();
+        w.y.copy_from_slice(&w.q0);
+        for &d in &w.held {
+            w.y[d] = self.state.q[d];
+        }
+        w.history.clear();
         let cap = self.params.newton_max_iterations;
         let law = self.params.contact.as_ref().map(|c| c.method.clone());
+        let linear_only = self.points.is_empty();
         let mut converged = None;
         for iteration in 1..=cap {
-            kinematics(&y, &mut v1, &mut a1);
+            w.kinematics(h, beta, gamma);
             // Without contact the Newton matrix is constant: factorised once per step
             // size, and one correction solves the linear step exactly.
-            let linear_only = self.points.is_empty();
             let mut fresh = None;
+            w.values.force.clear();
             if !linear_only {
                 self.jacobian.copy_from(&self.linear);
-                let lambda = self.state.lambda.clone();
                 let mut jac = std::mem::replace(
                     &mut self.jacobian,
                     crate::numerics::banded::SymmetricBand::zeros(0, 0),
                 );
                 if energy_conserving {
-                    self.discrete_gradient(&y, t1, &mut jac, &mut values);
+                    self.discrete_gradient(&w.y, t1, &mut jac, &mut w.values);
                 } else {
                     let c_scale = (1.0 - alpha) * gamma / (beta * h);
+                    let lambda = std::mem::take(&mut self.state.lambda);
                     self.contact_at(
-                        &y,
-                        &v1,
+                        &w.y,
+                        &w.v1,
                         t1,
                         &lambda,
                         None,
                         Some((&mut jac, 1.0 - alpha, c_scale)),
-                        &mut values,
+                        &mut w.values,
                     );
-                    for f in values.force.iter_mut() {
+                    self.state.lambda = lambda;
+                    for f in w.values.force.iter_mut() {
                         *f *= 1.0 - alpha;
                     }
                 }
-                for &d in &held {
+                for &d in &w.held {
                     jac.set_identity_row(d);
                 }
                 fresh = BandLdlt::new(&jac);
                 self.jacobian = jac;
             }
             let r = &mut self.residual;
-            r.copy_from_slice(&constant);
-            for (ri, f) in r.iter_mut().zip(&values.force) {
+            r.copy_from_slice(&w.constant);
+            for (ri, f) in r.iter_mut().zip(&w.values.force) {
                 *ri += f;
             }
-            self.m.mul_add(1.0, &a1, r);
-            self.c.mul_add(1.0 - alpha, &v1, r);
-            self.k.mul_add(1.0 - alpha, &y, r);
-            for &d in &held {
+            self.m.mul_add(1.0, &w.a1, r);
+            self.c.mul_add(1.0 - alpha, &w.v1, r);
+            self.k.mul_add(1.0 - alpha, &w.y, r);
+            for &d in &w.held {
                 r[d] = 0.0;
             }
             let factor = if linear_only {
@@ -215,21 +268,21 @@ impl Beam {
             }
             factor.solve_in_place(&mut self.residual);
             let step = self.residual.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            history.push(step);
-            for (yi, dy) in y.iter_mut().zip(&self.residual) {
+            w.history.push(step);
+            for (yi, dy) in w.y.iter_mut().zip(&self.residual) {
                 *yi += dy;
             }
             if let (Some(law), Some(crate::contact::LambdaUpdate::NewtonIteration)) =
                 (&law, law.as_ref().and_then(Law::lambda_update))
             {
-                self.state.q.copy_from_slice(&y);
+                self.state.q.copy_from_slice(&w.y);
                 self.update_lambda(law, t1);
             }
             if !step.is_finite() {
                 break;
             }
             // Relative to the solution's size: below ~1e-12 |y| only round-off moves.
-            let size = y.iter().fold(1.0f64, |a, v| a.max(v.abs()));
+            let size = w.y.iter().fold(1.0f64, |a, v| a.max(v.abs()));
             if linear_only || step < self.params.newton_tolerance * size {
                 converged = Some(iteration);
                 break;
@@ -239,40 +292,40 @@ impl Beam {
             self.state.t = t0;
             return Err(UnitError::Numerical(format!(
                 "beam: Newton did not converge in the step ending at t = {t1} s; largest corrections per iteration: {}",
-                history
+                w.history
                     .iter()
                     .map(|v| format!("{v:.3e}"))
                     .collect::<Vec<_>>()
                     .join(", ")
             )));
         };
-        kinematics(&y, &mut v1, &mut a1);
-        self.state.q.copy_from_slice(&y);
-        self.state.v.copy_from_slice(&v1);
-        self.state.a.copy_from_slice(&a1);
+        w.kinematics(h, beta, gamma);
+        self.state.q.copy_from_slice(&w.y);
+        self.state.v.copy_from_slice(&w.v1);
+        self.state.a.copy_from_slice(&w.a1);
         // Contact force at t1 (unweighted) for the next step and the reactions; for
         // the energy-conserving law the force the step used, 2 F_bar - X0.
-        if energy_conserving {
-            let mut scratch = self.jacobian.clone();
-            self.discrete_gradient(&y, t1, &mut scratch, &mut values);
-            let effective = values.force.clone();
-            let lambda = self.state.lambda.clone();
-            self.contact_at(&y, &v1, t1, &lambda, None, None, &mut values);
-            values.force.copy_from_slice(&effective);
+        if !linear_only {
+            let lambda = std::mem::take(&mut self.state.lambda);
+            if energy_conserving {
+                let mut scratch = self.jacobian.clone();
+                self.discrete_gradient(&w.y, t1, &mut scratch, &mut w.values);
+                let effective = w.values.force.clone();
+                self.contact_at(&w.y, &w.v1, t1, &lambda, None, None, &mut w.values);
+                w.values.force.copy_from_slice(&effective);
+            } else {
+                self.contact_at(&w.y, &w.v1, t1, &lambda, None, None, &mut w.values);
+            }
+            self.state.lambda = lambda;
         } else {
-            let lambda = self.state.lambda.clone();
-            self.contact_at(&y, &v1, t1, &lambda, None, None, &mut values);
+            w.values.force.clear();
+            w.values.force.resize(n, 0.0);
         }
-        self.state.contact_force.copy_from_slice(&values.force);
-        self.state.contact = [
-            values.energy,
-            values.start,
-            values.end,
-            values.length,
-            values.max_penetration,
-        ];
+        self.state.contact_force.copy_from_slice(&w.values.force);
+        let v = &w.values;
+        self.state.contact = [v.energy, v.start, v.end, v.length, v.max_penetration];
         self.record_gaps(t1);
-        self.residual_at(t1, &f1, &values.force.clone());
+        self.residual_at(t1, &w.f1, &w.values.force);
         if let (Some(law), Some(crate::contact::LambdaUpdate::TimeStep)) =
             (&law, law.as_ref().and_then(Law::lambda_update))
         {

@@ -107,6 +107,8 @@ pub struct Beam {
     linear_h: f64,
     /// `linear` with the held DOFs as identity rows, factorised (contact-free steps).
     linear_factor: Option<BandLdlt>,
+    /// Buffers of the time step.
+    work: dynamics::StepWork,
     residual: Vec<f64>,
 }
 
@@ -246,6 +248,7 @@ impl Beam {
             linear: SymmetricBand::zeros(n, elements::BAND),
             linear_h: 0.0,
             linear_factor: None,
+            work: dynamics::StepWork::default(),
             residual: vec![0.0; n],
             params,
             lengths,
