@@ -24,6 +24,8 @@ pub(super) struct StepWork {
     held_a: Vec<f64>,
     values: ContactValues,
     history: Vec<f64>,
+    /// Factor of the Newton matrix with contact, refactorised in place.
+    factor: Option<BandLdlt>,
 }
 
 impl StepWork {
@@ -211,7 +213,7 @@ impl Beam {
             w.kinematics(h, beta, gamma);
             // Without contact the Newton matrix is constant: factorised once per step
             // size, and one correction solves the linear step exactly.
-            let mut fresh = None;
+            let mut fresh = false;
             w.values.force.clear();
             if !linear_only {
                 self.jacobian.copy_from(&self.linear);
@@ -241,7 +243,13 @@ impl Beam {
                 for &d in &w.held {
                     jac.set_identity_row(d);
                 }
-                fresh = BandLdlt::new(&jac);
+                fresh = match w.factor.as_mut() {
+                    Some(f) => f.refactorise(&jac),
+                    None => {
+                        w.factor = BandLdlt::new(&jac);
+                        w.factor.is_some()
+                    }
+                };
                 self.jacobian = jac;
             }
             let r = &mut self.residual;
@@ -257,8 +265,10 @@ impl Beam {
             }
             let factor = if linear_only {
                 self.linear_factor.as_ref()
+            } else if fresh {
+                w.factor.as_ref()
             } else {
-                fresh.as_ref()
+                None
             };
             let factor = factor.ok_or_else(|| {
                 UnitError::Numerical(format!("beam: the Newton matrix is not positive definite at t = {t1} s (iteration {iteration})"))

@@ -115,8 +115,28 @@ impl BandLdlt {
     /// Factorises `a`; `None` when a pivot is not positive (the matrix is not
     /// positive definite).
     pub fn new(a: &SymmetricBand) -> Option<BandLdlt> {
-        let (n, w) = (a.n, a.w);
-        let mut f = a.band.clone();
+        let mut f = BandLdlt {
+            n: a.n,
+            w: a.w,
+            band: a.band.clone(),
+        };
+        f.factorise_in_place().then_some(f)
+    }
+
+    /// Refactorises for `a` (same shape) reusing this factor's memory; false when a
+    /// pivot is not positive.
+    pub fn refactorise(&mut self, a: &SymmetricBand) -> bool {
+        if (self.n, self.w) != (a.n, a.w) {
+            self.n = a.n;
+            self.w = a.w;
+        }
+        self.band.clone_from(&a.band);
+        self.factorise_in_place()
+    }
+
+    fn factorise_in_place(&mut self) -> bool {
+        let (n, w) = (self.n, self.w);
+        let f = &mut self.band;
         let s = w + 1;
         for j in 0..n {
             // d_j = a_jj - sum_k l_jk^2 d_k
@@ -126,7 +146,7 @@ impl BandLdlt {
                 d -= l * l * f[(j - k) * s];
             }
             if !(d > 0.0 && d.is_finite()) {
-                return None;
+                return false;
             }
             f[j * s] = d;
             // l_ij = (a_ij - sum_k l_ik l_jk d_k) / d_j for i = j+1..j+w
@@ -143,7 +163,7 @@ impl BandLdlt {
                 f[i * s + (i - j)] = v / d;
             }
         }
-        Some(BandLdlt { n, w, band: f })
+        true
     }
 
     /// Solves `A x = b` in place.
@@ -204,6 +224,18 @@ mod tests {
         for i in 0..17 {
             assert!((y[i] - b[i]).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn refactorising_in_place_equals_a_fresh_factorisation() {
+        let (a, mut b) = (sample(12, 3), sample(12, 3));
+        b.add(5, 5, 3.0);
+        let mut f = BandLdlt::new(&a).unwrap();
+        assert!(f.refactorise(&b));
+        let (mut x, mut y) = (vec![1.0; 12], vec![1.0; 12]);
+        f.solve_in_place(&mut x);
+        BandLdlt::new(&b).unwrap().solve_in_place(&mut y);
+        assert_eq!(x, y);
     }
 
     #[test]
