@@ -163,16 +163,20 @@ fn simulate(
 
 fn update_progress(bar: &mut Option<ProgressBar>, elapsed: Duration, done: u64, total: u64) {
     if bar.is_none() && elapsed > Duration::from_secs(1) {
-        let b = ProgressBar::new(total);
-        if let Ok(style) = ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:40}] {pos}/{len} steps, eta {eta}",
-        ) {
+        let b = ProgressBar::new(total).with_elapsed(elapsed);
+        if let Ok(style) =
+            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} steps, {msg}")
+        {
             b.set_style(style);
         }
         *bar = Some(b);
     }
     if let Some(b) = bar {
         b.set_position(done);
+        // indicatif's own estimate counts the jump to `done` when the bar appears.
+        let remaining =
+            elapsed.as_secs_f64() * (total.saturating_sub(done)) as f64 / done.max(1) as f64;
+        b.set_message(format!("about {remaining:.0} s left"));
     }
 }
 
