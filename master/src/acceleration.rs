@@ -163,10 +163,16 @@ impl IqnIls {
     }
 
     fn push_secant(&mut self, gx: &[f64]) {
-        let mut s = match self.spare.pop() {
-            Some(s) => s,
-            None => self.secants.pop().expect("secant storage is never empty"),
-        };
+        let n = gx.len();
+        let mut s = self
+            .spare
+            .pop()
+            .or_else(|| self.secants.pop())
+            .unwrap_or_else(|| Secant {
+                step: 0,
+                v: vec![0.0; n],
+                w: vec![0.0; n],
+            });
         s.step = self.step;
         for (v, (r, rp)) in
             s.v.iter_mut()
@@ -178,8 +184,9 @@ impl IqnIls {
             *w = g - gp;
         }
         self.secants.insert(0, s);
-        if self.secants.len() > self.q.len() {
-            let old = self.secants.pop().expect("more secants than columns");
+        if self.secants.len() > self.q.len()
+            && let Some(old) = self.secants.pop()
+        {
             self.spare.push(old);
         }
     }

@@ -15,10 +15,12 @@ pub fn derive_order(n_units: usize, connections: &[Connection]) -> Vec<usize> {
             .count()
     };
     while order.len() < n_units {
-        let next = (0..n_units)
+        let Some(next) = (0..n_units)
             .filter(|&u| !placed[u])
             .min_by_key(|&u| (waiting(u, &placed), u))
-            .expect("an unplaced unit remains while the order is incomplete");
+        else {
+            break;
+        };
         placed[next] = true;
         order.push(next);
     }

@@ -111,9 +111,7 @@ pub fn study(
         let mut fe = fe_span(span, reference_elements)?;
         let out = fe
             .description()
-            .outputs
-            .iter()
-            .position(|p| p.name == "right_deflection")
+            .output_index("right_deflection")
             .ok_or("no right_deflection")?;
         references.push(respond(&mut fe, out, u.as_ref(), h, steps)?.0);
     }
@@ -169,9 +167,7 @@ pub fn study(
             let mut fe = fe_span(span, n)?;
             let out = fe
                 .description()
-                .outputs
-                .iter()
-                .position(|p| p.name == "right_deflection")
+                .output_index("right_deflection")
                 .ok_or("no right_deflection")?;
             let (y, wall) = respond(&mut fe, out, u.as_ref(), h, steps)?;
             errs.push(error(&y, r));

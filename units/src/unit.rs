@@ -202,6 +202,22 @@ pub fn check_input_count(expected: usize, values: &[f64]) -> Result<(), UnitErro
     }
 }
 
+/// Checks that every input value is finite, naming the port of the first that is
+/// not.
+pub fn check_finite_inputs(description: &UnitDescription, values: &[f64]) -> Result<(), UnitError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(UnitError::InvalidInput {
+            port: description
+                .inputs
+                .get(i)
+                .map_or_else(|| format!("input {i}"), |p| p.name.clone()),
+            value: values[i],
+            reason: "not finite".into(),
+        }),
+    }
+}
+
 /// Checks that a parameter is finite and strictly positive.
 pub fn require_positive(name: &str, value: f64) -> Result<(), UnitError> {
     if value.is_finite() && value > 0.0 {

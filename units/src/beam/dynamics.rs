@@ -113,12 +113,12 @@ impl Beam {
             values.max_penetration,
         ];
         self.record_gaps(t);
-        self.residual_at(t, &load, &values.force);
+        self.residual_at(&load, &values.force);
         Ok(())
     }
 
     /// Reactions: M a + C v + K q + F_contact - F at the current state.
-    fn residual_at(&mut self, _t: f64, load: &[f64], contact: &[f64]) {
+    fn residual_at(&mut self, load: &[f64], contact: &[f64]) {
         let n = self.state.q.len();
         let r = &mut self.state.reaction;
         for i in 0..n {
@@ -335,7 +335,7 @@ impl Beam {
         let v = &w.values;
         self.state.contact = [v.energy, v.start, v.end, v.length, v.max_penetration];
         self.record_gaps(t1);
-        self.residual_at(t1, &w.f1, &w.values.force);
+        self.residual_at(&w.f1, &w.values.force);
         if let (Some(law), Some(crate::contact::LambdaUpdate::TimeStep)) =
             (&law, law.as_ref().and_then(Law::lambda_update))
         {

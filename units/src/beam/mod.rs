@@ -291,13 +291,18 @@ impl Beam {
     /// Replaces the initial state (after `initialize`) by the shape `f(x) -> (y, y')`
     /// at rest, and recomputes the consistent initial acceleration.
     pub fn set_initial_shape(&mut self, f: impl Fn(f64) -> (f64, f64)) -> Result<(), UnitError> {
+        self.place_at_rest(f);
+        self.initial_acceleration()
+    }
+
+    /// Nodal deflections and slopes from `f(x) -> (y, y')`, velocities zero.
+    fn place_at_rest(&mut self, f: impl Fn(f64) -> (f64, f64)) {
         for (j, x) in self.node_positions().into_iter().enumerate() {
             let (y, slope) = f(x);
             self.state.q[2 * j] = y;
             self.state.q[2 * j + 1] = slope;
         }
         self.state.v.fill(0.0);
-        self.initial_acceleration()
     }
 
     /// Newton iterations of the last step or static solve.
@@ -564,15 +569,9 @@ impl Beam {
 
     /// Total mechanical energy (J): kinetic, strain and contact.
     pub fn energies(&self) -> [f64; 3] {
-        let n = self.state.q.len();
-        let mut mv = vec![0.0; n];
-        self.m.mul_add(1.0, &self.state.v, &mut mv);
-        let mut kq = vec![0.0; n];
-        self.k.mul_add(1.0, &self.state.q, &mut kq);
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
         [
-            0.5 * dot(&mv, &self.state.v),
-            0.5 * dot(&kq, &self.state.q),
+            0.5 * self.m.quadratic_form(&self.state.v),
+            0.5 * self.k.quadratic_form(&self.state.q),
             self.state.contact[0],
         ]
     }
@@ -618,13 +617,7 @@ impl Unit for Beam {
 
     fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
         check_input_count(self.state.inputs.len(), values)?;
-        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(UnitError::InvalidInput {
-                port: self.description.inputs[i].name.clone(),
-                value: values[i],
-                reason: "not finite".into(),
-            });
-        }
+        crate::unit::check_finite_inputs(&self.description, values)?;
         self.state.inputs.set_end(values);
         Ok(())
     }
@@ -648,12 +641,7 @@ impl Unit for Beam {
             .map_or(0.0, |c| c.method.lambda0());
         self.state.lambda.fill(lambda0);
         if let Some(shape) = self.params.initial_shape.clone() {
-            for (j, x) in self.node_positions().into_iter().enumerate() {
-                let (y, slope) = shape.at(x);
-                self.state.q[2 * j] = y;
-                self.state.q[2 * j + 1] = slope;
-            }
-            self.state.v.fill(0.0);
+            self.place_at_rest(|x| shape.at(x));
         }
         if self.params.static_start {
             self.solve_static()?;

@@ -523,13 +523,7 @@ impl Unit for Cable {
 
     fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
         check_input_count(4, values)?;
-        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(UnitError::InvalidInput {
-                port: self.description.inputs[i].name.clone(),
-                value: values[i],
-                reason: "not finite".into(),
-            });
-        }
+        crate::unit::check_finite_inputs(&self.description, values)?;
         self.state.inputs.set_end(values);
         Ok(())
     }
@@ -610,7 +604,11 @@ impl Unit for Cable {
             d.rhs[c] -= mfb[c] + cfb[c] + kfb[c];
         }
         // Newmark with drag iterations on the fixed factorisation.
-        let factor = d.factor.take().expect("prepared above");
+        let Some(factor) = d.factor.take() else {
+            return Err(UnitError::Numerical(
+                "the effective stiffness was not factorised".into(),
+            ));
+        };
         let drag_tolerance = self.params.drag_tolerance;
         let outcome = drag_iterations(d, s, &factor, h, vb, drag_tolerance);
         d.factor = Some(factor);

@@ -95,6 +95,20 @@ impl SymmetricBand {
         }
     }
 
+    /// x^T A x, without allocating.
+    pub fn quadratic_form(&self, x: &[f64]) -> f64 {
+        let w = self.w;
+        let mut sum = 0.0;
+        for i in 0..self.n {
+            let row = &self.band[i * (w + 1)..(i + 1) * (w + 1)];
+            sum += row[0] * x[i] * x[i];
+            for k in 1..=w.min(i) {
+                sum += 2.0 * row[k] * x[i] * x[i - k];
+            }
+        }
+        sum
+    }
+
     /// The dense matrix (for eigenvalue analysis and tests).
     pub fn to_dense(&self) -> nalgebra::DMatrix<f64> {
         nalgebra::DMatrix::from_fn(self.n, self.n, |i, j| self.get(i, j))
@@ -236,6 +250,16 @@ mod tests {
         f.solve_in_place(&mut x);
         BandLdlt::new(&b).unwrap().solve_in_place(&mut y);
         assert_eq!(x, y);
+    }
+
+    #[test]
+    fn the_quadratic_form_equals_x_dot_a_x() {
+        let a = sample(9, 3);
+        let x: Vec<f64> = (0..9).map(|i| (i as f64 * 0.7).cos()).collect();
+        let mut ax = vec![0.0; 9];
+        a.mul_add(1.0, &x, &mut ax);
+        let direct: f64 = ax.iter().zip(&x).map(|(p, q)| p * q).sum();
+        assert!((a.quadratic_form(&x) - direct).abs() < 1e-12 * direct.abs());
     }
 
     #[test]

@@ -157,13 +157,7 @@ impl Unit for SpanUnit {
 
     fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
         check_input_count(1, values)?;
-        if !values[0].is_finite() {
-            return Err(UnitError::InvalidInput {
-                port: "upper_rotation".into(),
-                value: values[0],
-                reason: "not finite".into(),
-            });
-        }
+        crate::unit::check_finite_inputs(&self.description, values)?;
         self.state.inputs.set_end(values);
         Ok(())
     }
