@@ -11,6 +11,7 @@ pub mod adapter;
 pub mod counters;
 pub mod coupler;
 pub mod error;
+pub mod fmi;
 pub mod indicators;
 mod newton;
 pub mod order;

@@ -18,10 +18,39 @@ use crate::unit::{
 use serde::Deserialize;
 
 /// Values of a stateless unit: its last inputs and the outputs computed from them.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(into = "ValueLists", try_from = "ValueLists")]
 struct Values<const I: usize, const O: usize> {
     inputs: [f64; I],
     outputs: [f64; O],
+}
+
+/// `Values` as lists, for serialisation (serde has no const-generic arrays).
+#[derive(serde::Serialize, serde::Deserialize)]
+struct ValueLists {
+    inputs: Vec<f64>,
+    outputs: Vec<f64>,
+}
+
+impl<const I: usize, const O: usize> From<Values<I, O>> for ValueLists {
+    fn from(v: Values<I, O>) -> Self {
+        ValueLists {
+            inputs: v.inputs.to_vec(),
+            outputs: v.outputs.to_vec(),
+        }
+    }
+}
+
+impl<const I: usize, const O: usize> TryFrom<ValueLists> for Values<I, O> {
+    type Error = String;
+
+    fn try_from(v: ValueLists) -> Result<Self, String> {
+        let lengths = || format!("expected {I} inputs and {O} outputs");
+        Ok(Values {
+            inputs: v.inputs.try_into().map_err(|_| lengths())?,
+            outputs: v.outputs.try_into().map_err(|_| lengths())?,
+        })
+    }
 }
 
 impl<const I: usize, const O: usize> Default for Values<I, O> {
@@ -154,7 +183,7 @@ impl SphereClosure {
 }
 
 macro_rules! stateless_unit {
-    ($unit:ty, $inputs:expr, $solve:expr) => {
+    ($unit:ty, $inputs:literal, $outputs:literal, $solve:expr) => {
         impl Unit for $unit {
             fn description(&self) -> &UnitDescription {
                 &self.description
@@ -185,18 +214,18 @@ macro_rules! stateless_unit {
             }
 
             fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-                self.values = slot.load::<Values<_, _>>()?.clone();
+                self.values = slot.load::<Values<$inputs, $outputs>>()?.into_owned();
                 Ok(())
             }
         }
     };
 }
 
-stateless_unit!(LinearPair, 1, |u: &mut LinearPair| {
+stateless_unit!(LinearPair, 1, 2, |u: &mut LinearPair| {
     u.solve();
     Ok::<(), UnitError>(())
 });
-stateless_unit!(SphereClosure, 2, SphereClosure::solve);
+stateless_unit!(SphereClosure, 2, 1, SphereClosure::solve);
 
 #[cfg(test)]
 mod tests {

@@ -5,7 +5,7 @@ use crate::port::Hold;
 /// Input values at the start and at the end of the current step, and how to fill in
 /// between. Units embed it in their saved state: the start values are the last
 /// accepted inputs, so rollback must restore them.
-#[derive(Debug, PartialEq)]
+#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HeldInputs {
     holds: Vec<Hold>,
     start: Vec<f64>,

@@ -95,7 +95,7 @@ impl OscillatorParams {
 }
 
 /// Everything that changes while stepping.
-#[derive(Debug)]
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
 struct OscillatorState {
     motion: NewmarkState,
     inputs: HeldInputs,
@@ -254,7 +254,7 @@ impl Unit for Oscillator {
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(slot.load::<OscillatorState>()?);
+        self.state.clone_from(&*slot.load::<OscillatorState>()?);
         Ok(())
     }
 }

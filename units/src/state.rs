@@ -1,46 +1,111 @@
-//! Storage for a unit's saved state, used by the master to roll units back.
+//! Storage for a unit's saved state, used by the master to roll units back and by
+//! the FMI layer to serialise a unit's state into bytes.
 
 use crate::unit::UnitError;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 use std::any::Any;
+use std::borrow::Cow;
+
+/// A saved state of some unit's state type, able to write itself as bytes.
+trait SavedState: Send {
+    fn as_any(&self) -> &dyn Any;
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+    fn to_bytes(&self) -> Result<Vec<u8>, UnitError>;
+}
+
+impl<S: Any + Send + Serialize> SavedState for S {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+
+    fn to_bytes(&self) -> Result<Vec<u8>, UnitError> {
+        postcard::to_stdvec(self).map_err(|e| UnitError::State(format!("serialising: {e}")))
+    }
+}
+
+#[derive(Default)]
+enum Saved {
+    #[default]
+    Empty,
+    /// Saved by the unit itself (the master's rollback path).
+    Typed(Box<dyn SavedState>),
+    /// Read from bytes (an FMU state deserialised by the FMI layer); the unit
+    /// decodes it on restore.
+    Bytes(Vec<u8>),
+}
 
 /// An opaque slot that holds one saved state of one unit.
 ///
 /// The master keeps one slot per unit and reuses it at every synchronisation step;
 /// [`StateSlot::store`] uses `clone_from`, so a state type whose `Clone` implements
-/// `clone_from` field by field allocates nothing after the first save.
+/// `clone_from` field by field allocates nothing after the first save. A slot
+/// converts to and from bytes (postcard, exact f64 bits) for FMU state
+/// serialisation.
 #[derive(Default)]
-pub struct StateSlot(Option<Box<dyn Any + Send>>);
+pub struct StateSlot(Saved);
 
 impl StateSlot {
     /// An empty slot.
     pub fn new() -> StateSlot {
-        StateSlot(None)
+        StateSlot(Saved::Empty)
+    }
+
+    /// A slot holding a state serialised by [`StateSlot::to_bytes`]; the unit that
+    /// restores from it decodes and checks it.
+    pub fn from_bytes(bytes: Vec<u8>) -> StateSlot {
+        StateSlot(Saved::Bytes(bytes))
     }
 
     /// Whether a state has been stored.
     pub fn is_empty(&self) -> bool {
-        self.0.is_none()
+        matches!(self.0, Saved::Empty)
     }
 
     /// Saves a copy of `state`, reusing the slot's memory when it already holds a
     /// state of the same type.
-    pub fn store<S: Clone + Send + 'static>(&mut self, state: &S) {
-        match self.0.as_mut().and_then(|b| b.downcast_mut::<S>()) {
-            Some(saved) => saved.clone_from(state),
-            None => self.0 = Some(Box::new(state.clone())),
+    pub fn store<S: Clone + Send + Serialize + 'static>(&mut self, state: &S) {
+        if let Saved::Typed(saved) = &mut self.0
+            && let Some(saved) = saved.as_any_mut().downcast_mut::<S>()
+        {
+            saved.clone_from(state);
+            return;
+        }
+        self.0 = Saved::Typed(Box::new(state.clone()));
+    }
+
+    /// The saved state, or an error if the slot is empty or holds another unit's
+    /// state. Borrowed when the unit saved it, decoded when it came from bytes.
+    pub fn load<S: Clone + DeserializeOwned + 'static>(&self) -> Result<Cow<'_, S>, UnitError> {
+        let mismatch =
+            || UnitError::State("the state slot is empty or was saved by another kind of unit".into());
+        match &self.0 {
+            Saved::Empty => Err(mismatch()),
+            Saved::Typed(saved) => saved
+                .as_any()
+                .downcast_ref::<S>()
+                .map(Cow::Borrowed)
+                .ok_or_else(mismatch),
+            Saved::Bytes(bytes) => match postcard::from_bytes::<S>(bytes) {
+                Ok(state) => Ok(Cow::Owned(state)),
+                Err(e) => Err(UnitError::State(format!(
+                    "the serialised state does not decode as this unit's state ({e})"
+                ))),
+            },
         }
     }
 
-    /// The saved state, or an error if the slot is empty or holds another unit's state.
-    pub fn load<S: 'static>(&self) -> Result<&S, UnitError> {
-        self.0
-            .as_ref()
-            .and_then(|b| b.downcast_ref::<S>())
-            .ok_or_else(|| {
-                UnitError::State(
-                    "the state slot is empty or was saved by another kind of unit".into(),
-                )
-            })
+    /// The saved state as bytes (postcard encoding of the unit's state type).
+    pub fn to_bytes(&self) -> Result<Vec<u8>, UnitError> {
+        match &self.0 {
+            Saved::Empty => Err(UnitError::State("no state saved".into())),
+            Saved::Typed(saved) => saved.to_bytes(),
+            Saved::Bytes(bytes) => Ok(bytes.clone()),
+        }
     }
 }
 
@@ -54,7 +119,21 @@ mod tests {
         assert!(slot.is_empty());
         slot.store(&vec![1.0, 2.0]);
         slot.store(&vec![3.0, 4.0]);
-        assert_eq!(slot.load::<Vec<f64>>().unwrap(), &vec![3.0, 4.0]);
+        assert_eq!(*slot.load::<Vec<f64>>().unwrap(), vec![3.0, 4.0]);
         assert!(slot.load::<f64>().is_err());
+    }
+
+    #[test]
+    fn bytes_round_trip_exactly_and_garbage_is_an_error() {
+        let mut slot = StateSlot::new();
+        let state = (vec![0.1_f64, f64::NEG_INFINITY, 1e-300], 7_u64);
+        slot.store(&state);
+        let copy = StateSlot::from_bytes(slot.to_bytes().unwrap());
+        let back = copy.load::<(Vec<f64>, u64)>().unwrap();
+        assert_eq!(back.0[0].to_bits(), 0.1_f64.to_bits());
+        assert_eq!(*back, state);
+        let garbage = StateSlot::from_bytes(vec![0xff; 3]);
+        assert!(garbage.load::<(Vec<f64>, u64)>().is_err());
+        assert!(StateSlot::new().to_bytes().is_err());
     }
 }

@@ -1,6 +1,8 @@
 //! The unit kinds a scene can name, and how each is built from its parameters.
 
+use crate::fmi::import::{FmuParams, FmuUnit};
 use serde::de::DeserializeOwned;
+use std::path::Path;
 use slender_units::Unit;
 use slender_units::algebraic_loop::{LinearPair, SphereClosure};
 use slender_units::beam::Beam;
@@ -11,8 +13,17 @@ use slender_units::signal::artefact::Artefact;
 use slender_units::signal::characteristic_load::CharacteristicLoad;
 use slender_units::span::unit::SpanUnit;
 
-/// Builds a unit from its parameter table and the effects the scene asks for.
-type Builder = fn(toml::Table, &[String]) -> Result<Box<dyn Unit>, String>;
+/// What a builder needs besides the parameter table.
+pub struct BuildContext<'a> {
+    /// The effects the scene asks for (checked against the kind's list).
+    pub effects: &'a [String],
+    /// Folder that relative file names in parameters are resolved against (the
+    /// scene file's folder).
+    pub base_dir: &'a Path,
+}
+
+/// Builds a unit from its parameter table and the context.
+type Builder = fn(toml::Table, &BuildContext) -> Result<Box<dyn Unit>, String>;
 
 /// A unit kind: its scene name, what it is, and the effects it can switch.
 pub struct Kind {
@@ -28,8 +39,8 @@ pub const KINDS: &[Kind] = &[
         name: "cable",
         summary: "2D bar-element cable, static equilibrium + linear dynamics with exact drag; full line or a section",
         effects: &Effects::NAMES,
-        build: |p, effects| {
-            let effects = Effects::from_names(effects).map_err(|e| e.to_string())?;
+        build: |p, context| {
+            let effects = Effects::from_names(context.effects).map_err(|e| e.to_string())?;
             Ok(Box::new(
                 Cable::new(parameters(p)?, effects).map_err(|e| e.to_string())?,
             ))
@@ -96,6 +107,15 @@ pub const KINDS: &[Kind] = &[
         },
     },
     Kind {
+        name: "fmu",
+        summary: "an FMI 2.0 co-simulation FMU (file = \"x.fmu\"): ports from its model description, rollback if it declares FMU state",
+        effects: &[],
+        build: |p, context| {
+            let params: FmuParams = parameters(p)?;
+            Ok(Box::new(FmuUnit::load(&params, context.base_dir)?))
+        },
+    },
+    Kind {
         name: "loop_linear_pair",
         summary: "B6 unit A: a + b + c = 0 and 2a - 3b + 2c = 9, input c, outputs a, b",
         effects: &[],
@@ -120,8 +140,12 @@ pub fn find(name: &str) -> Option<&'static Kind> {
 
 impl Kind {
     /// Builds a unit of this kind, checking the effects against the kind's list.
-    pub fn build(&self, params: toml::Table, effects: &[String]) -> Result<Box<dyn Unit>, String> {
-        if let Some(bad) = effects.iter().find(|e| !self.effects.contains(&e.as_str())) {
+    pub fn build(
+        &self,
+        params: toml::Table,
+        context: &BuildContext,
+    ) -> Result<Box<dyn Unit>, String> {
+        if let Some(bad) = context.effects.iter().find(|e| !self.effects.contains(&e.as_str())) {
             return Err(if self.effects.is_empty() {
                 format!(
                     "effect `{bad}`: kind `{}` has no switchable effects",
@@ -135,7 +159,7 @@ impl Kind {
                 )
             });
         }
-        (self.build)(params, effects)
+        (self.build)(params, context)
     }
 }
 

@@ -194,7 +194,12 @@ impl Scene {
                 Some(p) => (p.get_ref().clone(), p.span()),
                 None => (toml::Table::new(), u.name.span()),
             };
-            let unit = kind.build(parameters, &u.effects).map_err(|m| {
+            let base_dir = self.path.parent().unwrap_or(Path::new("."));
+            let context = kinds::BuildContext {
+                effects: &u.effects,
+                base_dir,
+            };
+            let unit = kind.build(parameters, &context).map_err(|m| {
                 self.error(
                     Some(span),
                     &format!("{key} (\"{}\").parameters", u.name.get_ref()),

@@ -70,7 +70,7 @@ struct ResolvedCondition {
 }
 
 /// Everything that changes while stepping.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 struct BeamState {
     t: f64,
     q: Vec<f64>,
@@ -711,7 +711,7 @@ impl Unit for Beam {
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(slot.load::<BeamState>()?);
+        self.state.clone_from(&*slot.load::<BeamState>()?);
         Ok(())
     }
 

@@ -86,7 +86,7 @@ struct Dynamics {
 }
 
 /// Everything that changes while stepping.
-#[derive(Debug)]
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
 struct CableState {
     q: Vec<f64>,
     v: Vec<f64>,
@@ -696,7 +696,7 @@ impl Unit for Cable {
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(slot.load::<CableState>()?);
+        self.state.clone_from(&*slot.load::<CableState>()?);
         Ok(())
     }
 

@@ -10,7 +10,7 @@ use crate::unit::UnitError;
 use nalgebra::{DMatrix, DVector, Dyn, linalg::LU};
 
 /// Displacement, velocity and acceleration of a linear system.
-#[derive(Debug, PartialEq)]
+#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NewmarkState {
     pub u: DVector<f64>,
     pub v: DVector<f64>,

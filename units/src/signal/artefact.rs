@@ -71,7 +71,7 @@ fn one() -> u64 {
 
 /// Everything that changes while stepping (cloned on save, so the generator
 /// rewinds on restore).
-#[derive(Debug)]
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
 struct ArtefactState {
     rng: ChaCha8Rng,
     /// Samples after scale, bias and noise: time then one value per channel.
@@ -327,7 +327,7 @@ impl Unit for Artefact {
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(slot.load::<ArtefactState>()?);
+        self.state.clone_from(&*slot.load::<ArtefactState>()?);
         Ok(())
     }
 }

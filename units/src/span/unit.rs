@@ -83,7 +83,7 @@ impl SpanParams {
     }
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 struct SpanState {
     x: DVector<f64>,
     inputs: HeldInputs,
@@ -206,7 +206,7 @@ impl Unit for SpanUnit {
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(slot.load::<SpanState>()?);
+        self.state.clone_from(&*slot.load::<SpanState>()?);
         Ok(())
     }
 }

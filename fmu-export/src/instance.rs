@@ -1,0 +1,581 @@
+//! One FMU instance: the unit, its variables and its FMI state machine.
+
+use serde::{Deserialize, Serialize};
+use slender_master::fmi::export::{CONFIG_FILE, ExportConfig, Layout};
+use slender_master::fmi::ffi::*;
+use slender_master::fmi::model_description::Value;
+use slender_units::{Hold, StateSlot, Time, Unit};
+use std::ffi::{CString, c_void};
+use std::panic::AssertUnwindSafe;
+use std::path::PathBuf;
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+enum Phase {
+    Instantiated,
+    Initialization,
+    Stepping,
+    Terminated,
+}
+
+/// An exported unit behind the FMI 2.0 entry points.
+pub struct Instance {
+    name: String,
+    callbacks: fmi2CallbackFunctions,
+    pub logging: bool,
+    /// The configuration as exported (for `fmi2Reset`) and as currently set.
+    exported: ExportConfig,
+    config: ExportConfig,
+    layout: Layout,
+    unit: Option<Box<dyn Unit>>,
+    /// Parameters changed since the unit was built.
+    rebuild: bool,
+    /// Inputs or parameters changed in initialisation mode since the unit last
+    /// found its initial state.
+    reinitialize: bool,
+    phase: Phase,
+    start_time: Time,
+    time: Time,
+    inputs: Vec<f64>,
+    /// First derivatives of the inputs for the next step, and whether set.
+    derivatives: Vec<f64>,
+    ramped: Vec<bool>,
+    /// Hold currently set on each unit input.
+    holds: Vec<Hold>,
+    end: Vec<f64>,
+    outputs: Vec<f64>,
+    parameters: Vec<Value>,
+    strings: Vec<CString>,
+}
+
+/// What `fmi2GetFMUstate` copies.
+struct SavedInstance {
+    slot: StateSlot,
+    phase: Phase,
+    time: Time,
+    inputs: Vec<f64>,
+    outputs: Vec<f64>,
+}
+
+/// The serialised form of a [`SavedInstance`].
+#[derive(Serialize, Deserialize)]
+struct SerializedInstance {
+    magic: String,
+    /// The configuration's fingerprint: a state only fits the same unit built
+    /// with the same parameters.
+    fingerprint: String,
+    phase: Phase,
+    time_ns: i64,
+    inputs: Vec<f64>,
+    outputs: Vec<f64>,
+    unit: Vec<u8>,
+}
+
+const MAGIC: &str = "slender-fmu-state-1";
+
+/// Sends a message to the environment's logger, whatever the instance state.
+pub fn log_with(callbacks: &fmi2CallbackFunctions, instance: &str, status: fmi2Status, message: &str) {
+    let Some(logger) = callbacks.logger else {
+        return;
+    };
+    let category = match status {
+        FMI2_OK => c"logAll",
+        FMI2_WARNING => c"logStatusWarning",
+        _ => c"logStatusError",
+    };
+    let instance = CString::new(instance.replace('\0', " ")).unwrap_or_default();
+    let message = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    // SAFETY: the FMI 2.0 logger with a "%s" format and one string argument.
+    unsafe {
+        logger(
+            callbacks.component_environment,
+            instance.as_ptr(),
+            status,
+            category.as_ptr(),
+            c"%s".as_ptr(),
+            message.as_ptr(),
+        )
+    };
+}
+
+/// Runs an entry point's body on the instance behind `c`, catching panics;
+/// errors are logged with the call and returned as fmi2Error.
+pub fn guarded(
+    c: fmi2Component,
+    call: &str,
+    body: impl FnOnce(&mut Instance) -> Result<fmi2Status, String>,
+) -> fmi2Status {
+    if c.is_null() {
+        return FMI2_ERROR;
+    }
+    // SAFETY: `c` came from fmi2Instantiate (FMI forbids other values) and the
+    // environment does not call one instance concurrently.
+    let instance = unsafe { &mut *c.cast::<Instance>() };
+    let result = std::panic::catch_unwind(AssertUnwindSafe(|| body(&mut *instance)));
+    match result {
+        Ok(Ok(status)) => status,
+        Ok(Err(message)) => {
+            instance.log(FMI2_ERROR, &format!("{call}: {message}"));
+            FMI2_ERROR
+        }
+        Err(_) => {
+            instance.log(FMI2_ERROR, &format!("{call}: internal error (panic caught)"));
+            FMI2_ERROR
+        }
+    }
+}
+
+/// Frees a state made by `fmi2GetFMUstate` or `fmi2DeSerializeFMUstate`.
+pub fn free_state(state: fmi2FMUstate) {
+    if !state.is_null() {
+        // SAFETY: every non-null handle we return is a leaked Box<SavedInstance>.
+        drop(unsafe { Box::from_raw(state.cast::<SavedInstance>()) });
+    }
+}
+
+/// The local path of a `file://` URI (percent-decoded).
+fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
+    let rest = uri
+        .strip_prefix("file://")
+        .or_else(|| uri.strip_prefix("file:"))
+        .ok_or_else(|| format!("fmuResourceLocation `{uri}`: expected a file:// URI"))?;
+    let rest = rest.strip_prefix("localhost").unwrap_or(rest);
+    let bytes = rest.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%'
+            && i + 2 < bytes.len()
+            && let Ok(b) = u8::from_str_radix(std::str::from_utf8(&bytes[i + 1..i + 3]).unwrap_or("zz"), 16)
+        {
+            out.push(b);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    Ok(PathBuf::from(String::from_utf8_lossy(&out).into_owned()))
+}
+
+impl Instance {
+    pub fn new(
+        name: String,
+        guid: &str,
+        resource_location: &str,
+        callbacks: fmi2CallbackFunctions,
+        logging: bool,
+    ) -> Result<Instance, String> {
+        let file = path_of_uri(resource_location)?.join(CONFIG_FILE);
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| format!("{}: cannot read the unit's configuration ({e})", file.display()))?;
+        let config = ExportConfig::from_toml(&text)?;
+        if config.guid != guid {
+            return Err(format!(
+                "GUID {guid} does not match this FMU's {} (model description and resources disagree)",
+                config.guid
+            ));
+        }
+        let layout = Layout::new(&config)?;
+        let n_in = layout.unit.inputs.len();
+        let inputs = layout
+            .unit
+            .inputs
+            .iter()
+            .map(|p| config.inputs.get(&p.name).copied().unwrap_or(0.0))
+            .collect();
+        let parameters = layout.parameters.iter().map(|p| p.start.clone()).collect();
+        let start_time = Time::from_secs(config.start_time).unwrap_or(Time::ZERO);
+        Ok(Instance {
+            name,
+            callbacks,
+            logging,
+            exported: config.clone(),
+            config,
+            outputs: vec![0.0; layout.unit.outputs.len()],
+            layout,
+            unit: None,
+            rebuild: true,
+            reinitialize: true,
+            phase: Phase::Instantiated,
+            start_time,
+            time: start_time,
+            inputs,
+            derivatives: vec![0.0; n_in],
+            ramped: vec![false; n_in],
+            holds: Vec::new(),
+            end: vec![0.0; n_in],
+            parameters,
+            strings: Vec::new(),
+        })
+    }
+
+    pub fn log(&self, status: fmi2Status, message: &str) {
+        if status != FMI2_OK || self.logging {
+            log_with(&self.callbacks, &self.name, status, &format!("unit `{}`: {message}", self.config.name));
+        }
+    }
+
+    pub fn time_secs(&self) -> f64 {
+        self.time.as_secs()
+    }
+
+    pub fn setup(&mut self, start_time: f64) -> Result<fmi2Status, String> {
+        if self.phase != Phase::Instantiated {
+            return Err("only allowed after fmi2Instantiate or fmi2Reset".into());
+        }
+        self.start_time = Time::from_secs(start_time)
+            .ok_or_else(|| format!("startTime {start_time}: expected a finite time (s)"))?;
+        self.time = self.start_time;
+        Ok(FMI2_OK)
+    }
+
+    fn unit(&mut self) -> Result<&mut Box<dyn Unit>, String> {
+        if self.rebuild || self.unit.is_none() {
+            let unit = self.config.build_unit().map_err(|e| format!("building the unit: {e}"))?;
+            self.holds = unit.description().inputs.iter().map(|p| p.hold).collect();
+            self.unit = Some(unit);
+            self.rebuild = false;
+            self.reinitialize = true;
+        }
+        self.unit.as_mut().ok_or_else(|| "no unit".to_owned())
+    }
+
+    /// Finds the initial state with the current inputs, if anything changed.
+    fn settle(&mut self) -> Result<(), String> {
+        self.unit()?;
+        if !self.reinitialize {
+            return Ok(());
+        }
+        let unit = self.unit.as_mut().ok_or("no unit")?;
+        unit.set_inputs(&self.inputs).map_err(|e| e.to_string())?;
+        unit.initialize(self.start_time)
+            .map_err(|e| format!("initial state: {e}"))?;
+        unit.outputs(&mut self.outputs);
+        self.reinitialize = false;
+        Ok(())
+    }
+
+    pub fn enter_initialization(&mut self) -> Result<fmi2Status, String> {
+        if self.phase != Phase::Instantiated {
+            return Err("only allowed after fmi2Instantiate or fmi2Reset".into());
+        }
+        self.unit()?;
+        self.phase = Phase::Initialization;
+        Ok(FMI2_OK)
+    }
+
+    pub fn exit_initialization(&mut self) -> Result<fmi2Status, String> {
+        if self.phase != Phase::Initialization {
+            return Err("only allowed in initialisation mode".into());
+        }
+        self.settle()?;
+        self.time = self.start_time;
+        self.phase = Phase::Stepping;
+        Ok(FMI2_OK)
+    }
+
+    pub fn terminate(&mut self) -> Result<fmi2Status, String> {
+        self.phase = Phase::Terminated;
+        Ok(FMI2_OK)
+    }
+
+    pub fn reset(&mut self) -> Result<fmi2Status, String> {
+        self.config = self.exported.clone();
+        self.parameters = self.layout.parameters.iter().map(|p| p.start.clone()).collect();
+        self.inputs = self
+            .layout
+            .unit
+            .inputs
+            .iter()
+            .map(|p| self.config.inputs.get(&p.name).copied().unwrap_or(0.0))
+            .collect();
+        self.unit = None;
+        self.rebuild = true;
+        self.phase = Phase::Instantiated;
+        self.time = Time::from_secs(self.config.start_time).unwrap_or(Time::ZERO);
+        self.start_time = self.time;
+        Ok(FMI2_OK)
+    }
+
+    fn n_in(&self) -> usize {
+        self.layout.unit.inputs.len()
+    }
+
+    fn n_out(&self) -> usize {
+        self.layout.unit.outputs.len()
+    }
+
+    /// Index of a parameter variable, or an error naming the reference.
+    fn parameter(&self, vr: u32) -> Result<usize, String> {
+        let first = (self.n_in() + self.n_out()) as u32;
+        vr.checked_sub(first)
+            .map(|i| i as usize)
+            .filter(|i| *i < self.parameters.len())
+            .ok_or_else(|| format!("value reference {vr} does not exist"))
+    }
+
+    fn set_parameter(&mut self, vr: u32, value: Value) -> Result<(), String> {
+        let p = self.parameter(vr)?;
+        if !matches!(self.phase, Phase::Instantiated | Phase::Initialization) {
+            return Err(format!(
+                "parameter `{}` is fixed: set it before fmi2ExitInitializationMode",
+                self.layout.parameters[p].name
+            ));
+        }
+        if std::mem::discriminant(&value) != std::mem::discriminant(&self.parameters[p]) {
+            return Err(format!(
+                "parameter `{}` is a {}, not a {}",
+                self.layout.parameters[p].name,
+                self.parameters[p].type_name(),
+                value.type_name()
+            ));
+        }
+        let target = self.layout.parameters[p].target.clone();
+        self.config.set_parameter(&target, value.clone())?;
+        self.parameters[p] = value;
+        self.rebuild = true;
+        Ok(())
+    }
+
+    pub fn get_real(&mut self, vr: &[u32], out: &mut [f64]) -> Result<fmi2Status, String> {
+        if self.phase == Phase::Initialization {
+            self.settle()?;
+        }
+        let (n_in, n_out) = (self.n_in(), self.n_out());
+        for (r, v) in vr.iter().zip(out.iter_mut()) {
+            let r_us = *r as usize;
+            *v = if r_us < n_in {
+                self.inputs[r_us]
+            } else if r_us < n_in + n_out {
+                self.outputs[r_us - n_in]
+            } else {
+                match self.parameters[self.parameter(*r)?] {
+                    Value::Real(Some(x)) => x,
+                    _ => return Err(format!("value reference {r} is not a Real")),
+                }
+            };
+        }
+        Ok(FMI2_OK)
+    }
+
+    pub fn set_real(&mut self, vr: &[u32], values: &[f64]) -> Result<fmi2Status, String> {
+        let n_in = self.n_in();
+        for (r, v) in vr.iter().zip(values) {
+            let r_us = *r as usize;
+            if r_us < n_in {
+                if !v.is_finite() {
+                    return Err(format!(
+                        "input `{}` = {v}: expected a finite value",
+                        self.layout.unit.inputs[r_us].name
+                    ));
+                }
+                self.inputs[r_us] = *v;
+                self.reinitialize |= self.phase == Phase::Initialization;
+            } else if r_us < n_in + self.n_out() {
+                return Err(format!(
+                    "`{}` is an output and cannot be set",
+                    self.layout.unit.outputs[r_us - n_in].name
+                ));
+            } else {
+                self.set_parameter(*r, Value::Real(Some(*v)))?;
+            }
+        }
+        Ok(FMI2_OK)
+    }
+
+    /// Integers, or Booleans when `boolean` (FMI passes both as C ints).
+    pub fn get_integer(&mut self, vr: &[u32], out: &mut [i32], boolean: bool) -> Result<fmi2Status, String> {
+        for (r, v) in vr.iter().zip(out.iter_mut()) {
+            *v = match (&self.parameters[self.parameter(*r)?], boolean) {
+                (Value::Integer(Some(x)), false) => *x,
+                (Value::Boolean(Some(b)), true) => i32::from(*b),
+                _ => {
+                    return Err(format!(
+                        "value reference {r} is not an {}",
+                        if boolean { "Boolean" } else { "Integer" }
+                    ));
+                }
+            };
+        }
+        Ok(FMI2_OK)
+    }
+
+    pub fn set_integer(&mut self, vr: &[u32], values: &[i32], boolean: bool) -> Result<fmi2Status, String> {
+        for (r, v) in vr.iter().zip(values) {
+            let value = if boolean {
+                Value::Boolean(Some(*v != FMI2_FALSE))
+            } else {
+                Value::Integer(Some(*v))
+            };
+            self.set_parameter(*r, value)?;
+        }
+        Ok(FMI2_OK)
+    }
+
+    pub fn get_string(&mut self, vr: &[u32], out: &mut [fmi2String]) -> Result<fmi2Status, String> {
+        self.strings.clear();
+        for r in vr {
+            match &self.parameters[self.parameter(*r)?] {
+                Value::String(Some(s)) => self
+                    .strings
+                    .push(CString::new(s.as_str()).map_err(|_| "string with NUL".to_owned())?),
+                _ => return Err(format!("value reference {r} is not a String")),
+            }
+        }
+        for (o, s) in out.iter_mut().zip(&self.strings) {
+            *o = s.as_ptr();
+        }
+        Ok(FMI2_OK)
+    }
+
+    pub fn set_string(&mut self, vr: &[u32], values: &[String]) -> Result<fmi2Status, String> {
+        for (r, v) in vr.iter().zip(values) {
+            self.set_parameter(*r, Value::String(Some(v.clone())))?;
+        }
+        Ok(FMI2_OK)
+    }
+
+    pub fn set_input_derivatives(
+        &mut self,
+        vr: &[u32],
+        order: &[i32],
+        values: &[f64],
+    ) -> Result<fmi2Status, String> {
+        for ((r, o), v) in vr.iter().zip(order).zip(values) {
+            let i = *r as usize;
+            if i >= self.n_in() {
+                return Err(format!("value reference {r} is not an input"));
+            }
+            if *o != 1 {
+                return Err(format!("derivative order {o}: only first derivatives are used"));
+            }
+            if !v.is_finite() {
+                return Err(format!("derivative of input {r} = {v}: expected a finite value"));
+            }
+            self.derivatives[i] = *v;
+            self.ramped[i] = true;
+        }
+        Ok(FMI2_OK)
+    }
+
+    pub fn do_step(&mut self, t: f64, h: f64) -> Result<fmi2Status, String> {
+        if self.phase != Phase::Stepping {
+            return Err("only allowed after fmi2ExitInitializationMode".into());
+        }
+        let t_at = Time::from_secs(t).ok_or_else(|| format!("currentCommunicationPoint {t}: not a finite time"))?;
+        let step = Time::from_secs(h)
+            .filter(|s| *s > Time::ZERO)
+            .ok_or_else(|| format!("communicationStepSize {h}: expected at least 1 ns"))?;
+        if (t_at.as_nanos() - self.time.as_nanos()).abs() > 1000 {
+            return Err(format!(
+                "currentCommunicationPoint {t} s differs from the FMU's time {} s (restore a state first to repeat a step)",
+                self.time.as_secs()
+            ));
+        }
+        let unit = self.unit.as_mut().ok_or("no unit")?;
+        for i in 0..self.end.len() {
+            let hold = if self.ramped[i] { Hold::Ramp } else { Hold::ZeroOrder };
+            if self.holds[i] != hold && unit.set_hold(i, hold).is_ok() {
+                self.holds[i] = hold;
+            }
+            self.end[i] = if self.ramped[i] {
+                self.inputs[i] + h * self.derivatives[i]
+            } else {
+                self.inputs[i]
+            };
+            self.ramped[i] = false;
+        }
+        unit.set_inputs(&self.end).map_err(|e| e.to_string())?;
+        let result = unit.do_step(self.time, step);
+        if let Err(e) = result {
+            return Err(format!("step from t = {} s by {h} s: {e}", self.time.as_secs()));
+        }
+        unit.outputs(&mut self.outputs);
+        self.time += step;
+        Ok(FMI2_OK)
+    }
+
+    pub fn get_state(&mut self, handle: &mut fmi2FMUstate) -> Result<fmi2Status, String> {
+        if self.phase == Phase::Initialization {
+            self.settle()?;
+        }
+        let unit = self.unit.as_ref().ok_or("no state before fmi2EnterInitializationMode")?;
+        if handle.is_null() {
+            let saved = SavedInstance {
+                slot: StateSlot::new(),
+                phase: self.phase,
+                time: self.time,
+                inputs: Vec::new(),
+                outputs: Vec::new(),
+            };
+            *handle = Box::into_raw(Box::new(saved)).cast::<c_void>();
+        }
+        // SAFETY: non-null handles are ours (Box<SavedInstance>).
+        let saved = unsafe { &mut *handle.cast::<SavedInstance>() };
+        unit.save_state(&mut saved.slot).map_err(|e| e.to_string())?;
+        saved.phase = self.phase;
+        saved.time = self.time;
+        saved.inputs.clone_from(&self.inputs);
+        saved.outputs.clone_from(&self.outputs);
+        Ok(FMI2_OK)
+    }
+
+    pub fn set_state(&mut self, handle: fmi2FMUstate) -> Result<fmi2Status, String> {
+        if handle.is_null() {
+            return Err("null state".into());
+        }
+        // SAFETY: non-null handles are ours (Box<SavedInstance>).
+        let saved = unsafe { &*handle.cast::<SavedInstance>() };
+        let unit = self.unit()?;
+        unit.restore_state(&saved.slot).map_err(|e| e.to_string())?;
+        self.phase = saved.phase;
+        self.time = saved.time;
+        self.inputs.clone_from(&saved.inputs);
+        self.outputs.clone_from(&saved.outputs);
+        self.reinitialize = false;
+        self.ramped.iter_mut().for_each(|r| *r = false);
+        Ok(FMI2_OK)
+    }
+
+    pub fn serialize(&self, handle: fmi2FMUstate) -> Result<Vec<u8>, String> {
+        if handle.is_null() {
+            return Err("null state".into());
+        }
+        // SAFETY: non-null handles are ours (Box<SavedInstance>).
+        let saved = unsafe { &*handle.cast::<SavedInstance>() };
+        let state = SerializedInstance {
+            magic: MAGIC.into(),
+            fingerprint: self.config.fingerprint(),
+            phase: saved.phase,
+            time_ns: saved.time.as_nanos(),
+            inputs: saved.inputs.clone(),
+            outputs: saved.outputs.clone(),
+            unit: saved.slot.to_bytes().map_err(|e| e.to_string())?,
+        };
+        postcard::to_stdvec(&state).map_err(|e| format!("serialising the state: {e}"))
+    }
+
+    pub fn deserialize(&self, bytes: &[u8], handle: &mut fmi2FMUstate) -> Result<fmi2Status, String> {
+        let state: SerializedInstance = postcard::from_bytes(bytes)
+            .map_err(|e| format!("the bytes are not a serialised slender FMU state ({e})"))?;
+        if state.magic != MAGIC {
+            return Err(format!("state format `{}`: expected `{MAGIC}`", state.magic));
+        }
+        if state.fingerprint != self.config.fingerprint() {
+            return Err("the state belongs to another unit or other parameters".into());
+        }
+        if state.inputs.len() != self.n_in() || state.outputs.len() != self.n_out() {
+            return Err("the state's input or output count does not match the unit".into());
+        }
+        let saved = SavedInstance {
+            slot: StateSlot::from_bytes(state.unit),
+            phase: state.phase,
+            time: Time::from_nanos(state.time_ns),
+            inputs: state.inputs,
+            outputs: state.outputs,
+        };
+        free_state(*handle);
+        *handle = Box::into_raw(Box::new(saved)).cast::<c_void>();
+        Ok(FMI2_OK)
+    }
+}

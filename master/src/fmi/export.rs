@@ -1,0 +1,410 @@
+//! Exporting a unit as an FMI 2.0 co-simulation FMU: what the FMU carries, how its
+//! variables map onto the unit, and the packaging.
+//!
+//! An exported FMU holds one shared library (the `slender-fmu` crate, the same for
+//! every unit) and `resources/slender-unit.toml`, the unit's scene section
+//! ([`ExportConfig`]). The library rebuilds the unit from that file, so the model
+//! description written here and the variables the library serves come from the
+//! same [`Layout`].
+//!
+//! Variables, with one value-reference numbering across types: the unit's inputs
+//! (Real, `input`), its outputs (Real, `output`), then its parameters flattened to
+//! scalars (`parameter`, `fixed`): numbers, integers, booleans and strings of the
+//! scene's parameter table (nested tables as `a.b`) and each effect the kind can
+//! switch as Boolean `effects.<name>`. Arrays stay fixed data.
+
+use super::measure::si_definition;
+use super::model_description::{
+    CoSimulation, DefaultExperiment, ModelDescription, ScalarVariable, Unknown, Value,
+    VariableCausality,
+};
+use crate::scene::{Scene, kinds};
+use serde::{Deserialize, Serialize};
+use slender_units::{Hold, Unit, UnitDescription};
+use std::collections::BTreeMap;
+use std::io::Write as _;
+use std::path::Path;
+
+/// Name of the unit's data inside the FMU's `resources/` folder.
+pub const CONFIG_FILE: &str = "slender-unit.toml";
+
+/// The unit an FMU wraps: its scene section and the scene's time window.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ExportConfig {
+    /// Unit name in the scene.
+    pub name: String,
+    pub kind: String,
+    #[serde(default)]
+    pub effects: Vec<String>,
+    #[serde(default)]
+    pub hold: Option<Hold>,
+    /// Start values of inputs by port name (others start at 0).
+    #[serde(default)]
+    pub inputs: BTreeMap<String, f64>,
+    #[serde(default)]
+    pub parameters: toml::Table,
+    /// The scene's time window (s), for the default experiment.
+    pub start_time: f64,
+    pub stop_time: f64,
+    pub step: f64,
+    /// The FMU's GUID (a hash of everything above), checked at instantiation.
+    #[serde(default)]
+    pub guid: String,
+}
+
+/// Where a parameter variable writes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParameterTarget {
+    /// A key path into the parameter table.
+    Table(Vec<String>),
+    /// Whether an effect is included.
+    Effect(String),
+}
+
+/// One parameter variable of the FMU.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParameterVariable {
+    pub name: String,
+    pub value_reference: u32,
+    pub target: ParameterTarget,
+    /// Type and start value.
+    pub start: Value,
+}
+
+/// The FMU's variables and model description for one configuration.
+pub struct Layout {
+    /// The unit's own description (ports, feedthrough, capabilities).
+    pub unit: UnitDescription,
+    pub parameters: Vec<ParameterVariable>,
+    pub model: ModelDescription,
+}
+
+impl ExportConfig {
+    /// The section of unit `unit` of a loaded scene.
+    pub fn from_scene(scene: &Scene, unit: &str) -> Result<ExportConfig, String> {
+        let spec = scene
+            .spec
+            .units
+            .iter()
+            .find(|u| u.name.get_ref() == unit)
+            .ok_or_else(|| {
+                let names: Vec<&str> = scene
+                    .spec
+                    .units
+                    .iter()
+                    .map(|u| u.name.get_ref().as_str())
+                    .collect();
+                format!(
+                    "{}: no unit `{unit}`; its units are: {}",
+                    scene.path.display(),
+                    names.join(", ")
+                )
+            })?;
+        let mut config = ExportConfig {
+            name: unit.to_owned(),
+            kind: spec.kind.get_ref().clone(),
+            effects: spec.effects.clone(),
+            hold: spec.hold,
+            inputs: spec.inputs.clone(),
+            parameters: spec
+                .parameters
+                .as_ref()
+                .map(|p| p.get_ref().clone())
+                .unwrap_or_default(),
+            start_time: scene.start.as_secs(),
+            stop_time: scene.end().as_secs(),
+            step: scene.step.as_secs(),
+            guid: String::new(),
+        };
+        config.guid = config.fingerprint();
+        Ok(config)
+    }
+
+    /// Reads the configuration an FMU carries.
+    pub fn from_toml(text: &str) -> Result<ExportConfig, String> {
+        toml::from_str(text).map_err(|e| format!("{CONFIG_FILE}: {}", e.message().trim()))
+    }
+
+    /// The configuration as TOML.
+    pub fn to_toml(&self) -> Result<String, String> {
+        toml::to_string(self).map_err(|e| format!("{CONFIG_FILE}: {e}"))
+    }
+
+    /// A GUID-shaped hash of the configuration (without its guid).
+    pub fn fingerprint(&self) -> String {
+        let mut plain = self.clone();
+        plain.guid.clear();
+        let text = plain.to_toml().unwrap_or_default();
+        let hash = |seed: u64| {
+            text.bytes().fold(seed, |h, b| {
+                (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+            })
+        };
+        let (a, b) = (hash(0xcbf2_9ce4_8422_2325), hash(0x6c62_272e_07bb_0142));
+        format!(
+            "{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}",
+            a >> 32,
+            (a >> 16) & 0xffff,
+            a & 0xffff,
+            b >> 48,
+            b & 0xffff_ffff_ffff
+        )
+    }
+
+    /// The FMU's model identifier (a C identifier): `slender_<unit name>`.
+    pub fn model_identifier(&self) -> String {
+        let name: String = self
+            .name
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
+        format!("slender_{name}")
+    }
+
+    /// Builds the unit with the current parameters, effects and hold.
+    pub fn build_unit(&self) -> Result<Box<dyn Unit>, String> {
+        let kind = kinds::find(&self.kind)
+            .ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
+        let context = kinds::BuildContext {
+            effects: &self.effects,
+            base_dir: Path::new("."),
+        };
+        let mut unit = kind.build(self.parameters.clone(), &context)?;
+        if let Some(hold) = self.hold {
+            for port in 0..unit.description().inputs.len() {
+                unit.set_hold(port, hold).map_err(|e| e.to_string())?;
+            }
+        }
+        Ok(unit)
+    }
+
+    /// Changes a parameter; the unit must be rebuilt afterwards.
+    pub fn set_parameter(&mut self, target: &ParameterTarget, value: Value) -> Result<(), String> {
+        match target {
+            ParameterTarget::Effect(effect) => {
+                let Value::Boolean(Some(on)) = value else {
+                    return Err(format!("effects.{effect}: expected a Boolean"));
+                };
+                self.effects.retain(|e| e != effect);
+                if on {
+                    self.effects.push(effect.clone());
+                }
+                Ok(())
+            }
+            ParameterTarget::Table(path) => {
+                let (last, parents) = path.split_last().ok_or("empty parameter path")?;
+                let mut table = &mut self.parameters;
+                for key in parents {
+                    table = table
+                        .get_mut(key)
+                        .and_then(toml::Value::as_table_mut)
+                        .ok_or_else(|| format!("parameter table `{key}` is missing"))?;
+                }
+                let value = match value {
+                    Value::Real(Some(v)) => toml::Value::Float(v),
+                    Value::Integer(Some(v)) => toml::Value::Integer(i64::from(v)),
+                    Value::Boolean(Some(v)) => toml::Value::Boolean(v),
+                    Value::String(Some(v)) => toml::Value::String(v),
+                    other => return Err(format!("{}: no value", other.type_name())),
+                };
+                table.insert(last.clone(), value);
+                Ok(())
+            }
+        }
+    }
+}
+
+impl Layout {
+    /// Builds the unit once to read its ports and checks its parameters.
+    pub fn new(config: &ExportConfig) -> Result<Layout, String> {
+        let unit = config.build_unit()?.description().clone();
+        let n_in = unit.inputs.len();
+        let n_out = unit.outputs.len();
+        let mut parameters = Vec::new();
+        flatten(&config.parameters, &mut Vec::new(), &mut parameters);
+        if let Some(kind) = kinds::find(&config.kind) {
+            for effect in kind.effects {
+                parameters.push(ParameterVariable {
+                    name: format!("effects.{effect}"),
+                    value_reference: 0,
+                    target: ParameterTarget::Effect((*effect).to_owned()),
+                    start: Value::Boolean(Some(config.effects.iter().any(|e| e == effect))),
+                });
+            }
+        }
+        for (i, p) in parameters.iter_mut().enumerate() {
+            p.value_reference = (n_in + n_out + i) as u32;
+        }
+        let mut variables = Vec::new();
+        let mut units = Vec::new();
+        let mut unit_attribute = |name: &str| match si_definition(name) {
+            Some(def) => {
+                if !units.iter().any(|u: &super::model_description::UnitDefinition| u.name == name)
+                {
+                    units.push(def);
+                }
+                Some(name.to_owned())
+            }
+            None => None,
+        };
+        for (i, p) in unit.inputs.iter().enumerate() {
+            let hold = match p.hold {
+                Hold::Ramp => "ramp",
+                Hold::ZeroOrder => "zero-order",
+            };
+            variables.push(ScalarVariable {
+                name: p.name.clone(),
+                value_reference: i as u32,
+                description: format!("{} input ({hold} hold when input derivatives are set)", p.kind),
+                causality: VariableCausality::Input,
+                variability: "continuous".into(),
+                initial: None,
+                value: Value::Real(Some(config.inputs.get(&p.name).copied().unwrap_or(0.0))),
+                unit: unit_attribute(&p.unit),
+            });
+        }
+        for (i, p) in unit.outputs.iter().enumerate() {
+            variables.push(ScalarVariable {
+                name: p.name.clone(),
+                value_reference: (n_in + i) as u32,
+                description: format!("{} output", p.kind),
+                causality: VariableCausality::Output,
+                variability: "continuous".into(),
+                initial: Some("calculated".into()),
+                value: Value::Real(None),
+                unit: unit_attribute(&p.unit),
+            });
+        }
+        for p in &parameters {
+            variables.push(ScalarVariable {
+                name: p.name.clone(),
+                value_reference: p.value_reference,
+                description: "scene parameter; set before initialisation".into(),
+                causality: VariableCausality::Parameter,
+                variability: "fixed".into(),
+                initial: Some("exact".into()),
+                value: p.start.clone(),
+                unit: None,
+            });
+        }
+        let outputs: Vec<Unknown> = unit
+            .outputs
+            .iter()
+            .enumerate()
+            .map(|(i, p)| Unknown {
+                index: n_in + i + 1,
+                dependencies: Some(p.depends_on.iter().map(|d| d + 1).collect()),
+            })
+            .collect();
+        let caps = unit.capabilities;
+        let model = ModelDescription {
+            fmi_version: "2.0".into(),
+            model_name: config.name.clone(),
+            guid: config.guid.clone(),
+            description: format!(
+                "slender `{}` unit `{}`{}",
+                config.kind,
+                config.name,
+                kinds::find(&config.kind)
+                    .map(|k| format!(": {}", k.summary))
+                    .unwrap_or_default()
+            ),
+            generation_tool: format!("slender {}", env!("CARGO_PKG_VERSION")),
+            co_simulation: Some(CoSimulation {
+                model_identifier: config.model_identifier(),
+                can_handle_variable_communication_step_size: caps.variable_step,
+                can_interpolate_inputs: true,
+                max_output_derivative_order: 0,
+                can_get_and_set_fmu_state: caps.rollback,
+                can_serialize_fmu_state: caps.rollback,
+            }),
+            units,
+            variables,
+            initial_unknowns: outputs.clone(),
+            outputs,
+            default_experiment: Some(DefaultExperiment {
+                start_time: Some(config.start_time),
+                stop_time: Some(config.stop_time),
+                tolerance: None,
+                step_size: Some(config.step),
+            }),
+        };
+        Ok(Layout {
+            unit,
+            parameters,
+            model,
+        })
+    }
+}
+
+/// Collects the scalar entries of a parameter table as parameter variables.
+fn flatten(table: &toml::Table, path: &mut Vec<String>, out: &mut Vec<ParameterVariable>) {
+    for (key, value) in table {
+        path.push(key.clone());
+        let start = match value {
+            toml::Value::Float(v) => Some(Value::Real(Some(*v))),
+            toml::Value::Integer(v) => i32::try_from(*v).ok().map(|v| Value::Integer(Some(v))),
+            toml::Value::Boolean(v) => Some(Value::Boolean(Some(*v))),
+            toml::Value::String(v) => Some(Value::String(Some(v.clone()))),
+            toml::Value::Table(t) => {
+                flatten(t, path, out);
+                None
+            }
+            _ => None,
+        };
+        if let Some(start) = start {
+            out.push(ParameterVariable {
+                name: path.join("."),
+                value_reference: 0,
+                target: ParameterTarget::Table(path.clone()),
+                start,
+            });
+        }
+        path.pop();
+    }
+}
+
+/// Writes the FMU for `config` to `out`, with `binary` (the `slender-fmu` shared
+/// library) as `binaries/linux64/<modelIdentifier>.so`. Returns the model
+/// description written.
+pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<ModelDescription, String> {
+    let layout = Layout::new(config)?;
+    let library = std::fs::read(binary).map_err(|e| {
+        format!(
+            "{}: cannot read the FMU library ({e}); build it with `cargo build --release -p slender-fmu`",
+            binary.display()
+        )
+    })?;
+    let file = std::fs::File::create(out)
+        .map_err(|e| format!("{}: cannot create the FMU ({e})", out.display()))?;
+    let mut zip = zip::ZipWriter::new(file);
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    let entries: [(String, Vec<u8>); 3] = [
+        ("modelDescription.xml".into(), layout.model.to_xml().into_bytes()),
+        (
+            format!("binaries/linux64/{}.so", config.model_identifier()),
+            library,
+        ),
+        (format!("resources/{CONFIG_FILE}"), config.to_toml()?.into_bytes()),
+    ];
+    let failed = |e: &dyn std::fmt::Display| format!("{}: writing the FMU: {e}", out.display());
+    for (name, bytes) in entries {
+        zip.start_file(name, options).map_err(|e| failed(&e))?;
+        zip.write_all(&bytes).map_err(|e| failed(&e))?;
+    }
+    zip.finish().map_err(|e| failed(&e))?;
+    Ok(layout.model)
+}
+
+/// The FMU library next to the running executable (`target/<profile>/`), where
+/// `cargo build -p slender-fmu` puts it.
+pub fn default_binary() -> Option<std::path::PathBuf> {
+    let exe = std::env::current_exe().ok()?;
+    let dir = exe.parent()?;
+    [dir, dir.parent()?]
+        .iter()
+        .map(|d| d.join("libslender_fmu.so"))
+        .find(|p| p.exists())
+}

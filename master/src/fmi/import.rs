@@ -1,0 +1,831 @@
+//! Importing an FMI 2.0 co-simulation FMU as a unit.
+//!
+//! The FMU is unzipped into a temporary folder, its model description parsed and
+//! its `binaries/linux64/<modelIdentifier>.so` loaded with every symbol bound at
+//! load time. Real inputs and outputs become ports; their kind follows from the
+//! unit of measure (N: force, m/s: velocity, ...), direct feedthrough from
+//! `ModelStructure/Outputs`. Rollback is offered only when the FMU declares
+//! `canGetAndSetFMUstate`.
+//!
+//! Input timing. The contract gives a unit the input values at the END of a step;
+//! FMI reads the values set before `fmi2DoStep` as those at its start. Under a
+//! zero-order hold the two agree (the value is held over the step), so the end
+//! value is sent. Under a ramp hold, when the FMU declares `canInterpolateInputs`,
+//! the start value and the ramp's slope (`fmi2SetRealInputDerivatives`, order 1)
+//! are sent; an FMU that cannot interpolate gets the end value held (its ports say
+//! zero-order).
+//!
+//! The master's `initialize` may run several times while it settles a loop: the
+//! FMU stays in initialisation mode, takes the new inputs and reports its
+//! outputs, and leaves that mode at the first step. A later `initialize` resets
+//! the FMU (`fmi2Reset`) and starts again.
+
+use super::ffi::*;
+use super::measure::si_definition;
+use super::model_description::{ModelDescription, Value, VariableCausality};
+use crate::error::did_you_mean;
+use serde::{Deserialize, Serialize};
+use slender_units::state::StateSlot;
+use slender_units::{
+    Capabilities, Hold, Port, PortKind, StepReport, Time, Unit, UnitDescription, UnitError,
+    unit::check_input_count,
+};
+use std::collections::BTreeMap;
+use std::ffi::{CStr, CString, c_char, c_int, c_void};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Parameters of the `fmu` unit kind.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FmuParams {
+    /// The `.fmu` file (relative to the scene file's folder).
+    pub file: PathBuf,
+    /// Start values of parameters (or inputs) by variable name.
+    #[serde(default)]
+    pub start: BTreeMap<String, toml::Value>,
+    /// Shared libraries to load globally before the FMU, e.g. libpython for FMUs
+    /// built by pythonfmu.
+    #[serde(default)]
+    pub preload: Vec<PathBuf>,
+    /// Ask the FMU for debug logging.
+    #[serde(default)]
+    pub logging: bool,
+}
+
+unsafe extern "C" {
+    fn calloc(count: usize, size: usize) -> *mut c_void;
+    fn free(pointer: *mut c_void);
+    /// The C shim in `logger.c`.
+    fn slender_fmi_logger(
+        environment: fmi2ComponentEnvironment,
+        instance: fmi2String,
+        status: fmi2Status,
+        category: fmi2String,
+        format: fmi2String,
+        ...
+    );
+}
+
+/// Messages an FMU logged, kept for error reports (the last few).
+#[derive(Default)]
+struct LogBook(Mutex<Vec<String>>);
+
+const LOG_KEPT: usize = 20;
+
+/// Called by the C logger shim with the formatted message.
+#[unsafe(no_mangle)]
+extern "C" fn slender_fmi_log_sink(
+    environment: *mut c_void,
+    instance: *const c_char,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    let _ = std::panic::catch_unwind(|| {
+        if environment.is_null() {
+            return;
+        }
+        let text = |p: *const c_char| {
+            if p.is_null() {
+                String::new()
+            } else {
+                // SAFETY: the FMU passes NUL-terminated strings (FMI 2.0 logger contract).
+                unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
+            }
+        };
+        // SAFETY: the environment is the LogBook the unit registered and outlives
+        // the FMU instance (dropped after fmi2FreeInstance).
+        let book = unsafe { &*(environment as *const LogBook) };
+        if let Ok(mut lines) = book.0.lock() {
+            if lines.len() == LOG_KEPT {
+                lines.remove(0);
+            }
+            lines.push(format!(
+                "[{} {} {}] {}",
+                text(instance),
+                status_name(status),
+                text(category),
+                text(message)
+            ));
+        }
+    });
+}
+
+type Instantiate = unsafe extern "C" fn(
+    fmi2String,
+    fmi2Type,
+    fmi2String,
+    fmi2String,
+    *const fmi2CallbackFunctions,
+    fmi2Boolean,
+    fmi2Boolean,
+) -> fmi2Component;
+type FreeInstance = unsafe extern "C" fn(fmi2Component);
+type SetupExperiment =
+    unsafe extern "C" fn(fmi2Component, fmi2Boolean, f64, f64, fmi2Boolean, f64) -> fmi2Status;
+type Plain = unsafe extern "C" fn(fmi2Component) -> fmi2Status;
+type GetReal =
+    unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *mut f64) -> fmi2Status;
+type SetReal =
+    unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *const f64) -> fmi2Status;
+type SetInteger = unsafe extern "C" fn(
+    fmi2Component,
+    *const fmi2ValueReference,
+    usize,
+    *const fmi2Integer,
+) -> fmi2Status;
+type SetString = unsafe extern "C" fn(
+    fmi2Component,
+    *const fmi2ValueReference,
+    usize,
+    *const fmi2String,
+) -> fmi2Status;
+type StateCall = unsafe extern "C" fn(fmi2Component, *mut fmi2FMUstate) -> fmi2Status;
+type SetState = unsafe extern "C" fn(fmi2Component, fmi2FMUstate) -> fmi2Status;
+type SetDerivatives = unsafe extern "C" fn(
+    fmi2Component,
+    *const fmi2ValueReference,
+    usize,
+    *const fmi2Integer,
+    *const f64,
+) -> fmi2Status;
+type DoStep = unsafe extern "C" fn(fmi2Component, f64, f64, fmi2Boolean) -> fmi2Status;
+
+/// The FMU's entry points, bound once.
+struct Api {
+    instantiate: Instantiate,
+    free_instance: FreeInstance,
+    setup_experiment: SetupExperiment,
+    enter_initialization_mode: Plain,
+    exit_initialization_mode: Plain,
+    terminate: Plain,
+    reset: Plain,
+    get_real: GetReal,
+    set_real: SetReal,
+    set_integer: SetInteger,
+    set_boolean: SetInteger,
+    set_string: SetString,
+    set_real_input_derivatives: SetDerivatives,
+    do_step: DoStep,
+    get_fmu_state: Option<StateCall>,
+    set_fmu_state: Option<SetState>,
+    free_fmu_state: Option<StateCall>,
+}
+
+fn symbol<T: Copy>(library: &libloading::Library, name: &str, fmu: &str) -> Result<T, String> {
+    let c_name = format!("{name}\0");
+    // SAFETY: the types above are the FMI 2.0 signatures of these names.
+    unsafe { library.get::<T>(c_name.as_bytes()) }
+        .map(|s| *s)
+        .map_err(|_| format!("{fmu}: the binary does not export `{name}` (required by FMI 2.0 co-simulation)"))
+}
+
+impl Api {
+    fn bind(library: &libloading::Library, fmu: &str, states: bool) -> Result<Api, String> {
+        Ok(Api {
+            instantiate: symbol(library, "fmi2Instantiate", fmu)?,
+            free_instance: symbol(library, "fmi2FreeInstance", fmu)?,
+            setup_experiment: symbol(library, "fmi2SetupExperiment", fmu)?,
+            enter_initialization_mode: symbol(library, "fmi2EnterInitializationMode", fmu)?,
+            exit_initialization_mode: symbol(library, "fmi2ExitInitializationMode", fmu)?,
+            terminate: symbol(library, "fmi2Terminate", fmu)?,
+            reset: symbol(library, "fmi2Reset", fmu)?,
+            get_real: symbol(library, "fmi2GetReal", fmu)?,
+            set_real: symbol(library, "fmi2SetReal", fmu)?,
+            set_integer: symbol(library, "fmi2SetInteger", fmu)?,
+            set_boolean: symbol(library, "fmi2SetBoolean", fmu)?,
+            set_string: symbol(library, "fmi2SetString", fmu)?,
+            set_real_input_derivatives: symbol(library, "fmi2SetRealInputDerivatives", fmu)?,
+            do_step: symbol(library, "fmi2DoStep", fmu)?,
+            get_fmu_state: if states {
+                Some(symbol(library, "fmi2GetFMUstate", fmu)?)
+            } else {
+                None
+            },
+            set_fmu_state: if states {
+                Some(symbol(library, "fmi2SetFMUstate", fmu)?)
+            } else {
+                None
+            },
+            free_fmu_state: if states {
+                Some(symbol(library, "fmi2FreeFMUstate", fmu)?)
+            } else {
+                None
+            },
+        })
+    }
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+enum Phase {
+    Instantiated,
+    Initialization,
+    Stepping,
+}
+
+/// What `save_state` keeps besides the FMU's own state (which stays in the FMU).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct SavedFmu {
+    /// Which `FmuUnit` saved it (an FMU state belongs to one instance).
+    owner: u64,
+    /// The FMU state handle (`fmi2FMUstate`, a pointer, as an integer); it is
+    /// updated in place by later saves into the same slot and freed with the unit.
+    handle: usize,
+    phase: Phase,
+    start: Vec<f64>,
+    outputs: Vec<f64>,
+}
+
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
+
+/// A parameter start value to apply before initialisation.
+enum StartValue {
+    Real(u32, f64),
+    Integer(u32, i32),
+    Boolean(u32, bool),
+    String(u32, CString),
+}
+
+/// An FMI 2.0 co-simulation FMU behind the unit contract.
+pub struct FmuUnit {
+    /// The FMU's file name, for messages.
+    label: String,
+    id: u64,
+    description: UnitDescription,
+    model: ModelDescription,
+    api: Api,
+    component: fmi2Component,
+    phase: Phase,
+    starts: Vec<StartValue>,
+    input_refs: Vec<u32>,
+    output_refs: Vec<u32>,
+    /// Whether each input is sent as a ramp (start value and slope).
+    ramp: Vec<bool>,
+    /// Inputs at the start of the next step (last accepted) and at its end.
+    start: Vec<f64>,
+    end: Vec<f64>,
+    slopes: Vec<f64>,
+    orders: Vec<fmi2Integer>,
+    outputs: Vec<f64>,
+    /// Every FMU state handle handed out, freed with the instance.
+    states: Mutex<Vec<usize>>,
+    log: Box<LogBook>,
+    /// Kept alive for the instance, which holds a pointer to them.
+    _callbacks: Box<fmi2CallbackFunctions>,
+    // Dropped last: the library and the unzipped files.
+    library: Option<libloading::Library>,
+    _folder: tempfile::TempDir,
+}
+
+// SAFETY: an FMI 2.0 instance may be called from any thread as long as calls are
+// not concurrent; the unit is moved between threads but never shared (`&mut self`
+// for every FMU call, `outputs` reads only the cache).
+unsafe impl Send for FmuUnit {}
+
+impl FmuUnit {
+    /// Loads and instantiates the FMU (`params.file` relative to `base_dir`).
+    pub fn load(params: &FmuParams, base_dir: &Path) -> Result<FmuUnit, String> {
+        let path = if params.file.is_absolute() {
+            params.file.clone()
+        } else {
+            base_dir.join(&params.file)
+        };
+        let label = path.display().to_string();
+        let file = std::fs::File::open(&path).map_err(|e| format!("{label}: cannot open ({e})"))?;
+        let mut archive = zip::ZipArchive::new(file)
+            .map_err(|e| format!("{label}: not a readable zip archive ({e})"))?;
+        let folder = tempfile::Builder::new()
+            .prefix("slender-fmu-")
+            .tempdir()
+            .map_err(|e| format!("{label}: cannot create a temporary folder ({e})"))?;
+        archive
+            .extract(folder.path())
+            .map_err(|e| format!("{label}: cannot unzip ({e})"))?;
+        let xml = std::fs::read_to_string(folder.path().join("modelDescription.xml"))
+            .map_err(|e| format!("{label}: no readable modelDescription.xml at the archive root ({e})"))?;
+        let model = ModelDescription::parse(&xml).map_err(|e| format!("{label}: {e}"))?;
+        let cs = model.co_simulation.clone().ok_or_else(|| {
+            format!("{label}: the FMU does not offer co-simulation (no <CoSimulation> element); only FMI 2.0 co-simulation FMUs can be units")
+        })?;
+        let binary = folder
+            .path()
+            .join("binaries/linux64")
+            .join(format!("{}.so", cs.model_identifier));
+        if !binary.exists() {
+            let platforms: Vec<String> = std::fs::read_dir(folder.path().join("binaries"))
+                .map(|d| {
+                    d.filter_map(|e| e.ok())
+                        .map(|e| e.file_name().to_string_lossy().into_owned())
+                        .collect()
+                })
+                .unwrap_or_default();
+            return Err(format!(
+                "{label}: no binary for this platform: expected binaries/linux64/{}.so; the FMU has {}",
+                cs.model_identifier,
+                if platforms.is_empty() {
+                    "no binaries at all (source-only FMUs are not compiled by slender)".to_owned()
+                } else {
+                    format!("binaries for {}", platforms.join(", "))
+                }
+            ));
+        }
+        for lib in &params.preload {
+            preload_globally(lib).map_err(|e| format!("{label}: preload: {e}"))?;
+        }
+        let library = open_now(&binary).map_err(|e| {
+            if e.contains("undefined symbol") && e.contains("Py") {
+                format!(
+                    "{label}: the FMU was built with Python (e.g. pythonfmu) and needs libpython loaded first ({e}). Add `preload = [\"<LIBDIR>/libpython3.X.so\"]` to the unit's parameters, LIBDIR from `python3 -c \"import sysconfig; print(sysconfig.get_config_var('LIBDIR'))\"`, or run with LD_PRELOAD set to that library"
+                )
+            } else {
+                format!("{label}: cannot load {} ({e})", binary.display())
+            }
+        })?;
+        let api = Api::bind(&library, &label, cs.can_get_and_set_fmu_state)?;
+        let description = describe(&model, &label)?;
+        let starts = start_values(&model, &params.start, &label)?;
+        let input_refs: Vec<u32> = real_refs(&model, VariableCausality::Input);
+        let output_refs: Vec<u32> = real_refs(&model, VariableCausality::Output);
+        let n_in = input_refs.len();
+        let log = Box::new(LogBook::default());
+        // SAFETY: the shim has the C-variadic logger signature; only its type
+        // differs in how Rust spells it.
+        let logger: fmi2CallbackLogger = Some(slender_fmi_logger);
+        let callbacks = Box::new(fmi2CallbackFunctions {
+            logger,
+            allocate_memory: Some(calloc),
+            free_memory: Some(free),
+            step_finished: None,
+            component_environment: &*log as *const LogBook as *mut c_void,
+        });
+        let resources = folder.path().join("resources");
+        let uri = file_uri(&resources);
+        let c = |s: &str| {
+            CString::new(s).map_err(|_| format!("{label}: `{s}` contains a NUL character"))
+        };
+        let (name, guid, uri) = (c(&model.model_name)?, c(&model.guid)?, c(&uri)?);
+        // SAFETY: FMI 2.0 fmi2Instantiate with valid C strings and callbacks that
+        // outlive the instance.
+        let component = unsafe {
+            (api.instantiate)(
+                name.as_ptr(),
+                FMI2_CO_SIMULATION,
+                guid.as_ptr(),
+                uri.as_ptr(),
+                &*callbacks,
+                FMI2_FALSE,
+                if params.logging { FMI2_TRUE } else { FMI2_FALSE },
+            )
+        };
+        if component.is_null() {
+            return Err(format!(
+                "{label}: fmi2Instantiate failed{}",
+                log_tail(&log)
+            ));
+        }
+        let ramp = vec![cs.can_interpolate_inputs; n_in];
+        let mut unit = FmuUnit {
+            label,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
+            description,
+            model,
+            api,
+            component,
+            phase: Phase::Instantiated,
+            starts,
+            input_refs,
+            start: vec![0.0; n_in],
+            end: vec![0.0; n_in],
+            slopes: vec![0.0; n_in],
+            orders: vec![1; n_in],
+            outputs: vec![0.0; output_refs.len()],
+            output_refs,
+            ramp,
+            states: Mutex::new(Vec::new()),
+            log,
+            _callbacks: callbacks,
+            library: Some(library),
+            _folder: folder,
+        };
+        for (i, p) in unit.description.inputs.iter_mut().enumerate() {
+            p.hold = if unit.ramp[i] { Hold::Ramp } else { Hold::ZeroOrder };
+        }
+        Ok(unit)
+    }
+
+    /// The parsed model description.
+    pub fn model_description(&self) -> &ModelDescription {
+        &self.model
+    }
+
+    fn check(&self, call: &str, status: fmi2Status) -> Result<(), UnitError> {
+        match status {
+            FMI2_OK | FMI2_WARNING => Ok(()),
+            _ => Err(UnitError::Numerical(format!(
+                "FMU {}: {call} returned {}{}",
+                self.label,
+                status_name(status),
+                log_tail(&self.log)
+            ))),
+        }
+    }
+
+    fn send_inputs(&mut self, h: f64) -> Result<(), UnitError> {
+        let n = self.input_refs.len();
+        if n == 0 {
+            return Ok(());
+        }
+        let any_ramp = self.ramp.iter().any(|r| *r);
+        for i in 0..n {
+            if self.ramp[i] && h > 0.0 {
+                self.slopes[i] = (self.end[i] - self.start[i]) / h;
+            } else {
+                self.slopes[i] = 0.0;
+            }
+        }
+        let values = if h > 0.0 && any_ramp {
+            // Start values for ramped inputs, end values for held ones.
+            for i in 0..n {
+                if !self.ramp[i] {
+                    self.start[i] = self.end[i];
+                }
+            }
+            &self.start
+        } else {
+            &self.end
+        };
+        // SAFETY: arrays of n value references and values.
+        let status = unsafe { (self.api.set_real)(self.component, self.input_refs.as_ptr(), n, values.as_ptr()) };
+        self.check("fmi2SetReal (inputs)", status)?;
+        if h > 0.0 && any_ramp {
+            // SAFETY: arrays of n references, orders and values.
+            let status = unsafe {
+                (self.api.set_real_input_derivatives)(
+                    self.component,
+                    self.input_refs.as_ptr(),
+                    n,
+                    self.orders.as_ptr(),
+                    self.slopes.as_ptr(),
+                )
+            };
+            self.check("fmi2SetRealInputDerivatives", status)?;
+        }
+        Ok(())
+    }
+
+    fn read_outputs(&mut self) -> Result<(), UnitError> {
+        let n = self.output_refs.len();
+        if n == 0 {
+            return Ok(());
+        }
+        // SAFETY: arrays of n references and n values.
+        let status = unsafe {
+            (self.api.get_real)(self.component, self.output_refs.as_ptr(), n, self.outputs.as_mut_ptr())
+        };
+        self.check("fmi2GetReal (outputs)", status)
+    }
+
+    fn apply_start_values(&mut self) -> Result<(), UnitError> {
+        for s in &self.starts {
+            // SAFETY: single-element arrays matching each setter's type.
+            let (call, status) = unsafe {
+                match s {
+                    StartValue::Real(vr, v) => ("fmi2SetReal", (self.api.set_real)(self.component, vr, 1, v)),
+                    StartValue::Integer(vr, v) => ("fmi2SetInteger", (self.api.set_integer)(self.component, vr, 1, v)),
+                    StartValue::Boolean(vr, v) => {
+                        let b = if *v { FMI2_TRUE } else { FMI2_FALSE };
+                        ("fmi2SetBoolean", (self.api.set_boolean)(self.component, vr, 1, &b))
+                    }
+                    StartValue::String(vr, v) => {
+                        let p = v.as_ptr();
+                        ("fmi2SetString", (self.api.set_string)(self.component, vr, 1, &p))
+                    }
+                }
+            };
+            self.check(&format!("{call} (start value)"), status)?;
+        }
+        Ok(())
+    }
+}
+
+impl Unit for FmuUnit {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
+        let can_ramp = self
+            .model
+            .co_simulation
+            .as_ref()
+            .is_some_and(|cs| cs.can_interpolate_inputs);
+        if port < self.ramp.len() {
+            self.ramp[port] = can_ramp && hold == Hold::Ramp;
+            self.description.inputs[port].hold = if self.ramp[port] { Hold::Ramp } else { Hold::ZeroOrder };
+        }
+        Ok(())
+    }
+
+    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
+        check_input_count(self.end.len(), values)?;
+        self.end.copy_from_slice(values);
+        Ok(())
+    }
+
+    fn initialize(&mut self, t0: Time) -> Result<(), UnitError> {
+        if self.phase == Phase::Stepping {
+            // SAFETY: FMI 2.0 call on a live instance.
+            let status = unsafe { (self.api.reset)(self.component) };
+            self.check("fmi2Reset", status)?;
+            self.phase = Phase::Instantiated;
+        }
+        if self.phase == Phase::Instantiated {
+            // SAFETY: FMI 2.0 call on a live instance.
+            let status = unsafe {
+                (self.api.setup_experiment)(self.component, FMI2_FALSE, 0.0, t0.as_secs(), FMI2_FALSE, 0.0)
+            };
+            self.check("fmi2SetupExperiment", status)?;
+            self.apply_start_values()?;
+            // SAFETY: as above.
+            let status = unsafe { (self.api.enter_initialization_mode)(self.component) };
+            self.check("fmi2EnterInitializationMode", status)?;
+            self.phase = Phase::Initialization;
+        }
+        self.send_inputs(0.0)?;
+        self.start.copy_from_slice(&self.end);
+        self.read_outputs()
+    }
+
+    fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+        match self.phase {
+            Phase::Instantiated => {
+                return Err(UnitError::State(format!(
+                    "FMU {}: stepped before initialisation",
+                    self.label
+                )));
+            }
+            Phase::Initialization => {
+                // SAFETY: FMI 2.0 call on a live instance.
+                let status = unsafe { (self.api.exit_initialization_mode)(self.component) };
+                self.check("fmi2ExitInitializationMode", status)?;
+                self.phase = Phase::Stepping;
+            }
+            Phase::Stepping => {}
+        }
+        let h_secs = h.as_secs();
+        self.send_inputs(h_secs)?;
+        let no_prior = if self.description.capabilities.rollback { FMI2_FALSE } else { FMI2_TRUE };
+        // SAFETY: FMI 2.0 call on a live instance.
+        let status = unsafe { (self.api.do_step)(self.component, t.as_secs(), h_secs, no_prior) };
+        self.check(&format!("fmi2DoStep(t = {} s, h = {h_secs} s)", t.as_secs()), status)?;
+        self.start.copy_from_slice(&self.end);
+        self.read_outputs()?;
+        Ok(StepReport::default())
+    }
+
+    fn outputs(&self, out: &mut [f64]) {
+        out.copy_from_slice(&self.outputs);
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        let get = self.api.get_fmu_state.ok_or_else(|| self.no_state())?;
+        let mut handle = match slot.load::<SavedFmu>() {
+            Ok(saved) if saved.owner == self.id => saved.handle as fmi2FMUstate,
+            _ => std::ptr::null_mut(),
+        };
+        let fresh = handle.is_null();
+        // SAFETY: FMI 2.0: a null handle asks for a new state, a handle of this
+        // instance is overwritten in place.
+        let status = unsafe { get(self.component, &mut handle) };
+        self.check("fmi2GetFMUstate", status)?;
+        if fresh && let Ok(mut states) = self.states.lock() {
+            states.push(handle as usize);
+        }
+        slot.store(&SavedFmu {
+            owner: self.id,
+            handle: handle as usize,
+            phase: self.phase,
+            start: self.start.clone(),
+            outputs: self.outputs.clone(),
+        });
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        let saved = slot.load::<SavedFmu>()?;
+        if saved.owner != self.id {
+            return Err(UnitError::State(format!(
+                "FMU {}: the slot holds another instance's state",
+                self.label
+            )));
+        }
+        let set = self.api.set_fmu_state.ok_or_else(|| self.no_state())?;
+        // SAFETY: the handle came from this instance's fmi2GetFMUstate.
+        let status = unsafe { set(self.component, saved.handle as fmi2FMUstate) };
+        self.check("fmi2SetFMUstate", status)?;
+        self.phase = saved.phase;
+        self.start.copy_from_slice(&saved.start);
+        self.outputs.copy_from_slice(&saved.outputs);
+        Ok(())
+    }
+}
+
+impl FmuUnit {
+    fn no_state(&self) -> UnitError {
+        UnitError::Unsupported(format!(
+            "FMU {} does not declare canGetAndSetFMUstate, so it cannot roll back",
+            self.label
+        ))
+    }
+}
+
+impl Drop for FmuUnit {
+    fn drop(&mut self) {
+        if let (Some(free_state), Ok(states)) = (self.api.free_fmu_state, self.states.get_mut()) {
+            for s in states.iter() {
+                let mut handle = *s as fmi2FMUstate;
+                // SAFETY: handles from this instance's fmi2GetFMUstate.
+                unsafe { free_state(self.component, &mut handle) };
+            }
+        }
+        // SAFETY: ending a live instance; terminate only after initialisation.
+        unsafe {
+            if self.phase != Phase::Instantiated {
+                (self.api.terminate)(self.component);
+            }
+            (self.api.free_instance)(self.component);
+        }
+        self.library.take();
+    }
+}
+
+/// The unit description of an FMU: Real inputs and outputs as ports.
+fn describe(model: &ModelDescription, label: &str) -> Result<UnitDescription, String> {
+    let inputs: Vec<usize> = (0..model.variables.len())
+        .filter(|&i| is_real(model, i, VariableCausality::Input))
+        .collect();
+    let port_of = |i: usize, input: bool| {
+        let v = &model.variables[i];
+        let (kind, unit) = kind_of(model, v.unit.as_deref());
+        let port = if input { Port::input(&v.name, kind) } else { Port::output(&v.name, kind) };
+        port.with_unit(&unit)
+    };
+    let mut outputs = Vec::new();
+    for i in 0..model.variables.len() {
+        if !is_real(model, i, VariableCausality::Output) {
+            continue;
+        }
+        let deps = model
+            .outputs
+            .iter()
+            .find(|u| u.index == i + 1)
+            .map(|u| u.dependencies.clone());
+        let depends_on: Vec<usize> = match deps.flatten() {
+            None => (0..inputs.len()).collect(),
+            Some(list) => list
+                .iter()
+                .filter_map(|d| inputs.iter().position(|&k| k + 1 == *d))
+                .collect(),
+        };
+        outputs.push(port_of(i, false).with_feedthrough(&depends_on));
+    }
+    let cs = model
+        .co_simulation
+        .as_ref()
+        .ok_or_else(|| format!("{label}: no <CoSimulation> element"))?;
+    Ok(UnitDescription {
+        kind: "fmu".into(),
+        inputs: inputs.iter().map(|&i| port_of(i, true)).collect(),
+        outputs,
+        capabilities: Capabilities {
+            rollback: cs.can_get_and_set_fmu_state,
+            variable_step: cs.can_handle_variable_communication_step_size,
+            output_derivative_order: 0,
+        },
+    })
+}
+
+fn is_real(model: &ModelDescription, i: usize, causality: VariableCausality) -> bool {
+    let v = &model.variables[i];
+    v.causality == causality && matches!(v.value, Value::Real(_))
+}
+
+fn real_refs(model: &ModelDescription, causality: VariableCausality) -> Vec<u32> {
+    (0..model.variables.len())
+        .filter(|&i| is_real(model, i, causality))
+        .map(|i| model.variables[i].value_reference)
+        .collect()
+}
+
+/// The port kind and unit name for an FMU unit of measure: the kind whose SI unit
+/// has the same base exponents (and factor 1), else generic with the FMU's name.
+fn kind_of(model: &ModelDescription, unit: Option<&str>) -> (PortKind, String) {
+    let Some(name) = unit else {
+        return (PortKind::Generic, String::new());
+    };
+    let definition = model.unit(name).cloned().or_else(|| si_definition(name));
+    if let Some(def) = definition
+        && def.factor == 1.0
+        && def.offset == 0.0
+    {
+        for kind in PortKind::ALL {
+            if let Some(si) = si_definition(kind.si_unit())
+                && si.exponents == def.exponents
+                && kind != PortKind::Generic
+            {
+                return (kind, kind.si_unit().to_owned());
+            }
+        }
+    }
+    (PortKind::Generic, name.to_owned())
+}
+
+fn start_values(
+    model: &ModelDescription,
+    starts: &BTreeMap<String, toml::Value>,
+    label: &str,
+) -> Result<Vec<StartValue>, String> {
+    let mut out = Vec::new();
+    for (name, value) in starts {
+        let v = model.variables.iter().find(|v| &v.name == name).ok_or_else(|| {
+            format!(
+                "{label}: start.{name}: the FMU has no variable `{name}`{}",
+                did_you_mean(name, model.variables.iter().map(|v| v.name.as_str()))
+            )
+        })?;
+        if !matches!(
+            v.causality,
+            VariableCausality::Parameter | VariableCausality::Input
+        ) {
+            return Err(format!(
+                "{label}: start.{name}: `{name}` is not a parameter or an input (its causality is {:?})",
+                v.causality
+            ));
+        }
+        let wrong = || {
+            format!(
+                "{label}: start.{name} = {value}: expected a {} value",
+                v.value.type_name()
+            )
+        };
+        let vr = v.value_reference;
+        out.push(match (&v.value, value) {
+            (Value::Real(_), toml::Value::Float(x)) => StartValue::Real(vr, *x),
+            (Value::Real(_), toml::Value::Integer(x)) => StartValue::Real(vr, *x as f64),
+            (Value::Integer(_) | Value::Enumeration(_), toml::Value::Integer(x)) => {
+                StartValue::Integer(vr, i32::try_from(*x).map_err(|_| wrong())?)
+            }
+            (Value::Boolean(_), toml::Value::Boolean(b)) => StartValue::Boolean(vr, *b),
+            (Value::String(_), toml::Value::String(s)) => {
+                StartValue::String(vr, CString::new(s.as_str()).map_err(|_| wrong())?)
+            }
+            _ => return Err(wrong()),
+        });
+    }
+    Ok(out)
+}
+
+/// Opens a shared library with every symbol bound now, so a missing one fails
+/// here rather than mid-run.
+fn open_now(path: &Path) -> Result<libloading::Library, String> {
+    use libloading::os::unix::{Library, RTLD_LOCAL, RTLD_NOW};
+    // SAFETY: loading runs the library's initialisers; FMU binaries are trusted
+    // code chosen by the scene's author.
+    unsafe { Library::open(Some(path), RTLD_NOW | RTLD_LOCAL) }
+        .map(Into::into)
+        .map_err(|e| e.to_string())
+}
+
+/// Loads a library with its symbols visible to later libraries, and keeps it
+/// for the life of the process (libpython must not be unloaded under an
+/// interpreter that may still run).
+fn preload_globally(path: &Path) -> Result<(), String> {
+    use libloading::os::unix::{Library, RTLD_GLOBAL, RTLD_NOW};
+    // SAFETY: as in `open_now`.
+    let library = unsafe { Library::open(Some(path), RTLD_NOW | RTLD_GLOBAL) }
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    std::mem::forget(library);
+    Ok(())
+}
+
+/// A `file://` URI for a local folder, percent-encoding what URIs reserve.
+pub fn file_uri(path: &Path) -> String {
+    let mut uri = String::from("file://");
+    for b in path.to_string_lossy().bytes() {
+        if b.is_ascii_alphanumeric() || b"/-_.~".contains(&b) {
+            uri.push(b as char);
+        } else {
+            uri.push_str(&format!("%{b:02X}"));
+        }
+    }
+    uri
+}
+
+fn log_tail(log: &LogBook) -> String {
+    match log.0.lock() {
+        Ok(lines) if !lines.is_empty() => format!("; the FMU logged: {}", lines.join(" | ")),
+        _ => String::new(),
+    }
+}

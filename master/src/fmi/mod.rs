@@ -1,0 +1,13 @@
+//! FMI 2.0 co-simulation: FMUs as units (import) and units as FMUs (export).
+//!
+//! - [`model_description`]: reading and writing `modelDescription.xml`;
+//! - [`import::FmuUnit`]: an FMU behind the unit contract (scene kind `fmu`);
+//! - [`export`]: what an exported FMU carries and how it is packaged; the entry
+//!   points themselves live in the `slender-fmu` crate;
+//! - [`ffi`]: the C types both sides share; [`measure`]: units of measure.
+
+pub mod export;
+pub mod ffi;
+pub mod import;
+pub mod measure;
+pub mod model_description;
