@@ -62,8 +62,24 @@ enum FmuAction {
         #[arg(long)]
         binary: Option<PathBuf>,
     },
+    /// Export every unit of a scene and write a copy of the scene that uses the
+    /// FMUs (kind `fmu`): the same run through the FMI layer.
+    Wrap {
+        scene: PathBuf,
+        /// Folder for the FMUs and the new scene (<scene>_fmu.toml).
+        #[arg(long)]
+        out: PathBuf,
+        /// The slender-fmu shared library (default: next to this executable).
+        #[arg(long)]
+        binary: Option<PathBuf>,
+    },
     /// Load an FMU as slender would and print its ports and capabilities.
-    Info { fmu: PathBuf },
+    Info {
+        fmu: PathBuf,
+        /// Libraries to load globally first (libpython for pythonfmu FMUs).
+        #[arg(long)]
+        preload: Vec<PathBuf>,
+    },
 }
 
 #[derive(Subcommand)]
@@ -566,7 +582,7 @@ fn span_command(
 }
 
 fn fmu_command(action: FmuAction) -> ExitCode {
-    use slender_master::fmi::export::{ExportConfig, default_binary, package};
+    use slender_master::fmi::export::{ExportConfig, default_binary, package, wrap_scene};
     use slender_master::fmi::import::{FmuParams, FmuUnit};
     let result = match action {
         FmuAction::Export {
@@ -604,11 +620,29 @@ fn fmu_command(action: FmuAction) -> ExitCode {
                 }
             }
         }),
-        FmuAction::Info { fmu } => {
+        FmuAction::Wrap { scene, out, binary } => load(&scene).and_then(|scene| {
+            let binary = binary.or_else(default_binary).ok_or_else(|| {
+                eprintln!(
+                    "error: libslender_fmu.so not found next to this executable; build it with `cargo build --release -p slender-fmu` or pass --binary"
+                );
+                ExitCode::from(2)
+            })?;
+            match wrap_scene(&scene, &binary, &out) {
+                Ok(path) => {
+                    println!("wrote {}", path.display());
+                    Ok(())
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    Err(ExitCode::from(2))
+                }
+            }
+        }),
+        FmuAction::Info { fmu, preload } => {
             let params = FmuParams {
                 file: fmu,
                 start: Default::default(),
-                preload: Vec::new(),
+                preload,
                 logging: false,
             };
             match FmuUnit::load(&params, Path::new(".")) {

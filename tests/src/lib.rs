@@ -169,7 +169,7 @@ pub mod probe {
         ProduceNan,
     }
 
-    #[derive(Clone)]
+    #[derive(Clone, serde::Serialize, serde::Deserialize)]
     struct State {
         y: f64,
         inputs: HeldInputs,
@@ -260,7 +260,7 @@ pub mod probe {
             Ok(())
         }
         fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-            self.state = slot.load::<State>()?.clone();
+            self.state = slot.load::<State>()?.into_owned();
             Ok(())
         }
     }
@@ -277,4 +277,59 @@ pub fn published() -> toml::Table {
 /// water with the 0-0.5 m/s shear current, as a full line.
 pub fn polyester_line(elements: usize) -> slender_units::cable::CableParams {
     slender_units::cable::CableParams::seed000_polyester(elements)
+}
+
+/// FMU helpers: where the exported library is, exporting scene units, Python.
+pub mod fmu {
+    use super::root;
+    use slender_master::fmi::export::{ExportConfig, package, wrap_scene};
+    use slender_master::scene::Scene;
+    use std::path::{Path, PathBuf};
+
+    /// `libslender_fmu.so` of the profile the tests run in (target/<profile>/).
+    pub fn library() -> PathBuf {
+        let exe = std::env::current_exe().expect("test executable path");
+        let profile_dir = exe
+            .parent()
+            .and_then(Path::parent)
+            .expect("target/<profile>/deps/<test>");
+        let lib = profile_dir.join("libslender_fmu.so");
+        assert!(
+            lib.exists(),
+            "{} is missing: build it with `cargo build --release -p slender-fmu` (./scripts/test.sh does)",
+            lib.display()
+        );
+        lib
+    }
+
+    /// Exports unit `unit` of the example scene `scene` (relative to the root)
+    /// into `dir`; returns the FMU's path.
+    pub fn export(scene: &str, unit: &str, dir: &Path) -> PathBuf {
+        let scene = super::load(scene);
+        let config = ExportConfig::from_scene(&scene, unit).unwrap_or_else(|e| panic!("{e}"));
+        let out = dir.join(format!("{unit}.fmu"));
+        package(&config, &library(), &out).unwrap_or_else(|e| panic!("{e}"));
+        out
+    }
+
+    /// Exports every unit of an example scene into `dir` and loads the scene
+    /// that uses the FMUs.
+    pub fn wrapped(scene: &str, dir: &Path) -> Scene {
+        let scene = super::load(scene);
+        let path = wrap_scene(&scene, &library(), dir).unwrap_or_else(|e| panic!("{e}"));
+        Scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// The Python of the test environment (SLENDER_PYTHON, else .venv/bin/python).
+    pub fn python() -> PathBuf {
+        let python = std::env::var_os("SLENDER_PYTHON")
+            .map(PathBuf::from)
+            .unwrap_or_else(|| root().join(".venv/bin/python"));
+        assert!(
+            python.exists(),
+            "{} is missing: ./scripts/test.sh creates the Python environment with FMPy and pythonfmu",
+            python.display()
+        );
+        python
+    }
 }

@@ -78,6 +78,15 @@ impl StateSlot {
         self.0 = Saved::Typed(Box::new(state.clone()));
     }
 
+    /// The saved state for in-place update, when the slot holds one of type `S`
+    /// saved by a unit (not read from bytes).
+    pub fn get_mut<S: 'static>(&mut self) -> Option<&mut S> {
+        match &mut self.0 {
+            Saved::Typed(saved) => saved.as_any_mut().downcast_mut::<S>(),
+            _ => None,
+        }
+    }
+
     /// The saved state, or an error if the slot is empty or holds another unit's
     /// state. Borrowed when the unit saved it, decoded when it came from bytes.
     pub fn load<S: Clone + DeserializeOwned + 'static>(&self) -> Result<Cow<'_, S>, UnitError> {

@@ -408,3 +408,50 @@ pub fn default_binary() -> Option<std::path::PathBuf> {
         .map(|d| d.join("libslender_fmu.so"))
         .find(|p| p.exists())
 }
+
+/// Exports every unit of a scene as an FMU into `dir` and writes there a copy of
+/// the scene whose units are those FMUs (kind `fmu`), so the same run can go
+/// through the FMI layer. Returns the new scene's path.
+pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path::PathBuf, String> {
+    let text = std::fs::read_to_string(&scene.path)
+        .map_err(|e| format!("{}: cannot read ({e})", scene.path.display()))?;
+    let mut table: toml::Table =
+        toml::from_str(&text).map_err(|e| format!("{}: {}", scene.path.display(), e.message()))?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create ({e})", dir.display()))?;
+    let units = table
+        .get_mut("units")
+        .and_then(toml::Value::as_array_mut)
+        .ok_or_else(|| format!("{}: no [[units]]", scene.path.display()))?;
+    for unit in units.iter_mut() {
+        let unit = unit.as_table_mut().ok_or("a [[units]] entry is not a table")?;
+        let name = unit
+            .get("name")
+            .and_then(toml::Value::as_str)
+            .ok_or("a unit without a name")?
+            .to_owned();
+        let config = ExportConfig::from_scene(scene, &name)?;
+        let file = format!("{name}.fmu");
+        package(&config, binary, &dir.join(&file))?;
+        unit.insert("kind".into(), toml::Value::String("fmu".into()));
+        unit.remove("effects");
+        let mut parameters = toml::Table::new();
+        parameters.insert("file".into(), toml::Value::String(file));
+        unit.insert("parameters".into(), toml::Value::Table(parameters));
+    }
+    if let Some(title) = table.get("title").and_then(toml::Value::as_str) {
+        let title = format!("{title} [every unit through FMI 2.0]");
+        table.insert("title".into(), toml::Value::String(title));
+    }
+    if let Some(output) = table.get_mut("output").and_then(toml::Value::as_table_mut) {
+        output.remove("directory");
+    }
+    let stem = scene
+        .path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into());
+    let out = dir.join(format!("{stem}_fmu.toml"));
+    let written = toml::to_string(&table).map_err(|e| format!("{}: {e}", out.display()))?;
+    std::fs::write(&out, written).map_err(|e| format!("{}: cannot write ({e})", out.display()))?;
+    Ok(out)
+}

@@ -421,11 +421,17 @@ impl FmuUnit {
     }
 
     fn check(&self, call: &str, status: fmi2Status) -> Result<(), UnitError> {
+        self.check_with(status, || call.to_owned())
+    }
+
+    /// Like `check`, naming the call only when it failed (no formatting per step).
+    fn check_with(&self, status: fmi2Status, call: impl FnOnce() -> String) -> Result<(), UnitError> {
         match status {
             FMI2_OK | FMI2_WARNING => Ok(()),
             _ => Err(UnitError::Numerical(format!(
-                "FMU {}: {call} returned {}{}",
+                "FMU {}: {} returned {}{}",
                 self.label,
+                call(),
                 status_name(status),
                 log_tail(&self.log)
             ))),
@@ -579,7 +585,7 @@ impl Unit for FmuUnit {
         let no_prior = if self.description.capabilities.rollback { FMI2_FALSE } else { FMI2_TRUE };
         // SAFETY: FMI 2.0 call on a live instance.
         let status = unsafe { (self.api.do_step)(self.component, t.as_secs(), h_secs, no_prior) };
-        self.check(&format!("fmi2DoStep(t = {} s, h = {h_secs} s)", t.as_secs()), status)?;
+        self.check_with(status, || format!("fmi2DoStep(t = {} s, h = {h_secs} s)", t.as_secs()))?;
         self.start.copy_from_slice(&self.end);
         self.read_outputs()?;
         Ok(StepReport::default())
@@ -591,16 +597,26 @@ impl Unit for FmuUnit {
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
         let get = self.api.get_fmu_state.ok_or_else(|| self.no_state())?;
-        let mut handle = match slot.load::<SavedFmu>() {
-            Ok(saved) if saved.owner == self.id => saved.handle as fmi2FMUstate,
-            _ => std::ptr::null_mut(),
-        };
-        let fresh = handle.is_null();
-        // SAFETY: FMI 2.0: a null handle asks for a new state, a handle of this
-        // instance is overwritten in place.
+        // A slot this unit filled before is updated in place: the FMU overwrites
+        // its state, the vectors are copied without allocating.
+        if let Some(saved) = slot.get_mut::<SavedFmu>()
+            && saved.owner == self.id
+        {
+            let mut handle = saved.handle as fmi2FMUstate;
+            // SAFETY: FMI 2.0: a handle of this instance is overwritten in place.
+            let status = unsafe { get(self.component, &mut handle) };
+            self.check("fmi2GetFMUstate", status)?;
+            saved.handle = handle as usize;
+            saved.phase = self.phase;
+            saved.start.copy_from_slice(&self.start);
+            saved.outputs.copy_from_slice(&self.outputs);
+            return Ok(());
+        }
+        let mut handle: fmi2FMUstate = std::ptr::null_mut();
+        // SAFETY: FMI 2.0: a null handle asks for a new state.
         let status = unsafe { get(self.component, &mut handle) };
         self.check("fmi2GetFMUstate", status)?;
-        if fresh && let Ok(mut states) = self.states.lock() {
+        if let Ok(mut states) = self.states.lock() {
             states.push(handle as usize);
         }
         slot.store(&SavedFmu {

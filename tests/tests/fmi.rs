@@ -1,0 +1,454 @@
+//! FMI 2.0 export and import without Python: exported units through slender's own
+//! importer against the native units, scenes of exported FMUs against the native
+//! scenes, every way an FMU can be wrong, the entry points' guards, and a
+//! mutation fuzz of the model-description parser over a kept corpus.
+//! (FMPy and pythonfmu cross-checks: fmi_python.rs.)
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use slender_master::fmi::export::{ExportConfig, Layout};
+use slender_master::fmi::import::{FmuParams, FmuUnit};
+use slender_master::fmi::model_description::{ModelDescription, Value, VariableCausality};
+use slender_tests::{fmu, load, root, run};
+use slender_units::{Hold, Time, Unit};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+fn import(file: &Path) -> Result<FmuUnit, String> {
+    let params = FmuParams {
+        file: file.to_owned(),
+        start: Default::default(),
+        preload: Vec::new(),
+        logging: false,
+    };
+    FmuUnit::load(&params, Path::new("."))
+}
+
+fn temp() -> tempfile::TempDir {
+    tempfile::tempdir().expect("temporary folder")
+}
+
+#[test]
+fn the_model_description_lists_ports_units_parameters_and_true_dependencies() {
+    let dir = temp();
+    let file = fmu::export("examples/b1_two_masses.toml", "left", dir.path());
+    let unit = import(&file).unwrap();
+    let md = unit.model_description();
+    assert_eq!(md.fmi_version, "2.0");
+    let cs = md.co_simulation.as_ref().unwrap();
+    assert_eq!(cs.model_identifier, "slender_left");
+    assert!(cs.can_get_and_set_fmu_state && cs.can_serialize_fmu_state);
+    assert!(cs.can_handle_variable_communication_step_size && cs.can_interpolate_inputs);
+    let var = |name: &str| md.variables.iter().find(|v| v.name == name).unwrap();
+    assert_eq!(var("coupling_displacement").causality, VariableCausality::Input);
+    assert_eq!(var("coupling_force").unit.as_deref(), Some("N"));
+    assert_eq!(var("mass").value, Value::Real(Some(1.0)));
+    assert_eq!(var("initial_displacement").causality, VariableCausality::Parameter);
+    for unit_name in ["m", "m/s", "N"] {
+        assert!(md.unit(unit_name).is_some(), "UnitDefinitions lack {unit_name}");
+    }
+    // Displacement and velocity have no direct feedthrough; the coupling force
+    // depends on both inputs (variables 1 and 2).
+    let deps = |name: &str| {
+        let index = md.variables.iter().position(|v| v.name == name).unwrap() + 1;
+        md.outputs
+            .iter()
+            .find(|u| u.index == index)
+            .unwrap()
+            .dependencies
+            .clone()
+    };
+    assert_eq!(deps("displacement"), Some(vec![]));
+    assert_eq!(deps("coupling_force"), Some(vec![1, 2]));
+    let d = unit.description();
+    assert!(d.capabilities.rollback);
+    assert_eq!(d.outputs[2].depends_on, vec![0, 1]);
+    let de = md.default_experiment.as_ref().unwrap();
+    assert_eq!((de.stop_time, de.step_size), (Some(1.0), Some(0.01)));
+}
+
+/// Drives a unit alone with a sine force and returns its outputs at every step.
+fn drive(unit: &mut dyn Unit, hold: Hold, steps: usize) -> Vec<Vec<f64>> {
+    let h = Time::from_secs(0.01).unwrap();
+    let force = |t: f64| 5.0 * (3.0 * t).sin() + 1.0;
+    unit.set_hold(0, hold).unwrap();
+    unit.set_inputs(&[force(0.0)]).unwrap();
+    unit.initialize(Time::ZERO).unwrap();
+    let mut out = vec![0.0; unit.description().outputs.len()];
+    let mut all = Vec::new();
+    for n in 0..steps {
+        let t = h * n as i64;
+        unit.set_inputs(&[force((t + h).as_secs())]).unwrap();
+        unit.do_step(t, h).unwrap();
+        unit.outputs(&mut out);
+        all.push(out.clone());
+    }
+    all
+}
+
+#[test]
+fn an_exported_unit_through_the_importer_matches_the_native_unit() {
+    let dir = temp();
+    let scene = load("examples/b3_force_displacement.toml");
+    let config = ExportConfig::from_scene(&scene, "b").unwrap();
+    let file = fmu::export("examples/b3_force_displacement.toml", "b", dir.path());
+    // Zero-order hold: the value sent is the value held; bit-identical.
+    let native = drive(config.build_unit().unwrap().as_mut(), Hold::ZeroOrder, 500);
+    let through_fmi = drive(&mut import(&file).unwrap(), Hold::ZeroOrder, 500);
+    assert_eq!(native, through_fmi);
+    // Ramp hold: start value and slope cross the interface, the end value is
+    // rebuilt as u + h du/dt; round-off only.
+    let native = drive(config.build_unit().unwrap().as_mut(), Hold::Ramp, 500);
+    let through_fmi = drive(&mut import(&file).unwrap(), Hold::Ramp, 500);
+    let scale = native.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let worst = native
+        .iter()
+        .flatten()
+        .zip(through_fmi.iter().flatten())
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    println!("ramp hold: worst difference {worst:.2e} on a scale of {scale:.2e}");
+    assert!(worst <= 1e-13 * scale, "{worst:e}");
+}
+
+/// Largest difference between two runs' recorded signals, relative to each
+/// signal's largest magnitude.
+fn worst_relative_difference(a: &slender_tests::Series, b: &slender_tests::Series) -> f64 {
+    assert_eq!(a.names, b.names);
+    assert_eq!(a.time, b.time);
+    a.columns
+        .iter()
+        .zip(&b.columns)
+        .map(|(x, y)| {
+            let scale = x.iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+            x.iter()
+                .zip(y)
+                .fold(0.0_f64, |m, (p, q)| m.max((p - q).abs() / scale))
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn scenes_of_exported_fmus_match_the_native_scenes_with_rollback() {
+    let mut rollbacks = 0;
+    for (scene, bound) in [
+        // Iterative Gauss-Seidel with rollback.
+        ("examples/b1_two_masses.toml", 1e-13),
+        // Aitken-accelerated, force/displacement coupling.
+        ("examples/b3_force_displacement.toml", 1e-11),
+        // Newton on an algebraic loop (solved at initialisation).
+        ("examples/b6_algebraic_loop.toml", 1e-13),
+        // Active truncation: four units, IQN-ILS, 200 s.
+        ("examples/truncation_substructured.toml", 1e-11),
+    ] {
+        let dir = temp();
+        let native = run(&load(scene));
+        let wrapped = run(&fmu::wrapped(scene, dir.path()));
+        assert!(native.error.is_none() && wrapped.error.is_none());
+        let worst = worst_relative_difference(&native, &wrapped);
+        println!(
+            "{scene}: worst relative difference {worst:.2e}; iterations {} vs {}, rollbacks {} vs {}",
+            native.counters.iterations,
+            wrapped.counters.iterations,
+            native.counters.rollbacks,
+            wrapped.counters.rollbacks
+        );
+        assert!(worst <= bound, "{scene}: {worst:e}");
+        assert_eq!(native.counters.iterations, wrapped.counters.iterations);
+        assert_eq!(native.counters.rollbacks, wrapped.counters.rollbacks);
+        rollbacks += wrapped.counters.rollbacks;
+    }
+    assert!(rollbacks > 0, "no rollback exercised");
+}
+
+fn write_zip(path: &Path, entries: &[(&str, &[u8])]) {
+    let file = std::fs::File::create(path).unwrap();
+    let mut zip = zip::ZipWriter::new(file);
+    for (name, bytes) in entries {
+        zip.start_file(*name, zip::write::SimpleFileOptions::default())
+            .unwrap();
+        zip.write_all(bytes).unwrap();
+    }
+    zip.finish().unwrap();
+}
+
+/// An exported FMU's model description and library, to build broken variants.
+fn parts(dir: &Path) -> (String, Vec<u8>, Vec<u8>) {
+    let file = fmu::export("examples/b1_two_masses.toml", "left", dir);
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(file).unwrap()).unwrap();
+    let mut read = |name: &str| {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut archive.by_name(name).unwrap(), &mut bytes).unwrap();
+        bytes
+    };
+    let xml = String::from_utf8(read("modelDescription.xml")).unwrap();
+    (
+        xml,
+        read("binaries/linux64/slender_left.so"),
+        read("resources/slender-unit.toml"),
+    )
+}
+
+fn expect_error(file: &Path, wanted: &[&str]) -> String {
+    let e = match import(file) {
+        Ok(_) => panic!("{} loaded", file.display()),
+        Err(e) => e,
+    };
+    for w in wanted {
+        assert!(e.contains(w), "`{w}` not in: {e}");
+    }
+    e
+}
+
+#[test]
+fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
+    let dir = temp();
+    let (xml, library, resources) = parts(dir.path());
+    let at = |name: &str| dir.path().join(name);
+    let so = "binaries/linux64/slender_left.so";
+    let res = "resources/slender-unit.toml";
+
+    std::fs::write(at("corrupt.fmu"), b"PK\x03\x04 this is not a zip").unwrap();
+    expect_error(&at("corrupt.fmu"), &["corrupt.fmu", "zip"]);
+
+    expect_error(&at("missing.fmu"), &["missing.fmu", "cannot open"]);
+
+    write_zip(&at("no_description.fmu"), &[(so, &library)]);
+    expect_error(&at("no_description.fmu"), &["modelDescription.xml"]);
+
+    let broken = xml.replacen("<ModelVariables>", "<ModelVariables><oops", 1);
+    write_zip(&at("bad_xml.fmu"), &[("modelDescription.xml", broken.as_bytes())]);
+    expect_error(&at("bad_xml.fmu"), &["bad_xml.fmu", "modelDescription.xml:11", "<oops>"]);
+
+    let no_guid = xml.replacen(" guid=", " nope=", 1);
+    write_zip(&at("no_guid.fmu"), &[("modelDescription.xml", no_guid.as_bytes())]);
+    expect_error(&at("no_guid.fmu"), &["modelDescription.xml:2", "fmiModelDescription", "guid"]);
+
+    let me_only = xml.replacen("<CoSimulation", "<ModelExchange", 1);
+    write_zip(&at("me.fmu"), &[("modelDescription.xml", me_only.as_bytes())]);
+    expect_error(&at("me.fmu"), &["does not offer co-simulation"]);
+
+    write_zip(
+        &at("windows.fmu"),
+        &[
+            ("modelDescription.xml", xml.as_bytes()),
+            ("binaries/win64/slender_left.dll", b"MZ"),
+        ],
+    );
+    expect_error(&at("windows.fmu"), &["binaries/linux64/slender_left.so", "win64"]);
+
+    let libm = std::fs::read("/lib/x86_64-linux-gnu/libm.so.6").unwrap();
+    write_zip(
+        &at("no_symbols.fmu"),
+        &[("modelDescription.xml", xml.as_bytes()), (so, &libm)],
+    );
+    expect_error(&at("no_symbols.fmu"), &["does not export `fmi2Instantiate`"]);
+
+    write_zip(
+        &at("no_resources.fmu"),
+        &[("modelDescription.xml", xml.as_bytes()), (so, &library)],
+    );
+    expect_error(&at("no_resources.fmu"), &["fmi2Instantiate failed", "slender-unit.toml"]);
+
+    let other_guid = xml.replacen("guid=\"{", "guid=\"{0", 1);
+    write_zip(
+        &at("guid.fmu"),
+        &[
+            ("modelDescription.xml", other_guid.as_bytes()),
+            (so, &library),
+            (res, &resources),
+        ],
+    );
+    expect_error(&at("guid.fmu"), &["fmi2Instantiate failed", "GUID"]);
+
+    // Start values: an unknown name, a wrong type.
+    let good = at("good.fmu");
+    write_zip(
+        &good,
+        &[("modelDescription.xml", xml.as_bytes()), (so, &library), (res, &resources)],
+    );
+    let with_start = |name: &str, value: toml::Value| FmuParams {
+        file: good.clone(),
+        start: [(name.to_owned(), value)].into_iter().collect(),
+        preload: Vec::new(),
+        logging: false,
+    };
+    let e = FmuUnit::load(&with_start("mas", toml::Value::Float(2.0)), Path::new("."))
+        .err()
+        .unwrap();
+    assert!(e.contains("no variable `mas`") && e.contains("mass"), "{e}");
+    let e = FmuUnit::load(&with_start("mass", toml::Value::String("heavy".into())), Path::new("."))
+        .err()
+        .unwrap();
+    assert!(e.contains("start.mass") && e.contains("expected a Real"), "{e}");
+    let e = FmuUnit::load(&with_start("displacement", toml::Value::Float(1.0)), Path::new("."))
+        .err()
+        .unwrap();
+    assert!(e.contains("not a parameter or an input"), "{e}");
+    // A parameter the unit rejects: reported by the FMU at initialisation.
+    let mut unit = FmuUnit::load(&with_start("mass", toml::Value::Float(-1.0)), Path::new(".")).unwrap();
+    unit.set_inputs(&[0.0, 0.0]).unwrap();
+    let e = unit.initialize(Time::ZERO).unwrap_err().to_string();
+    assert!(e.contains("good.fmu") && e.contains("mass") && e.contains("> 0"), "{e}");
+}
+
+#[test]
+fn a_failing_step_names_the_fmu_the_call_and_the_reason() {
+    let dir = temp();
+    let file = fmu::export("examples/b6_algebraic_loop.toml", "sphere", dir.path());
+    let mut unit = import(&file).unwrap();
+    unit.set_inputs(&[0.1, 0.1]).unwrap();
+    unit.initialize(Time::ZERO).unwrap();
+    unit.set_inputs(&[100.0, 0.0]).unwrap();
+    let h = Time::from_secs(0.1).unwrap();
+    let e = unit.do_step(Time::ZERO, h).unwrap_err().to_string();
+    assert!(e.contains("sphere.fmu") && e.contains("fmi2DoStep") && e.contains("fmi2Error"), "{e}");
+    assert!(e.contains("no real c"), "the FMU's logged reason is missing: {e}");
+}
+
+#[test]
+fn entry_points_reject_null_and_foreign_arguments_without_crashing() {
+    use slender_master::fmi::ffi::*;
+    use std::ptr::{null, null_mut};
+    // SAFETY: the calls are made with arguments FMI forbids, which is the point:
+    // the entry points must refuse them with fmi2Error instead of crashing.
+    unsafe {
+        assert_eq!(slender_fmu::fmi2DoStep(null_mut(), 0.0, 0.1, 0), FMI2_ERROR);
+        assert_eq!(slender_fmu::fmi2Terminate(null_mut()), FMI2_ERROR);
+        assert_eq!(slender_fmu::fmi2GetReal(null_mut(), null(), 1, null_mut()), FMI2_ERROR);
+        slender_fmu::fmi2FreeInstance(null_mut());
+        let none = slender_fmu::fmi2Instantiate(
+            c"x".as_ptr(),
+            FMI2_CO_SIMULATION,
+            c"{}".as_ptr(),
+            c"file:///nonexistent".as_ptr(),
+            null(),
+            0,
+            0,
+        );
+        assert!(none.is_null());
+        let callbacks = fmi2CallbackFunctions {
+            logger: None,
+            allocate_memory: None,
+            free_memory: None,
+            step_finished: None,
+            component_environment: null_mut(),
+        };
+        let missing = slender_fmu::fmi2Instantiate(
+            c"x".as_ptr(),
+            FMI2_CO_SIMULATION,
+            c"{}".as_ptr(),
+            c"file:///nonexistent".as_ptr(),
+            &callbacks,
+            0,
+            0,
+        );
+        assert!(missing.is_null());
+        let model_exchange = slender_fmu::fmi2Instantiate(
+            c"x".as_ptr(),
+            FMI2_MODEL_EXCHANGE,
+            c"{}".as_ptr(),
+            c"file:///nonexistent".as_ptr(),
+            &callbacks,
+            0,
+            0,
+        );
+        assert!(model_exchange.is_null());
+    }
+}
+
+#[test]
+fn parameters_become_fmi_variables_and_effects_booleans() {
+    let scene = load("examples/truncation_substructured.toml");
+    let config = ExportConfig::from_scene(&scene, "n").unwrap();
+    let layout = Layout::new(&config).unwrap();
+    let names: Vec<&str> = layout.parameters.iter().map(|p| p.name.as_str()).collect();
+    assert!(names.iter().any(|n| n.starts_with("effects.")), "{names:?}");
+    let e = ExportConfig::from_scene(&scene, "nope").unwrap_err();
+    assert!(e.contains("no unit `nope`") && e.contains("emulated"), "{e}");
+}
+
+/// Model descriptions kept as the fuzz corpus.
+fn corpus() -> Vec<(PathBuf, Vec<u8>)> {
+    let dir = root().join("tests/fuzz/model_description");
+    let mut files: Vec<(PathBuf, Vec<u8>)> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .map(|p| {
+            let bytes = std::fs::read(&p).unwrap();
+            (p, bytes)
+        })
+        .collect();
+    files.sort();
+    assert!(files.len() >= 4);
+    files
+}
+
+#[test]
+fn the_corpus_parses() {
+    for (path, bytes) in corpus() {
+        let text = String::from_utf8(bytes).unwrap();
+        ModelDescription::parse(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    }
+}
+
+#[test]
+fn mutated_model_descriptions_give_errors_never_panics() {
+    const TOKENS: [&str; 12] = [
+        "<", ">", "/>", "\"", "&amp;", "&#0;", "=", "index=\"0\"", "dependencies=\"9 x\"",
+        "<ScalarVariable>", "</ModelVariables>", "\u{feff}",
+    ];
+    let mut rng = ChaCha8Rng::seed_from_u64(6);
+    let (mut parsed, mut rejected) = (0, 0);
+    for (path, original) in corpus() {
+        for _ in 0..2500 {
+            let mut bytes = original.clone();
+            for _ in 0..rng.random_range(1..4) {
+                let at = rng.random_range(0..bytes.len().max(1));
+                match rng.random_range(0..5) {
+                    0 => {
+                        let i = at.min(bytes.len() - 1);
+                        bytes[i] ^= 1 << rng.random_range(0..8);
+                    }
+                    1 => {
+                        let end = (at + rng.random_range(1..64)).min(bytes.len());
+                        bytes.drain(at..end);
+                    }
+                    2 => bytes.truncate(at),
+                    3 => {
+                        let t = TOKENS[rng.random_range(0..TOKENS.len())].as_bytes();
+                        bytes.splice(at..at, t.iter().copied());
+                    }
+                    _ => {
+                        let end = (at + rng.random_range(1..200)).min(bytes.len());
+                        let piece = bytes[at..end].to_vec();
+                        let to = rng.random_range(0..bytes.len().max(1));
+                        bytes.splice(to..to, piece);
+                    }
+                }
+                if bytes.is_empty() {
+                    break;
+                }
+            }
+            let text = String::from_utf8_lossy(&bytes).into_owned();
+            let outcome = std::panic::catch_unwind(|| ModelDescription::parse(&text).is_ok());
+            match outcome {
+                Ok(true) => parsed += 1,
+                Ok(false) => rejected += 1,
+                Err(_) => {
+                    let keep = root().join("target/fuzz-crashes");
+                    std::fs::create_dir_all(&keep).unwrap();
+                    let name = keep.join(format!("crash-{parsed}-{rejected}.xml"));
+                    std::fs::write(&name, &bytes).unwrap();
+                    panic!(
+                        "the parser panicked on a mutation of {}; input kept in {} (add it to the corpus once fixed)",
+                        path.display(),
+                        name.display()
+                    );
+                }
+            }
+        }
+    }
+    println!("{parsed} mutations parsed, {rejected} rejected with an error");
+    assert!(rejected > parsed / 10, "the mutations barely changed anything");
+}
