@@ -2,5 +2,7 @@
 
 fn main() {
     println!("cargo::rerun-if-changed=src/fmi/logger.c");
-    cc::Build::new().file("src/fmi/logger.c").compile("slender_fmi_logger");
+    cc::Build::new()
+        .file("src/fmi/logger.c")
+        .compile("slender_fmi_logger");
 }

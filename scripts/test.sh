@@ -11,22 +11,23 @@ step "toolchain"
 cargo --version
 rustc --version
 
-# Python side of the test suite (FMU cross-checks with FMPy): a local virtual
-# environment, created on first use. Nothing in it is needed until FMU export
-# exists, but setting it up here keeps this the one command to run.
-if [ -f scripts/requirements-test.txt ]; then
-    step "python test environment (.venv)"
-    if [ ! -x .venv/bin/python ]; then
-        python3 -m venv .venv
-    fi
-    .venv/bin/python -m pip install --quiet --disable-pip-version-check -r scripts/requirements-test.txt
+# Python side of the test suite (FMU cross-checks with FMPy and pythonfmu): a
+# local virtual environment, created on first use.
+step "python test environment (.venv)"
+if [ ! -x .venv/bin/python ]; then
+    python3 -m venv .venv
 fi
+.venv/bin/python -m pip install --quiet --disable-pip-version-check -r scripts/requirements-test.txt
+export SLENDER_PYTHON="$PWD/.venv/bin/python"
 
 step "format"
 cargo fmt --all -- --check
 
 step "lints"
 cargo clippy --workspace --all-targets --release -- -D warnings
+
+step "build (CLI and the FMU library libslender_fmu.so, used by the FMI tests)"
+cargo build --workspace --release
 
 step "tests"
 log=$(mktemp)
@@ -35,6 +36,12 @@ count() { awk -v what="$1" '/^test result:/ { for (i = 1; i <= NF; i++) if ($i ~
 passed=$(count passed)
 failed=$(count failed)
 ignored=$(count ignored)
+
+step "FMU cross-checks with FMPy and pythonfmu (ignored above: they need .venv)"
+cargo test --release -p slender-tests --test fmi_python -- --ignored 2>&1 | tee "$log"
+python_passed=$(count passed)
+passed=$((passed + python_passed))
+ignored=$((ignored - python_passed))
 rm -f "$log"
 
 step "example scenes"

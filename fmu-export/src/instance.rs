@@ -73,7 +73,12 @@ struct SerializedInstance {
 const MAGIC: &str = "slender-fmu-state-1";
 
 /// Sends a message to the environment's logger, whatever the instance state.
-pub fn log_with(callbacks: &fmi2CallbackFunctions, instance: &str, status: fmi2Status, message: &str) {
+pub fn log_with(
+    callbacks: &fmi2CallbackFunctions,
+    instance: &str,
+    status: fmi2Status,
+    message: &str,
+) {
     let Some(logger) = callbacks.logger else {
         return;
     };
@@ -118,7 +123,10 @@ pub fn guarded(
             FMI2_ERROR
         }
         Err(_) => {
-            instance.log(FMI2_ERROR, &format!("{call}: internal error (panic caught)"));
+            instance.log(
+                FMI2_ERROR,
+                &format!("{call}: internal error (panic caught)"),
+            );
             FMI2_ERROR
         }
     }
@@ -145,7 +153,10 @@ fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
     while i < bytes.len() {
         if bytes[i] == b'%'
             && i + 2 < bytes.len()
-            && let Ok(b) = u8::from_str_radix(std::str::from_utf8(&bytes[i + 1..i + 3]).unwrap_or("zz"), 16)
+            && let Ok(b) = u8::from_str_radix(
+                std::str::from_utf8(&bytes[i + 1..i + 3]).unwrap_or("zz"),
+                16,
+            )
         {
             out.push(b);
             i += 3;
@@ -166,8 +177,12 @@ impl Instance {
         logging: bool,
     ) -> Result<Instance, String> {
         let file = path_of_uri(resource_location)?.join(CONFIG_FILE);
-        let text = std::fs::read_to_string(&file)
-            .map_err(|e| format!("{}: cannot read the unit's configuration ({e})", file.display()))?;
+        let text = std::fs::read_to_string(&file).map_err(|e| {
+            format!(
+                "{}: cannot read the unit's configuration ({e})",
+                file.display()
+            )
+        })?;
         let config = ExportConfig::from_toml(&text)?;
         if config.guid != guid {
             return Err(format!(
@@ -211,7 +226,12 @@ impl Instance {
 
     pub fn log(&self, status: fmi2Status, message: &str) {
         if status != FMI2_OK || self.logging {
-            log_with(&self.callbacks, &self.name, status, &format!("unit `{}`: {message}", self.config.name));
+            log_with(
+                &self.callbacks,
+                &self.name,
+                status,
+                &format!("unit `{}`: {message}", self.config.name),
+            );
         }
     }
 
@@ -231,7 +251,10 @@ impl Instance {
 
     fn unit(&mut self) -> Result<&mut Box<dyn Unit>, String> {
         if self.rebuild || self.unit.is_none() {
-            let unit = self.config.build_unit().map_err(|e| format!("building the unit: {e}"))?;
+            let unit = self
+                .config
+                .build_unit()
+                .map_err(|e| format!("building the unit: {e}"))?;
             self.holds = unit.description().inputs.iter().map(|p| p.hold).collect();
             self.unit = Some(unit);
             self.rebuild = false;
@@ -281,7 +304,12 @@ impl Instance {
 
     pub fn reset(&mut self) -> Result<fmi2Status, String> {
         self.config = self.exported.clone();
-        self.parameters = self.layout.parameters.iter().map(|p| p.start.clone()).collect();
+        self.parameters = self
+            .layout
+            .parameters
+            .iter()
+            .map(|p| p.start.clone())
+            .collect();
         self.inputs = self
             .layout
             .unit
@@ -384,7 +412,12 @@ impl Instance {
     }
 
     /// Integers, or Booleans when `boolean` (FMI passes both as C ints).
-    pub fn get_integer(&mut self, vr: &[u32], out: &mut [i32], boolean: bool) -> Result<fmi2Status, String> {
+    pub fn get_integer(
+        &mut self,
+        vr: &[u32],
+        out: &mut [i32],
+        boolean: bool,
+    ) -> Result<fmi2Status, String> {
         for (r, v) in vr.iter().zip(out.iter_mut()) {
             *v = match (&self.parameters[self.parameter(*r)?], boolean) {
                 (Value::Integer(Some(x)), false) => *x,
@@ -400,7 +433,12 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn set_integer(&mut self, vr: &[u32], values: &[i32], boolean: bool) -> Result<fmi2Status, String> {
+    pub fn set_integer(
+        &mut self,
+        vr: &[u32],
+        values: &[i32],
+        boolean: bool,
+    ) -> Result<fmi2Status, String> {
         for (r, v) in vr.iter().zip(values) {
             let value = if boolean {
                 Value::Boolean(Some(*v != FMI2_FALSE))
@@ -447,10 +485,14 @@ impl Instance {
                 return Err(format!("value reference {r} is not an input"));
             }
             if *o != 1 {
-                return Err(format!("derivative order {o}: only first derivatives are used"));
+                return Err(format!(
+                    "derivative order {o}: only first derivatives are used"
+                ));
             }
             if !v.is_finite() {
-                return Err(format!("derivative of input {r} = {v}: expected a finite value"));
+                return Err(format!(
+                    "derivative of input {r} = {v}: expected a finite value"
+                ));
             }
             self.derivatives[i] = *v;
             self.ramped[i] = true;
@@ -462,7 +504,8 @@ impl Instance {
         if self.phase != Phase::Stepping {
             return Err("only allowed after fmi2ExitInitializationMode".into());
         }
-        let t_at = Time::from_secs(t).ok_or_else(|| format!("currentCommunicationPoint {t}: not a finite time"))?;
+        let t_at = Time::from_secs(t)
+            .ok_or_else(|| format!("currentCommunicationPoint {t}: not a finite time"))?;
         let step = Time::from_secs(h)
             .filter(|s| *s > Time::ZERO)
             .ok_or_else(|| format!("communicationStepSize {h}: expected at least 1 ns"))?;
@@ -474,7 +517,11 @@ impl Instance {
         }
         let unit = self.unit.as_mut().ok_or("no unit")?;
         for i in 0..self.end.len() {
-            let hold = if self.ramped[i] { Hold::Ramp } else { Hold::ZeroOrder };
+            let hold = if self.ramped[i] {
+                Hold::Ramp
+            } else {
+                Hold::ZeroOrder
+            };
             if self.holds[i] != hold && unit.set_hold(i, hold).is_ok() {
                 self.holds[i] = hold;
             }
@@ -488,7 +535,10 @@ impl Instance {
         unit.set_inputs(&self.end).map_err(|e| e.to_string())?;
         let result = unit.do_step(self.time, step);
         if let Err(e) = result {
-            return Err(format!("step from t = {} s by {h} s: {e}", self.time.as_secs()));
+            return Err(format!(
+                "step from t = {} s by {h} s: {e}",
+                self.time.as_secs()
+            ));
         }
         unit.outputs(&mut self.outputs);
         self.time += step;
@@ -499,7 +549,10 @@ impl Instance {
         if self.phase == Phase::Initialization {
             self.settle()?;
         }
-        let unit = self.unit.as_ref().ok_or("no state before fmi2EnterInitializationMode")?;
+        let unit = self
+            .unit
+            .as_ref()
+            .ok_or("no state before fmi2EnterInitializationMode")?;
         if handle.is_null() {
             let saved = SavedInstance {
                 slot: StateSlot::new(),
@@ -512,7 +565,8 @@ impl Instance {
         }
         // SAFETY: non-null handles are ours (Box<SavedInstance>).
         let saved = unsafe { &mut *handle.cast::<SavedInstance>() };
-        unit.save_state(&mut saved.slot).map_err(|e| e.to_string())?;
+        unit.save_state(&mut saved.slot)
+            .map_err(|e| e.to_string())?;
         saved.phase = self.phase;
         saved.time = self.time;
         saved.inputs.clone_from(&self.inputs);
@@ -555,11 +609,18 @@ impl Instance {
         postcard::to_stdvec(&state).map_err(|e| format!("serialising the state: {e}"))
     }
 
-    pub fn deserialize(&self, bytes: &[u8], handle: &mut fmi2FMUstate) -> Result<fmi2Status, String> {
+    pub fn deserialize(
+        &self,
+        bytes: &[u8],
+        handle: &mut fmi2FMUstate,
+    ) -> Result<fmi2Status, String> {
         let state: SerializedInstance = postcard::from_bytes(bytes)
             .map_err(|e| format!("the bytes are not a serialised slender FMU state ({e})"))?;
         if state.magic != MAGIC {
-            return Err(format!("state format `{}`: expected `{MAGIC}`", state.magic));
+            return Err(format!(
+                "state format `{}`: expected `{MAGIC}`",
+                state.magic
+            ));
         }
         if state.fingerprint != self.config.fingerprint() {
             return Err("the state belongs to another unit or other parameters".into());

@@ -60,7 +60,9 @@ pub unsafe extern "C" fn fmi2Instantiate(
     let name = text(instance_name);
     let result = std::panic::catch_unwind(|| {
         if fmu_type != FMI2_CO_SIMULATION {
-            return Err("this FMU offers co-simulation only (fmuType must be fmi2CoSimulation)".to_owned());
+            return Err(
+                "this FMU offers co-simulation only (fmuType must be fmi2CoSimulation)".to_owned(),
+            );
         }
         Instance::new(
             name.clone(),
@@ -73,11 +75,21 @@ pub unsafe extern "C" fn fmi2Instantiate(
     match result {
         Ok(Ok(instance)) => Box::into_raw(Box::new(instance)).cast(),
         Ok(Err(message)) => {
-            instance::log_with(&callbacks, &name, FMI2_ERROR, &format!("fmi2Instantiate: {message}"));
+            instance::log_with(
+                &callbacks,
+                &name,
+                FMI2_ERROR,
+                &format!("fmi2Instantiate: {message}"),
+            );
             std::ptr::null_mut()
         }
         Err(_) => {
-            instance::log_with(&callbacks, &name, FMI2_ERROR, "fmi2Instantiate: internal error (panic caught)");
+            instance::log_with(
+                &callbacks,
+                &name,
+                FMI2_ERROR,
+                "fmi2Instantiate: internal error (panic caught)",
+            );
             std::ptr::null_mut()
         }
     }
@@ -124,13 +136,21 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 /// `fmi2EnterInitializationMode`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
-    guarded(c, "fmi2EnterInitializationMode", Instance::enter_initialization)
+    guarded(
+        c,
+        "fmi2EnterInitializationMode",
+        Instance::enter_initialization,
+    )
 }
 
 /// `fmi2ExitInitializationMode`: the unit finds its initial state.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
-    guarded(c, "fmi2ExitInitializationMode", Instance::exit_initialization)
+    guarded(
+        c,
+        "fmi2ExitInitializationMode",
+        Instance::exit_initialization,
+    )
 }
 
 /// `fmi2Terminate`.
@@ -327,7 +347,10 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, state: fmi2FMUstate) 
 
 /// `fmi2FreeFMUstate`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
+pub unsafe extern "C" fn fmi2FreeFMUstate(
+    c: fmi2Component,
+    state: *mut fmi2FMUstate,
+) -> fmi2Status {
     guarded(c, "fmi2FreeFMUstate", |_| {
         if !state.is_null() {
             // SAFETY: FMI passes a pointer to a handle from fmi2GetFMUstate.
@@ -464,7 +487,11 @@ pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
 
 /// `fmi2GetStatus`: `fmi2DoStepStatus` is always fmi2OK (steps are synchronous).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, kind: fmi2StatusKind, value: *mut fmi2Status) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetStatus(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2Status,
+) -> fmi2Status {
     guarded(c, "fmi2GetStatus", |_| {
         if kind != 0 || value.is_null() {
             return Ok(FMI2_DISCARD);
@@ -477,7 +504,11 @@ pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, kind: fmi2StatusKind, v
 
 /// `fmi2GetRealStatus`: `fmi2LastSuccessfulTime` (s).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, kind: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetRealStatus(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2Real,
+) -> fmi2Status {
     guarded(c, "fmi2GetRealStatus", |i| {
         if kind != 2 || value.is_null() {
             return Ok(FMI2_DISCARD);
@@ -490,13 +521,21 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, kind: fmi2StatusKin
 
 /// `fmi2GetIntegerStatus`: no integer status exists.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, _kind: fmi2StatusKind, _value: *mut fmi2Integer) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetIntegerStatus(
+    c: fmi2Component,
+    _kind: fmi2StatusKind,
+    _value: *mut fmi2Integer,
+) -> fmi2Status {
     guarded(c, "fmi2GetIntegerStatus", |_| Ok(FMI2_DISCARD))
 }
 
 /// `fmi2GetBooleanStatus`: `fmi2Terminated` is always false.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, kind: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetBooleanStatus(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2Boolean,
+) -> fmi2Status {
     guarded(c, "fmi2GetBooleanStatus", |_| {
         if kind != 3 || value.is_null() {
             return Ok(FMI2_DISCARD);
@@ -509,6 +548,10 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, kind: fmi2Status
 
 /// `fmi2GetStringStatus`: no string status exists.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, _kind: fmi2StatusKind, _value: *mut fmi2String) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetStringStatus(
+    c: fmi2Component,
+    _kind: fmi2StatusKind,
+    _value: *mut fmi2String,
+) -> fmi2Status {
     guarded(c, "fmi2GetStringStatus", |_| Ok(FMI2_DISCARD))
 }

@@ -499,6 +499,12 @@ impl Master {
         &self.units[unit].outputs
     }
 
+    /// Input values of unit `unit` as last given to it (after `initialize`: the
+    /// settled initial inputs).
+    pub fn inputs(&self, unit: usize) -> &[f64] {
+        &self.units[unit].inputs
+    }
+
     /// Output value of "unit.port".
     pub fn output(&self, path: &str) -> Result<f64, MasterError> {
         let (unit, port) = self.find(path, Causality::Output)?;

@@ -40,12 +40,21 @@ fn the_model_description_lists_ports_units_parameters_and_true_dependencies() {
     assert!(cs.can_get_and_set_fmu_state && cs.can_serialize_fmu_state);
     assert!(cs.can_handle_variable_communication_step_size && cs.can_interpolate_inputs);
     let var = |name: &str| md.variables.iter().find(|v| v.name == name).unwrap();
-    assert_eq!(var("coupling_displacement").causality, VariableCausality::Input);
+    assert_eq!(
+        var("coupling_displacement").causality,
+        VariableCausality::Input
+    );
     assert_eq!(var("coupling_force").unit.as_deref(), Some("N"));
     assert_eq!(var("mass").value, Value::Real(Some(1.0)));
-    assert_eq!(var("initial_displacement").causality, VariableCausality::Parameter);
+    assert_eq!(
+        var("initial_displacement").causality,
+        VariableCausality::Parameter
+    );
     for unit_name in ["m", "m/s", "N"] {
-        assert!(md.unit(unit_name).is_some(), "UnitDefinitions lack {unit_name}");
+        assert!(
+            md.unit(unit_name).is_some(),
+            "UnitDefinitions lack {unit_name}"
+        );
     }
     // Displacement and velocity have no direct feedthrough; the coupling force
     // depends on both inputs (variables 1 and 2).
@@ -216,15 +225,30 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
     expect_error(&at("no_description.fmu"), &["modelDescription.xml"]);
 
     let broken = xml.replacen("<ModelVariables>", "<ModelVariables><oops", 1);
-    write_zip(&at("bad_xml.fmu"), &[("modelDescription.xml", broken.as_bytes())]);
-    expect_error(&at("bad_xml.fmu"), &["bad_xml.fmu", "modelDescription.xml:11", "<oops>"]);
+    write_zip(
+        &at("bad_xml.fmu"),
+        &[("modelDescription.xml", broken.as_bytes())],
+    );
+    expect_error(
+        &at("bad_xml.fmu"),
+        &["bad_xml.fmu", "modelDescription.xml:11", "<oops>"],
+    );
 
     let no_guid = xml.replacen(" guid=", " nope=", 1);
-    write_zip(&at("no_guid.fmu"), &[("modelDescription.xml", no_guid.as_bytes())]);
-    expect_error(&at("no_guid.fmu"), &["modelDescription.xml:2", "fmiModelDescription", "guid"]);
+    write_zip(
+        &at("no_guid.fmu"),
+        &[("modelDescription.xml", no_guid.as_bytes())],
+    );
+    expect_error(
+        &at("no_guid.fmu"),
+        &["modelDescription.xml:2", "fmiModelDescription", "guid"],
+    );
 
     let me_only = xml.replacen("<CoSimulation", "<ModelExchange", 1);
-    write_zip(&at("me.fmu"), &[("modelDescription.xml", me_only.as_bytes())]);
+    write_zip(
+        &at("me.fmu"),
+        &[("modelDescription.xml", me_only.as_bytes())],
+    );
     expect_error(&at("me.fmu"), &["does not offer co-simulation"]);
 
     write_zip(
@@ -234,20 +258,29 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
             ("binaries/win64/slender_left.dll", b"MZ"),
         ],
     );
-    expect_error(&at("windows.fmu"), &["binaries/linux64/slender_left.so", "win64"]);
+    expect_error(
+        &at("windows.fmu"),
+        &["binaries/linux64/slender_left.so", "win64"],
+    );
 
     let libm = std::fs::read("/lib/x86_64-linux-gnu/libm.so.6").unwrap();
     write_zip(
         &at("no_symbols.fmu"),
         &[("modelDescription.xml", xml.as_bytes()), (so, &libm)],
     );
-    expect_error(&at("no_symbols.fmu"), &["does not export `fmi2Instantiate`"]);
+    expect_error(
+        &at("no_symbols.fmu"),
+        &["does not export `fmi2Instantiate`"],
+    );
 
     write_zip(
         &at("no_resources.fmu"),
         &[("modelDescription.xml", xml.as_bytes()), (so, &library)],
     );
-    expect_error(&at("no_resources.fmu"), &["fmi2Instantiate failed", "slender-unit.toml"]);
+    expect_error(
+        &at("no_resources.fmu"),
+        &["fmi2Instantiate failed", "slender-unit.toml"],
+    );
 
     let other_guid = xml.replacen("guid=\"{", "guid=\"{0", 1);
     write_zip(
@@ -264,7 +297,11 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
     let good = at("good.fmu");
     write_zip(
         &good,
-        &[("modelDescription.xml", xml.as_bytes()), (so, &library), (res, &resources)],
+        &[
+            ("modelDescription.xml", xml.as_bytes()),
+            (so, &library),
+            (res, &resources),
+        ],
     );
     let with_start = |name: &str, value: toml::Value| FmuParams {
         file: good.clone(),
@@ -276,19 +313,35 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
         .err()
         .unwrap();
     assert!(e.contains("no variable `mas`") && e.contains("mass"), "{e}");
-    let e = FmuUnit::load(&with_start("mass", toml::Value::String("heavy".into())), Path::new("."))
-        .err()
-        .unwrap();
-    assert!(e.contains("start.mass") && e.contains("expected a Real"), "{e}");
-    let e = FmuUnit::load(&with_start("displacement", toml::Value::Float(1.0)), Path::new("."))
-        .err()
-        .unwrap();
+    let e = FmuUnit::load(
+        &with_start("mass", toml::Value::String("heavy".into())),
+        Path::new("."),
+    )
+    .err()
+    .unwrap();
+    assert!(
+        e.contains("start.mass") && e.contains("expected a Real"),
+        "{e}"
+    );
+    let e = FmuUnit::load(
+        &with_start("displacement", toml::Value::Float(1.0)),
+        Path::new("."),
+    )
+    .err()
+    .unwrap();
     assert!(e.contains("not a parameter or an input"), "{e}");
     // A parameter the unit rejects: reported by the FMU at initialisation.
-    let mut unit = FmuUnit::load(&with_start("mass", toml::Value::Float(-1.0)), Path::new(".")).unwrap();
+    let mut unit = FmuUnit::load(
+        &with_start("mass", toml::Value::Float(-1.0)),
+        Path::new("."),
+    )
+    .unwrap();
     unit.set_inputs(&[0.0, 0.0]).unwrap();
     let e = unit.initialize(Time::ZERO).unwrap_err().to_string();
-    assert!(e.contains("good.fmu") && e.contains("mass") && e.contains("> 0"), "{e}");
+    assert!(
+        e.contains("good.fmu") && e.contains("mass") && e.contains("> 0"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -301,8 +354,14 @@ fn a_failing_step_names_the_fmu_the_call_and_the_reason() {
     unit.set_inputs(&[100.0, 0.0]).unwrap();
     let h = Time::from_secs(0.1).unwrap();
     let e = unit.do_step(Time::ZERO, h).unwrap_err().to_string();
-    assert!(e.contains("sphere.fmu") && e.contains("fmi2DoStep") && e.contains("fmi2Error"), "{e}");
-    assert!(e.contains("no real c"), "the FMU's logged reason is missing: {e}");
+    assert!(
+        e.contains("sphere.fmu") && e.contains("fmi2DoStep") && e.contains("fmi2Error"),
+        "{e}"
+    );
+    assert!(
+        e.contains("no real c"),
+        "the FMU's logged reason is missing: {e}"
+    );
 }
 
 #[test]
@@ -314,7 +373,10 @@ fn entry_points_reject_null_and_foreign_arguments_without_crashing() {
     unsafe {
         assert_eq!(slender_fmu::fmi2DoStep(null_mut(), 0.0, 0.1, 0), FMI2_ERROR);
         assert_eq!(slender_fmu::fmi2Terminate(null_mut()), FMI2_ERROR);
-        assert_eq!(slender_fmu::fmi2GetReal(null_mut(), null(), 1, null_mut()), FMI2_ERROR);
+        assert_eq!(
+            slender_fmu::fmi2GetReal(null_mut(), null(), 1, null_mut()),
+            FMI2_ERROR
+        );
         slender_fmu::fmi2FreeInstance(null_mut());
         let none = slender_fmu::fmi2Instantiate(
             c"x".as_ptr(),
@@ -364,7 +426,10 @@ fn parameters_become_fmi_variables_and_effects_booleans() {
     let names: Vec<&str> = layout.parameters.iter().map(|p| p.name.as_str()).collect();
     assert!(names.iter().any(|n| n.starts_with("effects.")), "{names:?}");
     let e = ExportConfig::from_scene(&scene, "nope").unwrap_err();
-    assert!(e.contains("no unit `nope`") && e.contains("emulated"), "{e}");
+    assert!(
+        e.contains("no unit `nope`") && e.contains("emulated"),
+        "{e}"
+    );
 }
 
 /// Model descriptions kept as the fuzz corpus.
@@ -395,8 +460,18 @@ fn the_corpus_parses() {
 #[test]
 fn mutated_model_descriptions_give_errors_never_panics() {
     const TOKENS: [&str; 12] = [
-        "<", ">", "/>", "\"", "&amp;", "&#0;", "=", "index=\"0\"", "dependencies=\"9 x\"",
-        "<ScalarVariable>", "</ModelVariables>", "\u{feff}",
+        "<",
+        ">",
+        "/>",
+        "\"",
+        "&amp;",
+        "&#0;",
+        "=",
+        "index=\"0\"",
+        "dependencies=\"9 x\"",
+        "<ScalarVariable>",
+        "</ModelVariables>",
+        "\u{feff}",
     ];
     let mut rng = ChaCha8Rng::seed_from_u64(6);
     let (mut parsed, mut rejected) = (0, 0);
@@ -450,5 +525,8 @@ fn mutated_model_descriptions_give_errors_never_panics() {
         }
     }
     println!("{parsed} mutations parsed, {rejected} rejected with an error");
-    assert!(rejected > parsed / 10, "the mutations barely changed anything");
+    assert!(
+        rejected > parsed / 10,
+        "the mutations barely changed anything"
+    );
 }

@@ -90,8 +90,9 @@ impl StateSlot {
     /// The saved state, or an error if the slot is empty or holds another unit's
     /// state. Borrowed when the unit saved it, decoded when it came from bytes.
     pub fn load<S: Clone + DeserializeOwned + 'static>(&self) -> Result<Cow<'_, S>, UnitError> {
-        let mismatch =
-            || UnitError::State("the state slot is empty or was saved by another kind of unit".into());
+        let mismatch = || {
+            UnitError::State("the state slot is empty or was saved by another kind of unit".into())
+        };
         match &self.0 {
             Saved::Empty => Err(mismatch()),
             Saved::Typed(saved) => saved

@@ -39,7 +39,8 @@ pub struct ExportConfig {
     pub effects: Vec<String>,
     #[serde(default)]
     pub hold: Option<Hold>,
-    /// Start values of inputs by port name (others start at 0).
+    /// Start values of inputs by port name: the values the scene's master settled
+    /// on at initialisation, so the FMU starts in the scene's initial state.
     #[serde(default)]
     pub inputs: BTreeMap<String, f64>,
     #[serde(default)]
@@ -101,12 +102,27 @@ impl ExportConfig {
                     names.join(", ")
                 )
             })?;
+        let mut master = scene.build().map_err(|e| e.to_string())?;
+        master
+            .initialize(scene.start)
+            .map_err(|e| format!("{}: initialisation: {e}", scene.path.display()))?;
+        let index = master
+            .unit_names()
+            .position(|n| n == unit)
+            .ok_or_else(|| format!("no unit `{unit}`"))?;
+        let inputs = master
+            .description(index)
+            .inputs
+            .iter()
+            .zip(master.inputs(index))
+            .map(|(p, v)| (p.name.clone(), *v))
+            .collect();
         let mut config = ExportConfig {
             name: unit.to_owned(),
             kind: spec.kind.get_ref().clone(),
             effects: spec.effects.clone(),
             hold: spec.hold,
-            inputs: spec.inputs.clone(),
+            inputs,
             parameters: spec
                 .parameters
                 .as_ref()
@@ -164,8 +180,8 @@ impl ExportConfig {
 
     /// Builds the unit with the current parameters, effects and hold.
     pub fn build_unit(&self) -> Result<Box<dyn Unit>, String> {
-        let kind = kinds::find(&self.kind)
-            .ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
+        let kind =
+            kinds::find(&self.kind).ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
         let context = kinds::BuildContext {
             effects: &self.effects,
             base_dir: Path::new("."),
@@ -240,7 +256,9 @@ impl Layout {
         let mut units = Vec::new();
         let mut unit_attribute = |name: &str| match si_definition(name) {
             Some(def) => {
-                if !units.iter().any(|u: &super::model_description::UnitDefinition| u.name == name)
+                if !units
+                    .iter()
+                    .any(|u: &super::model_description::UnitDefinition| u.name == name)
                 {
                     units.push(def);
                 }
@@ -256,7 +274,10 @@ impl Layout {
             variables.push(ScalarVariable {
                 name: p.name.clone(),
                 value_reference: i as u32,
-                description: format!("{} input ({hold} hold when input derivatives are set)", p.kind),
+                description: format!(
+                    "{} input ({hold} hold when input derivatives are set)",
+                    p.kind
+                ),
                 causality: VariableCausality::Input,
                 variability: "continuous".into(),
                 initial: None,
@@ -368,7 +389,11 @@ fn flatten(table: &toml::Table, path: &mut Vec<String>, out: &mut Vec<ParameterV
 /// Writes the FMU for `config` to `out`, with `binary` (the `slender-fmu` shared
 /// library) as `binaries/linux64/<modelIdentifier>.so`. Returns the model
 /// description written.
-pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<ModelDescription, String> {
+pub fn package(
+    config: &ExportConfig,
+    binary: &Path,
+    out: &Path,
+) -> Result<ModelDescription, String> {
     let layout = Layout::new(config)?;
     let library = std::fs::read(binary).map_err(|e| {
         format!(
@@ -382,12 +407,18 @@ pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Model
     let options = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated);
     let entries: [(String, Vec<u8>); 3] = [
-        ("modelDescription.xml".into(), layout.model.to_xml().into_bytes()),
+        (
+            "modelDescription.xml".into(),
+            layout.model.to_xml().into_bytes(),
+        ),
         (
             format!("binaries/linux64/{}.so", config.model_identifier()),
             library,
         ),
-        (format!("resources/{CONFIG_FILE}"), config.to_toml()?.into_bytes()),
+        (
+            format!("resources/{CONFIG_FILE}"),
+            config.to_toml()?.into_bytes(),
+        ),
     ];
     let failed = |e: &dyn std::fmt::Display| format!("{}: writing the FMU: {e}", out.display());
     for (name, bytes) in entries {
@@ -423,7 +454,9 @@ pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path:
         .and_then(toml::Value::as_array_mut)
         .ok_or_else(|| format!("{}: no [[units]]", scene.path.display()))?;
     for unit in units.iter_mut() {
-        let unit = unit.as_table_mut().ok_or("a [[units]] entry is not a table")?;
+        let unit = unit
+            .as_table_mut()
+            .ok_or("a [[units]] entry is not a table")?;
         let name = unit
             .get("name")
             .and_then(toml::Value::as_str)

@@ -179,7 +179,11 @@ fn symbol<T: Copy>(library: &libloading::Library, name: &str, fmu: &str) -> Resu
     // SAFETY: the types above are the FMI 2.0 signatures of these names.
     unsafe { library.get::<T>(c_name.as_bytes()) }
         .map(|s| *s)
-        .map_err(|_| format!("{fmu}: the binary does not export `{name}` (required by FMI 2.0 co-simulation)"))
+        .map_err(|_| {
+            format!(
+                "{fmu}: the binary does not export `{name}` (required by FMI 2.0 co-simulation)"
+            )
+        })
 }
 
 impl Api {
@@ -303,8 +307,10 @@ impl FmuUnit {
         archive
             .extract(folder.path())
             .map_err(|e| format!("{label}: cannot unzip ({e})"))?;
-        let xml = std::fs::read_to_string(folder.path().join("modelDescription.xml"))
-            .map_err(|e| format!("{label}: no readable modelDescription.xml at the archive root ({e})"))?;
+        let xml =
+            std::fs::read_to_string(folder.path().join("modelDescription.xml")).map_err(|e| {
+                format!("{label}: no readable modelDescription.xml at the archive root ({e})")
+            })?;
         let model = ModelDescription::parse(&xml).map_err(|e| format!("{label}: {e}"))?;
         let cs = model.co_simulation.clone().ok_or_else(|| {
             format!("{label}: the FMU does not offer co-simulation (no <CoSimulation> element); only FMI 2.0 co-simulation FMUs can be units")
@@ -376,14 +382,15 @@ impl FmuUnit {
                 uri.as_ptr(),
                 &*callbacks,
                 FMI2_FALSE,
-                if params.logging { FMI2_TRUE } else { FMI2_FALSE },
+                if params.logging {
+                    FMI2_TRUE
+                } else {
+                    FMI2_FALSE
+                },
             )
         };
         if component.is_null() {
-            return Err(format!(
-                "{label}: fmi2Instantiate failed{}",
-                log_tail(&log)
-            ));
+            return Err(format!("{label}: fmi2Instantiate failed{}", log_tail(&log)));
         }
         let ramp = vec![cs.can_interpolate_inputs; n_in];
         let mut unit = FmuUnit {
@@ -410,7 +417,11 @@ impl FmuUnit {
             _folder: folder,
         };
         for (i, p) in unit.description.inputs.iter_mut().enumerate() {
-            p.hold = if unit.ramp[i] { Hold::Ramp } else { Hold::ZeroOrder };
+            p.hold = if unit.ramp[i] {
+                Hold::Ramp
+            } else {
+                Hold::ZeroOrder
+            };
         }
         Ok(unit)
     }
@@ -425,7 +436,11 @@ impl FmuUnit {
     }
 
     /// Like `check`, naming the call only when it failed (no formatting per step).
-    fn check_with(&self, status: fmi2Status, call: impl FnOnce() -> String) -> Result<(), UnitError> {
+    fn check_with(
+        &self,
+        status: fmi2Status,
+        call: impl FnOnce() -> String,
+    ) -> Result<(), UnitError> {
         match status {
             FMI2_OK | FMI2_WARNING => Ok(()),
             _ => Err(UnitError::Numerical(format!(
@@ -463,7 +478,9 @@ impl FmuUnit {
             &self.end
         };
         // SAFETY: arrays of n value references and values.
-        let status = unsafe { (self.api.set_real)(self.component, self.input_refs.as_ptr(), n, values.as_ptr()) };
+        let status = unsafe {
+            (self.api.set_real)(self.component, self.input_refs.as_ptr(), n, values.as_ptr())
+        };
         self.check("fmi2SetReal (inputs)", status)?;
         if h > 0.0 && any_ramp {
             // SAFETY: arrays of n references, orders and values.
@@ -488,7 +505,12 @@ impl FmuUnit {
         }
         // SAFETY: arrays of n references and n values.
         let status = unsafe {
-            (self.api.get_real)(self.component, self.output_refs.as_ptr(), n, self.outputs.as_mut_ptr())
+            (self.api.get_real)(
+                self.component,
+                self.output_refs.as_ptr(),
+                n,
+                self.outputs.as_mut_ptr(),
+            )
         };
         self.check("fmi2GetReal (outputs)", status)
     }
@@ -498,15 +520,26 @@ impl FmuUnit {
             // SAFETY: single-element arrays matching each setter's type.
             let (call, status) = unsafe {
                 match s {
-                    StartValue::Real(vr, v) => ("fmi2SetReal", (self.api.set_real)(self.component, vr, 1, v)),
-                    StartValue::Integer(vr, v) => ("fmi2SetInteger", (self.api.set_integer)(self.component, vr, 1, v)),
+                    StartValue::Real(vr, v) => {
+                        ("fmi2SetReal", (self.api.set_real)(self.component, vr, 1, v))
+                    }
+                    StartValue::Integer(vr, v) => (
+                        "fmi2SetInteger",
+                        (self.api.set_integer)(self.component, vr, 1, v),
+                    ),
                     StartValue::Boolean(vr, v) => {
                         let b = if *v { FMI2_TRUE } else { FMI2_FALSE };
-                        ("fmi2SetBoolean", (self.api.set_boolean)(self.component, vr, 1, &b))
+                        (
+                            "fmi2SetBoolean",
+                            (self.api.set_boolean)(self.component, vr, 1, &b),
+                        )
                     }
                     StartValue::String(vr, v) => {
                         let p = v.as_ptr();
-                        ("fmi2SetString", (self.api.set_string)(self.component, vr, 1, &p))
+                        (
+                            "fmi2SetString",
+                            (self.api.set_string)(self.component, vr, 1, &p),
+                        )
                     }
                 }
             };
@@ -529,7 +562,11 @@ impl Unit for FmuUnit {
             .is_some_and(|cs| cs.can_interpolate_inputs);
         if port < self.ramp.len() {
             self.ramp[port] = can_ramp && hold == Hold::Ramp;
-            self.description.inputs[port].hold = if self.ramp[port] { Hold::Ramp } else { Hold::ZeroOrder };
+            self.description.inputs[port].hold = if self.ramp[port] {
+                Hold::Ramp
+            } else {
+                Hold::ZeroOrder
+            };
         }
         Ok(())
     }
@@ -550,7 +587,14 @@ impl Unit for FmuUnit {
         if self.phase == Phase::Instantiated {
             // SAFETY: FMI 2.0 call on a live instance.
             let status = unsafe {
-                (self.api.setup_experiment)(self.component, FMI2_FALSE, 0.0, t0.as_secs(), FMI2_FALSE, 0.0)
+                (self.api.setup_experiment)(
+                    self.component,
+                    FMI2_FALSE,
+                    0.0,
+                    t0.as_secs(),
+                    FMI2_FALSE,
+                    0.0,
+                )
             };
             self.check("fmi2SetupExperiment", status)?;
             self.apply_start_values()?;
@@ -582,10 +626,16 @@ impl Unit for FmuUnit {
         }
         let h_secs = h.as_secs();
         self.send_inputs(h_secs)?;
-        let no_prior = if self.description.capabilities.rollback { FMI2_FALSE } else { FMI2_TRUE };
+        let no_prior = if self.description.capabilities.rollback {
+            FMI2_FALSE
+        } else {
+            FMI2_TRUE
+        };
         // SAFETY: FMI 2.0 call on a live instance.
         let status = unsafe { (self.api.do_step)(self.component, t.as_secs(), h_secs, no_prior) };
-        self.check_with(status, || format!("fmi2DoStep(t = {} s, h = {h_secs} s)", t.as_secs()))?;
+        self.check_with(status, || {
+            format!("fmi2DoStep(t = {} s, h = {h_secs} s)", t.as_secs())
+        })?;
         self.start.copy_from_slice(&self.end);
         self.read_outputs()?;
         Ok(StepReport::default())
@@ -685,7 +735,11 @@ fn describe(model: &ModelDescription, label: &str) -> Result<UnitDescription, St
     let port_of = |i: usize, input: bool| {
         let v = &model.variables[i];
         let (kind, unit) = kind_of(model, v.unit.as_deref());
-        let port = if input { Port::input(&v.name, kind) } else { Port::output(&v.name, kind) };
+        let port = if input {
+            Port::input(&v.name, kind)
+        } else {
+            Port::output(&v.name, kind)
+        };
         port.with_unit(&unit)
     };
     let mut outputs = Vec::new();
@@ -765,12 +819,16 @@ fn start_values(
 ) -> Result<Vec<StartValue>, String> {
     let mut out = Vec::new();
     for (name, value) in starts {
-        let v = model.variables.iter().find(|v| &v.name == name).ok_or_else(|| {
-            format!(
-                "{label}: start.{name}: the FMU has no variable `{name}`{}",
-                did_you_mean(name, model.variables.iter().map(|v| v.name.as_str()))
-            )
-        })?;
+        let v = model
+            .variables
+            .iter()
+            .find(|v| &v.name == name)
+            .ok_or_else(|| {
+                format!(
+                    "{label}: start.{name}: the FMU has no variable `{name}`{}",
+                    did_you_mean(name, model.variables.iter().map(|v| v.name.as_str()))
+                )
+            })?;
         if !matches!(
             v.causality,
             VariableCausality::Parameter | VariableCausality::Input

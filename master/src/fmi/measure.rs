@@ -83,9 +83,18 @@ mod tests {
 
     #[test]
     fn compound_units_reduce_to_base_exponents() {
-        assert_eq!(si_definition("N.m").unwrap().exponents, [1, 2, -2, 0, 0, 0, 0, 0]);
-        assert_eq!(si_definition("m/s^2").unwrap().exponents, [0, 1, -2, 0, 0, 0, 0, 0]);
-        assert_eq!(si_definition("1/s").unwrap().exponents, [0, 0, -1, 0, 0, 0, 0, 0]);
+        assert_eq!(
+            si_definition("N.m").unwrap().exponents,
+            [1, 2, -2, 0, 0, 0, 0, 0]
+        );
+        assert_eq!(
+            si_definition("m/s^2").unwrap().exponents,
+            [0, 1, -2, 0, 0, 0, 0, 0]
+        );
+        assert_eq!(
+            si_definition("1/s").unwrap().exponents,
+            [0, 0, -1, 0, 0, 0, 0, 0]
+        );
         assert!(si_definition("furlong").is_none());
         assert!(si_definition("").is_none());
         assert!(same_unit("N*m", "N.m"));

@@ -392,10 +392,12 @@ impl<'a> Parser<'a> {
                 message: format!("<{element}>: malformed attribute ({err})"),
             })?;
             let key = String::from_utf8_lossy(a.key.as_ref()).into_owned();
-            let value = a.normalized_value(quick_xml::XmlVersion::Implicit1_0).map_err(|err| DescriptionError {
-                line,
-                message: format!("<{element}>: attribute `{key}` does not unescape ({err})"),
-            })?;
+            let value = a
+                .normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                .map_err(|err| DescriptionError {
+                    line,
+                    message: format!("<{element}>: attribute `{key}` does not unescape ({err})"),
+                })?;
             values.insert(key, value.into_owned());
         }
         Ok(Attributes {
@@ -498,7 +500,9 @@ impl<'a> Parser<'a> {
                 ("ScalarVariable", "Real" | "Integer" | "Boolean" | "String" | "Enumeration") => {
                     if let Some((sv_attrs, typed)) = current_variable.as_mut() {
                         if typed.is_some() {
-                            return Err(attrs.error("a ScalarVariable has two type elements".into()));
+                            return Err(
+                                attrs.error("a ScalarVariable has two type elements".into())
+                            );
                         }
                         *typed = Some(Self::variable(sv_attrs, &attrs)?);
                     }
@@ -507,7 +511,9 @@ impl<'a> Parser<'a> {
                     let unknown = Unknown {
                         index: attrs
                             .parsed("index", "a 1-based variable index")?
-                            .ok_or_else(|| attrs.error("missing required attribute `index`".into()))?,
+                            .ok_or_else(|| {
+                                attrs.error("missing required attribute `index`".into())
+                            })?,
                         dependencies: match attrs.optional("dependencies") {
                             None => None,
                             Some(list) => Some(
@@ -595,7 +601,10 @@ impl<'a> Parser<'a> {
                 .ok_or_else(|| sv.error("missing required attribute `valueReference`".into()))?,
             description: sv.optional("description").unwrap_or("").to_owned(),
             causality,
-            variability: sv.optional("variability").unwrap_or("continuous").to_owned(),
+            variability: sv
+                .optional("variability")
+                .unwrap_or("continuous")
+                .to_owned(),
             initial: sv.optional("initial").map(str::to_owned),
             unit: t.optional("unit").map(str::to_owned),
             value,
@@ -764,7 +773,9 @@ mod tests {
 
     #[test]
     fn errors_name_the_element_attribute_and_line() {
-        let xml = sample().to_xml().replace(r#"valueReference="1""#, r#"valueReference="x""#);
+        let xml = sample()
+            .to_xml()
+            .replace(r#"valueReference="1""#, r#"valueReference="x""#);
         let e = ModelDescription::parse(&xml).unwrap_err();
         assert!(e.message.contains("<ScalarVariable>") && e.message.contains("valueReference"));
         assert!(e.line > 5, "{e}");
@@ -774,7 +785,9 @@ mod tests {
         let xml = sample().to_xml().replace(r#" start="1e-1""#, "");
         let e = ModelDescription::parse(&xml).unwrap_err().to_string();
         assert!(e.contains("no start value"), "{e}");
-        let e = ModelDescription::parse("<a><b></a>").unwrap_err().to_string();
+        let e = ModelDescription::parse("<a><b></a>")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("not well-formed") || e.contains("root"), "{e}");
     }
 }

@@ -2,7 +2,6 @@
 
 use crate::fmi::import::{FmuParams, FmuUnit};
 use serde::de::DeserializeOwned;
-use std::path::Path;
 use slender_units::Unit;
 use slender_units::algebraic_loop::{LinearPair, SphereClosure};
 use slender_units::beam::Beam;
@@ -12,6 +11,7 @@ use slender_units::oscillator::Oscillator;
 use slender_units::signal::artefact::Artefact;
 use slender_units::signal::characteristic_load::CharacteristicLoad;
 use slender_units::span::unit::SpanUnit;
+use std::path::Path;
 
 /// What a builder needs besides the parameter table.
 pub struct BuildContext<'a> {
@@ -145,7 +145,11 @@ impl Kind {
         params: toml::Table,
         context: &BuildContext,
     ) -> Result<Box<dyn Unit>, String> {
-        if let Some(bad) = context.effects.iter().find(|e| !self.effects.contains(&e.as_str())) {
+        if let Some(bad) = context
+            .effects
+            .iter()
+            .find(|e| !self.effects.contains(&e.as_str()))
+        {
             return Err(if self.effects.is_empty() {
                 format!(
                     "effect `{bad}`: kind `{}` has no switchable effects",
