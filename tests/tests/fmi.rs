@@ -293,6 +293,38 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
     );
     expect_error(&at("guid.fmu"), &["fmi2Instantiate failed", "GUID"]);
 
+    // A unit of measure slender's kinds do not use (kN) is kept and checked
+    // against the connection.
+    assert!(xml.contains(r#"<Real unit="m"/>"#));
+    let kilonewton = xml.replacen(r#"<Real unit="m"/>"#, r#"<Real unit="kN"/>"#, 1);
+    write_zip(
+        &at("kn.fmu"),
+        &[
+            ("modelDescription.xml", kilonewton.as_bytes()),
+            (so, &library),
+            (res, &resources),
+        ],
+    );
+    let unit = import(&at("kn.fmu")).unwrap();
+    let port = &unit.description().outputs[0];
+    assert_eq!((port.kind, port.unit.as_str()), (slender_units::PortKind::Generic, "kN"));
+    let mut system = slender_master::System::new();
+    system.add_unit("fmu", Box::new(unit)).unwrap();
+    let native = ExportConfig::from_scene(&load("examples/b1_two_masses.toml"), "right")
+        .unwrap()
+        .build_unit()
+        .unwrap();
+    system.add_unit("right", native).unwrap();
+    let link = slender_master::Link {
+        gain: 1.0,
+        offset: 0.0,
+        tolerance: None,
+    };
+    let e = system
+        .connect("fmu.displacement", "right.coupling_displacement", link)
+        .unwrap_err();
+    assert!(e.contains("units of measure differ (kN vs m)"), "{e}");
+
     // Start values: an unknown name, a wrong type.
     let good = at("good.fmu");
     write_zip(
