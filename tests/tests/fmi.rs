@@ -307,7 +307,10 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
     );
     let unit = import(&at("kn.fmu")).unwrap();
     let port = &unit.description().outputs[0];
-    assert_eq!((port.kind, port.unit.as_str()), (slender_units::PortKind::Generic, "kN"));
+    assert_eq!(
+        (port.kind, port.unit.as_str()),
+        (slender_units::PortKind::Generic, "kN")
+    );
     let mut system = slender_master::System::new();
     system.add_unit("fmu", Box::new(unit)).unwrap();
     let native = ExportConfig::from_scene(&load("examples/b1_two_masses.toml"), "right")
