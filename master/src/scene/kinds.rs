@@ -10,6 +10,7 @@ use slender_units::cable::{Cable, Effects};
 use slender_units::oscillator::Oscillator;
 use slender_units::signal::artefact::Artefact;
 use slender_units::signal::characteristic_load::CharacteristicLoad;
+use slender_units::span::coupling::SpanCoupling;
 use slender_units::span::unit::SpanUnit;
 use std::path::Path;
 
@@ -63,6 +64,16 @@ pub const KINDS: &[Kind] = &[
         build: |p, _| {
             Ok(Box::new(
                 SpanUnit::new(parameters(p)?).map_err(|e| e.to_string())?,
+            ))
+        },
+    },
+    Kind {
+        name: "span_coupling",
+        summary: "seed 004 ch. 5: suspended span between two sections, the full 4x4 transfer matrix (end motions and loads) as a common-pole rational fit",
+        effects: &[],
+        build: |p, _| {
+            Ok(Box::new(
+                SpanCoupling::new(parameters(p)?).map_err(|e| e.to_string())?,
             ))
         },
     },

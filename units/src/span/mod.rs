@@ -2,11 +2,12 @@
 //! frequency response of the damped Euler-Bernoulli span between its end values,
 //! and rational approximations of it.
 //!
-//! Status: the analytic transfer matrix and the source's three order-N
-//! approximations (Taylor, term-wise Pade, function Pade) are here and verified; the
-//! band fit, the state-space span unit, Bode plots and the accuracy/cost study are
-//! the rest of issue 5.
+//! - [`transfer`]: the exact 4x4 transfer matrix between any four end quantities;
+//! - [`rational`]: the source's Taylor, term-wise and function Pade approximations;
+//! - [`fit`], [`realization`], [`unit`]: the SISO span unit (kind `span`, U2 -> U5);
+//! - [`coupling`]: the 4x4 span between two sections (kind `span_coupling`).
 
+pub mod coupling;
 pub mod fit;
 pub mod rational;
 pub mod realization;
