@@ -20,6 +20,7 @@
 //! (closed-form ramp response from a 4x4 matrix exponential per pole pair); the
 //! cost per step is linear in the order.
 
+use super::fit::{check_order_and_band, sigma_zeros};
 use super::transfer::{C64, Span};
 use crate::hold::HeldInputs;
 use crate::port::{Hold, Port, PortKind};
@@ -122,20 +123,7 @@ pub fn fit_matrix(
     band: f64,
 ) -> Result<MatrixFit, UnitError> {
     span.validate()?;
-    if order < 2 || order % 2 != 0 || order > 40 {
-        return Err(UnitError::parameter(
-            "order",
-            order,
-            "expected an even order from 2 to 40",
-        ));
-    }
-    if !(band.is_finite() && band > 0.0) {
-        return Err(UnitError::parameter(
-            "band",
-            band,
-            "expected a finite angular frequency > 0 (rad/s)",
-        ));
-    }
+    check_order_and_band(order, band)?;
     span.check_admissible(inputs)?;
     let samples = (8 * order).max(200);
     let omegas: Vec<f64> = (0..samples)
@@ -215,43 +203,7 @@ fn relocate(
         .svd(true, true)
         .solve(&rhs, 1e-14)
         .map_err(|e| UnitError::Numerical(format!("vector fitting: {e}")))?;
-    // Zeros of sigma(s) = 1 + sum x_m basis_m(s): eigenvalues of A - b c^T in
-    // real block form.
-    let mut am = DMatrix::zeros(n, n);
-    let mut bv = DVector::zeros(n);
-    let mut ct = DVector::zeros(n);
-    for (j, p) in poles.iter().enumerate() {
-        let r = 2 * j;
-        am[(r, r)] = p.re;
-        am[(r, r + 1)] = -p.im;
-        am[(r + 1, r)] = p.im;
-        am[(r + 1, r + 1)] = p.re;
-        bv[r] = 1.0;
-        ct[r] = 2.0 * x[r];
-        ct[r + 1] = -2.0 * x[r + 1];
-    }
-    let zeros = (am - bv * ct.transpose()).complex_eigenvalues();
-    let mut next: Vec<C64> = zeros
-        .iter()
-        .filter(|z| z.im > 0.0)
-        .map(|z| C64::new(-z.re.abs().max(1e-6 * z.norm()), z.im))
-        .collect();
-    let reals: Vec<C64> = zeros.iter().filter(|z| z.im == 0.0).copied().collect();
-    for pair in reals.chunks(2) {
-        if next.len() < poles.len() {
-            let m = pair
-                .iter()
-                .map(|z| z.re.abs())
-                .fold(0.0, f64::max)
-                .max(1e-6);
-            next.push(C64::new(-m / 100.0, m));
-        }
-    }
-    next.truncate(poles.len());
-    while next.len() < poles.len() {
-        next.push(poles[next.len()]);
-    }
-    Ok(next)
+    Ok(sigma_zeros(poles, &x.as_slice()[..n]))
 }
 
 /// Residues, D and E of every entry with the poles fixed; D corrected so that the

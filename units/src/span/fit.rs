@@ -10,20 +10,7 @@ use nalgebra::{DMatrix, DVector};
 /// Poles of a vector fit of order `order` (even) to H_{U2 -> U5} over
 /// [band / 1e4, band] rad/s.
 pub fn fit_poles(span: &Span, order: usize, band: f64) -> Result<Vec<C64>, UnitError> {
-    if order < 2 || order % 2 != 0 || order > 40 {
-        return Err(UnitError::parameter(
-            "order",
-            order,
-            "expected an even order from 2 to 40",
-        ));
-    }
-    if !(band.is_finite() && band > 0.0) {
-        return Err(UnitError::parameter(
-            "band",
-            band,
-            "expected a finite angular frequency > 0 (rad/s)",
-        ));
-    }
+    check_order_and_band(order, band)?;
     let samples = (6 * order).max(200);
     let omegas: Vec<f64> = (0..samples)
         .map(|k| band * 10f64.powf(-4.0 + 4.0 * k as f64 / (samples - 1) as f64))
@@ -86,20 +73,46 @@ fn relocate(poles: &[C64], omegas: &[f64], h: &[C64]) -> Result<Vec<C64>, UnitEr
         .svd(true, true)
         .solve(&b, 1e-14)
         .map_err(|e| UnitError::Numerical(format!("vector fitting: {e}")))?;
-    // Zeros of sigma: eig(A - b ct^T) in real block form.
+    Ok(sigma_zeros(poles, &x.as_slice()[n + 1..2 * n + 1]))
+}
+
+/// Checks a fit's order (even, 2..=40) and band (rad/s, > 0).
+pub(super) fn check_order_and_band(order: usize, band: f64) -> Result<(), UnitError> {
+    if order < 2 || order % 2 != 0 || order > 40 {
+        return Err(UnitError::parameter(
+            "order",
+            order,
+            "expected an even order from 2 to 40",
+        ));
+    }
+    if !(band.is_finite() && band > 0.0) {
+        return Err(UnitError::parameter(
+            "band",
+            band,
+            "expected a finite angular frequency > 0 (rad/s)",
+        ));
+    }
+    Ok(())
+}
+
+/// The zeros of sigma(s) = 1 + sum_m c_m basis_m(s) (basis of conjugate pairs, as
+/// in the fits), as the next poles: one per pair, reflected into the left
+/// half-plane; real zeros become lightly damped pairs and the count is kept.
+pub(super) fn sigma_zeros(poles: &[C64], c: &[f64]) -> Vec<C64> {
+    let n = 2 * poles.len();
     let mut am = DMatrix::zeros(n, n);
     let mut bv = DVector::zeros(n);
     let mut ct = DVector::zeros(n);
     for (j, p) in poles.iter().enumerate() {
         let r = 2 * j;
-        // z' = p z + u, sigma = 1 + 2 Re(c z) with c = x_re + i x_im, z = x1 + i x2.
+        // z' = p z + u, sigma = 1 + 2 Re(c z) with c = c_re + i c_im, z = x1 + i x2.
         am[(r, r)] = p.re;
         am[(r, r + 1)] = -p.im;
         am[(r + 1, r)] = p.im;
         am[(r + 1, r + 1)] = p.re;
         bv[r] = 1.0;
-        ct[r] = 2.0 * x[n + 1 + r];
-        ct[r + 1] = -2.0 * x[n + 1 + r + 1];
+        ct[r] = 2.0 * c[r];
+        ct[r + 1] = -2.0 * c[r + 1];
     }
     let zeros = (am - bv * ct.transpose()).complex_eigenvalues();
     let mut next: Vec<C64> = zeros
@@ -107,7 +120,6 @@ fn relocate(poles: &[C64], omegas: &[f64], h: &[C64]) -> Result<Vec<C64>, UnitEr
         .filter(|z| z.im > 0.0)
         .map(|z| C64::new(-z.re.abs().max(1e-6 * z.norm()), z.im))
         .collect();
-    // Keep the order: real zeros (rare) become lightly damped pairs.
     let reals: Vec<C64> = zeros.iter().filter(|z| z.im == 0.0).copied().collect();
     for pair in reals.chunks(2) {
         if next.len() < poles.len() {
@@ -123,7 +135,7 @@ fn relocate(poles: &[C64], omegas: &[f64], h: &[C64]) -> Result<Vec<C64>, UnitEr
     while next.len() < poles.len() {
         next.push(poles[next.len()]);
     }
-    Ok(next)
+    next
 }
 
 /// A vector-fitted span system of order `order` over the band.
