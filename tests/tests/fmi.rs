@@ -565,3 +565,85 @@ fn mutated_model_descriptions_give_errors_never_panics() {
         "the mutations barely changed anything"
     );
 }
+
+#[test]
+fn a_live_instance_refuses_unknown_references_wrong_types_and_late_parameters() {
+    use slender_master::fmi::ffi::*;
+    use slender_master::fmi::import::file_uri;
+    let dir = temp();
+    let file = fmu::export("examples/b1_two_masses.toml", "left", dir.path());
+    let folder = dir.path().join("unzipped");
+    zip::ZipArchive::new(std::fs::File::open(&file).unwrap())
+        .unwrap()
+        .extract(&folder)
+        .unwrap();
+    let xml = std::fs::read_to_string(folder.join("modelDescription.xml")).unwrap();
+    let md = ModelDescription::parse(&xml).unwrap();
+    let vr = |name: &str| {
+        md.variables
+            .iter()
+            .find(|v| v.name == name)
+            .unwrap()
+            .value_reference
+    };
+    let uri = std::ffi::CString::new(file_uri(&folder.join("resources"))).unwrap();
+    let guid = std::ffi::CString::new(md.guid.clone()).unwrap();
+    let callbacks = fmi2CallbackFunctions {
+        logger: None,
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: std::ptr::null_mut(),
+    };
+    // SAFETY: FMI calls on an instance of the library linked into this test,
+    // with valid arrays; the point is what they refuse.
+    unsafe {
+        let c = slender_fmu::fmi2Instantiate(
+            c"left".as_ptr(),
+            FMI2_CO_SIMULATION,
+            guid.as_ptr(),
+            uri.as_ptr(),
+            &callbacks,
+            0,
+            0,
+        );
+        assert!(!c.is_null());
+        let mut value = 0.0;
+        assert_eq!(
+            slender_fmu::fmi2GetReal(c, &9999, 1, &mut value),
+            FMI2_ERROR
+        );
+        // A Real parameter set as an Integer.
+        let mass = vr("mass");
+        assert_eq!(slender_fmu::fmi2SetInteger(c, &mass, 1, &2), FMI2_ERROR);
+        // Outputs cannot be set.
+        let x = vr("displacement");
+        assert_eq!(slender_fmu::fmi2SetReal(c, &x, 1, &1.0), FMI2_ERROR);
+        // A parameter set before initialisation takes effect: twice the mass,
+        // a lower frequency, so less displacement lost after 0.1 s.
+        assert_eq!(slender_fmu::fmi2SetReal(c, &mass, 1, &2.0), FMI2_OK);
+        assert_eq!(
+            slender_fmu::fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0),
+            FMI2_OK
+        );
+        assert_eq!(slender_fmu::fmi2EnterInitializationMode(c), FMI2_OK);
+        assert_eq!(slender_fmu::fmi2ExitInitializationMode(c), FMI2_OK);
+        for k in 0..10 {
+            assert_eq!(
+                slender_fmu::fmi2DoStep(c, 0.01 * k as f64, 0.01, 0),
+                FMI2_OK
+            );
+        }
+        assert_eq!(slender_fmu::fmi2GetReal(c, &x, 1, &mut value), FMI2_OK);
+        let (k_total, m) = (39.47841760435743 + 157.91367041742973, 2.0_f64);
+        let exact = (0.1 * (k_total / m).sqrt()).cos();
+        assert!((value - exact).abs() < 1e-3, "{value} vs {exact}");
+        // Fixed parameters cannot change once initialised; a step must start at
+        // the FMU's own time.
+        assert_eq!(slender_fmu::fmi2SetReal(c, &mass, 1, &3.0), FMI2_ERROR);
+        assert_eq!(slender_fmu::fmi2DoStep(c, 5.0, 0.01, 0), FMI2_ERROR);
+        assert_eq!(slender_fmu::fmi2DoStep(c, 0.1, -0.01, 0), FMI2_ERROR);
+        assert_eq!(slender_fmu::fmi2Terminate(c), FMI2_OK);
+        slender_fmu::fmi2FreeInstance(c);
+    }
+}
