@@ -42,6 +42,8 @@ fn step(c: &mut Criterion) {
             orientation: Orientation::UpperMotion,
             order,
             band: 2.0 * std::f64::consts::PI * 10.0,
+            discretization: Default::default(),
+            alpha: 0.0,
         };
         units.push((
             format!("span_coupling/{order}"),
