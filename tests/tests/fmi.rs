@@ -139,15 +139,23 @@ fn worst_relative_difference(a: &slender_tests::Series, b: &slender_tests::Serie
 #[test]
 fn scenes_of_exported_fmus_match_the_native_scenes_with_rollback() {
     let mut rollbacks = 0;
-    for (scene, bound) in [
+    // (scene, bound on the relative difference, whether the iteration counts
+    // must be equal).
+    for (scene, bound, same_iterations) in [
         // Iterative Gauss-Seidel with rollback.
-        ("examples/b1_two_masses.toml", 1e-13),
+        ("examples/b1_two_masses.toml", 1e-13, true),
         // Aitken-accelerated, force/displacement coupling.
-        ("examples/b3_force_displacement.toml", 1e-11),
+        ("examples/b3_force_displacement.toml", 1e-11, true),
         // Newton on an algebraic loop (solved at initialisation).
-        ("examples/b6_algebraic_loop.toml", 1e-13),
+        ("examples/b6_algebraic_loop.toml", 1e-13, true),
         // Active truncation: four units, IQN-ILS, 200 s.
-        ("examples/truncation_substructured.toml", 1e-11),
+        ("examples/truncation_substructured.toml", 1e-11, true),
+        // Beam sections and the 4x4 span; beam inputs that share a name with an
+        // output are renamed `<name>_in` in the FMUs and the scene follows. Here
+        // the ramp's round-off (u + h du/dt) tips 2 of 36 610 convergence checks
+        // the other way, so the runs differ by what the master accepts: the
+        // displacement tolerance, 1e-9 m on a 0.4 m peak (2.5e-9).
+        ("examples/pipe_span_coupling.toml", 2.5e-9, false),
     ] {
         let dir = temp();
         let native = run(&load(scene));
@@ -162,8 +170,13 @@ fn scenes_of_exported_fmus_match_the_native_scenes_with_rollback() {
             wrapped.counters.rollbacks
         );
         assert!(worst <= bound, "{scene}: {worst:e}");
-        assert_eq!(native.counters.iterations, wrapped.counters.iterations);
-        assert_eq!(native.counters.rollbacks, wrapped.counters.rollbacks);
+        if same_iterations {
+            assert_eq!(native.counters.iterations, wrapped.counters.iterations);
+            assert_eq!(native.counters.rollbacks, wrapped.counters.rollbacks);
+        } else {
+            let (a, b) = (native.counters.iterations, wrapped.counters.iterations);
+            assert!(a.abs_diff(b) * 1000 <= a, "{scene}: {a} vs {b} iterations");
+        }
         rollbacks += wrapped.counters.rollbacks;
     }
     assert!(rollbacks > 0, "no rollback exercised");

@@ -272,7 +272,7 @@ impl Layout {
                 Hold::ZeroOrder => "zero-order",
             };
             variables.push(ScalarVariable {
-                name: p.name.clone(),
+                name: input_variable_name(&unit, i),
                 value_reference: i as u32,
                 description: format!(
                     "{} input ({hold} hold when input derivatives are set)",
@@ -356,6 +356,18 @@ impl Layout {
             parameters,
             model,
         })
+    }
+}
+
+/// The FMI name of input `i`: its port name, or `<name>_in` when an output has
+/// the same name (FMI names must be unique; a beam end driven in moment also
+/// reports its moment as an output).
+pub fn input_variable_name(unit: &UnitDescription, i: usize) -> String {
+    let name = &unit.inputs[i].name;
+    if unit.outputs.iter().any(|o| &o.name == name) {
+        format!("{name}_in")
+    } else {
+        name.clone()
     }
 }
 
@@ -453,6 +465,9 @@ pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path:
         .get_mut("units")
         .and_then(toml::Value::as_array_mut)
         .ok_or_else(|| format!("{}: no [[units]]", scene.path.display()))?;
+    // Inputs renamed in the FMUs ("unit.port" -> "unit.port_in"), for the
+    // connections below.
+    let mut renamed = BTreeMap::new();
     for unit in units.iter_mut() {
         let unit = unit
             .as_table_mut()
@@ -464,12 +479,38 @@ pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path:
             .to_owned();
         let config = ExportConfig::from_scene(scene, &name)?;
         let file = format!("{name}.fmu");
-        package(&config, binary, &dir.join(&file))?;
+        let model = package(&config, binary, &dir.join(&file))?;
+        let ports = config.build_unit()?.description().clone();
+        for (i, port) in ports.inputs.iter().enumerate() {
+            let variable = &model.variables[i].name;
+            if variable != &port.name {
+                renamed.insert(
+                    format!("{name}.{}", port.name),
+                    format!("{name}.{variable}"),
+                );
+                if let Some(inputs) = unit.get_mut("inputs").and_then(toml::Value::as_table_mut)
+                    && let Some(v) = inputs.remove(&port.name)
+                {
+                    inputs.insert(variable.clone(), v);
+                }
+            }
+        }
         unit.insert("kind".into(), toml::Value::String("fmu".into()));
         unit.remove("effects");
         let mut parameters = toml::Table::new();
         parameters.insert("file".into(), toml::Value::String(file));
         unit.insert("parameters".into(), toml::Value::Table(parameters));
+    }
+    if let Some(connections) = table
+        .get_mut("connections")
+        .and_then(toml::Value::as_array_mut)
+    {
+        for c in connections.iter_mut().filter_map(toml::Value::as_table_mut) {
+            let target = c.get("to").and_then(toml::Value::as_str).map(str::to_owned);
+            if let Some(new) = target.and_then(|t| renamed.get(&t)) {
+                c.insert("to".into(), toml::Value::String(new.clone()));
+            }
+        }
     }
     if let Some(title) = table.get("title").and_then(toml::Value::as_str) {
         let title = format!("{title} [every unit through FMI 2.0]");
