@@ -372,7 +372,8 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     guarded(c, "fmi2SerializedFMUstateSize", |i| {
         let bytes = i.serialize(state)?;
         // SAFETY: FMI passes room for one size.
-        unsafe { *values_mut(size, 1)?.as_mut_ptr() = bytes.len() };
+        let out = unsafe { values_mut(size, 1)? };
+        out[0] = bytes.len();
         Ok(FMI2_OK)
     })
 }

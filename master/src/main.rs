@@ -601,7 +601,8 @@ fn fmu_command(action: FmuAction) -> ExitCode {
             let written = ExportConfig::from_scene(&scene, &unit)
                 .and_then(|config| package(&config, &binary, &output));
             match written {
-                Ok(model) => {
+                Ok(layout) => {
+                    let model = &layout.model;
                     let count = |c| model.variables.iter().filter(|v| v.causality == c).count();
                     use slender_master::fmi::model_description::VariableCausality as C;
                     println!(

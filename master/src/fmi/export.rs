@@ -18,6 +18,7 @@ use super::model_description::{
     CoSimulation, DefaultExperiment, ModelDescription, ScalarVariable, Unknown, Value,
     VariableCausality,
 };
+use crate::coupler::Master;
 use crate::scene::{Scene, kinds};
 use serde::{Deserialize, Serialize};
 use slender_units::{Hold, Unit, UnitDescription};
@@ -84,6 +85,16 @@ pub struct Layout {
 impl ExportConfig {
     /// The section of unit `unit` of a loaded scene.
     pub fn from_scene(scene: &Scene, unit: &str) -> Result<ExportConfig, String> {
+        ExportConfig::from_settled(scene, &settle(scene)?, unit)
+    }
+
+    /// The section of unit `unit`, with the start inputs of `master`, the scene
+    /// already initialised (see [`settle`]).
+    pub fn from_settled(
+        scene: &Scene,
+        master: &Master,
+        unit: &str,
+    ) -> Result<ExportConfig, String> {
         let spec = scene
             .spec
             .units
@@ -102,10 +113,6 @@ impl ExportConfig {
                     names.join(", ")
                 )
             })?;
-        let mut master = scene.build().map_err(|e| e.to_string())?;
-        master
-            .initialize(scene.start)
-            .map_err(|e| format!("{}: initialisation: {e}", scene.path.display()))?;
         let index = master
             .unit_names()
             .position(|n| n == unit)
@@ -229,6 +236,16 @@ impl ExportConfig {
             }
         }
     }
+}
+
+/// The scene built and initialised: its master holds the settled start inputs of
+/// every unit.
+pub fn settle(scene: &Scene) -> Result<Master, String> {
+    let mut master = scene.build().map_err(|e| e.to_string())?;
+    master
+        .initialize(scene.start)
+        .map_err(|e| format!("{}: initialisation: {e}", scene.path.display()))?;
+    Ok(master)
 }
 
 impl Layout {
@@ -399,13 +416,9 @@ fn flatten(table: &toml::Table, path: &mut Vec<String>, out: &mut Vec<ParameterV
 }
 
 /// Writes the FMU for `config` to `out`, with `binary` (the `slender-fmu` shared
-/// library) as `binaries/linux64/<modelIdentifier>.so`. Returns the model
-/// description written.
-pub fn package(
-    config: &ExportConfig,
-    binary: &Path,
-    out: &Path,
-) -> Result<ModelDescription, String> {
+/// library) as `binaries/linux64/<modelIdentifier>.so`. Returns the layout, whose
+/// model description was written.
+pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Layout, String> {
     let layout = Layout::new(config)?;
     let library = std::fs::read(binary).map_err(|e| {
         format!(
@@ -438,7 +451,7 @@ pub fn package(
         zip.write_all(&bytes).map_err(|e| failed(&e))?;
     }
     zip.finish().map_err(|e| failed(&e))?;
-    Ok(layout.model)
+    Ok(layout)
 }
 
 /// The FMU library next to the running executable (`target/<profile>/`), where
@@ -465,6 +478,7 @@ pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path:
         .get_mut("units")
         .and_then(toml::Value::as_array_mut)
         .ok_or_else(|| format!("{}: no [[units]]", scene.path.display()))?;
+    let master = settle(scene)?;
     // Inputs renamed in the FMUs ("unit.port" -> "unit.port_in"), for the
     // connections below.
     let mut renamed = BTreeMap::new();
@@ -477,12 +491,11 @@ pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path:
             .and_then(toml::Value::as_str)
             .ok_or("a unit without a name")?
             .to_owned();
-        let config = ExportConfig::from_scene(scene, &name)?;
+        let config = ExportConfig::from_settled(scene, &master, &name)?;
         let file = format!("{name}.fmu");
-        let model = package(&config, binary, &dir.join(&file))?;
-        let ports = config.build_unit()?.description().clone();
-        for (i, port) in ports.inputs.iter().enumerate() {
-            let variable = &model.variables[i].name;
+        let layout = package(&config, binary, &dir.join(&file))?;
+        for (i, port) in layout.unit.inputs.iter().enumerate() {
+            let variable = &layout.model.variables[i].name;
             if variable != &port.name {
                 renamed.insert(
                     format!("{name}.{}", port.name),

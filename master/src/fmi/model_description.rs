@@ -309,14 +309,13 @@ struct Parser<'a> {
 }
 
 /// The attributes of one element, by name.
-struct Attributes<'p> {
+struct Attributes {
     element: String,
     line: usize,
     values: HashMap<String, String>,
-    _parser: std::marker::PhantomData<&'p ()>,
 }
 
-impl Attributes<'_> {
+impl Attributes {
     fn error(&self, message: String) -> DescriptionError {
         DescriptionError {
             line: self.line,
@@ -382,7 +381,7 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn attributes(&self, e: &BytesStart) -> Result<Attributes<'static>, DescriptionError> {
+    fn attributes(&self, e: &BytesStart) -> Result<Attributes, DescriptionError> {
         let element = String::from_utf8_lossy(e.name().as_ref()).into_owned();
         let line = self.line(self.reader.buffer_position());
         let mut values = HashMap::new();
@@ -404,7 +403,6 @@ impl<'a> Parser<'a> {
             element,
             line,
             values,
-            _parser: std::marker::PhantomData,
         })
     }
 
