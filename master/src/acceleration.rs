@@ -243,8 +243,19 @@ impl Accelerator for IqnIls {
         for i in 0..x.len() {
             self.residual[i] = gx[i] - x[i];
         }
+        // A secant whose residual change is at the round-off level of the values
+        // carries no information, only noise: with a tolerance beyond reach, such
+        // secants gave coefficients of any size and sent the iterate to NaN.
         if !self.first_in_step {
-            self.push_secant(gx);
+            let scale = gx.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let change = self
+                .residual
+                .iter()
+                .zip(&self.previous_residual)
+                .fold(0.0f64, |m, (r, p)| m.max((r - p).abs()));
+            if change > 1e-13 * scale {
+                self.push_secant(gx);
+            }
         }
         if !self.secants.is_empty() {
             self.solve_least_squares();

@@ -196,7 +196,7 @@ fn tolerances_beyond_reach_are_counted_or_stop_with_the_reason() {
         )
     };
     let accepted = run(&tight("accept"));
-    assert!(accepted.error.is_none());
+    assert!(accepted.error.is_none(), "{:?}", accepted.error);
     assert!(accepted.counters.non_converged_steps > 1000);
     assert!(all_finite(&accepted));
     let stopped = run(&tight("error"));

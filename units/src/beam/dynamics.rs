@@ -148,18 +148,25 @@ impl Beam {
         self.linear_h = h;
     }
 
-    /// One HHT-alpha step from t0 to t1 (s); returns the Newton iterations. The step's
-    /// buffers live in `self.work` between steps, so a contact-free step allocates
-    /// nothing.
-    pub(super) fn hht_step(&mut self, t0: f64, t1: f64) -> Result<u32, UnitError> {
+    /// One HHT-alpha step from t0 to t1 = t0 + h (s); returns the Newton iterations.
+    /// h comes from the exact step length, not t1 - t0: that difference changes in
+    /// its last bits from step to step, which would re-form and refactorise the
+    /// linear Newton matrix every step. The step's buffers live in `self.work`
+    /// between steps, so a contact-free step allocates nothing.
+    pub(super) fn hht_step(&mut self, t0: f64, t1: f64, h: f64) -> Result<u32, UnitError> {
         let mut w = std::mem::take(&mut self.work);
-        let result = self.hht_step_with(&mut w, t0, t1);
+        let result = self.hht_step_with(&mut w, t0, t1, h);
         self.work = w;
         result
     }
 
-    fn hht_step_with(&mut self, w: &mut StepWork, t0: f64, t1: f64) -> Result<u32, UnitError> {
-        let h = t1 - t0;
+    fn hht_step_with(
+        &mut self,
+        w: &mut StepWork,
+        t0: f64,
+        t1: f64,
+        h: f64,
+    ) -> Result<u32, UnitError> {
         let (alpha, beta, gamma) = self.hht();
         self.prepare_linear(h);
         let n = self.state.q.len();

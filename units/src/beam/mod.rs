@@ -659,7 +659,7 @@ impl Unit for Beam {
     }
 
     fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
-        let iterations = self.hht_step(t.as_secs(), (t + h).as_secs())?;
+        let iterations = self.hht_step(t.as_secs(), (t + h).as_secs(), h.as_secs())?;
         self.state.inputs.advance();
         Ok(StepReport {
             solver_iterations: iterations,

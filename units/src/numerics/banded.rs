@@ -84,14 +84,21 @@ impl SymmetricBand {
     /// `y += alpha * A x`.
     pub fn mul_add(&self, alpha: f64, x: &[f64], y: &mut [f64]) {
         let w = self.w;
-        for i in 0..self.n {
-            let row = &self.band[i * (w + 1)..(i + 1) * (w + 1)];
-            y[i] += alpha * row[0] * x[i];
-            for k in 1..=w.min(i) {
+        let (x, y) = (&x[..self.n], &mut y[..self.n]);
+        for (i, row) in self.band.chunks_exact(w + 1).enumerate() {
+            // Row i's sub-diagonal entries (i, i - k), k = 1..=reach, against the
+            // slices x[i - reach..i] and y[i - reach..i] (bounds checked once).
+            let reach = w.min(i);
+            let (xi, axi) = (x[i], alpha * x[i]);
+            let mut sum = row[0] * xi;
+            let xs = &x[i - reach..i];
+            let ys = &mut y[i - reach..i];
+            for k in 1..=reach {
                 let a = row[k];
-                y[i] += alpha * a * x[i - k];
-                y[i - k] += alpha * a * x[i];
+                sum += a * xs[reach - k];
+                ys[reach - k] += a * axi;
             }
+            y[i] += alpha * sum;
         }
     }
 
