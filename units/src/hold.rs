@@ -55,6 +55,7 @@ impl HeldInputs {
     }
 
     /// Value of input `port` at fraction `s` in [0, 1] of the step.
+    #[inline]
     pub fn at(&self, port: usize, s: f64) -> f64 {
         match self.holds[port] {
             Hold::ZeroOrder => self.end[port],

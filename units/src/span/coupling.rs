@@ -359,10 +359,18 @@ fn ten_hz() -> f64 {
     2.0 * std::f64::consts::PI * 10.0
 }
 
+/// The modal states of one pole pair, for each of the four inputs (the inputs are
+/// the inner index, so one step updates four lanes at once): z = re + i im.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+struct PairStates {
+    re: [f64; 4],
+    im: [f64; 4],
+}
+
 #[derive(Debug, serde::Serialize, serde::Deserialize)]
 struct CouplingState {
-    /// Modal states: [input][pole pair] blocks of two.
-    z: Vec<f64>,
+    /// Modal states, one entry per pole pair.
+    z: Vec<PairStates>,
     /// Rate of each input over the last step (1/s times its unit).
     rate: [f64; 4],
     inputs: HeldInputs,
@@ -392,12 +400,20 @@ struct BlockStep {
     g2: Vector2<f64>,
 }
 
+/// Weights of one pole pair's states in the four outputs: output o gets
+/// re[i][o] z_re[i] + im[i][o] z_im[i] summed over inputs i.
+#[derive(Clone, Debug)]
+struct PairWeights {
+    re: [[f64; 4]; 4],
+    im: [[f64; 4]; 4],
+}
+
 /// The span between two sections as a 4x4 transfer-function unit.
 pub struct SpanCoupling {
     description: UnitDescription,
     fit: MatrixFit,
-    /// Output weights of each modal state: c[o][2 (input * pairs + k) + 0/1].
-    c: [Vec<f64>; 4],
+    /// Output weights of each pole pair's states.
+    c: Vec<PairWeights>,
     state: CouplingState,
     step: f64,
     blocks: Vec<BlockStep>,
@@ -424,17 +440,17 @@ impl SpanCoupling {
         let (inputs, outputs) = params.orientation.quantities();
         let fit = fit_matrix(&span, inputs, outputs, params.order, params.band)?;
         let pairs = fit.poles.len();
-        let c = std::array::from_fn(|o| {
-            let mut row = vec![0.0; 8 * pairs];
-            for i in 0..4 {
-                for (k, r) in fit.residues[o][i].iter().enumerate() {
-                    let at = 2 * (i * pairs + k);
-                    row[at] = 2.0 * r.re;
-                    row[at + 1] = -2.0 * r.im;
-                }
-            }
-            row
-        });
+        // r/(s - p) + conj from z' = p z + u: y = 2 Re(r z) = 2 r_re z_re - 2 r_im z_im.
+        let c = (0..pairs)
+            .map(|k| PairWeights {
+                re: std::array::from_fn(|i| {
+                    std::array::from_fn(|o| 2.0 * fit.residues[o][i][k].re)
+                }),
+                im: std::array::from_fn(|i| {
+                    std::array::from_fn(|o| -2.0 * fit.residues[o][i][k].im)
+                }),
+            })
+            .collect();
         let all: Vec<usize> = (0..4).collect();
         let description = UnitDescription {
             kind: "span_coupling".into(),
@@ -457,7 +473,7 @@ impl SpanCoupling {
         Ok(SpanCoupling {
             description,
             state: CouplingState {
-                z: vec![0.0; 8 * pairs],
+                z: vec![PairStates::default(); pairs],
                 rate: [0.0; 4],
                 inputs: HeldInputs::new(vec![Hold::Ramp; 4]),
             },
@@ -539,15 +555,13 @@ impl Unit for SpanCoupling {
         self.state.inputs.settle();
         self.state.rate = [0.0; 4];
         // Steady state of each block for a constant input: z = -A^-1 [u, 0].
-        let pairs = self.fit.poles.len();
         for i in 0..4 {
             let u = self.state.inputs.at(i, 0.0);
-            for (k, p) in self.fit.poles.iter().enumerate() {
+            for (z, p) in self.state.z.iter_mut().zip(&self.fit.poles) {
                 let norm = p.norm_sqr();
-                let at = 2 * (i * pairs + k);
                 // A = [[a, -b], [b, a]], A^-1 = [[a, b], [-b, a]] / |p|^2.
-                self.state.z[at] = -p.re * u / norm;
-                self.state.z[at + 1] = p.im * u / norm;
+                z.re[i] = -p.re * u / norm;
+                z.im[i] = p.im * u / norm;
             }
         }
         Ok(())
@@ -558,19 +572,22 @@ impl Unit for SpanCoupling {
         if h != self.step {
             self.discretize(h);
         }
-        let pairs = self.fit.poles.len();
-        for i in 0..4 {
-            let (u0, u1) = (self.state.inputs.at(i, 0.0), self.state.inputs.at(i, 1.0));
-            self.state.rate[i] = self.state.inputs.rate(i, h);
-            for (k, b) in self.blocks.iter().enumerate() {
-                let at = 2 * (i * pairs + k);
-                let z = Vector2::new(self.state.z[at], self.state.z[at + 1]);
-                let next = b.phi * z + b.g1 * u0 + b.g2 * (u1 - u0);
-                self.state.z[at] = next[0];
-                self.state.z[at + 1] = next[1];
+        let inputs = &self.state.inputs;
+        let u0: [f64; 4] = std::array::from_fn(|i| inputs.at(i, 0.0));
+        let du: [f64; 4] = std::array::from_fn(|i| inputs.at(i, 1.0) - u0[i]);
+        self.state.rate = std::array::from_fn(|i| inputs.rate(i, h));
+        let mut sum = 0.0;
+        for (z, b) in self.state.z.iter_mut().zip(&self.blocks) {
+            let (p, g1, g2) = (&b.phi, &b.g1, &b.g2);
+            for i in 0..4 {
+                let (re, im) = (z.re[i], z.im[i]);
+                z.re[i] = p[(0, 0)] * re + p[(0, 1)] * im + g1[0] * u0[i] + g2[0] * du[i];
+                z.im[i] = p[(1, 0)] * re + p[(1, 1)] * im + g1[1] * u0[i] + g2[1] * du[i];
+                sum += z.re[i] + z.im[i];
             }
         }
-        if self.state.z.iter().any(|v| !v.is_finite()) {
+        // A non-finite state makes the sum non-finite.
+        if !sum.is_finite() {
             return Err(UnitError::Numerical(
                 "the span's state became non-finite".into(),
             ));
@@ -581,16 +598,20 @@ impl Unit for SpanCoupling {
 
     fn outputs(&self, out: &mut [f64]) {
         let u = self.state.inputs.end();
+        let mut modal = [0.0; 4];
+        for (z, c) in self.state.z.iter().zip(&self.c) {
+            for i in 0..4 {
+                let (re, im) = (z.re[i], z.im[i]);
+                for ((m, cr), ci) in modal.iter_mut().zip(&c.re[i]).zip(&c.im[i]) {
+                    *m += cr * re + ci * im;
+                }
+            }
+        }
         for (o, value) in out.iter_mut().enumerate().take(4) {
-            let modal: f64 = self.c[o]
-                .iter()
-                .zip(&self.state.z)
-                .map(|(c, z)| c * z)
-                .sum();
             let direct: f64 = (0..4)
                 .map(|i| self.fit.d[o][i] * u[i] + self.fit.e[o][i] * self.state.rate[i])
                 .sum();
-            *value = modal + direct;
+            *value = modal[o] + direct;
         }
     }
 

@@ -11,7 +11,22 @@ use nalgebra::{DMatrix, DVector};
 /// [band / 1e4, band] rad/s.
 pub fn fit_poles(span: &Span, order: usize, band: f64) -> Result<Vec<C64>, UnitError> {
     check_order_and_band(order, band)?;
-    let samples = (6 * order).max(200);
+    // Starting poles: conjugate pairs log-spaced over the band, lightly damped.
+    let pairs = order / 2;
+    let start: Vec<C64> = (0..pairs)
+        .map(|k| {
+            let b = band * 10f64.powf(-4.0 + 4.0 * (k as f64 + 0.5) / pairs as f64);
+            C64::new(-b / 100.0, b)
+        })
+        .collect();
+    relocate_poles(span, &start, band)
+}
+
+/// Vector fitting from given starting poles (one per conjugate pair, in the upper
+/// half-plane) against H_{U2 -> U5} over [band / 1e4, band]: 20 relocations;
+/// returns all poles, pairs listed together.
+pub(super) fn relocate_poles(span: &Span, start: &[C64], band: f64) -> Result<Vec<C64>, UnitError> {
+    let samples = (12 * start.len()).max(200);
     let omegas: Vec<f64> = (0..samples)
         .map(|k| band * 10f64.powf(-4.0 + 4.0 * k as f64 / (samples - 1) as f64))
         .collect();
@@ -22,18 +37,11 @@ pub fn fit_poles(span: &Span, order: usize, band: f64) -> Result<Vec<C64>, UnitE
                 .map(|m| m[2][1])
         })
         .collect::<Result<_, _>>()?;
-    // Starting poles: conjugate pairs log-spaced over the band, lightly damped.
-    let pairs = order / 2;
-    let mut poles: Vec<C64> = (0..pairs)
-        .map(|k| {
-            let b = band * 10f64.powf(-4.0 + 4.0 * (k as f64 + 0.5) / pairs as f64);
-            C64::new(-b / 100.0, b)
-        })
-        .collect();
+    let mut poles = start.to_vec();
     for _ in 0..20 {
         poles = relocate(&poles, &omegas, &h)?;
     }
-    let mut all = Vec::with_capacity(order);
+    let mut all = Vec::with_capacity(2 * poles.len());
     for p in poles {
         all.push(p);
         all.push(p.conj());

@@ -147,6 +147,34 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
     })
 }
 
+/// Stable poles in place of an approximation's poles, some in the right half-plane:
+/// every pole is reflected to Re < 0, then all are relocated by vector fitting over
+/// the band (reflection alone leaves the high orders several per cent off, since
+/// the reflected poles no longer sit where the span resonates). Real poles enter
+/// the relocation as lightly damped pairs of their size, two at a time; an odd one
+/// out stays a real pole.
+fn repair_poles(poles: &[C64], span: &Span, band: f64) -> Result<Vec<C64>, UnitError> {
+    let mut pairs: Vec<C64> = poles
+        .iter()
+        .filter(|p| p.im > 1e-9 * p.norm())
+        .map(|p| C64::new(-p.re.abs().max(1e-6 * p.norm()), p.im))
+        .collect();
+    let reals: Vec<f64> = poles
+        .iter()
+        .filter(|p| p.im.abs() <= 1e-9 * p.norm())
+        .map(|p| p.re.abs().max(1e-9))
+        .collect();
+    for two in reals.chunks_exact(2) {
+        let size = 0.5 * (two[0] + two[1]);
+        pairs.push(C64::new(-size / 100.0, size));
+    }
+    let mut relocated = super::fit::relocate_poles(span, &pairs, band)?;
+    if reals.len() % 2 == 1 {
+        relocated.push(C64::new(-reals[reals.len() - 1], 0.0));
+    }
+    Ok(relocated)
+}
+
 /// Roots of a polynomial (companion-matrix eigenvalues).
 fn roots(p: &[f64]) -> Vec<C64> {
     let n = p.len() - 1;
@@ -201,11 +229,10 @@ impl StateSpace {
                 "the approximation is not a proper transfer function in s".into(),
             ));
         }
-        let mut poles = roots(&den);
+        let poles = roots(&den);
         let repaired = poles.iter().filter(|p| p.re > 0.0).count();
         if repaired > 0 {
-            poles.iter_mut().for_each(|p| p.re = -p.re.abs());
-            let mut fitted = fit_residues(&poles, span, band)?;
+            let mut fitted = fit_residues(&repair_poles(&poles, span, band)?, span, band)?;
             fitted.repaired = repaired;
             return Ok(fitted);
         }
@@ -227,14 +254,153 @@ impl StateSpace {
         let mut b = DVector::zeros(n);
         b[n - 1] = 1.0;
         let c = DVector::from_fn(n, |k, _| num.get(k).copied().unwrap_or(0.0) - bn * den[k]);
-        Ok(StateSpace {
+        let canonical = StateSpace {
             a,
             b,
             c,
             d: bn,
             poles,
             repaired,
+        };
+        // The same system in real modal form steps in O(n) instead of O(n^2) and is
+        // better scaled for the matrix exponential; kept only if it reproduces the
+        // canonical response (distinct, well-separated poles).
+        Ok(match canonical.to_modal(&den) {
+            Some(modal) if modal.is_stable() && modal.agrees_with(&canonical, band) => modal,
+            _ => canonical,
         })
+    }
+
+    /// The system with residues r_k = c(p_k) / den'(p_k) at its poles, in real
+    /// modal form (one state per real pole, a rotation block per conjugate pair);
+    /// `den` is the monic denominator of the controllable canonical form.
+    fn to_modal(&self, den: &[f64]) -> Option<StateSpace> {
+        let horner = |p: &[f64], s: C64| {
+            p.iter()
+                .rev()
+                .fold(C64::new(0.0, 0.0), |acc, &c| acc * s + c)
+        };
+        let derivative: Vec<f64> = den
+            .iter()
+            .enumerate()
+            .skip(1)
+            .map(|(k, c)| k as f64 * c)
+            .collect();
+        let numerator: Vec<f64> = self.c.iter().copied().collect();
+        let n = self.order();
+        let mut a = DMatrix::zeros(n, n);
+        let mut b = DVector::zeros(n);
+        let mut c = DVector::zeros(n);
+        let mut row = 0;
+        let mut polished = Vec::with_capacity(n);
+        for &p in &self.poles {
+            // Companion eigenvalues carry the polynomial's conditioning; a few Newton
+            // steps on den polish each simple root before its residue is taken.
+            let mut p = p;
+            for _ in 0..4 {
+                let slope = horner(&derivative, p);
+                if slope.norm() == 0.0 {
+                    break;
+                }
+                let next = p - horner(den, p) / slope;
+                if next.is_finite() {
+                    p = next;
+                }
+            }
+            polished.push(p);
+            let slope = horner(&derivative, p);
+            if slope.norm() == 0.0 || !slope.is_finite() {
+                return None;
+            }
+            let r = horner(&numerator, p) / slope;
+            if p.im.abs() <= 1e-9 * p.norm() {
+                if row >= n {
+                    return None;
+                }
+                a[(row, row)] = p.re;
+                b[row] = 1.0;
+                c[row] = r.re;
+                row += 1;
+            } else if p.im > 0.0 {
+                if row + 1 >= n {
+                    return None;
+                }
+                a[(row, row)] = p.re;
+                a[(row, row + 1)] = -p.im;
+                a[(row + 1, row)] = p.im;
+                a[(row + 1, row + 1)] = p.re;
+                b[row] = 1.0;
+                c[row] = 2.0 * r.re;
+                c[row + 1] = -2.0 * r.im;
+                row += 2;
+            }
+        }
+        (row == n).then_some(StateSpace {
+            a,
+            b,
+            c,
+            d: self.d,
+            poles: polished,
+            repaired: self.repaired,
+        })
+    }
+
+    /// Frequency response C (sI - A)^-1 B + D at s (solves a dense system).
+    pub fn response(&self, s: C64) -> C64 {
+        let n = self.order();
+        let m = DMatrix::from_fn(n, n, |i, j| {
+            let diagonal = if i == j { s } else { C64::new(0.0, 0.0) };
+            diagonal - C64::from(self.a[(i, j)])
+        });
+        let rhs = DVector::from_fn(n, |i, _| C64::from(self.b[i]));
+        match m.lu().solve(&rhs) {
+            Some(x) => (0..n).map(|i| x[i] * self.c[i]).sum::<C64>() + self.d,
+            None => C64::new(f64::NAN, f64::NAN),
+        }
+    }
+
+    /// Whether both systems have the same response to 1e-9 of its largest value at
+    /// s = 0 and 60 log-spaced frequencies up to ten times the band (rad/s).
+    fn agrees_with(&self, other: &StateSpace, band: f64) -> bool {
+        let points: Vec<C64> = std::iter::once(C64::new(0.0, 0.0))
+            .chain((0..60).map(|k| C64::new(0.0, band * 10f64.powf(-5.0 + 6.0 * k as f64 / 59.0))))
+            .collect();
+        let (mine, theirs): (Vec<C64>, Vec<C64>) = points
+            .iter()
+            .map(|&s| (self.response(s), other.response(s)))
+            .unzip();
+        let scale = theirs.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+        scale.is_finite()
+            && mine
+                .iter()
+                .zip(&theirs)
+                .all(|(x, y)| (x - y).norm() <= 1e-9 * scale)
+    }
+
+    /// The 1x1 and 2x2 diagonal blocks of A as (first state, size), if A has no
+    /// entry outside them (modal form): the step then costs O(n).
+    pub fn diagonal_blocks(&self) -> Option<Vec<(usize, usize)>> {
+        let n = self.order();
+        let mut blocks = Vec::new();
+        let mut i = 0;
+        while i < n {
+            let size = if i + 1 < n && (self.a[(i, i + 1)] != 0.0 || self.a[(i + 1, i)] != 0.0) {
+                2
+            } else {
+                1
+            };
+            blocks.push((i, size));
+            i += size;
+        }
+        let block_of = |k: usize| blocks.iter().position(|&(s, z)| (s..s + z).contains(&k));
+        for r in 0..n {
+            for col in 0..n {
+                if self.a[(r, col)] != 0.0 && block_of(r) != block_of(col) {
+                    return None;
+                }
+            }
+        }
+        Some(blocks)
     }
 
     /// The system with the given stable poles and least-squares residues against the
@@ -266,5 +432,103 @@ impl StateSpace {
         let g1 = e.column(n).rows(0, n).into_owned();
         let g2 = e.column(n + 1).rows(0, n).into_owned();
         (phi, g1, g2)
+    }
+
+    /// The exact ramp step over h in the cheapest form A's structure allows: O(n)
+    /// per step for a modal realisation, a dense Phi otherwise.
+    pub fn stepper(&self, h: f64) -> Stepper {
+        let (phi, gamma1, gamma2) = self.discretize(h);
+        match self.diagonal_blocks() {
+            Some(blocks) => Stepper::Modal(
+                blocks
+                    .into_iter()
+                    .map(|(first, size)| {
+                        let at = |r: usize, c: usize| {
+                            if r < size && c < size {
+                                phi[(first + r, first + c)]
+                            } else {
+                                0.0
+                            }
+                        };
+                        let g =
+                            |v: &DVector<f64>, r: usize| if r < size { v[first + r] } else { 0.0 };
+                        ModalBlock {
+                            first,
+                            size,
+                            phi: [at(0, 0), at(0, 1), at(1, 0), at(1, 1)],
+                            gamma1: [g(&gamma1, 0), g(&gamma1, 1)],
+                            gamma2: [g(&gamma2, 0), g(&gamma2, 1)],
+                        }
+                    })
+                    .collect(),
+            ),
+            None => Stepper::Dense {
+                scratch: DVector::zeros(phi.nrows()),
+                phi,
+                gamma1,
+                gamma2,
+            },
+        }
+    }
+}
+
+/// One 1x1 or 2x2 diagonal block of a modal system's exact step: its states
+/// `first..first + size`, its block of Phi (row-major) and of Gamma1 and Gamma2.
+#[derive(Clone, Debug)]
+pub struct ModalBlock {
+    first: usize,
+    size: usize,
+    phi: [f64; 4],
+    gamma1: [f64; 2],
+    gamma2: [f64; 2],
+}
+
+/// The exact step x1 = Phi x0 + Gamma1 u0 + Gamma2 (u1 - u0) of a SISO system over
+/// a fixed h, stored as cheaply as the realisation allows.
+#[derive(Clone, Debug)]
+pub enum Stepper {
+    /// Canonical (companion) form: a dense Phi, O(n^2) per step.
+    Dense {
+        phi: DMatrix<f64>,
+        gamma1: DVector<f64>,
+        gamma2: DVector<f64>,
+        scratch: DVector<f64>,
+    },
+    /// Modal form: each block advances on its own, O(n) per step.
+    Modal(Vec<ModalBlock>),
+}
+
+impl Stepper {
+    /// Advances x over the step for an input ramped from u0 to u1.
+    pub fn advance(&mut self, x: &mut DVector<f64>, u0: f64, u1: f64) {
+        let du = u1 - u0;
+        match self {
+            Stepper::Dense {
+                phi,
+                gamma1,
+                gamma2,
+                scratch,
+            } => {
+                scratch.gemv(1.0, phi, x, 0.0);
+                scratch.axpy(u0, gamma1, 1.0);
+                scratch.axpy(du, gamma2, 1.0);
+                std::mem::swap(scratch, x);
+            }
+            Stepper::Modal(blocks) => {
+                let x = x.as_mut_slice();
+                for b in blocks.iter() {
+                    let (p, g1, g2) = (&b.phi, &b.gamma1, &b.gamma2);
+                    if b.size == 1 {
+                        let x0 = &mut x[b.first];
+                        *x0 = p[0] * *x0 + g1[0] * u0 + g2[0] * du;
+                    } else {
+                        let pair = &mut x[b.first..b.first + 2];
+                        let (x0, x1) = (pair[0], pair[1]);
+                        pair[0] = p[0] * x0 + p[1] * x1 + g1[0] * u0 + g2[0] * du;
+                        pair[1] = p[2] * x0 + p[3] * x1 + g1[1] * u0 + g2[1] * du;
+                    }
+                }
+            }
+        }
     }
 }

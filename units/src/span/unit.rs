@@ -5,14 +5,14 @@
 //! input ramped or held over the step).
 
 use super::rational::{RationalX, function_pade_u2_u5, taylor_u2_u5, term_pade_u2_u5};
-use super::realization::StateSpace;
+use super::realization::{StateSpace, Stepper};
 use super::transfer::Span;
 use crate::hold::HeldInputs;
 use crate::port::{Hold, Port, PortKind};
 use crate::state::StateSlot;
 use crate::time::Time;
 use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use serde::Deserialize;
 
 /// Which rational approximation.
@@ -95,10 +95,8 @@ pub struct SpanUnit {
     system: StateSpace,
     state: SpanState,
     step: f64,
-    phi: DMatrix<f64>,
-    gamma1: DVector<f64>,
-    gamma2: DVector<f64>,
-    scratch: DVector<f64>,
+    /// The exact step for the current step length (None before the first step).
+    stepper: Option<Stepper>,
 }
 
 impl SpanUnit {
@@ -127,10 +125,7 @@ impl SpanUnit {
                 inputs: HeldInputs::new(vec![Hold::Ramp]),
             },
             step: 0.0,
-            phi: DMatrix::zeros(n, n),
-            gamma1: DVector::zeros(n),
-            gamma2: DVector::zeros(n),
-            scratch: DVector::zeros(n),
+            stepper: None,
             system,
         })
     }
@@ -175,19 +170,16 @@ impl Unit for SpanUnit {
 
     fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
         let h = h.as_secs();
-        if h != self.step {
-            let (phi, g1, g2) = self.system.discretize(h);
-            self.phi = phi;
-            self.gamma1 = g1;
-            self.gamma2 = g2;
+        if h != self.step || self.stepper.is_none() {
+            self.stepper = Some(self.system.stepper(h));
             self.step = h;
         }
         let (u0, u1) = (self.state.inputs.at(0, 0.0), self.state.inputs.at(0, 1.0));
-        self.scratch.gemv(1.0, &self.phi, &self.state.x, 0.0);
-        self.scratch.axpy(u0, &self.gamma1, 1.0);
-        self.scratch.axpy(u1 - u0, &self.gamma2, 1.0);
-        std::mem::swap(&mut self.scratch, &mut self.state.x);
-        if self.state.x.iter().any(|v| !v.is_finite()) {
+        if let Some(stepper) = self.stepper.as_mut() {
+            stepper.advance(&mut self.state.x, u0, u1);
+        }
+        // A non-finite entry makes the sum non-finite: one pass, no branch per entry.
+        if !self.state.x.iter().sum::<f64>().is_finite() {
             return Err(UnitError::Numerical(
                 "the span's state became non-finite".into(),
             ));
