@@ -10,6 +10,7 @@ pub mod acceleration;
 pub mod adapter;
 pub mod counters;
 pub mod coupler;
+pub mod coupling_study;
 pub mod error;
 pub mod fmi;
 pub mod indicators;

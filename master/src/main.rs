@@ -30,18 +30,47 @@ enum SpanAction {
         elements: usize,
     },
     /// Time-domain error against cost per simulated second of span units (orders
-    /// 2-16) and FE spans (4-64 elements) under a sum of sines and a step, against a
-    /// fine FE reference. Writes span_study.md, span_study.json, accuracy_cost.svg.
+    /// 2-16) and FE spans (4-64 elements, stepping with the master or with substeps)
+    /// under a sum of sines and a step, against the continuum's response (a fine FE
+    /// span with fine substeps). Writes span_study.md, span_study.json,
+    /// accuracy_cost.svg.
     Study {
         /// Simulated time of each run (s).
         #[arg(long, default_value_t = 100.0)]
         duration: f64,
-        /// Step (s).
+        /// Synchronisation step (s).
         #[arg(long, default_value_t = 0.01)]
         step: f64,
         /// Elements of the reference FE span.
         #[arg(long, default_value_t = 128)]
         reference_elements: usize,
+        /// Substeps per synchronisation step of the reference FE span.
+        #[arg(long, default_value_t = 64)]
+        reference_substeps: usize,
+        /// Substeps per synchronisation step of the FE spans compared.
+        #[arg(long, value_delimiter = ',', default_value = "1,2,4,5,8,16")]
+        fe_substeps: Vec<usize>,
+    },
+    /// The same for the span between two sections (kind `span_coupling`, the 4x4
+    /// matrix, exact and trapezoidal stepping, orders 16-32) against FE spans with
+    /// the same four end conditions, all four ends driven. Writes
+    /// coupling_study.md, coupling_study.json, coupling_accuracy_cost.svg.
+    Coupling {
+        /// Simulated time of each run (s).
+        #[arg(long, default_value_t = 10.0)]
+        duration: f64,
+        /// Synchronisation step (s).
+        #[arg(long, default_value_t = 0.001)]
+        step: f64,
+        /// Elements of the reference FE span.
+        #[arg(long, default_value_t = 128)]
+        reference_elements: usize,
+        /// Substeps per synchronisation step of the reference FE span.
+        #[arg(long, default_value_t = 32)]
+        reference_substeps: usize,
+        /// Substeps per synchronisation step of the FE spans compared.
+        #[arg(long, value_delimiter = ',', default_value = "1,2,4,8")]
+        fe_substeps: Vec<usize>,
     },
 }
 
@@ -550,16 +579,20 @@ fn span_command(
                 duration,
                 step,
                 reference_elements,
+                reference_substeps,
+                fe_substeps,
             } => {
-                let rows = span_study::study(
-                    span,
-                    &[2, 4, 6, 8, 10, 12, 14, 16],
-                    &[4, 8, 16, 32, 64],
+                let plan = span_study::StudyPlan {
+                    orders: vec![2, 4, 6, 8, 10, 12, 14, 16],
+                    elements: vec![4, 8, 16, 32, 64],
+                    fe_substeps,
                     reference_elements,
+                    reference_substeps,
                     duration,
                     step,
-                )?;
-                let md = span_study::to_markdown(&rows);
+                };
+                let report = span_study::study(span, &plan)?;
+                let md = span_study::to_markdown(&report);
                 print!("{md}");
                 let (pmd, pjson, psvg) = (
                     out.join("span_study.md"),
@@ -567,12 +600,67 @@ fn span_command(
                     out.join("accuracy_cost.svg"),
                 );
                 std::fs::write(&pmd, &md).map_err(|e| format!("{}: {e}", pmd.display()))?;
-                let json = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
+                let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
                 std::fs::write(&pjson, json).map_err(|e| format!("{}: {e}", pjson.display()))?;
+                let points: Vec<(String, f64, f64)> = report
+                    .rows
+                    .iter()
+                    .map(|r| (r.label(), r.cost_per_simulated_second, r.error_sines))
+                    .collect();
                 slender_master::plot::accuracy_cost(
                     &psvg,
                     "Span: error against cost per simulated second",
-                    &rows,
+                    "error vs the continuum (sum of sines)",
+                    &points,
+                )?;
+                Ok(vec![pmd, pjson, psvg])
+            }
+            SpanAction::Coupling {
+                duration,
+                step,
+                reference_elements,
+                reference_substeps,
+                fe_substeps,
+            } => {
+                use slender_master::coupling_study;
+                let plan = coupling_study::CouplingPlan {
+                    orders: vec![16, 24, 32],
+                    elements: vec![8, 16, 32, 64, 128],
+                    fe_substeps,
+                    reference_elements,
+                    reference_substeps,
+                    duration,
+                    step,
+                };
+                let report = coupling_study::coupling_study(span, &plan)?;
+                let md = coupling_study::to_markdown(&report);
+                print!("{md}");
+                let (pmd, pjson, psvg) = (
+                    out.join("coupling_study.md"),
+                    out.join("coupling_study.json"),
+                    out.join("coupling_accuracy_cost.svg"),
+                );
+                std::fs::write(&pmd, &md).map_err(|e| format!("{}: {e}", pmd.display()))?;
+                let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+                std::fs::write(&pjson, json).map_err(|e| format!("{}: {e}", pjson.display()))?;
+                let points: Vec<(String, f64, f64)> = report
+                    .rows
+                    .iter()
+                    .map(|r| {
+                        let label = match (r.model.as_str(), r.substeps) {
+                            ("fe", 1) => "fe".to_string(),
+                            ("fe", n) => format!("fe ({n} substeps)"),
+                            (m, _) => format!("span_coupling {m}"),
+                        };
+                        let worst = r.errors.iter().fold(0.0f64, |a, &e| a.max(e));
+                        (label, r.cost_per_simulated_second, worst)
+                    })
+                    .collect();
+                slender_master::plot::accuracy_cost(
+                    &psvg,
+                    "Span between two sections: error against cost per simulated second",
+                    "largest error of the four outputs vs the continuum",
+                    &points,
                 )?;
                 Ok(vec![pmd, pjson, psvg])
             }

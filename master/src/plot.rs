@@ -347,11 +347,13 @@ pub fn bode(
     root.present().map_err(|e| fail(&e))
 }
 
-/// Error against cost per simulated second, log-log, one series per model.
+/// Error against cost per simulated second, log-log, one series per label: each
+/// point is (label, cost in s per simulated s, relative error).
 pub fn accuracy_cost(
     path: &Path,
     title: &str,
-    rows: &[crate::span_study::StudyRow],
+    error_label: &str,
+    points: &[(String, f64, f64)],
 ) -> Result<(), String> {
     let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
@@ -359,30 +361,15 @@ pub fn accuracy_cost(
     let root = root
         .titled(title, ("sans-serif", 20))
         .map_err(|e| fail(&e))?;
-    let mut models: Vec<&str> = Vec::new();
-    for r in rows {
-        if !models.contains(&r.model.as_str()) {
-            models.push(&r.model);
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for (label, cost, error) in points {
+        let point = (*cost, error.max(1e-12));
+        match series.iter_mut().find(|(l, _)| l == label) {
+            Some((_, pts)) => pts.push(point),
+            None => series.push((label.clone(), vec![point])),
         }
     }
-    let series: Vec<(String, Vec<(f64, f64)>)> = models
-        .iter()
-        .map(|m| {
-            let pts = rows
-                .iter()
-                .filter(|r| r.model == *m)
-                .map(|r| (r.cost_per_simulated_second, r.error_sines.max(1e-12)))
-                .collect();
-            (m.to_string(), pts)
-        })
-        .collect();
-    log_log_panel(
-        &root,
-        "cost (s per simulated s)",
-        "error vs reference (sum of sines)",
-        0,
-        &series,
-    )
-    .map_err(|e| fail(&e))?;
+    log_log_panel(&root, "cost (s per simulated s)", error_label, 0, &series)
+        .map_err(|e| fail(&e))?;
     root.present().map_err(|e| fail(&e))
 }

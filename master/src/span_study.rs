@@ -35,29 +35,69 @@ pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, String> {
     Beam::new(p).map_err(|e| e.to_string())
 }
 
-/// Deflection (m) at the span's lower end over time for input `u(t)` (rad), and the
-/// wall time spent stepping (s).
-fn respond(
+/// Outputs `outputs` of a unit at every synchronisation step (h, s) for the input
+/// `samples` at the steps (samples[k] at t = k h, k = 0..=steps) ramped between
+/// them (as a master passes them), stepping the unit `substeps` times per step;
+/// and the wall time spent stepping (s). Only the unit's work is timed.
+pub(crate) fn respond(
+    unit: &mut dyn Unit,
+    outputs: &[usize],
+    samples: &[Vec<f64>],
+    h: f64,
+    substeps: usize,
+) -> Result<(Vec<Vec<f64>>, f64), String> {
+    let first = samples.first().ok_or("no input samples")?;
+    unit.set_inputs(first).map_err(|e| e.to_string())?;
+    unit.initialize(Time::ZERO).map_err(|e| e.to_string())?;
+    let ht = Time::from_secs(h).ok_or("bad step")?;
+    let hs = Time::from_secs(h / substeps as f64)
+        .filter(|hs| *hs * substeps as i64 == ht)
+        .ok_or_else(|| {
+            format!("{substeps} substeps do not divide the step {h} s into whole nanoseconds")
+        })?;
+    let mut out = vec![0.0; unit.description().outputs.len()];
+    let mut u = first.clone();
+    // Outputs go into one buffer allocated up front: the timed loop allocates nothing.
+    let mut flat = Vec::with_capacity(samples.len() * outputs.len());
+    let started = Instant::now();
+    for (k, pair) in samples.windows(2).enumerate() {
+        for j in 1..=substeps {
+            let inputs = if j == substeps {
+                &pair[1]
+            } else {
+                let f = j as f64 / substeps as f64;
+                for (ui, (a, b)) in u.iter_mut().zip(pair[0].iter().zip(&pair[1])) {
+                    *ui = a + f * (b - a);
+                }
+                &u
+            };
+            unit.set_inputs(inputs).map_err(|e| e.to_string())?;
+            unit.do_step(ht * k as i64 + hs * (j - 1) as i64, hs)
+                .map_err(|e| e.to_string())?;
+        }
+        unit.outputs(&mut out);
+        flat.extend(outputs.iter().map(|&o| out[o]));
+    }
+    let wall = started.elapsed().as_secs_f64();
+    let y = flat
+        .chunks(outputs.len().max(1))
+        .map(<[f64]>::to_vec)
+        .collect();
+    Ok((y, wall))
+}
+
+/// The lower-end deflection of a SISO span (first output of the list) over time.
+fn respond_siso(
     unit: &mut dyn Unit,
     output: usize,
     u: &dyn Fn(f64) -> f64,
     h: f64,
     steps: usize,
+    substeps: usize,
 ) -> Result<(Vec<f64>, f64), String> {
-    unit.set_inputs(&[u(0.0)]).map_err(|e| e.to_string())?;
-    unit.initialize(Time::ZERO).map_err(|e| e.to_string())?;
-    let ht = Time::from_secs(h).ok_or("bad step")?;
-    let mut out = vec![0.0; unit.description().outputs.len()];
-    let mut y = Vec::with_capacity(steps);
-    let started = Instant::now();
-    for k in 0..steps {
-        unit.set_inputs(&[u((k + 1) as f64 * h)])
-            .map_err(|e| e.to_string())?;
-        unit.do_step(ht * k as i64, ht).map_err(|e| e.to_string())?;
-        unit.outputs(&mut out);
-        y.push(out[output]);
-    }
-    Ok((y, started.elapsed().as_secs_f64()))
+    let samples: Vec<Vec<f64>> = (0..=steps).map(|k| vec![u(k as f64 * h)]).collect();
+    let (y, wall) = respond(unit, &[output], &samples, h, substeps)?;
+    Ok((y.into_iter().map(|v| v[0]).collect(), wall))
 }
 
 /// One model of the study.
@@ -67,14 +107,49 @@ pub struct StudyRow {
     pub model: String,
     /// Order in s, or number of elements.
     pub size: usize,
+    /// Steps the model takes per synchronisation step (FE spans only; 1 otherwise).
+    pub substeps: usize,
     /// Largest error against the reference, relative to the reference's peak, for
     /// the sum of sines and for the step.
     pub error_sines: f64,
     pub error_step: f64,
-    /// Wall time per simulated second (s/s), median of the two runs.
+    /// Wall time per simulated second (s/s), mean of the two runs.
     pub cost_per_simulated_second: f64,
     /// Poles reflected to make the approximation stable.
     pub repaired: usize,
+}
+
+impl StudyRow {
+    /// The model's name with its substeps, as plotted.
+    pub fn label(&self) -> String {
+        if self.substeps > 1 {
+            format!("{} ({} substeps)", self.model, self.substeps)
+        } else {
+            self.model.clone()
+        }
+    }
+}
+
+/// The reference the errors are measured against: the continuum's response to the
+/// same sampled-and-ramped end motion, from a fine FE span with fine substeps.
+#[derive(Clone, Debug, Serialize)]
+pub struct Reference {
+    pub elements: usize,
+    pub substeps: usize,
+    /// Largest change when the reference's substeps are halved, relative to its peak
+    /// (sines, step): about three times the reference's own time error for a
+    /// second-order integrator (e(m/2) - e(m) = 4e - e), so an upper bound on it.
+    pub halving_change_sines: f64,
+    pub halving_change_step: f64,
+}
+
+/// What the study measured.
+#[derive(Clone, Debug, Serialize)]
+pub struct StudyReport {
+    pub step: f64,
+    pub duration: f64,
+    pub reference: Reference,
+    pub rows: Vec<StudyRow>,
 }
 
 /// The two end motions: a faded-in sum of sines below the third resonance, and a
@@ -91,37 +166,60 @@ fn inputs(third_resonance: f64) -> [Box<dyn Fn(f64) -> f64>; 2] {
     ]
 }
 
-/// Runs every span approximation for `orders` and the FE span for `elements`
-/// against a fine FE reference (`reference_elements`), over `duration` at step h.
-pub fn study(
-    span: &Span,
-    orders: &[usize],
-    elements: &[usize],
-    reference_elements: usize,
-    duration: f64,
-    h: f64,
-) -> Result<Vec<StudyRow>, String> {
+/// Largest difference relative to the reference's peak.
+pub(crate) fn relative_error(y: &[f64], r: &[f64]) -> f64 {
+    let peak = r.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
+    y.iter()
+        .zip(r)
+        .fold(0.0f64, |a, (y, r)| a.max((y - r).abs()))
+        / peak
+}
+
+/// What the study compares, and how.
+#[derive(Clone, Debug)]
+pub struct StudyPlan {
+    /// Orders of the rational approximations.
+    pub orders: Vec<usize>,
+    /// Elements of the FE spans.
+    pub elements: Vec<usize>,
+    /// Substeps per synchronisation step of the FE spans (1: the FE span steps with
+    /// the master).
+    pub fe_substeps: Vec<usize>,
+    /// Elements and substeps of the reference FE span.
+    pub reference_elements: usize,
+    pub reference_substeps: usize,
+    /// Simulated time of each run (s) and synchronisation step (s).
+    pub duration: f64,
+    pub step: f64,
+}
+
+/// Runs every span approximation and FE span of the plan under both end motions and
+/// measures error against the continuum's response and cost per simulated second.
+pub fn study(span: &Span, plan: &StudyPlan) -> Result<StudyReport, String> {
     span.validate().map_err(|e| e.to_string())?;
-    let steps = (duration / h).round() as usize;
+    let h = plan.step;
+    let steps = (plan.duration / h).round() as usize;
     let third =
         (7.85476 / span.length).powi(2) * (span.flexural_rigidity / span.mass_per_length).sqrt();
     let motions = inputs(third);
-    let mut references = Vec::new();
-    for u in &motions {
-        let mut fe = fe_span(span, reference_elements)?;
-        let out = fe
-            .description()
+    let fe_output = |fe: &Beam| {
+        fe.description()
             .output_index("right_deflection")
-            .ok_or("no right_deflection")?;
-        references.push(respond(&mut fe, out, u.as_ref(), h, steps)?.0);
-    }
-    let error = |y: &[f64], r: &[f64]| {
-        let peak = r.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
-        y.iter()
-            .zip(r)
-            .fold(0.0f64, |a, (y, r)| a.max((y - r).abs()))
-            / peak
+            .ok_or_else(|| "no right_deflection".to_string())
     };
+    let mut references = Vec::new();
+    let mut halving = Vec::new();
+    for u in &motions {
+        let run = |substeps| -> Result<Vec<f64>, String> {
+            let mut fe = fe_span(span, plan.reference_elements)?;
+            let out = fe_output(&fe)?;
+            Ok(respond_siso(&mut fe, out, u.as_ref(), h, steps, substeps)?.0)
+        };
+        let fine = run(plan.reference_substeps)?;
+        let coarse = run((plan.reference_substeps / 2).max(1))?;
+        halving.push(relative_error(&coarse, &fine));
+        references.push(fine);
+    }
     let mut rows = Vec::new();
     let approximations = [
         (Approximation::Taylor, "taylor"),
@@ -130,7 +228,7 @@ pub fn study(
         (Approximation::Fit, "fit"),
     ];
     for (a, name) in approximations {
-        for &order in orders {
+        for &order in &plan.orders {
             let params = SpanParams {
                 flexural_rigidity: span.flexural_rigidity,
                 mass_per_length: span.mass_per_length,
@@ -147,13 +245,14 @@ pub fn study(
             let (mut errs, mut costs) = (Vec::new(), Vec::new());
             for (u, r) in motions.iter().zip(&references) {
                 let mut fresh = SpanUnit::new(params.clone()).map_err(|e| e.to_string())?;
-                let (y, wall) = respond(&mut fresh, 0, u.as_ref(), h, steps)?;
-                errs.push(error(&y, r));
-                costs.push(wall / duration);
+                let (y, wall) = respond_siso(&mut fresh, 0, u.as_ref(), h, steps, 1)?;
+                errs.push(relative_error(&y, r));
+                costs.push(wall / plan.duration);
             }
             rows.push(StudyRow {
                 model: name.into(),
                 size: order,
+                substeps: 1,
                 error_sines: errs[0],
                 error_step: errs[1],
                 cost_per_simulated_second: 0.5 * (costs[0] + costs[1]),
@@ -161,39 +260,98 @@ pub fn study(
             });
         }
     }
-    for &n in elements {
-        let (mut errs, mut costs) = (Vec::new(), Vec::new());
-        for (u, r) in motions.iter().zip(&references) {
-            let mut fe = fe_span(span, n)?;
-            let out = fe
-                .description()
-                .output_index("right_deflection")
-                .ok_or("no right_deflection")?;
-            let (y, wall) = respond(&mut fe, out, u.as_ref(), h, steps)?;
-            errs.push(error(&y, r));
-            costs.push(wall / duration);
+    for &substeps in &plan.fe_substeps {
+        for &n in &plan.elements {
+            let (mut errs, mut costs) = (Vec::new(), Vec::new());
+            for (u, r) in motions.iter().zip(&references) {
+                let mut fe = fe_span(span, n)?;
+                let out = fe_output(&fe)?;
+                let (y, wall) = respond_siso(&mut fe, out, u.as_ref(), h, steps, substeps)?;
+                errs.push(relative_error(&y, r));
+                costs.push(wall / plan.duration);
+            }
+            rows.push(StudyRow {
+                model: "fe".into(),
+                size: n,
+                substeps,
+                error_sines: errs[0],
+                error_step: errs[1],
+                cost_per_simulated_second: 0.5 * (costs[0] + costs[1]),
+                repaired: 0,
+            });
         }
-        rows.push(StudyRow {
-            model: "fe".into(),
-            size: n,
-            error_sines: errs[0],
-            error_step: errs[1],
-            cost_per_simulated_second: 0.5 * (costs[0] + costs[1]),
-            repaired: 0,
-        });
     }
-    Ok(rows)
+    Ok(StudyReport {
+        step: h,
+        duration: plan.duration,
+        reference: Reference {
+            elements: plan.reference_elements,
+            substeps: plan.reference_substeps,
+            halving_change_sines: halving[0],
+            halving_change_step: halving[1],
+        },
+        rows,
+    })
 }
 
-/// The rows as a Markdown table.
-pub fn to_markdown(rows: &[StudyRow]) -> String {
-    let mut out = String::from(
-        "| model | order / elements | error, sines | error, step | cost (s per simulated s) | poles reflected |\n|---|---|---|---|---|---|\n",
+/// For a span-unit row: the cheapest FE span of the report at least as accurate under
+/// the sum of sines (the in-band motion), and how many times cheaper the span unit is.
+pub fn cheapest_equal_fe<'a>(
+    report: &'a StudyReport,
+    row: &StudyRow,
+) -> Option<(&'a StudyRow, f64)> {
+    report
+        .rows
+        .iter()
+        .filter(|r| r.model == "fe" && r.error_sines <= row.error_sines)
+        .min_by(|a, b| {
+            a.cost_per_simulated_second
+                .total_cmp(&b.cost_per_simulated_second)
+        })
+        .map(|fe| {
+            (
+                fe,
+                fe.cost_per_simulated_second / row.cost_per_simulated_second,
+            )
+        })
+}
+
+/// The report as Markdown: the reference, every row, and for each span unit the
+/// cheapest FE span of equal in-band accuracy.
+pub fn to_markdown(report: &StudyReport) -> String {
+    let r = &report.reference;
+    let mut out = format!(
+        "Step {} s, {} s per run. Reference: FE span with {} elements and {} substeps per step \
+         under the same ramped end motion; halving its substeps changes it by {:.1e} (sines) \
+         and {:.1e} (step) of its peak.\n\n",
+        report.step,
+        report.duration,
+        r.elements,
+        r.substeps,
+        r.halving_change_sines,
+        r.halving_change_step
     );
-    for r in rows {
+    out += "| model | order / elements | substeps | error, sines | error, step | cost (s per simulated s) | poles reflected | cheapest FE as accurate (sines) | cost ratio |\n|---|---|---|---|---|---|---|---|---|\n";
+    for row in &report.rows {
+        let equal = if row.model == "fe" {
+            "| |".to_string()
+        } else {
+            match cheapest_equal_fe(report, row) {
+                Some((fe, ratio)) => {
+                    format!("| {} el, {} substeps | {ratio:.0}x |", fe.size, fe.substeps)
+                }
+                None => "| none in the study | |".to_string(),
+            }
+        };
         out += &format!(
-            "| {} | {} | {:.2e} | {:.2e} | {:.2e} | {} |\n",
-            r.model, r.size, r.error_sines, r.error_step, r.cost_per_simulated_second, r.repaired
+            "| {} | {} | {} | {:.2e} | {:.2e} | {:.2e} | {} {equal}\n",
+            row.model,
+            row.size,
+            row.substeps,
+            row.error_sines,
+            row.error_step,
+            row.cost_per_simulated_second,
+            row.repaired
         );
     }
     out

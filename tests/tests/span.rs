@@ -422,27 +422,78 @@ mod unit {
     }
 }
 
-#[test]
-#[ignore = "known gap (issue 5): function Pade orders 14 and 16 have spurious right-half-plane poles; reflecting them and refitting the residues over the band is not enough (3.7 % and 71 % off the FE span); they need pole relocation (vector fitting)"]
-fn high_order_function_pade_follows_the_fe_span() {
+/// Largest relative difference of the realised function Pade approximation of
+/// `order` (repaired if it has unstable poles) to the exact H_{U2 -> U5} at 0.1, 1
+/// and 5 rad/s (below the third resonance), band 62.8 rad/s.
+fn high_order_pade_error(order: usize) -> f64 {
     use slender_units::span::realization::StateSpace;
     let span = bode_span(5.0);
-    for order in [14, 16] {
-        let ss = StateSpace::realize(&function_pade_u2_u5(order).unwrap(), &span, 62.8).unwrap();
-        for w in [0.1, 1.0, 5.0] {
-            let s = C64::new(0.0, w);
-            let n = ss.order();
-            let a = nalgebra::DMatrix::from_fn(n, n, |i, j| {
-                s * if i == j { 1.0 } else { 0.0 } - C64::from(ss.a[(i, j)])
-            });
-            let b = nalgebra::DVector::from_fn(n, |i, _| C64::from(ss.b[i]));
-            let x = a.lu().solve(&b).unwrap();
-            let h = (0..n).map(|i| x[i] * ss.c[i]).sum::<C64>() + ss.d;
+    let ss = StateSpace::realize(&function_pade_u2_u5(order).unwrap(), &span, 62.8).unwrap();
+    assert!(
+        ss.repaired > 0,
+        "order {order} was expected to need a repair"
+    );
+    assert!(ss.is_stable(), "order {order}");
+    [0.1, 1.0, 5.0]
+        .iter()
+        .map(|&w| {
             let exact = h25(&span, w);
-            assert!(
-                (h - exact).norm() < 1e-2 * exact.norm(),
-                "order {order}, omega {w}"
-            );
-        }
+            let error = (ss.response(C64::new(0.0, w)) - exact).norm() / exact.norm();
+            eprintln!("function Pade order {order}, omega {w}: {error:.2e}");
+            error
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn order_16_function_pade_repaired_by_relocation_follows_the_exact_span() {
+    // Order 16 has 8 poles in the right half-plane; reflected and relocated by vector
+    // fitting over the band it is within 0.64 % (reflection alone: 71 %).
+    assert!(high_order_pade_error(16) < 1e-2);
+}
+
+#[test]
+#[ignore = "known gap (issue 5): function Pade order 14 has 4 right-half-plane poles; reflected and relocated over the 10 Hz band it is 1.65 % off at 5 rad/s (reflection alone: 3.7 %), beyond the 1 % the other orders meet: seven pole pairs cannot cover the eight resonances of the band"]
+fn order_14_function_pade_repaired_by_relocation_follows_the_exact_span() {
+    assert!(high_order_pade_error(14) < 1e-2);
+}
+
+/// The accuracy half of `slender span study` (its cost half is in BENCHMARKS.md):
+/// against the continuum's response (FE 128 elements, 64 substeps), the function
+/// Pade span unit of order 12 is more accurate than every FE span that steps with
+/// the master, since those carry the trapezoidal rule's time error at h = 10 ms;
+/// and the reference is converged well below the errors it ranks.
+#[test]
+fn span_unit_beats_fe_spans_stepping_with_the_master_against_the_continuum() {
+    use slender_master::span_study::{StudyPlan, study};
+    let plan = StudyPlan {
+        orders: vec![8, 12],
+        elements: vec![8, 16, 32],
+        fe_substeps: vec![1, 4],
+        reference_elements: 128,
+        reference_substeps: 64,
+        duration: 30.0,
+        step: 0.01,
+    };
+    let report = study(&bode_span(5.0), &plan).unwrap();
+    eprint!("{}", slender_master::span_study::to_markdown(&report));
+    let row = |model: &str, size: usize, substeps: usize| {
+        report
+            .rows
+            .iter()
+            .find(|r| r.model == model && r.size == size && r.substeps == substeps)
+            .unwrap()
+    };
+    let pade12 = row("function_pade", 12, 1).error_sines;
+    for n in [8, 16, 32] {
+        let fe = row("fe", n, 1).error_sines;
+        assert!(
+            pade12 < fe,
+            "function Pade 12: {pade12:.2e}, FE {n}: {fe:.2e}"
+        );
     }
+    // With 4 substeps the FE's time error drops 16-fold: 16 elements then come
+    // within a factor of a few of the span unit.
+    assert!(row("fe", 16, 4).error_sines < row("fe", 16, 1).error_sines / 4.0);
+    assert!(report.reference.halving_change_sines < pade12 / 10.0);
 }
