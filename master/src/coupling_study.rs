@@ -8,7 +8,7 @@
 //! deflection has a kink at every sample, and the continuum answers a kink with an
 //! impulsive shear at the driven end.)
 
-use crate::span_study::{relative_error, respond};
+use crate::span_study::{cheapest_as_accurate, relative_error, respond};
 use serde::Serialize;
 use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
 use slender_units::beam::{Beam, BeamParams};
@@ -197,20 +197,12 @@ pub fn cheapest_equal_fe<'a>(
     row: &CouplingRow,
     which: &[usize],
 ) -> Option<(&'a CouplingRow, f64)> {
-    report
-        .rows
-        .iter()
-        .filter(|r| r.model == "fe" && which.iter().all(|&j| r.errors[j] <= row.errors[j]))
-        .min_by(|a, b| {
-            a.cost_per_simulated_second
-                .total_cmp(&b.cost_per_simulated_second)
-        })
-        .map(|fe| {
-            (
-                fe,
-                fe.cost_per_simulated_second / row.cost_per_simulated_second,
-            )
-        })
+    cheapest_as_accurate(
+        &report.rows,
+        row,
+        |r| r.model == "fe" && which.iter().all(|&j| r.errors[j] <= row.errors[j]),
+        |r| r.cost_per_simulated_second,
+    )
 }
 
 /// The report as Markdown, with the cheapest FE span as accurate on every output

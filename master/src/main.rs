@@ -592,16 +592,13 @@ fn span_command(
                     step,
                 };
                 let report = span_study::study(span, &plan)?;
-                let md = span_study::to_markdown(&report);
-                print!("{md}");
-                let (pmd, pjson, psvg) = (
-                    out.join("span_study.md"),
-                    out.join("span_study.json"),
-                    out.join("accuracy_cost.svg"),
-                );
-                std::fs::write(&pmd, &md).map_err(|e| format!("{}: {e}", pmd.display()))?;
-                let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
-                std::fs::write(&pjson, json).map_err(|e| format!("{}: {e}", pjson.display()))?;
+                let (pmd, pjson, psvg) = write_study_report(
+                    out,
+                    "span_study",
+                    "accuracy_cost",
+                    &span_study::to_markdown(&report),
+                    &report,
+                )?;
                 let points: Vec<(String, f64, f64)> = report
                     .rows
                     .iter()
@@ -633,16 +630,13 @@ fn span_command(
                     step,
                 };
                 let report = coupling_study::coupling_study(span, &plan)?;
-                let md = coupling_study::to_markdown(&report);
-                print!("{md}");
-                let (pmd, pjson, psvg) = (
-                    out.join("coupling_study.md"),
-                    out.join("coupling_study.json"),
-                    out.join("coupling_accuracy_cost.svg"),
-                );
-                std::fs::write(&pmd, &md).map_err(|e| format!("{}: {e}", pmd.display()))?;
-                let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
-                std::fs::write(&pjson, json).map_err(|e| format!("{}: {e}", pjson.display()))?;
+                let (pmd, pjson, psvg) = write_study_report(
+                    out,
+                    "coupling_study",
+                    "coupling_accuracy_cost",
+                    &coupling_study::to_markdown(&report),
+                    &report,
+                )?;
                 let points: Vec<(String, f64, f64)> = report
                     .rows
                     .iter()
@@ -667,6 +661,28 @@ fn span_command(
         }
     })();
     report_written(written)
+}
+
+/// Prints a study's Markdown and writes it as `<stem>.md` with the report as
+/// `<stem>.json` into `out`; returns those paths and the path for its plot,
+/// `<plot>.svg`.
+fn write_study_report(
+    out: &Path,
+    stem: &str,
+    plot: &str,
+    markdown: &str,
+    report: &impl serde::Serialize,
+) -> Result<(PathBuf, PathBuf, PathBuf), String> {
+    print!("{markdown}");
+    let (md, json, svg) = (
+        out.join(format!("{stem}.md")),
+        out.join(format!("{stem}.json")),
+        out.join(format!("{plot}.svg")),
+    );
+    std::fs::write(&md, markdown).map_err(|e| format!("{}: {e}", md.display()))?;
+    let text = serde_json::to_string_pretty(report).map_err(|e| e.to_string())?;
+    std::fs::write(&json, text).map_err(|e| format!("{}: {e}", json.display()))?;
+    Ok((md, json, svg))
 }
 
 fn fmu_command(action: FmuAction) -> ExitCode {

@@ -300,20 +300,26 @@ pub fn cheapest_equal_fe<'a>(
     report: &'a StudyReport,
     row: &StudyRow,
 ) -> Option<(&'a StudyRow, f64)> {
-    report
-        .rows
-        .iter()
-        .filter(|r| r.model == "fe" && r.error_sines <= row.error_sines)
-        .min_by(|a, b| {
-            a.cost_per_simulated_second
-                .total_cmp(&b.cost_per_simulated_second)
-        })
-        .map(|fe| {
-            (
-                fe,
-                fe.cost_per_simulated_second / row.cost_per_simulated_second,
-            )
-        })
+    cheapest_as_accurate(
+        &report.rows,
+        row,
+        |r| r.model == "fe" && r.error_sines <= row.error_sines,
+        |r| r.cost_per_simulated_second,
+    )
+}
+
+/// The cheapest of `rows` that `qualifies` (an FE span at least as accurate as
+/// `row`), and its cost over `row`'s: how many times cheaper `row` is.
+pub(crate) fn cheapest_as_accurate<'a, R>(
+    rows: &'a [R],
+    row: &R,
+    qualifies: impl Fn(&R) -> bool,
+    cost: impl Fn(&R) -> f64,
+) -> Option<(&'a R, f64)> {
+    rows.iter()
+        .filter(|r| qualifies(r))
+        .min_by(|a, b| cost(a).total_cmp(&cost(b)))
+        .map(|fe| (fe, cost(fe) / cost(row)))
 }
 
 /// The report as Markdown: the reference, every row, and for each span unit the

@@ -94,9 +94,8 @@ pub struct SpanUnit {
     description: UnitDescription,
     system: StateSpace,
     state: SpanState,
-    step: f64,
-    /// The exact step for the current step length (None before the first step).
-    stepper: Option<Stepper>,
+    /// The exact step and the step length (s) it is for (None before the first step).
+    stepper: Option<(f64, Stepper)>,
 }
 
 impl SpanUnit {
@@ -124,7 +123,6 @@ impl SpanUnit {
                 x: DVector::zeros(n),
                 inputs: HeldInputs::new(vec![Hold::Ramp]),
             },
-            step: 0.0,
             stepper: None,
             system,
         })
@@ -170,14 +168,12 @@ impl Unit for SpanUnit {
 
     fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
         let h = h.as_secs();
-        if h != self.step || self.stepper.is_none() {
-            self.stepper = Some(self.system.stepper(h));
-            self.step = h;
-        }
         let (u0, u1) = (self.state.inputs.at(0, 0.0), self.state.inputs.at(0, 1.0));
-        if let Some(stepper) = self.stepper.as_mut() {
-            stepper.advance(&mut self.state.x, u0, u1);
-        }
+        let stepper = match &mut self.stepper {
+            Some((step, stepper)) if *step == h => stepper,
+            slot => &mut slot.insert((h, self.system.stepper(h))).1,
+        };
+        stepper.advance(&mut self.state.x, u0, u1);
         // A non-finite entry makes the sum non-finite: one pass, no branch per entry.
         if !self.state.x.iter().sum::<f64>().is_finite() {
             return Err(UnitError::Numerical(
