@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 use slender_master::fmi::export::{CONFIG_FILE, ExportConfig, Layout};
 use slender_master::fmi::ffi::*;
 use slender_master::fmi::model_description::Value;
-use slender_units::{Hold, StateSlot, Time, Unit};
+use slender_units::{Driver, DriverSlot, Hold, Time};
 use std::ffi::{CString, c_void};
 use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
@@ -26,7 +26,7 @@ pub struct Instance {
     exported: ExportConfig,
     config: ExportConfig,
     layout: Layout,
-    unit: Option<Box<dyn Unit>>,
+    unit: Option<Driver>,
     /// Parameters changed since the unit was built.
     rebuild: bool,
     /// Inputs or parameters changed in initialisation mode since the unit last
@@ -39,17 +39,17 @@ pub struct Instance {
     /// First derivatives of the inputs for the next step, and whether set.
     derivatives: Vec<f64>,
     ramped: Vec<bool>,
-    /// Hold currently set on each unit input.
-    holds: Vec<Hold>,
     end: Vec<f64>,
     outputs: Vec<f64>,
+    /// Inputs set since the outputs were last computed (direct feedthrough).
+    inputs_changed: bool,
     parameters: Vec<Value>,
     strings: Vec<CString>,
 }
 
 /// What `fmi2GetFMUstate` copies.
 struct SavedInstance {
-    slot: StateSlot,
+    slot: DriverSlot,
     phase: Phase,
     time: Time,
     inputs: Vec<f64>,
@@ -70,7 +70,7 @@ struct SerializedInstance {
     unit: Vec<u8>,
 }
 
-const MAGIC: &str = "slender-fmu-state-1";
+const MAGIC: &str = "slender-fmu-state-2";
 
 /// Sends a message to the environment's logger, whatever the instance state.
 pub fn log_with(
@@ -217,8 +217,8 @@ impl Instance {
             inputs,
             derivatives: vec![0.0; n_in],
             ramped: vec![false; n_in],
-            holds: Vec::new(),
             end: vec![0.0; n_in],
+            inputs_changed: false,
             parameters,
             strings: Vec::new(),
         })
@@ -249,13 +249,12 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    fn unit(&mut self) -> Result<&mut Box<dyn Unit>, String> {
+    fn unit(&mut self) -> Result<&mut Driver, String> {
         if self.rebuild || self.unit.is_none() {
             let unit = self
                 .config
-                .build_unit()
+                .driver()
                 .map_err(|e| format!("building the unit: {e}"))?;
-            self.holds = unit.description().inputs.iter().map(|p| p.hold).collect();
             self.unit = Some(unit);
             self.rebuild = false;
             self.reinitialize = true;
@@ -273,8 +272,9 @@ impl Instance {
         unit.set_inputs(&self.inputs).map_err(|e| e.to_string())?;
         unit.initialize(self.start_time)
             .map_err(|e| format!("initial state: {e}"))?;
-        unit.outputs(&mut self.outputs);
+        unit.outputs(&mut self.outputs).map_err(|e| e.to_string())?;
         self.reinitialize = false;
+        self.inputs_changed = false;
         Ok(())
     }
 
@@ -368,6 +368,8 @@ impl Instance {
     pub fn get_real(&mut self, vr: &[u32], out: &mut [f64]) -> Result<fmi2Status, String> {
         if self.phase == Phase::Initialization {
             self.settle()?;
+        } else if self.phase == Phase::Stepping && self.inputs_changed {
+            self.refresh_feedthrough()?;
         }
         let (n_in, n_out) = (self.n_in(), self.n_out());
         for (r, v) in vr.iter().zip(out.iter_mut()) {
@@ -399,6 +401,7 @@ impl Instance {
                 }
                 self.inputs[r_us] = *v;
                 self.reinitialize |= self.phase == Phase::Initialization;
+                self.inputs_changed = true;
             } else if r_us < n_in + self.n_out() {
                 return Err(format!(
                     "`{}` is an output and cannot be set",
@@ -522,8 +525,9 @@ impl Instance {
             } else {
                 Hold::ZeroOrder
             };
-            if self.holds[i] != hold && unit.set_hold(i, hold).is_ok() {
-                self.holds[i] = hold;
+            if unit.holds()[i] != hold {
+                // Units with a fixed hold keep theirs.
+                let _ = unit.set_hold(i, hold);
             }
             self.end[i] = if self.ramped[i] {
                 self.inputs[i] + h * self.derivatives[i]
@@ -540,9 +544,24 @@ impl Instance {
                 self.time.as_secs()
             ));
         }
-        unit.outputs(&mut self.outputs);
+        unit.outputs(&mut self.outputs).map_err(|e| e.to_string())?;
+        self.inputs_changed = false;
         self.time += step;
         Ok(FMI2_OK)
+    }
+
+    /// Outputs with direct feedthrough follow inputs set at the communication
+    /// point: the unit's outputs are evaluated again with them as its current
+    /// inputs (the state does not change; the next step starts from the last
+    /// accepted inputs as before).
+    fn refresh_feedthrough(&mut self) -> Result<(), String> {
+        let unit = self.unit.as_mut().ok_or("no unit")?;
+        if unit.description().has_feedthrough() {
+            unit.set_inputs(&self.inputs).map_err(|e| e.to_string())?;
+            unit.outputs(&mut self.outputs).map_err(|e| e.to_string())?;
+        }
+        self.inputs_changed = false;
+        Ok(())
     }
 
     pub fn get_state(&mut self, handle: &mut fmi2FMUstate) -> Result<fmi2Status, String> {
@@ -555,7 +574,7 @@ impl Instance {
             .ok_or("no state before fmi2EnterInitializationMode")?;
         if handle.is_null() {
             let saved = SavedInstance {
-                slot: StateSlot::new(),
+                slot: DriverSlot::new(),
                 phase: self.phase,
                 time: self.time,
                 inputs: Vec::new(),
@@ -565,8 +584,7 @@ impl Instance {
         }
         // SAFETY: non-null handles are ours (Box<SavedInstance>).
         let saved = unsafe { &mut *handle.cast::<SavedInstance>() };
-        unit.save_state(&mut saved.slot)
-            .map_err(|e| e.to_string())?;
+        unit.save(&mut saved.slot).map_err(|e| e.to_string())?;
         saved.phase = self.phase;
         saved.time = self.time;
         saved.inputs.clone_from(&self.inputs);
@@ -581,12 +599,13 @@ impl Instance {
         // SAFETY: non-null handles are ours (Box<SavedInstance>).
         let saved = unsafe { &*handle.cast::<SavedInstance>() };
         let unit = self.unit()?;
-        unit.restore_state(&saved.slot).map_err(|e| e.to_string())?;
+        unit.restore(&saved.slot).map_err(|e| e.to_string())?;
         self.phase = saved.phase;
         self.time = saved.time;
         self.inputs.clone_from(&saved.inputs);
         self.outputs.clone_from(&saved.outputs);
         self.reinitialize = false;
+        self.inputs_changed = false;
         self.ramped.iter_mut().for_each(|r| *r = false);
         Ok(FMI2_OK)
     }
@@ -629,7 +648,7 @@ impl Instance {
             return Err("the state's input or output count does not match the unit".into());
         }
         let saved = SavedInstance {
-            slot: StateSlot::from_bytes(state.unit),
+            slot: DriverSlot::from_bytes(&state.unit).map_err(|e| e.to_string())?,
             phase: state.phase,
             time: Time::from_nanos(state.time_ns),
             inputs: state.inputs,

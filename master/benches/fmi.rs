@@ -10,7 +10,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use slender_master::fmi::export::{ExportConfig, package};
 use slender_master::fmi::import::{FmuParams, FmuUnit};
 use slender_master::scene::Scene;
-use slender_units::{StateSlot, Time, Unit};
+use slender_units::{Driver, DriverSlot, Time, Unit};
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 
@@ -31,7 +31,7 @@ fn library() -> PathBuf {
 
 /// The native unit, the same unit through an exported FMU, and the start inputs
 /// the scene settled on.
-fn pair(scene: &str, unit: &str, dir: &Path) -> (Box<dyn Unit>, FmuUnit, Vec<f64>) {
+fn pair(scene: &str, unit: &str, dir: &Path) -> (Driver, Driver, Vec<f64>) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../examples")
         .join(scene);
@@ -45,8 +45,9 @@ fn pair(scene: &str, unit: &str, dir: &Path) -> (Box<dyn Unit>, FmuUnit, Vec<f64
         preload: Vec::new(),
         logging: false,
     };
-    let native = config.build_unit().expect("builds");
-    let fmu = FmuUnit::load(&params, Path::new(".")).expect("loads");
+    let native = config.driver().expect("builds");
+    let fmu: Box<dyn Unit> = Box::new(FmuUnit::load(&params, Path::new(".")).expect("loads"));
+    let fmu = Driver::new(fmu);
     let inputs = native
         .description()
         .inputs
@@ -70,27 +71,24 @@ fn steps(c: &mut Criterion) {
         fmu.set_inputs(&config_inputs).expect("inputs");
         fmu.initialize(Time::ZERO).expect("initialises");
         let mut out = vec![0.0; native.description().outputs.len()];
-        for (name, unit) in [
-            ("native", native.as_mut()),
-            ("through_fmi", &mut fmu as &mut dyn Unit),
-        ] {
+        for (name, unit) in [("native", &mut native), ("through_fmi", &mut fmu)] {
             let mut t = Time::ZERO;
             group.bench_function(format!("{label}/{name}"), |b| {
                 b.iter(|| {
                     unit.set_inputs(black_box(&config_inputs)).expect("inputs");
                     unit.do_step(t, h).expect("steps");
-                    unit.outputs(&mut out);
+                    unit.outputs(&mut out).expect("outputs");
                     t += h;
                 })
             });
-            let mut slot = StateSlot::new();
+            let mut slot = DriverSlot::new();
             group.bench_function(format!("{label}/{name}/save_step_restore"), |b| {
                 b.iter(|| {
-                    unit.save_state(&mut slot).expect("saves");
+                    unit.save(&mut slot).expect("saves");
                     unit.set_inputs(black_box(&config_inputs)).expect("inputs");
                     unit.do_step(t, h).expect("steps");
-                    unit.outputs(&mut out);
-                    unit.restore_state(&slot).expect("restores");
+                    unit.outputs(&mut out).expect("outputs");
+                    unit.restore(&slot).expect("restores");
                 })
             });
         }

@@ -7,8 +7,8 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use slender_master::scene::Scene;
 use slender_master::settings::{Acceleration, MasterSettings, Scheme};
 use slender_master::{Link, Master, System};
-use slender_units::algebraic_loop::{LinearPair, LinearPairParams};
-use slender_units::{Time, Unit};
+use slender_units::benchmark::algebraic_loop::{LinearPair, LinearPairParams};
+use slender_units::{Driver, Time, Unit};
 use std::hint::black_box;
 use std::path::Path;
 
@@ -104,8 +104,8 @@ fn baseline(c: &mut Criterion) {
     c.bench_function("master_overhead/baseline_64_units_direct_1000_steps", |b| {
         b.iter_batched(
             || {
-                let mut units: Vec<LinearPair> = (0..n)
-                    .map(|_| LinearPair::new(LinearPairParams {}))
+                let mut units: Vec<Driver<LinearPair>> = (0..n)
+                    .map(|_| Driver::new(LinearPair::new(LinearPairParams {})))
                     .collect();
                 for u in &mut units {
                     u.set_inputs(&[0.0]).unwrap();
@@ -120,7 +120,7 @@ fn baseline(c: &mut Criterion) {
                     for u in &mut units {
                         u.set_inputs(&[0.0 * out[0]]).unwrap();
                         u.do_step(t, h).unwrap();
-                        u.outputs(&mut out);
+                        u.outputs(&mut out).unwrap();
                     }
                     t += h;
                 }

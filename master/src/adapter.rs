@@ -1,34 +1,27 @@
-//! The master's side of a unit: cached port values, call-order checks, counters.
+//! The master's side of a unit: cached port values, counters, NaN checks.
 //!
 //! Model authors implement the small [`Unit`] trait; the master only talks to units
-//! through this adapter, which enforces the call order written in the trait's
-//! documentation, checks outputs for NaN, and counts `do_step` calls (the sweep
-//! times them).
+//! through this adapter. It drives the unit through a [`Driver`], which owns the
+//! held inputs and enforces the call order written in the trait's documentation;
+//! the adapter adds the port values the sweeps read and write, output NaN checks
+//! and counters (the sweep times the calls).
 
 use crate::counters::UnitCounters;
 use crate::error::MasterError;
-use slender_units::{Hold, StateSlot, Time, Unit, UnitError};
+use slender_units::{Driver, DriverSlot, Hold, Time, Unit, UnitError};
 use std::time::Duration;
-
-/// Where a unit is in its life cycle.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-enum Phase {
-    Instantiated,
-    Initialized,
-}
 
 /// A unit as the master holds it.
 pub struct UnitAdapter {
     pub name: String,
-    unit: Box<dyn Unit>,
-    phase: Phase,
-    /// Values given to the next `set_inputs`.
+    driver: Driver,
+    /// Input values for the next `initialize` or step.
     pub inputs: Vec<f64>,
     /// Output values after the last `initialize` or `do_step`.
     pub outputs: Vec<f64>,
     /// Constant values of inputs nothing drives (first guess for looped inputs).
     pub start_inputs: Vec<f64>,
-    saved: StateSlot,
+    saved: DriverSlot,
     pub counters: UnitCounters,
     /// Wall time charged to this unit by the master's sweeps.
     pub step_time: Duration,
@@ -43,19 +36,23 @@ impl UnitAdapter {
                 ..UnitCounters::default()
             },
             name,
-            unit,
-            phase: Phase::Instantiated,
+            driver: Driver::new(unit),
             inputs: start_inputs.clone(),
             outputs: vec![0.0; n_out],
             start_inputs,
-            saved: StateSlot::new(),
+            saved: DriverSlot::new(),
             step_time: Duration::ZERO,
         }
     }
 
     /// The wrapped unit's description.
     pub fn description(&self) -> &slender_units::UnitDescription {
-        self.unit.description()
+        self.driver.description()
+    }
+
+    /// The hold in force for each input.
+    pub fn holds(&self) -> &[Hold] {
+        self.driver.holds()
     }
 
     fn fail(&self, call: &'static str, t: Time, iteration: u32, source: UnitError) -> MasterError {
@@ -70,45 +67,46 @@ impl UnitAdapter {
 
     /// Sets the hold of every input (before initialisation only).
     pub fn set_hold_all(&mut self, hold: Hold) -> Result<(), MasterError> {
-        if self.phase != Phase::Instantiated {
+        if self.driver.is_initialized() {
             return Err(MasterError::Invalid(format!(
                 "unit `{}`: the input hold can only change before initialisation",
                 self.name
             )));
         }
         for port in 0..self.inputs.len() {
-            self.unit
+            self.driver
                 .set_hold(port, hold)
                 .map_err(|e| self.fail("set_hold", Time::ZERO, 0, e))?;
         }
         Ok(())
     }
 
-    /// `set_inputs(self.inputs)` then `initialize(t0)`, then reads the outputs; may
-    /// be repeated while the master makes looped initial values consistent.
+    /// Sets `self.inputs` as the start values, then `initialize(t0)`, then reads the
+    /// outputs; may be repeated while the master makes looped initial values
+    /// consistent.
     pub fn initialize(&mut self, t0: Time, iteration: u32) -> Result<(), MasterError> {
-        self.unit
+        self.driver
             .set_inputs(&self.inputs)
             .map_err(|e| self.fail("set_inputs", t0, iteration, e))?;
-        self.unit
+        self.driver
             .initialize(t0)
             .map_err(|e| self.fail("initialize", t0, iteration, e))?;
-        self.phase = Phase::Initialized;
         self.read_outputs(t0, iteration)
     }
 
-    /// `set_inputs(self.inputs)`, `do_step(t, h)`, then reads the outputs at `t + h`.
+    /// Sets `self.inputs` as the step's end values, `do_step(t, h)`, then reads the
+    /// outputs at `t + h`.
     pub fn step(&mut self, t: Time, h: Time, iteration: u32) -> Result<(), MasterError> {
-        if self.phase != Phase::Initialized {
+        if !self.driver.is_initialized() {
             return Err(MasterError::Invalid(format!(
                 "unit `{}`: do_step called before initialize",
                 self.name
             )));
         }
-        self.unit
+        self.driver
             .set_inputs(&self.inputs)
             .map_err(|e| self.fail("set_inputs", t + h, iteration, e))?;
-        let result = self.unit.do_step(t, h);
+        let result = self.driver.do_step(t, h);
         self.counters.do_step_calls += 1;
         let report = result.map_err(|e| self.fail("do_step", t + h, iteration, e))?;
         self.counters.solver_iterations += u64::from(report.solver_iterations);
@@ -116,11 +114,13 @@ impl UnitAdapter {
     }
 
     fn read_outputs(&mut self, t: Time, iteration: u32) -> Result<(), MasterError> {
-        self.unit.outputs(&mut self.outputs);
+        self.driver
+            .outputs(&mut self.outputs)
+            .map_err(|e| self.fail("outputs", t, iteration, e))?;
         if let Some(port) = self.outputs.iter().position(|v| !v.is_finite()) {
             return Err(MasterError::NonFinite {
                 unit: self.name.clone(),
-                port: self.unit.description().outputs[port].name.clone(),
+                port: self.driver.description().outputs[port].name.clone(),
                 value: self.outputs[port],
                 time: t.as_secs(),
                 iteration,
@@ -131,21 +131,21 @@ impl UnitAdapter {
 
     /// The unit's modes about its initial state.
     pub fn modes(&self, count: usize) -> Result<slender_units::ModalAnalysis, MasterError> {
-        if self.phase != Phase::Initialized {
+        if !self.driver.is_initialized() {
             return Err(MasterError::Invalid(format!(
                 "unit `{}`: modal analysis before initialize",
                 self.name
             )));
         }
-        self.unit
+        self.driver
             .modes(count)
             .map_err(|e| self.fail("modes", Time::ZERO, 0, e))
     }
 
     /// Saves the unit's state for a later `restore`.
     pub fn save(&mut self, t: Time) -> Result<(), MasterError> {
-        self.unit
-            .save_state(&mut self.saved)
+        self.driver
+            .save(&mut self.saved)
             .map_err(|e| self.fail("save_state", t, 0, e))
     }
 
@@ -157,8 +157,8 @@ impl UnitAdapter {
                 self.name
             )));
         }
-        self.unit
-            .restore_state(&self.saved)
+        self.driver
+            .restore(&self.saved)
             .map_err(|e| self.fail("restore_state", t, iteration, e))
     }
 }

@@ -7,7 +7,7 @@ use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, 
 use slender_units::beam::{Beam, BeamParams};
 use slender_units::span::transfer::{C64, Span};
 use slender_units::span::unit::{Approximation, SpanParams, SpanUnit};
-use slender_units::{Time, Unit};
+use slender_units::{Driver, Time, Unit};
 use std::time::Instant;
 
 /// An FE span with the same boundary conditions as the span unit: y(0) = 0, the
@@ -47,6 +47,7 @@ pub(crate) fn respond(
     substeps: usize,
 ) -> Result<(Vec<Vec<f64>>, f64), String> {
     let first = samples.first().ok_or("no input samples")?;
+    let mut unit = Driver::new(unit);
     unit.set_inputs(first).map_err(|e| e.to_string())?;
     unit.initialize(Time::ZERO).map_err(|e| e.to_string())?;
     let ht = Time::from_secs(h).ok_or("bad step")?;
@@ -75,7 +76,7 @@ pub(crate) fn respond(
             unit.do_step(ht * k as i64 + hs * (j - 1) as i64, hs)
                 .map_err(|e| e.to_string())?;
         }
-        unit.outputs(&mut out);
+        unit.outputs(&mut out).map_err(|e| e.to_string())?;
         flat.extend(outputs.iter().map(|&o| out[o]));
     }
     let wall = started.elapsed().as_secs_f64();

@@ -157,8 +157,8 @@ pub fn order(error_h: f64, error_half: f64) -> f64 {
 /// misbehaves on cue.
 pub mod probe {
     use slender_units::{
-        Capabilities, HeldInputs, Hold, Port, PortKind, StateSlot, StepReport, Time, Unit,
-        UnitDescription, UnitError,
+        Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
+        UnitError,
     };
 
     /// What the probe does at a step, decided from the step's end time (s) and the
@@ -172,7 +172,6 @@ pub mod probe {
     #[derive(Clone, serde::Serialize, serde::Deserialize)]
     struct State {
         y: f64,
-        inputs: HeldInputs,
     }
 
     pub struct Probe {
@@ -207,10 +206,7 @@ pub mod probe {
                         ..Capabilities::default()
                     },
                 },
-                state: State {
-                    y: 0.0,
-                    inputs: HeldInputs::new(vec![Hold::Ramp]),
-                },
+                state: State { y: 0.0 },
                 calls: 0,
                 nan: false,
                 script: Box::new(script),
@@ -222,20 +218,11 @@ pub mod probe {
         fn description(&self) -> &UnitDescription {
             &self.description
         }
-        fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
-            self.state.inputs.set_hold(port, hold);
-            Ok(())
-        }
-        fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-            self.state.inputs.set_end(values);
-            Ok(())
-        }
-        fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
-            self.state.inputs.settle();
+        fn initialize(&mut self, _t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
             self.state.y = 0.0;
             Ok(())
         }
-        fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+        fn do_step(&mut self, t: Time, h: Time, i: Inputs<'_>) -> Result<StepReport, UnitError> {
             self.calls += 1;
             match (self.script)((t + h).as_secs(), self.calls) {
                 Act::Behave => {}
@@ -243,14 +230,12 @@ pub mod probe {
                 Act::ProduceNan => self.nan = true,
             }
             let h = h.as_secs();
-            let i = &self.state.inputs;
             self.state.y += h * 0.5 * (i.at(0, 0.0) + i.at(0, 1.0));
-            self.state.inputs.advance();
             Ok(StepReport::default())
         }
-        fn outputs(&self, out: &mut [f64]) {
+        fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
             out[0] = if self.nan { f64::NAN } else { self.state.y };
-            out[1] = self.state.inputs.end()[0];
+            out[1] = inputs.end()[0];
         }
         fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
             if !self.description.capabilities.rollback {

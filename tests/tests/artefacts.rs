@@ -2,7 +2,8 @@
 //! artefact alone, statistics over many samples, and exact repetition after rollback.
 
 use slender_units::signal::artefact::{Artefact, ArtefactParams};
-use slender_units::{PortKind, StateSlot, Time, Unit};
+use slender_units::{Driver, DriverSlot};
+use slender_units::{PortKind, Time};
 
 const H: f64 = 0.01;
 
@@ -22,8 +23,8 @@ fn params() -> ArtefactParams {
 }
 
 /// Drives the unit with the ramp for `steps` steps; returns (t, output) pairs.
-fn ramp(p: ArtefactParams, steps: usize) -> (Vec<(f64, f64)>, Artefact) {
-    let mut a = Artefact::new(p).unwrap();
+fn ramp(p: ArtefactParams, steps: usize) -> (Vec<(f64, f64)>, Driver<Artefact>) {
+    let mut a = Driver::new(Artefact::new(p).unwrap());
     a.set_inputs(&[0.0]).unwrap();
     a.initialize(Time::ZERO).unwrap();
     let h = Time::from_secs(H).unwrap();
@@ -33,7 +34,7 @@ fn ramp(p: ArtefactParams, steps: usize) -> (Vec<(f64, f64)>, Artefact) {
         let t_end = (k + 1) as f64 * H;
         a.set_inputs(&[t_end]).unwrap();
         a.do_step(h * k as i64, h).unwrap();
-        a.outputs(&mut y);
+        a.outputs(&mut y).unwrap();
         out.push((t_end, y[0]));
     }
     (out, a)
@@ -135,7 +136,7 @@ fn two_channels_share_losses_and_delay_but_not_calibration() {
     p.scale = Some(vec![2.0, 1.0]);
     p.loss_probability = 0.05;
     p.loss_duration_mean = 0.05;
-    let mut a = Artefact::new(p).unwrap();
+    let mut a = Driver::new(Artefact::new(p).unwrap());
     a.set_inputs(&[0.0, 0.0]).unwrap();
     a.initialize(Time::ZERO).unwrap();
     let h = Time::from_secs(H).unwrap();
@@ -144,7 +145,7 @@ fn two_channels_share_losses_and_delay_but_not_calibration() {
         let t = (k + 1) as f64 * H;
         a.set_inputs(&[t, t]).unwrap();
         a.do_step(h * k as i64, h).unwrap();
-        a.outputs(&mut y);
+        a.outputs(&mut y).unwrap();
         assert!(
             (y[0] - 2.0 * y[1]).abs() < 1e-9,
             "channels froze apart at {t}"
@@ -164,22 +165,22 @@ fn a_repeated_step_sees_the_same_noise_and_losses() {
     };
     let (_, mut a) = ramp(p, 50);
     let h = Time::from_secs(H).unwrap();
-    let mut slot = StateSlot::new();
+    let mut slot = DriverSlot::new();
     let mut first = Vec::new();
-    a.save_state(&mut slot).unwrap();
+    a.save(&mut slot).unwrap();
     for k in 50..80 {
         a.set_inputs(&[k as f64 * H]).unwrap();
         a.do_step(h * k, h).unwrap();
         let mut y = [0.0];
-        a.outputs(&mut y);
+        a.outputs(&mut y).unwrap();
         first.push(y[0].to_bits());
     }
-    a.restore_state(&slot).unwrap();
+    a.restore(&slot).unwrap();
     for (i, k) in (50..80).enumerate() {
         a.set_inputs(&[k as f64 * H]).unwrap();
         a.do_step(h * k, h).unwrap();
         let mut y = [0.0];
-        a.outputs(&mut y);
+        a.outputs(&mut y).unwrap();
         assert_eq!(y[0].to_bits(), first[i]);
     }
 }

@@ -2,16 +2,16 @@
 //! unit's modal analysis at its static state.
 
 use slender_tests::{polyester_line, published};
-use slender_units::Unit;
+use slender_units::Driver;
+use slender_units::Time;
 use slender_units::cable::{Cable, Effects};
-use slender_units::time::Time;
 
 /// Periods of the first 15 modes with the given stiffness factor, effects, top
 /// force angle from the vertical (deg) and element count.
 fn periods(stiffness_factor: f64, effects: Effects, angle_deg: f64, elements: usize) -> Vec<f64> {
     let mut p = polyester_line(elements);
     p.youngs_modulus *= stiffness_factor;
-    let mut cable = Cable::new(p, effects).unwrap();
+    let mut cable = Driver::new(Cable::new(p, effects).unwrap());
     let a = angle_deg.to_radians();
     cable
         .set_inputs(&[2.5e6 * a.sin(), 2.5e6 * a.cos(), 0.0, 0.0])
@@ -185,11 +185,11 @@ fn the_truncation_point_of_the_nominal_line() {
     p.section = Section::Lower {
         truncation_ratio: 0.8,
     };
-    let lower = Cable::new(p, Effects::all()).unwrap();
+    let lower = Driver::new(Cable::new(p, Effects::all()).unwrap());
     let k = lower.element_count();
     let top = lower.bottom_position();
     assert_eq!(top, [0.0, 0.0]);
-    let mut full = Cable::new(polyester_line(80), Effects::all()).unwrap();
+    let mut full = Driver::new(Cable::new(polyester_line(80), Effects::all()).unwrap());
     full.set_inputs(&[2.5e6 * a.sin(), 2.5e6 * a.cos(), 0.0, 0.0])
         .unwrap();
     full.initialize(Time::ZERO).unwrap();

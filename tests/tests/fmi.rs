@@ -10,7 +10,7 @@ use slender_master::fmi::export::{ExportConfig, Layout};
 use slender_master::fmi::import::{FmuParams, FmuUnit};
 use slender_master::fmi::model_description::{ModelDescription, Value, VariableCausality};
 use slender_tests::{fmu, load, root, run};
-use slender_units::{Hold, Time, Unit};
+use slender_units::{Driver, Hold, Time, Unit};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -77,7 +77,7 @@ fn the_model_description_lists_ports_units_parameters_and_true_dependencies() {
 }
 
 /// Drives a unit alone with a sine force and returns its outputs at every step.
-fn drive(unit: &mut dyn Unit, hold: Hold, steps: usize) -> Vec<Vec<f64>> {
+fn drive<U: Unit>(unit: &mut Driver<U>, hold: Hold, steps: usize) -> Vec<Vec<f64>> {
     let h = Time::from_secs(0.01).unwrap();
     let force = |t: f64| 5.0 * (3.0 * t).sin() + 1.0;
     unit.set_hold(0, hold).unwrap();
@@ -89,7 +89,7 @@ fn drive(unit: &mut dyn Unit, hold: Hold, steps: usize) -> Vec<Vec<f64>> {
         let t = h * n as i64;
         unit.set_inputs(&[force((t + h).as_secs())]).unwrap();
         unit.do_step(t, h).unwrap();
-        unit.outputs(&mut out);
+        unit.outputs(&mut out).unwrap();
         all.push(out.clone());
     }
     all
@@ -102,13 +102,17 @@ fn an_exported_unit_through_the_importer_matches_the_native_unit() {
     let config = ExportConfig::from_scene(&scene, "b").unwrap();
     let file = fmu::export("examples/b3_force_displacement.toml", "b", dir.path());
     // Zero-order hold: the value sent is the value held; bit-identical.
-    let native = drive(config.build_unit().unwrap().as_mut(), Hold::ZeroOrder, 500);
-    let through_fmi = drive(&mut import(&file).unwrap(), Hold::ZeroOrder, 500);
+    let native = drive(&mut config.driver().unwrap(), Hold::ZeroOrder, 500);
+    let through_fmi = drive(
+        &mut Driver::new(import(&file).unwrap()),
+        Hold::ZeroOrder,
+        500,
+    );
     assert_eq!(native, through_fmi);
     // Ramp hold: start value and slope cross the interface, the end value is
     // rebuilt as u + h du/dt; round-off only.
-    let native = drive(config.build_unit().unwrap().as_mut(), Hold::Ramp, 500);
-    let through_fmi = drive(&mut import(&file).unwrap(), Hold::Ramp, 500);
+    let native = drive(&mut config.driver().unwrap(), Hold::Ramp, 500);
+    let through_fmi = drive(&mut Driver::new(import(&file).unwrap()), Hold::Ramp, 500);
     let scale = native.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
     let worst = native
         .iter()
@@ -379,11 +383,13 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
     .unwrap();
     assert!(e.contains("not a parameter or an input"), "{e}");
     // A parameter the unit rejects: reported by the FMU at initialisation.
-    let mut unit = FmuUnit::load(
-        &with_start("mass", toml::Value::Float(-1.0)),
-        Path::new("."),
-    )
-    .unwrap();
+    let mut unit = Driver::new(
+        FmuUnit::load(
+            &with_start("mass", toml::Value::Float(-1.0)),
+            Path::new("."),
+        )
+        .unwrap(),
+    );
     unit.set_inputs(&[0.0, 0.0]).unwrap();
     let e = unit.initialize(Time::ZERO).unwrap_err().to_string();
     assert!(
@@ -396,7 +402,7 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
 fn a_failing_step_names_the_fmu_the_call_and_the_reason() {
     let dir = temp();
     let file = fmu::export("examples/b6_algebraic_loop.toml", "sphere", dir.path());
-    let mut unit = import(&file).unwrap();
+    let mut unit = Driver::new(import(&file).unwrap());
     unit.set_inputs(&[0.1, 0.1]).unwrap();
     unit.initialize(Time::ZERO).unwrap();
     unit.set_inputs(&[100.0, 0.0]).unwrap();

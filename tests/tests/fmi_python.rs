@@ -101,7 +101,7 @@ fn fmpy_simulation_of_an_exported_unit_matches_the_native_unit_alone() {
     // The native unit with the same constant input (FMPy holds unconnected
     // inputs at their start values).
     let config = ExportConfig::from_scene(&load(scene), unit).unwrap();
-    let mut native = config.build_unit().unwrap();
+    let mut native = config.driver().unwrap();
     native.set_hold(0, Hold::ZeroOrder).unwrap();
     native.set_inputs(&[force]).unwrap();
     native.initialize(Time::ZERO).unwrap();
@@ -118,7 +118,7 @@ fn fmpy_simulation_of_an_exported_unit_matches_the_native_unit_alone() {
         if n > 0 {
             native.do_step(h * (n as i64 - 1), h).unwrap();
         }
-        native.outputs(&mut values);
+        native.outputs(&mut values).unwrap();
         for (port, v) in ports.iter().zip(&values) {
             let column = names.iter().position(|c| c == port).unwrap();
             worst = worst.max((row[column] - v).abs() / v.abs().max(1e-3));

@@ -5,37 +5,42 @@ use slender_master::settings::{MasterSettings, OnMaxIterations, Scheme};
 use slender_master::{Link, Master, MasterError, System};
 use slender_tests::probe::{Act, Probe};
 use slender_tests::{load, run};
-use slender_units::algebraic_loop::{LinearPair, LinearPairParams, SphereClosure, SphereParams};
-use slender_units::oscillator::{Coupling, Oscillator, OscillatorParams};
-use slender_units::{Hold, StateSlot, Time, Unit};
+use slender_units::benchmark::algebraic_loop::{
+    LinearPair, LinearPairParams, SphereClosure, SphereParams,
+};
+use slender_units::benchmark::oscillator::{Coupling, Oscillator, OscillatorParams};
+use slender_units::{Driver, DriverSlot};
+use slender_units::{Hold, Time, Unit};
 
 fn ms(ms: i64) -> Time {
     Time::from_nanos(ms * 1_000_000)
 }
 
-fn oscillator(coupling: Coupling) -> Oscillator {
+fn oscillator(coupling: Coupling) -> Driver<Oscillator> {
     let (kc, dc) = if coupling == Coupling::Spring {
         (50.0, 0.5)
     } else {
         (0.0, 0.0)
     };
-    Oscillator::new(OscillatorParams {
-        mass: 2.0,
-        stiffness: 30.0,
-        damping: 0.3,
-        coupling,
-        coupling_stiffness: kc,
-        coupling_damping: dc,
-        initial_displacement: 0.1,
-        initial_velocity: -0.2,
-        substeps: 3,
-    })
-    .unwrap()
+    Driver::new(
+        Oscillator::new(OscillatorParams {
+            mass: 2.0,
+            stiffness: 30.0,
+            damping: 0.3,
+            coupling,
+            coupling_stiffness: kc,
+            coupling_damping: dc,
+            initial_displacement: 0.1,
+            initial_velocity: -0.2,
+            substeps: 3,
+        })
+        .unwrap(),
+    )
 }
 
 /// Save, step, restore, step again with the same inputs: outputs bit-identical;
 /// a different input in between does not leak into the repeat.
-fn assert_exact_rollback(mut unit: Box<dyn Unit>, inputs: &[f64]) {
+fn assert_exact_rollback<U: Unit>(mut unit: Driver<U>, inputs: &[f64]) {
     let n_out = unit.description().outputs.len();
     unit.set_inputs(&vec![0.1; inputs.len()]).unwrap();
     unit.initialize(Time::ZERO).unwrap();
@@ -44,20 +49,20 @@ fn assert_exact_rollback(mut unit: Box<dyn Unit>, inputs: &[f64]) {
         unit.set_inputs(&v).unwrap();
         unit.do_step(ms(10 * (k - 1)), ms(10)).unwrap();
     }
-    let mut slot = StateSlot::new();
-    unit.save_state(&mut slot).unwrap();
-    let step = |unit: &mut Box<dyn Unit>, v: &[f64]| {
+    let mut slot = DriverSlot::new();
+    unit.save(&mut slot).unwrap();
+    let step = |unit: &mut Driver<U>, v: &[f64]| {
         unit.set_inputs(v).unwrap();
         unit.do_step(ms(30), ms(10)).unwrap();
         let mut out = vec![0.0; n_out];
-        unit.outputs(&mut out);
+        unit.outputs(&mut out).unwrap();
         out.iter().map(|x| x.to_bits()).collect::<Vec<u64>>()
     };
     let first = step(&mut unit, inputs);
-    unit.restore_state(&slot).unwrap();
+    unit.restore(&slot).unwrap();
     let other: Vec<f64> = inputs.iter().map(|x| x + 0.05).collect();
     let different = step(&mut unit, &other);
-    unit.restore_state(&slot).unwrap();
+    unit.restore(&slot).unwrap();
     let repeat = step(&mut unit, inputs);
     assert_eq!(
         first,
@@ -75,11 +80,11 @@ fn assert_exact_rollback(mut unit: Box<dyn Unit>, inputs: &[f64]) {
 
 #[test]
 fn rollback_is_bit_exact_for_every_native_unit() {
-    assert_exact_rollback(Box::new(oscillator(Coupling::Spring)), &[0.02, 0.3]);
-    assert_exact_rollback(Box::new(oscillator(Coupling::Force)), &[4.0]);
-    assert_exact_rollback(Box::new(LinearPair::new(LinearPairParams {})), &[0.7]);
+    assert_exact_rollback(oscillator(Coupling::Spring), &[0.02, 0.3]);
+    assert_exact_rollback(oscillator(Coupling::Force), &[4.0]);
+    assert_exact_rollback(Driver::new(LinearPair::new(LinearPairParams {})), &[0.7]);
     assert_exact_rollback(
-        Box::new(SphereClosure::new(SphereParams::default()).unwrap()),
+        Driver::new(SphereClosure::new(SphereParams::default()).unwrap()),
         &[0.5, 0.4],
     );
 }

@@ -5,6 +5,7 @@
 
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
+use slender_units::Driver;
 use slender_units::beam::Beam;
 use slender_units::span::coupling::{
     Discretization, Orientation, SpanCoupling, SpanCouplingParams, fit_matrix,
@@ -86,17 +87,17 @@ fn the_4x4_fit_follows_every_entry_over_the_band_and_is_exact_at_rest() {
     }
 }
 
-fn fe_span(elements: usize) -> Beam {
+fn fe_span(elements: usize) -> Driver<Beam> {
     // A little numerical damping keeps the reactions at the prescribed end free of
     // the trapezoidal rule's undamped acceleration oscillation.
-    slender_master::coupling_study::fe_span(&SPAN, elements, 0.05).unwrap()
+    Driver::new(slender_master::coupling_study::fe_span(&SPAN, elements, 0.05).unwrap())
 }
 
 /// Outputs (upper moment, upper shear, lower deflection, lower rotation) at every
 /// step for inputs u(t) (upper deflection, upper rotation, lower moment, lower
 /// shear).
-fn drive(
-    unit: &mut dyn Unit,
+fn drive<U: Unit>(
+    unit: &mut Driver<U>,
     outputs: [usize; 4],
     u: &dyn Fn(f64) -> [f64; 4],
     h: f64,
@@ -110,7 +111,7 @@ fn drive(
     for k in 0..steps {
         unit.set_inputs(&u((k + 1) as f64 * h)).unwrap();
         unit.do_step(ht * k as i64, ht).unwrap();
-        unit.outputs(&mut out);
+        unit.outputs(&mut out).unwrap();
         all.push(outputs.map(|o| out[o]));
     }
     all
@@ -136,11 +137,11 @@ fn relative_errors(a: &[[f64; 4]], b: &[[f64; 4]]) -> [f64; 4] {
 #[test]
 fn the_coupling_unit_matches_an_fe_span_with_the_same_four_end_conditions() {
     let (h, steps) = (0.001, 10_000);
-    let mut unit = SpanCoupling::new(params(Orientation::UpperMotion, 24)).unwrap();
+    let mut unit = Driver::new(SpanCoupling::new(params(Orientation::UpperMotion, 24)).unwrap());
     let span_out = drive(&mut unit, [0, 1, 2, 3], &motion, h, steps);
     let mut trapezoidal = params(Orientation::UpperMotion, 24);
     trapezoidal.discretization = Discretization::Trapezoidal;
-    let mut unit = SpanCoupling::new(trapezoidal).unwrap();
+    let mut unit = Driver::new(SpanCoupling::new(trapezoidal).unwrap());
     let trapezoidal_out = drive(&mut unit, [0, 1, 2, 3], &motion, h, steps);
     // Beam outputs: left_(deflection, rotation, moment, shear), right_(...).
     let fe = |n| drive(&mut fe_span(n), [2, 3, 4, 5], &motion, h, steps);
@@ -179,7 +180,7 @@ fn constant_inputs_give_the_static_solution() {
     for orientation in [Orientation::UpperMotion, Orientation::LowerMotion] {
         let (inputs, outputs) = orientation.quantities();
         let u = [0.02, -0.003, 80.0, -15.0];
-        let mut unit = SpanCoupling::new(params(orientation, 24)).unwrap();
+        let mut unit = Driver::new(SpanCoupling::new(params(orientation, 24)).unwrap());
         let out = drive(&mut unit, [0, 1, 2, 3], &|_| u, 0.01, 100);
         let gain = SPAN.transfer(C64::new(0.0, 0.0), inputs, outputs).unwrap();
         for o in 0..4 {
@@ -203,7 +204,8 @@ fn white_noise_for_1000_s_stays_bounded_for_every_offered_order() {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
     let noise = Normal::new(0.0, 1.0).unwrap();
     for order in (2..=40).step_by(2) {
-        let mut unit = SpanCoupling::new(params(Orientation::UpperMotion, order)).unwrap();
+        let mut unit =
+            Driver::new(SpanCoupling::new(params(Orientation::UpperMotion, order)).unwrap());
         for port in 0..4 {
             unit.set_hold(port, Hold::ZeroOrder).unwrap();
         }
@@ -217,7 +219,7 @@ fn white_noise_for_1000_s_stays_bounded_for_every_offered_order() {
             let u: Vec<f64> = scale.iter().map(|s| s * noise.sample(&mut rng)).collect();
             unit.set_inputs(&u).unwrap();
             unit.do_step(h * k, h).unwrap();
-            unit.outputs(&mut out);
+            unit.outputs(&mut out).unwrap();
             largest = largest.max(out.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
         }
         assert!(
@@ -294,7 +296,7 @@ fn coupled_with_exact_stepping_it_goes_unstable() {
 
 #[test]
 fn rollback_repeats_a_step_bit_for_bit() {
-    let mut unit = SpanCoupling::new(params(Orientation::LowerMotion, 24)).unwrap();
+    let mut unit = Driver::new(SpanCoupling::new(params(Orientation::LowerMotion, 24)).unwrap());
     let h = Time::from_secs(0.01).unwrap();
     unit.set_inputs(&motion(0.0)).unwrap();
     unit.initialize(Time::ZERO).unwrap();
@@ -302,17 +304,17 @@ fn rollback_repeats_a_step_bit_for_bit() {
         unit.set_inputs(&motion(0.01 * (k + 1) as f64)).unwrap();
         unit.do_step(h * k, h).unwrap();
     }
-    let mut slot = slender_units::StateSlot::new();
-    unit.save_state(&mut slot).unwrap();
+    let mut slot = slender_units::DriverSlot::new();
+    unit.save(&mut slot).unwrap();
     let mut first = [0.0; 4];
     let mut again = [0.0; 4];
     unit.set_inputs(&motion(0.51)).unwrap();
     unit.do_step(h * 50, h).unwrap();
-    unit.outputs(&mut first);
-    unit.restore_state(&slot).unwrap();
+    unit.outputs(&mut first).unwrap();
+    unit.restore(&slot).unwrap();
     unit.set_inputs(&motion(0.51)).unwrap();
     unit.do_step(h * 50, h).unwrap();
-    unit.outputs(&mut again);
+    unit.outputs(&mut again).unwrap();
     assert_eq!(first.map(f64::to_bits), again.map(f64::to_bits));
 }
 

@@ -3,12 +3,12 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use slender_units::cable::{Cable, CableParams, Effects};
-use slender_units::{Time, Unit};
+use slender_units::{Driver, Time};
 use std::hint::black_box;
 
-fn line(elements: usize) -> Cable {
+fn line(elements: usize) -> Driver<Cable> {
     let p = CableParams::seed000_polyester(elements);
-    let mut c = Cable::new(p, Effects::all()).unwrap();
+    let mut c = Driver::new(Cable::new(p, Effects::all()).unwrap());
     let a = 50f64.to_radians();
     c.set_inputs(&[2.5e6 * a.sin(), 2.5e6 * a.cos(), 0.0, 0.0])
         .unwrap();
@@ -34,7 +34,7 @@ fn step(c: &mut Criterion) {
                     .unwrap();
                 cable.do_step(h * (k - 1), h).unwrap();
                 let mut out = [0.0; 8];
-                cable.outputs(&mut out);
+                cable.outputs(&mut out).unwrap();
                 black_box(out)
             })
         });

@@ -8,7 +8,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
 use slender_units::beam::{Beam, BeamParams};
 use slender_units::span::unit::{Approximation, SpanParams, SpanUnit};
-use slender_units::{Time, Unit};
+use slender_units::{Driver, Time, Unit};
 use std::hint::black_box;
 
 const EI: f64 = 1.0e4;
@@ -68,7 +68,8 @@ fn step(c: &mut Criterion) {
     let table: Vec<f64> = (0..4096)
         .map(|k| 0.01 * (0.3 * k as f64 * 0.01).sin())
         .collect();
-    for (name, mut unit) in units {
+    for (name, unit) in units {
+        let mut unit = Driver::new(unit);
         unit.set_inputs(&[0.0]).expect("inputs");
         unit.initialize(Time::ZERO).expect("initialises");
         let mut out = vec![0.0; unit.description().outputs.len()];
@@ -78,7 +79,7 @@ fn step(c: &mut Criterion) {
                 let u = table[k as usize % table.len()];
                 unit.set_inputs(black_box(&[u])).expect("inputs");
                 unit.do_step(h * k, h).expect("steps");
-                unit.outputs(&mut out);
+                unit.outputs(&mut out).expect("outputs");
                 k += 1;
             })
         });

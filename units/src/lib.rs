@@ -1,26 +1,26 @@
 //! slender-units: the unit contract and the native units of slender.
 //!
 //! A unit is one substructure (or signal block) with an FMI-like stepping contract,
-//! see [`unit::Unit`]. The master (crate `slender-master`) couples units; this crate
-//! holds the physics and the numerics they share.
+//! see [`contract::Unit`]; [`contract::Driver`] drives one through it. The master
+//! (crate `slender-coupling`) couples units; this crate holds the contract, the
+//! physics and the numerics they share:
+//! - [`contract`]: unit, ports, holds, state, time, the driver;
+//! - [`integrators`], [`numerics`]: time integration and linear algebra shared by units;
+//! - physics: [`cable`], [`beam`], [`contact`], [`span`], [`signal`];
+//! - [`benchmark`]: the coupling benchmark units (oscillator, algebraic loops).
 
-pub mod algebraic_loop;
 pub mod beam;
+pub mod benchmark;
 pub mod cable;
 pub mod contact;
-pub mod hold;
+pub mod contract;
 pub mod integrators;
 pub mod numerics;
-pub mod oscillator;
-pub mod port;
 pub mod signal;
 pub mod span;
-pub mod state;
-pub mod time;
-pub mod unit;
 
-pub use hold::HeldInputs;
-pub use port::{Causality, Hold, Port, PortKind};
-pub use state::StateSlot;
-pub use time::Time;
-pub use unit::{Capabilities, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError};
+pub use contract::{
+    Capabilities, Causality, Driver, DriverSlot, HeldInputs, Hold, HoldSupport, Inputs,
+    ModalAnalysis, Mode, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
+    UnitError,
+};

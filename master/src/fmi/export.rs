@@ -21,7 +21,7 @@ use super::model_description::{
 use crate::coupler::Master;
 use crate::scene::{Scene, kinds};
 use serde::{Deserialize, Serialize};
-use slender_units::{Hold, Unit, UnitDescription};
+use slender_units::{Driver, Hold, Unit, UnitDescription};
 use std::collections::BTreeMap;
 use std::io::Write as _;
 use std::path::Path;
@@ -185,7 +185,7 @@ impl ExportConfig {
         format!("slender_{name}")
     }
 
-    /// Builds the unit with the current parameters, effects and hold.
+    /// Builds the unit with the current parameters and effects.
     pub fn build_unit(&self) -> Result<Box<dyn Unit>, String> {
         let kind =
             kinds::find(&self.kind).ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
@@ -193,7 +193,12 @@ impl ExportConfig {
             effects: &self.effects,
             base_dir: Path::new("."),
         };
-        let mut unit = kind.build(self.parameters.clone(), &context)?;
+        kind.build(self.parameters.clone(), &context)
+    }
+
+    /// The unit in a driver with the configured hold.
+    pub fn driver(&self) -> Result<Driver, String> {
+        let mut unit = Driver::new(self.build_unit()?);
         if let Some(hold) = self.hold {
             for port in 0..unit.description().inputs.len() {
                 unit.set_hold(port, hold).map_err(|e| e.to_string())?;
@@ -251,7 +256,12 @@ pub fn settle(scene: &Scene) -> Result<Master, String> {
 impl Layout {
     /// Builds the unit once to read its ports and checks its parameters.
     pub fn new(config: &ExportConfig) -> Result<Layout, String> {
-        let unit = config.build_unit()?.description().clone();
+        let driver = config.driver()?;
+        // The unit's ports with the holds in force.
+        let mut unit = driver.description().clone();
+        for (port, hold) in unit.inputs.iter_mut().zip(driver.holds()) {
+            port.hold = *hold;
+        }
         let n_in = unit.inputs.len();
         let n_out = unit.outputs.len();
         let mut parameters = Vec::new();

@@ -25,10 +25,9 @@ use super::measure::si_definition;
 use super::model_description::{ModelDescription, Value, VariableCausality};
 use crate::error::did_you_mean;
 use serde::{Deserialize, Serialize};
-use slender_units::state::StateSlot;
 use slender_units::{
-    Capabilities, Hold, Port, PortKind, StepReport, Time, Unit, UnitDescription, UnitError,
-    unit::check_input_count,
+    Capabilities, Hold, HoldSupport, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
+    UnitDescription, UnitError,
 };
 use std::collections::BTreeMap;
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
@@ -238,7 +237,6 @@ struct SavedFmu {
     /// updated in place by later saves into the same slot and freed with the unit.
     handle: usize,
     phase: Phase,
-    start: Vec<f64>,
     outputs: Vec<f64>,
 }
 
@@ -265,11 +263,10 @@ pub struct FmuUnit {
     starts: Vec<StartValue>,
     input_refs: Vec<u32>,
     output_refs: Vec<u32>,
-    /// Whether each input is sent as a ramp (start value and slope).
-    ramp: Vec<bool>,
-    /// Inputs at the start of the next step (last accepted) and at its end.
-    start: Vec<f64>,
-    end: Vec<f64>,
+    /// The input values sent before a step: start values of ramped inputs, end
+    /// values of held ones (scratch).
+    values: Vec<f64>,
+    /// The ramps' slopes sent with them (scratch).
     slopes: Vec<f64>,
     orders: Vec<fmi2Integer>,
     outputs: Vec<f64>,
@@ -392,7 +389,6 @@ impl FmuUnit {
         if component.is_null() {
             return Err(format!("{label}: fmi2Instantiate failed{}", log_tail(&log)));
         }
-        let ramp = vec![cs.can_interpolate_inputs; n_in];
         let mut unit = FmuUnit {
             label,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
@@ -403,25 +399,24 @@ impl FmuUnit {
             phase: Phase::Instantiated,
             starts,
             input_refs,
-            start: vec![0.0; n_in],
-            end: vec![0.0; n_in],
+            values: vec![0.0; n_in],
             slopes: vec![0.0; n_in],
             orders: vec![1; n_in],
             outputs: vec![0.0; output_refs.len()],
             output_refs,
-            ramp,
             states: Mutex::new(Vec::new()),
             log,
             _callbacks: callbacks,
             library: Some(library),
             _folder: folder,
         };
-        for (i, p) in unit.description.inputs.iter_mut().enumerate() {
-            p.hold = if unit.ramp[i] {
-                Hold::Ramp
-            } else {
-                Hold::ZeroOrder
-            };
+        let hold = if cs.can_interpolate_inputs {
+            Hold::Ramp
+        } else {
+            Hold::ZeroOrder
+        };
+        for p in unit.description.inputs.iter_mut() {
+            p.hold = hold;
         }
         Ok(unit)
     }
@@ -453,36 +448,34 @@ impl FmuUnit {
         }
     }
 
-    fn send_inputs(&mut self, h: f64) -> Result<(), UnitError> {
+    /// Sends the inputs for a step of `h` seconds (0: initialisation): under a ramp
+    /// the start value and the slope, under a zero-order hold the end value.
+    fn send_inputs(&mut self, inputs: Inputs<'_>, h: f64) -> Result<(), UnitError> {
         let n = self.input_refs.len();
         if n == 0 {
             return Ok(());
         }
-        let any_ramp = self.ramp.iter().any(|r| *r);
+        let ramped = h > 0.0 && (0..n).any(|i| inputs.hold(i) == Hold::Ramp);
         for i in 0..n {
-            if self.ramp[i] && h > 0.0 {
-                self.slopes[i] = (self.end[i] - self.start[i]) / h;
+            let ramp = ramped && inputs.hold(i) == Hold::Ramp;
+            self.slopes[i] = if ramp { inputs.rate(i, h) } else { 0.0 };
+            self.values[i] = if ramp {
+                inputs.start()[i]
             } else {
-                self.slopes[i] = 0.0;
-            }
+                inputs.end()[i]
+            };
         }
-        let values = if h > 0.0 && any_ramp {
-            // Start values for ramped inputs, end values for held ones.
-            for i in 0..n {
-                if !self.ramp[i] {
-                    self.start[i] = self.end[i];
-                }
-            }
-            &self.start
-        } else {
-            &self.end
-        };
         // SAFETY: arrays of n value references and values.
         let status = unsafe {
-            (self.api.set_real)(self.component, self.input_refs.as_ptr(), n, values.as_ptr())
+            (self.api.set_real)(
+                self.component,
+                self.input_refs.as_ptr(),
+                n,
+                self.values.as_ptr(),
+            )
         };
         self.check("fmi2SetReal (inputs)", status)?;
-        if h > 0.0 && any_ramp {
+        if ramped {
             // SAFETY: arrays of n references, orders and values.
             let status = unsafe {
                 (self.api.set_real_input_derivatives)(
@@ -554,30 +547,7 @@ impl Unit for FmuUnit {
         &self.description
     }
 
-    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
-        let can_ramp = self
-            .model
-            .co_simulation
-            .as_ref()
-            .is_some_and(|cs| cs.can_interpolate_inputs);
-        if port < self.ramp.len() {
-            self.ramp[port] = can_ramp && hold == Hold::Ramp;
-            self.description.inputs[port].hold = if self.ramp[port] {
-                Hold::Ramp
-            } else {
-                Hold::ZeroOrder
-            };
-        }
-        Ok(())
-    }
-
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        check_input_count(self.end.len(), values)?;
-        self.end.copy_from_slice(values);
-        Ok(())
-    }
-
-    fn initialize(&mut self, t0: Time) -> Result<(), UnitError> {
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         if self.phase == Phase::Stepping {
             // SAFETY: FMI 2.0 call on a live instance.
             let status = unsafe { (self.api.reset)(self.component) };
@@ -603,12 +573,11 @@ impl Unit for FmuUnit {
             self.check("fmi2EnterInitializationMode", status)?;
             self.phase = Phase::Initialization;
         }
-        self.send_inputs(0.0)?;
-        self.start.copy_from_slice(&self.end);
+        self.send_inputs(inputs, 0.0)?;
         self.read_outputs()
     }
 
-    fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         match self.phase {
             Phase::Instantiated => {
                 return Err(UnitError::State(format!(
@@ -625,7 +594,7 @@ impl Unit for FmuUnit {
             Phase::Stepping => {}
         }
         let h_secs = h.as_secs();
-        self.send_inputs(h_secs)?;
+        self.send_inputs(inputs, h_secs)?;
         let no_prior = if self.description.capabilities.rollback {
             FMI2_FALSE
         } else {
@@ -636,12 +605,11 @@ impl Unit for FmuUnit {
         self.check_with(status, || {
             format!("fmi2DoStep(t = {} s, h = {h_secs} s)", t.as_secs())
         })?;
-        self.start.copy_from_slice(&self.end);
         self.read_outputs()?;
         Ok(StepReport::default())
     }
 
-    fn outputs(&self, out: &mut [f64]) {
+    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
         out.copy_from_slice(&self.outputs);
     }
 
@@ -658,7 +626,6 @@ impl Unit for FmuUnit {
             self.check("fmi2GetFMUstate", status)?;
             saved.handle = handle as usize;
             saved.phase = self.phase;
-            saved.start.copy_from_slice(&self.start);
             saved.outputs.copy_from_slice(&self.outputs);
             return Ok(());
         }
@@ -673,7 +640,6 @@ impl Unit for FmuUnit {
             owner: self.id,
             handle: handle as usize,
             phase: self.phase,
-            start: self.start.clone(),
             outputs: self.outputs.clone(),
         });
         Ok(())
@@ -692,7 +658,6 @@ impl Unit for FmuUnit {
         let status = unsafe { set(self.component, saved.handle as fmi2FMUstate) };
         self.check("fmi2SetFMUstate", status)?;
         self.phase = saved.phase;
-        self.start.copy_from_slice(&saved.start);
         self.outputs.copy_from_slice(&saved.outputs);
         Ok(())
     }
@@ -773,6 +738,11 @@ fn describe(model: &ModelDescription, label: &str) -> Result<UnitDescription, St
             rollback: cs.can_get_and_set_fmu_state,
             variable_step: cs.can_handle_variable_communication_step_size,
             output_derivative_order: 0,
+            hold: if cs.can_interpolate_inputs {
+                HoldSupport::Any
+            } else {
+                HoldSupport::ZeroOrderOnly
+            },
         },
     })
 }

@@ -3,11 +3,11 @@
 use crate::fmi::import::{FmuParams, FmuUnit};
 use serde::de::DeserializeOwned;
 use slender_units::Unit;
-use slender_units::algebraic_loop::{LinearPair, SphereClosure};
 use slender_units::beam::Beam;
 use slender_units::beam::touchdown::TouchdownEstimate;
+use slender_units::benchmark::algebraic_loop::{LinearPair, SphereClosure};
+use slender_units::benchmark::oscillator::Oscillator;
 use slender_units::cable::{Cable, Effects};
-use slender_units::oscillator::Oscillator;
 use slender_units::signal::artefact::Artefact;
 use slender_units::signal::characteristic_load::CharacteristicLoad;
 use slender_units::span::coupling::SpanCoupling;

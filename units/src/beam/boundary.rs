@@ -1,7 +1,7 @@
 //! Boundary conditions of a beam end: two of deflection, rotation, moment and
 //! shear, each a function of time or a coupled input.
 
-use crate::unit::UnitError;
+use crate::contract::UnitError;
 use serde::Deserialize;
 
 /// The four end quantities. Moment is EI y'' (N m), shear EI y''' (N).

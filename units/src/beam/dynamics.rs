@@ -4,8 +4,8 @@
 
 use super::{Beam, ContactValues};
 use crate::contact::Law;
+use crate::contract::{Inputs, ModalAnalysis, Mode, UnitError};
 use crate::numerics::banded::BandLdlt;
-use crate::unit::{ModalAnalysis, Mode, UnitError};
 
 /// Buffers of one HHT step, kept between steps.
 #[derive(Default)]
@@ -69,9 +69,9 @@ impl Beam {
 
     /// M a0 = F - C v0 - K q0 - F_contact at the initial time, with the held DOFs'
     /// accelerations prescribed.
-    pub(super) fn initial_acceleration(&mut self) -> Result<(), UnitError> {
+    pub(super) fn initial_acceleration(&mut self, inputs: Inputs<'_>) -> Result<(), UnitError> {
         let t = self.state.t;
-        self.apply_kinematics(t, 0.0);
+        self.apply_kinematics(inputs, t, 0.0);
         let n = self.state.q.len();
         let mut values = ContactValues::default();
         let (q, v, lambda) = (
@@ -81,7 +81,7 @@ impl Beam {
         );
         self.contact_at(&q, &v, t, &lambda, None, None, &mut values);
         let mut load = vec![0.0; n];
-        self.external_load(t, 0.0, &mut load);
+        self.external_load(inputs, t, 0.0, &mut load);
         let mut rhs = vec![0.0; n];
         for i in 0..n {
             rhs[i] = load[i] - values.force[i];
@@ -153,15 +153,22 @@ impl Beam {
     /// its last bits from step to step, which would re-form and refactorise the
     /// linear Newton matrix every step. The step's buffers live in `self.work`
     /// between steps, so a contact-free step allocates nothing.
-    pub(super) fn hht_step(&mut self, t0: f64, t1: f64, h: f64) -> Result<u32, UnitError> {
+    pub(super) fn hht_step(
+        &mut self,
+        inputs: Inputs<'_>,
+        t0: f64,
+        t1: f64,
+        h: f64,
+    ) -> Result<u32, UnitError> {
         let mut w = std::mem::take(&mut self.work);
-        let result = self.hht_step_with(&mut w, t0, t1, h);
+        let result = self.hht_step_with(inputs, &mut w, t0, t1, h);
         self.work = w;
         result
     }
 
     fn hht_step_with(
         &mut self,
+        inputs: Inputs<'_>,
         w: &mut StepWork,
         t0: f64,
         t1: f64,
@@ -179,8 +186,8 @@ impl Beam {
             Some(Law::EnergyConserving { .. })
         );
         // Constant part: alpha (C v0 + K q0 + Fc0) - ((1 - alpha) F1 + alpha F0).
-        self.external_load(t0, h, &mut w.f0);
-        self.external_load(t1, h, &mut w.f1);
+        self.external_load(inputs, t0, h, &mut w.f0);
+        self.external_load(inputs, t1, h, &mut w.f1);
         for i in 0..n {
             let fc0 = if energy_conserving {
                 0.0
@@ -193,7 +200,7 @@ impl Beam {
         self.k.mul_add(alpha, &w.q0, &mut w.constant);
         // Held DOFs at t1 (the state's time still t0 for input rates).
         self.state.t = t1;
-        self.apply_kinematics(t1, h);
+        self.apply_kinematics(inputs, t1, h);
         w.held.clear();
         w.held.extend(
             self.conditions

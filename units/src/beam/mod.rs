@@ -16,12 +16,11 @@ pub mod touchdown;
 
 use crate::contact::Law;
 use crate::contact::surface::Surface;
-use crate::hold::HeldInputs;
+use crate::contract::StateSlot;
+use crate::contract::Time;
+use crate::contract::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
+use crate::contract::{Inputs, Port, PortKind};
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
-use crate::port::{Hold, Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
 use boundary::{Quantity, TimeFunction};
 pub use params::{BeamParams, ContactIntegration, ContactParams, InitialShape};
 
@@ -69,24 +68,25 @@ struct ResolvedCondition {
     input: Option<usize>,
 }
 
-/// Everything that changes while stepping.
-#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
-struct BeamState {
-    t: f64,
-    q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    /// Lagrangian parameter per contact point.
-    lambda: Vec<f64>,
-    /// Gap per contact point at the current time (energy-conserving law).
-    gap: Vec<f64>,
-    /// Contact force vector at the current time (HHT weighting).
-    contact_force: Vec<f64>,
-    inputs: HeldInputs,
-    /// Residual at the current time (reactions at held DOFs).
-    reaction: Vec<f64>,
-    contact: [f64; 5],
-    newton_iterations: u32,
+crate::state_struct! {
+    /// Everything that changes while stepping.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct BeamState {
+        t: f64,
+        q: Vec<f64>,
+        v: Vec<f64>,
+        a: Vec<f64>,
+        /// Lagrangian parameter per contact point.
+        lambda: Vec<f64>,
+        /// Gap per contact point at the current time (energy-conserving law).
+        gap: Vec<f64>,
+        /// Contact force vector at the current time (HHT weighting).
+        contact_force: Vec<f64>,
+        /// Residual at the current time (reactions at held DOFs).
+        reaction: Vec<f64>,
+        contact: [f64; 5],
+        newton_iterations: u32,
+    }
 }
 
 /// The beam unit.
@@ -223,7 +223,6 @@ impl Beam {
         }
         let lambda0 = params.contact.as_ref().map_or(0.0, |c| c.method.lambda0());
         let n_points = points.len();
-        let n_inputs = inputs.len();
         Ok(Beam {
             description: UnitDescription {
                 kind: "beam".into(),
@@ -239,7 +238,6 @@ impl Beam {
                 lambda: vec![lambda0; n_points],
                 gap: vec![0.0; n_points],
                 contact_force: vec![0.0; n],
-                inputs: HeldInputs::new(vec![Hold::Ramp; n_inputs]),
                 reaction: vec![0.0; n],
                 contact: [0.0; 5],
                 newton_iterations: 0,
@@ -290,9 +288,13 @@ impl Beam {
 
     /// Replaces the initial state (after `initialize`) by the shape `f(x) -> (y, y')`
     /// at rest, and recomputes the consistent initial acceleration.
-    pub fn set_initial_shape(&mut self, f: impl Fn(f64) -> (f64, f64)) -> Result<(), UnitError> {
+    pub fn set_initial_shape(
+        &mut self,
+        inputs: Inputs<'_>,
+        f: impl Fn(f64) -> (f64, f64),
+    ) -> Result<(), UnitError> {
         self.place_at_rest(f);
-        self.initial_acceleration()
+        self.initial_acceleration(inputs)
     }
 
     /// Nodal deflections and slopes from `f(x) -> (y, y')`, velocities zero.
@@ -312,13 +314,13 @@ impl Beam {
 
     /// The prescribed value, rate and acceleration of condition `c` at time t (for
     /// inputs: end value, ramp slope, change of slope over h).
-    fn prescribed(&self, c: &ResolvedCondition, t: f64, h: f64) -> [f64; 3] {
+    fn prescribed(&self, inputs: Inputs<'_>, c: &ResolvedCondition, t: f64, h: f64) -> [f64; 3] {
         match (c.value.eval(t), c.input) {
             (Some(v), _) => v,
             (None, Some(i)) => {
-                let value = self.state.inputs.at(i, 1.0);
+                let value = inputs.at(i, 1.0);
                 if h > 0.0 {
-                    let rate = self.state.inputs.rate(i, h);
+                    let rate = inputs.rate(i, h);
                     [value, rate, (rate - self.state.v[c.dof]) / h]
                 } else {
                     [value, 0.0, 0.0]
@@ -330,14 +332,14 @@ impl Beam {
 
     /// External load vector at time t (distributed load and prescribed moment and
     /// shear), into `out`.
-    fn external_load(&self, t: f64, h: f64, out: &mut [f64]) {
+    fn external_load(&self, inputs: Inputs<'_>, t: f64, h: f64, out: &mut [f64]) {
         out.copy_from_slice(&self.distributed);
         for c in self
             .conditions
             .iter()
             .filter(|c| !c.quantity.is_kinematic())
         {
-            let value = self.prescribed(c, t, h)[0];
+            let value = self.prescribed(inputs, c, t, h)[0];
             // Boundary terms of the weak form: moment EI y'' enters theta with +
             // at x = L and - at x = 0; shear EI y''' enters y with - at L, + at 0.
             let sign = match (c.quantity, c.end) {
@@ -416,11 +418,11 @@ impl Beam {
     }
 
     /// Sets the kinematic conditions at time t into q, v, a.
-    fn apply_kinematics(&mut self, t: f64, h: f64) {
+    fn apply_kinematics(&mut self, inputs: Inputs<'_>, t: f64, h: f64) {
         for i in 0..self.conditions.len() {
             let c = &self.conditions[i];
             if c.quantity.is_kinematic() {
-                let [y, v, a] = self.prescribed(c, t, h);
+                let [y, v, a] = self.prescribed(inputs, c, t, h);
                 let dof = c.dof;
                 self.state.q[dof] = y;
                 self.state.v[dof] = v;
@@ -438,9 +440,9 @@ impl Beam {
 
     /// Static equilibrium K q + F_contact(q) = F at the current time, by Newton with
     /// penalty continuation (p0 psi^(n-1)) and lambda updates every iteration.
-    pub fn solve_static(&mut self) -> Result<u32, UnitError> {
+    pub fn solve_static(&mut self, inputs: Inputs<'_>) -> Result<u32, UnitError> {
         let t = self.state.t;
-        self.apply_kinematics(t, 0.0);
+        self.apply_kinematics(inputs, t, 0.0);
         let n = self.state.q.len();
         let mut values = ContactValues::default();
         let target = self.params.contact.as_ref().map(|c| penalty_of(&c.method));
@@ -449,7 +451,7 @@ impl Beam {
             (_, p) => p,
         };
         let mut load = vec![0.0; n];
-        self.external_load(t, 0.0, &mut load);
+        self.external_load(inputs, t, 0.0, &mut load);
         let zeros = vec![0.0; n];
         let cap = 20 * self.params.newton_max_iterations;
         let mut history = Vec::new();
@@ -606,24 +608,7 @@ impl Unit for Beam {
         &self.description
     }
 
-    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
-        if port >= self.state.inputs.len() {
-            return Err(UnitError::Unsupported(format!("no input {port}")));
-        }
-        self.state.inputs.set_hold(port, hold);
-        self.description.inputs[port].hold = hold;
-        Ok(())
-    }
-
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        check_input_count(self.state.inputs.len(), values)?;
-        crate::unit::check_finite_inputs(&self.description, values)?;
-        self.state.inputs.set_end(values);
-        Ok(())
-    }
-
-    fn initialize(&mut self, t0: Time) -> Result<(), UnitError> {
-        self.state.inputs.settle();
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         self.state.t = t0.as_secs();
         let x = self.node_positions();
         for (j, &xj) in x.iter().enumerate() {
@@ -644,9 +629,9 @@ impl Unit for Beam {
             self.place_at_rest(|x| shape.at(x));
         }
         if self.params.static_start {
-            self.solve_static()?;
+            self.solve_static(inputs)?;
         } else {
-            self.initial_acceleration()?;
+            self.initial_acceleration(inputs)?;
             // A penalty-type law would fire the pipe off a surface it starts deep in.
             let depth = self.state.contact[4];
             if depth > 0.01 * self.params.length {
@@ -658,15 +643,14 @@ impl Unit for Beam {
         Ok(())
     }
 
-    fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
-        let iterations = self.hht_step(t.as_secs(), (t + h).as_secs(), h.as_secs())?;
-        self.state.inputs.advance();
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        let iterations = self.hht_step(inputs, t.as_secs(), (t + h).as_secs(), h.as_secs())?;
         Ok(StepReport {
             solver_iterations: iterations,
         })
     }
 
-    fn outputs(&self, out: &mut [f64]) {
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
         let nodes = self.state.q.len() / 2;
         for end in 0..2 {
             let node = if end == 0 { 0 } else { nodes - 1 };
@@ -687,7 +671,7 @@ impl Unit for Beam {
                 .iter()
                 .filter(|c| c.end == end && !c.quantity.is_kinematic())
             {
-                let value = self.prescribed(c, self.state.t, 0.0)[0];
+                let value = self.prescribed(inputs, c, self.state.t, 0.0)[0];
                 out[base + if c.quantity == Quantity::Moment { 2 } else { 3 }] = value;
             }
         }
@@ -715,8 +699,17 @@ impl Unit for Beam {
         Ok(())
     }
 
-    fn modes(&self, count: usize) -> Result<crate::unit::ModalAnalysis, UnitError> {
+    fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {
         dynamics::modes(self, count)
+    }
+}
+
+/// Beam changes that depend on the inputs, through the driver that holds them.
+impl crate::contract::Driver<Beam> {
+    /// [`Beam::set_initial_shape`] with the driver's inputs (after `initialize`).
+    pub fn set_initial_shape(&mut self, f: impl Fn(f64) -> (f64, f64)) -> Result<(), UnitError> {
+        let (beam, inputs) = self.unit_mut_with_inputs();
+        beam.set_initial_shape(inputs, f)
     }
 }
 

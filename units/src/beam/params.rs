@@ -3,7 +3,7 @@
 use super::boundary::Boundary;
 use crate::contact::Law;
 use crate::contact::surface::Surface;
-use crate::unit::{UnitError, require_non_negative, require_positive};
+use crate::contract::{UnitError, require_non_negative, require_positive};
 use serde::Deserialize;
 
 /// Where the contact terms are integrated on each element.

@@ -4,10 +4,10 @@
 //! for y0 > 0 and y0' < 0. A cheap stand-in for the FE section where only the
 //! touchdown point is needed.
 
-use crate::port::{Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
+use crate::contract::{
+    Capabilities, HoldSupport, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
+    UnitDescription, UnitError,
+};
 use serde::Deserialize;
 
 /// Parameters (scene kind `touchdown_estimate`): none besides the surface height.
@@ -20,17 +20,16 @@ pub struct TouchdownParams {
 }
 
 /// Inputs `deflection` (m), `rotation` (rad); outputs `touchdown_x` (m, 0 when not
-/// valid) and `valid` (1 or 0).
+/// valid) and `valid` (1 or 0). Stateless: the outputs follow the inputs.
 pub struct TouchdownEstimate {
     params: TouchdownParams,
     description: UnitDescription,
-    inputs: [f64; 2],
 }
 
 impl TouchdownEstimate {
     /// Builds the unit.
     pub fn new(params: TouchdownParams) -> Result<TouchdownEstimate, UnitError> {
-        crate::unit::require_finite("surface_height", params.surface_height)?;
+        crate::contract::require_finite("surface_height", params.surface_height)?;
         Ok(TouchdownEstimate {
             params,
             description: UnitDescription {
@@ -43,9 +42,11 @@ impl TouchdownEstimate {
                     Port::output("touchdown_x", PortKind::Displacement).with_feedthrough(&[0, 1]),
                     Port::output("valid", PortKind::Generic).with_feedthrough(&[0, 1]),
                 ],
-                capabilities: Capabilities::default(),
+                capabilities: Capabilities {
+                    hold: HoldSupport::Fixed,
+                    ..Capabilities::default()
+                },
             },
-            inputs: [0.0; 2],
         })
     }
 
@@ -63,31 +64,30 @@ impl Unit for TouchdownEstimate {
     fn description(&self) -> &UnitDescription {
         &self.description
     }
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        check_input_count(2, values)?;
-        self.inputs.copy_from_slice(values);
+    fn initialize(&mut self, _t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
         Ok(())
     }
-    fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
-        Ok(())
-    }
-    fn do_step(&mut self, _t: Time, _h: Time) -> Result<StepReport, UnitError> {
+    fn do_step(
+        &mut self,
+        _t: Time,
+        _h: Time,
+        _inputs: Inputs<'_>,
+    ) -> Result<StepReport, UnitError> {
         Ok(StepReport::default())
     }
-    fn outputs(&self, out: &mut [f64]) {
-        let (x, valid) = TouchdownEstimate::estimate(
-            self.inputs[0] - self.params.surface_height,
-            self.inputs[1],
-        );
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+        let inputs = inputs.end();
+        let (x, valid) =
+            TouchdownEstimate::estimate(inputs[0] - self.params.surface_height, inputs[1]);
         out[0] = x;
         out[1] = if valid { 1.0 } else { 0.0 };
     }
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.inputs);
+        slot.store(&());
         Ok(())
     }
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.inputs = *slot.load::<[f64; 2]>()?;
+        slot.load::<()>()?;
         Ok(())
     }
 }

@@ -1,7 +1,7 @@
 //! Current profiles: horizontal water velocity (along +x) against height z above
 //! the seabed.
 
-use crate::unit::{UnitError, require_finite};
+use crate::contract::{UnitError, require_finite};
 use serde::Deserialize;
 
 /// A current profile.

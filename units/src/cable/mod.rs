@@ -19,15 +19,13 @@ pub mod elements;
 pub mod params;
 pub mod statics;
 
-use crate::hold::HeldInputs;
-use crate::numerics::banded::{BandLdlt, SymmetricBand};
-use crate::port::{Hold, Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{
+use crate::contract::StateSlot;
+use crate::contract::Time;
+use crate::contract::{
     Capabilities, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
-    check_input_count,
 };
+use crate::contract::{Hold, Inputs, Port, PortKind};
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
 use drag::Drag;
 use elements::ElementProperties;
 pub use params::{CableParams, Effects, Section};
@@ -85,42 +83,17 @@ struct Dynamics {
     node_drag: Vec<[f64; 2]>,
 }
 
-/// Everything that changes while stepping.
-#[derive(Debug, serde::Serialize, serde::Deserialize)]
-struct CableState {
-    q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    qb: [f64; 2],
-    vb: [f64; 2],
-    ab: [f64; 2],
-    inputs: HeldInputs,
-    bottom_force: [f64; 2],
-}
-
-impl Clone for CableState {
-    fn clone(&self) -> Self {
-        CableState {
-            q: self.q.clone(),
-            v: self.v.clone(),
-            a: self.a.clone(),
-            qb: self.qb,
-            vb: self.vb,
-            ab: self.ab,
-            inputs: self.inputs.clone(),
-            bottom_force: self.bottom_force,
-        }
-    }
-
-    fn clone_from(&mut self, s: &Self) {
-        self.q.clone_from(&s.q);
-        self.v.clone_from(&s.v);
-        self.a.clone_from(&s.a);
-        self.qb = s.qb;
-        self.vb = s.vb;
-        self.ab = s.ab;
-        self.inputs.clone_from(&s.inputs);
-        self.bottom_force = s.bottom_force;
+crate::state_struct! {
+    /// Everything that changes while stepping.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct CableState {
+        q: Vec<f64>,
+        v: Vec<f64>,
+        a: Vec<f64>,
+        qb: [f64; 2],
+        vb: [f64; 2],
+        ab: [f64; 2],
+        bottom_force: [f64; 2],
     }
 }
 
@@ -265,7 +238,6 @@ impl Cable {
                 qb: [0.0; 2],
                 vb: [0.0; 2],
                 ab: [0.0; 2],
-                inputs: HeldInputs::new(vec![Hold::Ramp; 4]),
                 bottom_force: [0.0; 2],
             },
             params,
@@ -512,28 +484,8 @@ impl Unit for Cable {
         &self.description
     }
 
-    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
-        if port >= 4 {
-            return Err(UnitError::Unsupported(format!("no input {port}")));
-        }
-        self.state.inputs.set_hold(port, hold);
-        self.description.inputs[port].hold = hold;
-        Ok(())
-    }
-
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        check_input_count(4, values)?;
-        crate::unit::check_finite_inputs(&self.description, values)?;
-        self.state.inputs.set_end(values);
-        Ok(())
-    }
-
-    fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
-        self.state.inputs.settle();
-        let top = [
-            self.state.inputs.at(TOP_FX, 1.0),
-            self.state.inputs.at(TOP_FZ, 1.0),
-        ];
+    fn initialize(&mut self, _t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let top = [inputs.at(TOP_FX, 1.0), inputs.at(TOP_FZ, 1.0)];
         let guess = match self.params.section {
             Section::Full if self.params.static_top_force.is_none() => {
                 straight_guess(&self.props, self.params.anchor, top, self.params.elements)
@@ -554,14 +506,14 @@ impl Unit for Cable {
         s.v.fill(0.0);
         s.a.fill(0.0);
         s.qb = [0.0; 2];
-        s.vb = [s.inputs.at(BOTTOM_VX, 1.0), s.inputs.at(BOTTOM_VZ, 1.0)];
+        s.vb = [inputs.at(BOTTOM_VX, 1.0), inputs.at(BOTTOM_VZ, 1.0)];
         s.ab = [0.0; 2];
         s.bottom_force = d.static_support_force;
         self.dynamics = Some(d);
         Ok(())
     }
 
-    fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
+    fn do_step(&mut self, _t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let d = self
             .dynamics
             .as_mut()
@@ -571,8 +523,8 @@ impl Unit for Cable {
         let s = &mut self.state;
         let n = s.q.len();
         // Prescribed bottom motion at the step's end.
-        let vb = [s.inputs.at(BOTTOM_VX, 1.0), s.inputs.at(BOTTOM_VZ, 1.0)];
-        let (qb, ab) = match self.description.inputs[BOTTOM_VX].hold {
+        let vb = [inputs.at(BOTTOM_VX, 1.0), inputs.at(BOTTOM_VZ, 1.0)];
+        let (qb, ab) = match inputs.hold(BOTTOM_VX) {
             // A ramp of velocity: exact displacement, acceleration = the ramp's slope.
             // (The Newmark recursion a = 2 dv / h - a_n would never let a velocity
             // jump, e.g. the end of a signal loss, die out.)
@@ -597,8 +549,8 @@ impl Unit for Cable {
             }
             d.c_ff.mul_add(1.0, &d.scratch, &mut d.rhs);
         }
-        d.rhs[n - 2] += s.inputs.at(TOP_FX, 1.0) - d.static_top_force[0];
-        d.rhs[n - 1] += s.inputs.at(TOP_FZ, 1.0) - d.static_top_force[1];
+        d.rhs[n - 2] += inputs.at(TOP_FX, 1.0) - d.static_top_force[0];
+        d.rhs[n - 1] += inputs.at(TOP_FZ, 1.0) - d.static_top_force[1];
         let (mfb, cfb, kfb) = (mat2(&d.m_fb, ab), mat2(&d.c_fb, vb), mat2(&d.k_fb, qb));
         for c in 0..2 {
             d.rhs[c] -= mfb[c] + cfb[c] + kfb[c];
@@ -650,13 +602,12 @@ impl Unit for Cable {
             };
             s.bottom_force[c] = d.static_support_force[c] - dyn_eq + drag;
         }
-        s.inputs.advance();
         Ok(StepReport {
             solver_iterations: iterations,
         })
     }
 
-    fn outputs(&self, out: &mut [f64]) {
+    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
         let s = &self.state;
         let n = s.q.len();
         out[0] = s.v[n - 2];

@@ -2,7 +2,7 @@
 //! section of the line it models.
 
 use super::current::CurrentProfile;
-use crate::unit::{UnitError, require_finite, require_non_negative, require_positive};
+use crate::contract::{UnitError, require_finite, require_non_negative, require_positive};
 use serde::Deserialize;
 
 /// Properties of the whole line and of the water (SI units).

@@ -4,8 +4,8 @@
 use super::current::CurrentProfile;
 use super::drag::Drag;
 use super::elements::{ElementProperties, element_state, internal_forces, stiffness};
+use crate::contract::UnitError;
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
-use crate::unit::UnitError;
 
 /// Distributed static loads.
 #[derive(Clone, Debug)]

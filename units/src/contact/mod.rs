@@ -8,7 +8,7 @@
 
 pub mod surface;
 
-use crate::unit::{UnitError, require_positive};
+use crate::contract::{UnitError, require_positive};
 use serde::Deserialize;
 
 /// When the Lagrangian parameter of the augmented methods is updated.

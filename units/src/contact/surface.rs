@@ -1,7 +1,7 @@
 //! Contact surfaces y >= f(x, t): flat, tilted, a smooth bump, a set of rollers and
 //! a tabulated profile, optionally moving vertically.
 
-use crate::unit::{UnitError, require_finite, require_positive};
+use crate::contract::{UnitError, require_finite, require_positive};
 use serde::Deserialize;
 
 /// The shape of a contact surface (m).

@@ -6,7 +6,7 @@
 //! converged iterative co-simulation of two units using it reproduces the
 //! monolithic solution of the same integrator.
 
-use crate::unit::UnitError;
+use crate::contract::UnitError;
 use nalgebra::{DMatrix, DVector, Dyn, linalg::LU};
 
 /// Displacement, velocity and acceleration of a linear system.

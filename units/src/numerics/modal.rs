@@ -1,6 +1,6 @@
 //! The generalised symmetric eigenproblem K phi = w^2 M phi of a structure.
 
-use crate::unit::UnitError;
+use crate::contract::UnitError;
 use nalgebra::{DMatrix, DVector};
 
 /// The `count` lowest eigenpairs (w^2, phi) of K phi = w^2 M phi, M positive

@@ -13,12 +13,9 @@
 //! state: repeating a step after rollback draws the same numbers, so the
 //! iterations of one step see the same artefacts.
 
-use crate::port::{Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{
-    Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count, require_finite,
-    require_non_negative,
+use crate::contract::{
+    Capabilities, HoldSupport, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
+    UnitDescription, UnitError, require_finite, require_non_negative,
 };
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -69,47 +66,22 @@ fn one() -> u64 {
     1
 }
 
-/// Everything that changes while stepping (cloned on save, so the generator
-/// rewinds on restore).
-#[derive(Debug, serde::Serialize, serde::Deserialize)]
-struct ArtefactState {
-    rng: ChaCha8Rng,
-    /// Samples after scale, bias and noise: time then one value per channel.
-    history: Vec<f64>,
-    output: Vec<f64>,
-    inputs: Vec<f64>,
-    /// The loss lasts until this time (s); NEG_INFINITY when none.
-    lost_until: f64,
-    /// Next time the hold samples (s).
-    next_hold: f64,
-    /// Steps lost and losses started (for statistics).
-    lost_steps: u64,
-    losses: u64,
-}
-
-impl Clone for ArtefactState {
-    fn clone(&self) -> Self {
-        ArtefactState {
-            rng: self.rng.clone(),
-            history: self.history.clone(),
-            output: self.output.clone(),
-            inputs: self.inputs.clone(),
-            lost_until: self.lost_until,
-            next_hold: self.next_hold,
-            lost_steps: self.lost_steps,
-            losses: self.losses,
-        }
-    }
-
-    fn clone_from(&mut self, s: &Self) {
-        self.rng.clone_from(&s.rng);
-        self.history.clone_from(&s.history);
-        self.output.clone_from(&s.output);
-        self.inputs.clone_from(&s.inputs);
-        self.lost_until = s.lost_until;
-        self.next_hold = s.next_hold;
-        self.lost_steps = s.lost_steps;
-        self.losses = s.losses;
+crate::state_struct! {
+    /// Everything that changes while stepping (cloned on save, so the generator
+    /// rewinds on restore).
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct ArtefactState {
+        rng: ChaCha8Rng,
+        /// Samples after scale, bias and noise: time then one value per channel.
+        history: Vec<f64>,
+        output: Vec<f64>,
+        /// The loss lasts until this time (s); NEG_INFINITY when none.
+        lost_until: f64,
+        /// Next time the hold samples (s).
+        next_hold: f64,
+        /// Steps lost and losses started (for statistics).
+        lost_steps: u64,
+        losses: u64,
     }
 }
 
@@ -194,13 +166,15 @@ impl Artefact {
                 kind: "artefact".into(),
                 inputs,
                 outputs,
-                capabilities: Capabilities::default(),
+                capabilities: Capabilities {
+                    hold: HoldSupport::Fixed,
+                    ..Capabilities::default()
+                },
             },
             state: ArtefactState {
                 rng: ChaCha8Rng::seed_from_u64(params.seed),
                 history: Vec::new(),
                 output: vec![0.0; n],
-                inputs: vec![0.0; n],
                 lost_until: f64::NEG_INFINITY,
                 next_hold: 0.0,
                 lost_steps: 0,
@@ -221,11 +195,11 @@ impl Artefact {
     }
 
     /// Appends the sample at time t from the current inputs (with noise).
-    fn push_sample(&mut self, t: f64, noise: bool) {
+    fn push_sample(&mut self, inputs: &[f64], t: f64, noise: bool) {
         let s = &mut self.state;
         s.history.push(t);
-        for c in 0..self.scale.len() {
-            let mut v = self.scale[c] * s.inputs[c] + self.bias[c];
+        for (c, input) in inputs.iter().enumerate().take(self.scale.len()) {
+            let mut v = self.scale[c] * input + self.bias[c];
             if noise && self.noise_sd[c] > 0.0 {
                 let z: f64 = StandardNormal.sample(&mut s.rng);
                 v += self.noise_sd[c] * z;
@@ -266,13 +240,7 @@ impl Unit for Artefact {
         &self.description
     }
 
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        check_input_count(self.channels(), values)?;
-        self.state.inputs.copy_from_slice(values);
-        Ok(())
-    }
-
-    fn initialize(&mut self, t0: Time) -> Result<(), UnitError> {
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         let t = t0.as_secs();
         self.state.rng = ChaCha8Rng::seed_from_u64(self.params.seed);
         self.state.history.clear();
@@ -280,15 +248,15 @@ impl Unit for Artefact {
         self.state.next_hold = t + self.params.hold_period;
         self.state.lost_steps = 0;
         self.state.losses = 0;
-        self.push_sample(t, false);
+        self.push_sample(inputs.end(), t, false);
         self.delayed_at(t);
         self.state.output.copy_from_slice(&self.delayed);
         Ok(())
     }
 
-    fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let t_end = (t + h).as_secs();
-        self.push_sample(t_end, true);
+        self.push_sample(inputs.end(), t_end, true);
         self.delayed_at(t_end);
         let p = &self.params;
         let s = &mut self.state;
@@ -317,7 +285,7 @@ impl Unit for Artefact {
         Ok(StepReport::default())
     }
 
-    fn outputs(&self, out: &mut [f64]) {
+    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
         out.copy_from_slice(&self.state.output);
     }
 

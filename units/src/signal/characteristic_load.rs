@@ -8,13 +8,11 @@
 //! `A sin(pi f_max t^2 / T)` for t <= T. Starting at zero frequency, the load
 //! starts smoothly from its static value.
 
-use crate::port::{Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{
+use crate::contract::{
     Capabilities, StepReport, Unit, UnitDescription, UnitError, require_finite,
     require_non_negative, require_positive,
 };
+use crate::contract::{Inputs, Port, PortKind, StateSlot, Time};
 use serde::Deserialize;
 
 /// Parameters (scene kind `characteristic_load`); defaults are seed 000's values.
@@ -135,21 +133,17 @@ impl Unit for CharacteristicLoad {
         &self.description
     }
 
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        crate::unit::check_input_count(0, values)
-    }
-
-    fn initialize(&mut self, t0: Time) -> Result<(), UnitError> {
+    fn initialize(&mut self, t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
         self.time = t0.as_secs();
         Ok(())
     }
 
-    fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+    fn do_step(&mut self, t: Time, h: Time, _inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         self.time = (t + h).as_secs();
         Ok(StepReport::default())
     }
 
-    fn outputs(&self, out: &mut [f64]) {
+    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
         let f = self.params.force(self.time);
         out[0] = f[0];
         out[1] = f[1];

@@ -28,14 +28,10 @@
 
 use super::fit::{check_order_and_band, sigma_zeros};
 use super::transfer::{C64, Span};
-use crate::hold::HeldInputs;
-use crate::port::{Hold, Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{
-    Capabilities, StepReport, Unit, UnitDescription, UnitError, check_finite_inputs,
-    check_input_count,
-};
+use crate::contract::StateSlot;
+use crate::contract::Time;
+use crate::contract::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
+use crate::contract::{Inputs, Port, PortKind};
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix4, Vector2};
 use serde::Deserialize;
 
@@ -367,28 +363,14 @@ struct PairStates {
     im: [f64; 4],
 }
 
-#[derive(Debug, serde::Serialize, serde::Deserialize)]
-struct CouplingState {
-    /// Modal states, one entry per pole pair.
-    z: Vec<PairStates>,
-    /// Rate of each input over the last step (1/s times its unit).
-    rate: [f64; 4],
-    inputs: HeldInputs,
-}
-
-impl Clone for CouplingState {
-    fn clone(&self) -> Self {
-        CouplingState {
-            z: self.z.clone(),
-            rate: self.rate,
-            inputs: self.inputs.clone(),
-        }
-    }
-
-    fn clone_from(&mut self, source: &Self) {
-        self.z.clone_from(&source.z);
-        self.rate = source.rate;
-        self.inputs.clone_from(&source.inputs);
+crate::state_struct! {
+    /// Everything that changes while stepping.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct CouplingState {
+        /// Modal states, one entry per pole pair.
+        z: Vec<PairStates>,
+        /// Rate of each input over the last step (1/s times its unit).
+        rate: [f64; 4],
     }
 }
 
@@ -475,7 +457,6 @@ impl SpanCoupling {
             state: CouplingState {
                 z: vec![PairStates::default(); pairs],
                 rate: [0.0; 4],
-                inputs: HeldInputs::new(vec![Hold::Ramp; 4]),
             },
             fit,
             c,
@@ -535,28 +516,11 @@ impl Unit for SpanCoupling {
         &self.description
     }
 
-    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
-        if port >= 4 {
-            return Err(UnitError::Unsupported(format!("no input {port}")));
-        }
-        self.state.inputs.set_hold(port, hold);
-        self.description.inputs[port].hold = hold;
-        Ok(())
-    }
-
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        check_input_count(4, values)?;
-        check_finite_inputs(&self.description, values)?;
-        self.state.inputs.set_end(values);
-        Ok(())
-    }
-
-    fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
-        self.state.inputs.settle();
+    fn initialize(&mut self, _t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         self.state.rate = [0.0; 4];
         // Steady state of each block for a constant input: z = -A^-1 [u, 0].
         for i in 0..4 {
-            let u = self.state.inputs.at(i, 0.0);
+            let u = inputs.at(i, 0.0);
             for (z, p) in self.state.z.iter_mut().zip(&self.fit.poles) {
                 let norm = p.norm_sqr();
                 // A = [[a, -b], [b, a]], A^-1 = [[a, b], [-b, a]] / |p|^2.
@@ -567,12 +531,11 @@ impl Unit for SpanCoupling {
         Ok(())
     }
 
-    fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
+    fn do_step(&mut self, _t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let h = h.as_secs();
         if h != self.step {
             self.discretize(h);
         }
-        let inputs = &self.state.inputs;
         let u0: [f64; 4] = std::array::from_fn(|i| inputs.at(i, 0.0));
         let du: [f64; 4] = std::array::from_fn(|i| inputs.at(i, 1.0) - u0[i]);
         self.state.rate = std::array::from_fn(|i| inputs.rate(i, h));
@@ -592,12 +555,11 @@ impl Unit for SpanCoupling {
                 "the span's state became non-finite".into(),
             ));
         }
-        self.state.inputs.advance();
         Ok(StepReport::default())
     }
 
-    fn outputs(&self, out: &mut [f64]) {
-        let u = self.state.inputs.end();
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+        let u = inputs.end();
         let mut modal = [0.0; 4];
         for (z, c) in self.state.z.iter().zip(&self.c) {
             for i in 0..4 {

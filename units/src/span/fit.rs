@@ -4,7 +4,7 @@
 
 use super::realization::StateSpace;
 use super::transfer::{C64, Span};
-use crate::unit::UnitError;
+use crate::contract::UnitError;
 use nalgebra::{DMatrix, DVector};
 
 /// Poles of a vector fit of order `order` (even) to H_{U2 -> U5} over

@@ -13,7 +13,7 @@
 //! In each, H ~ L num(x) / den(x); polynomials have ascending coefficients.
 
 use super::transfer::{C64, Span};
-use crate::unit::UnitError;
+use crate::contract::UnitError;
 
 /// H ~ L num(x) / den(x) with x = (beta L)^4; `den` is monic (highest coefficient 1).
 #[derive(Clone, Debug, PartialEq)]

@@ -4,7 +4,7 @@
 
 use super::rational::RationalX;
 use super::transfer::{C64, Span};
-use crate::unit::UnitError;
+use crate::contract::UnitError;
 use nalgebra::{DMatrix, DVector};
 
 /// A real polynomial in s, ascending coefficients.

@@ -11,7 +11,7 @@
 //! and 0 otherwise, so that every basis function is bounded by 1 on [0, L] and no
 //! sinh or cosh can overflow.
 
-use crate::unit::{UnitError, require_non_negative, require_positive};
+use crate::contract::{UnitError, require_non_negative, require_positive};
 use nalgebra::{Complex, Matrix4};
 
 /// Complex numbers.

@@ -7,11 +7,10 @@
 use super::rational::{RationalX, function_pade_u2_u5, taylor_u2_u5, term_pade_u2_u5};
 use super::realization::{StateSpace, Stepper};
 use super::transfer::Span;
-use crate::hold::HeldInputs;
-use crate::port::{Hold, Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count};
+use crate::contract::StateSlot;
+use crate::contract::Time;
+use crate::contract::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
+use crate::contract::{Inputs, Port, PortKind, StateVector};
 use nalgebra::DVector;
 use serde::Deserialize;
 
@@ -83,10 +82,12 @@ impl SpanParams {
     }
 }
 
-#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
-struct SpanState {
-    x: DVector<f64>,
-    inputs: HeldInputs,
+crate::state_struct! {
+    /// Everything that changes while stepping: the state-space vector.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct SpanState {
+        x: StateVector,
+    }
 }
 
 /// The span unit.
@@ -120,8 +121,7 @@ impl SpanUnit {
                 capabilities: Capabilities::default(),
             },
             state: SpanState {
-                x: DVector::zeros(n),
-                inputs: HeldInputs::new(vec![Hold::Ramp]),
+                x: StateVector(DVector::zeros(n)),
             },
             stepper: None,
             system,
@@ -139,36 +139,19 @@ impl Unit for SpanUnit {
         &self.description
     }
 
-    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
-        if port != 0 {
-            return Err(UnitError::Unsupported(format!("no input {port}")));
-        }
-        self.state.inputs.set_hold(0, hold);
-        self.description.inputs[0].hold = hold;
-        Ok(())
-    }
-
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        check_input_count(1, values)?;
-        crate::unit::check_finite_inputs(&self.description, values)?;
-        self.state.inputs.set_end(values);
-        Ok(())
-    }
-
-    fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
-        self.state.inputs.settle();
+    fn initialize(&mut self, _t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         // Steady state for the initial input: x = -A^-1 B u0.
-        let u0 = self.state.inputs.at(0, 0.0);
+        let u0 = inputs.at(0, 0.0);
         let rhs = &self.system.b * (-u0);
-        self.state.x = self.system.a.clone().lu().solve(&rhs).ok_or_else(|| {
+        self.state.x = StateVector(self.system.a.clone().lu().solve(&rhs).ok_or_else(|| {
             UnitError::Numerical("the span's static gain is undefined (a pole at s = 0)".into())
-        })?;
+        })?);
         Ok(())
     }
 
-    fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
+    fn do_step(&mut self, _t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let h = h.as_secs();
-        let (u0, u1) = (self.state.inputs.at(0, 0.0), self.state.inputs.at(0, 1.0));
+        let (u0, u1) = (inputs.at(0, 0.0), inputs.at(0, 1.0));
         let stepper = match &mut self.stepper {
             Some((step, stepper)) if *step == h => stepper,
             slot => &mut slot.insert((h, self.system.stepper(h))).1,
@@ -180,12 +163,11 @@ impl Unit for SpanUnit {
                 "the span's state became non-finite".into(),
             ));
         }
-        self.state.inputs.advance();
         Ok(StepReport::default())
     }
 
-    fn outputs(&self, out: &mut [f64]) {
-        out[0] = self.system.c.dot(&self.state.x) + self.system.d * self.state.inputs.end()[0];
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+        out[0] = self.system.c.dot(&self.state.x) + self.system.d * inputs.end()[0];
     }
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {

@@ -7,15 +7,14 @@
 //! or cut at a mass (force/displacement coupling). Integrated with Newmark average
 //! acceleration, optionally with several sub-steps per synchronisation step.
 
-use crate::hold::HeldInputs;
-use crate::integrators::newmark::{LinearNewmark, NewmarkState};
-use crate::port::{Hold, Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{
-    Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count, require_finite,
+use crate::contract::StateSlot;
+use crate::contract::Time;
+use crate::contract::{
+    Capabilities, StepReport, Unit, UnitDescription, UnitError, require_finite,
     require_non_negative, require_positive,
 };
+use crate::contract::{Inputs, Port, PortKind};
+use crate::integrators::newmark::{LinearNewmark, NewmarkState};
 use nalgebra::{DMatrix, DVector};
 use serde::Deserialize;
 
@@ -94,24 +93,11 @@ impl OscillatorParams {
     }
 }
 
-/// Everything that changes while stepping.
-#[derive(Debug, serde::Serialize, serde::Deserialize)]
-struct OscillatorState {
-    motion: NewmarkState,
-    inputs: HeldInputs,
-}
-
-impl Clone for OscillatorState {
-    fn clone(&self) -> Self {
-        OscillatorState {
-            motion: self.motion.clone(),
-            inputs: self.inputs.clone(),
-        }
-    }
-
-    fn clone_from(&mut self, source: &Self) {
-        self.motion.clone_from(&source.motion);
-        self.inputs.clone_from(&source.inputs);
+crate::state_struct! {
+    /// Everything that changes while stepping.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct OscillatorState {
+        motion: NewmarkState,
     }
 }
 
@@ -159,14 +145,12 @@ impl Oscillator {
             scalar(params.stiffness + kc),
             1.0,
         )?;
-        let holds = vec![Hold::Ramp; inputs.len()];
         let state = OscillatorState {
             motion: NewmarkState {
                 u: DVector::from_element(1, params.initial_displacement),
                 v: DVector::from_element(1, params.initial_velocity),
                 a: DVector::zeros(1),
             },
-            inputs: HeldInputs::new(holds),
         };
         Ok(Oscillator {
             description: UnitDescription {
@@ -183,8 +167,7 @@ impl Oscillator {
     }
 
     /// The external load on the mass (N) at fraction `s` of the step.
-    fn load_at(&self, s: f64) -> f64 {
-        let inputs = &self.state.inputs;
+    fn load_at(&self, inputs: Inputs<'_>, s: f64) -> f64 {
         match self.params.coupling {
             Coupling::Spring => {
                 self.params.coupling_stiffness * inputs.at(0, s)
@@ -200,24 +183,8 @@ impl Unit for Oscillator {
         &self.description
     }
 
-    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
-        if port >= self.state.inputs.len() {
-            return Err(UnitError::Unsupported(format!("no input {port}")));
-        }
-        self.state.inputs.set_hold(port, hold);
-        self.description.inputs[port].hold = hold;
-        Ok(())
-    }
-
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-        check_input_count(self.state.inputs.len(), values)?;
-        self.state.inputs.set_end(values);
-        Ok(())
-    }
-
-    fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
-        self.state.inputs.settle();
-        let f = DVector::from_element(1, self.load_at(1.0));
+    fn initialize(&mut self, _t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let f = DVector::from_element(1, self.load_at(inputs, 1.0));
         self.state.motion = self.integrator.initial_state(
             DVector::from_element(1, self.params.initial_displacement),
             DVector::from_element(1, self.params.initial_velocity),
@@ -226,23 +193,22 @@ impl Unit for Oscillator {
         Ok(())
     }
 
-    fn do_step(&mut self, _t: Time, h: Time) -> Result<StepReport, UnitError> {
+    fn do_step(&mut self, _t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let n = self.params.substeps;
         self.integrator.set_step_size(h.as_secs() / f64::from(n))?;
         for i in 1..=n {
-            self.load[0] = self.load_at(f64::from(i) / f64::from(n));
+            self.load[0] = self.load_at(inputs, f64::from(i) / f64::from(n));
             self.integrator.step(&mut self.state.motion, &self.load);
         }
-        self.state.inputs.advance();
         Ok(StepReport::default())
     }
 
-    fn outputs(&self, out: &mut [f64]) {
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
         let (u, v) = (self.state.motion.u[0], self.state.motion.v[0]);
         out[0] = u;
         out[1] = v;
         if self.params.coupling == Coupling::Spring {
-            let inputs = self.state.inputs.end();
+            let inputs = inputs.end();
             out[2] = self.params.coupling_stiffness * (u - inputs[0])
                 + self.params.coupling_damping * (v - inputs[1]);
         }

@@ -1,22 +1,24 @@
 //! The unit contract: what every substructure model offers the master.
 //!
 //! # Call order
-//! The master calls a unit in this order, and nothing else:
-//! 1. `description`, any number of times; `set_hold` for any input, before `initialize`;
-//! 2. `set_inputs` (start values), then `initialize(t0)`: the unit finds its initial
-//!    state (static equilibrium, initial conditions) with the inputs held constant.
-//!    Both may be repeated while the master settles the initial values of a loop;
-//! 3. per synchronisation step: `set_inputs` (values at the END of the step), then
-//!    `do_step(t, h)`, then `outputs` (values at `t + h`);
+//! A unit is always driven through a [`Driver`](super::Driver), which owns its held
+//! inputs (count, finiteness, hold, rollback of the step's start values) and calls
+//! the unit in this order, and nothing else:
+//! 1. `description`, any number of times;
+//! 2. `initialize(t0, inputs)`: the unit finds its initial state (static
+//!    equilibrium, initial conditions) with the inputs held constant. It may be
+//!    repeated while the master settles the initial values of a loop;
+//! 3. per synchronisation step: `do_step(t, h, inputs)` with the inputs' values at
+//!    the step's start and END, then `outputs(inputs, out)` (values at `t + h`);
 //! 4. `save_state` before a step and `restore_state` to repeat it, when the unit
 //!    declares rollback. Restoring then stepping with the same inputs must give
 //!    bit-identical outputs.
 //!
 //! Errors are values: a unit never panics on bad input or a failed solve.
 
-use crate::port::{Causality, Hold, Port};
-use crate::state::StateSlot;
-use crate::time::Time;
+use crate::contract::StateSlot;
+use crate::contract::Time;
+use crate::contract::{Causality, Inputs, Port};
 use thiserror::Error;
 
 /// What a unit can do, declared rather than assumed.
@@ -28,6 +30,20 @@ pub struct Capabilities {
     pub variable_step: bool,
     /// Highest time derivative of its outputs the unit can provide (0: values only).
     pub output_derivative_order: u32,
+    /// Which input holds the unit honours.
+    pub hold: HoldSupport,
+}
+
+/// Which input holds a unit honours (the driver applies a scene's `hold` by it).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum HoldSupport {
+    /// Ramp or zero-order, per input.
+    Any,
+    /// Only zero-order: a requested ramp is held instead (FMUs that cannot
+    /// interpolate inputs).
+    ZeroOrderOnly,
+    /// The unit reads only end values; choosing a hold is refused.
+    Fixed,
 }
 
 impl Default for Capabilities {
@@ -37,6 +53,7 @@ impl Default for Capabilities {
             rollback: true,
             variable_step: true,
             output_derivative_order: 0,
+            hold: HoldSupport::Any,
         }
     }
 }
@@ -46,7 +63,7 @@ impl Default for Capabilities {
 pub struct UnitDescription {
     /// Model kind as named in scene files, e.g. "oscillator".
     pub kind: String,
-    /// Input ports, in the order of `set_inputs` values.
+    /// Input ports, in the order of the input values.
     pub inputs: Vec<Port>,
     /// Output ports, in the order of `outputs` values.
     pub outputs: Vec<Port>,
@@ -112,7 +129,7 @@ pub enum UnitError {
     /// The unit does not offer what was asked (e.g. rollback).
     #[error("not supported: {0}")]
     Unsupported(String),
-    /// `set_inputs` got the wrong number of values.
+    /// The driver was given the wrong number of input values.
     #[error("expected {expected} input values, got {got}")]
     InputCount { expected: usize, got: usize },
 }
@@ -151,27 +168,19 @@ pub trait Unit: Send {
     /// Kind, ports and capabilities; constant over the unit's life.
     fn description(&self) -> &UnitDescription;
 
-    /// Chooses the hold of input `port` (by index). Units that cannot change it
-    /// return `Unsupported`.
-    fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
-        let _ = (port, hold);
-        Err(UnitError::Unsupported("changing the input hold".into()))
-    }
+    /// Finds the initial state at `t0` with the inputs held at their values (start
+    /// and end are equal). Each call starts again from the parameters: the master
+    /// may call it several times with different inputs while it makes looped initial
+    /// values consistent.
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError>;
 
-    /// Sets the input values; before `initialize` they are the constant start
-    /// values, afterwards the values at the end of the next step.
-    fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError>;
+    /// Advances from `t` to `t + h`, filling the inputs inside the step as their
+    /// holds say (`inputs.at(port, s)`).
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError>;
 
-    /// Finds the initial state at `t0` with the inputs held at their set values.
-    /// Each call starts again from the parameters: the master may call it several
-    /// times with different inputs while it makes looped initial values consistent.
-    fn initialize(&mut self, t0: Time) -> Result<(), UnitError>;
-
-    /// Advances from `t` to `t + h`, holding the inputs as their ports say.
-    fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError>;
-
-    /// Writes the output values at the current time into `out` (one per output port).
-    fn outputs(&self, out: &mut [f64]);
+    /// Writes the output values at the current time into `out` (one per output
+    /// port). `inputs` are the current ones, for outputs with direct feedthrough.
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]);
 
     /// Saves everything that influences the next step into `slot`.
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError>;
@@ -187,34 +196,6 @@ pub trait Unit: Send {
             "modal analysis of a `{}` unit",
             self.description().kind
         )))
-    }
-}
-
-/// Checks the number of input values given to `set_inputs`.
-pub fn check_input_count(expected: usize, values: &[f64]) -> Result<(), UnitError> {
-    if values.len() == expected {
-        Ok(())
-    } else {
-        Err(UnitError::InputCount {
-            expected,
-            got: values.len(),
-        })
-    }
-}
-
-/// Checks that every input value is finite, naming the port of the first that is
-/// not.
-pub fn check_finite_inputs(description: &UnitDescription, values: &[f64]) -> Result<(), UnitError> {
-    match values.iter().position(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(i) => Err(UnitError::InvalidInput {
-            port: description
-                .inputs
-                .get(i)
-                .map_or_else(|| format!("input {i}"), |p| p.name.clone()),
-            value: values[i],
-            reason: "not finite".into(),
-        }),
     }
 }
 
@@ -256,3 +237,46 @@ pub fn require_finite(name: &str, value: f64) -> Result<(), UnitError> {
         ))
     }
 }
+
+/// A boxed unit and a unit borrowed mutably are units too, so a
+/// [`Driver`](super::Driver) holds a concrete unit, a `Box<dyn Unit>` or a `&mut dyn Unit`.
+macro_rules! forward_unit {
+    ($($pointer:ty),*) => {$(
+        impl<U: Unit + ?Sized> Unit for $pointer {
+            fn description(&self) -> &UnitDescription {
+                (**self).description()
+            }
+
+            fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+                (**self).initialize(t0, inputs)
+            }
+
+            fn do_step(
+                &mut self,
+                t: Time,
+                h: Time,
+                inputs: Inputs<'_>,
+            ) -> Result<StepReport, UnitError> {
+                (**self).do_step(t, h, inputs)
+            }
+
+            fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+                (**self).outputs(inputs, out)
+            }
+
+            fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+                (**self).save_state(slot)
+            }
+
+            fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+                (**self).restore_state(slot)
+            }
+
+            fn modes(&self, count: usize) -> Result<ModalAnalysis, UnitError> {
+                (**self).modes(count)
+            }
+        }
+    )*};
+}
+
+forward_unit!(Box<U>, &mut U);

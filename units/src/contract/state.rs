@@ -1,7 +1,7 @@
 //! Storage for a unit's saved state, used by the master to roll units back and by
 //! the FMI layer to serialise a unit's state into bytes.
 
-use crate::unit::UnitError;
+use crate::contract::UnitError;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::any::Any;
@@ -116,6 +116,72 @@ impl StateSlot {
             Saved::Typed(saved) => saved.to_bytes(),
             Saved::Bytes(bytes) => Ok(bytes.clone()),
         }
+    }
+}
+
+/// Defines a unit's state struct with a `Clone` whose `clone_from` copies field by
+/// field (`Vec`s reuse their memory), so rollback through [`StateSlot::store`] and
+/// `clone_from` allocates nothing and no field list is written by hand.
+///
+/// Every field's own `clone_from` must reuse memory: `Vec`, arrays, numbers,
+/// `Option` of such, and nested `state_struct!`s do; nalgebra's `DVector` does not
+/// (wrap it in a type with its own `clone_from`, as `NewmarkState` does).
+#[macro_export]
+macro_rules! state_struct {
+    (
+        $(#[$meta:meta])*
+        $vis:vis struct $name:ident {
+            $($(#[$field_meta:meta])* $field_vis:vis $field:ident : $ty:ty),* $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        $vis struct $name {
+            $($(#[$field_meta])* $field_vis $field: $ty),*
+        }
+
+        impl Clone for $name {
+            fn clone(&self) -> Self {
+                $name { $($field: Clone::clone(&self.$field)),* }
+            }
+
+            fn clone_from(&mut self, source: &Self) {
+                $(Clone::clone_from(&mut self.$field, &source.$field);)*
+            }
+        }
+    };
+}
+
+/// A nalgebra vector in a unit's state whose `clone_from` copies in place when the
+/// lengths agree (nalgebra's own `clone_from` allocates), for [`state_struct!`](crate::state_struct).
+#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(transparent)]
+pub struct StateVector(pub nalgebra::DVector<f64>);
+
+impl Clone for StateVector {
+    fn clone(&self) -> Self {
+        StateVector(self.0.clone())
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        if self.0.len() == source.0.len() {
+            self.0.copy_from(&source.0);
+        } else {
+            self.0 = source.0.clone();
+        }
+    }
+}
+
+impl std::ops::Deref for StateVector {
+    type Target = nalgebra::DVector<f64>;
+
+    fn deref(&self) -> &Self::Target {
+        &self.0
+    }
+}
+
+impl std::ops::DerefMut for StateVector {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.0
     }
 }
 

@@ -9,58 +9,11 @@
 //! fixed-point map `c -> sphere(pair(c))` has slope 1.83 at the smaller root, which
 //! plain iteration therefore cannot reach; Newton on the interface can.
 
-use crate::port::{Port, PortKind};
-use crate::state::StateSlot;
-use crate::time::Time;
-use crate::unit::{
-    Capabilities, StepReport, Unit, UnitDescription, UnitError, check_input_count, require_positive,
+use crate::contract::{
+    Capabilities, HoldSupport, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
+    UnitDescription, UnitError, require_positive,
 };
 use serde::Deserialize;
-
-/// Values of a stateless unit: its last inputs and the outputs computed from them.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(into = "ValueLists", try_from = "ValueLists")]
-struct Values<const I: usize, const O: usize> {
-    inputs: [f64; I],
-    outputs: [f64; O],
-}
-
-/// `Values` as lists, for serialisation (serde has no const-generic arrays).
-#[derive(serde::Serialize, serde::Deserialize)]
-struct ValueLists {
-    inputs: Vec<f64>,
-    outputs: Vec<f64>,
-}
-
-impl<const I: usize, const O: usize> From<Values<I, O>> for ValueLists {
-    fn from(v: Values<I, O>) -> Self {
-        ValueLists {
-            inputs: v.inputs.to_vec(),
-            outputs: v.outputs.to_vec(),
-        }
-    }
-}
-
-impl<const I: usize, const O: usize> TryFrom<ValueLists> for Values<I, O> {
-    type Error = String;
-
-    fn try_from(v: ValueLists) -> Result<Self, String> {
-        let lengths = || format!("expected {I} inputs and {O} outputs");
-        Ok(Values {
-            inputs: v.inputs.try_into().map_err(|_| lengths())?,
-            outputs: v.outputs.try_into().map_err(|_| lengths())?,
-        })
-    }
-}
-
-impl<const I: usize, const O: usize> Default for Values<I, O> {
-    fn default() -> Self {
-        Values {
-            inputs: [0.0; I],
-            outputs: [0.0; O],
-        }
-    }
-}
 
 fn describe(kind: &str, inputs: &[&str], outputs: &[&str]) -> UnitDescription {
     let all_inputs: Vec<usize> = (0..inputs.len()).collect();
@@ -74,7 +27,10 @@ fn describe(kind: &str, inputs: &[&str], outputs: &[&str]) -> UnitDescription {
             .iter()
             .map(|n| Port::output(n, PortKind::Generic).with_feedthrough(&all_inputs))
             .collect(),
-        capabilities: Capabilities::default(),
+        capabilities: Capabilities {
+            hold: HoldSupport::Fixed,
+            ..Capabilities::default()
+        },
     }
 }
 
@@ -86,7 +42,8 @@ pub struct LinearPairParams {}
 /// Unit A of B6: `a + b + c = 0`, `2a - 3b + 2c = 9`.
 pub struct LinearPair {
     description: UnitDescription,
-    values: Values<1, 2>,
+    /// Outputs computed from the last inputs (the whole state).
+    outputs: Vec<f64>,
 }
 
 impl LinearPair {
@@ -94,16 +51,17 @@ impl LinearPair {
     pub fn new(_params: LinearPairParams) -> LinearPair {
         LinearPair {
             description: describe("loop_linear_pair", &["c"], &["a", "b"]),
-            values: Values::default(),
+            outputs: vec![0.0; 2],
         }
     }
 
-    fn solve(&mut self) {
-        let c = self.values.inputs[0];
+    fn solve(&mut self, inputs: &[f64]) {
+        let c = inputs[0];
         // [1 1; 2 -3] [a; b] = [-c; 9 - 2c], by Cramer's rule (determinant -5).
         let (r1, r2) = (-c, 9.0 - 2.0 * c);
         let det = 1.0 * -3.0 - 1.0 * 2.0;
-        self.values.outputs = [(r1 * -3.0 - 1.0 * r2) / det, (1.0 * r2 - 2.0 * r1) / det];
+        self.outputs[0] = (r1 * -3.0 - 1.0 * r2) / det;
+        self.outputs[1] = (1.0 * r2 - 2.0 * r1) / det;
     }
 }
 
@@ -145,7 +103,8 @@ impl Default for SphereParams {
 pub struct SphereClosure {
     params: SphereParams,
     description: UnitDescription,
-    values: Values<2, 1>,
+    /// Outputs computed from the last inputs (the whole state).
+    outputs: Vec<f64>,
 }
 
 impl SphereClosure {
@@ -155,12 +114,12 @@ impl SphereClosure {
         Ok(SphereClosure {
             params,
             description: describe("loop_sphere", &["a", "b"], &["c"]),
-            values: Values::default(),
+            outputs: vec![0.0; 1],
         })
     }
 
-    fn solve(&mut self) -> Result<(), UnitError> {
-        let [a, b] = self.values.inputs;
+    fn solve(&mut self, inputs: &[f64]) -> Result<(), UnitError> {
+        let (a, b) = (inputs[0], inputs[1]);
         let rest = self.params.radius_squared - a * a - b * b;
         if rest.is_nan() || rest < 0.0 {
             return Err(UnitError::InvalidInput {
@@ -177,55 +136,62 @@ impl SphereClosure {
             Branch::Positive => 1.0,
             Branch::Negative => -1.0,
         };
-        self.values.outputs = [sign * rest.sqrt()];
+        self.outputs[0] = sign * rest.sqrt();
         Ok(())
     }
 }
 
 macro_rules! stateless_unit {
-    ($unit:ty, $inputs:literal, $outputs:literal, $solve:expr) => {
+    ($unit:ty, $solve:expr) => {
         impl Unit for $unit {
             fn description(&self) -> &UnitDescription {
                 &self.description
             }
 
-            fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
-                check_input_count($inputs, values)?;
-                self.values.inputs.copy_from_slice(values);
-                Ok(())
+            fn initialize(&mut self, _t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+                $solve(self, inputs.end())
             }
 
-            fn initialize(&mut self, _t0: Time) -> Result<(), UnitError> {
-                $solve(self)
-            }
-
-            fn do_step(&mut self, _t: Time, _h: Time) -> Result<StepReport, UnitError> {
-                $solve(self)?;
+            fn do_step(
+                &mut self,
+                _t: Time,
+                _h: Time,
+                inputs: Inputs<'_>,
+            ) -> Result<StepReport, UnitError> {
+                $solve(self, inputs.end())?;
                 Ok(StepReport::default())
             }
 
-            fn outputs(&self, out: &mut [f64]) {
-                out.copy_from_slice(&self.values.outputs);
+            fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
+                out.copy_from_slice(&self.outputs);
             }
 
             fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-                slot.store(&self.values);
+                slot.store(&self.outputs);
                 Ok(())
             }
 
             fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-                self.values = slot.load::<Values<$inputs, $outputs>>()?.into_owned();
+                let saved = slot.load::<Vec<f64>>()?;
+                if saved.len() != self.outputs.len() {
+                    return Err(UnitError::State(format!(
+                        "the saved state has {} outputs, the unit {}",
+                        saved.len(),
+                        self.outputs.len()
+                    )));
+                }
+                self.outputs.copy_from_slice(&saved);
                 Ok(())
             }
         }
     };
 }
 
-stateless_unit!(LinearPair, 1, 2, |u: &mut LinearPair| {
-    u.solve();
+stateless_unit!(LinearPair, |u: &mut LinearPair, inputs: &[f64]| {
+    u.solve(inputs);
     Ok::<(), UnitError>(())
 });
-stateless_unit!(SphereClosure, 2, 1, SphereClosure::solve);
+stateless_unit!(SphereClosure, SphereClosure::solve);
 
 #[cfg(test)]
 mod tests {
@@ -233,11 +199,11 @@ mod tests {
 
     #[test]
     fn the_pair_satisfies_both_equations() {
-        let mut u = LinearPair::new(LinearPairParams {});
+        let mut u = crate::Driver::new(LinearPair::new(LinearPairParams {}));
         u.set_inputs(&[0.7]).unwrap();
-        u.do_step(Time::ZERO, Time::from_nanos(1)).unwrap();
+        u.initialize(Time::ZERO).unwrap();
         let mut out = [0.0; 2];
-        u.outputs(&mut out);
+        u.outputs(&mut out).unwrap();
         let [a, b] = out;
         assert!((a + b + 0.7).abs() < 1e-14);
         assert!((2.0 * a - 3.0 * b + 1.4 - 9.0).abs() < 1e-14);
@@ -245,9 +211,9 @@ mod tests {
 
     #[test]
     fn the_sphere_refuses_points_outside_it() {
-        let mut u = SphereClosure::new(SphereParams::default()).unwrap();
+        let mut u = crate::Driver::new(SphereClosure::new(SphereParams::default()).unwrap());
         u.set_inputs(&[2.0, 1.5]).unwrap();
-        let err = u.do_step(Time::ZERO, Time::from_nanos(1)).unwrap_err();
+        let err = u.initialize(Time::ZERO).unwrap_err();
         assert!(err.to_string().contains("no real c"), "{err}");
     }
 }

@@ -1,0 +1,231 @@
+//! The one place that drives a unit through the contract: it owns the unit's held
+//! inputs, checks their count and finiteness, applies the hold a scene asks for,
+//! enforces the call order, and saves and restores the step's start values with
+//! the unit's state. The master's adapter, the FMU entry points, the studies and
+//! the tests all step units through it, so no unit repeats this.
+
+use crate::contract::{
+    HeldInputs, Hold, HoldSupport, Inputs, ModalAnalysis, StateSlot, StepReport, Time, Unit,
+    UnitDescription, UnitError,
+};
+
+/// A saved driver state: the unit's state and the inputs accepted at the step's
+/// start. Reused from step to step, so saving allocates nothing after the first
+/// time for units whose state `clone_from` reuses memory.
+#[derive(Default)]
+pub struct DriverSlot {
+    unit: StateSlot,
+    start: Vec<f64>,
+    initialized: bool,
+    saved: bool,
+}
+
+impl DriverSlot {
+    /// An empty slot.
+    pub fn new() -> DriverSlot {
+        DriverSlot::default()
+    }
+
+    /// Whether a state has been saved into it.
+    pub fn is_empty(&self) -> bool {
+        !self.saved
+    }
+
+    /// The saved state as bytes: the start inputs, then the unit's state (postcard).
+    pub fn to_bytes(&self) -> Result<Vec<u8>, UnitError> {
+        if !self.saved {
+            return Err(UnitError::State("no state saved".into()));
+        }
+        let unit = self.unit.to_bytes()?;
+        postcard::to_stdvec(&(self.initialized, &self.start, unit))
+            .map_err(|e| UnitError::State(format!("serialising: {e}")))
+    }
+
+    /// A slot from bytes written by [`DriverSlot::to_bytes`].
+    pub fn from_bytes(bytes: &[u8]) -> Result<DriverSlot, UnitError> {
+        let (initialized, start, unit): (bool, Vec<f64>, Vec<u8>) = postcard::from_bytes(bytes)
+            .map_err(|e| UnitError::State(format!("the serialised state does not decode ({e})")))?;
+        Ok(DriverSlot {
+            unit: StateSlot::from_bytes(unit),
+            start,
+            initialized,
+            saved: true,
+        })
+    }
+}
+
+/// A unit with its held inputs (see the module docs).
+pub struct Driver<U: Unit = Box<dyn Unit>> {
+    unit: U,
+    held: HeldInputs,
+    initialized: bool,
+}
+
+impl<U: Unit> Driver<U> {
+    /// Drives `unit`, with each input's hold as its port declares.
+    pub fn new(unit: U) -> Driver<U> {
+        let holds = unit.description().inputs.iter().map(|p| p.hold).collect();
+        Driver {
+            unit,
+            held: HeldInputs::new(holds),
+            initialized: false,
+        }
+    }
+
+    /// The unit's description (ports as the unit declares them; the holds in force
+    /// are [`Driver::holds`]).
+    pub fn description(&self) -> &UnitDescription {
+        self.unit.description()
+    }
+
+    /// The unit itself, for kind-specific queries.
+    pub fn unit(&self) -> &U {
+        &self.unit
+    }
+
+    /// The unit itself, mutable (kind-specific setup before `initialize`).
+    pub fn unit_mut(&mut self) -> &mut U {
+        &mut self.unit
+    }
+
+    /// The unit, mutable, with the inputs it sees (kind-specific changes after
+    /// `initialize` that depend on the inputs, e.g. a beam's initial shape).
+    pub fn unit_mut_with_inputs(&mut self) -> (&mut U, Inputs<'_>) {
+        (&mut self.unit, self.held.view())
+    }
+
+    /// Whether `initialize` has succeeded.
+    pub fn is_initialized(&self) -> bool {
+        self.initialized
+    }
+
+    /// The hold in force for each input.
+    pub fn holds(&self) -> &[Hold] {
+        self.held.holds()
+    }
+
+    /// Chooses the hold of input `port` for the next steps, as far as the unit
+    /// honours holds (see [`HoldSupport`]). (The master sets holds before
+    /// initialisation; an exported FMU switches between steps as its host does or
+    /// does not send input derivatives.)
+    pub fn set_hold(&mut self, port: usize, hold: Hold) -> Result<(), UnitError> {
+        if port >= self.held.len() {
+            return Err(UnitError::Unsupported(format!("no input {port}")));
+        }
+        let hold = match self.unit.description().capabilities.hold {
+            HoldSupport::Any => hold,
+            HoldSupport::ZeroOrderOnly => Hold::ZeroOrder,
+            HoldSupport::Fixed => {
+                return Err(UnitError::Unsupported("changing the input hold".into()));
+            }
+        };
+        self.held.set_hold(port, hold);
+        Ok(())
+    }
+
+    /// Sets the input values: before `initialize` the constant start values,
+    /// afterwards the values at the end of the next step. Refuses a wrong count and
+    /// non-finite values, naming the port.
+    pub fn set_inputs(&mut self, values: &[f64]) -> Result<(), UnitError> {
+        if values.len() != self.held.len() {
+            return Err(UnitError::InputCount {
+                expected: self.held.len(),
+                got: values.len(),
+            });
+        }
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(UnitError::InvalidInput {
+                port: self.unit.description().inputs[i].name.clone(),
+                value: values[i],
+                reason: "not finite".into(),
+            });
+        }
+        self.held.set_end(values);
+        Ok(())
+    }
+
+    /// The inputs as the unit sees them now.
+    pub fn inputs(&self) -> Inputs<'_> {
+        self.held.view()
+    }
+
+    /// Finds the initial state at `t0` with the inputs held at their set values.
+    pub fn initialize(&mut self, t0: Time) -> Result<(), UnitError> {
+        self.held.settle();
+        self.initialized = false;
+        self.unit.initialize(t0, self.held.view())?;
+        self.initialized = true;
+        Ok(())
+    }
+
+    /// Advances from `t` to `t + h`; the step's end inputs become the next start.
+    pub fn do_step(&mut self, t: Time, h: Time) -> Result<StepReport, UnitError> {
+        if !self.initialized {
+            return Err(UnitError::State("do_step called before initialize".into()));
+        }
+        let report = self.unit.do_step(t, h, self.held.view())?;
+        self.held.advance();
+        Ok(report)
+    }
+
+    /// Writes the outputs at the current time into `out` (one per output port).
+    pub fn outputs(&self, out: &mut [f64]) -> Result<(), UnitError> {
+        let expected = self.unit.description().outputs.len();
+        if out.len() != expected {
+            return Err(UnitError::State(format!(
+                "outputs: {expected} values expected, a buffer of {} given",
+                out.len()
+            )));
+        }
+        self.unit.outputs(self.held.view(), out);
+        Ok(())
+    }
+
+    /// Saves the unit's state and the step's start inputs.
+    pub fn save(&self, slot: &mut DriverSlot) -> Result<(), UnitError> {
+        self.unit.save_state(&mut slot.unit)?;
+        slot.start.clear();
+        slot.start.extend_from_slice(self.held.start());
+        slot.initialized = self.initialized;
+        slot.saved = true;
+        Ok(())
+    }
+
+    /// Restores a state saved by [`Driver::save`].
+    pub fn restore(&mut self, slot: &DriverSlot) -> Result<(), UnitError> {
+        if !slot.saved {
+            return Err(UnitError::State(
+                "restore_state called before save_state".into(),
+            ));
+        }
+        if slot.start.len() != self.held.len() {
+            return Err(UnitError::State(format!(
+                "the saved state has {} inputs, the unit {}",
+                slot.start.len(),
+                self.held.len()
+            )));
+        }
+        self.unit.restore_state(&slot.unit)?;
+        self.held.set_start(&slot.start);
+        self.initialized = slot.initialized;
+        Ok(())
+    }
+
+    /// The first `count` modes about the initial state (after `initialize`).
+    pub fn modes(&self, count: usize) -> Result<ModalAnalysis, UnitError> {
+        if !self.initialized {
+            return Err(UnitError::State("modal analysis before initialize".into()));
+        }
+        self.unit.modes(count)
+    }
+}
+
+/// Read access to the unit's own queries (a beam's energies, a cable's static
+/// state) through the driver; stepping goes through the driver's methods.
+impl<U: Unit> std::ops::Deref for Driver<U> {
+    type Target = U;
+
+    fn deref(&self) -> &U {
+        &self.unit
+    }
+}

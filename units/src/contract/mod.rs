@@ -1,0 +1,26 @@
+//! The unit contract: what every substructure model offers the master, and the
+//! one place that drives a unit through it ([`Driver`]).
+//!
+//! - [`unit`]: the [`Unit`] trait (call order in its docs), descriptions, errors;
+//! - [`port`], [`time`]: ports and their kinds, integer-nanosecond time;
+//! - [`hold`]: held inputs (ramp / zero-order) and the [`Inputs`] view a unit reads;
+//! - [`state`]: [`StateSlot`] for rollback and FMU state, [`state_struct!`](crate::state_struct)
+//!   for allocation-free `clone_from`;
+//! - [`driver`]: [`Driver`], which owns a unit's held inputs and checks them.
+
+pub mod driver;
+pub mod hold;
+pub mod port;
+pub mod state;
+pub mod time;
+pub mod unit;
+
+pub use driver::{Driver, DriverSlot};
+pub use hold::{HeldInputs, Inputs};
+pub use port::{Causality, Hold, Port, PortKind};
+pub use state::{StateSlot, StateVector};
+pub use time::Time;
+pub use unit::{
+    Capabilities, HoldSupport, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
+    require_finite, require_non_negative, require_positive,
+};
