@@ -1,9 +1,10 @@
 //! One FMU instance: the unit, its variables and its FMI state machine.
 
 use serde::{Deserialize, Serialize};
-use slender_master::fmi::export::{CONFIG_FILE, ExportConfig, Layout};
-use slender_master::fmi::ffi::*;
-use slender_master::fmi::model_description::Value;
+use slender_fmi::export::{CONFIG_FILE, ExportConfig, Layout};
+use slender_fmi::ffi::*;
+use slender_fmi::model_description::Value;
+use slender_scene::export::SceneExport;
 use slender_units::{Driver, DriverSlot, Hold, Time};
 use std::ffi::{CString, c_void};
 use std::panic::AssertUnwindSafe;
@@ -190,7 +191,7 @@ impl Instance {
                 config.guid
             ));
         }
-        let layout = Layout::new(&config)?;
+        let layout = config.layout()?;
         let n_in = layout.unit.inputs.len();
         let inputs = layout
             .unit

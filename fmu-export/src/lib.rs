@@ -3,7 +3,7 @@
 //! One shared library serves every exported unit: `fmi2Instantiate` reads the
 //! unit's scene section from `resources/slender-unit.toml` (written by
 //! `slender fmu export`), and the variables follow
-//! [`slender_master::fmi::export::Layout`], the same code that wrote the model
+//! [`slender_fmi::export::Layout`], the same code that wrote the model
 //! description. Every entry point catches panics and reports errors through the
 //! logger with the instance name and the reason, returning `fmi2Error`.
 //!
@@ -17,7 +17,7 @@
 mod instance;
 
 use instance::{Instance, guarded};
-use slender_master::fmi::ffi::*;
+use slender_fmi::ffi::*;
 use std::ffi::{CStr, c_char};
 
 /// `fmi2GetTypesPlatform`.

@@ -2,9 +2,9 @@
 //! memory, analytic and monolithic reference solutions of the coupling benchmarks.
 
 use nalgebra::{DMatrix, DVector};
-use slender_master::run::{RunOptions, run_scene};
-use slender_master::scene::Scene;
-use slender_master::settings::{Acceleration, Scheme};
+use slender_app::run::{RunOptions, run_scene};
+use slender_coupling::settings::{Acceleration, Scheme};
+use slender_scene::Scene;
 use slender_units::integrators::newmark::LinearNewmark;
 use std::path::{Path, PathBuf};
 
@@ -24,9 +24,9 @@ pub struct Series {
     pub time: Vec<f64>,
     pub names: Vec<String>,
     pub columns: Vec<Vec<f64>>,
-    pub counters: slender_master::counters::Counters,
+    pub counters: slender_coupling::counters::Counters,
     pub error: Option<String>,
-    pub indicators: Vec<slender_master::indicators::Indicator>,
+    pub indicators: Vec<slender_app::indicators::Indicator>,
 }
 
 impl Series {
@@ -267,8 +267,9 @@ pub fn polyester_line(elements: usize) -> slender_units::cable::CableParams {
 /// FMU helpers: where the exported library is, exporting scene units, Python.
 pub mod fmu {
     use super::root;
-    use slender_master::fmi::export::{ExportConfig, package, wrap_scene};
-    use slender_master::scene::Scene;
+    use slender_fmi::export::ExportConfig;
+    use slender_scene::Scene;
+    use slender_scene::export::{SceneExport, package, wrap_scene};
     use std::path::{Path, PathBuf};
 
     /// `libslender_fmu.so` of the profile the tests run in (target/<profile>/).

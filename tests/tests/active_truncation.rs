@@ -2,7 +2,7 @@
 //! against the emulated one, convergence, the published signal-loss example,
 //! stability of the hard cases and bad input.
 
-use slender_master::scene::Scene;
+use slender_scene::Scene;
 use slender_tests::{Series, load, run};
 
 const SUBSTRUCTURED: &str = "examples/truncation_substructured.toml";

@@ -1,7 +1,7 @@
 //! B1: two masses and three springs cut at the middle spring, against the analytic
 //! solution and against the monolithic solution of the same integrator.
 
-use slender_master::settings::{Acceleration, Scheme};
+use slender_coupling::settings::{Acceleration, Scheme};
 use slender_tests::{Chain, SCHEMES, b1_exact, load, order, run_with};
 
 const SCENE: &str = "examples/b1_two_masses.toml";

@@ -1,7 +1,7 @@
 //! B2: undamped two-DOF oscillator with a stiff and a soft side; energy drift per
 //! scheme and step size over 10 s (exact energy: 1e4 J, constant).
 
-use slender_master::settings::{Acceleration, Scheme};
+use slender_coupling::settings::{Acceleration, Scheme};
 use slender_tests::{Chain, SCHEMES, load, run_with};
 
 const SCENE: &str = "examples/b2_stiff_oscillator.toml";

@@ -2,7 +2,7 @@
 //! Jacobi, Gauss-Seidel and iterative schemes against the monolithic solution, and
 //! iterations needed for a tolerance with and without acceleration.
 
-use slender_master::settings::{Acceleration, JacobianUpdate, Scheme};
+use slender_coupling::settings::{Acceleration, JacobianUpdate, Scheme};
 use slender_tests::{Chain, load, run_with};
 
 const SCENE: &str = "examples/b3_force_displacement.toml";
@@ -35,7 +35,7 @@ fn difference(s: &slender_tests::Series, h: f64) -> f64 {
 
 /// Sets the force tolerance and the matching displacement and velocity ones: the
 /// interface force changes by kc = 3e4 N per metre and dc = 10 N per m/s.
-fn tighten(scene: &mut slender_master::scene::Scene, force: f64) {
+fn tighten(scene: &mut slender_scene::Scene, force: f64) {
     let t = &mut scene.spec.master.tolerances;
     t.force = force;
     t.displacement = force / 3e4;

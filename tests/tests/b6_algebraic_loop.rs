@@ -1,7 +1,7 @@
 //! B6: an algebraic loop across two stateless units. Newton on the interface
 //! solves it; plain fixed-point iteration cannot reach the root it repels.
 
-use slender_master::settings::{Acceleration, JacobianUpdate, Scheme};
+use slender_coupling::settings::{Acceleration, JacobianUpdate, Scheme};
 use slender_tests::{load, run_with};
 
 const SCENE: &str = "examples/b6_algebraic_loop.toml";
@@ -26,7 +26,7 @@ fn solve(scheme: Scheme, acceleration: Acceleration, first_guess: f64) -> slende
 
 /// Start values of every torn input consistent with the first guess of c (Jacobi
 /// tears a and b as well).
-fn start_at(scene: &mut slender_master::scene::Scene, c: f64) {
+fn start_at(scene: &mut slender_scene::Scene, c: f64) {
     scene.spec.units[0].inputs.insert("c".into(), c);
     scene.spec.units[1].inputs.insert("a".into(), 1.8 - c);
     scene.spec.units[1].inputs.insert("b".into(), -1.8);

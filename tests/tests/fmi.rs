@@ -6,9 +6,10 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use slender_master::fmi::export::{ExportConfig, Layout};
-use slender_master::fmi::import::{FmuParams, FmuUnit};
-use slender_master::fmi::model_description::{ModelDescription, Value, VariableCausality};
+use slender_fmi::export::ExportConfig;
+use slender_fmi::import::{FmuParams, FmuUnit};
+use slender_fmi::model_description::{ModelDescription, Value, VariableCausality};
+use slender_scene::export::SceneExport;
 use slender_tests::{fmu, load, root, run};
 use slender_units::{Driver, Hold, Time, Unit};
 use std::io::Write;
@@ -328,14 +329,14 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
         (port.kind, port.unit.as_str()),
         (slender_units::PortKind::Generic, "kN")
     );
-    let mut system = slender_master::System::new();
+    let mut system = slender_coupling::System::new();
     system.add_unit("fmu", Box::new(unit)).unwrap();
     let native = ExportConfig::from_scene(&load("examples/b1_two_masses.toml"), "right")
         .unwrap()
         .build_unit()
         .unwrap();
     system.add_unit("right", native).unwrap();
-    let link = slender_master::Link {
+    let link = slender_coupling::Link {
         gain: 1.0,
         offset: 0.0,
         tolerance: None,
@@ -420,7 +421,7 @@ fn a_failing_step_names_the_fmu_the_call_and_the_reason() {
 
 #[test]
 fn entry_points_reject_null_and_foreign_arguments_without_crashing() {
-    use slender_master::fmi::ffi::*;
+    use slender_fmi::ffi::*;
     use std::ptr::{null, null_mut};
     // SAFETY: the calls are made with arguments FMI forbids, which is the point:
     // the entry points must refuse them with fmi2Error instead of crashing.
@@ -476,7 +477,7 @@ fn entry_points_reject_null_and_foreign_arguments_without_crashing() {
 fn parameters_become_fmi_variables_and_effects_booleans() {
     let scene = load("examples/truncation_substructured.toml");
     let config = ExportConfig::from_scene(&scene, "n").unwrap();
-    let layout = Layout::new(&config).unwrap();
+    let layout = config.layout().unwrap();
     let names: Vec<&str> = layout.parameters.iter().map(|p| p.name.as_str()).collect();
     assert!(names.iter().any(|n| n.starts_with("effects.")), "{names:?}");
     let e = ExportConfig::from_scene(&scene, "nope").unwrap_err();
@@ -587,8 +588,8 @@ fn mutated_model_descriptions_give_errors_never_panics() {
 
 #[test]
 fn a_live_instance_refuses_unknown_references_wrong_types_and_late_parameters() {
-    use slender_master::fmi::ffi::*;
-    use slender_master::fmi::import::file_uri;
+    use slender_fmi::ffi::*;
+    use slender_fmi::import::file_uri;
     let dir = temp();
     let file = fmu::export("examples/b1_two_masses.toml", "left", dir.path());
     let folder = dir.path().join("unzipped");

@@ -6,7 +6,8 @@
 //! `./scripts/test.sh` creates (.venv); they are ignored in a plain `cargo test`
 //! and test.sh runs them with `--ignored`.
 
-use slender_master::fmi::export::ExportConfig;
+use slender_fmi::export::ExportConfig;
+use slender_scene::export::SceneExport;
 use slender_tests::{fmu, load, root};
 use slender_units::{Hold, Time};
 use std::path::{Path, PathBuf};

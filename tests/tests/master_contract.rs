@@ -1,8 +1,8 @@
 //! The master's contract with units: exact rollback, capability checks, error
 //! reports with context, iteration policies, counters, holds and links.
 
-use slender_master::settings::{MasterSettings, OnMaxIterations, Scheme};
-use slender_master::{Link, Master, MasterError, System};
+use slender_coupling::settings::{MasterSettings, OnMaxIterations, Scheme};
+use slender_coupling::{Link, Master, MasterError, System};
 use slender_tests::probe::{Act, Probe};
 use slender_tests::{load, run};
 use slender_units::benchmark::algebraic_loop::{

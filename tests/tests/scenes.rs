@@ -1,8 +1,8 @@
 //! Scene files: every example loads; bad input gives an error naming the file, the
 //! place and what was expected; a run that fails leaves readable partial results.
 
-use slender_master::run::{RunOptions, run_scene};
-use slender_master::scene::{Scene, kinds::KINDS};
+use slender_app::run::{RunOptions, run_scene};
+use slender_scene::{Scene, kinds::KINDS};
 use slender_tests::{load, root};
 use std::path::Path;
 
@@ -242,8 +242,8 @@ fn a_failing_run_leaves_readable_partial_results() {
     // Explicit Jacobi on B3's stiff interface at 1 ms is unstable: the motion
     // overflows to infinity within 60 s.
     let mut scene = load("examples/b3_force_displacement.toml");
-    scene.spec.master.scheme = slender_master::Scheme::Jacobi;
-    scene.spec.master.acceleration = slender_master::Acceleration::None;
+    scene.spec.master.scheme = slender_coupling::Scheme::Jacobi;
+    scene.spec.master.acceleration = slender_coupling::Acceleration::None;
     scene.spec.simulation.duration = 60.0;
     scene.set_step(0.001).unwrap();
     let dir = std::env::temp_dir().join(format!("slender-partial-{}", std::process::id()));

@@ -366,7 +366,7 @@ mod unit {
             damping_per_length: 5.0,
             length: 10.0,
         };
-        Driver::new(slender_master::span_study::fe_span(&span, elements).unwrap())
+        Driver::new(slender_app::span_study::fe_span(&span, elements).unwrap())
     }
 
     #[test]
@@ -468,7 +468,7 @@ fn order_14_function_pade_repaired_by_relocation_follows_the_exact_span() {
 /// and the reference is converged well below the errors it ranks.
 #[test]
 fn span_unit_beats_fe_spans_stepping_with_the_master_against_the_continuum() {
-    use slender_master::span_study::{StudyPlan, study};
+    use slender_app::span_study::{StudyPlan, study};
     let plan = StudyPlan {
         orders: vec![8, 12],
         elements: vec![8, 16, 32],
@@ -479,7 +479,7 @@ fn span_unit_beats_fe_spans_stepping_with_the_master_against_the_continuum() {
         step: 0.01,
     };
     let report = study(&bode_span(5.0), &plan).unwrap();
-    eprint!("{}", slender_master::span_study::to_markdown(&report));
+    eprint!("{}", slender_app::span_study::to_markdown(&report));
     let row = |model: &str, size: usize, substeps: usize| {
         report
             .rows

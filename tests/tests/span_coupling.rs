@@ -90,7 +90,7 @@ fn the_4x4_fit_follows_every_entry_over_the_band_and_is_exact_at_rest() {
 fn fe_span(elements: usize) -> Driver<Beam> {
     // A little numerical damping keeps the reactions at the prescribed end free of
     // the trapezoidal rule's undamped acceleration oscillation.
-    Driver::new(slender_master::coupling_study::fe_span(&SPAN, elements, 0.05).unwrap())
+    Driver::new(slender_app::coupling_study::fe_span(&SPAN, elements, 0.05).unwrap())
 }
 
 /// Outputs (upper moment, upper shear, lower deflection, lower rotation) at every
@@ -122,7 +122,7 @@ fn drive<U: Unit>(
 // a prescribed deflection would ask for an impulsive shear that neither a
 // band-limited fit nor a mesh resolves, and the comparison would measure that
 // instead of the span.
-use slender_master::coupling_study::motion;
+use slender_app::coupling_study::motion;
 
 fn relative_errors(a: &[[f64; 4]], b: &[[f64; 4]]) -> [f64; 4] {
     std::array::from_fn(|j| {
@@ -289,7 +289,7 @@ fn coupled_with_exact_stepping_it_goes_unstable() {
     let text = std::fs::read_to_string(&path)
         .unwrap()
         .replace("order = 24 }", "order = 24, discretization = \"exact\" }");
-    let scene = slender_master::scene::Scene::parse(&path, text).unwrap();
+    let scene = slender_scene::Scene::parse(&path, text).unwrap();
     let run = slender_tests::run(&scene);
     assert!(run.error.is_some(), "the exact stepping stayed stable");
 }
@@ -333,7 +333,7 @@ fn the_coupled_span_stays_bounded_for_1500_s() {
             .replace("step = 0.002", "step = 0.01")
             .replace("order = 24 }", "order = 24, alpha = 0.01 }"),
     ] {
-        let scene = slender_master::scene::Scene::parse(&path, text).unwrap();
+        let scene = slender_scene::Scene::parse(&path, text).unwrap();
         let run = slender_tests::run(&scene);
         assert!(run.error.is_none(), "{:?}", run.error);
         let window_peak = |name: &str, from: usize, to: usize| {
@@ -374,7 +374,7 @@ fn the_coupled_span_stays_bounded_for_1500_s() {
 /// peak. Trapezoidal stepping carries the same kind of time error as the FE spans.
 #[test]
 fn exact_span_coupling_beats_fe_spans_stepping_with_the_master_against_the_continuum() {
-    use slender_master::coupling_study::{CouplingPlan, coupling_study, to_markdown};
+    use slender_app::coupling_study::{CouplingPlan, coupling_study, to_markdown};
     let plan = CouplingPlan {
         orders: vec![24],
         elements: vec![32, 64],

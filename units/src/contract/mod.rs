@@ -2,7 +2,8 @@
 //! one place that drives a unit through it ([`Driver`]).
 //!
 //! - [`unit`]: the [`Unit`] trait (call order in its docs), descriptions, errors;
-//! - [`port`], [`time`]: ports and their kinds, integer-nanosecond time;
+//! - [`port`], [`time`], [`measure`]: ports and their kinds, integer-nanosecond
+//!   time, units of measure;
 //! - [`hold`]: held inputs (ramp / zero-order) and the [`Inputs`] view a unit reads;
 //! - [`state`]: [`StateSlot`] for rollback and FMU state, [`state_struct!`](crate::state_struct)
 //!   for allocation-free `clone_from`;
@@ -10,6 +11,8 @@
 
 pub mod driver;
 pub mod hold;
+pub mod measure;
+pub mod names;
 pub mod port;
 pub mod state;
 pub mod time;

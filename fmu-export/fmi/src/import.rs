@@ -20,11 +20,11 @@
 //! outputs, and leaves that mode at the first step. A later `initialize` resets
 //! the FMU (`fmi2Reset`) and starts again.
 
-use super::ffi::*;
-use super::measure::si_definition;
-use super::model_description::{ModelDescription, Value, VariableCausality};
-use crate::error::did_you_mean;
+use crate::ffi::*;
+use crate::measure::si_definition;
+use crate::model_description::{ModelDescription, Value, VariableCausality};
 use serde::{Deserialize, Serialize};
+use slender_units::contract::names::did_you_mean;
 use slender_units::{
     Capabilities, Hold, HoldSupport, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
     UnitDescription, UnitError,

@@ -1,8 +1,8 @@
 //! `slender`: run, check and benchmark co-simulation scenes.
 
 use clap::{Parser, Subcommand};
-use slender_master::run::{RunOptions, benchmark, run_scene};
-use slender_master::scene::{Scene, kinds};
+use slender_app::run::{RunOptions, benchmark, run_scene};
+use slender_scene::{Scene, kinds};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -162,7 +162,7 @@ enum Command {
         /// SETTING=V1,V2,...; SETTING is elements, step, velocity_tolerance or
         /// force_tolerance. Repeat for several sweeps.
         #[arg(long = "vary", required = true)]
-        sweeps: Vec<slender_master::study::Sweep>,
+        sweeps: Vec<slender_app::study::Sweep>,
         /// Simulated time of each run (s); default: the scene's duration.
         #[arg(long)]
         duration: Option<f64>,
@@ -459,7 +459,7 @@ fn modes(path: PathBuf, unit: &str, count: usize, out: Option<PathBuf>, plot: us
             positions: analysis.positions.clone(),
             modes: analysis.modes.iter().take(plot).cloned().collect(),
         };
-        slender_master::plot::mode_shapes(&svg, &format!("Mode shapes of `{unit}`"), &shown)?;
+        slender_app::plot::mode_shapes(&svg, &format!("Mode shapes of `{unit}`"), &shown)?;
         Ok(vec![csv, svg])
     })();
     report_written(written)
@@ -467,11 +467,11 @@ fn modes(path: PathBuf, unit: &str, count: usize, out: Option<PathBuf>, plot: us
 
 fn study(
     path: PathBuf,
-    sweeps: &[slender_master::study::Sweep],
+    sweeps: &[slender_app::study::Sweep],
     duration: Option<f64>,
     out: Option<PathBuf>,
 ) -> ExitCode {
-    use slender_master::study;
+    use slender_app::study;
     let scene = match load(&path) {
         Ok(s) => s,
         Err(code) => return code,
@@ -520,7 +520,7 @@ fn study(
         std::fs::write(&md, study::to_markdown(&rows))
             .map_err(|e| format!("{}: {e}", md.display()))?;
         let svg = dir.join("study.svg");
-        slender_master::plot::study(
+        slender_app::plot::study(
             &svg,
             &format!("Convergence and cost: {}", path.display()),
             &rows,
@@ -551,7 +551,7 @@ fn span_command(
     action: SpanAction,
     out: &Path,
 ) -> ExitCode {
-    use slender_master::span_study;
+    use slender_app::span_study;
     if let Err(e) = span.validate() {
         eprintln!("error: {e}");
         return ExitCode::from(2);
@@ -572,7 +572,7 @@ fn span_command(
                     span.damping_per_length,
                     span.length
                 );
-                slender_master::plot::bode(&path, &title, &omegas, &series)?;
+                slender_app::plot::bode(&path, &title, &omegas, &series)?;
                 Ok(vec![path])
             }
             SpanAction::Study {
@@ -604,7 +604,7 @@ fn span_command(
                     .iter()
                     .map(|r| (r.label(), r.cost_per_simulated_second, r.error_sines))
                     .collect();
-                slender_master::plot::accuracy_cost(
+                slender_app::plot::accuracy_cost(
                     &psvg,
                     "Span: error against cost per simulated second",
                     "error vs the continuum (sum of sines)",
@@ -619,7 +619,7 @@ fn span_command(
                 reference_substeps,
                 fe_substeps,
             } => {
-                use slender_master::coupling_study;
+                use slender_app::coupling_study;
                 let plan = coupling_study::CouplingPlan {
                     orders: vec![16, 24, 32],
                     elements: vec![8, 16, 32, 64, 128],
@@ -650,7 +650,7 @@ fn span_command(
                         (label, r.cost_per_simulated_second, worst)
                     })
                     .collect();
-                slender_master::plot::accuracy_cost(
+                slender_app::plot::accuracy_cost(
                     &psvg,
                     "Span between two sections: error against cost per simulated second",
                     "largest error of the four outputs vs the continuum",
@@ -686,8 +686,9 @@ fn write_study_report(
 }
 
 fn fmu_command(action: FmuAction) -> ExitCode {
-    use slender_master::fmi::export::{ExportConfig, default_binary, package, wrap_scene};
-    use slender_master::fmi::import::{FmuParams, FmuUnit};
+    use slender_fmi::export::{ExportConfig, default_binary};
+    use slender_fmi::import::{FmuParams, FmuUnit};
+    use slender_scene::export::{SceneExport, package, wrap_scene};
     let result = match action {
         FmuAction::Export {
             scene,
@@ -708,7 +709,7 @@ fn fmu_command(action: FmuAction) -> ExitCode {
                 Ok(layout) => {
                     let model = &layout.model;
                     let count = |c| model.variables.iter().filter(|v| v.causality == c).count();
-                    use slender_master::fmi::model_description::VariableCausality as C;
+                    use slender_fmi::model_description::VariableCausality as C;
                     println!(
                         "wrote {} ({} inputs, {} outputs, {} parameters, guid {})",
                         output.display(),

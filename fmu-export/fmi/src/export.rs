@@ -13,15 +13,13 @@
 //! scene's parameter table (nested tables as `a.b`) and each effect the kind can
 //! switch as Boolean `effects.<name>`. Arrays stay fixed data.
 
-use super::measure::si_definition;
-use super::model_description::{
+use crate::measure::si_definition;
+use crate::model_description::{
     CoSimulation, DefaultExperiment, ModelDescription, ScalarVariable, Unknown, Value,
     VariableCausality,
 };
-use crate::coupler::Master;
-use crate::scene::{Scene, kinds};
 use serde::{Deserialize, Serialize};
-use slender_units::{Driver, Hold, Unit, UnitDescription};
+use slender_units::{Hold, UnitDescription};
 use std::collections::BTreeMap;
 use std::io::Write as _;
 use std::path::Path;
@@ -74,6 +72,14 @@ pub struct ParameterVariable {
     pub start: Value,
 }
 
+/// What a layout needs to know of a unit's kind.
+pub struct KindInfo<'a> {
+    /// One line on the kind, for the model description.
+    pub summary: &'a str,
+    /// The effects the kind can switch (each becomes a Boolean parameter).
+    pub effects: &'a [&'a str],
+}
+
 /// The FMU's variables and model description for one configuration.
 pub struct Layout {
     /// The unit's own description (ports, feedthrough, capabilities).
@@ -83,67 +89,6 @@ pub struct Layout {
 }
 
 impl ExportConfig {
-    /// The section of unit `unit` of a loaded scene.
-    pub fn from_scene(scene: &Scene, unit: &str) -> Result<ExportConfig, String> {
-        ExportConfig::from_settled(scene, &settle(scene)?, unit)
-    }
-
-    /// The section of unit `unit`, with the start inputs of `master`, the scene
-    /// already initialised (see [`settle`]).
-    pub fn from_settled(
-        scene: &Scene,
-        master: &Master,
-        unit: &str,
-    ) -> Result<ExportConfig, String> {
-        let spec = scene
-            .spec
-            .units
-            .iter()
-            .find(|u| u.name.get_ref() == unit)
-            .ok_or_else(|| {
-                let names: Vec<&str> = scene
-                    .spec
-                    .units
-                    .iter()
-                    .map(|u| u.name.get_ref().as_str())
-                    .collect();
-                format!(
-                    "{}: no unit `{unit}`; its units are: {}",
-                    scene.path.display(),
-                    names.join(", ")
-                )
-            })?;
-        let index = master
-            .unit_names()
-            .position(|n| n == unit)
-            .ok_or_else(|| format!("no unit `{unit}`"))?;
-        let inputs = master
-            .description(index)
-            .inputs
-            .iter()
-            .zip(master.inputs(index))
-            .map(|(p, v)| (p.name.clone(), *v))
-            .collect();
-        let mut config = ExportConfig {
-            name: unit.to_owned(),
-            kind: spec.kind.get_ref().clone(),
-            effects: spec.effects.clone(),
-            hold: spec.hold,
-            inputs,
-            parameters: spec
-                .parameters
-                .as_ref()
-                .map(|p| p.get_ref().clone())
-                .unwrap_or_default(),
-            start_time: scene.start.as_secs(),
-            stop_time: scene.end().as_secs(),
-            step: scene.step.as_secs(),
-            guid: String::new(),
-        };
-        config.guid = config.fingerprint();
-        Ok(config)
-    }
-
     /// Reads the configuration an FMU carries.
     pub fn from_toml(text: &str) -> Result<ExportConfig, String> {
         toml::from_str(text).map_err(|e| format!("{CONFIG_FILE}: {}", e.message().trim()))
@@ -185,28 +130,6 @@ impl ExportConfig {
         format!("slender_{name}")
     }
 
-    /// Builds the unit with the current parameters and effects.
-    pub fn build_unit(&self) -> Result<Box<dyn Unit>, String> {
-        let kind =
-            kinds::find(&self.kind).ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
-        let context = kinds::BuildContext {
-            effects: &self.effects,
-            base_dir: Path::new("."),
-        };
-        kind.build(self.parameters.clone(), &context)
-    }
-
-    /// The unit in a driver with the configured hold.
-    pub fn driver(&self) -> Result<Driver, String> {
-        let mut unit = Driver::new(self.build_unit()?);
-        if let Some(hold) = self.hold {
-            for port in 0..unit.description().inputs.len() {
-                unit.set_hold(port, hold).map_err(|e| e.to_string())?;
-            }
-        }
-        Ok(unit)
-    }
-
     /// Changes a parameter; the unit must be rebuilt afterwards.
     pub fn set_parameter(&mut self, target: &ParameterTarget, value: Value) -> Result<(), String> {
         match target {
@@ -243,38 +166,21 @@ impl ExportConfig {
     }
 }
 
-/// The scene built and initialised: its master holds the settled start inputs of
-/// every unit.
-pub fn settle(scene: &Scene) -> Result<Master, String> {
-    let mut master = scene.build().map_err(|e| e.to_string())?;
-    master
-        .initialize(scene.start)
-        .map_err(|e| format!("{}: initialisation: {e}", scene.path.display()))?;
-    Ok(master)
-}
-
 impl Layout {
-    /// Builds the unit once to read its ports and checks its parameters.
-    pub fn new(config: &ExportConfig) -> Result<Layout, String> {
-        let driver = config.driver()?;
-        // The unit's ports with the holds in force.
-        let mut unit = driver.description().clone();
-        for (port, hold) in unit.inputs.iter_mut().zip(driver.holds()) {
-            port.hold = *hold;
-        }
+    /// The layout of `config`'s FMU for its unit's description `unit` (the ports
+    /// with the holds in force) and its kind.
+    pub fn new(config: &ExportConfig, unit: UnitDescription, kind: &KindInfo) -> Layout {
         let n_in = unit.inputs.len();
         let n_out = unit.outputs.len();
         let mut parameters = Vec::new();
         flatten(&config.parameters, &mut Vec::new(), &mut parameters);
-        if let Some(kind) = kinds::find(&config.kind) {
-            for effect in kind.effects {
-                parameters.push(ParameterVariable {
-                    name: format!("effects.{effect}"),
-                    value_reference: 0,
-                    target: ParameterTarget::Effect((*effect).to_owned()),
-                    start: Value::Boolean(Some(config.effects.iter().any(|e| e == effect))),
-                });
-            }
+        for effect in kind.effects {
+            parameters.push(ParameterVariable {
+                name: format!("effects.{effect}"),
+                value_reference: 0,
+                target: ParameterTarget::Effect((*effect).to_owned()),
+                start: Value::Boolean(Some(config.effects.iter().any(|e| e == effect))),
+            });
         }
         for (i, p) in parameters.iter_mut().enumerate() {
             p.value_reference = (n_in + n_out + i) as u32;
@@ -285,7 +191,7 @@ impl Layout {
             Some(def) => {
                 if !units
                     .iter()
-                    .any(|u: &super::model_description::UnitDefinition| u.name == name)
+                    .any(|u: &crate::model_description::UnitDefinition| u.name == name)
                 {
                     units.push(def);
                 }
@@ -351,12 +257,8 @@ impl Layout {
             model_name: config.name.clone(),
             guid: config.guid.clone(),
             description: format!(
-                "slender `{}` unit `{}`{}",
-                config.kind,
-                config.name,
-                kinds::find(&config.kind)
-                    .map(|k| format!(": {}", k.summary))
-                    .unwrap_or_default()
+                "slender `{}` unit `{}`: {}",
+                config.kind, config.name, kind.summary
             ),
             generation_tool: format!("slender {}", env!("CARGO_PKG_VERSION")),
             co_simulation: Some(CoSimulation {
@@ -378,11 +280,11 @@ impl Layout {
                 step_size: Some(config.step),
             }),
         };
-        Ok(Layout {
+        Layout {
             unit,
             parameters,
             model,
-        })
+        }
     }
 }
 
@@ -425,11 +327,14 @@ fn flatten(table: &toml::Table, path: &mut Vec<String>, out: &mut Vec<ParameterV
     }
 }
 
-/// Writes the FMU for `config` to `out`, with `binary` (the `slender-fmu` shared
-/// library) as `binaries/linux64/<modelIdentifier>.so`. Returns the layout, whose
-/// model description was written.
-pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Layout, String> {
-    let layout = Layout::new(config)?;
+/// Writes the FMU for `config` with `layout` to `out`, with `binary` (the
+/// `slender-fmu` shared library) as `binaries/linux64/<modelIdentifier>.so`.
+pub fn package(
+    config: &ExportConfig,
+    layout: &Layout,
+    binary: &Path,
+    out: &Path,
+) -> Result<(), String> {
     let library = std::fs::read(binary).map_err(|e| {
         format!(
             "{}: cannot read the FMU library ({e}); build it with `cargo build --release -p slender-fmu`",
@@ -461,7 +366,7 @@ pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Layou
         zip.write_all(&bytes).map_err(|e| failed(&e))?;
     }
     zip.finish().map_err(|e| failed(&e))?;
-    Ok(layout)
+    Ok(())
 }
 
 /// The FMU library next to the running executable (`target/<profile>/`), where
@@ -473,82 +378,4 @@ pub fn default_binary() -> Option<std::path::PathBuf> {
         .iter()
         .map(|d| d.join("libslender_fmu.so"))
         .find(|p| p.exists())
-}
-
-/// Exports every unit of a scene as an FMU into `dir` and writes there a copy of
-/// the scene whose units are those FMUs (kind `fmu`), so the same run can go
-/// through the FMI layer. Returns the new scene's path.
-pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path::PathBuf, String> {
-    let text = std::fs::read_to_string(&scene.path)
-        .map_err(|e| format!("{}: cannot read ({e})", scene.path.display()))?;
-    let mut table: toml::Table =
-        toml::from_str(&text).map_err(|e| format!("{}: {}", scene.path.display(), e.message()))?;
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create ({e})", dir.display()))?;
-    let units = table
-        .get_mut("units")
-        .and_then(toml::Value::as_array_mut)
-        .ok_or_else(|| format!("{}: no [[units]]", scene.path.display()))?;
-    let master = settle(scene)?;
-    // Inputs renamed in the FMUs ("unit.port" -> "unit.port_in"), for the
-    // connections below.
-    let mut renamed = BTreeMap::new();
-    for unit in units.iter_mut() {
-        let unit = unit
-            .as_table_mut()
-            .ok_or("a [[units]] entry is not a table")?;
-        let name = unit
-            .get("name")
-            .and_then(toml::Value::as_str)
-            .ok_or("a unit without a name")?
-            .to_owned();
-        let config = ExportConfig::from_settled(scene, &master, &name)?;
-        let file = format!("{name}.fmu");
-        let layout = package(&config, binary, &dir.join(&file))?;
-        for (i, port) in layout.unit.inputs.iter().enumerate() {
-            let variable = &layout.model.variables[i].name;
-            if variable != &port.name {
-                renamed.insert(
-                    format!("{name}.{}", port.name),
-                    format!("{name}.{variable}"),
-                );
-                if let Some(inputs) = unit.get_mut("inputs").and_then(toml::Value::as_table_mut)
-                    && let Some(v) = inputs.remove(&port.name)
-                {
-                    inputs.insert(variable.clone(), v);
-                }
-            }
-        }
-        unit.insert("kind".into(), toml::Value::String("fmu".into()));
-        unit.remove("effects");
-        let mut parameters = toml::Table::new();
-        parameters.insert("file".into(), toml::Value::String(file));
-        unit.insert("parameters".into(), toml::Value::Table(parameters));
-    }
-    if let Some(connections) = table
-        .get_mut("connections")
-        .and_then(toml::Value::as_array_mut)
-    {
-        for c in connections.iter_mut().filter_map(toml::Value::as_table_mut) {
-            let target = c.get("to").and_then(toml::Value::as_str).map(str::to_owned);
-            if let Some(new) = target.and_then(|t| renamed.get(&t)) {
-                c.insert("to".into(), toml::Value::String(new.clone()));
-            }
-        }
-    }
-    if let Some(title) = table.get("title").and_then(toml::Value::as_str) {
-        let title = format!("{title} [every unit through FMI 2.0]");
-        table.insert("title".into(), toml::Value::String(title));
-    }
-    if let Some(output) = table.get_mut("output").and_then(toml::Value::as_table_mut) {
-        output.remove("directory");
-    }
-    let stem = scene
-        .path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "scene".into());
-    let out = dir.join(format!("{stem}_fmu.toml"));
-    let written = toml::to_string(&table).map_err(|e| format!("{}: {e}", out.display()))?;
-    std::fs::write(&out, written).map_err(|e| format!("{}: cannot write ({e})", out.display()))?;
-    Ok(out)
 }

@@ -1,14 +1,14 @@
 //! Running a scene end to end: initialise, step to the end with a progress bar,
 //! record, and write `timeseries.csv`, `summary.json` and SVG plots.
 
-use crate::counters::Counters;
-use crate::coupler::Master;
-use crate::error::MasterError;
 use crate::plot;
 use crate::record::Recorder;
-use crate::scene::Scene;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
+use slender_coupling::counters::Counters;
+use slender_coupling::coupler::Master;
+use slender_coupling::error::MasterError;
+use slender_scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -36,7 +36,7 @@ pub struct Summary {
     /// Wall time per simulated second (s/s).
     pub cost_per_simulated_second: f64,
     pub order: Vec<String>,
-    pub settings: crate::settings::MasterSettings,
+    pub settings: slender_coupling::settings::MasterSettings,
     pub counters: Counters,
     /// Indicators of `[[output.indicators]]` over the recorded time.
     pub indicators: Vec<crate::indicators::Indicator>,
@@ -138,12 +138,28 @@ fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indi
         .collect()
 }
 
+/// Why a run stopped early: the coupled simulation failed, or its results could
+/// not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error(transparent)]
+    Master(Box<MasterError>),
+    #[error("writing results: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+impl From<MasterError> for RunError {
+    fn from(e: MasterError) -> Self {
+        RunError::Master(Box::new(e))
+    }
+}
+
 fn simulate(
     scene: &Scene,
     master: &mut Master,
     recorder: &mut Recorder,
     progress: bool,
-) -> Result<(), MasterError> {
+) -> Result<(), RunError> {
     master.initialize(scene.start)?;
     recorder.observe(master)?;
     let started = Instant::now();

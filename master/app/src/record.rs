@@ -2,8 +2,7 @@
 //! run goes (so a failed run leaves readable partial results) and kept in memory
 //! for plots.
 
-use crate::coupler::Master;
-use crate::error::MasterError;
+use slender_coupling::coupler::Master;
 use slender_units::Causality;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -92,11 +91,5 @@ impl Recorder {
             .iter()
             .position(|n| n == name)
             .map(|i| self.columns[i].as_slice())
-    }
-}
-
-impl From<std::io::Error> for MasterError {
-    fn from(e: std::io::Error) -> Self {
-        MasterError::Invalid(format!("writing results: {e}"))
     }
 }

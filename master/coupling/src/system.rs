@@ -181,7 +181,7 @@ impl System {
         // Units of measure are compared whenever both ports declare one (FMU
         // ports of a kind slender does not know are generic but keep their unit).
         let declared = !out.unit.is_empty() && !inp.unit.is_empty();
-        if declared && !crate::fmi::measure::same_unit(&out.unit, &inp.unit) {
+        if declared && !slender_units::contract::measure::same_unit(&out.unit, &inp.unit) {
             return Err(format!(
                 "{from} -> {to}: units of measure differ ({} vs {})",
                 out.unit, inp.unit

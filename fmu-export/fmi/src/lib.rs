@@ -2,7 +2,8 @@
 //!
 //! - [`model_description`]: reading and writing `modelDescription.xml`;
 //! - [`import::FmuUnit`]: an FMU behind the unit contract (scene kind `fmu`);
-//! - [`export`]: what an exported FMU carries and how it is packaged; the entry
+//! - [`export`]: what an exported FMU carries, its variable layout and the
+//!   packaging; building units from scenes is `slender_scene::export`, the entry
 //!   points themselves live in the `slender-fmu` crate;
 //! - [`ffi`]: the C types both sides share; [`measure`]: units of measure.
 

@@ -1,10 +1,9 @@
-//! Units of measure as SI base-unit exponents, to write `UnitDefinitions` for
-//! exported FMUs and to compare an imported FMU's units with slender's.
-
-use super::model_description::UnitDefinition;
+//! Units of measure as SI base-unit exponents: ports declare their unit by name,
+//! connections compare them ("N.m" and "J" are the same), and the FMI layer writes
+//! and reads them as `UnitDefinitions`.
 
 /// Exponents of kg, m, s, A, K, mol, cd, rad (the order of FMI's `BaseUnit`).
-type Exponents = [i32; 8];
+pub type Exponents = [i32; 8];
 
 /// The named units slender's ports and documents use.
 const NAMED: [(&str, Exponents); 13] = [
@@ -23,10 +22,10 @@ const NAMED: [(&str, Exponents); 13] = [
     ("Hz", [0, 0, -1, 0, 0, 0, 0, 0]),
 ];
 
-/// The SI definition of a unit written as products and quotients of named units
-/// with optional integer powers, e.g. "N.m", "m/s", "m/s^2", "kg/m", "1/s".
+/// The SI base-unit exponents of a unit written as products and quotients of named
+/// units with optional integer powers, e.g. "N.m", "m/s", "m/s^2", "kg/m", "1/s".
 /// `None` for an empty name or a symbol it does not know.
-pub fn si_definition(name: &str) -> Option<UnitDefinition> {
+pub fn si_exponents(name: &str) -> Option<Exponents> {
     if name.trim().is_empty() {
         return None;
     }
@@ -61,20 +60,14 @@ pub fn si_definition(name: &str) -> Option<UnitDefinition> {
         }
     }
     apply(&token, sign)?;
-    Some(UnitDefinition {
-        name: name.to_owned(),
-        exponents,
-        factor: 1.0,
-        offset: 0.0,
-    })
+    Some(exponents)
 }
 
 /// Whether two unit names mean the same SI unit: equal names, or equal exponents
 /// when both are understood (e.g. "N.m" and "J" are not told apart: both are
 /// kg m^2 s^-2).
 pub fn same_unit(a: &str, b: &str) -> bool {
-    a == b
-        || matches!((si_definition(a), si_definition(b)), (Some(x), Some(y)) if x.exponents == y.exponents)
+    a == b || matches!((si_exponents(a), si_exponents(b)), (Some(x), Some(y)) if x == y)
 }
 
 #[cfg(test)]
@@ -83,20 +76,11 @@ mod tests {
 
     #[test]
     fn compound_units_reduce_to_base_exponents() {
-        assert_eq!(
-            si_definition("N.m").unwrap().exponents,
-            [1, 2, -2, 0, 0, 0, 0, 0]
-        );
-        assert_eq!(
-            si_definition("m/s^2").unwrap().exponents,
-            [0, 1, -2, 0, 0, 0, 0, 0]
-        );
-        assert_eq!(
-            si_definition("1/s").unwrap().exponents,
-            [0, 0, -1, 0, 0, 0, 0, 0]
-        );
-        assert!(si_definition("furlong").is_none());
-        assert!(si_definition("").is_none());
+        assert_eq!(si_exponents("N.m").unwrap(), [1, 2, -2, 0, 0, 0, 0, 0]);
+        assert_eq!(si_exponents("m/s^2").unwrap(), [0, 1, -2, 0, 0, 0, 0, 0]);
+        assert_eq!(si_exponents("1/s").unwrap(), [0, 0, -1, 0, 0, 0, 0, 0]);
+        assert!(si_exponents("furlong").is_none());
+        assert!(si_exponents("").is_none());
         assert!(same_unit("N*m", "N.m"));
         assert!(!same_unit("N", "m"));
     }

@@ -7,9 +7,10 @@
 //! first. Run with `cargo bench -p slender-master --bench fmi`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slender_master::fmi::export::{ExportConfig, package};
-use slender_master::fmi::import::{FmuParams, FmuUnit};
-use slender_master::scene::Scene;
+use slender_fmi::export::ExportConfig;
+use slender_fmi::import::{FmuParams, FmuUnit};
+use slender_scene::Scene;
+use slender_scene::export::{SceneExport, package};
 use slender_units::{Driver, DriverSlot, Time, Unit};
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -33,7 +34,7 @@ fn library() -> PathBuf {
 /// the scene settled on.
 fn pair(scene: &str, unit: &str, dir: &Path) -> (Driver, Driver, Vec<f64>) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../examples")
+        .join("../../examples")
         .join(scene);
     let scene = Scene::load(&path).expect("example scene loads");
     let config = ExportConfig::from_scene(&scene, unit).expect("unit exists");

@@ -5,8 +5,8 @@
 
 use crate::indicators::{indicator, interpolate};
 use crate::run::{RunOptions, run_scene};
-use crate::scene::Scene;
 use serde::Serialize;
+use slender_scene::Scene;
 use std::fmt;
 use std::str::FromStr;
 
@@ -34,7 +34,7 @@ impl FromStr for Knob {
             "force_tolerance" => Ok(Knob::ForceTolerance),
             other => Err(format!(
                 "unknown study setting `{other}`{}: expected elements, step, velocity_tolerance or force_tolerance",
-                crate::error::did_you_mean(
+                slender_coupling::error::did_you_mean(
                     other,
                     ["elements", "step", "velocity_tolerance", "force_tolerance"].into_iter()
                 )

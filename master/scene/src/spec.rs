@@ -1,8 +1,8 @@
 //! The scene file format (TOML), as serde types. Every table rejects unknown keys.
 //! `docs/scene-reference.md` documents these types field by field.
 
-use crate::settings::MasterSettings;
 use serde::Deserialize;
+use slender_coupling::settings::MasterSettings;
 use slender_units::Hold;
 use std::collections::BTreeMap;
 use toml::Spanned;

@@ -1,7 +1,7 @@
 //! The unit kinds a scene can name, and how each is built from its parameters.
 
-use crate::fmi::import::{FmuParams, FmuUnit};
 use serde::de::DeserializeOwned;
+use slender_fmi::import::{FmuParams, FmuUnit};
 use slender_units::Unit;
 use slender_units::beam::Beam;
 use slender_units::beam::touchdown::TouchdownEstimate;

@@ -3,12 +3,13 @@
 //!
 //! Errors name the file, the line where known, the key and what was expected.
 
+pub mod export;
 pub mod kinds;
 pub mod spec;
 
-use crate::coupler::Master;
-use crate::error::did_you_mean;
-use crate::system::{Link, System};
+use slender_coupling::Master;
+use slender_coupling::error::did_you_mean;
+use slender_coupling::system::{Link, System};
 use slender_units::{Causality, Time};
 use spec::SceneSpec;
 use std::fmt;

@@ -4,9 +4,9 @@
 //! Run with `cargo bench -p slender-master`; figures go to BENCHMARKS.md.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slender_master::scene::Scene;
-use slender_master::settings::{Acceleration, MasterSettings, Scheme};
-use slender_master::{Link, Master, System};
+use slender_coupling::settings::{Acceleration, MasterSettings, Scheme};
+use slender_coupling::{Link, Master, System};
+use slender_scene::Scene;
 use slender_units::benchmark::algebraic_loop::{LinearPair, LinearPairParams};
 use slender_units::{Driver, Time, Unit};
 use std::hint::black_box;
@@ -14,7 +14,7 @@ use std::path::Path;
 
 fn scene(name: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../examples")
+        .join("../../examples")
         .join(name);
     Scene::load(&path).expect("example scene loads")
 }

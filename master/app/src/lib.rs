@@ -1,0 +1,14 @@
+//! slender-app: the application around the coupling algorithm (the `slender`
+//! binary is `main.rs`).
+//!
+//! - [`run`]: running a scene with recording, summary and plots;
+//! - [`record`], [`plot`], [`indicators`]: CSV time series, SVG figures, phi / epsilon;
+//! - [`study`], [`span_study`], [`coupling_study`]: convergence and cost studies.
+
+pub mod coupling_study;
+pub mod indicators;
+pub mod plot;
+pub mod record;
+pub mod run;
+pub mod span_study;
+pub mod study;

@@ -1,0 +1,219 @@
+//! Exporting a scene's units as FMUs: the half of FMI export that needs the kind
+//! registry (building a unit from an FMU's configuration, settling a scene for its
+//! start inputs, wrapping a whole scene). The FMU layout and packaging themselves
+//! are in `slender_fmi::export`.
+
+use crate::{Scene, kinds};
+use slender_coupling::Master;
+use slender_fmi::export::{ExportConfig, KindInfo, Layout};
+use slender_units::{Driver, Unit};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// Building an exported unit from its configuration, and configurations from
+/// scenes (the registry lives in this crate, the configuration in `slender-fmi`).
+pub trait SceneExport: Sized {
+    /// The section of unit `unit` of a loaded scene.
+    fn from_scene(scene: &Scene, unit: &str) -> Result<Self, String>;
+
+    /// The section of unit `unit`, with the start inputs of `master`, the scene
+    /// already initialised (see [`settle`]).
+    fn from_settled(scene: &Scene, master: &Master, unit: &str) -> Result<Self, String>;
+
+    /// Builds the unit with the current parameters and effects.
+    fn build_unit(&self) -> Result<Box<dyn Unit>, String>;
+
+    /// The unit in a driver with the configured hold.
+    fn driver(&self) -> Result<Driver, String>;
+
+    /// The FMU layout: builds the unit once to read its ports (with the holds in
+    /// force) and to check its parameters.
+    fn layout(&self) -> Result<Layout, String>;
+}
+
+impl SceneExport for ExportConfig {
+    fn from_scene(scene: &Scene, unit: &str) -> Result<ExportConfig, String> {
+        Self::from_settled(scene, &settle(scene)?, unit)
+    }
+
+    fn from_settled(scene: &Scene, master: &Master, unit: &str) -> Result<ExportConfig, String> {
+        let spec = scene
+            .spec
+            .units
+            .iter()
+            .find(|u| u.name.get_ref() == unit)
+            .ok_or_else(|| {
+                let names: Vec<&str> = scene
+                    .spec
+                    .units
+                    .iter()
+                    .map(|u| u.name.get_ref().as_str())
+                    .collect();
+                format!(
+                    "{}: no unit `{unit}`; its units are: {}",
+                    scene.path.display(),
+                    names.join(", ")
+                )
+            })?;
+        let index = master
+            .unit_names()
+            .position(|n| n == unit)
+            .ok_or_else(|| format!("no unit `{unit}`"))?;
+        let inputs = master
+            .description(index)
+            .inputs
+            .iter()
+            .zip(master.inputs(index))
+            .map(|(p, v)| (p.name.clone(), *v))
+            .collect();
+        let mut config = ExportConfig {
+            name: unit.to_owned(),
+            kind: spec.kind.get_ref().clone(),
+            effects: spec.effects.clone(),
+            hold: spec.hold,
+            inputs,
+            parameters: spec
+                .parameters
+                .as_ref()
+                .map(|p| p.get_ref().clone())
+                .unwrap_or_default(),
+            start_time: scene.start.as_secs(),
+            stop_time: scene.end().as_secs(),
+            step: scene.step.as_secs(),
+            guid: String::new(),
+        };
+        config.guid = config.fingerprint();
+        Ok(config)
+    }
+
+    fn build_unit(&self) -> Result<Box<dyn Unit>, String> {
+        let kind =
+            kinds::find(&self.kind).ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
+        let context = kinds::BuildContext {
+            effects: &self.effects,
+            base_dir: Path::new("."),
+        };
+        kind.build(self.parameters.clone(), &context)
+    }
+
+    fn driver(&self) -> Result<Driver, String> {
+        let mut unit = Driver::new(self.build_unit()?);
+        if let Some(hold) = self.hold {
+            for port in 0..unit.description().inputs.len() {
+                unit.set_hold(port, hold).map_err(|e| e.to_string())?;
+            }
+        }
+        Ok(unit)
+    }
+
+    fn layout(&self) -> Result<Layout, String> {
+        let driver = self.driver()?;
+        let mut unit = driver.description().clone();
+        for (port, hold) in unit.inputs.iter_mut().zip(driver.holds()) {
+            port.hold = *hold;
+        }
+        let kind =
+            kinds::find(&self.kind).ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
+        let info = KindInfo {
+            summary: kind.summary,
+            effects: kind.effects,
+        };
+        Ok(Layout::new(self, unit, &info))
+    }
+}
+
+/// Writes the FMU for `config` to `out` (see `slender_fmi::export::package`) and
+/// returns its layout.
+pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Layout, String> {
+    let layout = config.layout()?;
+    slender_fmi::export::package(config, &layout, binary, out)?;
+    Ok(layout)
+}
+
+/// The scene built and initialised: its master holds the settled start inputs of
+/// every unit.
+pub fn settle(scene: &Scene) -> Result<Master, String> {
+    let mut master = scene.build().map_err(|e| e.to_string())?;
+    master
+        .initialize(scene.start)
+        .map_err(|e| format!("{}: initialisation: {e}", scene.path.display()))?;
+    Ok(master)
+}
+
+/// Exports every unit of a scene as an FMU into `dir` and writes there a copy of
+/// the scene whose units are those FMUs (kind `fmu`), so the same run can go
+/// through the FMI layer. Returns the new scene's path.
+pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path::PathBuf, String> {
+    let text = std::fs::read_to_string(&scene.path)
+        .map_err(|e| format!("{}: cannot read ({e})", scene.path.display()))?;
+    let mut table: toml::Table =
+        toml::from_str(&text).map_err(|e| format!("{}: {}", scene.path.display(), e.message()))?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create ({e})", dir.display()))?;
+    let units = table
+        .get_mut("units")
+        .and_then(toml::Value::as_array_mut)
+        .ok_or_else(|| format!("{}: no [[units]]", scene.path.display()))?;
+    let master = settle(scene)?;
+    // Inputs renamed in the FMUs ("unit.port" -> "unit.port_in"), for the
+    // connections below.
+    let mut renamed = BTreeMap::new();
+    for unit in units.iter_mut() {
+        let unit = unit
+            .as_table_mut()
+            .ok_or("a [[units]] entry is not a table")?;
+        let name = unit
+            .get("name")
+            .and_then(toml::Value::as_str)
+            .ok_or("a unit without a name")?
+            .to_owned();
+        let config = ExportConfig::from_settled(scene, &master, &name)?;
+        let file = format!("{name}.fmu");
+        let layout = package(&config, binary, &dir.join(&file))?;
+        for (i, port) in layout.unit.inputs.iter().enumerate() {
+            let variable = &layout.model.variables[i].name;
+            if variable != &port.name {
+                renamed.insert(
+                    format!("{name}.{}", port.name),
+                    format!("{name}.{variable}"),
+                );
+                if let Some(inputs) = unit.get_mut("inputs").and_then(toml::Value::as_table_mut)
+                    && let Some(v) = inputs.remove(&port.name)
+                {
+                    inputs.insert(variable.clone(), v);
+                }
+            }
+        }
+        unit.insert("kind".into(), toml::Value::String("fmu".into()));
+        unit.remove("effects");
+        let mut parameters = toml::Table::new();
+        parameters.insert("file".into(), toml::Value::String(file));
+        unit.insert("parameters".into(), toml::Value::Table(parameters));
+    }
+    if let Some(connections) = table
+        .get_mut("connections")
+        .and_then(toml::Value::as_array_mut)
+    {
+        for c in connections.iter_mut().filter_map(toml::Value::as_table_mut) {
+            let target = c.get("to").and_then(toml::Value::as_str).map(str::to_owned);
+            if let Some(new) = target.and_then(|t| renamed.get(&t)) {
+                c.insert("to".into(), toml::Value::String(new.clone()));
+            }
+        }
+    }
+    if let Some(title) = table.get("title").and_then(toml::Value::as_str) {
+        let title = format!("{title} [every unit through FMI 2.0]");
+        table.insert("title".into(), toml::Value::String(title));
+    }
+    if let Some(output) = table.get_mut("output").and_then(toml::Value::as_table_mut) {
+        output.remove("directory");
+    }
+    let stem = scene
+        .path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into());
+    let out = dir.join(format!("{stem}_fmu.toml"));
+    let written = toml::to_string(&table).map_err(|e| format!("{}: {e}", out.display()))?;
+    std::fs::write(&out, written).map_err(|e| format!("{}: cannot write ({e})", out.display()))?;
+    Ok(out)
+}
