@@ -1,72 +1,28 @@
-//! Time integration of the beam: HHT-alpha (alpha in [0, 1/3], beta = (1+alpha)^2/4,
-//! gamma = 1/2 + alpha; seed 004 eqs. 4.29-4.37) with Newton iterations on the
-//! contact terms, the consistent initial acceleration, and modal analysis.
+//! Time integration of the beam: the beam as a [`SecondOrderSystem`] (contact as
+//! its nonlinear force) stepped by the shared HHT-alpha integrator (seed 004 eqs.
+//! 4.29-4.37), the consistent initial acceleration, and modal analysis.
 
 use super::{Beam, ContactValues};
 use crate::contact::Law;
 use crate::contract::{Inputs, ModalAnalysis, Mode, UnitError};
-use crate::numerics::banded::BandLdlt;
+use crate::integrators::hht::{
+    HhtAlpha, Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales,
+};
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
-/// Buffers of one HHT step, kept between steps.
+/// The beam's buffers of one step, kept between steps.
 #[derive(Default)]
 pub(super) struct StepWork {
-    q0: Vec<f64>,
-    v0: Vec<f64>,
-    a0: Vec<f64>,
     f0: Vec<f64>,
     f1: Vec<f64>,
-    constant: Vec<f64>,
-    y: Vec<f64>,
-    v1: Vec<f64>,
-    a1: Vec<f64>,
-    held: Vec<usize>,
-    held_v: Vec<f64>,
-    held_a: Vec<f64>,
-    values: ContactValues,
-    history: Vec<f64>,
-    /// Factor of the Newton matrix with contact, refactorised in place.
-    factor: Option<BandLdlt>,
-}
-
-impl StepWork {
-    fn resize(&mut self, n: usize) {
-        for v in [
-            &mut self.q0,
-            &mut self.v0,
-            &mut self.a0,
-            &mut self.f0,
-            &mut self.f1,
-            &mut self.constant,
-            &mut self.y,
-            &mut self.v1,
-            &mut self.a1,
-        ] {
-            v.resize(n, 0.0);
-        }
-    }
-
-    /// Newmark: acceleration and velocity at the step's end from the iterate y, the
-    /// held DOFs keeping their prescribed motion.
-    fn kinematics(&mut self, h: f64, beta: f64, gamma: f64) {
-        for i in 0..self.y.len() {
-            self.a1[i] = (self.y[i] - self.q0[i] - h * self.v0[i]) / (beta * h * h)
-                - (0.5 / beta - 1.0) * self.a0[i];
-            self.v1[i] = self.v0[i] + h * ((1.0 - gamma) * self.a0[i] + gamma * self.a1[i]);
-        }
-        for (k, &d) in self.held.iter().enumerate() {
-            self.v1[d] = self.held_v[k];
-            self.a1[d] = self.held_a[k];
-        }
-    }
+    /// The contact force at the step's start (a copy: the system is borrowed
+    /// while stepping).
+    g0: Vec<f64>,
+    /// Prescribed DOFs at the step's end: (DOF, [q, v, a]).
+    held: Vec<(usize, [f64; 3])>,
 }
 
 impl Beam {
-    /// Newmark parameters of the HHT-alpha scheme.
-    fn hht(&self) -> (f64, f64, f64) {
-        let alpha = self.params.alpha;
-        (alpha, 0.25 * (1.0 + alpha).powi(2), 0.5 + alpha)
-    }
-
     /// M a0 = F - C v0 - K q0 - F_contact at the initial time, with the held DOFs'
     /// accelerations prescribed.
     pub(super) fn initial_acceleration(&mut self, inputs: Inputs<'_>) -> Result<(), UnitError> {
@@ -129,30 +85,12 @@ impl Beam {
         self.k.mul_add(1.0, &self.state.q, r);
     }
 
-    /// M / (beta h^2) + (1 - alpha) (gamma / (beta h) C + K), formed when h changes.
-    fn prepare_linear(&mut self, h: f64) {
-        if self.linear_h == h {
-            return;
-        }
-        let (alpha, beta, gamma) = self.hht();
-        self.linear.set_combination(&[
-            (1.0 / (beta * h * h), &self.m),
-            ((1.0 - alpha) * gamma / (beta * h), &self.c),
-            (1.0 - alpha, &self.k),
-        ]);
-        let mut held = self.linear.clone();
-        for d in self.held_dofs().collect::<Vec<_>>() {
-            held.set_identity_row(d);
-        }
-        self.linear_factor = BandLdlt::new(&held);
-        self.linear_h = h;
-    }
-
-    /// One HHT-alpha step from t0 to t1 = t0 + h (s); returns the Newton iterations.
-    /// h comes from the exact step length, not t1 - t0: that difference changes in
-    /// its last bits from step to step, which would re-form and refactorise the
-    /// linear Newton matrix every step. The step's buffers live in `self.work`
-    /// between steps, so a contact-free step allocates nothing.
+    /// One HHT-alpha step from t0 to t1 = t0 + h (s) with the shared integrator;
+    /// returns the Newton iterations. h comes from the exact step length, not
+    /// t1 - t0: that difference changes in its last bits from step to step, which
+    /// would re-form and refactorise the linear Newton matrix every step. The step's
+    /// buffers live in `self.work` and `self.hht` between steps, so a contact-free
+    /// step allocates nothing.
     pub(super) fn hht_step(
         &mut self,
         inputs: Inputs<'_>,
@@ -161,7 +99,9 @@ impl Beam {
         h: f64,
     ) -> Result<u32, UnitError> {
         let mut w = std::mem::take(&mut self.work);
-        let result = self.hht_step_with(inputs, &mut w, t0, t1, h);
+        let mut hht = std::mem::take(&mut self.hht);
+        let result = self.hht_step_with(inputs, &mut w, &mut hht, t0, t1, h);
+        self.hht = hht;
         self.work = w;
         result
     }
@@ -170,193 +110,90 @@ impl Beam {
         &mut self,
         inputs: Inputs<'_>,
         w: &mut StepWork,
+        hht: &mut HhtAlpha,
         t0: f64,
         t1: f64,
         h: f64,
     ) -> Result<u32, UnitError> {
-        let (alpha, beta, gamma) = self.hht();
-        self.prepare_linear(h);
         let n = self.state.q.len();
-        w.resize(n);
-        w.q0.copy_from_slice(&self.state.q);
-        w.v0.copy_from_slice(&self.state.v);
-        w.a0.copy_from_slice(&self.state.a);
-        let energy_conserving = matches!(
-            self.params.contact.as_ref().map(|c| &c.method),
-            Some(Law::EnergyConserving { .. })
-        );
-        // Constant part: alpha (C v0 + K q0 + Fc0) - ((1 - alpha) F1 + alpha F0).
+        w.f0.resize(n, 0.0);
+        w.f1.resize(n, 0.0);
         self.external_load(inputs, t0, h, &mut w.f0);
         self.external_load(inputs, t1, h, &mut w.f1);
-        for i in 0..n {
-            let fc0 = if energy_conserving {
-                0.0
-            } else {
-                self.state.contact_force[i]
-            };
-            w.constant[i] = alpha * fc0 - (1.0 - alpha) * w.f1[i] - alpha * w.f0[i];
-        }
-        self.c.mul_add(alpha, &w.v0, &mut w.constant);
-        self.k.mul_add(alpha, &w.q0, &mut w.constant);
-        // Held DOFs at t1 (the state's time still t0 for input rates).
-        self.state.t = t1;
-        self.apply_kinematics(inputs, t1, h);
+        // Held DOFs at t1 (from the start velocities, for input rates).
         w.held.clear();
-        w.held.extend(
-            self.conditions
-                .iter()
-                .filter(|c| c.quantity.is_kinematic())
-                .map(|c| c.dof),
-        );
-        w.held_v.clear();
-        w.held_a.clear();
-        for &d in &w.held {
-            w.held_v.push(self.state.v[d]);
-            w.held_a.push(self.state.a[d]);
+        for c in self.conditions.iter().filter(|c| c.quantity.is_kinematic()) {
+            w.held.push((c.dof, self.prescribed(inputs, c, t1, h)));
         }
-        w.y.copy_from_slice(&w.q0);
-        for &d in &w.held {
-            w.y[d] = self.state.q[d];
-        }
-        w.history.clear();
-        let cap = self.params.newton_max_iterations;
-        let law = self.params.contact.as_ref().map(|c| c.method.clone());
-        let linear_only = self.points.is_empty();
-        let mut converged = None;
-        for iteration in 1..=cap {
-            w.kinematics(h, beta, gamma);
-            // Without contact the Newton matrix is constant: factorised once per step
-            // size, and one correction solves the linear step exactly.
-            let mut fresh = false;
-            w.values.force.clear();
-            if !linear_only {
-                self.jacobian.copy_from(&self.linear);
-                let mut jac = std::mem::replace(
-                    &mut self.jacobian,
-                    crate::numerics::banded::SymmetricBand::zeros(0, 0),
-                );
-                if energy_conserving {
-                    self.discrete_gradient(&w.y, t1, &mut jac, &mut w.values);
-                } else {
-                    let c_scale = (1.0 - alpha) * gamma / (beta * h);
-                    let lambda = std::mem::take(&mut self.state.lambda);
-                    self.contact_at(
-                        &w.y,
-                        &w.v1,
-                        t1,
-                        &lambda,
-                        None,
-                        Some((&mut jac, 1.0 - alpha, c_scale)),
-                        &mut w.values,
-                    );
-                    self.state.lambda = lambda;
-                    for f in w.values.force.iter_mut() {
-                        *f *= 1.0 - alpha;
-                    }
-                }
-                for &d in &w.held {
-                    jac.set_identity_row(d);
-                }
-                fresh = match w.factor.as_mut() {
-                    Some(f) => f.refactorise(&jac),
-                    None => {
-                        w.factor = BandLdlt::new(&jac);
-                        w.factor.is_some()
-                    }
-                };
-                self.jacobian = jac;
-            }
-            let r = &mut self.residual;
-            r.copy_from_slice(&w.constant);
-            for (ri, f) in r.iter_mut().zip(&w.values.force) {
-                *ri += f;
-            }
-            self.m.mul_add(1.0, &w.a1, r);
-            self.c.mul_add(1.0 - alpha, &w.v1, r);
-            self.k.mul_add(1.0 - alpha, &w.y, r);
-            for &d in &w.held {
-                r[d] = 0.0;
-            }
-            let factor = if linear_only {
-                self.linear_factor.as_ref()
-            } else if fresh {
-                w.factor.as_ref()
-            } else {
-                None
-            };
-            let factor = factor.ok_or_else(|| {
-                UnitError::Numerical(format!("beam: the Newton matrix is not positive definite at t = {t1} s (iteration {iteration})"))
-            })?;
-            for v in self.residual.iter_mut() {
-                *v = -*v;
-            }
-            factor.solve_in_place(&mut self.residual);
-            let step = self.residual.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            w.history.push(step);
-            for (yi, dy) in w.y.iter_mut().zip(&self.residual) {
-                *yi += dy;
-            }
-            if let (Some(law), Some(crate::contact::LambdaUpdate::NewtonIteration)) =
-                (&law, law.as_ref().and_then(Law::lambda_update))
-            {
-                self.state.q.copy_from_slice(&w.y);
-                self.update_lambda(law, t1);
-            }
-            if !step.is_finite() {
-                break;
-            }
-            // Relative to the solution's size: below ~1e-12 |y| only round-off moves.
-            let size = w.y.iter().fold(1.0f64, |a, v| a.max(v.abs()));
-            if linear_only || step < self.params.newton_tolerance * size {
-                converged = Some(iteration);
-                break;
-            }
-        }
-        let Some(iterations) = converged else {
-            self.state.t = t0;
-            return Err(UnitError::Numerical(format!(
-                "beam: Newton did not converge in the step ending at t = {t1} s; largest corrections per iteration: {}",
-                w.history
-                    .iter()
-                    .map(|v| format!("{v:.3e}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )));
+        w.g0.clear();
+        w.g0.extend_from_slice(&self.state.contact_force);
+        let loads = StepLoads {
+            t0,
+            t1,
+            h,
+            f0: &w.f0,
+            f1: &w.f1,
+            g0: (!self.energy_conserving()).then_some(w.g0.as_slice()),
+            held: &w.held,
         };
-        w.kinematics(h, beta, gamma);
-        self.state.q.copy_from_slice(&w.y);
-        self.state.v.copy_from_slice(&w.v1);
-        self.state.a.copy_from_slice(&w.a1);
-        // Contact force at t1 (unweighted) for the next step and the reactions; for
-        // the energy-conserving law the force the step used, 2 F_bar - X0.
-        if !linear_only {
-            let lambda = std::mem::take(&mut self.state.lambda);
-            if energy_conserving {
-                let mut scratch = self.jacobian.clone();
-                self.discrete_gradient(&w.y, t1, &mut scratch, &mut w.values);
-                let effective = w.values.force.clone();
-                self.contact_at(&w.y, &w.v1, t1, &lambda, None, None, &mut w.values);
-                w.values.force.copy_from_slice(&effective);
-            } else {
-                self.contact_at(&w.y, &w.v1, t1, &lambda, None, None, &mut w.values);
-            }
-            self.state.lambda = lambda;
-        } else {
-            w.values.force.clear();
-            w.values.force.resize(n, 0.0);
-        }
-        self.state.contact_force.copy_from_slice(&w.values.force);
-        let v = &w.values;
-        self.state.contact = [v.energy, v.start, v.end, v.length, v.max_penetration];
-        self.record_gaps(t1);
-        self.residual_at(&w.f1, &w.values.force);
-        if let (Some(law), Some(crate::contact::LambdaUpdate::TimeStep)) =
-            (&law, law.as_ref().and_then(Law::lambda_update))
-        {
-            self.update_lambda(law, t1);
-        }
+        self.state.t = t1;
+        let newton = NewtonSettings {
+            tolerance: self.params.newton_tolerance,
+            max_iterations: self.params.newton_max_iterations,
+        };
+        let iterations = hht
+            .step(self, &loads, newton)
+            .inspect_err(|_| self.state.t = t0)?;
+        self.finish_step(hht, &w.f1, t1);
         self.state.newton_iterations = iterations;
         Ok(iterations)
+    }
+
+    fn energy_conserving(&self) -> bool {
+        matches!(
+            self.params.contact.as_ref().map(|c| &c.method),
+            Some(Law::EnergyConserving { .. })
+        )
+    }
+
+    /// After a step: the contact force at t1 (unweighted) for the next step and the
+    /// reactions (for the energy-conserving law the force the step used,
+    /// 2 F_bar - X0), the contact region, the gaps, the reactions and the
+    /// Lagrangian update of a time-step law.
+    fn finish_step(&mut self, hht: &HhtAlpha, f1: &[f64], t1: f64) {
+        let mut values = std::mem::take(&mut self.step_contact);
+        let (q, v) = (&self.state.q, &self.state.v);
+        if !self.points.is_empty() {
+            let lambda = &self.state.lambda;
+            if self.energy_conserving() {
+                let mut scratch = hht.newton_matrix().clone();
+                self.discrete_gradient(q, t1, &mut scratch, &mut values);
+                let effective = values.force.clone();
+                self.contact_at(q, v, t1, lambda, None, None, &mut values);
+                values.force.copy_from_slice(&effective);
+            } else {
+                self.contact_at(q, v, t1, lambda, None, None, &mut values);
+            }
+        } else {
+            values.force.clear();
+            values.force.resize(q.len(), 0.0);
+        }
+        self.state.contact_force.copy_from_slice(&values.force);
+        self.state.contact = [
+            values.energy,
+            values.start,
+            values.end,
+            values.length,
+            values.max_penetration,
+        ];
+        self.record_gaps(t1);
+        self.residual_at(f1, &values.force);
+        if let Some(law) = self.params.contact.as_ref().map(|c| c.method.clone())
+            && let Some(crate::contact::LambdaUpdate::TimeStep) = law.lambda_update()
+        {
+            self.update_lambda(&law, t1);
+        }
+        self.step_contact = values;
     }
 
     /// Energy-conserving contact: per point the force averaged over the step is the
@@ -403,6 +240,76 @@ impl Beam {
                     }
                 }
             }
+        }
+    }
+}
+
+/// The beam for the integrator: M, C, K from the elements; contact as the
+/// nonlinear force, with its Lagrangian updates after each Newton correction.
+impl SecondOrderSystem for Beam {
+    fn label(&self) -> &str {
+        "beam"
+    }
+
+    fn matrices(&self) -> Matrices<'_> {
+        Matrices {
+            mass: &self.m,
+            damping: &self.c,
+            stiffness: &self.k,
+        }
+    }
+
+    fn motion(&self) -> [&[f64]; 3] {
+        [&self.state.q, &self.state.v, &self.state.a]
+    }
+
+    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
+        self.state.q.copy_from_slice(q);
+        self.state.v.copy_from_slice(v);
+        self.state.a.copy_from_slice(a);
+    }
+
+    fn is_linear(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    fn nonlinear_force(
+        &mut self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        scales: TangentScales,
+        tangent: &mut SymmetricBand,
+        force: &mut Vec<f64>,
+    ) {
+        let mut values = std::mem::take(&mut self.step_contact);
+        if self.energy_conserving() {
+            self.discrete_gradient(q, t, tangent, &mut values);
+        } else {
+            self.contact_at(
+                q,
+                v,
+                t,
+                &self.state.lambda,
+                None,
+                Some((tangent, scales.stiffness, scales.damping)),
+                &mut values,
+            );
+            for f in values.force.iter_mut() {
+                *f *= scales.stiffness;
+            }
+        }
+        force.clear();
+        force.extend_from_slice(&values.force);
+        self.step_contact = values;
+    }
+
+    fn after_iteration(&mut self, q: &[f64], t: f64) {
+        if let Some(law) = self.params.contact.as_ref().map(|c| c.method.clone())
+            && let Some(crate::contact::LambdaUpdate::NewtonIteration) = law.lambda_update()
+        {
+            self.state.q.copy_from_slice(q);
+            self.update_lambda(&law, t);
         }
     }
 }

@@ -20,6 +20,7 @@ use crate::contract::StateSlot;
 use crate::contract::Time;
 use crate::contract::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
 use crate::contract::{Inputs, Port, PortKind};
+use crate::integrators::hht::HhtAlpha;
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
 use boundary::{Quantity, TimeFunction};
 pub use params::{BeamParams, ContactIntegration, ContactParams, InitialShape};
@@ -102,14 +103,12 @@ pub struct Beam {
     points: Vec<ContactPoint>,
     state: BeamState,
     // Scratch.
-    jacobian: SymmetricBand,
-    linear: SymmetricBand,
-    linear_h: f64,
-    /// `linear` with the held DOFs as identity rows, factorised (contact-free steps).
-    linear_factor: Option<BandLdlt>,
+    /// The shared HHT-alpha integrator with its matrices and buffers.
+    hht: HhtAlpha,
     /// Buffers of the time step.
     work: dynamics::StepWork,
-    residual: Vec<f64>,
+    /// Contact evaluated in the step.
+    step_contact: ContactValues,
 }
 
 fn port_kind(q: Quantity) -> PortKind {
@@ -242,12 +241,9 @@ impl Beam {
                 contact: [0.0; 5],
                 newton_iterations: 0,
             },
-            jacobian: SymmetricBand::zeros(n, elements::BAND),
-            linear: SymmetricBand::zeros(n, elements::BAND),
-            linear_h: 0.0,
-            linear_factor: None,
+            hht: HhtAlpha::new(params.alpha, n, elements::BAND),
             work: dynamics::StepWork::default(),
-            residual: vec![0.0; n],
+            step_contact: ContactValues::default(),
             params,
             lengths,
             m,

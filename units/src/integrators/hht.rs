@@ -1,0 +1,356 @@
+//! HHT-alpha time integration (alpha in [0, 1/3], beta = (1 + alpha)^2 / 4,
+//! gamma = 1/2 + alpha; seed 004 eqs. 4.29-4.37) with Newton iterations, for any
+//! [`SecondOrderSystem`] `M a + C v + K q + g(q, v, t) = f(t)` on banded symmetric
+//! matrices with some DOFs prescribed.
+//!
+//! The residual at the step's end is
+//! `M a1 + (1 - alpha) (C v1 + K q1 + g1) + alpha (C v0 + K q0 + g0) - (1 - alpha) f1 - alpha f0`,
+//! with a1, v1 from q1 by Newmark. Without `g` the Newton matrix
+//! `M / (beta h^2) + (1 - alpha) (gamma / (beta h) C + K)` is constant: it is
+//! factorised once per step size and one correction solves the step exactly. With
+//! `g` the system adds its tangent at every iteration and the matrix is
+//! refactorised in place. A step allocates nothing once its buffers are sized.
+
+use crate::contract::UnitError;
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
+
+/// The constant matrices of a second-order system.
+pub struct Matrices<'a> {
+    pub mass: &'a SymmetricBand,
+    pub damping: &'a SymmetricBand,
+    pub stiffness: &'a SymmetricBand,
+}
+
+/// How the nonlinear force's derivatives enter the Newton matrix: the tangent
+/// stiffness times `stiffness`, the tangent damping times `damping`.
+#[derive(Copy, Clone, Debug)]
+pub struct TangentScales {
+    pub stiffness: f64,
+    pub damping: f64,
+}
+
+/// A system `M a + C v + K q + g(q, v, t) = f(t)` as an integrator steps it.
+pub trait SecondOrderSystem {
+    /// Name for messages, e.g. "beam".
+    fn label(&self) -> &str;
+
+    /// M, C and K.
+    fn matrices(&self) -> Matrices<'_>;
+
+    /// Displacements, velocities and accelerations at the step's start.
+    fn motion(&self) -> [&[f64]; 3];
+
+    /// Accepts the step's end state.
+    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]);
+
+    /// Whether `g` is absent (a linear step).
+    fn is_linear(&self) -> bool;
+
+    /// The nonlinear force at the Newton iterate (q1 = `q`, v1 = `v`, time `t`),
+    /// weighted as it enters the residual (usually `1 - alpha`), into `force`
+    /// (resized by the system); adds its tangent, scaled by `scales`, to `tangent`.
+    fn nonlinear_force(
+        &mut self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        scales: TangentScales,
+        tangent: &mut SymmetricBand,
+        force: &mut Vec<f64>,
+    );
+
+    /// Called after each Newton correction with the new iterate (e.g. Lagrangian
+    /// updates of a contact law).
+    fn after_iteration(&mut self, q: &[f64], t: f64) {
+        let _ = (q, t);
+    }
+}
+
+/// What one step needs besides the system.
+pub struct StepLoads<'a> {
+    /// Start and end time (s) and the exact step length (s).
+    pub t0: f64,
+    pub t1: f64,
+    pub h: f64,
+    /// External loads at the step's start and end.
+    pub f0: &'a [f64],
+    pub f1: &'a [f64],
+    /// The nonlinear force at the step's start, as it enters the constant part
+    /// (times alpha); `None` when it does not (energy-conserving contact).
+    pub g0: Option<&'a [f64]>,
+    /// Prescribed DOFs at the step's end: (DOF, [q, v, a]).
+    pub held: &'a [(usize, [f64; 3])],
+}
+
+/// Newton's stopping rule.
+#[derive(Copy, Clone, Debug)]
+pub struct NewtonSettings {
+    /// Largest correction relative to max(1, |q|) below which a step has converged.
+    pub tolerance: f64,
+    pub max_iterations: u32,
+}
+
+/// The integrator: its parameters, the linear Newton matrix (factorised per step
+/// size) and the step's buffers.
+pub struct HhtAlpha {
+    alpha: f64,
+    linear: SymmetricBand,
+    linear_h: f64,
+    /// `linear` with the held DOFs as identity rows, factorised (linear steps).
+    linear_factor: Option<BandLdlt>,
+    jacobian: SymmetricBand,
+    /// Factor of the Newton matrix with the tangent, refactorised in place.
+    factor: Option<BandLdlt>,
+    q0: Vec<f64>,
+    v0: Vec<f64>,
+    a0: Vec<f64>,
+    constant: Vec<f64>,
+    y: Vec<f64>,
+    v1: Vec<f64>,
+    a1: Vec<f64>,
+    residual: Vec<f64>,
+    force: Vec<f64>,
+    history: Vec<f64>,
+}
+
+impl Default for HhtAlpha {
+    /// An empty integrator (no DOFs), e.g. as a placeholder while stepping.
+    fn default() -> Self {
+        HhtAlpha::new(0.0, 0, 0)
+    }
+}
+
+impl HhtAlpha {
+    /// HHT-alpha with numerical damping `alpha` (0: the trapezoidal rule) for `n`
+    /// DOFs whose matrices have half-bandwidth `w`.
+    pub fn new(alpha: f64, n: usize, w: usize) -> HhtAlpha {
+        HhtAlpha {
+            alpha,
+            linear: SymmetricBand::zeros(n, w),
+            linear_h: f64::NAN,
+            linear_factor: None,
+            jacobian: SymmetricBand::zeros(n, w),
+            factor: None,
+            q0: Vec::new(),
+            v0: Vec::new(),
+            a0: Vec::new(),
+            constant: Vec::new(),
+            y: Vec::new(),
+            v1: Vec::new(),
+            a1: Vec::new(),
+            residual: Vec::new(),
+            force: Vec::new(),
+            history: Vec::new(),
+        }
+    }
+
+    /// (alpha, beta, gamma).
+    pub fn parameters(&self) -> (f64, f64, f64) {
+        let alpha = self.alpha;
+        (alpha, 0.25 * (1.0 + alpha).powi(2), 0.5 + alpha)
+    }
+
+    /// The Newton matrix of the linear part as last formed.
+    pub fn linear_matrix(&self) -> &SymmetricBand {
+        &self.linear
+    }
+
+    /// The Newton matrix with the tangent of the last iteration.
+    pub fn newton_matrix(&self) -> &SymmetricBand {
+        &self.jacobian
+    }
+
+    /// Forms and factorises the linear Newton matrix when `h` changed.
+    fn prepare_linear(&mut self, m: &Matrices<'_>, h: f64, held: &[(usize, [f64; 3])]) {
+        if self.linear_h == h {
+            return;
+        }
+        let (alpha, beta, gamma) = self.parameters();
+        self.linear.set_combination(&[
+            (1.0 / (beta * h * h), m.mass),
+            ((1.0 - alpha) * gamma / (beta * h), m.damping),
+            (1.0 - alpha, m.stiffness),
+        ]);
+        let mut with_held = self.linear.clone();
+        for (d, _) in held {
+            with_held.set_identity_row(*d);
+        }
+        self.linear_factor = BandLdlt::new(&with_held);
+        self.linear_h = h;
+    }
+
+    fn resize(&mut self, n: usize) {
+        for v in [
+            &mut self.q0,
+            &mut self.v0,
+            &mut self.a0,
+            &mut self.constant,
+            &mut self.y,
+            &mut self.v1,
+            &mut self.a1,
+            &mut self.residual,
+        ] {
+            v.resize(n, 0.0);
+        }
+    }
+
+    /// Newmark: acceleration and velocity at the step's end from the iterate, the
+    /// held DOFs keeping their prescribed motion.
+    fn kinematics(&mut self, h: f64, held: &[(usize, [f64; 3])]) {
+        let (_, beta, gamma) = self.parameters();
+        for i in 0..self.y.len() {
+            self.a1[i] = (self.y[i] - self.q0[i] - h * self.v0[i]) / (beta * h * h)
+                - (0.5 / beta - 1.0) * self.a0[i];
+            self.v1[i] = self.v0[i] + h * ((1.0 - gamma) * self.a0[i] + gamma * self.a1[i]);
+        }
+        for &(d, [_, v, a]) in held {
+            self.v1[d] = v;
+            self.a1[d] = a;
+        }
+    }
+
+    /// The constant part of the residual:
+    /// alpha (C v0 + K q0 + g0) - (1 - alpha) f1 - alpha f0.
+    fn constant_part(&mut self, m: &Matrices<'_>, loads: &StepLoads<'_>) {
+        let alpha = self.alpha;
+        for i in 0..self.constant.len() {
+            let g0 = loads.g0.map_or(0.0, |g| g[i]);
+            self.constant[i] = alpha * g0 - (1.0 - alpha) * loads.f1[i] - alpha * loads.f0[i];
+        }
+        m.damping.mul_add(alpha, &self.v0, &mut self.constant);
+        m.stiffness.mul_add(alpha, &self.q0, &mut self.constant);
+    }
+
+    /// One step of `system` from `loads.t0` to `loads.t1`; returns the Newton
+    /// iterations. On failure the system keeps its start state.
+    pub fn step<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        system: &mut S,
+        loads: &StepLoads<'_>,
+        newton: NewtonSettings,
+    ) -> Result<u32, UnitError> {
+        let (alpha, beta, gamma) = self.parameters();
+        let h = loads.h;
+        self.prepare_linear(&system.matrices(), h, loads.held);
+        let [q, v, a] = system.motion();
+        self.resize(q.len());
+        self.q0.copy_from_slice(q);
+        self.v0.copy_from_slice(v);
+        self.a0.copy_from_slice(a);
+        self.constant_part(&system.matrices(), loads);
+        self.y.copy_from_slice(&self.q0);
+        for &(d, [q, _, _]) in loads.held {
+            self.y[d] = q;
+        }
+        self.history.clear();
+        let linear = system.is_linear();
+        let scales = TangentScales {
+            stiffness: 1.0 - alpha,
+            damping: (1.0 - alpha) * gamma / (beta * h),
+        };
+        let mut converged = None;
+        for iteration in 1..=newton.max_iterations {
+            self.kinematics(h, loads.held);
+            let fresh = if linear {
+                self.force.clear();
+                false
+            } else {
+                self.tangent_step(system, loads, scales)
+            };
+            self.form_residual(&system.matrices(), loads.held);
+            let factor = if linear {
+                self.linear_factor.as_ref()
+            } else if fresh {
+                self.factor.as_ref()
+            } else {
+                None
+            };
+            let factor = factor.ok_or_else(|| {
+                UnitError::Numerical(format!(
+                    "{}: the Newton matrix is not positive definite at t = {} s (iteration {iteration})",
+                    system.label(),
+                    loads.t1
+                ))
+            })?;
+            for r in self.residual.iter_mut() {
+                *r = -*r;
+            }
+            factor.solve_in_place(&mut self.residual);
+            let step = self.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+            self.history.push(step);
+            for (y, dy) in self.y.iter_mut().zip(&self.residual) {
+                *y += dy;
+            }
+            system.after_iteration(&self.y, loads.t1);
+            if !step.is_finite() {
+                break;
+            }
+            // Relative to the solution's size: below ~1e-12 |y| only round-off moves.
+            let size = self.y.iter().fold(1.0f64, |m, y| m.max(y.abs()));
+            if linear || step < newton.tolerance * size {
+                converged = Some(iteration);
+                break;
+            }
+        }
+        let Some(iterations) = converged else {
+            return Err(UnitError::Numerical(format!(
+                "{}: Newton did not converge in the step ending at t = {} s; largest corrections per iteration: {}",
+                system.label(),
+                loads.t1,
+                self.history
+                    .iter()
+                    .map(|v| format!("{v:.3e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        };
+        self.kinematics(h, loads.held);
+        system.set_motion(&self.y, &self.v1, &self.a1);
+        Ok(iterations)
+    }
+
+    /// The Newton matrix with the system's tangent at the iterate, refactorised;
+    /// whether the factorisation succeeded.
+    fn tangent_step<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        system: &mut S,
+        loads: &StepLoads<'_>,
+        scales: TangentScales,
+    ) -> bool {
+        self.jacobian.copy_from(&self.linear);
+        system.nonlinear_force(
+            &self.y,
+            &self.v1,
+            loads.t1,
+            scales,
+            &mut self.jacobian,
+            &mut self.force,
+        );
+        for (d, _) in loads.held {
+            self.jacobian.set_identity_row(*d);
+        }
+        match self.factor.as_mut() {
+            Some(f) => f.refactorise(&self.jacobian),
+            None => {
+                self.factor = BandLdlt::new(&self.jacobian);
+                self.factor.is_some()
+            }
+        }
+    }
+
+    /// residual = constant + g1 + M a1 + (1 - alpha) (C v1 + K q1), zero at held DOFs.
+    fn form_residual(&mut self, m: &Matrices<'_>, held: &[(usize, [f64; 3])]) {
+        let alpha = self.alpha;
+        let r = &mut self.residual;
+        r.copy_from_slice(&self.constant);
+        for (ri, f) in r.iter_mut().zip(&self.force) {
+            *ri += f;
+        }
+        m.mass.mul_add(1.0, &self.a1, r);
+        m.damping.mul_add(1.0 - alpha, &self.v1, r);
+        m.stiffness.mul_add(1.0 - alpha, &self.y, r);
+        for (d, _) in held {
+            r[*d] = 0.0;
+        }
+    }
+}
