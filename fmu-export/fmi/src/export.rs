@@ -335,6 +335,7 @@ pub fn package(
     binary: &Path,
     out: &Path,
 ) -> Result<(), String> {
+    check_binary(binary)?;
     let library = std::fs::read(binary).map_err(|e| {
         format!(
             "{}: cannot read the FMU library ({e}); build it with `cargo build --release -p slender-fmu`",
@@ -366,6 +367,29 @@ pub fn package(
         zip.write_all(&bytes).map_err(|e| failed(&e))?;
     }
     zip.finish().map_err(|e| failed(&e))?;
+    Ok(())
+}
+
+/// Checks that `binary` is an ELF shared library carrying the FMI 2.0
+/// co-simulation entry points (as `libslender_fmu.so` does), so that a wrong
+/// `--binary` is refused instead of packaged.
+pub fn check_binary(binary: &Path) -> Result<(), String> {
+    let bytes = std::fs::read(binary)
+        .map_err(|e| format!("{}: cannot read the FMU library ({e})", binary.display()))?;
+    if !bytes.starts_with(b"\x7fELF") {
+        return Err(format!(
+            "{}: not a shared library (no ELF header); expected libslender_fmu.so",
+            binary.display()
+        ));
+    }
+    for symbol in ["fmi2Instantiate", "fmi2DoStep", "fmi2GetReal"] {
+        if !bytes.windows(symbol.len()).any(|w| w == symbol.as_bytes()) {
+            return Err(format!(
+                "{}: a shared library without the FMI entry point `{symbol}`; expected libslender_fmu.so",
+                binary.display()
+            ));
+        }
+    }
     Ok(())
 }
 

@@ -100,6 +100,28 @@ pub struct CouplingPlan {
     pub step: f64,
 }
 
+impl CouplingPlan {
+    /// The plan of `slender span coupling`: orders 16, 24 and 32 against FE spans
+    /// of 8-128 elements stepped with `fe_substeps`.
+    pub fn standard(
+        duration: f64,
+        step: f64,
+        reference_elements: usize,
+        reference_substeps: usize,
+        fe_substeps: Vec<usize>,
+    ) -> CouplingPlan {
+        CouplingPlan {
+            orders: vec![16, 24, 32],
+            elements: vec![8, 16, 32, 64, 128],
+            fe_substeps,
+            reference_elements,
+            reference_substeps,
+            duration,
+            step,
+        }
+    }
+}
+
 /// What the study measured.
 #[derive(Clone, Debug, Serialize)]
 pub struct CouplingReport {

@@ -77,6 +77,21 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, Strin
         files.push(p);
     }
     let simulated = (master.time() - scene.start).as_secs();
+    // Plots before the summary: a run whose figures cannot be written is not
+    // reported as completed.
+    let mut outcome = outcome.map_err(|e| e.to_string());
+    if let Some(dir) = &options.output_dir
+        && recorder.time.len() > 1
+    {
+        match write_plots(scene, &recorder, dir) {
+            Ok(plots) => files.extend(plots),
+            Err(e) => {
+                if outcome.is_ok() {
+                    outcome = Err(format!("writing the plots: {e}"));
+                }
+            }
+        }
+    }
     let summary = Summary {
         scene: scene.path.display().to_string(),
         title: scene.spec.title.clone(),
@@ -86,7 +101,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, Strin
             "failed"
         }
         .into(),
-        error: outcome.err().map(|e| e.to_string()),
+        error: outcome.err(),
         start_s: scene.start.as_secs(),
         step_s: scene.step.as_secs(),
         simulated_s: simulated,
@@ -106,9 +121,6 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, Strin
         let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
         std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
         files.push(path);
-        if recorder.time.len() > 1 {
-            files.extend(write_plots(scene, &recorder, dir)?);
-        }
     }
     Ok(RunResult {
         summary,

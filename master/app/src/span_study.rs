@@ -364,6 +364,28 @@ pub fn to_markdown(report: &StudyReport) -> String {
     out
 }
 
+impl StudyPlan {
+    /// The plan of `slender span study`: orders 2-16 against FE spans of 4-64
+    /// elements stepped with `fe_substeps`, each run `duration` s at `step` s.
+    pub fn standard(
+        duration: f64,
+        step: f64,
+        reference_elements: usize,
+        reference_substeps: usize,
+        fe_substeps: Vec<usize>,
+    ) -> StudyPlan {
+        StudyPlan {
+            orders: vec![2, 4, 6, 8, 10, 12, 14, 16],
+            elements: vec![4, 8, 16, 32, 64],
+            fe_substeps,
+            reference_elements,
+            reference_substeps,
+            duration,
+            step,
+        }
+    }
+}
+
 /// Frequency responses for a Bode plot: (omega, exact, each approximation, FE).
 pub fn bode_series(
     span: &Span,

@@ -85,6 +85,16 @@ impl FromStr for Sweep {
         if values.len() < 2 {
             return Err(format!("`{s}`: a sweep needs at least two values"));
         }
+        if let Some(twice) = values
+            .iter()
+            .enumerate()
+            .find(|(i, v)| values[..*i].contains(v))
+            .map(|(_, v)| v)
+        {
+            return Err(format!(
+                "`{s}`: {twice} is given twice; a sweep needs distinct values"
+            ));
+        }
         if knob == Knob::Elements && values.iter().any(|v| v.fract() != 0.0) {
             return Err(format!("`{s}`: element counts must be whole numbers"));
         }
@@ -102,6 +112,26 @@ pub struct StudyRow {
     pub iterations_per_step: f64,
     pub cost_per_simulated_second: f64,
     pub error: Option<String>,
+}
+
+impl StudyRow {
+    /// A run that could not be set up or run.
+    fn failed(setting: Knob, value: f64, scene: &Scene, error: String) -> StudyRow {
+        StudyRow {
+            setting,
+            value,
+            errors: scene
+                .spec
+                .output
+                .indicators
+                .iter()
+                .map(|i| (i.name.clone(), f64::NAN))
+                .collect(),
+            iterations_per_step: f64::NAN,
+            cost_per_simulated_second: f64::NAN,
+            error: Some(error),
+        }
+    }
 }
 
 /// Applies `value` of `knob` to the scene.
@@ -136,7 +166,10 @@ fn apply(scene: &mut Scene, knob: Knob, value: f64) -> Result<(), String> {
 }
 
 /// Runs every sweep on the scene at `path` (each value on a fresh copy of the
-/// scene) and reports one row per run.
+/// scene) and reports one row per run. A run that cannot be set up or fails is a
+/// row with its error, and the study goes on; `Err` only when the study itself
+/// cannot start (the scene does not load, has no indicators, or `duration` does
+/// not fit its step).
 pub fn run_study(
     path: &std::path::Path,
     sweeps: &[Sweep],
@@ -179,14 +212,21 @@ pub fn run_study(
                 let step = scene.spec.simulation.step;
                 scene.set_step(step).map_err(|e| e.to_string())?;
             }
-            apply(&mut scene, sweep.knob, value)?;
-            let result = run_scene(
-                &scene,
-                &RunOptions {
-                    output_dir: None,
-                    progress: false,
-                },
-            )?;
+            let options = RunOptions {
+                output_dir: None,
+                progress: false,
+            };
+            let result = match apply(&mut scene, sweep.knob, value)
+                .and_then(|()| run_scene(&scene, &options))
+            {
+                Ok(result) => result,
+                Err(e) => {
+                    let row = StudyRow::failed(sweep.knob, value, &scene, e);
+                    progress(&row);
+                    sweep_rows.push(row);
+                    continue;
+                }
+            };
             let rec = result.recorder;
             let columns: Vec<IndicatorColumns> = scene
                 .spec

@@ -67,11 +67,16 @@ impl Counters {
             self.iteration_histogram.resize(k + 1, 0);
         }
         self.iteration_histogram[k] += 1;
-        self.last_residual = residual;
-        self.max_residual = self.max_residual.max(residual);
+        self.record_residual(residual);
         if !converged {
             self.non_converged_steps += 1;
         }
+    }
+
+    /// Records the residual at the exit of a step (also of one that failed).
+    pub fn record_residual(&mut self, residual: f64) {
+        self.last_residual = residual;
+        self.max_residual = self.max_residual.max(residual);
     }
 
     /// `do_step` calls of all units.

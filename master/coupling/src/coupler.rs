@@ -416,13 +416,17 @@ impl Master {
     ) -> Result<(u32, f64, bool), MasterError> {
         match self.settings.on_max_iterations {
             OnMaxIterations::Accept => Ok((iterations, residual.scaled, false)),
-            OnMaxIterations::Error => Err(MasterError::NotConverged {
-                time: self.target_time(),
-                iterations,
-                connection: self.connections[residual.connection].label.clone(),
-                change: residual.change,
-                tolerance: self.tolerance[residual.connection],
-            }),
+            OnMaxIterations::Error => {
+                // The failed step's residual is the run's last and (likely) largest.
+                self.counters.record_residual(residual.scaled);
+                Err(MasterError::NotConverged {
+                    time: self.target_time(),
+                    iterations,
+                    connection: self.connections[residual.connection].label.clone(),
+                    change: residual.change,
+                    tolerance: self.tolerance[residual.connection],
+                })
+            }
         }
     }
 

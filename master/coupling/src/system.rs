@@ -65,11 +65,7 @@ impl System {
 
     /// Adds a unit under a unique name; returns its index.
     pub fn add_unit(&mut self, name: &str, unit: Box<dyn Unit>) -> Result<usize, String> {
-        if name.is_empty() || name.contains('.') {
-            return Err(format!(
-                "unit name `{name}`: expected a non-empty name without '.'"
-            ));
-        }
+        slender_units::contract::names::check_name("unit name", name)?;
         if self.unit_index(name).is_some() {
             return Err(format!("unit name `{name}` is used twice"));
         }

@@ -10,6 +10,7 @@ pub mod spec;
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;
 use slender_coupling::system::{Link, System};
+use slender_units::contract::names::check_name;
 use slender_units::{Causality, Time};
 use spec::SceneSpec;
 use std::fmt;
@@ -70,7 +71,10 @@ impl Scene {
         let spec: SceneSpec = toml::from_str(&source).map_err(|e| SceneError {
             file: path.to_owned(),
             line: e.span().map(|s| line_of(&source, s.start)),
-            key: String::new(),
+            key: e
+                .span()
+                .map(|s| key_at(&source, s.start))
+                .unwrap_or_default(),
             message: e.message().trim().to_owned(),
         })?;
         let mut scene = Scene {
@@ -117,11 +121,19 @@ impl Scene {
                 format!("{}: expected a finite value > 0 (s)", sim.duration),
             ));
         }
+        let range = format!(
+            "simulation time is kept in integer nanoseconds: from {:e} to {:e} s",
+            -Time::MAX.as_secs(),
+            Time::MAX.as_secs()
+        );
         let start = Time::from_secs(sim.start).ok_or_else(|| {
             self.error(
                 None,
                 "simulation.start",
-                format!("{}: expected a finite time (s)", sim.start),
+                format!(
+                    "{}: expected a finite time within range ({range})",
+                    sim.start
+                ),
             )
         })?;
         let step = Time::from_secs(sim.step)
@@ -133,13 +145,18 @@ impl Scene {
                     format!("{}: expected at least 1 ns", sim.step),
                 )
             })?;
-        let duration = Time::from_secs(sim.duration).ok_or_else(|| {
-            self.error(
-                None,
-                "simulation.duration",
-                format!("{}: too long", sim.duration),
-            )
-        })?;
+        let duration = Time::from_secs(sim.duration)
+            .filter(|d| start.checked_add(*d).is_some())
+            .ok_or_else(|| {
+                self.error(
+                    None,
+                    "simulation.duration",
+                    format!(
+                        "start {} s + duration {} s ends beyond the representable range ({range})",
+                        sim.start, sim.duration
+                    ),
+                )
+            })?;
         if duration.as_nanos() % step.as_nanos() != 0 {
             return Err(self.error(
                 None,
@@ -261,6 +278,7 @@ impl Scene {
         if self.spec.output.every == 0 {
             return Err(self.error(None, "output.every", "0: expected at least 1".into()));
         }
+        self.check_outputs(&system)?;
         let mut master = Master::new(system, self.spec.master.clone(), self.step)
             .map_err(|e| self.error(None, "master", e.to_string()))?;
         for (u, hold) in holds.into_iter().enumerate() {
@@ -271,6 +289,57 @@ impl Scene {
             }
         }
         Ok(master)
+    }
+
+    /// Signals listed once each; plots and indicators named by the name rules,
+    /// uniquely, drawing recorded signals only: checked before a run, so a run
+    /// never fails at its plotting stage.
+    fn check_outputs(&self, system: &System) -> Result<(), SceneError> {
+        let out = &self.spec.output;
+        for (i, s) in out.signals.iter().enumerate() {
+            if out.signals[..i].contains(s) {
+                return Err(self.error(
+                    None,
+                    &format!("output.signals[{i}]"),
+                    format!("`{s}` is listed twice"),
+                ));
+            }
+        }
+        let recorded = |s: &String| {
+            if out.signals.is_empty() {
+                system.resolve(s, Causality::Output).map(|_| ())
+            } else if out.signals.contains(s) {
+                Ok(())
+            } else {
+                Err(format!("`{s}` is not among output.signals"))
+            }
+        };
+        for (i, p) in out.plots.iter().enumerate() {
+            let key = format!("output.plots[{i}]");
+            check_name("plot name", &p.name)
+                .map_err(|m| self.error(None, &format!("{key}.name"), m))?;
+            if out.plots[..i].iter().any(|q| q.name == p.name) {
+                return Err(self.error(
+                    None,
+                    &format!("{key}.name"),
+                    format!(
+                        "`{}` is used by an earlier plot: each plot writes <name>.svg",
+                        p.name
+                    ),
+                ));
+            }
+            for s in p.panels.iter().flatten() {
+                recorded(s).map_err(|m| self.error(None, &format!("{key}.panels"), m))?;
+            }
+        }
+        for (i, ind) in out.indicators.iter().enumerate() {
+            let key = format!("output.indicators[{i}].name");
+            check_name("indicator name", &ind.name).map_err(|m| self.error(None, &key, m))?;
+            if out.indicators[..i].iter().any(|j| j.name == ind.name) {
+                return Err(self.error(None, &key, format!("`{}` is used twice", ind.name)));
+            }
+        }
+        Ok(())
     }
 
     /// The recorded signals: those listed in `[output]`, or every output.
@@ -299,6 +368,21 @@ impl Scene {
                 Path::new("results").join(stem.unwrap_or_else(|| "scene".into()))
             }
         }
+    }
+}
+
+/// The key or table header on the line of `offset`, to name where a type error is
+/// (toml's messages give the expected type but not the key).
+fn key_at(source: &str, offset: usize) -> String {
+    let start = source[..offset.min(source.len())]
+        .rfind('\n')
+        .map_or(0, |i| i + 1);
+    let line = source[start..].lines().next().unwrap_or("").trim();
+    let key = line.split('=').next().unwrap_or("").trim();
+    if key.is_empty() {
+        String::new()
+    } else {
+        format!("`{}`", key.chars().take(80).collect::<String>())
     }
 }
 

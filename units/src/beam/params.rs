@@ -3,7 +3,7 @@
 use super::boundary::Boundary;
 use crate::contact::Law;
 use crate::contact::surface::Surface;
-use crate::contract::{UnitError, require_non_negative, require_positive};
+use crate::contract::{UnitError, require_in_range, require_non_negative, require_positive};
 use serde::Deserialize;
 
 /// Where the contact terms are integrated on each element.
@@ -190,7 +190,9 @@ impl BeamParams {
 
     /// Checks every parameter, naming the first bad one.
     pub fn validate(&self) -> Result<(), UnitError> {
-        require_positive("length", self.length)?;
+        // Physical ranges with margin (a thin cable to a large riser): beyond them
+        // the matrices lose every digit and the diagnosis would be wrong.
+        require_in_range("length", self.length, 1e-3, 1e5, "m")?;
         if self.elements == 0 || self.elements > 100_000 {
             return Err(UnitError::parameter(
                 "elements",
@@ -215,9 +217,21 @@ impl BeamParams {
                 ));
             }
         }
-        require_positive("flexural_rigidity", self.flexural_rigidity)?;
-        require_positive("mass_per_length", self.mass_per_length)?;
-        require_non_negative("damping_per_length", self.damping_per_length)?;
+        require_in_range(
+            "flexural_rigidity",
+            self.flexural_rigidity,
+            1e-3,
+            1e13,
+            "N m^2",
+        )?;
+        require_in_range("mass_per_length", self.mass_per_length, 1e-3, 1e7, "kg/m")?;
+        require_in_range(
+            "damping_per_length",
+            self.damping_per_length,
+            0.0,
+            1e7,
+            "N s/m^2",
+        )?;
         require_non_negative("rayleigh_mass", self.rayleigh_mass)?;
         require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
         for (name, poly) in [

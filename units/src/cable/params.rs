@@ -2,7 +2,9 @@
 //! section of the line it models.
 
 use super::current::CurrentProfile;
-use crate::contract::{UnitError, require_finite, require_non_negative, require_positive};
+use crate::contract::{
+    UnitError, require_finite, require_in_range, require_non_negative, require_positive,
+};
 use serde::Deserialize;
 
 /// Properties of the whole line and of the water (SI units).
@@ -206,7 +208,7 @@ impl CableParams {
 
     /// Checks every parameter, naming the first bad one.
     pub fn validate(&self) -> Result<(), UnitError> {
-        require_positive("length", self.length)?;
+        require_in_range("length", self.length, 1e-2, 1e5, "m")?;
         if self.elements < 2 {
             return Err(UnitError::parameter(
                 "elements",
@@ -221,9 +223,9 @@ impl CableParams {
                 "expected at most 100000",
             ));
         }
-        require_positive("diameter", self.diameter)?;
-        require_positive("mass_per_length", self.mass_per_length)?;
-        require_positive("youngs_modulus", self.youngs_modulus)?;
+        require_in_range("diameter", self.diameter, 1e-4, 1e2, "m")?;
+        require_in_range("mass_per_length", self.mass_per_length, 1e-3, 1e7, "kg/m")?;
+        require_in_range("youngs_modulus", self.youngs_modulus, 1e3, 1e13, "Pa")?;
         require_non_negative("submerged_weight", self.submerged_weight)?;
         require_non_negative("added_mass_normal", self.added_mass_normal)?;
         require_non_negative("added_mass_tangential", self.added_mass_tangential)?;

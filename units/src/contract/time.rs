@@ -20,6 +20,20 @@ impl Time {
     /// t = 0.
     pub const ZERO: Time = Time(0);
 
+    /// The latest representable time, about 9.22e9 s (292 years); the earliest is
+    /// its negative.
+    pub const MAX: Time = Time(i64::MAX);
+
+    /// `self + other`, or `None` beyond the representable range.
+    pub fn checked_add(self, other: Time) -> Option<Time> {
+        self.0.checked_add(other.0).map(Time)
+    }
+
+    /// `self * k`, or `None` beyond the representable range.
+    pub fn checked_mul(self, k: i64) -> Option<Time> {
+        self.0.checked_mul(k).map(Time)
+    }
+
     /// From a whole number of nanoseconds.
     pub const fn from_nanos(nanos: i64) -> Time {
         Time(nanos)

@@ -206,7 +206,7 @@ pub fn require_positive(name: &str, value: f64) -> Result<(), UnitError> {
     } else {
         Err(UnitError::parameter(
             name,
-            value,
+            number(value),
             "expected a finite value > 0",
         ))
     }
@@ -219,9 +219,44 @@ pub fn require_non_negative(name: &str, value: f64) -> Result<(), UnitError> {
     } else {
         Err(UnitError::parameter(
             name,
-            value,
+            number(value),
             "expected a finite value >= 0",
         ))
+    }
+}
+
+/// Checks that a parameter lies in the closed range [`low`, `high`] (`unit` names
+/// its unit of measure in the message), for parameters where "finite and positive"
+/// would still admit nonsense that overflows the numerics.
+pub fn require_in_range(
+    name: &str,
+    value: f64,
+    low: f64,
+    high: f64,
+    unit: &str,
+) -> Result<(), UnitError> {
+    if value.is_finite() && (low..=high).contains(&value) {
+        Ok(())
+    } else {
+        Err(UnitError::parameter(
+            name,
+            number(value),
+            &format!(
+                "expected a value from {} to {} {unit}",
+                number(low),
+                number(high)
+            ),
+        ))
+    }
+}
+
+/// A number as people write it: plain when moderate, in e-notation when very
+/// large or small (so 1e125 does not print 126 digits).
+pub fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-3..1e6).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
     }
 }
 
@@ -232,7 +267,7 @@ pub fn require_finite(name: &str, value: f64) -> Result<(), UnitError> {
     } else {
         Err(UnitError::parameter(
             name,
-            value,
+            number(value),
             "expected a finite number",
         ))
     }

@@ -1,4 +1,5 @@
 //! Linear algebra the units share.
 
 pub mod banded;
+pub mod bounded;
 pub mod modal;

@@ -22,7 +22,7 @@ pub fn lowest_modes(
         .ok_or_else(|| UnitError::Numerical("mass factor is singular".into()))?;
     let s = &linv * k * linv.transpose();
     let s = (&s + s.transpose()) * 0.5;
-    let eig = nalgebra::SymmetricEigen::new(s);
+    let eig = crate::numerics::bounded::symmetric_eigen("modal analysis", s)?;
     let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
     order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
     order

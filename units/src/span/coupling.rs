@@ -32,6 +32,7 @@ use crate::contract::StateSlot;
 use crate::contract::Time;
 use crate::contract::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
 use crate::contract::{Inputs, Port, PortKind};
+use crate::numerics::bounded;
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix4, Vector2};
 use serde::Deserialize;
 
@@ -201,11 +202,8 @@ fn relocate(
             }
         }
     }
-    let x = stacked
-        .svd(true, true)
-        .solve(&rhs, 1e-14)
-        .map_err(|e| UnitError::Numerical(format!("vector fitting: {e}")))?;
-    Ok(sigma_zeros(poles, &x.as_slice()[..n]))
+    let x = bounded::least_squares("vector fitting", stacked, &rhs, 1e-14)?;
+    sigma_zeros(poles, &x.as_slice()[..n])
 }
 
 /// Residues, D and E of every entry with the poles fixed; D corrected so that the
@@ -266,10 +264,7 @@ fn residues(
                 }
                 b[rows - 1] = static_gain[o][i].re * static_weight;
             }
-            let x = a
-                .svd(true, true)
-                .solve(&b, 1e-14)
-                .map_err(|e| UnitError::Numerical(format!("vector fitting: {e}")))?;
+            let x = bounded::least_squares("vector fitting", a, &b, 1e-14)?;
             fit.residues[o][i] = (0..n / 2)
                 .map(|k| C64::new(x[2 * k], x[2 * k + 1]))
                 .collect();

@@ -5,6 +5,7 @@
 use super::realization::StateSpace;
 use super::transfer::{C64, Span};
 use crate::contract::UnitError;
+use crate::numerics::bounded;
 use nalgebra::{DMatrix, DVector};
 
 /// Poles of a vector fit of order `order` (even) to H_{U2 -> U5} over
@@ -77,11 +78,8 @@ fn relocate(poles: &[C64], omegas: &[f64], h: &[C64]) -> Result<Vec<C64>, UnitEr
         b[2 * k] = hk.re * weight;
         b[2 * k + 1] = hk.im * weight;
     }
-    let x = a
-        .svd(true, true)
-        .solve(&b, 1e-14)
-        .map_err(|e| UnitError::Numerical(format!("vector fitting: {e}")))?;
-    Ok(sigma_zeros(poles, &x.as_slice()[n + 1..2 * n + 1]))
+    let x = bounded::least_squares("vector fitting", a, &b, 1e-14)?;
+    sigma_zeros(poles, &x.as_slice()[n + 1..2 * n + 1])
 }
 
 /// Checks a fit's order (even, 2..=40) and band (rad/s, > 0).
@@ -93,11 +91,11 @@ pub(super) fn check_order_and_band(order: usize, band: f64) -> Result<(), UnitEr
             "expected an even order from 2 to 40",
         ));
     }
-    if !(band.is_finite() && band > 0.0) {
+    if !(band.is_finite() && band > 0.0 && band <= 1e5) {
         return Err(UnitError::parameter(
             "band",
-            band,
-            "expected a finite angular frequency > 0 (rad/s)",
+            crate::contract::unit::number(band),
+            "expected an angular frequency > 0 and at most 1e5 rad/s",
         ));
     }
     Ok(())
@@ -106,7 +104,7 @@ pub(super) fn check_order_and_band(order: usize, band: f64) -> Result<(), UnitEr
 /// The zeros of sigma(s) = 1 + sum_m c_m basis_m(s) (basis of conjugate pairs, as
 /// in the fits), as the next poles: one per pair, reflected into the left
 /// half-plane; real zeros become lightly damped pairs and the count is kept.
-pub(super) fn sigma_zeros(poles: &[C64], c: &[f64]) -> Vec<C64> {
+pub(super) fn sigma_zeros(poles: &[C64], c: &[f64]) -> Result<Vec<C64>, UnitError> {
     let n = 2 * poles.len();
     let mut am = DMatrix::zeros(n, n);
     let mut bv = DVector::zeros(n);
@@ -122,7 +120,7 @@ pub(super) fn sigma_zeros(poles: &[C64], c: &[f64]) -> Vec<C64> {
         ct[r] = 2.0 * c[r];
         ct[r + 1] = -2.0 * c[r + 1];
     }
-    let zeros = (am - bv * ct.transpose()).complex_eigenvalues();
+    let zeros = bounded::complex_eigenvalues("vector fitting", am - bv * ct.transpose())?;
     let mut next: Vec<C64> = zeros
         .iter()
         .filter(|z| z.im > 0.0)
@@ -143,7 +141,7 @@ pub(super) fn sigma_zeros(poles: &[C64], c: &[f64]) -> Vec<C64> {
     while next.len() < poles.len() {
         next.push(poles[next.len()]);
     }
-    next
+    Ok(next)
 }
 
 /// A vector-fitted span system of order `order` over the band.

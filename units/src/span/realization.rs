@@ -5,6 +5,7 @@
 use super::rational::RationalX;
 use super::transfer::{C64, Span};
 use crate::contract::UnitError;
+use crate::numerics::bounded;
 use nalgebra::{DMatrix, DVector};
 
 /// A real polynomial in s, ascending coefficients.
@@ -99,10 +100,7 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
     }
     let a = DMatrix::from_fn(rows.len(), unknowns, |r, c| rows[r][c]);
     let b = DVector::from_vec(rhs);
-    let x = a
-        .svd(true, true)
-        .solve(&b, 1e-14)
-        .map_err(|e| UnitError::Numerical(format!("residue fit failed: {e}")))?;
+    let x = bounded::least_squares("residue fit", a, &b, 1e-14)?;
     // Real modal realisation.
     let n: usize = groups.iter().map(|p| if p.im == 0.0 { 1 } else { 2 }).sum();
     let mut am = DMatrix::zeros(n, n);
@@ -176,10 +174,10 @@ fn repair_poles(poles: &[C64], span: &Span, band: f64) -> Result<Vec<C64>, UnitE
 }
 
 /// Roots of a polynomial (companion-matrix eigenvalues).
-fn roots(p: &[f64]) -> Vec<C64> {
+fn roots(p: &[f64]) -> Result<Vec<C64>, UnitError> {
     let n = p.len() - 1;
     if n == 0 {
-        return Vec::new();
+        return Ok(Vec::new());
     }
     let lead = p[n];
     let companion = DMatrix::from_fn(n, n, |r, c| {
@@ -191,7 +189,7 @@ fn roots(p: &[f64]) -> Vec<C64> {
             0.0
         }
     });
-    companion.complex_eigenvalues().iter().copied().collect()
+    bounded::complex_eigenvalues("polynomial roots", companion).map(|z| z.iter().copied().collect())
 }
 
 /// A single-input single-output state-space system dx/dt = A x + B u, y = C x + D u.
@@ -229,7 +227,7 @@ impl StateSpace {
                 "the approximation is not a proper transfer function in s".into(),
             ));
         }
-        let poles = roots(&den);
+        let poles = roots(&den)?;
         let repaired = poles.iter().filter(|p| p.re > 0.0).count();
         if repaired > 0 {
             let mut fitted = fit_residues(&repair_poles(&poles, span, band)?, span, band)?;

@@ -11,7 +11,7 @@
 //! and 0 otherwise, so that every basis function is bounded by 1 on [0, L] and no
 //! sinh or cosh can overflow.
 
-use crate::contract::{UnitError, require_non_negative, require_positive};
+use crate::contract::{UnitError, require_in_range};
 use nalgebra::{Complex, Matrix4};
 
 /// Complex numbers.
@@ -32,11 +32,25 @@ pub struct Span {
 
 impl Span {
     /// Checks the properties: EI, mu, L > 0 and c_d >= 0.
+    /// The ranges cover every slender marine structure (a thin cable to a large
+    /// riser) with margin; beyond them the transfer matrix overflows.
     pub fn validate(&self) -> Result<(), UnitError> {
-        require_positive("flexural_rigidity", self.flexural_rigidity)?;
-        require_positive("mass_per_length", self.mass_per_length)?;
-        require_positive("length", self.length)?;
-        require_non_negative("damping_per_length", self.damping_per_length)
+        require_in_range(
+            "flexural_rigidity",
+            self.flexural_rigidity,
+            1e-3,
+            1e13,
+            "N m^2",
+        )?;
+        require_in_range("mass_per_length", self.mass_per_length, 1e-3, 1e7, "kg/m")?;
+        require_in_range("length", self.length, 1e-2, 1e5, "m")?;
+        require_in_range(
+            "damping_per_length",
+            self.damping_per_length,
+            0.0,
+            1e7,
+            "N s/m^2",
+        )
     }
 
     /// beta^4 = -s (c_d + mu s) / EI.

@@ -1,0 +1,219 @@
+//! The command line: commands and their arguments (clap). What each command does
+//! is in `commands/`.
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+/// Co-simulation of substructured slender marine structures.
+///
+/// A scene file (TOML) lists the units (substructure models), how their ports are
+/// connected, the master scheme that couples them and the time window. Start from
+/// a file in examples/ and see docs/scene-reference.md.
+#[derive(Parser)]
+#[command(name = "slender", version, about, long_about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand)]
+pub enum SpanAction {
+    /// Bode plot of H_{U2 -> U5}: analytic, Taylor, term and function Pade of one
+    /// order, and the FE span (seed 004 Figs. 5.1-5.2). Writes bode.svg.
+    Bode {
+        /// Order of the approximations: even, 2 to 24.
+        #[arg(long, default_value_t = 8)]
+        order: usize,
+        /// FE span elements (1 to 1024).
+        #[arg(long, default_value_t = 32)]
+        elements: usize,
+    },
+    /// Time-domain error against cost per simulated second of span units (orders
+    /// 2-16) and FE spans (4-64 elements, stepping with the master or with substeps)
+    /// under a sum of sines and a step, against the continuum's response (a fine FE
+    /// span with fine substeps). Writes span_study.md, span_study.json,
+    /// accuracy_cost.svg.
+    Study {
+        /// Simulated time of each run (s).
+        #[arg(long, default_value_t = 100.0, allow_negative_numbers = true)]
+        duration: f64,
+        /// Synchronisation step (s).
+        #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
+        step: f64,
+        /// Elements of the reference FE span.
+        #[arg(long, default_value_t = 128)]
+        reference_elements: usize,
+        /// Substeps per synchronisation step of the reference FE span.
+        #[arg(long, default_value_t = 64)]
+        reference_substeps: usize,
+        /// Substeps per synchronisation step of the FE spans compared.
+        #[arg(long, value_delimiter = ',', default_value = "1,2,4,5,8,16")]
+        fe_substeps: Vec<usize>,
+    },
+    /// The same for the span between two sections (kind `span_coupling`, the 4x4
+    /// matrix, exact and trapezoidal stepping, orders 16-32) against FE spans with
+    /// the same four end conditions, all four ends driven. Writes
+    /// coupling_study.md, coupling_study.json, coupling_accuracy_cost.svg.
+    Coupling {
+        /// Simulated time of each run (s).
+        #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+        duration: f64,
+        /// Synchronisation step (s).
+        #[arg(long, default_value_t = 0.001, allow_negative_numbers = true)]
+        step: f64,
+        /// Elements of the reference FE span.
+        #[arg(long, default_value_t = 128)]
+        reference_elements: usize,
+        /// Substeps per synchronisation step of the reference FE span.
+        #[arg(long, default_value_t = 32)]
+        reference_substeps: usize,
+        /// Substeps per synchronisation step of the FE spans compared.
+        #[arg(long, value_delimiter = ',', default_value = "1,2,4,8")]
+        fe_substeps: Vec<usize>,
+    },
+}
+
+#[derive(Subcommand)]
+pub enum FmuAction {
+    /// Export one unit of a scene as an FMI 2.0 co-simulation FMU (its parameters,
+    /// effects, hold and start inputs; the scene's time window as default experiment).
+    Export {
+        scene: PathBuf,
+        /// The unit to export (its name in the scene).
+        #[arg(long)]
+        unit: String,
+        /// The .fmu to write (default: <unit>.fmu).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// The slender-fmu shared library (default: libslender_fmu.so next to this
+        /// executable; build it with `cargo build --release -p slender-fmu`).
+        #[arg(long)]
+        binary: Option<PathBuf>,
+    },
+    /// Export every unit of a scene and write a copy of the scene that uses the
+    /// FMUs (kind `fmu`): the same run through the FMI layer.
+    Wrap {
+        scene: PathBuf,
+        /// Folder for the FMUs and the new scene (<scene>_fmu.toml).
+        #[arg(long)]
+        out: PathBuf,
+        /// The slender-fmu shared library (default: next to this executable).
+        #[arg(long)]
+        binary: Option<PathBuf>,
+    },
+    /// Load an FMU as slender would and print its ports and capabilities.
+    Info {
+        fmu: PathBuf,
+        /// Libraries to load globally first (libpython for pythonfmu FMUs).
+        #[arg(long)]
+        preload: Vec<PathBuf>,
+    },
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Run a scene: prints a summary, writes timeseries.csv, summary.json and SVG plots.
+    Run {
+        /// The scene file, e.g. examples/b1_two_masses.toml.
+        scene: PathBuf,
+        /// Results folder (default: the scene's [output] directory, or results/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Check a scene without running it: parse, build every unit, resolve connections.
+    Check { scene: PathBuf },
+    /// Measure a scene's cost per simulated second (median of repeated runs, no output written).
+    Bench {
+        scene: PathBuf,
+        /// Timed runs after one warm-up run (at least 1).
+        #[arg(long, default_value_t = 5)]
+        repeats: usize,
+        /// Print the figures as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Modal analysis of a structural unit about its initial (static) state:
+    /// prints the periods, writes modes.csv and modes.svg.
+    Modes {
+        scene: PathBuf,
+        /// The unit to analyse (e.g. `emulated`).
+        #[arg(long)]
+        unit: String,
+        /// Number of modes (at least 1).
+        #[arg(long, default_value_t = 15)]
+        count: usize,
+        /// Folder for modes.csv and modes.svg (default: results/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Modes drawn in modes.svg.
+        #[arg(long, default_value_t = 6)]
+        plot: usize,
+    },
+    /// Convergence and cost study (seed 000 Appendix B): vary one setting at a time
+    /// and report, per run, the relative error of the scene's indicator signals
+    /// against the finest value, iterations per step and cost per simulated second.
+    /// Writes study.csv, study.md and study.svg.
+    Study {
+        scene: PathBuf,
+        /// SETTING=V1,V2,...; SETTING is elements, step, velocity_tolerance or
+        /// force_tolerance. Repeat for several sweeps.
+        #[arg(long = "vary", required = true)]
+        sweeps: Vec<slender_app::study::Sweep>,
+        /// Simulated time of each run (s); default: the scene's duration.
+        #[arg(long, allow_negative_numbers = true)]
+        duration: Option<f64>,
+        /// Results folder (default: results/<scene name>-study).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// The suspended span (seed 004 ch. 5): Bode plots and accuracy against cost.
+    Span {
+        #[command(subcommand)]
+        action: SpanAction,
+        /// EI (N m^2).
+        #[arg(
+            long,
+            default_value_t = 1.0e4,
+            global = true,
+            allow_negative_numbers = true
+        )]
+        flexural_rigidity: f64,
+        /// mu (kg/m).
+        #[arg(
+            long,
+            default_value_t = 1.0e2,
+            global = true,
+            allow_negative_numbers = true
+        )]
+        mass_per_length: f64,
+        /// c_d (N s/m^2).
+        #[arg(
+            long,
+            default_value_t = 5.0,
+            global = true,
+            allow_negative_numbers = true
+        )]
+        damping: f64,
+        /// L (m).
+        #[arg(
+            long,
+            default_value_t = 10.0,
+            global = true,
+            allow_negative_numbers = true
+        )]
+        length: f64,
+        /// Results folder.
+        #[arg(long, default_value = "results/span", global = true)]
+        out: PathBuf,
+    },
+    /// FMI 2.0 co-simulation: export a unit as an FMU, inspect an FMU.
+    Fmu {
+        #[command(subcommand)]
+        action: FmuAction,
+    },
+    /// List the unit kinds a scene can use.
+    Kinds,
+}

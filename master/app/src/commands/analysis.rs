@@ -1,0 +1,129 @@
+//! `slender modes` and `slender study`.
+
+use super::{CliError, count_in, load, positive, report_written, results_folder};
+use slender_app::study::{self, Sweep};
+use std::path::{Path, PathBuf};
+
+/// Modes of a unit about its initial state: a table on screen, modes.csv and
+/// modes.svg.
+pub fn modes(
+    path: &Path,
+    unit: &str,
+    count: usize,
+    out: Option<PathBuf>,
+    plot: usize,
+) -> Result<(), CliError> {
+    let count = count_in("--count", count, 1, 10_000)?;
+    let scene = load(path)?;
+    let dir = out.unwrap_or_else(|| scene.default_output_dir());
+    results_folder(&dir)?;
+    let mut master = scene.build().map_err(|e| CliError::input(e.to_string()))?;
+    master
+        .initialize(scene.start)
+        .map_err(|e| CliError::failure(e.to_string()))?;
+    // An unknown unit or one without modes is bad input.
+    let analysis = master
+        .modes(unit, count)
+        .map_err(|e| CliError::input(e.to_string()))?;
+    println!(
+        "modes of `{unit}` in {} about its initial state",
+        path.display()
+    );
+    println!("{:>5} {:>12} {:>12}", "mode", "period (s)", "freq (Hz)");
+    for (i, m) in analysis.modes.iter().enumerate() {
+        println!("{:>5} {:>12.4} {:>12.5}", i + 1, m.period, 1.0 / m.period);
+    }
+    let csv = dir.join("modes.csv");
+    let mut text = String::from("mode,period_s,node,x_m,z_m,shape_x,shape_z\n");
+    for (i, m) in analysis.modes.iter().enumerate() {
+        for (j, (p, d)) in analysis.positions.iter().zip(&m.shape).enumerate() {
+            text += &format!(
+                "{},{},{j},{},{},{},{}\n",
+                i + 1,
+                m.period,
+                p[0],
+                p[1],
+                d[0],
+                d[1]
+            );
+        }
+    }
+    std::fs::write(&csv, text).map_err(|e| CliError::failure(format!("{}: {e}", csv.display())))?;
+    let svg = dir.join("modes.svg");
+    let shown = slender_units::ModalAnalysis {
+        positions: analysis.positions.clone(),
+        modes: analysis.modes.iter().take(plot).cloned().collect(),
+    };
+    slender_app::plot::mode_shapes(&svg, &format!("Mode shapes of `{unit}`"), &shown)
+        .map_err(CliError::failure)?;
+    report_written(&[csv, svg]);
+    Ok(())
+}
+
+/// A convergence and cost study; the rows are written even when some runs fail
+/// (those are marked FAILED with their reason).
+pub fn study(
+    path: &Path,
+    sweeps: &[Sweep],
+    duration: Option<f64>,
+    out: Option<PathBuf>,
+) -> Result<(), CliError> {
+    if let Some(d) = duration {
+        positive("--duration", d)?;
+    }
+    let scene = load(path)?;
+    let dir = out.unwrap_or_else(|| {
+        let mut d = scene.default_output_dir().into_os_string();
+        d.push("-study");
+        PathBuf::from(d)
+    });
+    results_folder(&dir)?;
+    println!(
+        "{:<20} {:>10}  epsilon vs finest          it/step   s per sim. s",
+        "setting", "value"
+    );
+    let rows = study::run_study(path, sweeps, duration, print_row).map_err(CliError::input)?;
+    let failed = rows.iter().filter(|r| r.error.is_some()).count();
+    let csv = dir.join("study.csv");
+    std::fs::write(&csv, study::to_csv(&rows))
+        .map_err(|e| CliError::failure(format!("{}: {e}", csv.display())))?;
+    let md = dir.join("study.md");
+    std::fs::write(&md, study::to_markdown(&rows))
+        .map_err(|e| CliError::failure(format!("{}: {e}", md.display())))?;
+    let svg = dir.join("study.svg");
+    slender_app::plot::study(
+        &svg,
+        &format!("Convergence and cost: {}", path.display()),
+        &rows,
+    )
+    .map_err(CliError::failure)?;
+    report_written(&[csv, md, svg]);
+    if failed > 0 {
+        // Failing settings are a finding of the study, not a failure of it.
+        eprintln!(
+            "note: {failed} of {} runs failed (marked FAILED above and in study.csv)",
+            rows.len()
+        );
+    }
+    Ok(())
+}
+
+fn print_row(r: &study::StudyRow) {
+    let eps: Vec<String> = r
+        .errors
+        .iter()
+        .map(|(n, e)| format!("{n} {e:.2e}"))
+        .collect();
+    println!(
+        "{:<20} {:>10}  {:<26} {:>6.2}   {:.3e}{}",
+        r.setting.to_string(),
+        r.value,
+        eps.join(", "),
+        r.iterations_per_step,
+        r.cost_per_simulated_second,
+        r.error
+            .as_ref()
+            .map(|e| format!("  FAILED: {e}"))
+            .unwrap_or_default()
+    );
+}

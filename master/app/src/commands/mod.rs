@@ -1,0 +1,131 @@
+//! What each command does. Every command returns `Result<(), CliError>`: bad input
+//! (a scene, an argument, a path) exits with code 2, a failure on the way (a run,
+//! a write) with code 1, as the README promises.
+
+mod analysis;
+mod fmu;
+mod scene;
+mod span;
+
+use crate::cli::Command;
+use slender_scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// Why a command stopped, and its exit code.
+#[derive(Debug)]
+pub struct CliError {
+    pub code: u8,
+    pub message: String,
+}
+
+impl CliError {
+    /// Bad input: exit code 2.
+    pub fn input(message: impl Into<String>) -> CliError {
+        CliError {
+            code: 2,
+            message: message.into(),
+        }
+    }
+
+    /// A failure on the way: exit code 1.
+    pub fn failure(message: impl Into<String>) -> CliError {
+        CliError {
+            code: 1,
+            message: message.into(),
+        }
+    }
+}
+
+/// Runs one command.
+pub fn dispatch(command: Command) -> Result<(), CliError> {
+    match command {
+        Command::Run { scene, out, quiet } => scene::run(&scene, out, quiet),
+        Command::Check { scene } => scene::check(&scene),
+        Command::Bench {
+            scene,
+            repeats,
+            json,
+        } => scene::bench(&scene, repeats, json),
+        Command::Modes {
+            scene,
+            unit,
+            count,
+            out,
+            plot,
+        } => analysis::modes(&scene, &unit, count, out, plot),
+        Command::Study {
+            scene,
+            sweeps,
+            duration,
+            out,
+        } => analysis::study(&scene, &sweeps, duration, out),
+        Command::Span {
+            action,
+            flexural_rigidity,
+            mass_per_length,
+            damping,
+            length,
+            out,
+        } => {
+            let span = slender_units::span::transfer::Span {
+                flexural_rigidity,
+                mass_per_length,
+                damping_per_length: damping,
+                length,
+            };
+            span::span(&span, action, &out)
+        }
+        Command::Fmu { action } => fmu::fmu(action),
+        Command::Kinds => {
+            scene::kinds();
+            Ok(())
+        }
+    }
+}
+
+/// Loads and checks a scene (bad input on failure).
+fn load(path: &Path) -> Result<Scene, CliError> {
+    Scene::load(path).map_err(|e| CliError::input(e.to_string()))
+}
+
+/// Makes the results folder `dir`; naming an existing file is bad input.
+fn results_folder(dir: &Path) -> Result<(), CliError> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(CliError::input(format!(
+            "{}: is a file; expected a folder for the results",
+            dir.display()
+        )));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| {
+        CliError::failure(format!("{}: cannot create the folder ({e})", dir.display()))
+    })
+}
+
+/// A finite, positive value given on the command line, or bad input naming it.
+fn positive(argument: &str, value: f64) -> Result<f64, CliError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(CliError::input(format!(
+            "{argument} {value}: expected a finite value > 0"
+        )))
+    }
+}
+
+/// A count given on the command line within [`low`, `high`], or bad input naming it.
+fn count_in(argument: &str, value: usize, low: usize, high: usize) -> Result<usize, CliError> {
+    if (low..=high).contains(&value) {
+        Ok(value)
+    } else {
+        Err(CliError::input(format!(
+            "{argument} {value}: expected {low} to {high}"
+        )))
+    }
+}
+
+/// Prints the files written.
+fn report_written(files: &[PathBuf]) {
+    for f in files {
+        println!("wrote {}", f.display());
+    }
+}

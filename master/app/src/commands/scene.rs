@@ -1,0 +1,155 @@
+//! `slender run`, `check`, `bench` and `kinds`.
+
+use super::{CliError, count_in, load, results_folder};
+use slender_app::run::{RunOptions, RunResult, benchmark, run_scene};
+use slender_scene::kinds;
+use std::path::{Path, PathBuf};
+
+/// Runs a scene and prints its summary; a run that stops early is a failure
+/// (exit 1) with its results up to then on disk.
+pub fn run(path: &Path, out: Option<PathBuf>, quiet: bool) -> Result<(), CliError> {
+    let scene = load(path)?;
+    let dir = out.unwrap_or_else(|| scene.default_output_dir());
+    results_folder(&dir)?;
+    let options = RunOptions {
+        output_dir: Some(dir),
+        progress: !quiet,
+    };
+    let result = run_scene(&scene, &options).map_err(CliError::input)?;
+    print_summary(&result);
+    let s = &result.summary;
+    match &s.error {
+        None => Ok(()),
+        Some(e) => Err(CliError::failure(format!(
+            "the run stopped at t = {} s: {e}\n(results up to that time are in the files above)",
+            s.start_s + s.simulated_s
+        ))),
+    }
+}
+
+fn print_summary(result: &RunResult) {
+    let s = &result.summary;
+    let c = &s.counters;
+    if !s.title.is_empty() {
+        println!("{}", s.title);
+    }
+    println!("scene        {}", s.scene);
+    println!(
+        "scheme       {} (acceleration {}), order {}",
+        s.settings.scheme.name(),
+        s.settings.acceleration.name(),
+        s.order.join(" -> ")
+    );
+    println!(
+        "simulated    {} s in {} steps of {} s",
+        s.simulated_s, c.steps, s.step_s
+    );
+    if s.simulated_s > 0.0 {
+        println!(
+            "cost         {:.3} s wall, {:.3e} s per simulated second ({:.0}x real time)",
+            s.wall_time_s,
+            s.cost_per_simulated_second,
+            1.0 / s.cost_per_simulated_second
+        );
+    } else {
+        println!(
+            "cost         {:.3} s wall, no simulated time to divide by",
+            s.wall_time_s
+        );
+    }
+    println!(
+        "iterations   {:.2} per step (max {}), {} rollbacks, {} non-converged steps, largest residual at exit {:.3} x tolerance",
+        c.mean_iterations(),
+        c.iteration_histogram.len().saturating_sub(1),
+        c.rollbacks,
+        c.non_converged_steps,
+        c.max_residual
+    );
+    for i in &s.indicators {
+        println!(
+            "indicator    {:<12} phi = {:.3}, epsilon = {:.3e}",
+            i.name, i.fidelity, i.relative_error
+        );
+    }
+    for u in &c.units {
+        println!(
+            "unit         {:<12} {} do_step calls, {:.3} s",
+            u.name, u.do_step_calls, u.step_time_s
+        );
+    }
+    for f in &result.files {
+        println!("wrote        {}", f.display());
+    }
+}
+
+/// Checks a scene and prints its units, ports, connections and schedule.
+pub fn check(path: &Path) -> Result<(), CliError> {
+    let scene = load(path)?;
+    let master = scene.build().map_err(|e| CliError::input(e.to_string()))?;
+    println!("{}: ok", path.display());
+    for (u, name) in master.unit_names().enumerate() {
+        let d = master.description(u);
+        let ports = |ps: &[slender_units::Port]| {
+            ps.iter()
+                .map(|p| format!("{} [{}]", p.name, p.unit))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        println!("unit {name} ({})", d.kind);
+        println!("  in:  {}", ports(&d.inputs));
+        println!("  out: {}", ports(&d.outputs));
+    }
+    for (label, _) in master.connection_values() {
+        println!("connection {label}");
+    }
+    println!(
+        "{} steps of {} s; scheme {}, order {}",
+        scene.steps,
+        scene.step.as_secs(),
+        master.settings().scheme.name(),
+        master.order().join(" -> ")
+    );
+    Ok(())
+}
+
+/// Measures a scene's cost per simulated second.
+pub fn bench(path: &Path, repeats: usize, json: bool) -> Result<(), CliError> {
+    let repeats = count_in("--repeats", repeats, 1, 1000)?;
+    let scene = load(path)?;
+    let b = benchmark(&scene, repeats).map_err(CliError::failure)?;
+    if json {
+        let text =
+            serde_json::to_string_pretty(&b).map_err(|e| CliError::failure(e.to_string()))?;
+        println!("{text}");
+        return Ok(());
+    }
+    println!("scene                 {}", path.display());
+    println!(
+        "cost                  {:.3e} s per simulated second (median of {}, min {:.3e}); {:.0}x real time",
+        b.median_cost_per_simulated_second,
+        b.repeats,
+        b.min_cost_per_simulated_second,
+        b.realtime_factor
+    );
+    println!(
+        "per run               {} steps, {} iterations, {} do_step calls, {} rollbacks",
+        b.steps, b.iterations, b.do_step_calls, b.rollbacks
+    );
+    println!(
+        "master overhead       {:.1} ns per connection per iteration",
+        b.master_overhead_per_connection_iteration_s * 1e9
+    );
+    Ok(())
+}
+
+/// Lists the unit kinds.
+pub fn kinds() {
+    for k in kinds::KINDS {
+        let effects = if k.effects.is_empty() {
+            String::new()
+        } else {
+            format!(" (effects: {})", k.effects.join(", "))
+        };
+        println!("{:<18} {}{effects}", k.name, k.summary);
+    }
+}
