@@ -6,6 +6,10 @@
 #
 # Usage: ./scripts/scene-fingerprints.sh OUT.txt     (release build of `slender` first)
 #        ./scripts/scene-fingerprints.sh --compare BEFORE.txt
+#
+# tests/reference/scene-fingerprints.txt holds the current fingerprints and
+# ./scripts/test.sh compares against it. A change that means to alter a scene's
+# results regenerates it (first form) and says why in its commit message.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 slender=target/release/slender
@@ -32,7 +36,12 @@ PY
     echo "$name csv=$csv summary=$(printf '%s' "$summary" | sha256sum | cut -d' ' -f1)" >> "$out"
 done
 if [ -n "$compare" ]; then
-    if diff "$compare" "$out"; then echo "bit-identical: $(wc -l < "$out") scenes"; else echo "scene outputs differ" >&2; exit 1; fi
+    if diff "$compare" "$out"; then
+        echo "bit-identical: $(wc -l < "$out") scenes"
+    else
+        echo "scene outputs differ from $compare: if the change means it, regenerate with ./scripts/scene-fingerprints.sh $compare" >&2
+        exit 1
+    fi
 else
     cat "$out"
 fi

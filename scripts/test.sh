@@ -44,7 +44,8 @@ passed=$((passed + python_passed))
 ignored=$((ignored - python_passed))
 rm -f "$log"
 
-step "example scenes"
+step "example scenes (outputs bit-identical to tests/reference/scene-fingerprints.txt)"
+./scripts/scene-fingerprints.sh --compare tests/reference/scene-fingerprints.txt
 for scene in examples/*.toml; do
     cargo run --quiet --release -- check "$scene" > /dev/null
 done

@@ -305,3 +305,20 @@ fn calls_out_of_order_and_bad_orders_are_errors() {
     .unwrap();
     assert!(e.to_string().contains("expected > 0"), "{e}");
 }
+
+/// Issue 11: under Jacobi every connection is torn; the cable under the constant
+/// top load used to start from 0 N ("the line is slack"). Initialisation now starts
+/// with one upstream-first pass, so each section starts from its upstream's values.
+#[test]
+fn jacobi_initialises_units_from_their_upstream_values() {
+    use slender_coupling::settings::{Acceleration, Scheme};
+    let mut scene = load("examples/truncation_substructured.toml");
+    scene.spec.master.scheme = Scheme::Jacobi;
+    scene.spec.master.acceleration = Acceleration::None;
+    let mut master = scene.build().unwrap();
+    master.initialize(scene.start).unwrap();
+    let index = |name: &str| master.unit_names().position(|n| n == name).unwrap();
+    let (load_unit, emulated) = (index("load"), index("emulated"));
+    assert_eq!(&master.inputs(emulated)[..2], &master.outputs(load_unit)[..2]);
+    assert!(master.inputs(emulated)[1] > 1e5, "a taut line: {:?}", master.inputs(emulated));
+}

@@ -18,6 +18,8 @@ use crate::system::{Connection, System};
 use slender_units::{Causality, Hold, Time};
 use std::time::Instant;
 
+mod initial;
+
 /// Convergence of one sweep: the largest change relative to its tolerance, and where.
 #[derive(Copy, Clone, Debug)]
 pub(crate) struct Residual {
@@ -178,48 +180,6 @@ impl Master {
     /// Sets the input hold of every input of unit `unit` (before `initialize`).
     pub fn set_hold(&mut self, unit: usize, hold: Hold) -> Result<(), MasterError> {
         self.units[unit].set_hold_all(hold)
-    }
-
-    /// Initialises every unit at `t0`, in order, each fed by the units initialised
-    /// before it. Where connections form a loop, initialisation is a zero-length
-    /// step solved like the others: the torn inputs start at their start values
-    /// (scene `inputs`) and are iterated with the run's acceleration (plain fixed
-    /// point for non-iterative schemes) until consistent. `initialize` restarts a
-    /// unit from its parameters, so no rollback is needed here.
-    pub fn initialize(&mut self, t0: Time) -> Result<(), MasterError> {
-        self.time = t0;
-        self.initializing = true;
-        let outcome = self.initial_iterations();
-        self.initializing = false;
-        let (iterations, residual, converged) = outcome?;
-        self.counters.initialization_iterations = iterations;
-        self.counters.initialization_residual = residual;
-        if !converged {
-            self.counters.non_converged_steps += 1;
-        }
-        self.accepted.copy_from_slice(&self.value);
-        self.accepted_before.copy_from_slice(&self.value);
-        self.initialized = true;
-        Ok(())
-    }
-
-    fn initial_iterations(&mut self) -> Result<(u32, f64, bool), MasterError> {
-        self.first_sweep_done = false;
-        for (k, &c) in self.torn.iter().enumerate() {
-            let to = self.connections[c].to;
-            self.x[k] = self.units[to.unit].start_inputs[to.port];
-        }
-        if self.torn.is_empty() {
-            self.sweep(1)?;
-            return Ok((1, 0.0, true));
-        }
-        // Untorn values have no earlier value yet: the first pass never converges.
-        self.previous.fill(f64::NAN);
-        if self.newton.is_some() {
-            self.step_newton()
-        } else {
-            self.step_fixed_point()
-        }
     }
 
     /// Advances every unit by one synchronisation step.
