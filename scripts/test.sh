@@ -23,6 +23,9 @@ export SLENDER_PYTHON="$PWD/.venv/bin/python"
 step "format"
 cargo fmt --all -- --check
 
+step "sizes (files over 600 lines fail; functions over 80 lines are listed)"
+./scripts/check-sizes.sh
+
 step "lints"
 cargo clippy --workspace --all-targets --release -- -D warnings
 

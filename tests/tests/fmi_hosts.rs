@@ -183,7 +183,10 @@ fn a_host_accumulating_time_in_floating_point_runs_1e7_steps_and_a_repeat_is_ref
         worst_drift = worst_drift.max((t - (k + 1) as f64 * h).abs());
     }
     println!("float-accumulated time drifted by up to {worst_drift:.3e} s over 1e7 steps");
-    assert!(worst_drift > 1e-6, "the host did not drift: the test tests nothing");
+    assert!(
+        worst_drift > 1e-6,
+        "the host did not drift: the test tests nothing"
+    );
     // The FMU kept its own exact time: a repeat of the last step without a restored
     // state is refused, and the next step at its exact time is accepted.
     assert_eq!(drifting.step(t - h, h), FMI2_ERROR);

@@ -319,6 +319,13 @@ fn jacobi_initialises_units_from_their_upstream_values() {
     master.initialize(scene.start).unwrap();
     let index = |name: &str| master.unit_names().position(|n| n == name).unwrap();
     let (load_unit, emulated) = (index("load"), index("emulated"));
-    assert_eq!(&master.inputs(emulated)[..2], &master.outputs(load_unit)[..2]);
-    assert!(master.inputs(emulated)[1] > 1e5, "a taut line: {:?}", master.inputs(emulated));
+    assert_eq!(
+        &master.inputs(emulated)[..2],
+        &master.outputs(load_unit)[..2]
+    );
+    assert!(
+        master.inputs(emulated)[1] > 1e5,
+        "a taut line: {:?}",
+        master.inputs(emulated)
+    );
 }

@@ -30,7 +30,7 @@ use slender_units::{
     UnitDescription, UnitError,
 };
 use std::collections::BTreeMap;
-use std::ffi::{CStr, CString, c_char, c_int, c_void};
+use std::ffi::{CString, c_void};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -53,173 +53,12 @@ pub struct FmuParams {
     pub logging: bool,
 }
 
-unsafe extern "C" {
-    fn calloc(count: usize, size: usize) -> *mut c_void;
-    fn free(pointer: *mut c_void);
-    /// The C shim in `logger.c`.
-    fn slender_fmi_logger(
-        environment: fmi2ComponentEnvironment,
-        instance: fmi2String,
-        status: fmi2Status,
-        category: fmi2String,
-        format: fmi2String,
-        ...
-    );
-}
-
-/// Messages an FMU logged, kept for error reports (the last few).
-#[derive(Default)]
-struct LogBook(Mutex<Vec<String>>);
-
-const LOG_KEPT: usize = 20;
-
-/// Called by the C logger shim with the formatted message.
-#[unsafe(no_mangle)]
-extern "C" fn slender_fmi_log_sink(
-    environment: *mut c_void,
-    instance: *const c_char,
-    status: c_int,
-    category: *const c_char,
-    message: *const c_char,
-) {
-    let _ = std::panic::catch_unwind(|| {
-        if environment.is_null() {
-            return;
-        }
-        let text = |p: *const c_char| {
-            if p.is_null() {
-                String::new()
-            } else {
-                // SAFETY: the FMU passes NUL-terminated strings (FMI 2.0 logger contract).
-                unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
-            }
-        };
-        // SAFETY: the environment is the LogBook the unit registered and outlives
-        // the FMU instance (dropped after fmi2FreeInstance).
-        let book = unsafe { &*(environment as *const LogBook) };
-        if let Ok(mut lines) = book.0.lock() {
-            if lines.len() == LOG_KEPT {
-                lines.remove(0);
-            }
-            lines.push(format!(
-                "[{} {} {}] {}",
-                text(instance),
-                status_name(status),
-                text(category),
-                text(message)
-            ));
-        }
-    });
-}
-
-type Instantiate = unsafe extern "C" fn(
-    fmi2String,
-    fmi2Type,
-    fmi2String,
-    fmi2String,
-    *const fmi2CallbackFunctions,
-    fmi2Boolean,
-    fmi2Boolean,
-) -> fmi2Component;
-type FreeInstance = unsafe extern "C" fn(fmi2Component);
-type SetupExperiment =
-    unsafe extern "C" fn(fmi2Component, fmi2Boolean, f64, f64, fmi2Boolean, f64) -> fmi2Status;
-type Plain = unsafe extern "C" fn(fmi2Component) -> fmi2Status;
-type GetReal =
-    unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *mut f64) -> fmi2Status;
-type SetReal =
-    unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *const f64) -> fmi2Status;
-type SetInteger = unsafe extern "C" fn(
-    fmi2Component,
-    *const fmi2ValueReference,
-    usize,
-    *const fmi2Integer,
-) -> fmi2Status;
-type SetString = unsafe extern "C" fn(
-    fmi2Component,
-    *const fmi2ValueReference,
-    usize,
-    *const fmi2String,
-) -> fmi2Status;
-type StateCall = unsafe extern "C" fn(fmi2Component, *mut fmi2FMUstate) -> fmi2Status;
-type SetState = unsafe extern "C" fn(fmi2Component, fmi2FMUstate) -> fmi2Status;
-type SetDerivatives = unsafe extern "C" fn(
-    fmi2Component,
-    *const fmi2ValueReference,
-    usize,
-    *const fmi2Integer,
-    *const f64,
-) -> fmi2Status;
-type DoStep = unsafe extern "C" fn(fmi2Component, f64, f64, fmi2Boolean) -> fmi2Status;
-
-/// The FMU's entry points, bound once.
-struct Api {
-    instantiate: Instantiate,
-    free_instance: FreeInstance,
-    setup_experiment: SetupExperiment,
-    enter_initialization_mode: Plain,
-    exit_initialization_mode: Plain,
-    terminate: Plain,
-    reset: Plain,
-    get_real: GetReal,
-    set_real: SetReal,
-    set_integer: SetInteger,
-    set_boolean: SetInteger,
-    set_string: SetString,
-    set_real_input_derivatives: SetDerivatives,
-    do_step: DoStep,
-    get_fmu_state: Option<StateCall>,
-    set_fmu_state: Option<SetState>,
-    free_fmu_state: Option<StateCall>,
-}
-
-fn symbol<T: Copy>(library: &libloading::Library, name: &str, fmu: &str) -> Result<T, String> {
-    let c_name = format!("{name}\0");
-    // SAFETY: the types above are the FMI 2.0 signatures of these names.
-    unsafe { library.get::<T>(c_name.as_bytes()) }
-        .map(|s| *s)
-        .map_err(|_| {
-            format!(
-                "{fmu}: the binary does not export `{name}` (required by FMI 2.0 co-simulation)"
-            )
-        })
-}
-
-impl Api {
-    fn bind(library: &libloading::Library, fmu: &str, states: bool) -> Result<Api, String> {
-        Ok(Api {
-            instantiate: symbol(library, "fmi2Instantiate", fmu)?,
-            free_instance: symbol(library, "fmi2FreeInstance", fmu)?,
-            setup_experiment: symbol(library, "fmi2SetupExperiment", fmu)?,
-            enter_initialization_mode: symbol(library, "fmi2EnterInitializationMode", fmu)?,
-            exit_initialization_mode: symbol(library, "fmi2ExitInitializationMode", fmu)?,
-            terminate: symbol(library, "fmi2Terminate", fmu)?,
-            reset: symbol(library, "fmi2Reset", fmu)?,
-            get_real: symbol(library, "fmi2GetReal", fmu)?,
-            set_real: symbol(library, "fmi2SetReal", fmu)?,
-            set_integer: symbol(library, "fmi2SetInteger", fmu)?,
-            set_boolean: symbol(library, "fmi2SetBoolean", fmu)?,
-            set_string: symbol(library, "fmi2SetString", fmu)?,
-            set_real_input_derivatives: symbol(library, "fmi2SetRealInputDerivatives", fmu)?,
-            do_step: symbol(library, "fmi2DoStep", fmu)?,
-            get_fmu_state: if states {
-                Some(symbol(library, "fmi2GetFMUstate", fmu)?)
-            } else {
-                None
-            },
-            set_fmu_state: if states {
-                Some(symbol(library, "fmi2SetFMUstate", fmu)?)
-            } else {
-                None
-            },
-            free_fmu_state: if states {
-                Some(symbol(library, "fmi2FreeFMUstate", fmu)?)
-            } else {
-                None
-            },
-        })
-    }
-}
+mod describe;
+mod library;
+use describe::{describe, real_refs, start_values};
+use library::{
+    Api, LogBook, calloc, free, log_tail, open_now, preload_globally, slender_fmi_logger,
+};
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 enum Phase {
@@ -243,7 +82,7 @@ struct SavedFmu {
 static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
 /// A parameter start value to apply before initialisation.
-enum StartValue {
+pub(super) enum StartValue {
     Real(u32, f64),
     Integer(u32, i32),
     Boolean(u32, bool),
@@ -692,168 +531,6 @@ impl Drop for FmuUnit {
     }
 }
 
-/// The unit description of an FMU: Real inputs and outputs as ports.
-fn describe(model: &ModelDescription, label: &str) -> Result<UnitDescription, String> {
-    let inputs: Vec<usize> = (0..model.variables.len())
-        .filter(|&i| is_real(model, i, VariableCausality::Input))
-        .collect();
-    let port_of = |i: usize, input: bool| {
-        let v = &model.variables[i];
-        let (kind, unit) = kind_of(model, v.unit.as_deref());
-        let port = if input {
-            Port::input(&v.name, kind)
-        } else {
-            Port::output(&v.name, kind)
-        };
-        port.with_unit(&unit)
-    };
-    let mut outputs = Vec::new();
-    for i in 0..model.variables.len() {
-        if !is_real(model, i, VariableCausality::Output) {
-            continue;
-        }
-        let deps = model
-            .outputs
-            .iter()
-            .find(|u| u.index == i + 1)
-            .map(|u| u.dependencies.clone());
-        let depends_on: Vec<usize> = match deps.flatten() {
-            None => (0..inputs.len()).collect(),
-            Some(list) => list
-                .iter()
-                .filter_map(|d| inputs.iter().position(|&k| k + 1 == *d))
-                .collect(),
-        };
-        outputs.push(port_of(i, false).with_feedthrough(&depends_on));
-    }
-    let cs = model
-        .co_simulation
-        .as_ref()
-        .ok_or_else(|| format!("{label}: no <CoSimulation> element"))?;
-    Ok(UnitDescription {
-        kind: "fmu".into(),
-        inputs: inputs.iter().map(|&i| port_of(i, true)).collect(),
-        outputs,
-        capabilities: Capabilities {
-            rollback: cs.can_get_and_set_fmu_state,
-            variable_step: cs.can_handle_variable_communication_step_size,
-            output_derivative_order: 0,
-            hold: if cs.can_interpolate_inputs {
-                HoldSupport::Any
-            } else {
-                HoldSupport::ZeroOrderOnly
-            },
-        },
-    })
-}
-
-fn is_real(model: &ModelDescription, i: usize, causality: VariableCausality) -> bool {
-    let v = &model.variables[i];
-    v.causality == causality && matches!(v.value, Value::Real(_))
-}
-
-fn real_refs(model: &ModelDescription, causality: VariableCausality) -> Vec<u32> {
-    (0..model.variables.len())
-        .filter(|&i| is_real(model, i, causality))
-        .map(|i| model.variables[i].value_reference)
-        .collect()
-}
-
-/// The port kind and unit name for an FMU unit of measure: the kind whose SI unit
-/// has the same base exponents (and factor 1), else generic with the FMU's name.
-fn kind_of(model: &ModelDescription, unit: Option<&str>) -> (PortKind, String) {
-    let Some(name) = unit else {
-        return (PortKind::Generic, String::new());
-    };
-    let definition = model.unit(name).cloned().or_else(|| si_definition(name));
-    if let Some(def) = definition
-        && def.factor == 1.0
-        && def.offset == 0.0
-    {
-        for kind in PortKind::ALL {
-            if let Some(si) = si_definition(kind.si_unit())
-                && si.exponents == def.exponents
-                && kind != PortKind::Generic
-            {
-                return (kind, kind.si_unit().to_owned());
-            }
-        }
-    }
-    (PortKind::Generic, name.to_owned())
-}
-
-fn start_values(
-    model: &ModelDescription,
-    starts: &BTreeMap<String, toml::Value>,
-    label: &str,
-) -> Result<Vec<StartValue>, String> {
-    let mut out = Vec::new();
-    for (name, value) in starts {
-        let v = model
-            .variables
-            .iter()
-            .find(|v| &v.name == name)
-            .ok_or_else(|| {
-                format!(
-                    "{label}: start.{name}: the FMU has no variable `{name}`{}",
-                    did_you_mean(name, model.variables.iter().map(|v| v.name.as_str()))
-                )
-            })?;
-        if !matches!(
-            v.causality,
-            VariableCausality::Parameter | VariableCausality::Input
-        ) {
-            return Err(format!(
-                "{label}: start.{name}: `{name}` is not a parameter or an input (its causality is {:?})",
-                v.causality
-            ));
-        }
-        let wrong = || {
-            format!(
-                "{label}: start.{name} = {value}: expected a {} value",
-                v.value.type_name()
-            )
-        };
-        let vr = v.value_reference;
-        out.push(match (&v.value, value) {
-            (Value::Real(_), toml::Value::Float(x)) => StartValue::Real(vr, *x),
-            (Value::Real(_), toml::Value::Integer(x)) => StartValue::Real(vr, *x as f64),
-            (Value::Integer(_) | Value::Enumeration(_), toml::Value::Integer(x)) => {
-                StartValue::Integer(vr, i32::try_from(*x).map_err(|_| wrong())?)
-            }
-            (Value::Boolean(_), toml::Value::Boolean(b)) => StartValue::Boolean(vr, *b),
-            (Value::String(_), toml::Value::String(s)) => {
-                StartValue::String(vr, CString::new(s.as_str()).map_err(|_| wrong())?)
-            }
-            _ => return Err(wrong()),
-        });
-    }
-    Ok(out)
-}
-
-/// Opens a shared library with every symbol bound now, so a missing one fails
-/// here rather than mid-run.
-fn open_now(path: &Path) -> Result<libloading::Library, String> {
-    use libloading::os::unix::{Library, RTLD_LOCAL, RTLD_NOW};
-    // SAFETY: loading runs the library's initialisers; FMU binaries are trusted
-    // code chosen by the scene's author.
-    unsafe { Library::open(Some(path), RTLD_NOW | RTLD_LOCAL) }
-        .map(Into::into)
-        .map_err(|e| e.to_string())
-}
-
-/// Loads a library with its symbols visible to later libraries, and keeps it
-/// for the life of the process (libpython must not be unloaded under an
-/// interpreter that may still run).
-fn preload_globally(path: &Path) -> Result<(), String> {
-    use libloading::os::unix::{Library, RTLD_GLOBAL, RTLD_NOW};
-    // SAFETY: as in `open_now`.
-    let library = unsafe { Library::open(Some(path), RTLD_NOW | RTLD_GLOBAL) }
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    std::mem::forget(library);
-    Ok(())
-}
-
 /// A `file://` URI for a local folder, percent-encoding what URIs reserve.
 pub fn file_uri(path: &Path) -> String {
     let mut uri = String::from("file://");
@@ -865,11 +542,4 @@ pub fn file_uri(path: &Path) -> String {
         }
     }
     uri
-}
-
-fn log_tail(log: &LogBook) -> String {
-    match log.0.lock() {
-        Ok(lines) if !lines.is_empty() => format!("; the FMU logged: {}", lines.join(" | ")),
-        _ => String::new(),
-    }
 }

@@ -87,10 +87,22 @@ fn extreme_span_properties_are_refused_instead_of_spinning() {
     let dir = temp("span");
     let base = "flexural_rigidity = 1.0e4, mass_per_length = 100.0, damping_per_length = 5.0";
     for (to, key) in [
-        ("flexural_rigidity = 1.0e4, mass_per_length = 1e125, damping_per_length = 5.0", "mass_per_length"),
-        ("flexural_rigidity = 1.0e4, mass_per_length = 100.0, damping_per_length = 1e308", "damping_per_length"),
-        ("flexural_rigidity = 1.0e4, mass_per_length = 100.0, damping_per_length = 5.0, band = 1e308", "band"),
-        ("flexural_rigidity = 1e-300, mass_per_length = 100.0, damping_per_length = 5.0", "flexural_rigidity"),
+        (
+            "flexural_rigidity = 1.0e4, mass_per_length = 1e125, damping_per_length = 5.0",
+            "mass_per_length",
+        ),
+        (
+            "flexural_rigidity = 1.0e4, mass_per_length = 100.0, damping_per_length = 1e308",
+            "damping_per_length",
+        ),
+        (
+            "flexural_rigidity = 1.0e4, mass_per_length = 100.0, damping_per_length = 5.0, band = 1e308",
+            "band",
+        ),
+        (
+            "flexural_rigidity = 1e-300, mass_per_length = 100.0, damping_per_length = 5.0",
+            "flexural_rigidity",
+        ),
     ] {
         let scene = variant(&dir, "pipe_span_coupling.toml", base, to);
         refused(&slender(&["check", &scene]), &[key, "expected"]);
@@ -126,8 +138,16 @@ fn plot_names_stay_inside_the_results_folder_and_are_unique() {
 fn unit_names_that_would_corrupt_the_csv_and_duplicate_signals_are_refused() {
     let dir = temp("names");
     for bad in ["le,ft", "le\\nft", "le ft"] {
-        let scene = variant(&dir, "b1_two_masses.toml", "name = \"left\"", &format!("name = \"{bad}\""));
-        refused(&slender(&["check", &scene]), &["unit name", "letters, digits and `_`"]);
+        let scene = variant(
+            &dir,
+            "b1_two_masses.toml",
+            "name = \"left\"",
+            &format!("name = \"{bad}\""),
+        );
+        refused(
+            &slender(&["check", &scene]),
+            &["unit name", "letters, digits and `_`"],
+        );
     }
     let scene = variant(
         &dir,
@@ -141,13 +161,31 @@ fn unit_names_that_would_corrupt_the_csv_and_duplicate_signals_are_refused() {
 #[test]
 fn times_beyond_the_nanosecond_clock_are_refused() {
     let dir = temp("time");
-    let late = variant(&dir, "b1_two_masses.toml", "[simulation]\n", "[simulation]\nstart = 9.2e9\n");
-    let late = std::fs::read_to_string(&late).unwrap().replace("duration = 1.0", "duration = 1e8");
+    let late = variant(
+        &dir,
+        "b1_two_masses.toml",
+        "[simulation]\n",
+        "[simulation]\nstart = 9.2e9\n",
+    );
+    let late = std::fs::read_to_string(&late)
+        .unwrap()
+        .replace("duration = 1.0", "duration = 1e8");
     let path = dir.join("late.toml");
     std::fs::write(&path, late).unwrap();
-    refused(&slender(&["check", path.to_str().unwrap()]), &["representable range", "nanoseconds"]);
-    let too_late = variant(&dir, "b1_two_masses.toml", "[simulation]\n", "[simulation]\nstart = 1e10\n");
-    refused(&slender(&["check", &too_late]), &["simulation.start", "within range"]);
+    refused(
+        &slender(&["check", path.to_str().unwrap()]),
+        &["representable range", "nanoseconds"],
+    );
+    let too_late = variant(
+        &dir,
+        "b1_two_masses.toml",
+        "[simulation]\n",
+        "[simulation]\nstart = 1e10\n",
+    );
+    refused(
+        &slender(&["check", &too_late]),
+        &["simulation.start", "within range"],
+    );
 }
 
 #[test]
@@ -161,8 +199,14 @@ fn plots_and_indicators_are_checked_before_the_run() {
     );
     refused(&slender(&["check", &scene]), &["output.plots[0].panels"]);
     let out = dir.join("results");
-    refused(&slender(&["run", &scene, "--quiet", "--out", out.to_str().unwrap()]), &["panels"]);
-    assert!(!out.join("summary.json").exists(), "nothing runs, nothing is reported");
+    refused(
+        &slender(&["run", &scene, "--quiet", "--out", out.to_str().unwrap()]),
+        &["panels"],
+    );
+    assert!(
+        !out.join("summary.json").exists(),
+        "nothing runs, nothing is reported"
+    );
 }
 
 #[test]
@@ -171,8 +215,15 @@ fn a_non_library_binary_is_not_packaged() {
     let fmu = dir.join("left.fmu");
     refused(
         &slender(&[
-            "fmu", "export", "examples/b1_two_masses.toml", "--unit", "left", "--binary", "README.md",
-            "-o", fmu.to_str().unwrap(),
+            "fmu",
+            "export",
+            "examples/b1_two_masses.toml",
+            "--unit",
+            "left",
+            "--binary",
+            "README.md",
+            "-o",
+            fmu.to_str().unwrap(),
         ]),
         &["not a shared library"],
     );
@@ -181,30 +232,65 @@ fn a_non_library_binary_is_not_packaged() {
 
 #[test]
 fn counts_of_zero_repeated_sweep_values_and_negative_durations_are_refused() {
-    refused(&slender(&["bench", "examples/b1_two_masses.toml", "--repeats", "0"]), &["--repeats"]);
     refused(
-        &slender(&["modes", "examples/truncation_emulated.toml", "--unit", "emulated", "--count", "0"]),
+        &slender(&["bench", "examples/b1_two_masses.toml", "--repeats", "0"]),
+        &["--repeats"],
+    );
+    refused(
+        &slender(&[
+            "modes",
+            "examples/truncation_emulated.toml",
+            "--unit",
+            "emulated",
+            "--count",
+            "0",
+        ]),
         &["--count"],
     );
     refused(
-        &slender(&["study", "examples/truncation_study.toml", "--vary", "step=0.01,0.01"]),
+        &slender(&[
+            "study",
+            "examples/truncation_study.toml",
+            "--vary",
+            "step=0.01,0.01",
+        ]),
         &["given twice"],
     );
     refused(
-        &slender(&["study", "examples/truncation_study.toml", "--vary", "step=0.01,0.02", "--duration", "-1"]),
+        &slender(&[
+            "study",
+            "examples/truncation_study.toml",
+            "--vary",
+            "step=0.01,0.02",
+            "--duration",
+            "-1",
+        ]),
         &["--duration -1", "> 0"],
     );
-    refused(&slender(&["run", "examples/b1_two_masses.toml", "--out", "README.md"]), &["is a file"]);
+    refused(
+        &slender(&["run", "examples/b1_two_masses.toml", "--out", "README.md"]),
+        &["is a file"],
+    );
 }
 
 #[test]
 fn input_errors_of_modes_and_study_exit_with_code_2() {
     refused(
-        &slender(&["modes", "examples/truncation_emulated.toml", "--unit", "nobody"]),
+        &slender(&[
+            "modes",
+            "examples/truncation_emulated.toml",
+            "--unit",
+            "nobody",
+        ]),
         &["nobody"],
     );
     refused(
-        &slender(&["study", "examples/b1_two_masses.toml", "--vary", "step=0.01,0.02"]),
+        &slender(&[
+            "study",
+            "examples/b1_two_masses.toml",
+            "--vary",
+            "step=0.01,0.02",
+        ]),
         &["output.indicators"],
     );
 }
@@ -233,10 +319,23 @@ fn a_failing_run_reports_its_residual_and_no_nan_cost() {
     let dir = temp("fails");
     // Plain fixed-point iteration with two iterations allowed: the first step
     // cannot converge (docs/active-truncation.md).
-    let scene = variant(&dir, "truncation_substructured.toml", "max_iterations = 100", "max_iterations = 2");
+    let scene = variant(
+        &dir,
+        "truncation_substructured.toml",
+        "max_iterations = 100",
+        "max_iterations = 2",
+    );
     let text = std::fs::read_to_string(&scene).unwrap();
-    let line = text.lines().find(|l| l.starts_with("acceleration")).unwrap().to_owned();
-    std::fs::write(&scene, text.replace(&line, "acceleration = { kind = \"none\" }")).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("acceleration"))
+        .unwrap()
+        .to_owned();
+    std::fs::write(
+        &scene,
+        text.replace(&line, "acceleration = { kind = \"none\" }"),
+    )
+    .unwrap();
     let out = dir.join("results");
     let result = slender(&["run", &scene, "--quiet", "--out", out.to_str().unwrap()]);
     assert_eq!(result.status.code(), Some(1), "{}", stderr(&result));
@@ -246,27 +345,51 @@ fn a_failing_run_reports_its_residual_and_no_nan_cost() {
     assert!(summary.contains("\"status\": \"failed\""), "{summary}");
     let json: serde_json::Value = serde_json::from_str(&summary).unwrap();
     let residual = json["counters"]["max_residual"].as_f64().unwrap();
-    assert!(residual > 1.0, "largest residual {residual} of a step that did not converge");
+    assert!(
+        residual > 1.0,
+        "largest residual {residual} of a step that did not converge"
+    );
 }
 
 #[test]
 fn type_errors_name_the_key() {
     let dir = temp("types");
     let path = dir.join("step.toml");
-    std::fs::write(&path, "[simulation]\nduration = 1.0\nstep = { a = 1 }\n[master]\nscheme = \"jacobi\"\n").unwrap();
-    refused(&slender(&["check", path.to_str().unwrap()]), &[":3", "`step`", "expected f64"]);
-    std::fs::write(&path, "[[simulation]]\nduration = 1.0\n[master]\nscheme = \"jacobi\"\n").unwrap();
-    refused(&slender(&["check", path.to_str().unwrap()]), &["`[[simulation]]`"]);
+    std::fs::write(
+        &path,
+        "[simulation]\nduration = 1.0\nstep = { a = 1 }\n[master]\nscheme = \"jacobi\"\n",
+    )
+    .unwrap();
+    refused(
+        &slender(&["check", path.to_str().unwrap()]),
+        &[":3", "`step`", "expected f64"],
+    );
+    std::fs::write(
+        &path,
+        "[[simulation]]\nduration = 1.0\n[master]\nscheme = \"jacobi\"\n",
+    )
+    .unwrap();
+    refused(
+        &slender(&["check", path.to_str().unwrap()]),
+        &["`[[simulation]]`"],
+    );
 }
 
 #[test]
 fn an_absurd_flexural_rigidity_is_refused_not_diagnosed_as_a_rigid_body_mode() {
     let dir = temp("rigid");
     let text = std::fs::read_to_string(root().join("examples/pipe_static_contact.toml")).unwrap();
-    let line = text.lines().find(|l| l.starts_with("flexural_rigidity")).expect("EI line").to_owned();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("flexural_rigidity"))
+        .expect("EI line")
+        .to_owned();
     let path = dir.join("stiff.toml");
     std::fs::write(&path, text.replace(&line, "flexural_rigidity = 1.0e308")).unwrap();
     let out = slender(&["check", path.to_str().unwrap()]);
-    refused(&out, &["flexural_rigidity", "1e308", "expected a value from"]);
+    refused(
+        &out,
+        &["flexural_rigidity", "1e308", "expected a value from"],
+    );
     assert!(!stderr(&out).contains("rigid-body"), "{}", stderr(&out));
 }

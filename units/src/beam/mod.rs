@@ -14,14 +14,13 @@ pub mod elements;
 pub mod params;
 pub mod touchdown;
 
-use crate::contact::Law;
 use crate::contact::surface::Surface;
 use crate::contract::StateSlot;
 use crate::contract::Time;
 use crate::contract::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
 use crate::contract::{Inputs, Port, PortKind};
 use crate::integrators::hht::HhtAlpha;
-use crate::numerics::banded::{BandLdlt, SymmetricBand};
+use crate::numerics::banded::SymmetricBand;
 use boundary::{Quantity, TimeFunction};
 pub use params::{BeamParams, ContactIntegration, ContactParams, InitialShape};
 
@@ -346,73 +345,6 @@ impl Beam {
         }
     }
 
-    /// Contact forces (and, when `tangent` is given, adds the tangent scaled by
-    /// `k_scale` for stiffness and `c_scale` for damping) at deflections `q`,
-    /// velocities `v`, time t. `penalty` overrides the law's penalty (statics).
-    #[allow(clippy::too_many_arguments)]
-    fn contact_at(
-        &self,
-        q: &[f64],
-        v: &[f64],
-        t: f64,
-        lambda: &[f64],
-        penalty: Option<f64>,
-        mut tangent: Option<(&mut SymmetricBand, f64, f64)>,
-        out: &mut ContactValues,
-    ) {
-        out.force.clear();
-        out.force.resize(q.len(), 0.0);
-        out.energy = 0.0;
-        out.start = 0.0;
-        out.end = 0.0;
-        out.length = 0.0;
-        out.max_penetration = 0.0;
-        let Some(contact) = &self.params.contact else {
-            return;
-        };
-        let law = with_penalty(&contact.method, penalty);
-        let mut first = true;
-        for (i, p) in self.points.iter().enumerate() {
-            let Some((f, f_rate)) = contact.surface.at(p.x, t) else {
-                continue;
-            };
-            let base = 2 * p.element;
-            let y: f64 = (0..4).map(|j| p.shape[j] * q[base + j]).sum();
-            let yv: f64 = (0..4).map(|j| p.shape[j] * v[base + j]).sum();
-            let d = y - f;
-            let (xi, g, k) = law.evaluate(d, lambda[i]);
-            let mut force = g;
-            let mut damping = 0.0;
-            if contact.damping > 0.0 && d <= contact.gap_band {
-                force += contact.damping * (yv - f_rate);
-                damping = contact.damping;
-            }
-            out.energy += p.weight * xi;
-            if d <= 0.0 {
-                if first {
-                    out.start = p.x;
-                    first = false;
-                }
-                out.end = p.x;
-                out.length += p.weight;
-                out.max_penetration = out.max_penetration.max(-d);
-            }
-            for j in 0..4 {
-                out.force[base + j] += p.weight * force * p.shape[j];
-            }
-            if let Some((m, k_scale, c_scale)) = tangent.as_mut() {
-                let s = p.weight * (*k_scale * k + *c_scale * damping);
-                if s != 0.0 {
-                    for r in 0..4 {
-                        for col in 0..=r {
-                            m.add(base + r, base + col, s * p.shape[r] * p.shape[col]);
-                        }
-                    }
-                }
-            }
-        }
-    }
-
     /// Sets the kinematic conditions at time t into q, v, a.
     fn apply_kinematics(&mut self, inputs: Inputs<'_>, t: f64, h: f64) {
         for i in 0..self.conditions.len() {
@@ -434,137 +366,6 @@ impl Beam {
             .map(|c| c.dof)
     }
 
-    /// Static equilibrium K q + F_contact(q) = F at the current time, by Newton with
-    /// penalty continuation (p0 psi^(n-1)) and lambda updates every iteration.
-    pub fn solve_static(&mut self, inputs: Inputs<'_>) -> Result<u32, UnitError> {
-        let t = self.state.t;
-        self.apply_kinematics(inputs, t, 0.0);
-        let n = self.state.q.len();
-        let mut values = ContactValues::default();
-        let target = self.params.contact.as_ref().map(|c| penalty_of(&c.method));
-        let mut penalty = match (self.params.static_penalty_start, target) {
-            (Some(p0), Some(p)) => Some(p0.min(p)),
-            (_, p) => p,
-        };
-        let mut load = vec![0.0; n];
-        self.external_load(inputs, t, 0.0, &mut load);
-        let zeros = vec![0.0; n];
-        let cap = 20 * self.params.newton_max_iterations;
-        let mut history = Vec::new();
-        for iteration in 1..=cap {
-            let mut jac = self.k.clone();
-            let q = self.state.q.clone();
-            let lambda = self.state.lambda.clone();
-            self.contact_at(
-                &q,
-                &zeros,
-                t,
-                &lambda,
-                penalty,
-                Some((&mut jac, 1.0, 0.0)),
-                &mut values,
-            );
-            let mut r = vec![0.0; n];
-            self.k.mul_add(1.0, &q, &mut r);
-            for i in 0..n {
-                r[i] += values.force[i] - load[i];
-            }
-            self.state.reaction.copy_from_slice(&r);
-            for dof in self.held_dofs().collect::<Vec<_>>() {
-                jac.set_identity_row(dof);
-                r[dof] = 0.0;
-            }
-            let factor = BandLdlt::new(&jac).ok_or_else(|| {
-                UnitError::Numerical(
-                    "no static equilibrium: the boundary conditions leave the beam free to move (a rigid-body mode) and no contact holds it".into(),
-                )
-            })?;
-            for v in r.iter_mut() {
-                *v = -*v;
-            }
-            factor.solve_in_place(&mut r);
-            let step = r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            history.push(step);
-            for (q, dq) in self.state.q.iter_mut().zip(&r) {
-                *q += dq;
-            }
-            let size = self.state.q.iter().fold(1.0f64, |a, v| a.max(v.abs()));
-            if let Some(c) = &self.params.contact {
-                let law = with_penalty(&c.method, penalty);
-                self.update_lambda(&law, t);
-            }
-            let at_target = penalty == target;
-            if step < self.params.newton_tolerance * size && at_target {
-                self.state.newton_iterations = iteration;
-                self.finish_static(t, penalty);
-                return Ok(iteration);
-            }
-            if let (Some(p), Some(goal)) = (penalty, target) {
-                penalty = Some((p * self.params.static_penalty_growth).min(goal));
-            }
-        }
-        Err(UnitError::Numerical(format!(
-            "static solve: Newton did not converge in {cap} iterations; corrections: {}",
-            history
-                .iter()
-                .rev()
-                .take(8)
-                .rev()
-                .map(|v| format!("{v:.3e}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        )))
-    }
-
-    fn finish_static(&mut self, t: f64, penalty: Option<f64>) {
-        let n = self.state.q.len();
-        let mut values = ContactValues::default();
-        let (q, lambda) = (self.state.q.clone(), self.state.lambda.clone());
-        self.contact_at(&q, &vec![0.0; n], t, &lambda, penalty, None, &mut values);
-        self.state.contact_force.copy_from_slice(&values.force);
-        self.state.contact = [
-            values.energy,
-            values.start,
-            values.end,
-            values.length,
-            values.max_penetration,
-        ];
-        self.record_gaps(t);
-        self.state.v.fill(0.0);
-        self.state.a.fill(0.0);
-    }
-
-    fn record_gaps(&mut self, t: f64) {
-        if let Some(contact) = &self.params.contact {
-            for (i, p) in self.points.iter().enumerate() {
-                let y: f64 = (0..4)
-                    .map(|j| p.shape[j] * self.state.q[2 * p.element + j])
-                    .sum();
-                self.state.gap[i] = contact
-                    .surface
-                    .at(p.x, t)
-                    .map_or(f64::INFINITY, |(f, _)| y - f);
-            }
-        }
-    }
-
-    fn update_lambda(&mut self, law: &Law, t: f64) {
-        let Some(contact) = &self.params.contact else {
-            return;
-        };
-        if law.lambda_update().is_none() {
-            return;
-        }
-        for (i, p) in self.points.iter().enumerate() {
-            if let Some((f, _)) = contact.surface.at(p.x, t) {
-                let y: f64 = (0..4)
-                    .map(|j| p.shape[j] * self.state.q[2 * p.element + j])
-                    .sum();
-                self.state.lambda[i] = law.updated_lambda(y - f, self.state.lambda[i]);
-            }
-        }
-    }
-
     /// Total mechanical energy (J): kinetic, strain and contact.
     pub fn energies(&self) -> [f64; 3] {
         [
@@ -575,29 +376,9 @@ impl Beam {
     }
 }
 
-fn penalty_of(law: &Law) -> f64 {
-    match *law {
-        Law::Penalty { penalty }
-        | Law::EnergyConserving { penalty }
-        | Law::AugmentedLagrangian { penalty, .. }
-        | Law::AugmentedBarrier { penalty, .. } => penalty,
-    }
-}
-
-fn with_penalty(law: &Law, p: Option<f64>) -> Law {
-    let mut l = law.clone();
-    if let Some(p) = p {
-        match &mut l {
-            Law::Penalty { penalty }
-            | Law::EnergyConserving { penalty }
-            | Law::AugmentedLagrangian { penalty, .. }
-            | Law::AugmentedBarrier { penalty, .. } => *penalty = p,
-        }
-    }
-    l
-}
-
+mod contact;
 mod dynamics;
+mod statics;
 
 impl Unit for Beam {
     fn description(&self) -> &UnitDescription {

@@ -1,0 +1,144 @@
+//! What an FMU offers slender, read from its model description: Real inputs and
+//! outputs as ports (with kinds from their units), and the start values a scene
+//! gives its parameters.
+
+use super::*;
+
+/// The unit description of an FMU: Real inputs and outputs as ports.
+pub(super) fn describe(model: &ModelDescription, label: &str) -> Result<UnitDescription, String> {
+    let inputs: Vec<usize> = (0..model.variables.len())
+        .filter(|&i| is_real(model, i, VariableCausality::Input))
+        .collect();
+    let port_of = |i: usize, input: bool| {
+        let v = &model.variables[i];
+        let (kind, unit) = kind_of(model, v.unit.as_deref());
+        let port = if input {
+            Port::input(&v.name, kind)
+        } else {
+            Port::output(&v.name, kind)
+        };
+        port.with_unit(&unit)
+    };
+    let mut outputs = Vec::new();
+    for i in 0..model.variables.len() {
+        if !is_real(model, i, VariableCausality::Output) {
+            continue;
+        }
+        let deps = model
+            .outputs
+            .iter()
+            .find(|u| u.index == i + 1)
+            .map(|u| u.dependencies.clone());
+        let depends_on: Vec<usize> = match deps.flatten() {
+            None => (0..inputs.len()).collect(),
+            Some(list) => list
+                .iter()
+                .filter_map(|d| inputs.iter().position(|&k| k + 1 == *d))
+                .collect(),
+        };
+        outputs.push(port_of(i, false).with_feedthrough(&depends_on));
+    }
+    let cs = model
+        .co_simulation
+        .as_ref()
+        .ok_or_else(|| format!("{label}: no <CoSimulation> element"))?;
+    Ok(UnitDescription {
+        kind: "fmu".into(),
+        inputs: inputs.iter().map(|&i| port_of(i, true)).collect(),
+        outputs,
+        capabilities: Capabilities {
+            rollback: cs.can_get_and_set_fmu_state,
+            variable_step: cs.can_handle_variable_communication_step_size,
+            output_derivative_order: 0,
+            hold: if cs.can_interpolate_inputs {
+                HoldSupport::Any
+            } else {
+                HoldSupport::ZeroOrderOnly
+            },
+        },
+    })
+}
+
+pub(super) fn is_real(model: &ModelDescription, i: usize, causality: VariableCausality) -> bool {
+    let v = &model.variables[i];
+    v.causality == causality && matches!(v.value, Value::Real(_))
+}
+
+pub(super) fn real_refs(model: &ModelDescription, causality: VariableCausality) -> Vec<u32> {
+    (0..model.variables.len())
+        .filter(|&i| is_real(model, i, causality))
+        .map(|i| model.variables[i].value_reference)
+        .collect()
+}
+
+/// The port kind and unit name for an FMU unit of measure: the kind whose SI unit
+/// has the same base exponents (and factor 1), else generic with the FMU's name.
+pub(super) fn kind_of(model: &ModelDescription, unit: Option<&str>) -> (PortKind, String) {
+    let Some(name) = unit else {
+        return (PortKind::Generic, String::new());
+    };
+    let definition = model.unit(name).cloned().or_else(|| si_definition(name));
+    if let Some(def) = definition
+        && def.factor == 1.0
+        && def.offset == 0.0
+    {
+        for kind in PortKind::ALL {
+            if let Some(si) = si_definition(kind.si_unit())
+                && si.exponents == def.exponents
+                && kind != PortKind::Generic
+            {
+                return (kind, kind.si_unit().to_owned());
+            }
+        }
+    }
+    (PortKind::Generic, name.to_owned())
+}
+
+pub(super) fn start_values(
+    model: &ModelDescription,
+    starts: &BTreeMap<String, toml::Value>,
+    label: &str,
+) -> Result<Vec<StartValue>, String> {
+    let mut out = Vec::new();
+    for (name, value) in starts {
+        let v = model
+            .variables
+            .iter()
+            .find(|v| &v.name == name)
+            .ok_or_else(|| {
+                format!(
+                    "{label}: start.{name}: the FMU has no variable `{name}`{}",
+                    did_you_mean(name, model.variables.iter().map(|v| v.name.as_str()))
+                )
+            })?;
+        if !matches!(
+            v.causality,
+            VariableCausality::Parameter | VariableCausality::Input
+        ) {
+            return Err(format!(
+                "{label}: start.{name}: `{name}` is not a parameter or an input (its causality is {:?})",
+                v.causality
+            ));
+        }
+        let wrong = || {
+            format!(
+                "{label}: start.{name} = {value}: expected a {} value",
+                v.value.type_name()
+            )
+        };
+        let vr = v.value_reference;
+        out.push(match (&v.value, value) {
+            (Value::Real(_), toml::Value::Float(x)) => StartValue::Real(vr, *x),
+            (Value::Real(_), toml::Value::Integer(x)) => StartValue::Real(vr, *x as f64),
+            (Value::Integer(_) | Value::Enumeration(_), toml::Value::Integer(x)) => {
+                StartValue::Integer(vr, i32::try_from(*x).map_err(|_| wrong())?)
+            }
+            (Value::Boolean(_), toml::Value::Boolean(b)) => StartValue::Boolean(vr, *b),
+            (Value::String(_), toml::Value::String(s)) => {
+                StartValue::String(vr, CString::new(s.as_str()).map_err(|_| wrong())?)
+            }
+            _ => return Err(wrong()),
+        });
+    }
+    Ok(out)
+}

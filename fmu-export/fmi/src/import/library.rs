@@ -1,0 +1,213 @@
+//! The FMU's shared library: its FMI entry points bound once, the C logger shim
+//! and the log kept for error messages, loading with every symbol bound now.
+
+use crate::ffi::*;
+use std::ffi::{CStr, c_char, c_int, c_void};
+use std::path::Path;
+use std::sync::Mutex;
+
+unsafe extern "C" {
+    pub(super) fn calloc(count: usize, size: usize) -> *mut c_void;
+    pub(super) fn free(pointer: *mut c_void);
+    /// The C shim in `logger.c`.
+    pub(super) fn slender_fmi_logger(
+        environment: fmi2ComponentEnvironment,
+        instance: fmi2String,
+        status: fmi2Status,
+        category: fmi2String,
+        format: fmi2String,
+        ...
+    );
+}
+
+/// Messages an FMU logged, kept for error reports (the last few).
+#[derive(Default)]
+pub(super) struct LogBook(Mutex<Vec<String>>);
+
+pub(super) const LOG_KEPT: usize = 20;
+
+/// Called by the C logger shim with the formatted message.
+#[unsafe(no_mangle)]
+pub(super) extern "C" fn slender_fmi_log_sink(
+    environment: *mut c_void,
+    instance: *const c_char,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    let _ = std::panic::catch_unwind(|| {
+        if environment.is_null() {
+            return;
+        }
+        let text = |p: *const c_char| {
+            if p.is_null() {
+                String::new()
+            } else {
+                // SAFETY: the FMU passes NUL-terminated strings (FMI 2.0 logger contract).
+                unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
+            }
+        };
+        // SAFETY: the environment is the LogBook the unit registered and outlives
+        // the FMU instance (dropped after fmi2FreeInstance).
+        let book = unsafe { &*(environment as *const LogBook) };
+        if let Ok(mut lines) = book.0.lock() {
+            if lines.len() == LOG_KEPT {
+                lines.remove(0);
+            }
+            lines.push(format!(
+                "[{} {} {}] {}",
+                text(instance),
+                status_name(status),
+                text(category),
+                text(message)
+            ));
+        }
+    });
+}
+
+pub(super) type Instantiate = unsafe extern "C" fn(
+    fmi2String,
+    fmi2Type,
+    fmi2String,
+    fmi2String,
+    *const fmi2CallbackFunctions,
+    fmi2Boolean,
+    fmi2Boolean,
+) -> fmi2Component;
+pub(super) type FreeInstance = unsafe extern "C" fn(fmi2Component);
+pub(super) type SetupExperiment =
+    unsafe extern "C" fn(fmi2Component, fmi2Boolean, f64, f64, fmi2Boolean, f64) -> fmi2Status;
+pub(super) type Plain = unsafe extern "C" fn(fmi2Component) -> fmi2Status;
+pub(super) type GetReal =
+    unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *mut f64) -> fmi2Status;
+pub(super) type SetReal =
+    unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *const f64) -> fmi2Status;
+pub(super) type SetInteger = unsafe extern "C" fn(
+    fmi2Component,
+    *const fmi2ValueReference,
+    usize,
+    *const fmi2Integer,
+) -> fmi2Status;
+pub(super) type SetString = unsafe extern "C" fn(
+    fmi2Component,
+    *const fmi2ValueReference,
+    usize,
+    *const fmi2String,
+) -> fmi2Status;
+pub(super) type StateCall = unsafe extern "C" fn(fmi2Component, *mut fmi2FMUstate) -> fmi2Status;
+pub(super) type SetState = unsafe extern "C" fn(fmi2Component, fmi2FMUstate) -> fmi2Status;
+pub(super) type SetDerivatives = unsafe extern "C" fn(
+    fmi2Component,
+    *const fmi2ValueReference,
+    usize,
+    *const fmi2Integer,
+    *const f64,
+) -> fmi2Status;
+pub(super) type DoStep = unsafe extern "C" fn(fmi2Component, f64, f64, fmi2Boolean) -> fmi2Status;
+
+/// The FMU's entry points, bound once.
+pub(super) struct Api {
+    pub(super) instantiate: Instantiate,
+    pub(super) free_instance: FreeInstance,
+    pub(super) setup_experiment: SetupExperiment,
+    pub(super) enter_initialization_mode: Plain,
+    pub(super) exit_initialization_mode: Plain,
+    pub(super) terminate: Plain,
+    pub(super) reset: Plain,
+    pub(super) get_real: GetReal,
+    pub(super) set_real: SetReal,
+    pub(super) set_integer: SetInteger,
+    pub(super) set_boolean: SetInteger,
+    pub(super) set_string: SetString,
+    pub(super) set_real_input_derivatives: SetDerivatives,
+    pub(super) do_step: DoStep,
+    pub(super) get_fmu_state: Option<StateCall>,
+    pub(super) set_fmu_state: Option<SetState>,
+    pub(super) free_fmu_state: Option<StateCall>,
+}
+
+pub(super) fn symbol<T: Copy>(
+    library: &libloading::Library,
+    name: &str,
+    fmu: &str,
+) -> Result<T, String> {
+    let c_name = format!("{name}\0");
+    // SAFETY: the types above are the FMI 2.0 signatures of these names.
+    unsafe { library.get::<T>(c_name.as_bytes()) }
+        .map(|s| *s)
+        .map_err(|_| {
+            format!(
+                "{fmu}: the binary does not export `{name}` (required by FMI 2.0 co-simulation)"
+            )
+        })
+}
+
+impl Api {
+    pub(super) fn bind(
+        library: &libloading::Library,
+        fmu: &str,
+        states: bool,
+    ) -> Result<Api, String> {
+        Ok(Api {
+            instantiate: symbol(library, "fmi2Instantiate", fmu)?,
+            free_instance: symbol(library, "fmi2FreeInstance", fmu)?,
+            setup_experiment: symbol(library, "fmi2SetupExperiment", fmu)?,
+            enter_initialization_mode: symbol(library, "fmi2EnterInitializationMode", fmu)?,
+            exit_initialization_mode: symbol(library, "fmi2ExitInitializationMode", fmu)?,
+            terminate: symbol(library, "fmi2Terminate", fmu)?,
+            reset: symbol(library, "fmi2Reset", fmu)?,
+            get_real: symbol(library, "fmi2GetReal", fmu)?,
+            set_real: symbol(library, "fmi2SetReal", fmu)?,
+            set_integer: symbol(library, "fmi2SetInteger", fmu)?,
+            set_boolean: symbol(library, "fmi2SetBoolean", fmu)?,
+            set_string: symbol(library, "fmi2SetString", fmu)?,
+            set_real_input_derivatives: symbol(library, "fmi2SetRealInputDerivatives", fmu)?,
+            do_step: symbol(library, "fmi2DoStep", fmu)?,
+            get_fmu_state: if states {
+                Some(symbol(library, "fmi2GetFMUstate", fmu)?)
+            } else {
+                None
+            },
+            set_fmu_state: if states {
+                Some(symbol(library, "fmi2SetFMUstate", fmu)?)
+            } else {
+                None
+            },
+            free_fmu_state: if states {
+                Some(symbol(library, "fmi2FreeFMUstate", fmu)?)
+            } else {
+                None
+            },
+        })
+    }
+}
+
+/// Opens a shared library with every symbol bound now, so a missing one fails
+/// here rather than mid-run.
+pub(super) fn open_now(path: &Path) -> Result<libloading::Library, String> {
+    use libloading::os::unix::{Library, RTLD_LOCAL, RTLD_NOW};
+    // SAFETY: loading runs the library's initialisers; FMU binaries are trusted
+    // code chosen by the scene's author.
+    unsafe { Library::open(Some(path), RTLD_NOW | RTLD_LOCAL) }
+        .map(Into::into)
+        .map_err(|e| e.to_string())
+}
+
+/// Loads a library with its symbols visible to later libraries, and keeps it
+/// for the life of the process (libpython must not be unloaded under an
+/// interpreter that may still run).
+pub(super) fn preload_globally(path: &Path) -> Result<(), String> {
+    use libloading::os::unix::{Library, RTLD_GLOBAL, RTLD_NOW};
+    // SAFETY: as in `open_now`.
+    let library = unsafe { Library::open(Some(path), RTLD_NOW | RTLD_GLOBAL) }
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    std::mem::forget(library);
+    Ok(())
+}
+
+pub(super) fn log_tail(log: &LogBook) -> String {
+    match log.0.lock() {
+        Ok(lines) if !lines.is_empty() => format!("; the FMU logged: {}", lines.join(" | ")),
+        _ => String::new(),
+    }
+}
