@@ -344,7 +344,14 @@ fn every_way_an_fmu_can_be_wrong_gives_a_clear_error() {
     let e = system
         .connect("fmu.displacement", "right.coupling_displacement", link)
         .unwrap_err();
-    assert!(e.contains("units of measure differ (kN vs m)"), "{e}");
+    assert!(
+        matches!(&e, slender_coupling::SystemError::UnitMismatch { from_unit, to_unit, .. } if from_unit == "kN" && to_unit == "m"),
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("units of measure differ (kN vs m)"),
+        "{e}"
+    );
 
     // Start values: an unknown name, a wrong type.
     let good = at("good.fmu");

@@ -285,49 +285,72 @@ fn a_failing_run_leaves_readable_partial_results() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+/// The section of the scene reference from `heading` to the next heading of the
+/// same or a higher level.
+fn section<'a>(doc: &'a str, heading: &str) -> &'a str {
+    let start = doc
+        .find(heading)
+        .unwrap_or_else(|| panic!("no section `{heading}` in the scene reference"));
+    let level = heading.chars().take_while(|c| *c == '#').count();
+    let rest = &doc[start + heading.len()..];
+    let end = rest
+        .match_indices("\n#")
+        .find(|(i, _)| {
+            let hashes = rest[i + 1..].chars().take_while(|c| *c == '#').count();
+            hashes <= level
+        })
+        .map_or(rest.len(), |(i, _)| i);
+    &rest[..end]
+}
+
+/// Every parameter of every kind, read from its parameter struct, is documented
+/// in that kind's section (so a parameter cannot go undocumented), and every
+/// master setting in the master's.
 #[test]
-fn the_scene_reference_documents_every_kind_and_master_setting() {
+fn the_scene_reference_documents_every_kind_parameter_and_master_setting() {
     let doc = std::fs::read_to_string(root().join("docs/scene-reference.md")).unwrap();
+    let mut checked = 0;
     for k in KINDS {
+        let text = section(&doc, &format!("### Kind `{}`", k.name));
+        let parameters = (k.parameters)();
         assert!(
-            doc.contains(&format!("`{}`", k.name)),
-            "kind {} is not documented",
+            !parameters.is_empty() || k.name == "loop_linear_pair",
+            "kind {} lists no parameters",
             k.name
         );
+        for p in parameters {
+            assert!(
+                text.contains(&format!("`{p}`")),
+                "parameter `{p}` of kind `{}` is not documented in its section",
+                k.name
+            );
+            checked += 1;
+        }
+        for e in k.effects {
+            assert!(
+                text.contains(&format!("`{e}`")),
+                "effect `{e}` of `{}`",
+                k.name
+            );
+        }
     }
-    for key in [
-        "scheme",
-        "order",
-        "max_iterations",
-        "on_max_iterations",
-        "acceleration",
-        "tolerances",
-        "extrapolation",
-        "iqn_ils",
-        "reuse_steps",
-        "newton",
-        "perturbation",
-        "aitken",
-        "initial_factor",
-        "hold",
-        "inputs",
-        "effects",
-        "gain",
-        "offset",
-        "tolerance",
-        "every",
-        "plots",
-        "panels",
-        "signals",
-        "directory",
-        "coupling_stiffness",
-        "substeps",
-        "radius_squared",
-        "branch",
-    ] {
+    println!("{checked} kind parameters documented");
+    let master = section(&doc, "## `[master]`");
+    let master_keys = slender_scene::fields::field_names::<slender_coupling::MasterSettings>();
+    assert!(master_keys.len() >= 6, "{master_keys:?}");
+    for key in master_keys {
         assert!(
-            doc.contains(&format!("`{key}`")),
-            "`{key}` is not documented"
+            master.contains(&format!("`{key}`")),
+            "master setting `{key}` is not documented"
+        );
+    }
+    let output = section(&doc, "## `[output]`");
+    let output_keys = slender_scene::fields::field_names::<slender_scene::spec::OutputSpec>();
+    assert!(output_keys.len() >= 4, "{output_keys:?}");
+    for key in output_keys {
+        assert!(
+            output.contains(&format!("`{key}`")),
+            "output key `{key}` is not documented"
         );
     }
 }

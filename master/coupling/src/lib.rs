@@ -22,4 +22,4 @@ pub mod system;
 pub use coupler::Master;
 pub use error::MasterError;
 pub use settings::{Acceleration, MasterSettings, Scheme, Tolerances};
-pub use system::{Link, System};
+pub use system::{Link, System, SystemError};

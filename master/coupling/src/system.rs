@@ -1,7 +1,86 @@
 //! A coupled system: named units and the connections between their ports.
 
 use crate::error::did_you_mean;
+use slender_units::contract::names::NameError;
 use slender_units::{Causality, Port, PortKind, Unit};
+use thiserror::Error;
+
+/// A port name that the unit does not have, with the ones it has.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error(
+    "`{path}`: unit `{unit}` (kind {kind}) has no {wanted} `{port}`{hint}; its {wanted}s are: {ports}"
+)]
+pub struct UnknownPort {
+    pub path: String,
+    pub unit: String,
+    pub kind: String,
+    pub port: String,
+    /// "input" or "output".
+    pub wanted: &'static str,
+    /// "; did you mean ...?" or "".
+    pub hint: String,
+    /// The unit's ports of that causality, comma-separated.
+    pub ports: String,
+}
+
+/// Why a unit, a connection or a start value was refused.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum SystemError {
+    #[error(transparent)]
+    Name(#[from] NameError),
+    #[error("unit name `{0}` is used twice")]
+    DuplicateUnit(String),
+    #[error("`{path}`: expected \"unit.port\", e.g. \"left.displacement\"")]
+    NotAPortPath { path: String },
+    #[error("`{path}`: no unit named `{unit}`{hint}")]
+    UnknownUnit {
+        path: String,
+        unit: String,
+        hint: String,
+    },
+    #[error("`{path}`: `{port}` is not an {wanted} of unit `{unit}` (it is the other way round)")]
+    WrongCausality {
+        path: String,
+        port: String,
+        unit: String,
+        wanted: &'static str,
+    },
+    #[error(transparent)]
+    UnknownPort(Box<UnknownPort>),
+    #[error("{label}: gain {gain} and offset {offset} must be finite")]
+    NonFiniteLink {
+        label: String,
+        gain: f64,
+        offset: f64,
+    },
+    #[error("{label}: tolerance {tolerance} is not a finite value > 0")]
+    BadTolerance { label: String, tolerance: f64 },
+    #[error(
+        "{label}: cannot connect a {from_kind} output ({from_unit}) to a {to_kind} input ({to_unit})"
+    )]
+    KindMismatch {
+        label: String,
+        from_kind: PortKind,
+        from_unit: String,
+        to_kind: PortKind,
+        to_unit: String,
+    },
+    #[error("{label}: units of measure differ ({from_unit} vs {to_unit})")]
+    UnitMismatch {
+        label: String,
+        from_unit: String,
+        to_unit: String,
+    },
+    #[error("{label}: input `{to}` is already driven by `{existing}`")]
+    AlreadyDriven {
+        label: String,
+        to: String,
+        existing: String,
+    },
+    #[error("{to}: start value {value} is not finite")]
+    NonFiniteStart { to: String, value: f64 },
+}
 
 /// A port of a unit in the system, by indices.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -64,10 +143,10 @@ impl System {
     }
 
     /// Adds a unit under a unique name; returns its index.
-    pub fn add_unit(&mut self, name: &str, unit: Box<dyn Unit>) -> Result<usize, String> {
+    pub fn add_unit(&mut self, name: &str, unit: Box<dyn Unit>) -> Result<usize, SystemError> {
         slender_units::contract::names::check_name("unit name", name)?;
         if self.unit_index(name).is_some() {
-            return Err(format!("unit name `{name}` is used twice"));
+            return Err(SystemError::DuplicateUnit(name.to_owned()));
         }
         let start_inputs = vec![0.0; unit.description().inputs.len()];
         self.units.push(NamedUnit {
@@ -99,16 +178,19 @@ impl System {
     }
 
     /// Resolves "unit.port" with the given causality, with a "did you mean" hint.
-    pub fn resolve(&self, path: &str, causality: Causality) -> Result<PortRef, String> {
-        let (unit_name, port_name) = path.split_once('.').ok_or_else(|| {
-            format!("`{path}`: expected \"unit.port\", e.g. \"left.displacement\"")
-        })?;
-        let unit = self.unit_index(unit_name).ok_or_else(|| {
-            format!(
-                "`{path}`: no unit named `{unit_name}`{}",
-                did_you_mean(unit_name, self.unit_names())
-            )
-        })?;
+    pub fn resolve(&self, path: &str, causality: Causality) -> Result<PortRef, SystemError> {
+        let (unit_name, port_name) =
+            path.split_once('.')
+                .ok_or_else(|| SystemError::NotAPortPath {
+                    path: path.to_owned(),
+                })?;
+        let unit = self
+            .unit_index(unit_name)
+            .ok_or_else(|| SystemError::UnknownUnit {
+                path: path.to_owned(),
+                unit: unit_name.to_owned(),
+                hint: did_you_mean(unit_name, self.unit_names()),
+            })?;
         let description = self.units[unit].unit.description();
         let (ports, other) = match causality {
             Causality::Input => (&description.inputs, &description.outputs),
@@ -122,20 +204,26 @@ impl System {
             Causality::Output => "output",
         };
         if other.iter().any(|p| p.name == port_name) {
-            return Err(format!(
-                "`{path}`: `{port_name}` is not an {wanted} of unit `{unit_name}` (it is the other way round)"
-            ));
+            return Err(SystemError::WrongCausality {
+                path: path.to_owned(),
+                port: port_name.to_owned(),
+                unit: unit_name.to_owned(),
+                wanted,
+            });
         }
-        Err(format!(
-            "`{path}`: unit `{unit_name}` (kind {}) has no {wanted} `{port_name}`{}; its {wanted}s are: {}",
-            description.kind,
-            did_you_mean(port_name, ports.iter().map(|p| p.name.as_str())),
-            ports
+        Err(SystemError::UnknownPort(Box::new(UnknownPort {
+            path: path.to_owned(),
+            unit: unit_name.to_owned(),
+            kind: description.kind.clone(),
+            port: port_name.to_owned(),
+            wanted,
+            hint: did_you_mean(port_name, ports.iter().map(|p| p.name.as_str())),
+            ports: ports
                 .iter()
                 .map(|p| p.name.as_str())
                 .collect::<Vec<_>>()
-                .join(", ")
-        ))
+                .join(", "),
+        })))
     }
 
     /// The port behind a reference.
@@ -149,62 +237,70 @@ impl System {
 
     /// Connects output `from` ("unit.port") to input `to`, checking that both exist,
     /// that their kinds and units of measure agree and that `to` is not driven yet.
-    pub fn connect(&mut self, from: &str, to: &str, link: Link) -> Result<usize, String> {
+    pub fn connect(&mut self, from: &str, to: &str, link: Link) -> Result<usize, SystemError> {
         let source = self.resolve(from, Causality::Output)?;
         let target = self.resolve(to, Causality::Input)?;
+        let label = format!("{from} -> {to}");
         if !(link.gain.is_finite() && link.offset.is_finite()) {
-            return Err(format!(
-                "{from} -> {to}: gain {} and offset {} must be finite",
-                link.gain, link.offset
-            ));
+            return Err(SystemError::NonFiniteLink {
+                label,
+                gain: link.gain,
+                offset: link.offset,
+            });
         }
-        if let Some(tol) = link.tolerance
-            && !(tol.is_finite() && tol > 0.0)
+        if let Some(tolerance) = link.tolerance
+            && !(tolerance.is_finite() && tolerance > 0.0)
         {
-            return Err(format!(
-                "{from} -> {to}: tolerance {tol} is not a finite value > 0"
-            ));
+            return Err(SystemError::BadTolerance { label, tolerance });
         }
         let out = self.port(Causality::Output, source);
         let inp = self.port(Causality::Input, target);
         let generic = out.kind == PortKind::Generic || inp.kind == PortKind::Generic;
         if !generic && out.kind != inp.kind {
-            return Err(format!(
-                "{from} -> {to}: cannot connect a {} output ({}) to a {} input ({})",
-                out.kind, out.unit, inp.kind, inp.unit
-            ));
+            return Err(SystemError::KindMismatch {
+                label,
+                from_kind: out.kind,
+                from_unit: out.unit.clone(),
+                to_kind: inp.kind,
+                to_unit: inp.unit.clone(),
+            });
         }
         // Units of measure are compared whenever both ports declare one (FMU
         // ports of a kind slender does not know are generic but keep their unit).
         let declared = !out.unit.is_empty() && !inp.unit.is_empty();
         if declared && !slender_units::contract::measure::same_unit(&out.unit, &inp.unit) {
-            return Err(format!(
-                "{from} -> {to}: units of measure differ ({} vs {})",
-                out.unit, inp.unit
-            ));
+            return Err(SystemError::UnitMismatch {
+                label,
+                from_unit: out.unit.clone(),
+                to_unit: inp.unit.clone(),
+            });
         }
         let kind = inp.kind;
         if let Some(existing) = self.connections.iter().find(|c| c.to == target) {
-            return Err(format!(
-                "{from} -> {to}: input `{to}` is already driven by `{}`",
-                existing.label
-            ));
+            return Err(SystemError::AlreadyDriven {
+                label,
+                to: to.to_owned(),
+                existing: existing.label.clone(),
+            });
         }
         self.connections.push(Connection {
             from: source,
             to: target,
             link,
             kind,
-            label: format!("{from} -> {to}"),
+            label,
         });
         Ok(self.connections.len() - 1)
     }
 
     /// Sets the constant value of input `to` ("unit.port"): used as is when nothing
     /// drives it, and as the first guess when a loop drives it.
-    pub fn set_start_input(&mut self, to: &str, value: f64) -> Result<(), String> {
+    pub fn set_start_input(&mut self, to: &str, value: f64) -> Result<(), SystemError> {
         if !value.is_finite() {
-            return Err(format!("{to}: start value {value} is not finite"));
+            return Err(SystemError::NonFiniteStart {
+                to: to.to_owned(),
+                value,
+            });
         }
         let r = self.resolve(to, Causality::Input)?;
         self.units[r.unit].start_inputs[r.port] = value;

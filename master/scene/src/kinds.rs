@@ -1,17 +1,20 @@
 //! The unit kinds a scene can name, and how each is built from its parameters.
 
+use crate::fields::field_names;
 use serde::de::DeserializeOwned;
 use slender_fmi::import::{FmuParams, FmuUnit};
 use slender_units::Unit;
-use slender_units::beam::Beam;
-use slender_units::beam::touchdown::TouchdownEstimate;
-use slender_units::benchmark::algebraic_loop::{LinearPair, SphereClosure};
-use slender_units::benchmark::oscillator::Oscillator;
-use slender_units::cable::{Cable, Effects};
-use slender_units::signal::artefact::Artefact;
-use slender_units::signal::characteristic_load::CharacteristicLoad;
-use slender_units::span::coupling::SpanCoupling;
-use slender_units::span::unit::SpanUnit;
+use slender_units::beam::touchdown::{TouchdownEstimate, TouchdownParams};
+use slender_units::beam::{Beam, BeamParams};
+use slender_units::benchmark::algebraic_loop::{
+    LinearPair, LinearPairParams, SphereClosure, SphereParams,
+};
+use slender_units::benchmark::oscillator::{Oscillator, OscillatorParams};
+use slender_units::cable::{Cable, CableParams, Effects};
+use slender_units::signal::artefact::{Artefact, ArtefactParams};
+use slender_units::signal::characteristic_load::{CharacteristicLoad, CharacteristicLoadParams};
+use slender_units::span::coupling::{SpanCoupling, SpanCouplingParams};
+use slender_units::span::unit::{SpanParams, SpanUnit};
 use std::path::Path;
 
 /// What a builder needs besides the parameter table.
@@ -29,6 +32,8 @@ type Builder = fn(toml::Table, &BuildContext) -> Result<Box<dyn Unit>, String>;
 /// A unit kind: its scene name, what it is, and the effects it can switch.
 pub struct Kind {
     pub name: &'static str,
+    /// The top-level keys of its parameter table, from the parameter struct.
+    pub parameters: fn() -> &'static [&'static str],
     pub summary: &'static str,
     pub effects: &'static [&'static str],
     build: Builder,
@@ -38,6 +43,7 @@ pub struct Kind {
 pub const KINDS: &[Kind] = &[
     Kind {
         name: "cable",
+        parameters: field_names::<CableParams>,
         summary: "2D bar-element cable, static equilibrium + linear dynamics with exact drag; full line or a section",
         effects: &Effects::NAMES,
         build: |p, context| {
@@ -49,6 +55,7 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "beam",
+        parameters: field_names::<BeamParams>,
         summary: "Euler-Bernoulli pipe section: Hermite elements, HHT-alpha, two conditions per end, contact with a surface",
         effects: &[],
         build: |p, _| {
@@ -59,6 +66,7 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "span",
+        parameters: field_names::<SpanParams>,
         summary: "seed 004 ch. 5: suspended span from upper rotation to lower deflection as an order-N rational transfer function",
         effects: &[],
         build: |p, _| {
@@ -69,6 +77,7 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "span_coupling",
+        parameters: field_names::<SpanCouplingParams>,
         summary: "seed 004 ch. 5: suspended span between two sections, the full 4x4 transfer matrix (end motions and loads) as a common-pole rational fit",
         effects: &[],
         build: |p, _| {
@@ -79,6 +88,7 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "touchdown_estimate",
+        parameters: field_names::<TouchdownParams>,
         summary: "seed 004 sec. 6.6: touchdown point x_C = -3 y(0) / y'(0) from a section's end values (valid for y > 0, y' < 0)",
         effects: &[],
         build: |p, _| {
@@ -89,6 +99,7 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "characteristic_load",
+        parameters: field_names::<CharacteristicLoadParams>,
         summary: "seed 000 top load: static tension + low- and wave-frequency sweeps (source, outputs force_x, force_z)",
         effects: &[],
         build: |p, _| {
@@ -99,6 +110,7 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "artefact",
+        parameters: field_names::<ArtefactParams>,
         summary: "control-system artefacts on a signal: scale, bias, noise, delay, signal loss, zero-order hold",
         effects: &[],
         build: |p, _| {
@@ -109,6 +121,7 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "oscillator",
+        parameters: field_names::<OscillatorParams>,
         summary: "mass on a spring-damper to ground, coupled by a spring-damper or a force (B1-B3)",
         effects: &[],
         build: |p, _| {
@@ -119,6 +132,7 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "fmu",
+        parameters: field_names::<FmuParams>,
         summary: "an FMI 2.0 co-simulation FMU (file = \"x.fmu\"): ports from its model description, rollback if it declares FMU state",
         effects: &[],
         build: |p, context| {
@@ -128,12 +142,14 @@ pub const KINDS: &[Kind] = &[
     },
     Kind {
         name: "loop_linear_pair",
+        parameters: field_names::<LinearPairParams>,
         summary: "B6 unit A: a + b + c = 0 and 2a - 3b + 2c = 9, input c, outputs a, b",
         effects: &[],
         build: |p, _| Ok(Box::new(LinearPair::new(parameters(p)?))),
     },
     Kind {
         name: "loop_sphere",
+        parameters: field_names::<SphereParams>,
         summary: "B6 unit B: c from a^2 + b^2 + c^2 = r^2, inputs a, b, output c",
         effects: &[],
         build: |p, _| {

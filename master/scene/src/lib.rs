@@ -4,6 +4,7 @@
 //! Errors name the file, the line where known, the key and what was expected.
 
 pub mod export;
+pub mod fields;
 pub mod kinds;
 pub mod spec;
 
@@ -94,13 +95,13 @@ impl Scene {
         &self,
         span: Option<std::ops::Range<usize>>,
         key: &str,
-        message: String,
+        message: impl fmt::Display,
     ) -> SceneError {
         SceneError {
             file: self.path.clone(),
             line: span.map(|s| line_of(&self.source, s.start)),
             key: key.to_owned(),
-            message,
+            message: message.to_string(),
         }
     }
 
@@ -276,7 +277,7 @@ impl Scene {
             }
         }
         if self.spec.output.every == 0 {
-            return Err(self.error(None, "output.every", "0: expected at least 1".into()));
+            return Err(self.error(None, "output.every", "0: expected at least 1"));
         }
         self.check_outputs(&system)?;
         let mut master = Master::new(system, self.spec.master.clone(), self.step)
@@ -307,7 +308,10 @@ impl Scene {
         }
         let recorded = |s: &String| {
             if out.signals.is_empty() {
-                system.resolve(s, Causality::Output).map(|_| ())
+                system
+                    .resolve(s, Causality::Output)
+                    .map(|_| ())
+                    .map_err(|e| e.to_string())
             } else if out.signals.contains(s) {
                 Ok(())
             } else {

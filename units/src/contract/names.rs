@@ -5,8 +5,20 @@
 //! characters): it is safe as a CSV column prefix (`unit.port`), a file name and an
 //! FMI identifier, with nothing to quote.
 
+/// A name that breaks the rule of the module docs.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "{what} `{name}`: expected an ASCII letter or `_` followed by letters, digits and `_` (at most 64 characters)"
+)]
+pub struct NameError {
+    /// What the name names, e.g. "unit name".
+    pub what: String,
+    /// The name, escaped for display.
+    pub name: String,
+}
+
 /// Checks a name (see the module docs); `what` says what it names in the message.
-pub fn check_name(what: &str, name: &str) -> Result<(), String> {
+pub fn check_name(what: &str, name: &str) -> Result<(), NameError> {
     let mut chars = name.chars();
     let first_ok = chars
         .next()
@@ -14,10 +26,10 @@ pub fn check_name(what: &str, name: &str) -> Result<(), String> {
     if first_ok && name.len() <= 64 && chars.all(|c| c.is_ascii_alphanumeric() || c == '_') {
         Ok(())
     } else {
-        Err(format!(
-            "{what} `{}`: expected an ASCII letter or `_` followed by letters, digits and `_` (at most 64 characters)",
-            name.escape_debug()
-        ))
+        Err(NameError {
+            what: what.to_owned(),
+            name: name.escape_debug().to_string(),
+        })
     }
 }
 
