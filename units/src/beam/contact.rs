@@ -6,6 +6,21 @@ use crate::contact::Law;
 use crate::numerics::banded::SymmetricBand;
 
 impl Beam {
+    /// Keeps the contact evaluated at the state just accepted (time `t`): its
+    /// force for the next step and the reactions, its summary for the outputs,
+    /// and the gaps.
+    pub(super) fn accept_contact(&mut self, values: &ContactValues, t: f64) {
+        self.state.contact_force.copy_from_slice(&values.force);
+        self.state.contact = [
+            values.energy,
+            values.start,
+            values.end,
+            values.length,
+            values.max_penetration,
+        ];
+        self.record_gaps(t);
+    }
+
     /// Contact forces (and, when `tangent` is given, adds the tangent scaled by
     /// `k_scale` for stiffness and `c_scale` for damping) at deflections `q`,
     /// velocities `v`, time t. `penalty` overrides the law's penalty (statics).

@@ -60,15 +60,7 @@ impl Beam {
             .ok_or_else(|| UnitError::Numerical("mass matrix is not positive definite".into()))?;
         factor.solve_in_place(&mut rhs);
         self.state.a.copy_from_slice(&rhs);
-        self.state.contact_force.copy_from_slice(&values.force);
-        self.state.contact = [
-            values.energy,
-            values.start,
-            values.end,
-            values.length,
-            values.max_penetration,
-        ];
-        self.record_gaps(t);
+        self.accept_contact(&values, t);
         self.residual_at(&load, &values.force);
         Ok(())
     }
@@ -178,15 +170,7 @@ impl Beam {
             values.force.clear();
             values.force.resize(q.len(), 0.0);
         }
-        self.state.contact_force.copy_from_slice(&values.force);
-        self.state.contact = [
-            values.energy,
-            values.start,
-            values.end,
-            values.length,
-            values.max_penetration,
-        ];
-        self.record_gaps(t1);
+        self.accept_contact(&values, t1);
         self.residual_at(f1, &values.force);
         if let Some(law) = self.params.contact.as_ref().map(|c| c.method.clone())
             && let Some(crate::contact::LambdaUpdate::TimeStep) = law.lambda_update()

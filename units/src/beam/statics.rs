@@ -94,15 +94,7 @@ impl Beam {
         let mut values = ContactValues::default();
         let (q, lambda) = (self.state.q.clone(), self.state.lambda.clone());
         self.contact_at(&q, &vec![0.0; n], t, &lambda, penalty, None, &mut values);
-        self.state.contact_force.copy_from_slice(&values.force);
-        self.state.contact = [
-            values.energy,
-            values.start,
-            values.end,
-            values.length,
-            values.max_penetration,
-        ];
-        self.record_gaps(t);
+        self.accept_contact(&values, t);
         self.state.v.fill(0.0);
         self.state.a.fill(0.0);
     }
