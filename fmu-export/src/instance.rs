@@ -492,7 +492,7 @@ impl Instance {
             .filter(|s| *s > Time::ZERO)
             .ok_or_else(|| format!("communicationStepSize {h}: expected at least 1 ns"))?;
         // Hosts that accumulate t += h in floating point drift from the FMU's
-        // integer time by round-off (about 2e-5 s after 1e7 steps of 1 ms); a real
+        // integer time by round-off (1.6e-6 s after 1e7 steps of 1 ms); a real
         // repeat or skip is off by a whole step. Within half a step the point is
         // the FMU's own time, which stays exact (the FMU resynchronises).
         let slack = (step.as_nanos() / 2).max(1000);
