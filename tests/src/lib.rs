@@ -3,7 +3,7 @@
 
 use nalgebra::{DMatrix, DVector};
 use slender_app::run::{RunOptions, run_scene};
-use slender_coupling::settings::{Acceleration, Scheme};
+use slender_coupling::settings::{Scheme, Solver};
 use slender_scene::Scene;
 use slender_units::integrators::newmark::LinearNewmark;
 use std::path::{Path, PathBuf};
@@ -67,14 +67,9 @@ pub fn run(scene: &Scene) -> Series {
 }
 
 /// Runs `scene` with another scheme, acceleration and step.
-pub fn run_with(
-    scene: &mut Scene,
-    scheme: Scheme,
-    acceleration: Acceleration,
-    step: f64,
-) -> Series {
+pub fn run_with(scene: &mut Scene, scheme: Scheme, solver: impl Into<Solver>, step: f64) -> Series {
     scene.spec.master.scheme = scheme;
-    scene.spec.master.acceleration = acceleration;
+    scene.spec.master.set_solver(solver);
     scene.set_step(step).unwrap_or_else(|e| panic!("{e}"));
     run(scene)
 }

@@ -2,7 +2,7 @@
 //! Jacobi, Gauss-Seidel and iterative schemes against the monolithic solution, and
 //! iterations needed for a tolerance with and without acceleration.
 
-use slender_coupling::settings::{Acceleration, JacobianUpdate, Scheme};
+use slender_coupling::settings::{Acceleration, JacobianUpdate, NewtonSettings, Scheme, Solver};
 use slender_tests::{Chain, load, run_with};
 
 const SCENE: &str = "examples/b3_force_displacement.toml";
@@ -42,36 +42,40 @@ fn tighten(scene: &mut slender_scene::Scene, force: f64) {
     t.velocity = force / 10.0;
 }
 
-fn accelerations() -> Vec<(&'static str, Acceleration)> {
+/// Every fixed-point acceleration and Newton, named.
+fn accelerations() -> Vec<(&'static str, Solver)> {
     vec![
-        ("none", Acceleration::None),
-        ("constant 0.7", Acceleration::Constant { factor: 0.7 }),
+        ("none", Solver::FixedPoint(Acceleration::None)),
+        (
+            "constant 0.7",
+            Solver::FixedPoint(Acceleration::Constant { factor: 0.7 }),
+        ),
         (
             "aitken",
-            Acceleration::Aitken {
+            Solver::FixedPoint(Acceleration::Aitken {
                 initial_factor: 0.5,
-            },
+            }),
         ),
         (
             "iqn_ils",
-            Acceleration::IqnIls {
+            Solver::FixedPoint(Acceleration::IqnIls {
                 initial_factor: 0.5,
                 reuse_steps: 0,
-            },
+            }),
         ),
         (
             "iqn_ils reuse 8",
-            Acceleration::IqnIls {
+            Solver::FixedPoint(Acceleration::IqnIls {
                 initial_factor: 0.5,
                 reuse_steps: 8,
-            },
+            }),
         ),
         (
             "newton",
-            Acceleration::Newton {
+            Solver::Newton(NewtonSettings {
                 perturbation: 1e-7,
                 jacobian: JacobianUpdate::EveryIteration,
-            },
+            }),
         ),
     ]
 }

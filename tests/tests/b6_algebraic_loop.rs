@@ -1,7 +1,7 @@
 //! B6: an algebraic loop across two stateless units. Newton on the interface
 //! solves it; plain fixed-point iteration cannot reach the root it repels.
 
-use slender_coupling::settings::{Acceleration, JacobianUpdate, Scheme};
+use slender_coupling::settings::{Acceleration, JacobianUpdate, NewtonSettings, Scheme, Solver};
 use slender_tests::{load, run_with};
 
 const SCENE: &str = "examples/b6_algebraic_loop.toml";
@@ -11,17 +11,17 @@ fn roots() -> (f64, f64) {
     ((1.8 - d) / 2.0, (1.8 + d) / 2.0)
 }
 
-fn newton() -> Acceleration {
-    Acceleration::Newton {
+fn newton() -> NewtonSettings {
+    NewtonSettings {
         perturbation: 1e-7,
         jacobian: JacobianUpdate::EveryIteration,
     }
 }
 
-fn solve(scheme: Scheme, acceleration: Acceleration, first_guess: f64) -> slender_tests::Series {
+fn solve(scheme: Scheme, solver: impl Into<Solver>, first_guess: f64) -> slender_tests::Series {
     let mut scene = load(SCENE);
     start_at(&mut scene, first_guess);
-    run_with(&mut scene, scheme, acceleration, 1.0)
+    run_with(&mut scene, scheme, solver, 1.0)
 }
 
 /// Start values of every torn input consistent with the first guess of c (Jacobi

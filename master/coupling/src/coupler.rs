@@ -13,7 +13,7 @@ use crate::adapter::UnitAdapter;
 use crate::counters::Counters;
 use crate::error::MasterError;
 use crate::order::{derive_order, tears};
-use crate::settings::{Acceleration, Extrapolation, MasterSettings, OnMaxIterations};
+use crate::settings::{Extrapolation, MasterSettings, OnMaxIterations};
 use crate::system::{Connection, System};
 use slender_units::{Causality, Hold, Time};
 use std::time::Instant;
@@ -136,10 +136,9 @@ impl Master {
         let n_conn = system.connections.len();
         let n_torn = torn.len();
         let counters = Counters::new(system.unit_names());
-        let newton = match settings.acceleration {
-            Acceleration::Newton { .. } => Some(crate::newton::NewtonWork::new(n_torn)),
-            _ => None,
-        };
+        let newton = settings
+            .newton
+            .map(|_| crate::newton::NewtonWork::new(n_torn));
         let accelerator = accelerator(&settings.acceleration, n_torn);
         let units = system
             .units

@@ -21,5 +21,5 @@ pub mod system;
 
 pub use coupler::Master;
 pub use error::MasterError;
-pub use settings::{Acceleration, MasterSettings, Scheme, Tolerances};
+pub use settings::{Acceleration, MasterSettings, NewtonSettings, Scheme, Solver, Tolerances};
 pub use system::{Link, System, SystemError};

@@ -5,7 +5,7 @@
 
 use crate::coupler::Master;
 use crate::error::MasterError;
-use crate::settings::{Acceleration, JacobianUpdate};
+use crate::settings::{JacobianUpdate, NewtonSettings};
 use nalgebra::{DMatrix, DVector, Dyn, linalg::LU};
 
 /// Buffers of the Newton scheme, sized once for the torn values.
@@ -30,10 +30,10 @@ impl NewtonWork {
 impl Master {
     /// One synchronisation step solved by Newton on the torn values.
     pub(crate) fn step_newton(&mut self) -> Result<(u32, f64, bool), MasterError> {
-        let Acceleration::Newton {
+        let Some(NewtonSettings {
             perturbation,
             jacobian: update,
-        } = self.settings.acceleration
+        }) = self.settings.newton
         else {
             return Err(MasterError::Invalid(
                 "step_newton without Newton settings".into(),

@@ -54,7 +54,7 @@ pub enum OnMaxIterations {
     Accept,
 }
 
-/// How the iterate of the coupled variables is updated between iterations.
+/// How a fixed-point iteration updates the iterate of the coupled variables.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Acceleration {
@@ -80,16 +80,49 @@ pub enum Acceleration {
         #[serde(default)]
         reuse_steps: u32,
     },
-    /// Newton on the interface residual with a finite-difference Jacobian obtained
-    /// by rolling the units back (one extra sweep per coupled variable).
-    Newton {
-        /// Relative perturbation: delta = perturbation * max(|x|, 1) in SI units.
-        #[serde(default = "default_perturbation")]
-        perturbation: f64,
-        /// `every_iteration` (default) or `once_per_step`.
-        #[serde(default)]
-        jacobian: JacobianUpdate,
-    },
+}
+
+/// Newton on the interface residual `G(x) - x` with a finite-difference Jacobian
+/// obtained by rolling the units back (one extra sweep per coupled variable): not
+/// a fixed-point update, so it is its own `[master] newton` key.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NewtonSettings {
+    /// Relative perturbation: delta = perturbation * max(|x|, 1) in SI units.
+    #[serde(default = "default_perturbation")]
+    pub perturbation: f64,
+    /// `every_iteration` (default) or `once_per_step`.
+    #[serde(default)]
+    pub jacobian: JacobianUpdate,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings {
+            perturbation: default_perturbation(),
+            jacobian: JacobianUpdate::default(),
+        }
+    }
+}
+
+/// How the coupled values of an iterative step are solved: a fixed-point
+/// iteration with an acceleration, or Newton.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Solver {
+    FixedPoint(Acceleration),
+    Newton(NewtonSettings),
+}
+
+impl From<Acceleration> for Solver {
+    fn from(a: Acceleration) -> Solver {
+        Solver::FixedPoint(a)
+    }
+}
+
+impl From<NewtonSettings> for Solver {
+    fn from(n: NewtonSettings) -> Solver {
+        Solver::Newton(n)
+    }
 }
 
 /// When Newton re-evaluates the interface Jacobian.
@@ -117,7 +150,6 @@ impl Acceleration {
             Acceleration::Constant { .. } => "constant",
             Acceleration::Aitken { .. } => "aitken",
             Acceleration::IqnIls { .. } => "iqn_ils",
-            Acceleration::Newton { .. } => "newton",
         }
     }
 }
@@ -195,8 +227,12 @@ pub struct MasterSettings {
     pub max_iterations: u32,
     #[serde(default)]
     pub on_max_iterations: OnMaxIterations,
+    /// Update of a fixed-point iteration (iterative schemes).
     #[serde(default)]
     pub acceleration: Acceleration,
+    /// Newton instead of a fixed-point iteration (iterative schemes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub newton: Option<NewtonSettings>,
     #[serde(default)]
     pub tolerances: Tolerances,
     #[serde(default)]
@@ -216,8 +252,39 @@ impl MasterSettings {
             max_iterations: default_max_iterations(),
             on_max_iterations: OnMaxIterations::default(),
             acceleration: Acceleration::default(),
+            newton: None,
             tolerances: Tolerances::default(),
             extrapolation: Extrapolation::default(),
+        }
+    }
+
+    /// How iterative steps are solved.
+    pub fn solver(&self) -> Solver {
+        match self.newton {
+            Some(n) => Solver::Newton(n),
+            None => Solver::FixedPoint(self.acceleration.clone()),
+        }
+    }
+
+    /// Chooses how iterative steps are solved.
+    pub fn set_solver(&mut self, solver: impl Into<Solver>) {
+        match solver.into() {
+            Solver::FixedPoint(a) => {
+                self.acceleration = a;
+                self.newton = None;
+            }
+            Solver::Newton(n) => {
+                self.acceleration = Acceleration::None;
+                self.newton = Some(n);
+            }
+        }
+    }
+
+    /// The solver's name for summaries: "newton" or the acceleration's kind.
+    pub fn solver_name(&self) -> &'static str {
+        match self.newton {
+            Some(_) => "newton",
+            None => self.acceleration.name(),
         }
     }
 
@@ -243,6 +310,26 @@ impl MasterSettings {
                 self.scheme.name()
             ));
         }
+        if let Some(newton) = self.newton {
+            if !self.scheme.is_iterative() {
+                return Err(format!(
+                    "newton needs an iterative scheme, but scheme is `{}`",
+                    self.scheme.name()
+                ));
+            }
+            if self.acceleration != Acceleration::None {
+                return Err(format!(
+                    "newton replaces the fixed-point iteration: remove acceleration `{}`",
+                    self.acceleration.name()
+                ));
+            }
+            let p = newton.perturbation;
+            if !(p.is_finite() && p > 0.0 && p < 1.0) {
+                return Err(format!(
+                    "newton.perturbation {p}: expected a value in (0, 1)"
+                ));
+            }
+        }
         let factor_ok = |f: f64| f.is_finite() && f > 0.0 && f <= 2.0;
         match self.acceleration {
             Acceleration::None => {}
@@ -257,13 +344,6 @@ impl MasterSettings {
                 if !factor_ok(factor) {
                     return Err(format!(
                         "acceleration factor {factor}: expected a value in (0, 2]"
-                    ));
-                }
-            }
-            Acceleration::Newton { perturbation, .. } => {
-                if !(perturbation.is_finite() && perturbation > 0.0 && perturbation < 1.0) {
-                    return Err(format!(
-                        "acceleration.perturbation {perturbation}: expected a value in (0, 1)"
                     ));
                 }
             }

@@ -76,7 +76,7 @@ impl Scene {
                 .span()
                 .map(|s| key_at(&source, s.start))
                 .unwrap_or_default(),
-            message: e.message().trim().to_owned(),
+            message: migration_hint(e.message().trim()),
         })?;
         let mut scene = Scene {
             path: path.to_owned(),
@@ -372,6 +372,17 @@ impl Scene {
                 Path::new("results").join(stem.unwrap_or_else(|| "scene".into()))
             }
         }
+    }
+}
+
+/// A message with a hint where a scene uses a form slender no longer reads.
+fn migration_hint(message: &str) -> String {
+    if message.contains("unknown variant `newton`") {
+        format!(
+            "{message}; Newton is not a fixed-point acceleration: write `newton = {{}}` (or `newton = {{ perturbation = 1e-7, jacobian = \"every_iteration\" }}`) in [master] instead"
+        )
+    } else {
+        message.to_owned()
     }
 }
 

@@ -35,9 +35,12 @@ fn print_summary(result: &RunResult) {
     }
     println!("scene        {}", s.scene);
     println!(
-        "scheme       {} (acceleration {}), order {}",
+        "scheme       {} ({}), order {}",
         s.settings.scheme.name(),
-        s.settings.acceleration.name(),
+        match s.settings.newton {
+            Some(_) => "newton".to_string(),
+            None => format!("acceleration {}", s.settings.acceleration.name()),
+        },
         s.order.join(" -> ")
     );
     println!(

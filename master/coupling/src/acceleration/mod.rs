@@ -26,7 +26,7 @@ pub trait Accelerator: Send {
 /// Builds the accelerator of a fixed-point scheme for `n` torn values.
 pub fn accelerator(setting: &Acceleration, n: usize) -> Box<dyn Accelerator> {
     match *setting {
-        Acceleration::None | Acceleration::Newton { .. } => Box::new(Constant { factor: 1.0 }),
+        Acceleration::None => Box::new(Constant { factor: 1.0 }),
         Acceleration::Constant { factor } => Box::new(Constant { factor }),
         Acceleration::Aitken { initial_factor } => Box::new(Aitken::new(initial_factor, n)),
         Acceleration::IqnIls {
