@@ -238,7 +238,7 @@ impl SecondOrderSystem for Beam {
     fn matrices(&self) -> Matrices<'_> {
         Matrices {
             mass: &self.m,
-            damping: &self.c,
+            damping: Some(&self.c),
             stiffness: &self.k,
         }
     }
@@ -262,26 +262,35 @@ impl SecondOrderSystem for Beam {
         q: &[f64],
         v: &[f64],
         t: f64,
-        scales: TangentScales,
-        tangent: &mut SymmetricBand,
+        tangent: Option<(&mut SymmetricBand, TangentScales)>,
         force: &mut Vec<f64>,
     ) {
         let mut values = std::mem::take(&mut self.step_contact);
-        if self.energy_conserving() {
-            self.discrete_gradient(q, t, tangent, &mut values);
-        } else {
-            self.contact_at(
-                q,
-                v,
-                t,
-                &self.state.lambda,
-                None,
-                Some((tangent, scales.stiffness, scales.damping)),
-                &mut values,
-            );
-            for f in values.force.iter_mut() {
-                *f *= scales.stiffness;
+        match tangent {
+            Some((band, _)) if self.energy_conserving() => {
+                self.discrete_gradient(q, t, band, &mut values);
             }
+            Some((band, scales)) => {
+                self.contact_at(
+                    q,
+                    v,
+                    t,
+                    &self.state.lambda,
+                    None,
+                    Some((band, scales.stiffness, scales.damping)),
+                    &mut values,
+                );
+                for f in values.force.iter_mut() {
+                    *f *= scales.stiffness;
+                }
+            }
+            // A fixed-matrix iteration: the force alone (the beam is normally
+            // stepped with its tangent by HHT-alpha).
+            None if self.energy_conserving() => {
+                let mut unused = SymmetricBand::zeros(q.len(), super::elements::BAND);
+                self.discrete_gradient(q, t, &mut unused, &mut values);
+            }
+            None => self.contact_at(q, v, t, &self.state.lambda, None, None, &mut values),
         }
         force.clear();
         force.extend_from_slice(&values.force);

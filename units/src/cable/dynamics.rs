@@ -1,8 +1,10 @@
-//! The cable's linear dynamics about its static state: the matrices and their
-//! factorisation for a step, the drag's nonlinear remainder, and the step's drag
-//! iterations on the fixed factorisation.
+//! The cable's linear dynamics about its static state: the matrices, the drag's
+//! nonlinear remainder, and the cable as a [`SecondOrderSystem`] stepped by the
+//! shared [`IteratedNewmark`] (the drag iterated on the fixed factorisation).
 
 use super::*;
+use crate::integrators::hht::{Matrices, SecondOrderSystem, TangentScales};
+use crate::integrators::newmark_iterated::IteratedNewmark;
 
 /// Matrices and scratch of the linear dynamics about the static state.
 pub(super) struct Dynamics {
@@ -24,16 +26,9 @@ pub(super) struct Dynamics {
     pub(super) static_top_force: [f64; 2],
     /// Force the cable exerts on its bottom support at rest (N).
     pub(super) static_support_force: [f64; 2],
-    /// Step size of `factor` (s) and the factorised effective stiffness.
-    pub(super) h: f64,
-    pub(super) factor: Option<BandLdlt>,
-    pub(super) effective: SymmetricBand,
+    /// The shared integrator with the factorised effective stiffness.
+    pub(super) newmark: IteratedNewmark,
     // Scratch, sized once.
-    pub(super) rhs: Vec<f64>,
-    pub(super) load: Vec<f64>,
-    pub(super) scratch: Vec<f64>,
-    pub(super) q_new: Vec<f64>,
-    pub(super) v_iter: Vec<f64>,
     pub(super) node_velocity: Vec<[f64; 2]>,
     pub(super) node_drag: Vec<[f64; 2]>,
 }
@@ -112,18 +107,11 @@ impl Cable {
             m_ff: trailing_block(&full_m, 2),
             c_ff: trailing_block(&full_c, 2),
             k_ff: trailing_block(&full_k, 2),
-            effective: SymmetricBand::zeros(free, elements::BAND),
+            newmark: IteratedNewmark::new(free, elements::BAND),
             drag,
             static_top_force: top_force,
             static_support_force,
-            h: 0.0,
-            factor: None,
             statics,
-            rhs: vec![0.0; free],
-            load: vec![0.0; free],
-            scratch: vec![0.0; free],
-            q_new: vec![0.0; free],
-            v_iter: vec![0.0; free],
             node_velocity: vec![[0.0; 2]; nodes],
             node_drag: vec![[0.0; 2]; nodes],
         })
@@ -131,25 +119,6 @@ impl Cable {
 }
 
 impl Dynamics {
-    /// Factorises K + 2/h C + 4/h^2 M for step h (s) when h changed.
-    pub(super) fn prepare(&mut self, h: f64) -> Result<(), UnitError> {
-        if self.factor.is_some() && self.h == h {
-            return Ok(());
-        }
-        self.effective.set_combination(&[
-            (1.0, &self.k_ff),
-            (2.0 / h, &self.c_ff),
-            (4.0 / (h * h), &self.m_ff),
-        ]);
-        self.factor = Some(BandLdlt::new(&self.effective).ok_or_else(|| {
-            UnitError::Numerical(format!(
-                "the effective stiffness for h = {h} s is not positive definite"
-            ))
-        })?);
-        self.h = h;
-        Ok(())
-    }
-
     /// The drag's nonlinear remainder (N per node) for free velocities `v` and
     /// bottom velocity `vb`, into `node_drag`; its linear part is in the damping.
     pub(super) fn drag_change(&mut self, v: &[f64], vb: [f64; 2]) {
@@ -163,58 +132,61 @@ impl Dynamics {
     }
 }
 
-/// Solves the step for the free DOFs, iterating on the drag with the factorised
-/// effective stiffness (modified Newton). Leaves the new displacement in `q_new`,
-/// velocity in `v_iter` and acceleration in `scratch`; returns the iterations.
-pub(super) fn drag_iterations(
-    d: &mut Dynamics,
-    s: &CableState,
-    factor: &BandLdlt,
-    h: f64,
-    vb: [f64; 2],
-    tolerance: f64,
-) -> Result<u32, UnitError> {
-    let n = s.q.len();
-    // Predict the end velocity from the start acceleration.
-    for i in 0..n {
-        d.v_iter[i] = s.v[i] + h * s.a[i];
+/// The cable during one step, as the shared integrator sees it: its free DOFs
+/// with the drag remainder as the nonlinear force (the bottom moves with `vb`).
+pub(super) struct CableStep<'a> {
+    pub(super) dynamics: &'a mut Dynamics,
+    pub(super) state: &'a mut CableState,
+    /// Bottom velocity at the step's end (m/s).
+    pub(super) vb: [f64; 2],
+}
+
+impl SecondOrderSystem for CableStep<'_> {
+    fn label(&self) -> &str {
+        "cable"
     }
-    let max_iterations = 100u32;
-    let mut iterations = 0;
-    loop {
-        iterations += 1;
-        d.load.copy_from_slice(&d.rhs);
-        if d.drag.is_some() {
-            let v_iter = std::mem::take(&mut d.v_iter);
-            d.drag_change(&v_iter, vb);
-            d.v_iter = v_iter;
-            for j in 1..d.node_drag.len() {
-                d.load[2 * (j - 1)] += d.node_drag[j][0];
-                d.load[2 * (j - 1) + 1] += d.node_drag[j][1];
-            }
+
+    fn matrices(&self) -> Matrices<'_> {
+        let d = &*self.dynamics;
+        Matrices {
+            mass: &d.m_ff,
+            damping: d.damped.then_some(&d.c_ff),
+            stiffness: &d.k_ff,
         }
-        d.q_new.copy_from_slice(&d.load);
-        factor.solve_in_place(&mut d.q_new);
-        let mut change: f64 = 0.0;
-        for i in 0..n {
-            let a_new = 4.0 / (h * h) * (d.q_new[i] - s.q[i]) - 4.0 / h * s.v[i] - s.a[i];
-            let v_new = s.v[i] + 0.5 * h * (s.a[i] + a_new);
-            change = change.max((v_new - d.v_iter[i]).abs());
-            d.v_iter[i] = v_new;
-            d.scratch[i] = a_new;
-        }
-        if !change.is_finite() {
-            return Err(UnitError::Numerical(format!(
-                "the cable's velocity became {change} in a step of {h} s"
-            )));
-        }
-        if d.drag.is_none() || change <= tolerance {
-            return Ok(iterations);
-        }
-        if iterations == max_iterations {
-            return Err(UnitError::Numerical(format!(
-                "drag iterations did not converge in {max_iterations} iterations (last velocity change {change:.3e} m/s, step {h} s)"
-            )));
+    }
+
+    fn motion(&self) -> [&[f64]; 3] {
+        [&self.state.q, &self.state.v, &self.state.a]
+    }
+
+    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
+        self.state.q.copy_from_slice(q);
+        self.state.v.copy_from_slice(v);
+        self.state.a.copy_from_slice(a);
+    }
+
+    fn is_linear(&self) -> bool {
+        self.dynamics.drag.is_none()
+    }
+
+    /// The drag remainder at the free nodes' velocities `v`, as a force on the
+    /// left-hand side (its negative is a load); no tangent (the iteration is on the
+    /// fixed factorisation).
+    fn nonlinear_force(
+        &mut self,
+        _q: &[f64],
+        v: &[f64],
+        _t: f64,
+        _tangent: Option<(&mut SymmetricBand, TangentScales)>,
+        force: &mut Vec<f64>,
+    ) {
+        let d = &mut *self.dynamics;
+        d.drag_change(v, self.vb);
+        force.clear();
+        force.resize(v.len(), 0.0);
+        for j in 1..d.node_drag.len() {
+            force[2 * (j - 1)] = -d.node_drag[j][0];
+            force[2 * (j - 1) + 1] = -d.node_drag[j][1];
         }
     }
 }

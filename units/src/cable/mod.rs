@@ -20,7 +20,8 @@ pub mod params;
 pub mod statics;
 
 mod dynamics;
-use dynamics::{Dynamics, drag_iterations, mat2};
+use crate::integrators::newmark_iterated::LoadIteration;
+use dynamics::{CableStep, Dynamics, mat2};
 
 use crate::contract::StateSlot;
 use crate::contract::Time;
@@ -28,7 +29,7 @@ use crate::contract::{
     Capabilities, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
 };
 use crate::contract::{Hold, Inputs, Port, PortKind};
-use crate::numerics::banded::{BandLdlt, SymmetricBand};
+use crate::numerics::banded::SymmetricBand;
 use drag::Drag;
 use elements::ElementProperties;
 pub use params::{CableParams, Effects, Section};
@@ -296,13 +297,13 @@ impl Unit for Cable {
         Ok(())
     }
 
-    fn do_step(&mut self, _t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let d = self
             .dynamics
             .as_mut()
             .ok_or_else(|| UnitError::Unsupported("do_step before initialize".into()))?;
+        let t1 = (t + h).as_secs();
         let h = h.as_secs();
-        d.prepare(h)?;
         let s = &mut self.state;
         let n = s.q.len();
         // Prescribed bottom motion at the step's end.
@@ -320,46 +321,42 @@ impl Unit for Cable {
             ),
             Hold::ZeroOrder => ([s.qb[0] + h * vb[0], s.qb[1] + h * vb[1]], [0.0; 2]),
         };
-        // Constant part of the right-hand side.
-        d.rhs.fill(0.0);
-        for i in 0..n {
-            d.scratch[i] = 4.0 / (h * h) * s.q[i] + 4.0 / h * s.v[i] + s.a[i];
-        }
-        d.m_ff.mul_add(1.0, &d.scratch, &mut d.rhs);
-        if d.damped {
-            for i in 0..n {
-                d.scratch[i] = 2.0 / h * s.q[i] + s.v[i];
-            }
-            d.c_ff.mul_add(1.0, &d.scratch, &mut d.rhs);
-        }
-        d.rhs[n - 2] += inputs.at(TOP_FX, 1.0) - d.static_top_force[0];
-        d.rhs[n - 1] += inputs.at(TOP_FZ, 1.0) - d.static_top_force[1];
-        let (mfb, cfb, kfb) = (mat2(&d.m_fb, ab), mat2(&d.c_fb, vb), mat2(&d.k_fb, qb));
-        for c in 0..2 {
-            d.rhs[c] -= mfb[c] + cfb[c] + kfb[c];
-        }
-        // Newmark with drag iterations on the fixed factorisation.
-        let Some(factor) = d.factor.take() else {
-            return Err(UnitError::Numerical(
-                "the effective stiffness was not factorised".into(),
-            ));
+        // The load at the step's end: the top force's change and the bottom
+        // motion through the coupling blocks.
+        let top = [
+            inputs.at(TOP_FX, 1.0) - d.static_top_force[0],
+            inputs.at(TOP_FZ, 1.0) - d.static_top_force[1],
+        ];
+        let coupling = {
+            let (mfb, cfb, kfb) = (mat2(&d.m_fb, ab), mat2(&d.c_fb, vb), mat2(&d.k_fb, qb));
+            [mfb[0] + cfb[0] + kfb[0], mfb[1] + cfb[1] + kfb[1]]
         };
-        let drag_tolerance = self.params.drag_tolerance;
-        let outcome = drag_iterations(d, s, &factor, h, vb, drag_tolerance);
-        d.factor = Some(factor);
+        let end_load = |rhs: &mut [f64]| {
+            rhs[n - 2] += top[0];
+            rhs[n - 1] += top[1];
+            rhs[0] -= coupling[0];
+            rhs[1] -= coupling[1];
+        };
+        let iteration = LoadIteration {
+            tolerance: self.params.drag_tolerance,
+            max_iterations: 100,
+        };
+        let mut newmark = std::mem::take(&mut d.newmark);
+        let mut step = CableStep {
+            dynamics: d,
+            state: s,
+            vb,
+        };
+        let outcome = newmark.step(&mut step, t1, h, end_load, iteration);
+        d.newmark = newmark;
         let iterations = outcome?;
-        s.q.copy_from_slice(&d.q_new);
-        s.v.copy_from_slice(&d.v_iter);
-        s.a.copy_from_slice(&d.scratch);
         s.qb = qb;
         s.vb = vb;
         s.ab = ab;
         // Force on the support: static pull minus the bottom node's dynamic
-        // equation, plus its drag change (drag_change holds the final velocities).
+        // equation, plus its drag change at the final velocities.
         if d.drag.is_some() {
-            let v_final = std::mem::take(&mut d.v_iter);
-            d.drag_change(&v_final, vb);
-            d.v_iter = v_final;
+            d.drag_change(&s.v, vb);
         }
         let (a1, v1, q1) = ([s.a[0], s.a[1]], [s.v[0], s.v[1]], [s.q[0], s.q[1]]);
         let t = |m: &[[f64; 2]; 2], x: [f64; 2]| {

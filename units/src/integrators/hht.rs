@@ -17,7 +17,8 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 /// The constant matrices of a second-order system.
 pub struct Matrices<'a> {
     pub mass: &'a SymmetricBand,
-    pub damping: &'a SymmetricBand,
+    /// `None` when the system has no damping (its products are skipped).
+    pub damping: Option<&'a SymmetricBand>,
     pub stiffness: &'a SymmetricBand,
 }
 
@@ -46,16 +47,17 @@ pub trait SecondOrderSystem {
     /// Whether `g` is absent (a linear step).
     fn is_linear(&self) -> bool;
 
-    /// The nonlinear force at the Newton iterate (q1 = `q`, v1 = `v`, time `t`),
-    /// weighted as it enters the residual (usually `1 - alpha`), into `force`
-    /// (resized by the system); adds its tangent, scaled by `scales`, to `tangent`.
+    /// The nonlinear force at the iterate (q1 = `q`, v1 = `v`, time `t`), weighted
+    /// as it enters the residual (`tangent`'s stiffness scale, `1 - alpha` under
+    /// HHT-alpha; 1 without a tangent), into `force` (sized by the system). With
+    /// `tangent`, adds the force's tangent scaled by its scales to the matrix
+    /// (Newton); without, the integrator iterates on a fixed matrix.
     fn nonlinear_force(
         &mut self,
         q: &[f64],
         v: &[f64],
         t: f64,
-        scales: TangentScales,
-        tangent: &mut SymmetricBand,
+        tangent: Option<(&mut SymmetricBand, TangentScales)>,
         force: &mut Vec<f64>,
     );
 
@@ -166,11 +168,16 @@ impl HhtAlpha {
             return;
         }
         let (alpha, beta, gamma) = self.parameters();
-        self.linear.set_combination(&[
-            (1.0 / (beta * h * h), m.mass),
-            ((1.0 - alpha) * gamma / (beta * h), m.damping),
-            (1.0 - alpha, m.stiffness),
-        ]);
+        match m.damping {
+            Some(c) => self.linear.set_combination(&[
+                (1.0 / (beta * h * h), m.mass),
+                ((1.0 - alpha) * gamma / (beta * h), c),
+                (1.0 - alpha, m.stiffness),
+            ]),
+            None => self
+                .linear
+                .set_combination(&[(1.0 / (beta * h * h), m.mass), (1.0 - alpha, m.stiffness)]),
+        }
         let mut with_held = self.linear.clone();
         for (d, _) in held {
             with_held.set_identity_row(*d);
@@ -217,7 +224,9 @@ impl HhtAlpha {
             let g0 = loads.g0.map_or(0.0, |g| g[i]);
             self.constant[i] = alpha * g0 - (1.0 - alpha) * loads.f1[i] - alpha * loads.f0[i];
         }
-        m.damping.mul_add(alpha, &self.v0, &mut self.constant);
+        if let Some(c) = m.damping {
+            c.mul_add(alpha, &self.v0, &mut self.constant);
+        }
         m.stiffness.mul_add(alpha, &self.q0, &mut self.constant);
     }
 
@@ -322,8 +331,7 @@ impl HhtAlpha {
             &self.y,
             &self.v1,
             loads.t1,
-            scales,
-            &mut self.jacobian,
+            Some((&mut self.jacobian, scales)),
             &mut self.force,
         );
         for (d, _) in loads.held {
@@ -347,7 +355,9 @@ impl HhtAlpha {
             *ri += f;
         }
         m.mass.mul_add(1.0, &self.a1, r);
-        m.damping.mul_add(1.0 - alpha, &self.v1, r);
+        if let Some(c) = m.damping {
+            c.mul_add(1.0 - alpha, &self.v1, r);
+        }
         m.stiffness.mul_add(1.0 - alpha, &self.y, r);
         for (d, _) in held {
             r[*d] = 0.0;
