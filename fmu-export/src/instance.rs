@@ -169,7 +169,7 @@ impl Instance {
                 config.guid
             ));
         }
-        let layout = config.layout()?;
+        let layout = config.layout().map_err(|e| e.to_string())?;
         let n_in = layout.unit.inputs.len();
         let inputs = layout
             .unit

@@ -54,8 +54,11 @@ pub struct FmuParams {
 }
 
 mod describe;
+mod error;
 mod library;
+
 use describe::{describe, real_refs, start_values};
+pub use error::LoadError;
 use library::{
     Api, LogBook, calloc, free, log_tail, open_now, preload_globally, slender_fmi_logger,
 };
@@ -126,31 +129,43 @@ unsafe impl Send for FmuUnit {}
 
 impl FmuUnit {
     /// Loads and instantiates the FMU (`params.file` relative to `base_dir`).
-    pub fn load(params: &FmuParams, base_dir: &Path) -> Result<FmuUnit, String> {
+    pub fn load(params: &FmuParams, base_dir: &Path) -> Result<FmuUnit, LoadError> {
         let path = if params.file.is_absolute() {
             params.file.clone()
         } else {
             base_dir.join(&params.file)
         };
         let label = path.display().to_string();
-        let file = std::fs::File::open(&path).map_err(|e| format!("{label}: cannot open ({e})"))?;
+        let archive_error = |problem: &'static str| {
+            let fmu = label.clone();
+            move |e: &dyn std::fmt::Display| LoadError::Archive {
+                fmu,
+                problem,
+                reason: e.to_string(),
+            }
+        };
+        let file = std::fs::File::open(&path).map_err(|e| archive_error("cannot open")(&e))?;
         let mut archive = zip::ZipArchive::new(file)
-            .map_err(|e| format!("{label}: not a readable zip archive ({e})"))?;
+            .map_err(|e| archive_error("not a readable zip archive")(&e))?;
         let folder = tempfile::Builder::new()
             .prefix("slender-fmu-")
             .tempdir()
-            .map_err(|e| format!("{label}: cannot create a temporary folder ({e})"))?;
+            .map_err(|e| archive_error("cannot create a temporary folder")(&e))?;
         archive
             .extract(folder.path())
-            .map_err(|e| format!("{label}: cannot unzip ({e})"))?;
+            .map_err(|e| archive_error("cannot unzip")(&e))?;
         let xml =
             std::fs::read_to_string(folder.path().join("modelDescription.xml")).map_err(|e| {
-                format!("{label}: no readable modelDescription.xml at the archive root ({e})")
+                archive_error("no readable modelDescription.xml at the archive root")(&e)
             })?;
-        let model = ModelDescription::parse(&xml).map_err(|e| format!("{label}: {e}"))?;
-        let cs = model.co_simulation.clone().ok_or_else(|| {
-            format!("{label}: the FMU does not offer co-simulation (no <CoSimulation> element); only FMI 2.0 co-simulation FMUs can be units")
+        let model = ModelDescription::parse(&xml).map_err(|source| LoadError::Description {
+            fmu: label.clone(),
+            source,
         })?;
+        let cs = model
+            .co_simulation
+            .clone()
+            .ok_or_else(|| LoadError::NotCoSimulation { fmu: label.clone() })?;
         let binary = folder
             .path()
             .join("binaries/linux64")
@@ -163,29 +178,33 @@ impl FmuUnit {
                         .collect()
                 })
                 .unwrap_or_default();
-            return Err(format!(
-                "{label}: no binary for this platform: expected binaries/linux64/{}.so; the FMU has {}",
-                cs.model_identifier,
-                if platforms.is_empty() {
+            return Err(LoadError::NoBinary {
+                fmu: label,
+                identifier: cs.model_identifier,
+                found: if platforms.is_empty() {
                     "no binaries at all (source-only FMUs are not compiled by slender)".to_owned()
                 } else {
                     format!("binaries for {}", platforms.join(", "))
-                }
-            ));
+                },
+            });
         }
+        let library_error = |message: String| LoadError::Library {
+            fmu: label.clone(),
+            message,
+        };
         for lib in &params.preload {
-            preload_globally(lib).map_err(|e| format!("{label}: preload: {e}"))?;
+            preload_globally(lib).map_err(|e| library_error(format!("preload: {e}")))?;
         }
         let library = open_now(&binary).map_err(|e| {
-            if e.contains("undefined symbol") && e.contains("Py") {
+            library_error(if e.contains("undefined symbol") && e.contains("Py") {
                 format!(
-                    "{label}: the FMU was built with Python (e.g. pythonfmu) and needs libpython loaded first ({e}). Add `preload = [\"<LIBDIR>/libpython3.X.so\"]` to the unit's parameters, LIBDIR from `python3 -c \"import sysconfig; print(sysconfig.get_config_var('LIBDIR'))\"`, or run with LD_PRELOAD set to that library"
+                    "the FMU was built with Python (e.g. pythonfmu) and needs libpython loaded first ({e}). Add `preload = [\"<LIBDIR>/libpython3.X.so\"]` to the unit's parameters, LIBDIR from `python3 -c \"import sysconfig; print(sysconfig.get_config_var('LIBDIR'))\"`, or run with LD_PRELOAD set to that library"
                 )
             } else {
-                format!("{label}: cannot load {} ({e})", binary.display())
-            }
+                format!("cannot load {} ({e})", binary.display())
+            })
         })?;
-        let api = Api::bind(&library, &label, cs.can_get_and_set_fmu_state)?;
+        let api = Api::bind(&library, cs.can_get_and_set_fmu_state).map_err(library_error)?;
         let description = describe(&model, &label)?;
         let starts = start_values(&model, &params.start, &label)?;
         let input_refs: Vec<u32> = real_refs(&model, VariableCausality::Input);
@@ -205,7 +224,10 @@ impl FmuUnit {
         let resources = folder.path().join("resources");
         let uri = file_uri(&resources);
         let c = |s: &str| {
-            CString::new(s).map_err(|_| format!("{label}: `{s}` contains a NUL character"))
+            CString::new(s).map_err(|_| LoadError::Nul {
+                fmu: label.clone(),
+                text: s.to_owned(),
+            })
         };
         let (name, guid, uri) = (c(&model.model_name)?, c(&model.guid)?, c(&uri)?);
         // SAFETY: FMI 2.0 fmi2Instantiate with valid C strings and callbacks that
@@ -226,7 +248,10 @@ impl FmuUnit {
             )
         };
         if component.is_null() {
-            return Err(format!("{label}: fmi2Instantiate failed{}", log_tail(&log)));
+            return Err(LoadError::Instantiate {
+                fmu: label,
+                log: log_tail(&log),
+            });
         }
         let mut unit = FmuUnit {
             label,

@@ -3,7 +3,42 @@
 //! start inputs, wrapping a whole scene). The FMU layout and packaging themselves
 //! are in `slender_fmi::export`.
 
-use crate::{Scene, kinds};
+use crate::kinds::BuildError;
+use crate::{Scene, SceneError, kinds};
+use slender_coupling::MasterError;
+use slender_units::UnitError;
+
+/// Why a scene's unit could not be exported (or a scene wrapped).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExportError {
+    #[error("{scene}: no unit `{unit}`; its units are: {units}")]
+    NoUnit {
+        scene: String,
+        unit: String,
+        units: String,
+    },
+    #[error("unknown unit kind `{0}`")]
+    UnknownKind(String),
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    #[error("{scene}: initialisation: {source}")]
+    Initialization {
+        scene: String,
+        source: Box<MasterError>,
+    },
+    #[error(transparent)]
+    Build(#[from] BuildError),
+    #[error(transparent)]
+    Unit(#[from] UnitError),
+    /// Writing the FMU or the wrapped scene (`slender_fmi` reports its own
+    /// problems as text: the file and what went wrong).
+    #[error("{0}")]
+    Write(String),
+    /// The scene file cannot be read or rewritten as a wrapped scene.
+    #[error("{path}: {problem}")]
+    SceneFile { path: String, problem: String },
+}
 use slender_coupling::Master;
 use slender_fmi::export::{ExportConfig, KindInfo, Layout};
 use slender_units::{Driver, Unit};
@@ -14,29 +49,33 @@ use std::path::Path;
 /// scenes (the registry lives in this crate, the configuration in `slender-fmi`).
 pub trait SceneExport: Sized {
     /// The section of unit `unit` of a loaded scene.
-    fn from_scene(scene: &Scene, unit: &str) -> Result<Self, String>;
+    fn from_scene(scene: &Scene, unit: &str) -> Result<Self, ExportError>;
 
     /// The section of unit `unit`, with the start inputs of `master`, the scene
     /// already initialised (see [`settle`]).
-    fn from_settled(scene: &Scene, master: &Master, unit: &str) -> Result<Self, String>;
+    fn from_settled(scene: &Scene, master: &Master, unit: &str) -> Result<Self, ExportError>;
 
     /// Builds the unit with the current parameters and effects.
-    fn build_unit(&self) -> Result<Box<dyn Unit>, String>;
+    fn build_unit(&self) -> Result<Box<dyn Unit>, ExportError>;
 
     /// The unit in a driver with the configured hold.
-    fn driver(&self) -> Result<Driver, String>;
+    fn driver(&self) -> Result<Driver, ExportError>;
 
     /// The FMU layout: builds the unit once to read its ports (with the holds in
     /// force) and to check its parameters.
-    fn layout(&self) -> Result<Layout, String>;
+    fn layout(&self) -> Result<Layout, ExportError>;
 }
 
 impl SceneExport for ExportConfig {
-    fn from_scene(scene: &Scene, unit: &str) -> Result<ExportConfig, String> {
+    fn from_scene(scene: &Scene, unit: &str) -> Result<ExportConfig, ExportError> {
         Self::from_settled(scene, &settle(scene)?, unit)
     }
 
-    fn from_settled(scene: &Scene, master: &Master, unit: &str) -> Result<ExportConfig, String> {
+    fn from_settled(
+        scene: &Scene,
+        master: &Master,
+        unit: &str,
+    ) -> Result<ExportConfig, ExportError> {
         let spec = scene
             .spec
             .units
@@ -49,16 +88,21 @@ impl SceneExport for ExportConfig {
                     .iter()
                     .map(|u| u.name.get_ref().as_str())
                     .collect();
-                format!(
-                    "{}: no unit `{unit}`; its units are: {}",
-                    scene.path.display(),
-                    names.join(", ")
-                )
+                ExportError::NoUnit {
+                    scene: scene.path.display().to_string(),
+                    unit: unit.to_owned(),
+                    units: names.join(", "),
+                }
             })?;
-        let index = master
-            .unit_names()
-            .position(|n| n == unit)
-            .ok_or_else(|| format!("no unit `{unit}`"))?;
+        let index =
+            master
+                .unit_names()
+                .position(|n| n == unit)
+                .ok_or_else(|| ExportError::NoUnit {
+                    scene: scene.path.display().to_string(),
+                    unit: unit.to_owned(),
+                    units: master.unit_names().collect::<Vec<_>>().join(", "),
+                })?;
         let inputs = master
             .description(index)
             .inputs
@@ -86,34 +130,34 @@ impl SceneExport for ExportConfig {
         Ok(config)
     }
 
-    fn build_unit(&self) -> Result<Box<dyn Unit>, String> {
+    fn build_unit(&self) -> Result<Box<dyn Unit>, ExportError> {
         let kind =
-            kinds::find(&self.kind).ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
+            kinds::find(&self.kind).ok_or_else(|| ExportError::UnknownKind(self.kind.clone()))?;
         let context = kinds::BuildContext {
             effects: &self.effects,
             base_dir: Path::new("."),
         };
-        kind.build(self.parameters.clone(), &context)
+        Ok(kind.build(self.parameters.clone(), &context)?)
     }
 
-    fn driver(&self) -> Result<Driver, String> {
+    fn driver(&self) -> Result<Driver, ExportError> {
         let mut unit = Driver::new(self.build_unit()?);
         if let Some(hold) = self.hold {
             for port in 0..unit.description().inputs.len() {
-                unit.set_hold(port, hold).map_err(|e| e.to_string())?;
+                unit.set_hold(port, hold)?;
             }
         }
         Ok(unit)
     }
 
-    fn layout(&self) -> Result<Layout, String> {
+    fn layout(&self) -> Result<Layout, ExportError> {
         let driver = self.driver()?;
         let mut unit = driver.description().clone();
         for (port, hold) in unit.inputs.iter_mut().zip(driver.holds()) {
             port.hold = *hold;
         }
         let kind =
-            kinds::find(&self.kind).ok_or_else(|| format!("unknown unit kind `{}`", self.kind))?;
+            kinds::find(&self.kind).ok_or_else(|| ExportError::UnknownKind(self.kind.clone()))?;
         let info = KindInfo {
             summary: kind.summary,
             effects: kind.effects,
@@ -124,35 +168,46 @@ impl SceneExport for ExportConfig {
 
 /// Writes the FMU for `config` to `out` (see `slender_fmi::export::package`) and
 /// returns its layout.
-pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Layout, String> {
+pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Layout, ExportError> {
     let layout = config.layout()?;
-    slender_fmi::export::package(config, &layout, binary, out)?;
+    slender_fmi::export::package(config, &layout, binary, out).map_err(ExportError::Write)?;
     Ok(layout)
 }
 
 /// The scene built and initialised: its master holds the settled start inputs of
 /// every unit.
-pub fn settle(scene: &Scene) -> Result<Master, String> {
-    let mut master = scene.build().map_err(|e| e.to_string())?;
+pub fn settle(scene: &Scene) -> Result<Master, ExportError> {
+    let mut master = scene.build()?;
     master
         .initialize(scene.start)
-        .map_err(|e| format!("{}: initialisation: {e}", scene.path.display()))?;
+        .map_err(|e| ExportError::Initialization {
+            scene: scene.path.display().to_string(),
+            source: Box::new(e),
+        })?;
     Ok(master)
 }
 
 /// Exports every unit of a scene as an FMU into `dir` and writes there a copy of
 /// the scene whose units are those FMUs (kind `fmu`), so the same run can go
 /// through the FMI layer. Returns the new scene's path.
-pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path::PathBuf, String> {
+pub fn wrap_scene(
+    scene: &Scene,
+    binary: &Path,
+    dir: &Path,
+) -> Result<std::path::PathBuf, ExportError> {
+    let file_error = |path: &Path, problem: String| ExportError::SceneFile {
+        path: path.display().to_string(),
+        problem,
+    };
     let text = std::fs::read_to_string(&scene.path)
-        .map_err(|e| format!("{}: cannot read ({e})", scene.path.display()))?;
+        .map_err(|e| file_error(&scene.path, format!("cannot read ({e})")))?;
     let mut table: toml::Table =
-        toml::from_str(&text).map_err(|e| format!("{}: {}", scene.path.display(), e.message()))?;
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create ({e})", dir.display()))?;
+        toml::from_str(&text).map_err(|e| file_error(&scene.path, e.message().to_owned()))?;
+    std::fs::create_dir_all(dir).map_err(|e| file_error(dir, format!("cannot create ({e})")))?;
     let units = table
         .get_mut("units")
         .and_then(toml::Value::as_array_mut)
-        .ok_or_else(|| format!("{}: no [[units]]", scene.path.display()))?;
+        .ok_or_else(|| file_error(&scene.path, "no [[units]]".into()))?;
     let master = settle(scene)?;
     // Inputs renamed in the FMUs ("unit.port" -> "unit.port_in"), for the
     // connections below.
@@ -160,11 +215,11 @@ pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path:
     for unit in units.iter_mut() {
         let unit = unit
             .as_table_mut()
-            .ok_or("a [[units]] entry is not a table")?;
+            .ok_or_else(|| file_error(&scene.path, "a [[units]] entry is not a table".into()))?;
         let name = unit
             .get("name")
             .and_then(toml::Value::as_str)
-            .ok_or("a unit without a name")?
+            .ok_or_else(|| file_error(&scene.path, "a unit without a name".into()))?
             .to_owned();
         let config = ExportConfig::from_settled(scene, &master, &name)?;
         let file = format!("{name}.fmu");
@@ -213,7 +268,7 @@ pub fn wrap_scene(scene: &Scene, binary: &Path, dir: &Path) -> Result<std::path:
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
     let out = dir.join(format!("{stem}_fmu.toml"));
-    let written = toml::to_string(&table).map_err(|e| format!("{}: {e}", out.display()))?;
-    std::fs::write(&out, written).map_err(|e| format!("{}: cannot write ({e})", out.display()))?;
+    let written = toml::to_string(&table).map_err(|e| file_error(&out, e.to_string()))?;
+    std::fs::write(&out, written).map_err(|e| file_error(&out, format!("cannot write ({e})")))?;
     Ok(out)
 }

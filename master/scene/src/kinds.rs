@@ -2,8 +2,7 @@
 
 use crate::fields::field_names;
 use serde::de::DeserializeOwned;
-use slender_fmi::import::{FmuParams, FmuUnit};
-use slender_units::Unit;
+use slender_fmi::import::{FmuParams, FmuUnit, LoadError};
 use slender_units::beam::touchdown::{TouchdownEstimate, TouchdownParams};
 use slender_units::beam::{Beam, BeamParams};
 use slender_units::benchmark::algebraic_loop::{
@@ -15,6 +14,7 @@ use slender_units::signal::artefact::{Artefact, ArtefactParams};
 use slender_units::signal::characteristic_load::{CharacteristicLoad, CharacteristicLoadParams};
 use slender_units::span::coupling::{SpanCoupling, SpanCouplingParams};
 use slender_units::span::unit::{SpanParams, SpanUnit};
+use slender_units::{Unit, UnitError};
 use std::path::Path;
 
 /// What a builder needs besides the parameter table.
@@ -27,7 +27,30 @@ pub struct BuildContext<'a> {
 }
 
 /// Builds a unit from its parameter table and the context.
-type Builder = fn(toml::Table, &BuildContext) -> Result<Box<dyn Unit>, String>;
+type Builder = fn(toml::Table, &BuildContext) -> Result<Box<dyn Unit>, BuildError>;
+
+/// Why a unit could not be built from its scene section.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum BuildError {
+    #[error("effect `{effect}`: kind `{kind}` has no switchable effects")]
+    NoEffects { effect: String, kind: &'static str },
+    #[error("effect `{effect}`: kind `{kind}` offers {offered}")]
+    UnknownEffect {
+        effect: String,
+        kind: &'static str,
+        offered: String,
+    },
+    /// The parameter table does not fit the kind's parameters (serde's message:
+    /// the unknown or missing key, or the wrong type).
+    #[error("{0}")]
+    Parameters(String),
+    /// The unit refused a parameter value.
+    #[error(transparent)]
+    Unit(#[from] UnitError),
+    #[error(transparent)]
+    Fmu(#[from] LoadError),
+}
 
 /// A unit kind: its scene name, what it is, and the effects it can switch.
 pub struct Kind {
@@ -47,10 +70,8 @@ pub const KINDS: &[Kind] = &[
         summary: "2D bar-element cable, static equilibrium + linear dynamics with exact drag; full line or a section",
         effects: &Effects::NAMES,
         build: |p, context| {
-            let effects = Effects::from_names(context.effects).map_err(|e| e.to_string())?;
-            Ok(Box::new(
-                Cable::new(parameters(p)?, effects).map_err(|e| e.to_string())?,
-            ))
+            let effects = Effects::from_names(context.effects)?;
+            Ok(Box::new(Cable::new(parameters(p)?, effects)?))
         },
     },
     Kind {
@@ -58,77 +79,49 @@ pub const KINDS: &[Kind] = &[
         parameters: field_names::<BeamParams>,
         summary: "Euler-Bernoulli pipe section: Hermite elements, HHT-alpha, two conditions per end, contact with a surface",
         effects: &[],
-        build: |p, _| {
-            Ok(Box::new(
-                Beam::new(parameters(p)?).map_err(|e| e.to_string())?,
-            ))
-        },
+        build: |p, _| Ok(Box::new(Beam::new(parameters(p)?)?)),
     },
     Kind {
         name: "span",
         parameters: field_names::<SpanParams>,
         summary: "seed 004 ch. 5: suspended span from upper rotation to lower deflection as an order-N rational transfer function",
         effects: &[],
-        build: |p, _| {
-            Ok(Box::new(
-                SpanUnit::new(parameters(p)?).map_err(|e| e.to_string())?,
-            ))
-        },
+        build: |p, _| Ok(Box::new(SpanUnit::new(parameters(p)?)?)),
     },
     Kind {
         name: "span_coupling",
         parameters: field_names::<SpanCouplingParams>,
         summary: "seed 004 ch. 5: suspended span between two sections, the full 4x4 transfer matrix (end motions and loads) as a common-pole rational fit",
         effects: &[],
-        build: |p, _| {
-            Ok(Box::new(
-                SpanCoupling::new(parameters(p)?).map_err(|e| e.to_string())?,
-            ))
-        },
+        build: |p, _| Ok(Box::new(SpanCoupling::new(parameters(p)?)?)),
     },
     Kind {
         name: "touchdown_estimate",
         parameters: field_names::<TouchdownParams>,
         summary: "seed 004 sec. 6.6: touchdown point x_C = -3 y(0) / y'(0) from a section's end values (valid for y > 0, y' < 0)",
         effects: &[],
-        build: |p, _| {
-            Ok(Box::new(
-                TouchdownEstimate::new(parameters(p)?).map_err(|e| e.to_string())?,
-            ))
-        },
+        build: |p, _| Ok(Box::new(TouchdownEstimate::new(parameters(p)?)?)),
     },
     Kind {
         name: "characteristic_load",
         parameters: field_names::<CharacteristicLoadParams>,
         summary: "seed 000 top load: static tension + low- and wave-frequency sweeps (source, outputs force_x, force_z)",
         effects: &[],
-        build: |p, _| {
-            Ok(Box::new(
-                CharacteristicLoad::new(parameters(p)?).map_err(|e| e.to_string())?,
-            ))
-        },
+        build: |p, _| Ok(Box::new(CharacteristicLoad::new(parameters(p)?)?)),
     },
     Kind {
         name: "artefact",
         parameters: field_names::<ArtefactParams>,
         summary: "control-system artefacts on a signal: scale, bias, noise, delay, signal loss, zero-order hold",
         effects: &[],
-        build: |p, _| {
-            Ok(Box::new(
-                Artefact::new(parameters(p)?).map_err(|e| e.to_string())?,
-            ))
-        },
+        build: |p, _| Ok(Box::new(Artefact::new(parameters(p)?)?)),
     },
     Kind {
         name: "oscillator",
         parameters: field_names::<OscillatorParams>,
         summary: "mass on a spring-damper to ground, coupled by a spring-damper or a force (B1-B3)",
         effects: &[],
-        build: |p, _| {
-            Ok(Box::new(
-                Oscillator::new(parameters(p)?).map_err(|e| e.to_string())?,
-            ))
-        },
+        build: |p, _| Ok(Box::new(Oscillator::new(parameters(p)?)?)),
     },
     Kind {
         name: "fmu",
@@ -152,11 +145,7 @@ pub const KINDS: &[Kind] = &[
         parameters: field_names::<SphereParams>,
         summary: "B6 unit B: c from a^2 + b^2 + c^2 = r^2, inputs a, b, output c",
         effects: &[],
-        build: |p, _| {
-            Ok(Box::new(
-                SphereClosure::new(parameters(p)?).map_err(|e| e.to_string())?,
-            ))
-        },
+        build: |p, _| Ok(Box::new(SphereClosure::new(parameters(p)?)?)),
     },
 ];
 
@@ -171,23 +160,23 @@ impl Kind {
         &self,
         params: toml::Table,
         context: &BuildContext,
-    ) -> Result<Box<dyn Unit>, String> {
+    ) -> Result<Box<dyn Unit>, BuildError> {
         if let Some(bad) = context
             .effects
             .iter()
             .find(|e| !self.effects.contains(&e.as_str()))
         {
             return Err(if self.effects.is_empty() {
-                format!(
-                    "effect `{bad}`: kind `{}` has no switchable effects",
-                    self.name
-                )
+                BuildError::NoEffects {
+                    effect: bad.clone(),
+                    kind: self.name,
+                }
             } else {
-                format!(
-                    "effect `{bad}`: kind `{}` offers {}",
-                    self.name,
-                    self.effects.join(", ")
-                )
+                BuildError::UnknownEffect {
+                    effect: bad.clone(),
+                    kind: self.name,
+                    offered: self.effects.join(", "),
+                }
             });
         }
         (self.build)(params, context)
@@ -195,6 +184,7 @@ impl Kind {
 }
 
 /// Reads a kind's parameter table into its typed parameters.
-fn parameters<T: DeserializeOwned>(table: toml::Table) -> Result<T, String> {
-    T::deserialize(toml::Value::Table(table)).map_err(|e| e.message().trim().to_owned())
+fn parameters<T: DeserializeOwned>(table: toml::Table) -> Result<T, BuildError> {
+    T::deserialize(toml::Value::Table(table))
+        .map_err(|e| BuildError::Parameters(e.message().trim().to_owned()))
 }

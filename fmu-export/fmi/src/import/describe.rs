@@ -5,7 +5,10 @@
 use super::*;
 
 /// The unit description of an FMU: Real inputs and outputs as ports.
-pub(super) fn describe(model: &ModelDescription, label: &str) -> Result<UnitDescription, String> {
+pub(super) fn describe(
+    model: &ModelDescription,
+    label: &str,
+) -> Result<UnitDescription, LoadError> {
     let inputs: Vec<usize> = (0..model.variables.len())
         .filter(|&i| is_real(model, i, VariableCausality::Input))
         .collect();
@@ -41,7 +44,9 @@ pub(super) fn describe(model: &ModelDescription, label: &str) -> Result<UnitDesc
     let cs = model
         .co_simulation
         .as_ref()
-        .ok_or_else(|| format!("{label}: no <CoSimulation> element"))?;
+        .ok_or_else(|| LoadError::NotCoSimulation {
+            fmu: label.to_owned(),
+        })?;
     Ok(UnitDescription {
         kind: "fmu".into(),
         inputs: inputs.iter().map(|&i| port_of(i, true)).collect(),
@@ -98,33 +103,33 @@ pub(super) fn start_values(
     model: &ModelDescription,
     starts: &BTreeMap<String, toml::Value>,
     label: &str,
-) -> Result<Vec<StartValue>, String> {
+) -> Result<Vec<StartValue>, LoadError> {
     let mut out = Vec::new();
     for (name, value) in starts {
         let v = model
             .variables
             .iter()
             .find(|v| &v.name == name)
-            .ok_or_else(|| {
-                format!(
-                    "{label}: start.{name}: the FMU has no variable `{name}`{}",
-                    did_you_mean(name, model.variables.iter().map(|v| v.name.as_str()))
-                )
+            .ok_or_else(|| LoadError::UnknownStart {
+                fmu: label.to_owned(),
+                name: name.clone(),
+                hint: did_you_mean(name, model.variables.iter().map(|v| v.name.as_str())),
             })?;
         if !matches!(
             v.causality,
             VariableCausality::Parameter | VariableCausality::Input
         ) {
-            return Err(format!(
-                "{label}: start.{name}: `{name}` is not a parameter or an input (its causality is {:?})",
-                v.causality
-            ));
+            return Err(LoadError::NotSettable {
+                fmu: label.to_owned(),
+                name: name.clone(),
+                causality: v.causality,
+            });
         }
-        let wrong = || {
-            format!(
-                "{label}: start.{name} = {value}: expected a {} value",
-                v.value.type_name()
-            )
+        let wrong = || LoadError::WrongStartType {
+            fmu: label.to_owned(),
+            name: name.clone(),
+            value: value.to_string(),
+            expected: v.value.type_name(),
         };
         let vr = v.value_reference;
         out.push(match (&v.value, value) {

@@ -126,55 +126,45 @@ pub(super) struct Api {
     pub(super) free_fmu_state: Option<StateCall>,
 }
 
-pub(super) fn symbol<T: Copy>(
-    library: &libloading::Library,
-    name: &str,
-    fmu: &str,
-) -> Result<T, String> {
+pub(super) fn symbol<T: Copy>(library: &libloading::Library, name: &str) -> Result<T, String> {
     let c_name = format!("{name}\0");
     // SAFETY: the types above are the FMI 2.0 signatures of these names.
     unsafe { library.get::<T>(c_name.as_bytes()) }
         .map(|s| *s)
         .map_err(|_| {
-            format!(
-                "{fmu}: the binary does not export `{name}` (required by FMI 2.0 co-simulation)"
-            )
+            format!("the binary does not export `{name}` (required by FMI 2.0 co-simulation)")
         })
 }
 
 impl Api {
-    pub(super) fn bind(
-        library: &libloading::Library,
-        fmu: &str,
-        states: bool,
-    ) -> Result<Api, String> {
+    pub(super) fn bind(library: &libloading::Library, states: bool) -> Result<Api, String> {
         Ok(Api {
-            instantiate: symbol(library, "fmi2Instantiate", fmu)?,
-            free_instance: symbol(library, "fmi2FreeInstance", fmu)?,
-            setup_experiment: symbol(library, "fmi2SetupExperiment", fmu)?,
-            enter_initialization_mode: symbol(library, "fmi2EnterInitializationMode", fmu)?,
-            exit_initialization_mode: symbol(library, "fmi2ExitInitializationMode", fmu)?,
-            terminate: symbol(library, "fmi2Terminate", fmu)?,
-            reset: symbol(library, "fmi2Reset", fmu)?,
-            get_real: symbol(library, "fmi2GetReal", fmu)?,
-            set_real: symbol(library, "fmi2SetReal", fmu)?,
-            set_integer: symbol(library, "fmi2SetInteger", fmu)?,
-            set_boolean: symbol(library, "fmi2SetBoolean", fmu)?,
-            set_string: symbol(library, "fmi2SetString", fmu)?,
-            set_real_input_derivatives: symbol(library, "fmi2SetRealInputDerivatives", fmu)?,
-            do_step: symbol(library, "fmi2DoStep", fmu)?,
+            instantiate: symbol(library, "fmi2Instantiate")?,
+            free_instance: symbol(library, "fmi2FreeInstance")?,
+            setup_experiment: symbol(library, "fmi2SetupExperiment")?,
+            enter_initialization_mode: symbol(library, "fmi2EnterInitializationMode")?,
+            exit_initialization_mode: symbol(library, "fmi2ExitInitializationMode")?,
+            terminate: symbol(library, "fmi2Terminate")?,
+            reset: symbol(library, "fmi2Reset")?,
+            get_real: symbol(library, "fmi2GetReal")?,
+            set_real: symbol(library, "fmi2SetReal")?,
+            set_integer: symbol(library, "fmi2SetInteger")?,
+            set_boolean: symbol(library, "fmi2SetBoolean")?,
+            set_string: symbol(library, "fmi2SetString")?,
+            set_real_input_derivatives: symbol(library, "fmi2SetRealInputDerivatives")?,
+            do_step: symbol(library, "fmi2DoStep")?,
             get_fmu_state: if states {
-                Some(symbol(library, "fmi2GetFMUstate", fmu)?)
+                Some(symbol(library, "fmi2GetFMUstate")?)
             } else {
                 None
             },
             set_fmu_state: if states {
-                Some(symbol(library, "fmi2SetFMUstate", fmu)?)
+                Some(symbol(library, "fmi2SetFMUstate")?)
             } else {
                 None
             },
             free_fmu_state: if states {
-                Some(symbol(library, "fmi2FreeFMUstate", fmu)?)
+                Some(symbol(library, "fmi2FreeFMUstate")?)
             } else {
                 None
             },

@@ -21,7 +21,8 @@ pub fn fmu(action: FmuAction) -> Result<(), CliError> {
         FmuAction::Wrap { scene, out, binary } => {
             let scene = load(&scene)?;
             let binary = library(binary)?;
-            let path = wrap_scene(&scene, &binary, &out).map_err(CliError::input)?;
+            let path =
+                wrap_scene(&scene, &binary, &out).map_err(|e| CliError::input(e.to_string()))?;
             println!("wrote {}", path.display());
             Ok(())
         }
@@ -52,7 +53,7 @@ fn export(
     let output = output.unwrap_or_else(|| PathBuf::from(format!("{unit}.fmu")));
     let layout = ExportConfig::from_scene(&scene, unit)
         .and_then(|config| package(&config, &binary, &output))
-        .map_err(CliError::input)?;
+        .map_err(|e| CliError::input(e.to_string()))?;
     let model = &layout.model;
     let count = |c| model.variables.iter().filter(|v| v.causality == c).count();
     println!(
@@ -75,7 +76,8 @@ fn info(fmu: PathBuf, preload: Vec<PathBuf>) -> Result<(), CliError> {
         preload,
         logging: true,
     };
-    let unit = FmuUnit::load(&params, Path::new(".")).map_err(CliError::input)?;
+    let unit =
+        FmuUnit::load(&params, Path::new(".")).map_err(|e| CliError::input(e.to_string()))?;
     let model = unit.model_description();
     let d = unit.description();
     println!(

@@ -1,0 +1,67 @@
+//! Why an FMU could not become a unit. Every message starts with the FMU's file.
+
+use crate::model_description::{DescriptionError, VariableCausality};
+use thiserror::Error;
+
+/// A failure to load an FMU as a unit (`FmuUnit::load`).
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum LoadError {
+    /// The file is not a readable FMU archive (open, unzip, temporary folder, no
+    /// model description at its root).
+    #[error("{fmu}: {problem} ({reason})")]
+    Archive {
+        fmu: String,
+        problem: &'static str,
+        reason: String,
+    },
+    /// `modelDescription.xml` does not parse or lacks what a master relies on.
+    #[error("{fmu}: {source}")]
+    Description {
+        fmu: String,
+        source: DescriptionError,
+    },
+    #[error(
+        "{fmu}: the FMU does not offer co-simulation (no <CoSimulation> element); only FMI 2.0 co-simulation FMUs can be units"
+    )]
+    NotCoSimulation { fmu: String },
+    /// No binary for linux64; `found` says what the FMU has instead.
+    #[error(
+        "{fmu}: no binary for this platform: expected binaries/linux64/{identifier}.so; the FMU has {found}"
+    )]
+    NoBinary {
+        fmu: String,
+        identifier: String,
+        found: String,
+    },
+    /// The binary (or a library to preload) does not load, or lacks an FMI entry
+    /// point; `message` says which and how to fix it.
+    #[error("{fmu}: {message}")]
+    Library { fmu: String, message: String },
+    #[error("{fmu}: start.{name}: the FMU has no variable `{name}`{hint}")]
+    UnknownStart {
+        fmu: String,
+        name: String,
+        hint: String,
+    },
+    #[error(
+        "{fmu}: start.{name}: `{name}` is not a parameter or an input (its causality is {causality:?})"
+    )]
+    NotSettable {
+        fmu: String,
+        name: String,
+        causality: VariableCausality,
+    },
+    #[error("{fmu}: start.{name} = {value}: expected a {expected} value")]
+    WrongStartType {
+        fmu: String,
+        name: String,
+        value: String,
+        expected: &'static str,
+    },
+    #[error("{fmu}: `{text}` contains a NUL character")]
+    Nul { fmu: String, text: String },
+    /// `fmi2Instantiate` returned null; `log` holds the FMU's last log lines.
+    #[error("{fmu}: fmi2Instantiate failed{log}")]
+    Instantiate { fmu: String, log: String },
+}
