@@ -162,7 +162,7 @@ impl Instance {
                 file.display()
             )
         })?;
-        let config = ExportConfig::from_toml(&text)?;
+        let config = ExportConfig::from_toml(&text).map_err(|e| e.to_string())?;
         if config.guid != guid {
             return Err(format!(
                 "GUID {guid} does not match this FMU's {} (model description and resources disagree)",
@@ -338,7 +338,9 @@ impl Instance {
             ));
         }
         let target = self.layout.parameters[p].target.clone();
-        self.config.set_parameter(&target, value.clone())?;
+        self.config
+            .set_parameter(&target, value.clone())
+            .map_err(|e| e.to_string())?;
         self.parameters[p] = value;
         self.rebuild = true;
         Ok(())

@@ -24,6 +24,28 @@ use std::collections::BTreeMap;
 use std::io::Write as _;
 use std::path::Path;
 
+/// Why an FMU's configuration, a parameter of it, or its packaging failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PackageError {
+    /// The configuration (`resources/slender-unit.toml`) does not read or write.
+    #[error("{CONFIG_FILE}: {0}")]
+    Config(String),
+    /// A parameter value does not fit its variable.
+    #[error("{0}")]
+    Parameter(String),
+    /// A file (the FMU library, the FMU being written) and what went wrong.
+    #[error("{path}: {problem}")]
+    File { path: String, problem: String },
+}
+
+fn file_error(path: &Path, problem: String) -> PackageError {
+    PackageError::File {
+        path: path.display().to_string(),
+        problem,
+    }
+}
+
 /// Name of the unit's data inside the FMU's `resources/` folder.
 pub const CONFIG_FILE: &str = "slender-unit.toml";
 
@@ -90,13 +112,13 @@ pub struct Layout {
 
 impl ExportConfig {
     /// Reads the configuration an FMU carries.
-    pub fn from_toml(text: &str) -> Result<ExportConfig, String> {
-        toml::from_str(text).map_err(|e| format!("{CONFIG_FILE}: {}", e.message().trim()))
+    pub fn from_toml(text: &str) -> Result<ExportConfig, PackageError> {
+        toml::from_str(text).map_err(|e| PackageError::Config(e.message().trim().to_owned()))
     }
 
     /// The configuration as TOML.
-    pub fn to_toml(&self) -> Result<String, String> {
-        toml::to_string(self).map_err(|e| format!("{CONFIG_FILE}: {e}"))
+    pub fn to_toml(&self) -> Result<String, PackageError> {
+        toml::to_string(self).map_err(|e| PackageError::Config(e.to_string()))
     }
 
     /// A GUID-shaped hash of the configuration (without its guid).
@@ -131,11 +153,16 @@ impl ExportConfig {
     }
 
     /// Changes a parameter; the unit must be rebuilt afterwards.
-    pub fn set_parameter(&mut self, target: &ParameterTarget, value: Value) -> Result<(), String> {
+    pub fn set_parameter(
+        &mut self,
+        target: &ParameterTarget,
+        value: Value,
+    ) -> Result<(), PackageError> {
+        let refused = |m: String| PackageError::Parameter(m);
         match target {
             ParameterTarget::Effect(effect) => {
                 let Value::Boolean(Some(on)) = value else {
-                    return Err(format!("effects.{effect}: expected a Boolean"));
+                    return Err(refused(format!("effects.{effect}: expected a Boolean")));
                 };
                 self.effects.retain(|e| e != effect);
                 if on {
@@ -144,20 +171,22 @@ impl ExportConfig {
                 Ok(())
             }
             ParameterTarget::Table(path) => {
-                let (last, parents) = path.split_last().ok_or("empty parameter path")?;
+                let (last, parents) = path
+                    .split_last()
+                    .ok_or_else(|| refused("empty parameter path".into()))?;
                 let mut table = &mut self.parameters;
                 for key in parents {
                     table = table
                         .get_mut(key)
                         .and_then(toml::Value::as_table_mut)
-                        .ok_or_else(|| format!("parameter table `{key}` is missing"))?;
+                        .ok_or_else(|| refused(format!("parameter table `{key}` is missing")))?;
                 }
                 let value = match value {
                     Value::Real(Some(v)) => toml::Value::Float(v),
                     Value::Integer(Some(v)) => toml::Value::Integer(i64::from(v)),
                     Value::Boolean(Some(v)) => toml::Value::Boolean(v),
                     Value::String(Some(v)) => toml::Value::String(v),
-                    other => return Err(format!("{}: no value", other.type_name())),
+                    other => return Err(refused(format!("{}: no value", other.type_name()))),
                 };
                 table.insert(last.clone(), value);
                 Ok(())
@@ -334,16 +363,18 @@ pub fn package(
     layout: &Layout,
     binary: &Path,
     out: &Path,
-) -> Result<(), String> {
+) -> Result<(), PackageError> {
     check_binary(binary)?;
     let library = std::fs::read(binary).map_err(|e| {
-        format!(
-            "{}: cannot read the FMU library ({e}); build it with `cargo build --release -p slender-fmu`",
-            binary.display()
+        file_error(
+            binary,
+            format!(
+                "cannot read the FMU library ({e}); build it with `cargo build --release -p slender-fmu`"
+            ),
         )
     })?;
     let file = std::fs::File::create(out)
-        .map_err(|e| format!("{}: cannot create the FMU ({e})", out.display()))?;
+        .map_err(|e| file_error(out, format!("cannot create the FMU ({e})")))?;
     let mut zip = zip::ZipWriter::new(file);
     let options = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated);
@@ -361,7 +392,7 @@ pub fn package(
             config.to_toml()?.into_bytes(),
         ),
     ];
-    let failed = |e: &dyn std::fmt::Display| format!("{}: writing the FMU: {e}", out.display());
+    let failed = |e: &dyn std::fmt::Display| file_error(out, format!("writing the FMU: {e}"));
     for (name, bytes) in entries {
         zip.start_file(name, options).map_err(|e| failed(&e))?;
         zip.write_all(&bytes).map_err(|e| failed(&e))?;
@@ -373,20 +404,22 @@ pub fn package(
 /// Checks that `binary` is an ELF shared library carrying the FMI 2.0
 /// co-simulation entry points (as `libslender_fmu.so` does), so that a wrong
 /// `--binary` is refused instead of packaged.
-pub fn check_binary(binary: &Path) -> Result<(), String> {
+pub fn check_binary(binary: &Path) -> Result<(), PackageError> {
     let bytes = std::fs::read(binary)
-        .map_err(|e| format!("{}: cannot read the FMU library ({e})", binary.display()))?;
+        .map_err(|e| file_error(binary, format!("cannot read the FMU library ({e})")))?;
     if !bytes.starts_with(b"\x7fELF") {
-        return Err(format!(
-            "{}: not a shared library (no ELF header); expected libslender_fmu.so",
-            binary.display()
+        return Err(file_error(
+            binary,
+            "not a shared library (no ELF header); expected libslender_fmu.so".into(),
         ));
     }
     for symbol in ["fmi2Instantiate", "fmi2DoStep", "fmi2GetReal"] {
         if !bytes.windows(symbol.len()).any(|w| w == symbol.as_bytes()) {
-            return Err(format!(
-                "{}: a shared library without the FMI entry point `{symbol}`; expected libslender_fmu.so",
-                binary.display()
+            return Err(file_error(
+                binary,
+                format!(
+                    "a shared library without the FMI entry point `{symbol}`; expected libslender_fmu.so"
+                ),
             ));
         }
     }

@@ -80,7 +80,9 @@ impl Master {
         settings: MasterSettings,
         step_size: Time,
     ) -> Result<Master, MasterError> {
-        settings.validate().map_err(MasterError::Invalid)?;
+        settings
+            .validate()
+            .map_err(|e| MasterError::Invalid(e.to_string()))?;
         if step_size <= Time::ZERO {
             return Err(MasterError::Invalid(format!(
                 "synchronisation step {step_size}: expected > 0"

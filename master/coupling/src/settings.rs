@@ -213,6 +213,11 @@ pub enum Extrapolation {
     Linear,
 }
 
+/// A master setting out of range (the key and what was expected).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct SettingsError(pub String);
+
 /// Everything that configures the master.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -290,44 +295,45 @@ impl MasterSettings {
 
     /// Checks values that serde cannot: positive tolerances, an iteration cap of at
     /// least 1, sensible acceleration factors, acceleration only with iteration.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let invalid = |m: String| SettingsError(m);
         if self.max_iterations == 0 {
-            return Err("max_iterations: expected at least 1".into());
+            return Err(invalid("max_iterations: expected at least 1".into()));
         }
         for kind in PortKind::ALL {
             let tol = self.tolerances.of(kind);
             if !(tol.is_finite() && tol > 0.0) {
-                return Err(format!(
+                return Err(invalid(format!(
                     "tolerances.{}: {tol} is not a finite value > 0",
                     kind.name()
-                ));
+                )));
             }
         }
         if !self.scheme.is_iterative() && self.acceleration != Acceleration::None {
-            return Err(format!(
+            return Err(invalid(format!(
                 "acceleration `{}` needs an iterative scheme, but scheme is `{}`",
                 self.acceleration.name(),
                 self.scheme.name()
-            ));
+            )));
         }
         if let Some(newton) = self.newton {
             if !self.scheme.is_iterative() {
-                return Err(format!(
+                return Err(invalid(format!(
                     "newton needs an iterative scheme, but scheme is `{}`",
                     self.scheme.name()
-                ));
+                )));
             }
             if self.acceleration != Acceleration::None {
-                return Err(format!(
+                return Err(invalid(format!(
                     "newton replaces the fixed-point iteration: remove acceleration `{}`",
                     self.acceleration.name()
-                ));
+                )));
             }
             let p = newton.perturbation;
             if !(p.is_finite() && p > 0.0 && p < 1.0) {
-                return Err(format!(
+                return Err(invalid(format!(
                     "newton.perturbation {p}: expected a value in (0, 1)"
-                ));
+                )));
             }
         }
         let factor_ok = |f: f64| f.is_finite() && f > 0.0 && f <= 2.0;
@@ -342,9 +348,9 @@ impl MasterSettings {
                 ..
             } => {
                 if !factor_ok(factor) {
-                    return Err(format!(
+                    return Err(invalid(format!(
                         "acceleration factor {factor}: expected a value in (0, 2]"
-                    ));
+                    )));
                 }
             }
         }

@@ -31,16 +31,15 @@ pub enum ExportError {
     Build(#[from] BuildError),
     #[error(transparent)]
     Unit(#[from] UnitError),
-    /// Writing the FMU or the wrapped scene (`slender_fmi` reports its own
-    /// problems as text: the file and what went wrong).
-    #[error("{0}")]
-    Write(String),
+    /// Writing the FMU.
+    #[error(transparent)]
+    Write(#[from] PackageError),
     /// The scene file cannot be read or rewritten as a wrapped scene.
     #[error("{path}: {problem}")]
     SceneFile { path: String, problem: String },
 }
 use slender_coupling::Master;
-use slender_fmi::export::{ExportConfig, KindInfo, Layout};
+use slender_fmi::export::{ExportConfig, KindInfo, Layout, PackageError};
 use slender_units::{Driver, Unit};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -170,7 +169,7 @@ impl SceneExport for ExportConfig {
 /// returns its layout.
 pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Layout, ExportError> {
     let layout = config.layout()?;
-    slender_fmi::export::package(config, &layout, binary, out).map_err(ExportError::Write)?;
+    slender_fmi::export::package(config, &layout, binary, out)?;
     Ok(layout)
 }
 

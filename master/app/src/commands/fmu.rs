@@ -38,7 +38,7 @@ fn library(binary: Option<PathBuf>) -> Result<PathBuf, CliError> {
             "libslender_fmu.so not found next to this executable; build it with `cargo build --release -p slender-fmu` or pass --binary",
         )
     })?;
-    slender_fmi::export::check_binary(&binary).map_err(CliError::input)?;
+    slender_fmi::export::check_binary(&binary).map_err(|e| CliError::input(e.to_string()))?;
     Ok(binary)
 }
 
