@@ -12,7 +12,7 @@
 
 use super::hht::{Matrices, SecondOrderSystem};
 use crate::contract::UnitError;
-use crate::numerics::banded::{BandLdlt, SymmetricBand};
+use crate::numerics::banded::BandLdlt;
 
 /// The integrator: the factorised mass (with identity rows at prescribed DOFs) and
 /// the step's buffers.
@@ -159,6 +159,7 @@ impl CentralDifference {
 mod tests {
     use super::*;
     use crate::integrators::hht::TangentScales;
+    use crate::numerics::banded::SymmetricBand;
 
     /// A chain of `n` unit masses on springs `k` (fixed at one end).
     struct Chain {
