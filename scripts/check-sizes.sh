@@ -21,7 +21,14 @@ for path in sys.argv[1:]:
     lines = open(path, encoding="utf-8").read().split("\n")
     for i, line in enumerate(lines):
         m = re.match(r"^(\s*)(pub(\([a-z]+\))? )?(const )?(unsafe )?(extern \"C\" )?fn (\w+)", line)
-        if not m or line.rstrip().endswith(";"):
+        if not m:
+            continue
+        # A declaration (extern block, trait method without body) ends with `;`
+        # before any `{`.
+        k = i
+        while k < len(lines) and "{" not in lines[k] and not lines[k].rstrip().endswith(";"):
+            k += 1
+        if k == len(lines) or "{" not in lines[k]:
             continue
         indent = m.group(1)
         for j in range(i + 1, len(lines)):
