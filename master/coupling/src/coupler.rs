@@ -12,7 +12,7 @@ use crate::acceleration::{Accelerator, accelerator};
 use crate::adapter::UnitAdapter;
 use crate::counters::Counters;
 use crate::error::MasterError;
-use crate::order::{derive_order, tears};
+use crate::order::{derive_order, reached_by_torn, torn_connections, wiring};
 use crate::settings::{Extrapolation, MasterSettings, OnMaxIterations};
 use crate::system::{Connection, System};
 use slender_units::{Causality, Hold, Time};
@@ -92,43 +92,15 @@ impl Master {
         if n_units == 0 {
             return Err(MasterError::Invalid("the system has no units".into()));
         }
-        if settings.scheme.is_iterative() {
-            let missing = system
-                .units
-                .iter()
-                .find(|u| !u.unit.description().capabilities.rollback);
-            if let Some(u) = missing {
-                return Err(MasterError::RollbackUnsupported {
-                    unit: u.name.clone(),
-                    scheme: settings.scheme.name().into(),
-                });
-            }
-        }
+        check_rollback(&system, &settings)?;
         let order = if settings.order.is_empty() {
             derive_order(n_units, &system.connections)
         } else {
             explicit_order(&system, &settings.order)?
         };
-        let sequential = settings.scheme.is_sequential();
-        let torn_flags = tears(&order, &system.connections, sequential);
-        let mut tear_index = vec![None; system.connections.len()];
-        let mut torn = Vec::new();
-        for (c, &is_torn) in torn_flags.iter().enumerate() {
-            if is_torn {
-                tear_index[c] = Some(torn.len());
-                torn.push(c);
-            }
-        }
-        let mut input_connection: Vec<Vec<Option<usize>>> = system
-            .units
-            .iter()
-            .map(|u| vec![None; u.unit.description().inputs.len()])
-            .collect();
-        let mut outgoing = vec![Vec::new(); n_units];
-        for (c, conn) in system.connections.iter().enumerate() {
-            input_connection[conn.to.unit][conn.to.port] = Some(c);
-            outgoing[conn.from.unit].push(c);
-        }
+        let (tear_index, torn) =
+            torn_connections(&order, &system.connections, settings.scheme.is_sequential());
+        let (input_connection, outgoing) = wiring(&system);
         let iterated = reached_by_torn(n_units, &system.connections, &torn);
         let tolerance: Vec<f64> = system
             .connections
@@ -529,22 +501,22 @@ impl Master {
     }
 }
 
-/// Units a torn value reaches, directly or through other units.
-fn reached_by_torn(n_units: usize, connections: &[Connection], torn: &[usize]) -> Vec<bool> {
-    let mut reached = vec![false; n_units];
-    let mut stack: Vec<usize> = torn.iter().map(|&c| connections[c].to.unit).collect();
-    while let Some(u) = stack.pop() {
-        if !reached[u] {
-            reached[u] = true;
-            stack.extend(
-                connections
-                    .iter()
-                    .filter(|c| c.from.unit == u)
-                    .map(|c| c.to.unit),
-            );
-        }
+/// Iterative schemes repeat steps: every unit must roll back.
+fn check_rollback(system: &System, settings: &MasterSettings) -> Result<(), MasterError> {
+    if !settings.scheme.is_iterative() {
+        return Ok(());
     }
-    reached
+    match system
+        .units
+        .iter()
+        .find(|u| !u.unit.description().capabilities.rollback)
+    {
+        Some(u) => Err(MasterError::RollbackUnsupported {
+            unit: u.name.clone(),
+            scheme: settings.scheme.name().into(),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// The value a connection passes on, from its source unit's outputs.

@@ -1,6 +1,7 @@
-//! The order in which Gauss-Seidel schemes step units.
+//! The coupling graph: the order in which Gauss-Seidel schemes step units, the
+//! torn connections, which units they reach, and how units are wired.
 
-use crate::system::Connection;
+use crate::system::{Connection, System};
 
 /// Units ordered upstream first: a unit comes after every unit that feeds it, except
 /// where loops make that impossible; there the unit with the fewest inputs still
@@ -40,6 +41,64 @@ pub fn tears(order: &[usize], connections: &[Connection], sequential: bool) -> V
         .iter()
         .map(|c| !sequential || position[c.from.unit] >= position[c.to.unit])
         .collect()
+}
+
+/// The torn connections (see [`tears`]): each connection's index among them, and
+/// the list of them.
+pub(crate) fn torn_connections(
+    order: &[usize],
+    connections: &[Connection],
+    sequential: bool,
+) -> (Vec<Option<usize>>, Vec<usize>) {
+    let mut tear_index = vec![None; connections.len()];
+    let mut torn = Vec::new();
+    for (c, &is_torn) in tears(order, connections, sequential).iter().enumerate() {
+        if is_torn {
+            tear_index[c] = Some(torn.len());
+            torn.push(c);
+        }
+    }
+    (tear_index, torn)
+}
+
+/// For each unit, the connection driving each of its inputs, and the connections
+/// leaving it.
+pub(crate) type Wiring = (Vec<Vec<Option<usize>>>, Vec<Vec<usize>>);
+
+pub(crate) fn wiring(system: &System) -> Wiring {
+    let mut input_connection: Vec<Vec<Option<usize>>> = system
+        .units
+        .iter()
+        .map(|u| vec![None; u.unit.description().inputs.len()])
+        .collect();
+    let mut outgoing = vec![Vec::new(); system.units.len()];
+    for (c, conn) in system.connections.iter().enumerate() {
+        input_connection[conn.to.unit][conn.to.port] = Some(c);
+        outgoing[conn.from.unit].push(c);
+    }
+    (input_connection, outgoing)
+}
+
+/// Units a torn value reaches, directly or through other units.
+pub(crate) fn reached_by_torn(
+    n_units: usize,
+    connections: &[Connection],
+    torn: &[usize],
+) -> Vec<bool> {
+    let mut reached = vec![false; n_units];
+    let mut stack: Vec<usize> = torn.iter().map(|&c| connections[c].to.unit).collect();
+    while let Some(u) = stack.pop() {
+        if !reached[u] {
+            reached[u] = true;
+            stack.extend(
+                connections
+                    .iter()
+                    .filter(|c| c.from.unit == u)
+                    .map(|c| c.to.unit),
+            );
+        }
+    }
+    reached
 }
 
 #[cfg(test)]

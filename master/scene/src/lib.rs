@@ -190,52 +190,8 @@ impl Scene {
     /// (not initialised yet).
     pub fn build(&self) -> Result<Master, SceneError> {
         let mut system = System::new();
-        let mut holds = Vec::new();
         for (i, u) in self.spec.units.iter().enumerate() {
-            let key = format!("units[{i}]");
-            let kind = kinds::find(u.kind.get_ref()).ok_or_else(|| {
-                self.error(
-                    Some(u.kind.span()),
-                    &format!("{key}.kind"),
-                    format!(
-                        "unknown unit kind `{}`{}; known kinds: {}",
-                        u.kind.get_ref(),
-                        did_you_mean(u.kind.get_ref(), kinds::KINDS.iter().map(|k| k.name)),
-                        kinds::KINDS
-                            .iter()
-                            .map(|k| k.name)
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                )
-            })?;
-            let (parameters, span) = match &u.parameters {
-                Some(p) => (p.get_ref().clone(), p.span()),
-                None => (toml::Table::new(), u.name.span()),
-            };
-            let base_dir = self.path.parent().unwrap_or(Path::new("."));
-            let context = kinds::BuildContext {
-                effects: &u.effects,
-                base_dir,
-            };
-            let unit = kind.build(parameters, &context).map_err(|m| {
-                self.error(
-                    Some(span),
-                    &format!("{key} (\"{}\").parameters", u.name.get_ref()),
-                    m,
-                )
-            })?;
-            system
-                .add_unit(u.name.get_ref(), unit)
-                .map_err(|m| self.error(Some(u.name.span()), &format!("{key}.name"), m))?;
-            for (port, value) in &u.inputs {
-                system
-                    .set_start_input(&format!("{}.{port}", u.name.get_ref()), *value)
-                    .map_err(|m| {
-                        self.error(Some(u.name.span()), &format!("{key}.inputs.{port}"), m)
-                    })?;
-            }
-            holds.push(u.hold);
+            self.add_unit(&mut system, i, u)?;
         }
         for (i, c) in self.spec.connections.iter().enumerate() {
             let link = Link {
@@ -252,6 +208,77 @@ impl Scene {
                 .resolve(s, Causality::Output)
                 .map_err(|m| self.error(None, &format!("output.signals[{i}]"), m))?;
         }
+        self.check_indicators(&system)?;
+        if self.spec.output.every == 0 {
+            return Err(self.error(None, "output.every", "0: expected at least 1"));
+        }
+        self.check_outputs(&system)?;
+        let mut master = Master::new(system, self.spec.master.clone(), self.step)
+            .map_err(|e| self.error(None, "master", e.to_string()))?;
+        for (u, spec) in self.spec.units.iter().enumerate() {
+            if let Some(hold) = spec.hold {
+                master
+                    .set_hold(u, hold)
+                    .map_err(|e| self.error(None, &format!("units[{u}].hold"), e.to_string()))?;
+            }
+        }
+        Ok(master)
+    }
+
+    /// Builds unit `i` of the scene and adds it with its start inputs.
+    fn add_unit(
+        &self,
+        system: &mut System,
+        i: usize,
+        u: &spec::UnitSpec,
+    ) -> Result<(), SceneError> {
+        let key = format!("units[{i}]");
+        let kind = kinds::find(u.kind.get_ref()).ok_or_else(|| {
+            self.error(
+                Some(u.kind.span()),
+                &format!("{key}.kind"),
+                format!(
+                    "unknown unit kind `{}`{}; known kinds: {}",
+                    u.kind.get_ref(),
+                    did_you_mean(u.kind.get_ref(), kinds::KINDS.iter().map(|k| k.name)),
+                    kinds::KINDS
+                        .iter()
+                        .map(|k| k.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )
+        })?;
+        let (parameters, span) = match &u.parameters {
+            Some(p) => (p.get_ref().clone(), p.span()),
+            None => (toml::Table::new(), u.name.span()),
+        };
+        let base_dir = self.path.parent().unwrap_or(Path::new("."));
+        let context = kinds::BuildContext {
+            effects: &u.effects,
+            base_dir,
+        };
+        let unit = kind.build(parameters, &context).map_err(|m| {
+            self.error(
+                Some(span),
+                &format!("{key} (\"{}\").parameters", u.name.get_ref()),
+                m,
+            )
+        })?;
+        system
+            .add_unit(u.name.get_ref(), unit)
+            .map_err(|m| self.error(Some(u.name.span()), &format!("{key}.name"), m))?;
+        for (port, value) in &u.inputs {
+            system
+                .set_start_input(&format!("{}.{port}", u.name.get_ref()), *value)
+                .map_err(|m| self.error(Some(u.name.span()), &format!("{key}.inputs.{port}"), m))?;
+        }
+        Ok(())
+    }
+
+    /// Indicators name existing outputs, recorded ones, with as many references as
+    /// signals or none.
+    fn check_indicators(&self, system: &System) -> Result<(), SceneError> {
         for (i, ind) in self.spec.output.indicators.iter().enumerate() {
             let key = format!("output.indicators[{i}]");
             if ind.signals.is_empty()
@@ -276,20 +303,7 @@ impl Scene {
                 }
             }
         }
-        if self.spec.output.every == 0 {
-            return Err(self.error(None, "output.every", "0: expected at least 1"));
-        }
-        self.check_outputs(&system)?;
-        let mut master = Master::new(system, self.spec.master.clone(), self.step)
-            .map_err(|e| self.error(None, "master", e.to_string()))?;
-        for (u, hold) in holds.into_iter().enumerate() {
-            if let Some(hold) = hold {
-                master
-                    .set_hold(u, hold)
-                    .map_err(|e| self.error(None, &format!("units[{u}].hold"), e.to_string()))?;
-            }
-        }
-        Ok(master)
+        Ok(())
     }
 
     /// Signals listed once each; plots and indicators named by the name rules,

@@ -263,6 +263,53 @@ impl Cable {
     }
 }
 
+/// The bottom's displacement and acceleration at the step's end for the end
+/// velocity `vb`: under a ramp the exact displacement and the ramp's slope (the
+/// Newmark recursion a = 2 dv / h - a_n would never let a velocity jump, e.g. the
+/// end of a signal loss, die out); under a zero-order hold a constant velocity.
+fn bottom_motion(s: &CableState, vb: [f64; 2], hold: Hold, h: f64) -> ([f64; 2], [f64; 2]) {
+    match hold {
+        Hold::Ramp => (
+            [
+                s.qb[0] + 0.5 * h * (s.vb[0] + vb[0]),
+                s.qb[1] + 0.5 * h * (s.vb[1] + vb[1]),
+            ],
+            [(vb[0] - s.vb[0]) / h, (vb[1] - s.vb[1]) / h],
+        ),
+        Hold::ZeroOrder => ([s.qb[0] + h * vb[0], s.qb[1] + h * vb[1]], [0.0; 2]),
+    }
+}
+
+/// The force on the bottom support (N): the static pull minus the bottom node's
+/// dynamic equation, plus its drag change (`node_drag` at the final velocities).
+fn support_force(d: &Dynamics, s: &CableState) -> [f64; 2] {
+    let (qb, vb, ab) = (s.qb, s.vb, s.ab);
+    let (a1, v1, q1) = ([s.a[0], s.a[1]], [s.v[0], s.v[1]], [s.q[0], s.q[1]]);
+    let t = |m: &[[f64; 2]; 2], x: [f64; 2]| {
+        [
+            m[0][0] * x[0] + m[1][0] * x[1],
+            m[0][1] * x[0] + m[1][1] * x[1],
+        ]
+    };
+    let inertia = [mat2(&d.m_bb, ab), t(&d.m_fb, a1)];
+    let damping = [mat2(&d.c_bb, vb), t(&d.c_fb, v1)];
+    let elastic = [mat2(&d.k_bb, qb), t(&d.k_fb, q1)];
+    std::array::from_fn(|c| {
+        let dyn_eq = inertia[0][c]
+            + inertia[1][c]
+            + damping[0][c]
+            + damping[1][c]
+            + elastic[0][c]
+            + elastic[1][c];
+        let drag = if d.drag.is_some() {
+            d.node_drag[0][c]
+        } else {
+            0.0
+        };
+        d.static_support_force[c] - dyn_eq + drag
+    })
+}
+
 impl Unit for Cable {
     fn description(&self) -> &UnitDescription {
         &self.description
@@ -308,19 +355,7 @@ impl Unit for Cable {
         let n = s.q.len();
         // Prescribed bottom motion at the step's end.
         let vb = [inputs.at(BOTTOM_VX, 1.0), inputs.at(BOTTOM_VZ, 1.0)];
-        let (qb, ab) = match inputs.hold(BOTTOM_VX) {
-            // A ramp of velocity: exact displacement, acceleration = the ramp's slope.
-            // (The Newmark recursion a = 2 dv / h - a_n would never let a velocity
-            // jump, e.g. the end of a signal loss, die out.)
-            Hold::Ramp => (
-                [
-                    s.qb[0] + 0.5 * h * (s.vb[0] + vb[0]),
-                    s.qb[1] + 0.5 * h * (s.vb[1] + vb[1]),
-                ],
-                [(vb[0] - s.vb[0]) / h, (vb[1] - s.vb[1]) / h],
-            ),
-            Hold::ZeroOrder => ([s.qb[0] + h * vb[0], s.qb[1] + h * vb[1]], [0.0; 2]),
-        };
+        let (qb, ab) = bottom_motion(s, vb, inputs.hold(BOTTOM_VX), h);
         // The load at the step's end: the top force's change and the bottom
         // motion through the coupling blocks.
         let top = [
@@ -358,30 +393,7 @@ impl Unit for Cable {
         if d.drag.is_some() {
             d.drag_change(&s.v, vb);
         }
-        let (a1, v1, q1) = ([s.a[0], s.a[1]], [s.v[0], s.v[1]], [s.q[0], s.q[1]]);
-        let t = |m: &[[f64; 2]; 2], x: [f64; 2]| {
-            [
-                m[0][0] * x[0] + m[1][0] * x[1],
-                m[0][1] * x[0] + m[1][1] * x[1],
-            ]
-        };
-        let inertia = [mat2(&d.m_bb, ab), t(&d.m_fb, a1)];
-        let damping = [mat2(&d.c_bb, vb), t(&d.c_fb, v1)];
-        let elastic = [mat2(&d.k_bb, qb), t(&d.k_fb, q1)];
-        for c in 0..2 {
-            let dyn_eq = inertia[0][c]
-                + inertia[1][c]
-                + damping[0][c]
-                + damping[1][c]
-                + elastic[0][c]
-                + elastic[1][c];
-            let drag = if d.drag.is_some() {
-                d.node_drag[0][c]
-            } else {
-                0.0
-            };
-            s.bottom_force[c] = d.static_support_force[c] - dyn_eq + drag;
-        }
+        s.bottom_force = support_force(d, s);
         Ok(StepReport {
             solver_iterations: iterations,
         })

@@ -302,20 +302,23 @@ impl HhtAlpha {
             }
         }
         let Some(iterations) = converged else {
-            return Err(UnitError::Numerical(format!(
-                "{}: Newton did not converge in the step ending at t = {} s; largest corrections per iteration: {}",
-                system.label(),
-                loads.t1,
-                self.history
-                    .iter()
-                    .map(|v| format!("{v:.3e}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )));
+            return Err(self.not_converged(system.label(), loads.t1));
         };
         self.kinematics(h, loads.held);
         system.set_motion(&self.y, &self.v1, &self.a1);
         Ok(iterations)
+    }
+
+    /// Newton's failure, with the corrections it made.
+    fn not_converged(&self, label: &str, t1: f64) -> UnitError {
+        UnitError::Numerical(format!(
+            "{label}: Newton did not converge in the step ending at t = {t1} s; largest corrections per iteration: {}",
+            self.history
+                .iter()
+                .map(|v| format!("{v:.3e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))
     }
 
     /// The Newton matrix with the system's tangent at the iterate, refactorised;
