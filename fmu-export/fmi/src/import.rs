@@ -30,7 +30,7 @@ use slender_units::{
     UnitDescription, UnitError,
 };
 use std::collections::BTreeMap;
-use std::ffi::{CString, c_void};
+use std::ffi::CString;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -53,15 +53,15 @@ pub struct FmuParams {
     pub logging: bool,
 }
 
+mod archive;
 mod describe;
 mod error;
 mod library;
+use archive::{binary_for_this_platform, unpack};
 
 use describe::{describe, real_refs, start_values};
 pub use error::LoadError;
-use library::{
-    Api, LogBook, calloc, free, log_tail, open_now, preload_globally, slender_fmi_logger,
-};
+use library::{Api, LogBook, instantiate, log_tail, open_binary};
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 enum Phase {
@@ -466,157 +466,4 @@ pub fn file_uri(path: &Path) -> String {
         }
     }
     uri
-}
-
-/// Unzips the FMU into a temporary folder and reads its model description, which
-/// must offer co-simulation.
-fn unpack(
-    path: &Path,
-    label: &str,
-) -> Result<
-    (
-        tempfile::TempDir,
-        ModelDescription,
-        crate::model_description::CoSimulation,
-    ),
-    LoadError,
-> {
-    let archive_error = |problem: &'static str| {
-        let fmu = label.to_owned();
-        move |e: &dyn std::fmt::Display| LoadError::Archive {
-            fmu,
-            problem,
-            reason: e.to_string(),
-        }
-    };
-    let file = std::fs::File::open(path).map_err(|e| archive_error("cannot open")(&e))?;
-    let mut archive =
-        zip::ZipArchive::new(file).map_err(|e| archive_error("not a readable zip archive")(&e))?;
-    let folder = tempfile::Builder::new()
-        .prefix("slender-fmu-")
-        .tempdir()
-        .map_err(|e| archive_error("cannot create a temporary folder")(&e))?;
-    archive
-        .extract(folder.path())
-        .map_err(|e| archive_error("cannot unzip")(&e))?;
-    let xml = std::fs::read_to_string(folder.path().join("modelDescription.xml"))
-        .map_err(|e| archive_error("no readable modelDescription.xml at the archive root")(&e))?;
-    let model = ModelDescription::parse(&xml).map_err(|source| LoadError::Description {
-        fmu: label.to_owned(),
-        source,
-    })?;
-    let cs = model
-        .co_simulation
-        .clone()
-        .ok_or_else(|| LoadError::NotCoSimulation {
-            fmu: label.to_owned(),
-        })?;
-    Ok((folder, model, cs))
-}
-
-/// The FMU's linux64 binary, or an error saying which platforms it has.
-fn binary_for_this_platform(
-    folder: &Path,
-    identifier: &str,
-    label: &str,
-) -> Result<PathBuf, LoadError> {
-    let binary = folder
-        .join("binaries/linux64")
-        .join(format!("{identifier}.so"));
-    if !binary.exists() {
-        let platforms: Vec<String> = std::fs::read_dir(folder.join("binaries"))
-            .map(|d| {
-                d.filter_map(|e| e.ok())
-                    .map(|e| e.file_name().to_string_lossy().into_owned())
-                    .collect()
-            })
-            .unwrap_or_default();
-        return Err(LoadError::NoBinary {
-            fmu: label.to_owned(),
-            identifier: identifier.to_owned(),
-            found: if platforms.is_empty() {
-                "no binaries at all (source-only FMUs are not compiled by slender)".to_owned()
-            } else {
-                format!("binaries for {}", platforms.join(", "))
-            },
-        });
-    }
-    Ok(binary)
-}
-
-/// `fmi2Instantiate` with slender's logger (keeping the FMU's log lines for error
-/// messages) and the FMU's resources folder; the log and callbacks must outlive
-/// the instance.
-fn instantiate(
-    api: &Api,
-    model: &ModelDescription,
-    folder: &Path,
-    logging: bool,
-    label: &str,
-) -> Result<(fmi2Component, Box<LogBook>, Box<fmi2CallbackFunctions>), LoadError> {
-    let log = Box::new(LogBook::default());
-    // SAFETY: the shim has the C-variadic logger signature; only its type
-    // differs in how Rust spells it.
-    let logger: fmi2CallbackLogger = Some(slender_fmi_logger);
-    let callbacks = Box::new(fmi2CallbackFunctions {
-        logger,
-        allocate_memory: Some(calloc),
-        free_memory: Some(free),
-        step_finished: None,
-        component_environment: &*log as *const LogBook as *mut c_void,
-    });
-    let resources = folder.join("resources");
-    let uri = file_uri(&resources);
-    let c = |s: &str| {
-        CString::new(s).map_err(|_| LoadError::Nul {
-            fmu: label.to_owned(),
-            text: s.to_owned(),
-        })
-    };
-    let (name, guid, uri) = (c(&model.model_name)?, c(&model.guid)?, c(&uri)?);
-    // SAFETY: FMI 2.0 fmi2Instantiate with valid C strings and callbacks that
-    // outlive the instance.
-    let component = unsafe {
-        (api.instantiate)(
-            name.as_ptr(),
-            FMI2_CO_SIMULATION,
-            guid.as_ptr(),
-            uri.as_ptr(),
-            &*callbacks,
-            FMI2_FALSE,
-            if logging { FMI2_TRUE } else { FMI2_FALSE },
-        )
-    };
-    if component.is_null() {
-        return Err(LoadError::Instantiate {
-            fmu: label.to_owned(),
-            log: log_tail(&log),
-        });
-    }
-    Ok((component, log, callbacks))
-}
-
-/// Loads the FMU's binary with every symbol bound now, after the libraries to
-/// preload (libpython for pythonfmu FMUs, with a hint when it is missing).
-fn open_binary(
-    binary: &Path,
-    preload: &[PathBuf],
-    label: &str,
-) -> Result<libloading::Library, LoadError> {
-    let library_error = |message: String| LoadError::Library {
-        fmu: label.to_owned(),
-        message,
-    };
-    for lib in preload {
-        preload_globally(lib).map_err(|e| library_error(format!("preload: {e}")))?;
-    }
-    open_now(binary).map_err(|e| {
-            library_error(if e.contains("undefined symbol") && e.contains("Py") {
-                format!(
-                    "the FMU was built with Python (e.g. pythonfmu) and needs libpython loaded first ({e}). Add `preload = [\"<LIBDIR>/libpython3.X.so\"]` to the unit's parameters, LIBDIR from `python3 -c \"import sysconfig; print(sysconfig.get_config_var('LIBDIR'))\"`, or run with LD_PRELOAD set to that library"
-                )
-            } else {
-                format!("cannot load {} ({e})", binary.display())
-            })
-        })
 }

@@ -116,91 +116,11 @@ impl Cable {
                 )
             }),
         };
-        let guess = match (params.section, params.static_top_force) {
-            (Section::Full, f) => straight_guess(
-                &props,
-                params.anchor,
-                f.unwrap_or([0.0, 1.0]),
-                params.elements,
-            ),
-            (Section::Lower { truncation_ratio }, Some(f))
-            | (Section::Upper { truncation_ratio }, Some(f)) => {
-                let full = statics::solve(
-                    &props,
-                    &loads,
-                    f,
-                    straight_guess(&props, params.anchor, f, params.elements),
-                    params.static_tolerance,
-                )?;
-                statics::check_above_seabed(&full, params.anchor[1], f, params.length)?;
-                let height = params.anchor[1] + truncation_ratio * params.water_depth;
-                let top_z = full.positions[params.elements][1];
-                let spacing = params.length / params.elements as f64;
-                if top_z.is_nan()
-                    || top_z - params.anchor[1] <= truncation_ratio * params.water_depth + spacing
-                {
-                    return Err(UnitError::parameter(
-                        "section.truncation_ratio",
-                        truncation_ratio,
-                        &format!(
-                            "the line's static top is at z = {top_z:.1} m: it does not reach the truncation height {height:.1} m by at least one element"
-                        ),
-                    ));
-                }
-                let k = (1..params.elements)
-                    .min_by(|&a, &b| {
-                        (full.positions[a][1] - height)
-                            .abs()
-                            .total_cmp(&(full.positions[b][1] - height).abs())
-                    })
-                    .ok_or_else(|| {
-                        UnitError::parameter("elements", params.elements, "too few to split")
-                    })?;
-                match params.section {
-                    Section::Lower { .. } => full.positions[..=k].to_vec(),
-                    _ => full.positions[k..].to_vec(),
-                }
-            }
-            (_, None) => unreachable!("validate requires static_top_force for sections"),
-        };
+        let guess = section_guess(&params, &props, &loads)?;
         let nodes = guess.len();
-        let inputs = vec![
-            Port::input("top_force_x", PortKind::Force),
-            Port::input("top_force_z", PortKind::Force),
-            Port::input("bottom_velocity_x", PortKind::Velocity),
-            Port::input("bottom_velocity_z", PortKind::Velocity),
-        ];
-        let kinds = [
-            PortKind::Velocity,
-            PortKind::Velocity,
-            PortKind::Force,
-            PortKind::Force,
-            PortKind::Displacement,
-            PortKind::Displacement,
-            PortKind::Force,
-            PortKind::Force,
-        ];
-        let outputs = OUTPUTS
-            .iter()
-            .zip(kinds)
-            .map(|(name, kind)| {
-                let p = Port::output(name, kind);
-                // The support force holds the bottom node's inertia and damping.
-                if name.starts_with("bottom_force") {
-                    p.with_feedthrough(&[BOTTOM_VX, BOTTOM_VZ])
-                } else {
-                    p
-                }
-            })
-            .collect();
         let free = 2 * (nodes - 1);
         Ok(Cable {
-            description: UnitDescription {
-                kind: "cable".into(),
-                inputs,
-                outputs,
-                capabilities: Capabilities::default(),
-            },
+            description: describe(),
             state: CableState {
                 q: vec![0.0; free],
                 v: vec![0.0; free],
@@ -308,6 +228,107 @@ fn support_force(d: &Dynamics, s: &CableState) -> [f64; 2] {
         };
         d.static_support_force[c] - dyn_eq + drag
     })
+}
+
+/// The first guess of a section's static positions (bottom first): a straight
+/// line for the full line; for a section, the part below or above the node nearest
+/// the truncation height of the full line's static shape.
+fn section_guess(
+    params: &CableParams,
+    props: &ElementProperties,
+    loads: &StaticLoads,
+) -> Result<Vec<[f64; 2]>, UnitError> {
+    match (params.section, params.static_top_force) {
+        (Section::Full, f) => Ok(straight_guess(
+            props,
+            params.anchor,
+            f.unwrap_or([0.0, 1.0]),
+            params.elements,
+        )),
+        (Section::Lower { truncation_ratio }, Some(f))
+        | (Section::Upper { truncation_ratio }, Some(f)) => {
+            let full = statics::solve(
+                props,
+                loads,
+                f,
+                straight_guess(props, params.anchor, f, params.elements),
+                params.static_tolerance,
+            )?;
+            statics::check_above_seabed(&full, params.anchor[1], f, params.length)?;
+            let height = params.anchor[1] + truncation_ratio * params.water_depth;
+            let top_z = full.positions[params.elements][1];
+            let spacing = params.length / params.elements as f64;
+            if top_z.is_nan()
+                || top_z - params.anchor[1] <= truncation_ratio * params.water_depth + spacing
+            {
+                return Err(UnitError::parameter(
+                    "section.truncation_ratio",
+                    truncation_ratio,
+                    &format!(
+                        "the line's static top is at z = {top_z:.1} m: it does not reach the truncation height {height:.1} m by at least one element"
+                    ),
+                ));
+            }
+            let k = (1..params.elements)
+                .min_by(|&a, &b| {
+                    (full.positions[a][1] - height)
+                        .abs()
+                        .total_cmp(&(full.positions[b][1] - height).abs())
+                })
+                .ok_or_else(|| {
+                    UnitError::parameter("elements", params.elements, "too few to split")
+                })?;
+            Ok(match params.section {
+                Section::Lower { .. } => full.positions[..=k].to_vec(),
+                _ => full.positions[k..].to_vec(),
+            })
+        }
+        (_, None) => Err(UnitError::parameter(
+            "static_top_force",
+            "none",
+            "a section needs the full line's static top force to place its cut",
+        )),
+    }
+}
+
+/// The cable's ports: forces in and velocities at the bottom in; top velocity and
+/// displacement, bottom force and the end tensions out.
+fn describe() -> UnitDescription {
+    let inputs = vec![
+        Port::input("top_force_x", PortKind::Force),
+        Port::input("top_force_z", PortKind::Force),
+        Port::input("bottom_velocity_x", PortKind::Velocity),
+        Port::input("bottom_velocity_z", PortKind::Velocity),
+    ];
+    let kinds = [
+        PortKind::Velocity,
+        PortKind::Velocity,
+        PortKind::Force,
+        PortKind::Force,
+        PortKind::Displacement,
+        PortKind::Displacement,
+        PortKind::Force,
+        PortKind::Force,
+    ];
+    let outputs = OUTPUTS
+        .iter()
+        .zip(kinds)
+        .map(|(name, kind)| {
+            let p = Port::output(name, kind);
+            // The support force holds the bottom node's inertia and damping.
+            if name.starts_with("bottom_force") {
+                p.with_feedthrough(&[BOTTOM_VX, BOTTOM_VZ])
+            } else {
+                p
+            }
+        })
+        .collect();
+    UnitDescription {
+        kind: "cable".into(),
+        inputs,
+        outputs,
+        capabilities: Capabilities::default(),
+    }
 }
 
 impl Unit for Cable {

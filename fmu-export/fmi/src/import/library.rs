@@ -1,9 +1,11 @@
 //! The FMU's shared library: its FMI entry points bound once, the C logger shim
 //! and the log kept for error messages, loading with every symbol bound now.
 
+use super::{LoadError, file_uri};
 use crate::ffi::*;
-use std::ffi::{CStr, c_char, c_int, c_void};
-use std::path::Path;
+use crate::model_description::ModelDescription;
+use std::ffi::{CStr, CString, c_char, c_int, c_void};
+use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 unsafe extern "C" {
@@ -200,4 +202,81 @@ pub(super) fn log_tail(log: &LogBook) -> String {
         Ok(lines) if !lines.is_empty() => format!("; the FMU logged: {}", lines.join(" | ")),
         _ => String::new(),
     }
+}
+
+/// `fmi2Instantiate` with slender's logger (keeping the FMU's log lines for error
+/// messages) and the FMU's resources folder; the log and callbacks must outlive
+/// the instance.
+pub(super) fn instantiate(
+    api: &Api,
+    model: &ModelDescription,
+    folder: &Path,
+    logging: bool,
+    label: &str,
+) -> Result<(fmi2Component, Box<LogBook>, Box<fmi2CallbackFunctions>), LoadError> {
+    let log = Box::new(LogBook::default());
+    // SAFETY: the shim has the C-variadic logger signature; only its type
+    // differs in how Rust spells it.
+    let logger: fmi2CallbackLogger = Some(slender_fmi_logger);
+    let callbacks = Box::new(fmi2CallbackFunctions {
+        logger,
+        allocate_memory: Some(calloc),
+        free_memory: Some(free),
+        step_finished: None,
+        component_environment: &*log as *const LogBook as *mut c_void,
+    });
+    let resources = folder.join("resources");
+    let uri = file_uri(&resources);
+    let c = |s: &str| {
+        CString::new(s).map_err(|_| LoadError::Nul {
+            fmu: label.to_owned(),
+            text: s.to_owned(),
+        })
+    };
+    let (name, guid, uri) = (c(&model.model_name)?, c(&model.guid)?, c(&uri)?);
+    // SAFETY: FMI 2.0 fmi2Instantiate with valid C strings and callbacks that
+    // outlive the instance.
+    let component = unsafe {
+        (api.instantiate)(
+            name.as_ptr(),
+            FMI2_CO_SIMULATION,
+            guid.as_ptr(),
+            uri.as_ptr(),
+            &*callbacks,
+            FMI2_FALSE,
+            if logging { FMI2_TRUE } else { FMI2_FALSE },
+        )
+    };
+    if component.is_null() {
+        return Err(LoadError::Instantiate {
+            fmu: label.to_owned(),
+            log: log_tail(&log),
+        });
+    }
+    Ok((component, log, callbacks))
+}
+
+/// Loads the FMU's binary with every symbol bound now, after the libraries to
+/// preload (libpython for pythonfmu FMUs, with a hint when it is missing).
+pub(super) fn open_binary(
+    binary: &Path,
+    preload: &[PathBuf],
+    label: &str,
+) -> Result<libloading::Library, LoadError> {
+    let library_error = |message: String| LoadError::Library {
+        fmu: label.to_owned(),
+        message,
+    };
+    for lib in preload {
+        preload_globally(lib).map_err(|e| library_error(format!("preload: {e}")))?;
+    }
+    open_now(binary).map_err(|e| {
+            library_error(if e.contains("undefined symbol") && e.contains("Py") {
+                format!(
+                    "the FMU was built with Python (e.g. pythonfmu) and needs libpython loaded first ({e}). Add `preload = [\"<LIBDIR>/libpython3.X.so\"]` to the unit's parameters, LIBDIR from `python3 -c \"import sysconfig; print(sysconfig.get_config_var('LIBDIR'))\"`, or run with LD_PRELOAD set to that library"
+                )
+            } else {
+                format!("cannot load {} ({e})", binary.display())
+            })
+        })
 }
