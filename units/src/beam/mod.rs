@@ -145,80 +145,9 @@ impl Beam {
                 &mut distributed,
             );
         }
-        let mut inputs = Vec::new();
-        let mut conditions = Vec::new();
-        for (end, cond) in params.boundary.all() {
-            let node = if end == 0 { 0 } else { nodes - 1 };
-            let side = if end == 0 { "left" } else { "right" };
-            let input = matches!(cond.value, TimeFunction::Input(_)).then(|| {
-                inputs.push(Port::input(
-                    &format!("{side}_{}", cond.quantity.name()),
-                    port_kind(cond.quantity),
-                ));
-                inputs.len() - 1
-            });
-            conditions.push(ResolvedCondition {
-                end,
-                quantity: cond.quantity,
-                dof: 2 * node + cond.quantity.dof(),
-                value: cond.value.clone(),
-                input,
-            });
-        }
-        let mut outputs = Vec::new();
-        for (end, side) in ["left", "right"].iter().enumerate() {
-            let held: Vec<usize> = conditions
-                .iter()
-                .filter(|c| c.end == end)
-                .filter_map(|c| c.input)
-                .collect();
-            for q in [
-                Quantity::Deflection,
-                Quantity::Rotation,
-                Quantity::Moment,
-                Quantity::Shear,
-            ] {
-                let p = Port::output(&format!("{side}_{}", q.name()), port_kind(q));
-                outputs.push(if q.is_kinematic() {
-                    p
-                } else {
-                    p.with_feedthrough(&held)
-                });
-            }
-        }
-        for name in EXTRA_OUTPUTS {
-            let unit = match name {
-                n if n.ends_with("energy") => "J",
-                "newton_iterations" => "",
-                _ => "m",
-            };
-            outputs.push(Port::output(name, PortKind::Generic).with_unit(unit));
-        }
-        for i in 0..params.stations.len() {
-            outputs.push(Port::output(
-                &format!("deflection_{}", i + 1),
-                PortKind::Displacement,
-            ));
-        }
-        let mut points = Vec::new();
-        if let Some(contact) = &params.contact {
-            let mut x0 = 0.0;
-            for (e, &l) in lengths.iter().enumerate() {
-                let rule: &[(f64, f64)] = match contact.integration {
-                    ContactIntegration::Gauss => &elements::GAUSS,
-                    ContactIntegration::Trapezoid => &[(0.0, 0.5), (1.0, 0.5)],
-                };
-                for &(xi, w) in rule {
-                    points.push(ContactPoint {
-                        element: e,
-                        x: x0 + xi * l,
-                        weight: w * l,
-                        shape: elements::shape(xi, l),
-                    });
-                }
-                x0 += l;
-            }
-        }
+        let (conditions, inputs) = resolve_conditions(&params, nodes);
+        let outputs = output_ports(&conditions, params.stations.len());
+        let points = contact_points(&params, &lengths);
         let lambda0 = params.contact.as_ref().map_or(0.0, |c| c.method.lambda0());
         let n_points = points.len();
         Ok(Beam {
@@ -479,6 +408,98 @@ impl Unit for Beam {
     fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {
         dynamics::modes(self, count)
     }
+}
+
+/// Each boundary condition with its DOF, and the input ports of the coupled ones.
+fn resolve_conditions(params: &BeamParams, nodes: usize) -> (Vec<ResolvedCondition>, Vec<Port>) {
+    let mut inputs = Vec::new();
+    let mut conditions = Vec::new();
+    for (end, cond) in params.boundary.all() {
+        let node = if end == 0 { 0 } else { nodes - 1 };
+        let side = if end == 0 { "left" } else { "right" };
+        let input = matches!(cond.value, TimeFunction::Input(_)).then(|| {
+            inputs.push(Port::input(
+                &format!("{side}_{}", cond.quantity.name()),
+                port_kind(cond.quantity),
+            ));
+            inputs.len() - 1
+        });
+        conditions.push(ResolvedCondition {
+            end,
+            quantity: cond.quantity,
+            dof: 2 * node + cond.quantity.dof(),
+            value: cond.value.clone(),
+            input,
+        });
+    }
+    (conditions, inputs)
+}
+
+/// The four end quantities at both ends (moment and shear depend directly on the
+/// end's coupled inputs), the energies and contact region, and the deflection at
+/// each of `stations`.
+fn output_ports(conditions: &[ResolvedCondition], stations: usize) -> Vec<Port> {
+    let mut outputs = Vec::new();
+    for (end, side) in ["left", "right"].iter().enumerate() {
+        let held: Vec<usize> = conditions
+            .iter()
+            .filter(|c| c.end == end)
+            .filter_map(|c| c.input)
+            .collect();
+        for q in [
+            Quantity::Deflection,
+            Quantity::Rotation,
+            Quantity::Moment,
+            Quantity::Shear,
+        ] {
+            let p = Port::output(&format!("{side}_{}", q.name()), port_kind(q));
+            outputs.push(if q.is_kinematic() {
+                p
+            } else {
+                p.with_feedthrough(&held)
+            });
+        }
+    }
+    for name in EXTRA_OUTPUTS {
+        let unit = match name {
+            n if n.ends_with("energy") => "J",
+            "newton_iterations" => "",
+            _ => "m",
+        };
+        outputs.push(Port::output(name, PortKind::Generic).with_unit(unit));
+    }
+    for i in 0..stations {
+        outputs.push(Port::output(
+            &format!("deflection_{}", i + 1),
+            PortKind::Displacement,
+        ));
+    }
+    outputs
+}
+
+/// The contact integration points (Gauss or trapezoid per element), none without
+/// contact.
+fn contact_points(params: &BeamParams, lengths: &[f64]) -> Vec<ContactPoint> {
+    let mut points = Vec::new();
+    if let Some(contact) = &params.contact {
+        let mut x0 = 0.0;
+        for (e, &l) in lengths.iter().enumerate() {
+            let rule: &[(f64, f64)] = match contact.integration {
+                ContactIntegration::Gauss => &elements::GAUSS,
+                ContactIntegration::Trapezoid => &[(0.0, 0.5), (1.0, 0.5)],
+            };
+            for &(xi, w) in rule {
+                points.push(ContactPoint {
+                    element: e,
+                    x: x0 + xi * l,
+                    weight: w * l,
+                    shape: elements::shape(xi, l),
+                });
+            }
+            x0 += l;
+        }
+    }
+    points
 }
 
 /// Beam changes that depend on the inputs, through the driver that holds them.
