@@ -190,6 +190,21 @@ impl BeamParams {
 
     /// Checks every parameter, naming the first bad one.
     pub fn validate(&self) -> Result<(), UnitError> {
+        self.validate_mesh()?;
+        self.validate_properties()?;
+        self.validate_solver()?;
+        self.boundary.validate()?;
+        if let Some(c) = &self.contact {
+            c.method.validate()?;
+            c.surface.validate()?;
+            require_non_negative("contact.damping", c.damping)?;
+            require_non_negative("contact.gap_band", c.gap_band)?;
+        }
+        Ok(())
+    }
+
+    /// Length and elements in range; element lengths that sum to the length.
+    fn validate_mesh(&self) -> Result<(), UnitError> {
         // Physical ranges with margin (a thin cable to a large riser): beyond them
         // the matrices lose every digit and the diagnosis would be wrong.
         require_in_range("length", self.length, 1e-3, 1e5, "m")?;
@@ -217,6 +232,11 @@ impl BeamParams {
                 ));
             }
         }
+        Ok(())
+    }
+
+    /// EI, mu and the damping in physical ranges; finite load and initial shapes.
+    fn validate_properties(&self) -> Result<(), UnitError> {
         require_in_range(
             "flexural_rigidity",
             self.flexural_rigidity,
@@ -247,6 +267,11 @@ impl BeamParams {
                 ));
             }
         }
+        Ok(())
+    }
+
+    /// HHT-alpha, stations, Newton and the static penalty continuation.
+    fn validate_solver(&self) -> Result<(), UnitError> {
         if !(0.0..=1.0 / 3.0 + 1e-12).contains(&self.alpha) {
             return Err(UnitError::parameter(
                 "alpha",
@@ -291,13 +316,6 @@ impl BeamParams {
                 self.static_penalty_growth,
                 "expected psi >= 1",
             ));
-        }
-        self.boundary.validate()?;
-        if let Some(c) = &self.contact {
-            c.method.validate()?;
-            c.surface.validate()?;
-            require_non_negative("contact.damping", c.damping)?;
-            require_non_negative("contact.gap_band", c.gap_band)?;
         }
         Ok(())
     }
