@@ -108,22 +108,7 @@ impl Artefact {
             ));
         }
         let per_channel =
-            |name: &str, v: &Option<Vec<f64>>, default: f64| -> Result<Vec<f64>, UnitError> {
-                match v {
-                    None => Ok(vec![default; n]),
-                    Some(v) if v.len() == n => {
-                        for x in v {
-                            require_finite(name, *x)?;
-                        }
-                        Ok(v.clone())
-                    }
-                    Some(v) => Err(UnitError::parameter(
-                        name,
-                        format!("{v:?}"),
-                        &format!("expected one value per channel ({n})"),
-                    )),
-                }
-            };
+            |name: &str, v: &Option<Vec<f64>>, default: f64| per_channel(name, v, default, n);
         let scale = per_channel("scale", &params.scale, 1.0)?;
         let bias = per_channel("bias", &params.bias, 0.0)?;
         let variance = per_channel("noise_variance", &params.noise_variance, 0.0)?;
@@ -232,6 +217,29 @@ impl Artefact {
         if i > 0 {
             h.drain(..i * stride);
         }
+    }
+}
+
+/// One finite value per channel (`n` of them), or `default` for every channel.
+fn per_channel(
+    name: &str,
+    v: &Option<Vec<f64>>,
+    default: f64,
+    n: usize,
+) -> Result<Vec<f64>, UnitError> {
+    match v {
+        None => Ok(vec![default; n]),
+        Some(v) if v.len() == n => {
+            for x in v {
+                require_finite(name, *x)?;
+            }
+            Ok(v.clone())
+        }
+        Some(v) => Err(UnitError::parameter(
+            name,
+            format!("{v:?}"),
+            &format!("expected one value per channel ({n})"),
+        )),
     }
 }
 
