@@ -243,6 +243,21 @@ pub fn wrap_scene(
         parameters.insert("file".into(), toml::Value::String(file));
         unit.insert("parameters".into(), toml::Value::Table(parameters));
     }
+    rewire_for_fmus(&mut table, &renamed);
+    let stem = scene
+        .path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into());
+    let out = dir.join(format!("{stem}_fmu.toml"));
+    let written = toml::to_string(&table).map_err(|e| file_error(&out, e.to_string()))?;
+    std::fs::write(&out, written).map_err(|e| file_error(&out, format!("cannot write ({e})")))?;
+    Ok(out)
+}
+
+/// The wrapped scene's connections to renamed inputs, its title, and no output
+/// folder of its own.
+fn rewire_for_fmus(table: &mut toml::Table, renamed: &BTreeMap<String, String>) {
     if let Some(connections) = table
         .get_mut("connections")
         .and_then(toml::Value::as_array_mut)
@@ -261,13 +276,4 @@ pub fn wrap_scene(
     if let Some(output) = table.get_mut("output").and_then(toml::Value::as_table_mut) {
         output.remove("directory");
     }
-    let stem = scene
-        .path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "scene".into());
-    let out = dir.join(format!("{stem}_fmu.toml"));
-    let written = toml::to_string(&table).map_err(|e| file_error(&out, e.to_string()))?;
-    std::fs::write(&out, written).map_err(|e| file_error(&out, format!("cannot write ({e})")))?;
-    Ok(out)
 }
