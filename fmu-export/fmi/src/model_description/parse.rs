@@ -5,6 +5,15 @@ use super::*;
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
+/// What a parse has read so far: the description, and the variable and unit
+/// definition being read.
+#[derive(Default)]
+struct ParseState {
+    md: Option<ModelDescription>,
+    variable: Option<(Attributes, Option<ScalarVariable>)>,
+    unit: Option<UnitDefinition>,
+}
+
 /// The state of one parse: the reader, and the element path.
 pub(super) struct Parser<'a> {
     xml: &'a str,
@@ -111,146 +120,173 @@ impl<'a> Parser<'a> {
     }
 
     pub(super) fn run(mut self) -> Result<ModelDescription, DescriptionError> {
-        let mut md: Option<ModelDescription> = None;
-        let mut current_variable: Option<(Attributes, Option<ScalarVariable>)> = None;
-        let mut current_unit: Option<UnitDefinition> = None;
+        let mut state = ParseState::default();
         loop {
             let event = self
                 .reader
                 .read_event()
                 .map_err(|e| self.error_here(format!("not well-formed XML ({e})")))?;
             let (element, is_empty) = match &event {
-                Event::Start(e) => (Some(e.clone()), false),
-                Event::Empty(e) => (Some(e.clone()), true),
+                Event::Start(e) => (e.clone(), false),
+                Event::Empty(e) => (e.clone(), true),
                 Event::End(_) => {
                     let closed = self.path.pop().unwrap_or_default();
-                    if closed == "ScalarVariable" {
-                        self.finish_variable(&mut md, current_variable.take())?;
-                    } else if closed == "Unit"
-                        && let (Some(m), Some(u)) = (md.as_mut(), current_unit.take())
-                    {
-                        m.units.push(u);
-                    }
+                    self.close(&closed, &mut state)?;
                     continue;
                 }
                 Event::Eof => break,
                 _ => continue,
             };
-            let Some(element) = element else { continue };
             let attrs = self.attributes(&element)?;
             let name = attrs.element.clone();
-            let parent = self.path.last().map(String::as_str).unwrap_or("");
-            match (parent, name.as_str()) {
-                ("", "fmiModelDescription") => md = Some(Self::root(&attrs)?),
-                ("", other) => {
-                    return Err(attrs.error(format!(
-                        "the root element must be <fmiModelDescription>, found <{other}>"
-                    )));
-                }
-                ("fmiModelDescription", "CoSimulation") => {
-                    if let Some(m) = md.as_mut() {
-                        m.co_simulation = Some(CoSimulation {
-                            model_identifier: attrs.required("modelIdentifier")?.to_owned(),
-                            can_handle_variable_communication_step_size: attrs
-                                .flag("canHandleVariableCommunicationStepSize")?,
-                            can_interpolate_inputs: attrs.flag("canInterpolateInputs")?,
-                            max_output_derivative_order: attrs
-                                .parsed("maxOutputDerivativeOrder", "an unsigned integer")?
-                                .unwrap_or(0),
-                            can_get_and_set_fmu_state: attrs.flag("canGetAndSetFMUstate")?,
-                            can_serialize_fmu_state: attrs.flag("canSerializeFMUstate")?,
-                        });
-                    }
-                }
-                ("fmiModelDescription", "DefaultExperiment") => {
-                    if let Some(m) = md.as_mut() {
-                        m.default_experiment = Some(DefaultExperiment {
-                            start_time: attrs.parsed("startTime", "a number")?,
-                            stop_time: attrs.parsed("stopTime", "a number")?,
-                            tolerance: attrs.parsed("tolerance", "a number")?,
-                            step_size: attrs.parsed("stepSize", "a number")?,
-                        });
-                    }
-                }
-                ("UnitDefinitions", "Unit") => {
-                    current_unit = Some(UnitDefinition {
-                        name: attrs.required("name")?.to_owned(),
-                        exponents: [0; 8],
-                        factor: 1.0,
-                        offset: 0.0,
-                    });
-                    if is_empty && let (Some(m), Some(u)) = (md.as_mut(), current_unit.take()) {
-                        m.units.push(u);
-                    }
-                }
-                ("Unit", "BaseUnit") => {
-                    if let Some(u) = current_unit.as_mut() {
-                        for (i, base) in BASE_UNITS.iter().enumerate() {
-                            u.exponents[i] = attrs.parsed(base, "an integer")?.unwrap_or(0);
-                        }
-                        u.factor = attrs.parsed("factor", "a number")?.unwrap_or(1.0);
-                        u.offset = attrs.parsed("offset", "a number")?.unwrap_or(0.0);
-                    }
-                }
-                ("ModelVariables", "ScalarVariable") => {
-                    current_variable = Some((attrs, None));
-                    if is_empty {
-                        self.finish_variable(&mut md, current_variable.take())?;
-                        continue;
-                    }
-                }
-                ("ScalarVariable", "Real" | "Integer" | "Boolean" | "String" | "Enumeration") => {
-                    if let Some((sv_attrs, typed)) = current_variable.as_mut() {
-                        if typed.is_some() {
-                            return Err(
-                                attrs.error("a ScalarVariable has two type elements".into())
-                            );
-                        }
-                        *typed = Some(Self::variable(sv_attrs, &attrs)?);
-                    }
-                }
-                ("Outputs" | "InitialUnknowns" | "Derivatives", "Unknown") => {
-                    let unknown = Unknown {
-                        index: attrs
-                            .parsed("index", "a 1-based variable index")?
-                            .ok_or_else(|| {
-                                attrs.error("missing required attribute `index`".into())
-                            })?,
-                        dependencies: match attrs.optional("dependencies") {
-                            None => None,
-                            Some(list) => Some(
-                                list.split_whitespace()
-                                    .map(|d| {
-                                        d.parse().map_err(|_| {
-                                            attrs.error(format!(
-                                                "dependencies: `{d}` is not a variable index"
-                                            ))
-                                        })
-                                    })
-                                    .collect::<Result<Vec<usize>, _>>()?,
-                            ),
-                        },
-                    };
-                    if let Some(m) = md.as_mut() {
-                        match parent {
-                            "Outputs" => m.outputs.push(unknown),
-                            "InitialUnknowns" => m.initial_unknowns.push(unknown),
-                            _ => {}
-                        }
-                    }
-                }
-                _ => {}
-            }
-            if !is_empty {
+            let opened = self.element(attrs, is_empty, &mut state)?;
+            if opened {
                 self.path.push(name);
             }
         }
-        let md = md.ok_or_else(|| DescriptionError {
+        let md = state.md.ok_or_else(|| DescriptionError {
             line: 1,
             message: "no <fmiModelDescription> element".into(),
         })?;
         Self::check(&md, self.line(self.xml.len() as u64))?;
         Ok(md)
+    }
+
+    /// The end of an element: a variable or unit definition is complete.
+    fn close(&mut self, closed: &str, state: &mut ParseState) -> Result<(), DescriptionError> {
+        if closed == "ScalarVariable" {
+            self.finish_variable(&mut state.md, state.variable.take())?;
+        } else if closed == "Unit"
+            && let (Some(m), Some(u)) = (state.md.as_mut(), state.unit.take())
+        {
+            m.units.push(u);
+        }
+        Ok(())
+    }
+
+    /// One element start (or empty element); whether it stays open.
+    fn element(
+        &mut self,
+        attrs: Attributes,
+        is_empty: bool,
+        state: &mut ParseState,
+    ) -> Result<bool, DescriptionError> {
+        let name = attrs.element.clone();
+        let parent = self.path.last().cloned().unwrap_or_default();
+        let (md, current_variable, current_unit) =
+            (&mut state.md, &mut state.variable, &mut state.unit);
+        match (parent.as_str(), name.as_str()) {
+            ("", "fmiModelDescription") => *md = Some(Self::root(&attrs)?),
+            ("", other) => {
+                return Err(attrs.error(format!(
+                    "the root element must be <fmiModelDescription>, found <{other}>"
+                )));
+            }
+            ("fmiModelDescription", "CoSimulation") => {
+                if let Some(m) = md.as_mut() {
+                    m.co_simulation = Some(Self::co_simulation(&attrs)?);
+                }
+            }
+            ("fmiModelDescription", "DefaultExperiment") => {
+                if let Some(m) = md.as_mut() {
+                    m.default_experiment = Some(DefaultExperiment {
+                        start_time: attrs.parsed("startTime", "a number")?,
+                        stop_time: attrs.parsed("stopTime", "a number")?,
+                        tolerance: attrs.parsed("tolerance", "a number")?,
+                        step_size: attrs.parsed("stepSize", "a number")?,
+                    });
+                }
+            }
+            ("UnitDefinitions", "Unit") => {
+                *current_unit = Some(UnitDefinition {
+                    name: attrs.required("name")?.to_owned(),
+                    exponents: [0; 8],
+                    factor: 1.0,
+                    offset: 0.0,
+                });
+                if is_empty && let (Some(m), Some(u)) = (md.as_mut(), current_unit.take()) {
+                    m.units.push(u);
+                }
+            }
+            ("Unit", "BaseUnit") => {
+                if let Some(u) = current_unit.as_mut() {
+                    Self::base_unit(u, &attrs)?;
+                }
+            }
+            ("ModelVariables", "ScalarVariable") => {
+                *current_variable = Some((attrs, None));
+                if is_empty {
+                    self.finish_variable(md, current_variable.take())?;
+                    return Ok(false);
+                }
+            }
+            ("ScalarVariable", "Real" | "Integer" | "Boolean" | "String" | "Enumeration") => {
+                if let Some((sv_attrs, typed)) = current_variable.as_mut() {
+                    if typed.is_some() {
+                        return Err(attrs.error("a ScalarVariable has two type elements".into()));
+                    }
+                    *typed = Some(Self::variable(sv_attrs, &attrs)?);
+                }
+            }
+            ("Outputs" | "InitialUnknowns" | "Derivatives", "Unknown") => {
+                let unknown = Self::unknown(&attrs)?;
+                if let Some(m) = md.as_mut() {
+                    match parent.as_str() {
+                        "Outputs" => m.outputs.push(unknown),
+                        "InitialUnknowns" => m.initial_unknowns.push(unknown),
+                        _ => {}
+                    }
+                }
+            }
+            _ => {}
+        }
+        Ok(!is_empty)
+    }
+
+    fn co_simulation(attrs: &Attributes) -> Result<CoSimulation, DescriptionError> {
+        Ok(CoSimulation {
+            model_identifier: attrs.required("modelIdentifier")?.to_owned(),
+            can_handle_variable_communication_step_size: attrs
+                .flag("canHandleVariableCommunicationStepSize")?,
+            can_interpolate_inputs: attrs.flag("canInterpolateInputs")?,
+            max_output_derivative_order: attrs
+                .parsed("maxOutputDerivativeOrder", "an unsigned integer")?
+                .unwrap_or(0),
+            can_get_and_set_fmu_state: attrs.flag("canGetAndSetFMUstate")?,
+            can_serialize_fmu_state: attrs.flag("canSerializeFMUstate")?,
+        })
+    }
+
+    fn base_unit(u: &mut UnitDefinition, attrs: &Attributes) -> Result<(), DescriptionError> {
+        for (i, base) in BASE_UNITS.iter().enumerate() {
+            u.exponents[i] = attrs.parsed(base, "an integer")?.unwrap_or(0);
+        }
+        u.factor = attrs.parsed("factor", "a number")?.unwrap_or(1.0);
+        u.offset = attrs.parsed("offset", "a number")?.unwrap_or(0.0);
+        Ok(())
+    }
+
+    /// An `<Unknown>` of ModelStructure: its index and dependencies.
+    fn unknown(attrs: &Attributes) -> Result<Unknown, DescriptionError> {
+        let index = attrs
+            .parsed("index", "a 1-based variable index")?
+            .ok_or_else(|| attrs.error("missing required attribute `index`".into()))?;
+        let dependencies = match attrs.optional("dependencies") {
+            None => None,
+            Some(list) => Some(
+                list.split_whitespace()
+                    .map(|d| {
+                        d.parse().map_err(|_| {
+                            attrs.error(format!("dependencies: `{d}` is not a variable index"))
+                        })
+                    })
+                    .collect::<Result<Vec<usize>, _>>()?,
+            ),
+        };
+        Ok(Unknown {
+            index,
+            dependencies,
+        })
     }
 
     fn root(a: &Attributes) -> Result<ModelDescription, DescriptionError> {
