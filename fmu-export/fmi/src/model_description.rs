@@ -206,6 +206,34 @@ impl ModelDescription {
                 cs.can_serialize_fmu_state
             );
         }
+        self.write_units(&mut x);
+        if let Some(d) = &self.default_experiment {
+            x.push_str("  <DefaultExperiment");
+            for (name, v) in [
+                ("startTime", d.start_time),
+                ("stopTime", d.stop_time),
+                ("tolerance", d.tolerance),
+                ("stepSize", d.step_size),
+            ] {
+                if let Some(v) = v {
+                    let _ = write!(x, r#" {name}="{v:e}""#);
+                }
+            }
+            x.push_str("/>\n");
+        }
+        x.push_str("  <ModelVariables>\n");
+        for (i, v) in self.variables.iter().enumerate() {
+            write_variable(&mut x, i, v);
+        }
+        x.push_str("  </ModelVariables>\n  <ModelStructure>\n");
+        self.write_structure(&mut x);
+        x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
+        x
+    }
+
+    /// `<UnitDefinitions>`, when any unit is declared.
+    fn write_units(&self, x: &mut String) {
+        let e = |s: &str| escape(s).into_owned();
         if !self.units.is_empty() {
             x.push_str("  <UnitDefinitions>\n");
             for u in &self.units {
@@ -225,57 +253,10 @@ impl ModelDescription {
             }
             x.push_str("  </UnitDefinitions>\n");
         }
-        if let Some(d) = &self.default_experiment {
-            x.push_str("  <DefaultExperiment");
-            for (name, v) in [
-                ("startTime", d.start_time),
-                ("stopTime", d.stop_time),
-                ("tolerance", d.tolerance),
-                ("stepSize", d.step_size),
-            ] {
-                if let Some(v) = v {
-                    let _ = write!(x, r#" {name}="{v:e}""#);
-                }
-            }
-            x.push_str("/>\n");
-        }
-        x.push_str("  <ModelVariables>\n");
-        for (i, v) in self.variables.iter().enumerate() {
-            let _ = write!(
-                x,
-                r#"    <!-- {} --><ScalarVariable name="{}" valueReference="{}" description="{}" causality="{}" variability="{}""#,
-                i + 1,
-                e(&v.name),
-                v.value_reference,
-                e(&v.description),
-                v.causality.name(),
-                e(&v.variability)
-            );
-            if let Some(initial) = &v.initial {
-                let _ = write!(x, r#" initial="{}""#, e(initial));
-            }
-            let _ = write!(x, "><{}", v.value.type_name());
-            if let Some(unit) = &v.unit {
-                let _ = write!(x, r#" unit="{}""#, e(unit));
-            }
-            match &v.value {
-                Value::Real(Some(s)) => {
-                    let _ = write!(x, r#" start="{s:e}""#);
-                }
-                Value::Integer(Some(s)) | Value::Enumeration(Some(s)) => {
-                    let _ = write!(x, r#" start="{s}""#);
-                }
-                Value::Boolean(Some(s)) => {
-                    let _ = write!(x, r#" start="{s}""#);
-                }
-                Value::String(Some(s)) => {
-                    let _ = write!(x, r#" start="{}""#, e(s));
-                }
-                _ => {}
-            }
-            x.push_str("/></ScalarVariable>\n");
-        }
-        x.push_str("  </ModelVariables>\n  <ModelStructure>\n");
+    }
+
+    /// `<ModelStructure>`'s outputs and initial unknowns.
+    fn write_structure(&self, x: &mut String) {
         for (tag, list) in [
             ("Outputs", &self.outputs),
             ("InitialUnknowns", &self.initial_unknowns),
@@ -294,9 +275,45 @@ impl ModelDescription {
             }
             let _ = writeln!(x, "    </{tag}>");
         }
-        x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
-        x
     }
+}
+
+/// One `<ScalarVariable>` (numbered `i + 1` in a comment) with its type element.
+fn write_variable(x: &mut String, i: usize, v: &ScalarVariable) {
+    let e = |s: &str| escape(s).into_owned();
+    let _ = write!(
+        x,
+        r#"    <!-- {} --><ScalarVariable name="{}" valueReference="{}" description="{}" causality="{}" variability="{}""#,
+        i + 1,
+        e(&v.name),
+        v.value_reference,
+        e(&v.description),
+        v.causality.name(),
+        e(&v.variability)
+    );
+    if let Some(initial) = &v.initial {
+        let _ = write!(x, r#" initial="{}""#, e(initial));
+    }
+    let _ = write!(x, "><{}", v.value.type_name());
+    if let Some(unit) = &v.unit {
+        let _ = write!(x, r#" unit="{}""#, e(unit));
+    }
+    match &v.value {
+        Value::Real(Some(s)) => {
+            let _ = write!(x, r#" start="{s:e}""#);
+        }
+        Value::Integer(Some(s)) | Value::Enumeration(Some(s)) => {
+            let _ = write!(x, r#" start="{s}""#);
+        }
+        Value::Boolean(Some(s)) => {
+            let _ = write!(x, r#" start="{s}""#);
+        }
+        Value::String(Some(s)) => {
+            let _ = write!(x, r#" start="{}""#, e(s));
+        }
+        _ => {}
+    }
+    x.push_str("/></ScalarVariable>\n");
 }
 
 mod parse;
