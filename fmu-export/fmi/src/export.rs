@@ -201,76 +201,8 @@ impl Layout {
     pub fn new(config: &ExportConfig, unit: UnitDescription, kind: &KindInfo) -> Layout {
         let n_in = unit.inputs.len();
         let n_out = unit.outputs.len();
-        let mut parameters = Vec::new();
-        flatten(&config.parameters, &mut Vec::new(), &mut parameters);
-        for effect in kind.effects {
-            parameters.push(ParameterVariable {
-                name: format!("effects.{effect}"),
-                value_reference: 0,
-                target: ParameterTarget::Effect((*effect).to_owned()),
-                start: Value::Boolean(Some(config.effects.iter().any(|e| e == effect))),
-            });
-        }
-        for (i, p) in parameters.iter_mut().enumerate() {
-            p.value_reference = (n_in + n_out + i) as u32;
-        }
-        let mut variables = Vec::new();
-        let mut units = Vec::new();
-        let mut unit_attribute = |name: &str| match si_definition(name) {
-            Some(def) => {
-                if !units
-                    .iter()
-                    .any(|u: &crate::model_description::UnitDefinition| u.name == name)
-                {
-                    units.push(def);
-                }
-                Some(name.to_owned())
-            }
-            None => None,
-        };
-        for (i, p) in unit.inputs.iter().enumerate() {
-            let hold = match p.hold {
-                Hold::Ramp => "ramp",
-                Hold::ZeroOrder => "zero-order",
-            };
-            variables.push(ScalarVariable {
-                name: input_variable_name(&unit, i),
-                value_reference: i as u32,
-                description: format!(
-                    "{} input ({hold} hold when input derivatives are set)",
-                    p.kind
-                ),
-                causality: VariableCausality::Input,
-                variability: "continuous".into(),
-                initial: None,
-                value: Value::Real(Some(config.inputs.get(&p.name).copied().unwrap_or(0.0))),
-                unit: unit_attribute(&p.unit),
-            });
-        }
-        for (i, p) in unit.outputs.iter().enumerate() {
-            variables.push(ScalarVariable {
-                name: p.name.clone(),
-                value_reference: (n_in + i) as u32,
-                description: format!("{} output", p.kind),
-                causality: VariableCausality::Output,
-                variability: "continuous".into(),
-                initial: Some("calculated".into()),
-                value: Value::Real(None),
-                unit: unit_attribute(&p.unit),
-            });
-        }
-        for p in &parameters {
-            variables.push(ScalarVariable {
-                name: p.name.clone(),
-                value_reference: p.value_reference,
-                description: "scene parameter; set before initialisation".into(),
-                causality: VariableCausality::Parameter,
-                variability: "fixed".into(),
-                initial: Some("exact".into()),
-                value: p.start.clone(),
-                unit: None,
-            });
-        }
+        let parameters = parameter_variables(config, kind, (n_in + n_out) as u32);
+        let (variables, units) = variables(config, &unit, &parameters);
         let outputs: Vec<Unknown> = unit
             .outputs
             .iter()
@@ -315,6 +247,100 @@ impl Layout {
             model,
         }
     }
+}
+
+/// The parameter variables: the scalars of the parameter table, then a Boolean per
+/// effect the kind can switch, numbered from value reference `first`.
+fn parameter_variables(
+    config: &ExportConfig,
+    kind: &KindInfo,
+    first: u32,
+) -> Vec<ParameterVariable> {
+    let mut parameters = Vec::new();
+    flatten(&config.parameters, &mut Vec::new(), &mut parameters);
+    for effect in kind.effects {
+        parameters.push(ParameterVariable {
+            name: format!("effects.{effect}"),
+            value_reference: 0,
+            target: ParameterTarget::Effect((*effect).to_owned()),
+            start: Value::Boolean(Some(config.effects.iter().any(|e| e == effect))),
+        });
+    }
+    for (i, p) in parameters.iter_mut().enumerate() {
+        p.value_reference = first + i as u32;
+    }
+    parameters
+}
+
+/// The scalar variables (inputs, outputs, parameters) and the units of measure
+/// they declare.
+fn variables(
+    config: &ExportConfig,
+    unit: &UnitDescription,
+    parameters: &[ParameterVariable],
+) -> (
+    Vec<ScalarVariable>,
+    Vec<crate::model_description::UnitDefinition>,
+) {
+    let n_in = unit.inputs.len();
+    let mut variables = Vec::new();
+    let mut units = Vec::new();
+    let mut unit_attribute = |name: &str| match si_definition(name) {
+        Some(def) => {
+            if !units
+                .iter()
+                .any(|u: &crate::model_description::UnitDefinition| u.name == name)
+            {
+                units.push(def);
+            }
+            Some(name.to_owned())
+        }
+        None => None,
+    };
+    for (i, p) in unit.inputs.iter().enumerate() {
+        let hold = match p.hold {
+            Hold::Ramp => "ramp",
+            Hold::ZeroOrder => "zero-order",
+        };
+        variables.push(ScalarVariable {
+            name: input_variable_name(unit, i),
+            value_reference: i as u32,
+            description: format!(
+                "{} input ({hold} hold when input derivatives are set)",
+                p.kind
+            ),
+            causality: VariableCausality::Input,
+            variability: "continuous".into(),
+            initial: None,
+            value: Value::Real(Some(config.inputs.get(&p.name).copied().unwrap_or(0.0))),
+            unit: unit_attribute(&p.unit),
+        });
+    }
+    for (i, p) in unit.outputs.iter().enumerate() {
+        variables.push(ScalarVariable {
+            name: p.name.clone(),
+            value_reference: (n_in + i) as u32,
+            description: format!("{} output", p.kind),
+            causality: VariableCausality::Output,
+            variability: "continuous".into(),
+            initial: Some("calculated".into()),
+            value: Value::Real(None),
+            unit: unit_attribute(&p.unit),
+        });
+    }
+    for p in parameters {
+        variables.push(ScalarVariable {
+            name: p.name.clone(),
+            value_reference: p.value_reference,
+            description: "scene parameter; set before initialisation".into(),
+            causality: VariableCausality::Parameter,
+            variability: "fixed".into(),
+            initial: Some("exact".into()),
+            value: p.start.clone(),
+            unit: None,
+        });
+    }
+    (variables, units)
 }
 
 /// The FMI name of input `i`: its port name, or `<name>_in` when an output has
