@@ -96,6 +96,65 @@ pub fn straight_guess(
         .collect()
 }
 
+/// The residual of the static equilibrium at given positions, with its buffers:
+/// internal (bar tensions) plus external (weight, current drag, top force) nodal
+/// forces of the free nodes.
+struct Equilibrium<'a> {
+    p: &'a ElementProperties,
+    loads: &'a StaticLoads,
+    top_force: [f64; 2],
+    tensions: Vec<f64>,
+    internal: Vec<[f64; 2]>,
+    external: Vec<[f64; 2]>,
+    residual: Vec<f64>,
+}
+
+impl Equilibrium<'_> {
+    /// Fills the residual at `x`; returns its largest entry (N).
+    fn evaluate(&mut self, x: &[[f64; 2]]) -> f64 {
+        let (nodes, m) = (x.len(), x.len() - 1);
+        internal_forces(self.p, x, &mut self.internal, &mut self.tensions);
+        self.loads.nodal(self.p, x, &mut self.external);
+        self.external[m][0] += self.top_force[0];
+        self.external[m][1] += self.top_force[1];
+        let mut worst: f64 = 0.0;
+        for j in 1..nodes {
+            for c in 0..2 {
+                let v = self.internal[j][c] + self.external[j][c];
+                self.residual[2 * (j - 1) + c] = v;
+                worst = worst.max(v.abs());
+            }
+        }
+        worst
+    }
+
+    /// Halves the Newton step while the residual grows (at most 12 times); the
+    /// accepted positions go into `trial`. Returns the new residual norm, or
+    /// `None` when no fraction of the step reduces it.
+    fn line_search(
+        &mut self,
+        x: &[[f64; 2]],
+        step: &[f64],
+        norm: f64,
+        trial: &mut [[f64; 2]],
+    ) -> Option<f64> {
+        let mut fraction = 1.0;
+        for _ in 0..12 {
+            for j in 1..x.len() {
+                for c in 0..2 {
+                    trial[j][c] = x[j][c] + fraction * step[2 * (j - 1) + c];
+                }
+            }
+            let n = self.evaluate(trial);
+            if n.is_finite() && n < norm {
+                return Some(n);
+            }
+            fraction *= 0.5;
+        }
+        None
+    }
+}
+
 /// Solves for the node positions with the bottom node fixed at `guess[0]` and
 /// `top_force` (N) on the last node. Fails, with the residual history, when the
 /// line goes slack or Newton does not converge in 100 iterations.
@@ -112,37 +171,17 @@ pub fn solve(
         .sqrt()
         .max(loads.weight * p.length * m as f64)
         .max(1.0);
-    let mut tensions = vec![0.0; m];
-    let mut internal = vec![[0.0; 2]; nodes];
-    let mut external = vec![[0.0; 2]; nodes];
-    let mut residual = vec![0.0; 2 * m];
-    let mut history = Vec::new();
-    let residual_of = |x: &[[f64; 2]],
-                       r: &mut [f64],
-                       internal: &mut [[f64; 2]],
-                       external: &mut [[f64; 2]],
-                       tensions: &mut [f64]| {
-        internal_forces(p, x, internal, tensions);
-        loads.nodal(p, x, external);
-        external[m][0] += top_force[0];
-        external[m][1] += top_force[1];
-        let mut worst: f64 = 0.0;
-        for j in 1..nodes {
-            for c in 0..2 {
-                let v = internal[j][c] + external[j][c];
-                r[2 * (j - 1) + c] = v;
-                worst = worst.max(v.abs());
-            }
-        }
-        worst
+    let mut eq = Equilibrium {
+        p,
+        loads,
+        top_force,
+        tensions: vec![0.0; m],
+        internal: vec![[0.0; 2]; nodes],
+        external: vec![[0.0; 2]; nodes],
+        residual: vec![0.0; 2 * m],
     };
-    let mut norm = residual_of(
-        &x,
-        &mut residual,
-        &mut internal,
-        &mut external,
-        &mut tensions,
-    );
+    let mut history = Vec::new();
+    let mut norm = eq.evaluate(&x);
     // Round-off floor: positions of size |x| carry eps |x| of error, which the axial
     // stiffness EA / L0 turns into forces.
     let extent = x
@@ -150,12 +189,13 @@ pub fn solve(
         .fold(0.0f64, |a, p| a.max(p[0].abs()).max(p[1].abs()));
     let floor = 1e3 * f64::EPSILON * (p.axial_stiffness / p.length) * extent.max(p.length);
     let target = (tolerance * scale).max(floor);
+    let mut trial = x.clone();
     for iteration in 0..100u32 {
         history.push(norm);
         if norm <= target {
             return Ok(StaticState {
                 positions: x,
-                tensions,
+                tensions: eq.tensions,
                 iterations: iteration,
             });
         }
@@ -163,44 +203,22 @@ pub fn solve(
         let Some(factor) = BandLdlt::new(&k) else {
             return Err(UnitError::Numerical(format!(
                 "static equilibrium: the line is slack or in compression at Newton iteration {iteration} (smallest tension {:.3e} N); the top force ({:.4e}, {:.4e}) N cannot hold it. Residual history (N): {}",
-                tensions.iter().copied().fold(f64::INFINITY, f64::min),
+                eq.tensions.iter().copied().fold(f64::INFINITY, f64::min),
                 top_force[0],
                 top_force[1],
                 format_history(&history)
             )));
         };
-        let mut step = residual.clone();
+        let mut step = eq.residual.clone();
         factor.solve_in_place(&mut step);
-        // Line search: halve the step while the residual grows.
-        let mut factor_len = 1.0;
-        let mut trial = x.clone();
-        let mut accepted = false;
-        for _ in 0..12 {
-            for j in 1..nodes {
-                for c in 0..2 {
-                    trial[j][c] = x[j][c] + factor_len * step[2 * (j - 1) + c];
-                }
-            }
-            let n = residual_of(
-                &trial,
-                &mut residual,
-                &mut internal,
-                &mut external,
-                &mut tensions,
-            );
-            if n.is_finite() && n < norm {
-                norm = n;
-                accepted = true;
-                break;
-            }
-            factor_len *= 0.5;
-        }
-        if !accepted {
+        trial.clone_from(&x);
+        let Some(n) = eq.line_search(&x, &step, norm, &mut trial) else {
             return Err(UnitError::Numerical(format!(
                 "static equilibrium: Newton made no progress at iteration {iteration}. Residual history (N): {}",
                 format_history(&history)
             )));
-        }
+        };
+        norm = n;
         x.clone_from(&trial);
     }
     Err(UnitError::Numerical(format!(
