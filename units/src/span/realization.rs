@@ -101,13 +101,33 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
     let a = DMatrix::from_fn(rows.len(), unknowns, |r, c| rows[r][c]);
     let b = DVector::from_vec(rhs);
     let x = bounded::least_squares("residue fit", a, &b, 1e-14)?;
-    // Real modal realisation.
+    let (am, bm, cm) = real_modal_form(&groups, x.as_slice());
+    let d = dc.re
+        - basis0
+            .iter()
+            .zip(x.iter())
+            .map(|(b, r)| b.re * r)
+            .sum::<f64>();
+    Ok(StateSpace {
+        a: am,
+        b: bm,
+        c: cm,
+        d,
+        poles: poles.to_vec(),
+        repaired: 0,
+    })
+}
+
+/// The real modal realisation (A, B, C) of residues `x` at the pole groups (one
+/// per real pole or conjugate pair): a 1x1 block per real pole, a 2x2 rotation
+/// block per pair (entries of size |p|, well conditioned for the exponential).
+fn real_modal_form(groups: &[C64], x: &[f64]) -> (DMatrix<f64>, DVector<f64>, DVector<f64>) {
     let n: usize = groups.iter().map(|p| if p.im == 0.0 { 1 } else { 2 }).sum();
     let mut am = DMatrix::zeros(n, n);
     let mut bm = DVector::zeros(n);
     let mut cm = DVector::zeros(n);
     let (mut row, mut k) = (0, 0);
-    for &p in &groups {
+    for &p in groups {
         if p.im == 0.0 {
             am[(row, row)] = p.re;
             bm[row] = 1.0;
@@ -129,20 +149,7 @@ fn fit_residues(poles: &[C64], span: &Span, band: f64) -> Result<StateSpace, Uni
             k += 2;
         }
     }
-    let d = dc.re
-        - basis0
-            .iter()
-            .zip(x.iter())
-            .map(|(b, r)| b.re * r)
-            .sum::<f64>();
-    Ok(StateSpace {
-        a: am,
-        b: bm,
-        c: cm,
-        d,
-        poles: poles.to_vec(),
-        repaired: 0,
-    })
+    (am, bm, cm)
 }
 
 /// Stable poles in place of an approximation's poles, some in the right half-plane:
