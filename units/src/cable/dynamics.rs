@@ -58,29 +58,7 @@ impl Cable {
                 [m.get(r0 + 1, c0), m.get(r0 + 1, c0 + 1)],
             ]
         };
-        let drag = self.effects.drag.then(|| {
-            let mut dirs = Vec::with_capacity(nodes - 1);
-            let mut speeds = Vec::with_capacity(nodes - 1);
-            for e in 0..nodes - 1 {
-                let (dir, _, _) = elements::element_state(p, x[e], x[e + 1]);
-                dirs.push(dir);
-                let z = 0.5 * (x[e][1] + x[e + 1][1]);
-                speeds.push(if self.effects.current {
-                    self.params.current.speed(z, self.params.water_depth)
-                } else {
-                    0.0
-                });
-            }
-            Drag::new(
-                self.params.water_density,
-                self.params.diameter,
-                self.params.drag_normal,
-                self.params.drag_tangential,
-                p.length,
-                dirs,
-                speeds,
-            )
-        });
+        let drag = self.effects.drag.then(|| self.drag_about(x));
         let mut static_drag = vec![[0.0; 2]; nodes];
         if let Some(d) = &drag {
             d.add_forces(&vec![[0.0; 2]; nodes], &mut static_drag);
@@ -115,6 +93,36 @@ impl Cable {
             node_velocity: vec![[0.0; 2]; nodes],
             node_drag: vec![[0.0; 2]; nodes],
         })
+    }
+}
+
+impl Cable {
+    /// The Morison drag about the static positions `x`: each element's direction
+    /// and the current's speed at its middle (none without the `current` effect).
+    fn drag_about(&self, x: &[[f64; 2]]) -> Drag {
+        let p = &self.props;
+        let nodes = x.len();
+        let mut dirs = Vec::with_capacity(nodes - 1);
+        let mut speeds = Vec::with_capacity(nodes - 1);
+        for e in 0..nodes - 1 {
+            let (dir, _, _) = elements::element_state(p, x[e], x[e + 1]);
+            dirs.push(dir);
+            let z = 0.5 * (x[e][1] + x[e + 1][1]);
+            speeds.push(if self.effects.current {
+                self.params.current.speed(z, self.params.water_depth)
+            } else {
+                0.0
+            });
+        }
+        Drag::new(
+            self.params.water_density,
+            self.params.diameter,
+            self.params.drag_normal,
+            self.params.drag_tangential,
+            p.length,
+            dirs,
+            speeds,
+        )
     }
 }
 
