@@ -185,24 +185,7 @@ pub fn run_study(
     }
     let mut rows = Vec::new();
     for sweep in sweeps {
-        let finest = match sweep.knob {
-            Knob::Elements => sweep
-                .values
-                .iter()
-                .copied()
-                .fold(f64::NEG_INFINITY, f64::max),
-            _ => sweep.values.iter().copied().fold(f64::INFINITY, f64::min),
-        };
-        let mut ordered = sweep.values.clone();
-        ordered.sort_by(|a, b| {
-            if (*a == finest) == (*b == finest) {
-                a.total_cmp(b)
-            } else if *a == finest {
-                std::cmp::Ordering::Less
-            } else {
-                std::cmp::Ordering::Greater
-            }
-        });
+        let ordered = finest_first(sweep);
         let mut reference: Option<(Vec<f64>, Vec<IndicatorColumns>)> = None;
         let mut sweep_rows = Vec::new();
         for value in ordered {
@@ -228,20 +211,7 @@ pub fn run_study(
                 }
             };
             let rec = result.recorder;
-            let columns: Vec<IndicatorColumns> = scene
-                .spec
-                .output
-                .indicators
-                .iter()
-                .map(|i| {
-                    let cols = i
-                        .signals
-                        .iter()
-                        .map(|s| rec.column(s).map(<[f64]>::to_vec).unwrap_or_default())
-                        .collect();
-                    (i.name.clone(), cols)
-                })
-                .collect();
+            let columns = indicator_columns(&scene, &rec);
             let errors = match &reference {
                 None => columns.iter().map(|(n, _)| (n.clone(), 0.0)).collect(),
                 Some((ref_time, ref_cols)) => {
@@ -266,6 +236,48 @@ pub fn run_study(
         rows.extend(sweep_rows);
     }
     Ok(rows)
+}
+
+/// A sweep's values, the finest first (the reference of the others), then in
+/// increasing order.
+fn finest_first(sweep: &Sweep) -> Vec<f64> {
+    let finest = match sweep.knob {
+        Knob::Elements => sweep
+            .values
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max),
+        _ => sweep.values.iter().copied().fold(f64::INFINITY, f64::min),
+    };
+    let mut ordered = sweep.values.clone();
+    ordered.sort_by(|a, b| {
+        if (*a == finest) == (*b == finest) {
+            a.total_cmp(b)
+        } else if *a == finest {
+            std::cmp::Ordering::Less
+        } else {
+            std::cmp::Ordering::Greater
+        }
+    });
+    ordered
+}
+
+/// Each indicator's recorded signal columns of a run.
+fn indicator_columns(scene: &Scene, rec: &crate::record::Recorder) -> Vec<IndicatorColumns> {
+    scene
+        .spec
+        .output
+        .indicators
+        .iter()
+        .map(|i| {
+            let cols = i
+                .signals
+                .iter()
+                .map(|s| rec.column(s).map(<[f64]>::to_vec).unwrap_or_default())
+                .collect();
+            (i.name.clone(), cols)
+        })
+        .collect()
 }
 
 /// epsilon of each indicator: the run's signals against the reference run's,
