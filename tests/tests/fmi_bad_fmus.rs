@@ -62,13 +62,13 @@ fn expect_error(file: &Path, wanted: &[&str]) -> String {
     }
     e
 }
+
 #[test]
-fn broken_archives_descriptions_binaries_and_guids_give_clear_errors() {
+fn broken_archives_and_model_descriptions_give_clear_errors() {
     let dir = temp();
-    let (xml, library, resources) = parts(dir.path());
+    let (xml, library, _) = parts(dir.path());
     let at = |name: &str| dir.path().join(name);
     let so = "binaries/linux64/slender_left.so";
-    let res = "resources/slender-unit.toml";
 
     std::fs::write(at("corrupt.fmu"), b"PK\x03\x04 this is not a zip").unwrap();
     expect_error(&at("corrupt.fmu"), &["corrupt.fmu", "zip"]);
@@ -104,6 +104,15 @@ fn broken_archives_descriptions_binaries_and_guids_give_clear_errors() {
         &[("modelDescription.xml", me_only.as_bytes())],
     );
     expect_error(&at("me.fmu"), &["does not offer co-simulation"]);
+}
+
+#[test]
+fn missing_binaries_symbols_resources_and_wrong_guids_give_clear_errors() {
+    let dir = temp();
+    let (xml, library, resources) = parts(dir.path());
+    let at = |name: &str| dir.path().join(name);
+    let so = "binaries/linux64/slender_left.so";
+    let res = "resources/slender-unit.toml";
 
     write_zip(
         &at("windows.fmu"),

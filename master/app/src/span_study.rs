@@ -221,46 +221,7 @@ pub fn study(span: &Span, plan: &StudyPlan) -> Result<StudyReport, String> {
         halving.push(relative_error(&coarse, &fine));
         references.push(fine);
     }
-    let mut rows = Vec::new();
-    let approximations = [
-        (Approximation::Taylor, "taylor"),
-        (Approximation::TermPade, "term_pade"),
-        (Approximation::FunctionPade, "function_pade"),
-        (Approximation::Fit, "fit"),
-    ];
-    for (a, name) in approximations {
-        for &order in &plan.orders {
-            let params = SpanParams {
-                flexural_rigidity: span.flexural_rigidity,
-                mass_per_length: span.mass_per_length,
-                damping_per_length: span.damping_per_length,
-                length: span.length,
-                approximation: a,
-                order,
-                band: 2.0 * std::f64::consts::PI * 10.0,
-            };
-            let Ok(unit) = SpanUnit::new(params.clone()) else {
-                continue;
-            };
-            let repaired = unit.system().repaired;
-            let (mut errs, mut costs) = (Vec::new(), Vec::new());
-            for (u, r) in motions.iter().zip(&references) {
-                let mut fresh = SpanUnit::new(params.clone()).map_err(|e| e.to_string())?;
-                let (y, wall) = respond_siso(&mut fresh, 0, u.as_ref(), h, steps, 1)?;
-                errs.push(relative_error(&y, r));
-                costs.push(wall / plan.duration);
-            }
-            rows.push(StudyRow {
-                model: name.into(),
-                size: order,
-                substeps: 1,
-                error_sines: errs[0],
-                error_step: errs[1],
-                cost_per_simulated_second: 0.5 * (costs[0] + costs[1]),
-                repaired,
-            });
-        }
-    }
+    let mut rows = span_unit_rows(span, plan, &motions, &references, steps)?;
     for &substeps in &plan.fe_substeps {
         for &n in &plan.elements {
             let (mut errs, mut costs) = (Vec::new(), Vec::new());
@@ -293,6 +254,58 @@ pub fn study(span: &Span, plan: &StudyPlan) -> Result<StudyReport, String> {
         },
         rows,
     })
+}
+
+/// The rows of every span approximation and order of the plan that forms, each
+/// against the references under both motions.
+fn span_unit_rows(
+    span: &Span,
+    plan: &StudyPlan,
+    motions: &[Box<dyn Fn(f64) -> f64>; 2],
+    references: &[Vec<f64>],
+    steps: usize,
+) -> Result<Vec<StudyRow>, String> {
+    let (h, mut rows) = (plan.step, Vec::new());
+    let approximations = [
+        (Approximation::Taylor, "taylor"),
+        (Approximation::TermPade, "term_pade"),
+        (Approximation::FunctionPade, "function_pade"),
+        (Approximation::Fit, "fit"),
+    ];
+    for (a, name) in approximations {
+        for &order in &plan.orders {
+            let params = SpanParams {
+                flexural_rigidity: span.flexural_rigidity,
+                mass_per_length: span.mass_per_length,
+                damping_per_length: span.damping_per_length,
+                length: span.length,
+                approximation: a,
+                order,
+                band: 2.0 * std::f64::consts::PI * 10.0,
+            };
+            let Ok(unit) = SpanUnit::new(params.clone()) else {
+                continue;
+            };
+            let repaired = unit.system().repaired;
+            let (mut errs, mut costs) = (Vec::new(), Vec::new());
+            for (u, r) in motions.iter().zip(references) {
+                let mut fresh = SpanUnit::new(params.clone()).map_err(|e| e.to_string())?;
+                let (y, wall) = respond_siso(&mut fresh, 0, u.as_ref(), h, steps, 1)?;
+                errs.push(relative_error(&y, r));
+                costs.push(wall / plan.duration);
+            }
+            rows.push(StudyRow {
+                model: name.into(),
+                size: order,
+                substeps: 1,
+                error_sines: errs[0],
+                error_step: errs[1],
+                cost_per_simulated_second: 0.5 * (costs[0] + costs[1]),
+                repaired,
+            });
+        }
+    }
+    Ok(rows)
 }
 
 /// For a span-unit row: the cheapest FE span of the report at least as accurate under
