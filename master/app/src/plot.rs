@@ -4,6 +4,23 @@ use crate::record::Recorder;
 use plotters::prelude::*;
 use std::path::Path;
 
+/// A figure that could not be drawn or written: its file and why.
+#[derive(Debug, thiserror::Error)]
+#[error("{path}: {reason}")]
+pub struct PlotError {
+    pub path: String,
+    pub reason: String,
+}
+
+impl PlotError {
+    fn new(path: &Path, reason: &dyn std::fmt::Display) -> PlotError {
+        PlotError {
+            path: path.display().to_string(),
+            reason: reason.to_string(),
+        }
+    }
+}
+
 /// A tick label: plain for moderate magnitudes, engineering notation otherwise.
 fn tick(v: f64) -> String {
     let a = v.abs();
@@ -20,10 +37,10 @@ pub fn time_series(
     title: &str,
     recorder: &Recorder,
     panels: &[Vec<String>],
-) -> Result<(), String> {
+) -> Result<(), PlotError> {
     let height = 60 + 220 * panels.len() as u32;
     let root = SVGBackend::new(path, (1000, height)).into_drawing_area();
-    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let root = root
         .titled(title, ("sans-serif", 22))
@@ -31,7 +48,7 @@ pub fn time_series(
     let areas = root.split_evenly((panels.len(), 1));
     let (t0, t1) = match (recorder.time.first(), recorder.time.last()) {
         (Some(&a), Some(&b)) if b > a => (a, b),
-        _ => return Err(format!("{}: nothing recorded to plot", path.display())),
+        _ => return Err(PlotError::new(path, &"nothing recorded to plot")),
     };
     for (area, panel) in areas.iter().zip(panels) {
         let series: Vec<(&String, &[f64])> = panel
@@ -40,7 +57,7 @@ pub fn time_series(
                 recorder
                     .column(n)
                     .map(|c| (n, c))
-                    .ok_or_else(|| format!("{}: `{n}` is not a recorded signal", path.display()))
+                    .ok_or_else(|| PlotError::new(path, &format!("`{n}` is not a recorded signal")))
             })
             .collect::<Result<_, _>>()?;
         let (lo, hi) = series
@@ -99,12 +116,12 @@ pub fn mode_shapes(
     path: &Path,
     title: &str,
     analysis: &slender_units::ModalAnalysis,
-) -> Result<(), String> {
-    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+) -> Result<(), PlotError> {
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     let x = &analysis.positions;
     let (first, last) = match (x.first(), x.last()) {
         (Some(a), Some(b)) if x.len() > 1 => (*a, *b),
-        _ => return Err(format!("{}: no node positions to plot", path.display())),
+        _ => return Err(PlotError::new(path, &"no node positions to plot")),
     };
     let chord = [last[0] - first[0], last[1] - first[1]];
     let len = (chord[0] * chord[0] + chord[1] * chord[1]).sqrt();
@@ -160,8 +177,8 @@ pub fn mode_shapes(
 
 /// Study figure: for each varied setting, the relative errors (left) and the cost
 /// per simulated second (right) against the setting's value, log-log.
-pub fn study(path: &Path, title: &str, rows: &[crate::study::StudyRow]) -> Result<(), String> {
-    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+pub fn study(path: &Path, title: &str, rows: &[crate::study::StudyRow]) -> Result<(), PlotError> {
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     let mut knobs: Vec<crate::study::Knob> = Vec::new();
     for r in rows {
         if !knobs.contains(&r.setting) {
@@ -284,8 +301,8 @@ pub fn bode(
     title: &str,
     omegas: &[f64],
     series: &[(String, Vec<slender_units::span::transfer::C64>)],
-) -> Result<(), String> {
-    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+) -> Result<(), PlotError> {
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     let root = SVGBackend::new(path, (1000, 800)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let root = root
@@ -354,8 +371,8 @@ pub fn accuracy_cost(
     title: &str,
     error_label: &str,
     points: &[(String, f64, f64)],
-) -> Result<(), String> {
-    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+) -> Result<(), PlotError> {
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let root = root

@@ -2,6 +2,7 @@
 //! run goes (so a failed run leaves readable partial results) and kept in memory
 //! for plots.
 
+use crate::run::RunError;
 use slender_coupling::coupler::Master;
 use slender_units::Causality;
 use std::fs::File;
@@ -27,18 +28,18 @@ impl Recorder {
         signals: Vec<String>,
         every: u32,
         csv_path: Option<&Path>,
-    ) -> Result<Recorder, String> {
+    ) -> Result<Recorder, RunError> {
         let ports = signals
             .iter()
-            .map(|s| master.find(s, Causality::Output).map_err(|e| e.to_string()))
+            .map(|s| master.find(s, Causality::Output).map_err(RunError::from))
             .collect::<Result<Vec<_>, _>>()?;
         let csv = match csv_path {
             Some(p) => {
-                let f = File::create(p).map_err(|e| format!("{}: {e}", p.display()))?;
+                let f = File::create(p).map_err(|e| RunError::file(p, &e))?;
                 let mut w = BufWriter::new(f);
                 let header = std::iter::once("time").chain(signals.iter().map(String::as_str));
                 writeln!(w, "{}", header.collect::<Vec<_>>().join(","))
-                    .map_err(|e| format!("{}: {e}", p.display()))?;
+                    .map_err(|e| RunError::file(p, &e))?;
                 Some(w)
             }
             None => None,

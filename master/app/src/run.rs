@@ -1,14 +1,14 @@
 //! Running a scene end to end: initialise, step to the end with a progress bar,
 //! record, and write `timeseries.csv`, `summary.json` and SVG plots.
 
-use crate::plot;
+use crate::plot::{self, PlotError};
 use crate::record::Recorder;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use slender_coupling::counters::Counters;
 use slender_coupling::coupler::Master;
 use slender_coupling::error::MasterError;
-use slender_scene::Scene;
+use slender_scene::{Scene, SceneError};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -52,12 +52,12 @@ pub struct RunResult {
 /// Runs `scene`. A failure of the simulation itself is reported in the summary
 /// (status "failed") with the results recorded up to it; `Err` is returned only
 /// when nothing could be run or written.
-pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, String> {
-    let mut master = scene.build().map_err(|e| e.to_string())?;
+pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunError> {
+    let mut master = scene.build()?;
     let mut files = Vec::new();
     let csv_path = match &options.output_dir {
         Some(dir) => {
-            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+            std::fs::create_dir_all(dir).map_err(|e| RunError::file(dir, &e))?;
             Some(dir.join("timeseries.csv"))
         }
         None => None,
@@ -72,7 +72,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, Strin
     let started = Instant::now();
     let outcome = simulate(scene, &mut master, &mut recorder, options.progress);
     let wall = started.elapsed().as_secs_f64();
-    recorder.finish().map_err(|e| e.to_string())?;
+    recorder.finish()?;
     if let Some(p) = csv_path {
         files.push(p);
     }
@@ -118,8 +118,8 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, Strin
     };
     if let Some(dir) = &options.output_dir {
         let path = dir.join("summary.json");
-        let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
-        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let text = serde_json::to_string_pretty(&summary)?;
+        std::fs::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
         files.push(path);
     }
     Ok(RunResult {
@@ -150,14 +150,34 @@ fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indi
         .collect()
 }
 
-/// Why a run stopped early: the coupled simulation failed, or its results could
-/// not be written.
+/// Why a run could not be set up or stopped early: the scene does not build, the
+/// coupled simulation failed, or its results could not be written.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RunError {
+    #[error(transparent)]
+    Scene(#[from] SceneError),
     #[error(transparent)]
     Master(Box<MasterError>),
     #[error("writing results: {0}")]
     Io(#[from] std::io::Error),
+    /// A results file or folder and what went wrong.
+    #[error("{path}: {reason}")]
+    File { path: String, reason: String },
+    #[error(transparent)]
+    Plot(#[from] PlotError),
+    #[error("summary.json: {0}")]
+    Summary(#[from] serde_json::Error),
+}
+
+impl RunError {
+    /// A file error naming the file.
+    pub fn file(path: &Path, reason: &dyn std::fmt::Display) -> RunError {
+        RunError::File {
+            path: path.display().to_string(),
+            reason: reason.to_string(),
+        }
+    }
 }
 
 impl From<MasterError> for RunError {
@@ -208,7 +228,7 @@ fn update_progress(bar: &mut Option<ProgressBar>, elapsed: Duration, done: u64, 
     }
 }
 
-fn write_plots(scene: &Scene, recorder: &Recorder, dir: &Path) -> Result<Vec<PathBuf>, String> {
+fn write_plots(scene: &Scene, recorder: &Recorder, dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
     let mut files = Vec::new();
     if scene.spec.output.plots.is_empty() {
         let path = dir.join("timeseries.svg");
@@ -250,18 +270,18 @@ pub struct Benchmark {
 
 /// Runs `scene` `repeats` times (plus one warm-up) and reports the median cost of
 /// stepping (initialisation excluded).
-pub fn benchmark(scene: &Scene, repeats: usize) -> Result<Benchmark, String> {
+pub fn benchmark(scene: &Scene, repeats: usize) -> Result<Benchmark, RunError> {
     let repeats = repeats.max(1);
     let mut costs = Vec::with_capacity(repeats);
     let mut overheads = Vec::with_capacity(repeats);
     let mut last = Counters::default();
     for run in 0..=repeats {
-        let mut master = scene.build().map_err(|e| e.to_string())?;
+        let mut master = scene.build()?;
         let connections = master.connection_count();
-        master.initialize(scene.start).map_err(|e| e.to_string())?;
+        master.initialize(scene.start)?;
         let started = Instant::now();
         for _ in 0..scene.steps {
-            master.step().map_err(|e| e.to_string())?;
+            master.step()?;
         }
         let wall = started.elapsed().as_secs_f64();
         if run == 0 {

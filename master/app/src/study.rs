@@ -200,7 +200,7 @@ pub fn run_study(
                 progress: false,
             };
             let result = match apply(&mut scene, sweep.knob, value)
-                .and_then(|()| run_scene(&scene, &options))
+                .and_then(|()| run_scene(&scene, &options).map_err(|e| e.to_string()))
             {
                 Ok(result) => result,
                 Err(e) => {

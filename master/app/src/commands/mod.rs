@@ -20,18 +20,18 @@ pub struct CliError {
 
 impl CliError {
     /// Bad input: exit code 2.
-    pub fn input(message: impl Into<String>) -> CliError {
+    pub fn input(message: impl std::fmt::Display) -> CliError {
         CliError {
             code: 2,
-            message: message.into(),
+            message: message.to_string(),
         }
     }
 
     /// A failure on the way: exit code 1.
-    pub fn failure(message: impl Into<String>) -> CliError {
+    pub fn failure(message: impl std::fmt::Display) -> CliError {
         CliError {
             code: 1,
-            message: message.into(),
+            message: message.to_string(),
         }
     }
 }

@@ -105,7 +105,8 @@ fn siso_study(
         "Span: error against cost per simulated second",
         "error vs the continuum (sum of sines)",
         &points,
-    )?;
+    )
+    .map_err(|e| e.to_string())?;
     Ok(vec![md, json, svg])
 }
 
@@ -140,7 +141,8 @@ fn coupling(
         "Span between two sections: error against cost per simulated second",
         "largest error of the four outputs vs the continuum",
         &points,
-    )?;
+    )
+    .map_err(|e| e.to_string())?;
     Ok(vec![md, json, svg])
 }
 
