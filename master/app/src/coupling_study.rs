@@ -8,8 +8,9 @@
 //! deflection has a kink at every sample, and the continuum answers a kink with an
 //! impulsive shear at the driven end.)
 
-use crate::span_study::{cheapest_as_accurate, relative_error, respond};
+use crate::span_study::{StudyError, cheapest_as_accurate, relative_error, respond};
 use serde::Serialize;
+use slender_units::UnitError;
 use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
 use slender_units::beam::{Beam, BeamParams};
 use slender_units::span::coupling::{
@@ -29,7 +30,7 @@ pub const OUTPUTS: [&str; 4] = [
 /// and rotation, lower moment and shear), starting in static equilibrium, with
 /// HHT-alpha `alpha` (0: trapezoidal rule). Outputs 2..=5 of the beam are the four
 /// compared quantities.
-pub fn fe_span(span: &Span, elements: usize, alpha: f64) -> Result<Beam, String> {
+pub fn fe_span(span: &Span, elements: usize, alpha: f64) -> Result<Beam, UnitError> {
     let cond = |quantity| Condition {
         quantity,
         value: TimeFunction::Input(InputMarker::Input),
@@ -47,7 +48,7 @@ pub fn fe_span(span: &Span, elements: usize, alpha: f64) -> Result<Beam, String>
     p.damping_per_length = span.damping_per_length;
     p.static_start = true;
     p.alpha = alpha;
-    Beam::new(p).map_err(|e| e.to_string())
+    Beam::new(p)
 }
 
 const FE_OUTPUTS: [usize; 4] = [2, 3, 4, 5];
@@ -144,8 +145,8 @@ fn errors(y: &[Vec<f64>], r: &[Vec<f64>]) -> [f64; 4] {
 
 /// Runs the span unit (each order, exact and trapezoidal stepping) and the FE spans
 /// (each element count and substep count) and measures them against the reference.
-pub fn coupling_study(span: &Span, plan: &CouplingPlan) -> Result<CouplingReport, String> {
-    span.validate().map_err(|e| e.to_string())?;
+pub fn coupling_study(span: &Span, plan: &CouplingPlan) -> Result<CouplingReport, StudyError> {
+    span.validate()?;
     let h = plan.step;
     let steps = (plan.duration / h).round() as usize;
     let sampled = |dt: f64, n: usize| -> Vec<Vec<f64>> {
@@ -153,7 +154,7 @@ pub fn coupling_study(span: &Span, plan: &CouplingPlan) -> Result<CouplingReport
     };
     let samples = sampled(h, steps);
     // The reference: the smooth history at every substep, read at every step.
-    let reference = |substeps: usize| -> Result<Vec<Vec<f64>>, String> {
+    let reference = |substeps: usize| -> Result<Vec<Vec<f64>>, StudyError> {
         let dt = h / substeps as f64;
         let mut fe = fe_span(span, plan.reference_elements, 0.0)?;
         let (y, _) = respond(&mut fe, &FE_OUTPUTS, &sampled(dt, steps * substeps), dt, 1)?;
@@ -177,8 +178,7 @@ pub fn coupling_study(span: &Span, plan: &CouplingPlan) -> Result<CouplingReport
                 band: 2.0 * std::f64::consts::PI * 10.0,
                 discretization,
                 alpha: 0.0,
-            })
-            .map_err(|e| e.to_string())?;
+            })?;
             let (y, wall) = respond(&mut unit, &[0, 1, 2, 3], &samples, h, 1)?;
             rows.push(CouplingRow {
                 model: name.into(),

@@ -7,12 +7,12 @@ use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, 
 use slender_units::beam::{Beam, BeamParams};
 use slender_units::span::transfer::{C64, Span};
 use slender_units::span::unit::{Approximation, SpanParams, SpanUnit};
-use slender_units::{Driver, Time, Unit};
+use slender_units::{Driver, Time, Unit, UnitError};
 use std::time::Instant;
 
 /// An FE span with the same boundary conditions as the span unit: y(0) = 0, the
 /// rotation at x = 0 as input, a free lower end.
-pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, String> {
+pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, UnitError> {
     let cond = |quantity, value| Condition { quantity, value };
     let mut p = BeamParams::new(
         span.length,
@@ -32,7 +32,18 @@ pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, String> {
     );
     p.damping_per_length = span.damping_per_length;
     p.newton_max_iterations = 5;
-    Beam::new(p).map_err(|e| e.to_string())
+    Beam::new(p)
+}
+
+/// Why a span study could not run: a unit refused its parameters or inputs, or
+/// the plan does not fit (a step or substeps that are no whole nanoseconds).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum StudyError {
+    #[error(transparent)]
+    Unit(#[from] UnitError),
+    #[error("{0}")]
+    Plan(String),
 }
 
 /// Outputs `outputs` of a unit at every synchronisation step (h, s) for the input
@@ -45,16 +56,21 @@ pub(crate) fn respond(
     samples: &[Vec<f64>],
     h: f64,
     substeps: usize,
-) -> Result<(Vec<Vec<f64>>, f64), String> {
-    let first = samples.first().ok_or("no input samples")?;
+) -> Result<(Vec<Vec<f64>>, f64), StudyError> {
+    let first = samples
+        .first()
+        .ok_or_else(|| StudyError::Plan("no input samples".into()))?;
     let mut unit = Driver::new(unit);
-    unit.set_inputs(first).map_err(|e| e.to_string())?;
-    unit.initialize(Time::ZERO).map_err(|e| e.to_string())?;
-    let ht = Time::from_secs(h).ok_or("bad step")?;
+    unit.set_inputs(first)?;
+    unit.initialize(Time::ZERO)?;
+    let ht = Time::from_secs(h)
+        .ok_or_else(|| StudyError::Plan(format!("step {h} s: not a representable time")))?;
     let hs = Time::from_secs(h / substeps as f64)
         .filter(|hs| *hs * substeps as i64 == ht)
         .ok_or_else(|| {
-            format!("{substeps} substeps do not divide the step {h} s into whole nanoseconds")
+            StudyError::Plan(format!(
+                "{substeps} substeps do not divide the step {h} s into whole nanoseconds"
+            ))
         })?;
     let mut out = vec![0.0; unit.description().outputs.len()];
     let mut u = first.clone();
@@ -72,11 +88,10 @@ pub(crate) fn respond(
                 }
                 &u
             };
-            unit.set_inputs(inputs).map_err(|e| e.to_string())?;
-            unit.do_step(ht * k as i64 + hs * (j - 1) as i64, hs)
-                .map_err(|e| e.to_string())?;
+            unit.set_inputs(inputs)?;
+            unit.do_step(ht * k as i64 + hs * (j - 1) as i64, hs)?;
         }
-        unit.outputs(&mut out).map_err(|e| e.to_string())?;
+        unit.outputs(&mut out)?;
         flat.extend(outputs.iter().map(|&o| out[o]));
     }
     let wall = started.elapsed().as_secs_f64();
@@ -95,7 +110,7 @@ fn respond_siso(
     h: f64,
     steps: usize,
     substeps: usize,
-) -> Result<(Vec<f64>, f64), String> {
+) -> Result<(Vec<f64>, f64), StudyError> {
     let samples: Vec<Vec<f64>> = (0..=steps).map(|k| vec![u(k as f64 * h)]).collect();
     let (y, wall) = respond(unit, &[output], &samples, h, substeps)?;
     Ok((y.into_iter().map(|v| v[0]).collect(), wall))
@@ -196,8 +211,8 @@ pub struct StudyPlan {
 
 /// Runs every span approximation and FE span of the plan under both end motions and
 /// measures error against the continuum's response and cost per simulated second.
-pub fn study(span: &Span, plan: &StudyPlan) -> Result<StudyReport, String> {
-    span.validate().map_err(|e| e.to_string())?;
+pub fn study(span: &Span, plan: &StudyPlan) -> Result<StudyReport, StudyError> {
+    span.validate()?;
     let h = plan.step;
     let steps = (plan.duration / h).round() as usize;
     let third =
@@ -206,12 +221,12 @@ pub fn study(span: &Span, plan: &StudyPlan) -> Result<StudyReport, String> {
     let fe_output = |fe: &Beam| {
         fe.description()
             .output_index("right_deflection")
-            .ok_or_else(|| "no right_deflection".to_string())
+            .ok_or_else(|| StudyError::Plan("the FE span has no right_deflection".into()))
     };
     let mut references = Vec::new();
     let mut halving = Vec::new();
     for u in &motions {
-        let run = |substeps| -> Result<Vec<f64>, String> {
+        let run = |substeps| -> Result<Vec<f64>, StudyError> {
             let mut fe = fe_span(span, plan.reference_elements)?;
             let out = fe_output(&fe)?;
             Ok(respond_siso(&mut fe, out, u.as_ref(), h, steps, substeps)?.0)
@@ -264,7 +279,7 @@ fn span_unit_rows(
     motions: &[Box<dyn Fn(f64) -> f64>; 2],
     references: &[Vec<f64>],
     steps: usize,
-) -> Result<Vec<StudyRow>, String> {
+) -> Result<Vec<StudyRow>, StudyError> {
     let (h, mut rows) = (plan.step, Vec::new());
     let approximations = [
         (Approximation::Taylor, "taylor"),
@@ -289,7 +304,7 @@ fn span_unit_rows(
             let repaired = unit.system().repaired;
             let (mut errs, mut costs) = (Vec::new(), Vec::new());
             for (u, r) in motions.iter().zip(references) {
-                let mut fresh = SpanUnit::new(params.clone()).map_err(|e| e.to_string())?;
+                let mut fresh = SpanUnit::new(params.clone())?;
                 let (y, wall) = respond_siso(&mut fresh, 0, u.as_ref(), h, steps, 1)?;
                 errs.push(relative_error(&y, r));
                 costs.push(wall / plan.duration);
@@ -405,7 +420,7 @@ pub fn bode_series(
     order: usize,
     fe_elements: usize,
     omegas: &[f64],
-) -> Result<Vec<(String, Vec<C64>)>, String> {
+) -> Result<Vec<(String, Vec<C64>)>, StudyError> {
     use slender_units::span::rational::{function_pade_u2_u5, taylor_u2_u5, term_pade_u2_u5};
     let mut series = vec![(
         "analytic".to_string(),
@@ -415,8 +430,7 @@ pub fn bode_series(
                 span.transfer(C64::new(0.0, w), [1, 2, 7, 8], [3, 4, 5, 6])
                     .map(|h| h[2][1])
             })
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| e.to_string())?,
+            .collect::<Result<Vec<_>, _>>()?,
     )];
     for (name, approx) in [
         ("Taylor", taylor_u2_u5(order)),

@@ -87,7 +87,7 @@ fn siso_study(
     plan: &span_study::StudyPlan,
     out: &Path,
 ) -> Result<Vec<PathBuf>, String> {
-    let report = span_study::study(span, plan)?;
+    let report = span_study::study(span, plan).map_err(|e| e.to_string())?;
     let (md, json, svg) = write_study_report(
         out,
         "span_study",
@@ -115,7 +115,7 @@ fn coupling(
     plan: &coupling_study::CouplingPlan,
     out: &Path,
 ) -> Result<Vec<PathBuf>, String> {
-    let report = coupling_study::coupling_study(span, plan)?;
+    let report = coupling_study::coupling_study(span, plan).map_err(|e| e.to_string())?;
     let (md, json, svg) = write_study_report(
         out,
         "coupling_study",
