@@ -283,6 +283,17 @@ pub mod fmu {
         lib
     }
 
+    /// Loads an FMU as a unit (no start values, no logging); the error as text.
+    pub fn import(file: &Path) -> Result<slender_fmi::import::FmuUnit, String> {
+        let params = slender_fmi::import::FmuParams {
+            file: file.to_owned(),
+            start: Default::default(),
+            preload: Vec::new(),
+            logging: false,
+        };
+        slender_fmi::import::FmuUnit::load(&params, Path::new(".")).map_err(|e| e.to_string())
+    }
+
     /// Exports unit `unit` of the example scene `scene` (relative to the root)
     /// into `dir`; returns the FMU's path.
     pub fn export(scene: &str, unit: &str, dir: &Path) -> PathBuf {

@@ -7,22 +7,12 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use slender_fmi::export::ExportConfig;
-use slender_fmi::import::{FmuParams, FmuUnit};
 use slender_fmi::model_description::{ModelDescription, Value, VariableCausality};
 use slender_scene::export::SceneExport;
+use slender_tests::fmu::import;
 use slender_tests::{fmu, load, root, run};
 use slender_units::{Driver, Hold, Time, Unit};
-use std::path::{Path, PathBuf};
-
-fn import(file: &Path) -> Result<FmuUnit, String> {
-    let params = FmuParams {
-        file: file.to_owned(),
-        start: Default::default(),
-        preload: Vec::new(),
-        logging: false,
-    };
-    FmuUnit::load(&params, Path::new(".")).map_err(|e| e.to_string())
-}
+use std::path::PathBuf;
 
 fn temp() -> tempfile::TempDir {
     tempfile::tempdir().expect("temporary folder")

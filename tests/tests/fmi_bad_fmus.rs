@@ -5,6 +5,7 @@
 use slender_fmi::export::ExportConfig;
 use slender_fmi::import::{FmuParams, FmuUnit, LoadError};
 use slender_scene::export::SceneExport;
+use slender_tests::fmu::import;
 use slender_tests::{fmu, load};
 use slender_units::{Driver, Time, Unit};
 use std::io::Write;
@@ -12,16 +13,6 @@ use std::path::Path;
 
 fn temp() -> tempfile::TempDir {
     tempfile::tempdir().unwrap()
-}
-
-fn import(file: &Path) -> Result<FmuUnit, String> {
-    let params = FmuParams {
-        file: file.to_owned(),
-        start: Default::default(),
-        preload: Vec::new(),
-        logging: false,
-    };
-    FmuUnit::load(&params, Path::new(".")).map_err(|e| e.to_string())
 }
 
 fn write_zip(path: &Path, entries: &[(&str, &[u8])]) {
