@@ -89,39 +89,13 @@ pub struct CouplingRow {
     pub cost_per_simulated_second: f64,
 }
 
-/// What the study compares.
-#[derive(Clone, Debug)]
-pub struct CouplingPlan {
-    pub orders: Vec<usize>,
-    pub elements: Vec<usize>,
-    pub fe_substeps: Vec<usize>,
-    pub reference_elements: usize,
-    pub reference_substeps: usize,
-    pub duration: f64,
-    pub step: f64,
-}
+/// What the study compares: the same kind of plan as the SISO span study.
+pub type CouplingPlan = crate::span_study::StudyPlan;
 
-impl CouplingPlan {
-    /// The plan of `slender span coupling`: orders 16, 24 and 32 against FE spans
-    /// of 8-128 elements stepped with `fe_substeps`.
-    pub fn standard(
-        duration: f64,
-        step: f64,
-        reference_elements: usize,
-        reference_substeps: usize,
-        fe_substeps: Vec<usize>,
-    ) -> CouplingPlan {
-        CouplingPlan {
-            orders: vec![16, 24, 32],
-            elements: vec![8, 16, 32, 64, 128],
-            fe_substeps,
-            reference_elements,
-            reference_substeps,
-            duration,
-            step,
-        }
-    }
-}
+/// Orders of `slender span coupling`.
+pub const ORDERS: [usize; 3] = [16, 24, 32];
+/// FE span elements of `slender span coupling`.
+pub const ELEMENTS: [usize; 5] = [8, 16, 32, 64, 128];
 
 /// What the study measured.
 #[derive(Clone, Debug, Serialize)]

@@ -191,7 +191,13 @@ pub(crate) fn relative_error(y: &[f64], r: &[f64]) -> f64 {
         / peak
 }
 
-/// What the study compares, and how.
+/// Orders of `slender span study`.
+pub const ORDERS: [usize; 8] = [2, 4, 6, 8, 10, 12, 14, 16];
+/// FE span elements of `slender span study`.
+pub const ELEMENTS: [usize; 5] = [4, 8, 16, 32, 64];
+
+/// What a span study compares, and how (the SISO span study and the coupling
+/// study alike).
 #[derive(Clone, Debug)]
 pub struct StudyPlan {
     /// Orders of the rational approximations.
@@ -390,28 +396,6 @@ pub fn to_markdown(report: &StudyReport) -> String {
         );
     }
     out
-}
-
-impl StudyPlan {
-    /// The plan of `slender span study`: orders 2-16 against FE spans of 4-64
-    /// elements stepped with `fe_substeps`, each run `duration` s at `step` s.
-    pub fn standard(
-        duration: f64,
-        step: f64,
-        reference_elements: usize,
-        reference_substeps: usize,
-        fe_substeps: Vec<usize>,
-    ) -> StudyPlan {
-        StudyPlan {
-            orders: vec![2, 4, 6, 8, 10, 12, 14, 16],
-            elements: vec![4, 8, 16, 32, 64],
-            fe_substeps,
-            reference_elements,
-            reference_substeps,
-            duration,
-            step,
-        }
-    }
 }
 
 /// Frequency responses for a Bode plot: (omega, exact, each approximation, FE).

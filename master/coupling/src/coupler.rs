@@ -80,9 +80,7 @@ impl Master {
         settings: MasterSettings,
         step_size: Time,
     ) -> Result<Master, MasterError> {
-        settings
-            .validate()
-            .map_err(|e| MasterError::Invalid(e.to_string()))?;
+        settings.validate()?;
         if step_size <= Time::ZERO {
             return Err(MasterError::Invalid(format!(
                 "synchronisation step {step_size}: expected > 0"

@@ -6,9 +6,12 @@ use thiserror::Error;
 /// Why building or running a coupled simulation failed.
 #[derive(Debug, Error)]
 pub enum MasterError {
-    /// The system or the settings are inconsistent.
+    /// The system or the call order is inconsistent.
     #[error("{0}")]
     Invalid(String),
+    /// A master setting is out of range.
+    #[error(transparent)]
+    Settings(#[from] crate::settings::SettingsError),
     /// An iterative scheme needs a unit that cannot roll back.
     #[error(
         "scheme `{scheme}` repeats steps, but unit `{unit}` cannot roll back: use `jacobi` or `gauss_seidel`, or a unit with rollback"

@@ -263,14 +263,6 @@ impl MasterSettings {
         }
     }
 
-    /// How iterative steps are solved.
-    pub fn solver(&self) -> Solver {
-        match self.newton {
-            Some(n) => Solver::Newton(n),
-            None => Solver::FixedPoint(self.acceleration.clone()),
-        }
-    }
-
     /// Chooses how iterative steps are solved.
     pub fn set_solver(&mut self, solver: impl Into<Solver>) {
         match solver.into() {
@@ -282,14 +274,6 @@ impl MasterSettings {
                 self.acceleration = Acceleration::None;
                 self.newton = Some(n);
             }
-        }
-    }
-
-    /// The solver's name for summaries: "newton" or the acceleration's kind.
-    pub fn solver_name(&self) -> &'static str {
-        match self.newton {
-            Some(_) => "newton",
-            None => self.acceleration.name(),
         }
     }
 

@@ -292,8 +292,9 @@ impl SecondOrderSystem for Beam {
             }
             None => self.contact_at(q, v, t, &self.state.lambda, None, None, &mut values),
         }
-        force.clear();
-        force.extend_from_slice(&values.force);
+        // Hand the force over without copying; the buffer swapped in is cleared
+        // by the next contact evaluation.
+        std::mem::swap(force, &mut values.force);
         self.step_contact = values;
     }
 

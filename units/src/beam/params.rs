@@ -237,20 +237,10 @@ impl BeamParams {
 
     /// EI, mu and the damping in physical ranges; finite load and initial shapes.
     fn validate_properties(&self) -> Result<(), UnitError> {
-        require_in_range(
-            "flexural_rigidity",
+        check_section(
             self.flexural_rigidity,
-            1e-3,
-            1e13,
-            "N m^2",
-        )?;
-        require_in_range("mass_per_length", self.mass_per_length, 1e-3, 1e7, "kg/m")?;
-        require_in_range(
-            "damping_per_length",
+            self.mass_per_length,
             self.damping_per_length,
-            0.0,
-            1e7,
-            "N s/m^2",
         )?;
         require_non_negative("rayleigh_mass", self.rayleigh_mass)?;
         require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
@@ -331,4 +321,24 @@ pub fn polynomial(c: &[f64], x: f64) -> (f64, f64) {
         .rev()
         .fold(0.0, |acc, (i, ci)| acc * x + i as f64 * ci);
     (value, slope)
+}
+
+/// Checks the properties of an Euler-Bernoulli section (beam or span) against
+/// ranges that cover every slender marine structure, a thin cable to a large riser,
+/// with margin: EI 1e-3..1e13 N m^2, mu 1e-3..1e7 kg/m, c_d 0..1e7 N s/m^2. Beyond
+/// them the matrices and the transfer matrix lose every digit or overflow.
+pub fn check_section(
+    flexural_rigidity: f64,
+    mass_per_length: f64,
+    damping_per_length: f64,
+) -> Result<(), UnitError> {
+    require_in_range("flexural_rigidity", flexural_rigidity, 1e-3, 1e13, "N m^2")?;
+    require_in_range("mass_per_length", mass_per_length, 1e-3, 1e7, "kg/m")?;
+    require_in_range(
+        "damping_per_length",
+        damping_per_length,
+        0.0,
+        1e7,
+        "N s/m^2",
+    )
 }

@@ -13,7 +13,7 @@ use crate::contract::{
     Capabilities, StepReport, Unit, UnitDescription, UnitError, require_finite,
     require_non_negative, require_positive,
 };
-use crate::contract::{Inputs, Port, PortKind};
+use crate::contract::{Inputs, Port, PortKind, StateVector};
 use crate::integrators::newmark::{LinearNewmark, NewmarkState};
 use nalgebra::{DMatrix, DVector};
 use serde::Deserialize;
@@ -147,9 +147,9 @@ impl Oscillator {
         )?;
         let state = OscillatorState {
             motion: NewmarkState {
-                u: DVector::from_element(1, params.initial_displacement),
-                v: DVector::from_element(1, params.initial_velocity),
-                a: DVector::zeros(1),
+                u: StateVector(DVector::from_element(1, params.initial_displacement)),
+                v: StateVector(DVector::from_element(1, params.initial_velocity)),
+                a: StateVector(DVector::zeros(1)),
             },
         };
         Ok(Oscillator {

@@ -83,11 +83,6 @@ impl<U: Unit> Driver<U> {
         &self.unit
     }
 
-    /// The unit itself, mutable (kind-specific setup before `initialize`).
-    pub fn unit_mut(&mut self) -> &mut U {
-        &mut self.unit
-    }
-
     /// The unit, mutable, with the inputs it sees (kind-specific changes after
     /// `initialize` that depend on the inputs, e.g. a beam's initial shape).
     pub fn unit_mut_with_inputs(&mut self) -> (&mut U, Inputs<'_>) {

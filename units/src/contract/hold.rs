@@ -7,9 +7,9 @@
 use crate::contract::Hold;
 
 /// Input values at the start and at the end of the current step, and how to fill
-/// in between. The start values are the last accepted inputs, so rollback restores
-/// them (the driver does).
-#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+/// in between. The start values are the last accepted inputs: the driver saves and
+/// restores them with the unit's state.
+#[derive(Debug, PartialEq)]
 pub struct HeldInputs {
     holds: Vec<Hold>,
     start: Vec<f64>,
@@ -88,22 +88,6 @@ impl HeldInputs {
     }
 }
 
-impl Clone for HeldInputs {
-    fn clone(&self) -> Self {
-        HeldInputs {
-            holds: self.holds.clone(),
-            start: self.start.clone(),
-            end: self.end.clone(),
-        }
-    }
-
-    fn clone_from(&mut self, source: &Self) {
-        self.holds.clone_from(&source.holds);
-        self.start.clone_from(&source.start);
-        self.end.clone_from(&source.end);
-    }
-}
-
 /// A unit's inputs over one step, read-only: the values at the step's start (last
 /// accepted) and end, and each port's hold. During `initialize` start and end are
 /// equal.
@@ -115,20 +99,6 @@ pub struct Inputs<'a> {
 }
 
 impl<'a> Inputs<'a> {
-    /// A view of explicit values (tests, or units driving inner units).
-    pub fn new(holds: &'a [Hold], start: &'a [f64], end: &'a [f64]) -> Inputs<'a> {
-        Inputs { holds, start, end }
-    }
-
-    /// A view of no inputs.
-    pub fn none() -> Inputs<'static> {
-        Inputs {
-            holds: &[],
-            start: &[],
-            end: &[],
-        }
-    }
-
     /// Number of inputs.
     pub fn len(&self) -> usize {
         self.end.len()

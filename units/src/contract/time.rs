@@ -29,11 +29,6 @@ impl Time {
         self.0.checked_add(other.0).map(Time)
     }
 
-    /// `self * k`, or `None` beyond the representable range.
-    pub fn checked_mul(self, k: i64) -> Option<Time> {
-        self.0.checked_mul(k).map(Time)
-    }
-
     /// From a whole number of nanoseconds.
     pub const fn from_nanos(nanos: i64) -> Time {
         Time(nanos)

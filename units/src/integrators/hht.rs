@@ -152,11 +152,6 @@ impl HhtAlpha {
         (alpha, 0.25 * (1.0 + alpha).powi(2), 0.5 + alpha)
     }
 
-    /// The Newton matrix of the linear part as last formed.
-    pub fn linear_matrix(&self) -> &SymmetricBand {
-        &self.linear
-    }
-
     /// The Newton matrix with the tangent of the last iteration.
     pub fn newton_matrix(&self) -> &SymmetricBand {
         &self.jacobian

@@ -6,30 +6,16 @@
 //! converged iterative co-simulation of two units using it reproduces the
 //! monolithic solution of the same integrator.
 
-use crate::contract::UnitError;
+use crate::contract::{StateVector, UnitError};
 use nalgebra::{DMatrix, DVector, Dyn, linalg::LU};
 
-/// Displacement, velocity and acceleration of a linear system.
-#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct NewmarkState {
-    pub u: DVector<f64>,
-    pub v: DVector<f64>,
-    pub a: DVector<f64>,
-}
-
-impl Clone for NewmarkState {
-    fn clone(&self) -> Self {
-        NewmarkState {
-            u: self.u.clone(),
-            v: self.v.clone(),
-            a: self.a.clone(),
-        }
-    }
-
-    fn clone_from(&mut self, source: &Self) {
-        self.u.copy_from(&source.u);
-        self.v.copy_from(&source.v);
-        self.a.copy_from(&source.a);
+crate::state_struct! {
+    /// Displacement, velocity and acceleration of a linear system.
+    #[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    pub struct NewmarkState {
+        pub u: StateVector,
+        pub v: StateVector,
+        pub a: StateVector,
     }
 }
 
@@ -117,7 +103,11 @@ impl LinearNewmark {
             .lu()
             .solve(&rhs)
             .ok_or_else(|| UnitError::Numerical("mass matrix is singular".into()))?;
-        Ok(NewmarkState { u, v, a })
+        Ok(NewmarkState {
+            u: StateVector(u),
+            v: StateVector(v),
+            a: StateVector(a),
+        })
     }
 
     /// Advances `state` by one step of size `step_size()` with load `f_next` at the

@@ -31,25 +31,14 @@ pub struct Span {
 }
 
 impl Span {
-    /// Checks the properties: EI, mu, L > 0 and c_d >= 0.
-    /// The ranges cover every slender marine structure (a thin cable to a large
-    /// riser) with margin; beyond them the transfer matrix overflows.
+    /// Checks the properties: L 1e-2..1e5 m, then the section's ranges
+    /// ([`check_section`](crate::beam::params::check_section)).
     pub fn validate(&self) -> Result<(), UnitError> {
-        require_in_range(
-            "flexural_rigidity",
-            self.flexural_rigidity,
-            1e-3,
-            1e13,
-            "N m^2",
-        )?;
-        require_in_range("mass_per_length", self.mass_per_length, 1e-3, 1e7, "kg/m")?;
         require_in_range("length", self.length, 1e-2, 1e5, "m")?;
-        require_in_range(
-            "damping_per_length",
+        crate::beam::params::check_section(
+            self.flexural_rigidity,
+            self.mass_per_length,
             self.damping_per_length,
-            0.0,
-            1e7,
-            "N s/m^2",
         )
     }
 

@@ -2,6 +2,7 @@
 
 use super::{CliError, count_in, positive, report_written, results_folder};
 use crate::cli::SpanAction;
+use slender_app::span_study::StudyPlan;
 use slender_app::{coupling_study, span_study};
 use slender_units::span::transfer::Span;
 use std::path::{Path, PathBuf};
@@ -19,13 +20,17 @@ pub fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), CliError>
             reference_substeps,
             fe_substeps,
         } => {
-            let plan = span_study::StudyPlan::standard(
-                positive("--duration", duration)?,
-                positive("--step", step)?,
-                count_in("--reference-elements", reference_elements, 1, 1024)?,
-                count_in("--reference-substeps", reference_substeps, 1, 1024)?,
-                substeps(fe_substeps)?,
-            );
+            let plan = StudyPlan {
+                orders: span_study::ORDERS.to_vec(),
+                elements: span_study::ELEMENTS.to_vec(),
+                ..plan(
+                    duration,
+                    step,
+                    reference_elements,
+                    reference_substeps,
+                    fe_substeps,
+                )?
+            };
             results_folder(out)?;
             siso_study(span, &plan, out).map_err(CliError::failure)?
         }
@@ -36,13 +41,17 @@ pub fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), CliError>
             reference_substeps,
             fe_substeps,
         } => {
-            let plan = coupling_study::CouplingPlan::standard(
-                positive("--duration", duration)?,
-                positive("--step", step)?,
-                count_in("--reference-elements", reference_elements, 1, 1024)?,
-                count_in("--reference-substeps", reference_substeps, 1, 1024)?,
-                substeps(fe_substeps)?,
-            );
+            let plan = StudyPlan {
+                orders: coupling_study::ORDERS.to_vec(),
+                elements: coupling_study::ELEMENTS.to_vec(),
+                ..plan(
+                    duration,
+                    step,
+                    reference_elements,
+                    reference_substeps,
+                    fe_substeps,
+                )?
+            };
             results_folder(out)?;
             coupling(span, &plan, out).map_err(CliError::failure)?
         }
@@ -51,11 +60,30 @@ pub fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), CliError>
     Ok(())
 }
 
-fn substeps(list: Vec<usize>) -> Result<Vec<usize>, CliError> {
-    for n in &list {
+/// A study plan's common settings from the command line, checked; no orders or
+/// element counts yet.
+fn plan(
+    duration: f64,
+    step: f64,
+    reference_elements: usize,
+    reference_substeps: usize,
+    fe_substeps: Vec<usize>,
+) -> Result<StudyPlan, CliError> {
+    let (duration, step) = (positive("--duration", duration)?, positive("--step", step)?);
+    let reference_elements = count_in("--reference-elements", reference_elements, 1, 1024)?;
+    let reference_substeps = count_in("--reference-substeps", reference_substeps, 1, 1024)?;
+    for n in &fe_substeps {
         count_in("--fe-substeps", *n, 1, 1024)?;
     }
-    Ok(list)
+    Ok(StudyPlan {
+        orders: Vec::new(),
+        elements: Vec::new(),
+        fe_substeps,
+        reference_elements,
+        reference_substeps,
+        duration,
+        step,
+    })
 }
 
 /// The Bode plot of H_{U2 -> U5} at one order (even, 2 to 24, as span units
@@ -82,47 +110,24 @@ fn bode(span: &Span, order: usize, elements: usize, out: &Path) -> Result<Vec<Pa
     Ok(vec![path])
 }
 
-fn siso_study(
-    span: &Span,
-    plan: &span_study::StudyPlan,
-    out: &Path,
-) -> Result<Vec<PathBuf>, String> {
+fn siso_study(span: &Span, plan: &StudyPlan, out: &Path) -> Result<Vec<PathBuf>, String> {
     let report = span_study::study(span, plan).map_err(|e| e.to_string())?;
-    let (md, json, svg) = write_study_report(
-        out,
-        "span_study",
-        "accuracy_cost",
-        &span_study::to_markdown(&report),
-        &report,
-    )?;
     let points: Vec<(String, f64, f64)> = report
         .rows
         .iter()
         .map(|r| (r.label(), r.cost_per_simulated_second, r.error_sines))
         .collect();
-    slender_app::plot::accuracy_cost(
-        &svg,
-        "Span: error against cost per simulated second",
-        "error vs the continuum (sum of sines)",
-        &points,
-    )
-    .map_err(|e| e.to_string())?;
-    Ok(vec![md, json, svg])
+    let figure = Figure {
+        stem: "accuracy_cost",
+        title: "Span: error against cost per simulated second",
+        error_label: "error vs the continuum (sum of sines)",
+    };
+    let markdown = span_study::to_markdown(&report);
+    write_study_report(out, "span_study", &markdown, &report, &figure, &points)
 }
 
-fn coupling(
-    span: &Span,
-    plan: &coupling_study::CouplingPlan,
-    out: &Path,
-) -> Result<Vec<PathBuf>, String> {
+fn coupling(span: &Span, plan: &StudyPlan, out: &Path) -> Result<Vec<PathBuf>, String> {
     let report = coupling_study::coupling_study(span, plan).map_err(|e| e.to_string())?;
-    let (md, json, svg) = write_study_report(
-        out,
-        "coupling_study",
-        "coupling_accuracy_cost",
-        &coupling_study::to_markdown(&report),
-        &report,
-    )?;
     let points: Vec<(String, f64, f64)> = report
         .rows
         .iter()
@@ -136,34 +141,43 @@ fn coupling(
             (label, r.cost_per_simulated_second, worst)
         })
         .collect();
-    slender_app::plot::accuracy_cost(
-        &svg,
-        "Span between two sections: error against cost per simulated second",
-        "largest error of the four outputs vs the continuum",
-        &points,
-    )
-    .map_err(|e| e.to_string())?;
-    Ok(vec![md, json, svg])
+    let figure = Figure {
+        stem: "coupling_accuracy_cost",
+        title: "Span between two sections: error against cost per simulated second",
+        error_label: "largest error of the four outputs vs the continuum",
+    };
+    let markdown = coupling_study::to_markdown(&report);
+    write_study_report(out, "coupling_study", &markdown, &report, &figure, &points)
 }
 
-/// Prints a study's Markdown and writes it as `<stem>.md` with the report as
-/// `<stem>.json` into `out`; returns those paths and the path for its plot,
-/// `<plot>.svg`.
+/// The error-against-cost figure of a study: its file stem and labels.
+struct Figure {
+    stem: &'static str,
+    title: &'static str,
+    error_label: &'static str,
+}
+
+/// Prints a study's Markdown and writes it as `<stem>.md`, the report as
+/// `<stem>.json` and the error-against-cost figure of `points` into `out`;
+/// returns the three paths.
 fn write_study_report(
     out: &Path,
     stem: &str,
-    plot: &str,
     markdown: &str,
     report: &impl serde::Serialize,
-) -> Result<(PathBuf, PathBuf, PathBuf), String> {
+    figure: &Figure,
+    points: &[(String, f64, f64)],
+) -> Result<Vec<PathBuf>, String> {
     print!("{markdown}");
     let (md, json, svg) = (
         out.join(format!("{stem}.md")),
         out.join(format!("{stem}.json")),
-        out.join(format!("{plot}.svg")),
+        out.join(format!("{}.svg", figure.stem)),
     );
     std::fs::write(&md, markdown).map_err(|e| format!("{}: {e}", md.display()))?;
     let text = serde_json::to_string_pretty(report).map_err(|e| e.to_string())?;
     std::fs::write(&json, text).map_err(|e| format!("{}: {e}", json.display()))?;
-    Ok((md, json, svg))
+    slender_app::plot::accuracy_cost(&svg, figure.title, figure.error_label, points)
+        .map_err(|e| e.to_string())?;
+    Ok(vec![md, json, svg])
 }
