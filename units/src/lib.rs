@@ -6,7 +6,7 @@
 //! physics and the numerics they share:
 //! - [`contract`]: unit, ports, holds, state, time, the driver;
 //! - [`integrators`], [`numerics`]: time integration and linear algebra shared by units;
-//! - physics: [`cable`], [`beam`], [`contact`], [`span`], [`signal`];
+//! - physics: [`cable`], [`beam`], [`nonlinear`], [`contact`], [`span`], [`signal`];
 //! - [`benchmark`]: the coupling benchmark units (oscillator, algebraic loops).
 
 pub mod beam;
@@ -15,6 +15,7 @@ pub mod cable;
 pub mod contact;
 pub mod contract;
 pub mod integrators;
+pub mod nonlinear;
 pub mod numerics;
 pub mod signal;
 pub mod span;

@@ -65,6 +65,11 @@ impl SymmetricBand {
         self.band[i * (w + 1)] = 1.0;
     }
 
+    /// Sets every entry to zero.
+    pub fn fill_zero(&mut self) {
+        self.band.fill(0.0);
+    }
+
     /// Copies another matrix of the same shape.
     pub fn copy_from(&mut self, other: &SymmetricBand) {
         self.band.copy_from_slice(&other.band);

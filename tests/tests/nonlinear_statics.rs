@@ -1,0 +1,212 @@
+//! Static verification of the nonlinear section (issue 12, groups 1 and 2):
+//! the large-deflection cantilever against the elastica (Mattiasson 1981), a tip
+//! moment rolling a cantilever into a circle, and the elastic catenary against
+//! Irvine's closed form.
+
+use slender_tests::published;
+use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
+use slender_units::{Driver, Time};
+
+/// A section from TOML parameters, initialised (static start).
+fn solved(text: &str) -> Driver<NonlinearSection> {
+    let params: NonlinearParams = toml::from_str(text).expect("parameters parse");
+    let mut driver = Driver::new(NonlinearSection::new(params).expect("valid parameters"));
+    driver.initialize(Time::ZERO).expect("static solve");
+    driver
+}
+
+fn column(table: &toml::Table, key: &str) -> Vec<f64> {
+    table[key]
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|v| {
+            v.as_float()
+                .or_else(|| v.as_integer().map(|i| i as f64))
+                .expect("number")
+        })
+        .collect()
+}
+
+fn cantilever(formulation: &str, elements: usize, end: &str, steps: u32) -> String {
+    format!(
+        r#"
+formulation = "{formulation}"
+static_start = true
+load_steps = {steps}
+segments = [{{ length = 10.0, elements = {elements}, axial_stiffness = 1e12, bending_stiffness = 1e4, mass_per_length = 1.0 }}]
+ends.start = {{ kind = "fixed" }}
+ends.end = {end}
+"#
+    )
+}
+
+#[test]
+fn a_cantilever_under_a_tip_load_follows_the_elastica_within_0_1_percent() {
+    let table = published()["elastica_cantilever"]
+        .as_table()
+        .expect("table")
+        .clone();
+    let (k, horizontal, vertical, rotation) = (
+        column(&table, "load_parameter"),
+        column(&table, "horizontal"),
+        column(&table, "vertical"),
+        column(&table, "rotation"),
+    );
+    let (l, ei) = (10.0, 1e4);
+    for i in 0..k.len() {
+        let p = k[i] * ei / (l * l);
+        let end = format!("{{ z = {{ force = {} }} }}", -p);
+        let section = solved(&cantilever("corotational", 40, &end, 10));
+        let q = section.displacements();
+        let tip = q.len() - 3;
+        let (u, w, th) = (-q[tip] / l, -q[tip + 1] / l, -q[tip + 2]);
+        for (what, got, want) in [
+            ("u", u, horizontal[i]),
+            ("w", w, vertical[i]),
+            ("theta", th, rotation[i]),
+        ] {
+            assert!(
+                ((got - want) / want).abs() < 1e-3,
+                "PL^2/EI = {}: {what} = {got:.6}, elastica {want}",
+                k[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn a_tip_moment_of_2_pi_ei_over_l_rolls_a_cantilever_into_a_circle() {
+    let (l, ei) = (10.0, 1e4);
+    let moment = 2.0 * std::f64::consts::PI * ei / l;
+    let end = format!("{{ rotation = {{ force = {moment} }} }}");
+    let section = solved(&cantilever("corotational", 40, &end, 20));
+    let q = section.displacements();
+    let tip = q.len() - 3;
+    assert!(
+        (q[tip + 2] - 2.0 * std::f64::consts::PI).abs() < 1e-9,
+        "tip rotation {}",
+        q[tip + 2]
+    );
+    // Under a pure end moment every element turns by 2 pi / n with no axial force:
+    // the nodes are the vertices of a regular n-gon of side L / n, closing on the
+    // root, on the circle of radius L / (2 n sin(pi / n)) tangent at the root.
+    let n = 40.0;
+    let r = l / (2.0 * n * (std::f64::consts::PI / n).sin());
+    for (j, p) in section.positions().iter().enumerate() {
+        let d = p[0].hypot(p[1] - r);
+        assert!(
+            (d - r).abs() < 1e-9 * l,
+            "node {j} at distance {d} from the centre, radius {r}"
+        );
+    }
+    assert!(
+        q[tip].abs() - l < 1e-9 && (q[tip] + l).abs() < 1e-9 * l && q[tip + 1].abs() < 1e-9 * l
+    );
+}
+
+/// Irvine's elastic catenary hanging from (0, 0) to (span, rise): horizontal force
+/// H and vertical force V at the lower end, by Newton on the closed form.
+struct Irvine {
+    w: f64,
+    ea: f64,
+    h: f64,
+    v: f64,
+}
+
+impl Irvine {
+    fn position(&self, s: f64) -> [f64; 2] {
+        let (h, v, w) = (self.h, self.v, self.w);
+        let x = h * s / self.ea + h / w * (((v + w * s) / h).asinh() - (v / h).asinh());
+        let z = w * s * s / (2.0 * self.ea)
+            + v * s / self.ea
+            + h / w * ((1.0 + ((v + w * s) / h).powi(2)).sqrt() - (1.0 + (v / h).powi(2)).sqrt());
+        [x, z]
+    }
+
+    fn tension(&self, s: f64) -> f64 {
+        self.h.hypot(self.v + self.w * s)
+    }
+
+    fn solve(w: f64, ea: f64, length: f64, target: [f64; 2]) -> Irvine {
+        let mut c = Irvine {
+            w,
+            ea,
+            h: w * length,
+            v: -0.2 * w * length,
+        };
+        for _ in 0..100 {
+            let f0 = c.position(length);
+            let r = [f0[0] - target[0], f0[1] - target[1]];
+            if r[0].hypot(r[1]) < 1e-12 * length {
+                return c;
+            }
+            let mut j = [[0.0; 2]; 2];
+            for (k, d) in [(0, 1e-6 * c.h), (1, 1e-6 * c.h)] {
+                let mut p = Irvine { ..c };
+                if k == 0 {
+                    p.h += d
+                } else {
+                    p.v += d
+                }
+                let f = p.position(length);
+                j[0][k] = (f[0] - f0[0]) / d;
+                j[1][k] = (f[1] - f0[1]) / d;
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            let (dh, dv) = (
+                (j[1][1] * r[0] - j[0][1] * r[1]) / det,
+                (-j[1][0] * r[0] + j[0][0] * r[1]) / det,
+            );
+            // Damped so that H stays positive (the other branch is unphysical).
+            let damping = if dh > 0.5 * c.h { 0.5 * c.h / dh } else { 1.0 };
+            c.h -= damping * dh;
+            c.v -= damping * dv;
+        }
+        panic!("Irvine's equations did not converge");
+    }
+}
+
+#[test]
+fn a_hanging_line_matches_irvines_elastic_catenary_within_1e_4() {
+    // A chain-like line: 300 m, 1000 N/m in water, EA = 1e8 N, EI -> 0, between
+    // (0, 0) and (250, 120).
+    let (length, w, ea) = (300.0, 1000.0, 1e8);
+    let target: [f64; 2] = [250.0, 120.0];
+    let angle = target[1].atan2(target[0]).to_degrees();
+    let (ex, ez) = (
+        target[0] - length * angle.to_radians().cos(),
+        target[1] - length * angle.to_radians().sin(),
+    );
+    let text = format!(
+        r#"
+static_start = true
+start_shape = "catenary"
+segments = [{{ length = {length}, angle = {angle}, elements = 100, axial_stiffness = {ea}, bending_stiffness = 1.0, mass_per_length = 100.0, submerged_weight = {w} }}]
+ends.start = {{ kind = "pinned" }}
+ends.end = {{ kind = "pinned", x = {{ displacement = {ex} }}, z = {{ displacement = {ez} }} }}
+"#
+    );
+    let section = solved(&text);
+    let exact = Irvine::solve(w, ea, length, target);
+    let positions = section.positions();
+    let arc = &section.model().arc;
+    for (j, p) in positions.iter().enumerate() {
+        let e = exact.position(arc[j]);
+        let err = (p[0] - e[0]).hypot(p[1] - e[1]);
+        assert!(err < 1e-4 * length, "node {j}: {p:?} against {e:?}");
+    }
+    let r = section.reactions();
+    let n = r.len();
+    let bottom = r[0].hypot(r[1]);
+    let top = r[n - 3].hypot(r[n - 2]);
+    for (what, got, want) in [
+        ("bottom", bottom, exact.tension(0.0)),
+        ("top", top, exact.tension(length)),
+    ] {
+        assert!(
+            ((got - want) / want).abs() < 1e-4,
+            "{what} tension {got:.2} N, Irvine {want:.2} N"
+        );
+    }
+}

@@ -1,0 +1,335 @@
+//! Dynamics of a nonlinear section: the section as a [`SecondOrderSystem`] whose
+//! whole restoring force (elements, drag, contact) is the nonlinear force, stepped
+//! by HHT-alpha with Newton or by explicit central differences; the initial
+//! acceleration; modes about the current state.
+
+use super::NonlinearSection;
+use super::params::Integrator;
+use crate::contract::{Inputs, ModalAnalysis, Mode, UnitError};
+use crate::integrators::central_difference::CentralDifference;
+use crate::integrators::hht::{
+    Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales,
+};
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
+
+/// The buffers of one step, kept between steps.
+#[derive(Default)]
+pub(super) struct StepWork {
+    f0: Vec<f64>,
+    f1: Vec<f64>,
+    g0: Vec<f64>,
+    held: Vec<(usize, [f64; 3])>,
+}
+
+impl NonlinearSection {
+    /// The tangent stiffness (elements and environment, without velocity terms)
+    /// at the current state.
+    fn tangent_stiffness(&self) -> SymmetricBand {
+        let n = self.model.dofs();
+        let mut k = SymmetricBand::zeros(n, super::model::BAND);
+        let mut scratch = vec![0.0; n];
+        self.model
+            .add_internal_force(&self.state.q, 1.0, Some((&mut k, 1.0)), &mut scratch);
+        let zeros = vec![0.0; n];
+        self.environment.add_force(
+            &self.model,
+            (&self.state.q, &zeros, self.state.t),
+            1.0,
+            Some((&mut k, 1.0, 0.0)),
+            &mut scratch,
+        );
+        k
+    }
+
+    /// Mass in the element frames of the current state, Rayleigh damping on the
+    /// tangent there, and the critical step of central differences.
+    pub(super) fn prepare_dynamics(&mut self) -> Result<(), UnitError> {
+        let p = &self.params;
+        self.m = self
+            .model
+            .mass(&self.state.q, &p.segments, p.mass, p.water_density);
+        let mut k = self.tangent_stiffness();
+        self.c = (p.rayleigh_mass > 0.0 || p.rayleigh_stiffness > 0.0).then(|| {
+            let mut c = self.m.clone();
+            c.set_combination(&[(p.rayleigh_mass, &self.m), (p.rayleigh_stiffness, &k)]);
+            c
+        });
+        let held: Vec<usize> = self.held().map(|r| r.dof).collect();
+        let mut m = self.m.clone();
+        for &d in &held {
+            m.set_identity_row(d);
+            k.set_identity_row(d);
+        }
+        let matrices = Matrices {
+            mass: &m,
+            damping: None,
+            stiffness: &k,
+        };
+        // With held DOFs as identity rows their "frequency" is 1 rad/s: harmless.
+        self.critical_step = CentralDifference::critical_step(&matrices, 10_000)?;
+        Ok(())
+    }
+
+    /// M a0 = f - C v0 - g(q0, v0) with the held DOFs' accelerations prescribed;
+    /// then the reactions.
+    pub(super) fn initial_acceleration(&mut self, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let n = self.model.dofs();
+        let t = self.state.t;
+        let held: Vec<(usize, [f64; 3])> = self
+            .held()
+            .map(|r| {
+                let d = r.dof;
+                (
+                    d,
+                    r.motion(inputs, t, 0.0, [self.state.q[d], self.state.v[d], 0.0]),
+                )
+            })
+            .collect();
+        for &(d, [q, v, _]) in &held {
+            self.state.q[d] = q;
+            self.state.v[d] = v;
+        }
+        let mut load = vec![0.0; n];
+        self.external_load(inputs, t, &mut load);
+        let mut force = vec![0.0; n];
+        self.restoring_force(&self.state.q.clone(), &self.state.v.clone(), t, &mut force);
+        let mut rhs: Vec<f64> = load.iter().zip(&force).map(|(f, g)| f - g).collect();
+        if let Some(c) = &self.c {
+            c.mul_add(-1.0, &self.state.v, &mut rhs);
+        }
+        let mut m = self.m.clone();
+        for &(d, [_, _, a]) in &held {
+            m.set_identity_row(d);
+            rhs[d] = a;
+        }
+        let factor = BandLdlt::new(&m).ok_or_else(|| {
+            UnitError::Numerical(
+                "nonlinear section: the mass matrix is not positive definite".into(),
+            )
+        })?;
+        // Held accelerations are zero at rest here, so no right-hand-side coupling.
+        factor.solve_in_place(&mut rhs);
+        self.state.a.copy_from_slice(&rhs);
+        self.state.force.copy_from_slice(&force);
+        self.finish(&load);
+        Ok(())
+    }
+
+    /// Internal, drag and contact force at (q, v, t), unweighted.
+    fn restoring_force(&self, q: &[f64], v: &[f64], t: f64, out: &mut [f64]) {
+        out.fill(0.0);
+        self.model.add_internal_force(q, 1.0, None, out);
+        if !self.environment.is_empty() {
+            self.environment
+                .add_force(&self.model, (q, v, t), 1.0, None, out);
+        }
+    }
+
+    /// Reactions (M a + C v + g - f at the held DOFs) and the contact summary.
+    fn finish(&mut self, load: &[f64]) {
+        let s = &mut self.state;
+        for ((r, g), f) in s.reaction.iter_mut().zip(&s.force).zip(load) {
+            *r = g - f;
+        }
+        self.m.mul_add(1.0, &s.a, &mut s.reaction);
+        if let Some(c) = &self.c {
+            c.mul_add(1.0, &s.v, &mut s.reaction);
+        }
+        s.contact = self.environment.contact_summary(&self.model, &s.q, s.t);
+    }
+
+    /// One step from t0 to t1 = t0 + h (s); returns the Newton iterations (0 for
+    /// central differences). On failure the state is unchanged.
+    pub(super) fn step(
+        &mut self,
+        inputs: Inputs<'_>,
+        t0: f64,
+        t1: f64,
+        h: f64,
+    ) -> Result<u32, UnitError> {
+        let mut w = std::mem::take(&mut self.work);
+        let result = self.step_with(inputs, &mut w, t0, t1, h);
+        self.work = w;
+        if result.is_err() {
+            self.state.t = t0;
+        }
+        result
+    }
+
+    fn step_with(
+        &mut self,
+        inputs: Inputs<'_>,
+        w: &mut StepWork,
+        t0: f64,
+        t1: f64,
+        h: f64,
+    ) -> Result<u32, UnitError> {
+        let n = self.model.dofs();
+        w.f0.resize(n, 0.0);
+        w.f1.resize(n, 0.0);
+        self.external_load(inputs, t0, &mut w.f0);
+        self.external_load(inputs, t1, &mut w.f1);
+        w.held.clear();
+        for r in self.ends.iter().filter(|r| r.is_kinematic()) {
+            let d = r.dof;
+            let start = [self.state.q[d], self.state.v[d], self.state.a[d]];
+            w.held.push((d, r.motion(inputs, t1, h, start)));
+        }
+        let iterations = match self.params.integrator {
+            Integrator::Hht {
+                tolerance,
+                max_iterations,
+                ..
+            } => {
+                w.g0.clear();
+                w.g0.extend_from_slice(&self.state.force);
+                let loads = StepLoads {
+                    t0,
+                    t1,
+                    h,
+                    f0: &w.f0,
+                    f1: &w.f1,
+                    g0: Some(&w.g0),
+                    held: &w.held,
+                };
+                let mut hht = std::mem::take(&mut self.hht);
+                let newton = NewtonSettings {
+                    tolerance,
+                    max_iterations,
+                };
+                let result = hht.step(self, &loads, newton);
+                self.hht = hht;
+                result?
+            }
+            Integrator::CentralDifference => {
+                if h > self.critical_step {
+                    return Err(UnitError::Numerical(format!(
+                        "nonlinear section: the step {h} s exceeds the critical step {:.4e} s of central differences (2 / omega_max of the tangent at the start)",
+                        self.critical_step
+                    )));
+                }
+                let mut explicit = std::mem::take(&mut self.explicit);
+                let result = explicit.step(self, t1, h, &w.f1, &w.held);
+                self.explicit = explicit;
+                result?;
+                0
+            }
+        };
+        self.state.t = t1;
+        let (q, v) = (
+            std::mem::take(&mut self.state.q),
+            std::mem::take(&mut self.state.v),
+        );
+        let mut force = std::mem::take(&mut self.state.force);
+        self.restoring_force(&q, &v, t1, &mut force);
+        self.state.q = q;
+        self.state.v = v;
+        self.state.force = force;
+        self.finish(&w.f1);
+        self.state.newton_iterations = iterations;
+        Ok(iterations)
+    }
+}
+
+/// The section for the integrators: M and C constant, K zero, the restoring force
+/// nonlinear with its tangent.
+impl SecondOrderSystem for NonlinearSection {
+    fn label(&self) -> &str {
+        "nonlinear section"
+    }
+
+    fn matrices(&self) -> Matrices<'_> {
+        Matrices {
+            mass: &self.m,
+            damping: self.c.as_ref(),
+            stiffness: &self.k,
+        }
+    }
+
+    fn motion(&self) -> [&[f64]; 3] {
+        [&self.state.q, &self.state.v, &self.state.a]
+    }
+
+    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
+        self.state.q.copy_from_slice(q);
+        self.state.v.copy_from_slice(v);
+        self.state.a.copy_from_slice(a);
+    }
+
+    fn is_linear(&self) -> bool {
+        false
+    }
+
+    fn nonlinear_force(
+        &mut self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        tangent: Option<(&mut SymmetricBand, TangentScales)>,
+        force: &mut Vec<f64>,
+    ) {
+        force.resize(q.len(), 0.0);
+        force.fill(0.0);
+        match tangent {
+            Some((band, scales)) => {
+                self.model.add_internal_force(
+                    q,
+                    scales.stiffness,
+                    Some((&mut *band, scales.stiffness)),
+                    force,
+                );
+                if !self.environment.is_empty() {
+                    let tangent = Some((band, scales.stiffness, scales.damping));
+                    self.environment.add_force(
+                        &self.model,
+                        (q, v, t),
+                        scales.stiffness,
+                        tangent,
+                        force,
+                    );
+                }
+            }
+            None => self.restoring_force(q, v, t, force),
+        }
+    }
+}
+
+/// Modes about the current state (tangent stiffness, the dynamics' mass) with the
+/// kinematic end conditions held, longest period first.
+pub(super) fn modes(section: &NonlinearSection, count: usize) -> Result<ModalAnalysis, UnitError> {
+    let held: Vec<usize> = section.held().map(|r| r.dof).collect();
+    let n = section.model.dofs();
+    let free: Vec<usize> = (0..n).filter(|d| !held.contains(d)).collect();
+    let pick = |m: &SymmetricBand| {
+        nalgebra::DMatrix::from_fn(free.len(), free.len(), |i, j| m.get(free[i], free[j]))
+    };
+    let k = section.tangent_stiffness();
+    let (m, k) = (pick(&section.m), pick(&k));
+    let mut modes = Vec::new();
+    for (w2, phi) in crate::numerics::modal::lowest_modes(
+        &m,
+        &k,
+        count,
+        "the section has a zero-stiffness mode",
+    )? {
+        let mut full = vec![0.0; n];
+        for (a, &d) in free.iter().enumerate() {
+            full[d] = phi[a];
+        }
+        let scale = full
+            .chunks(3)
+            .fold(0.0f64, |a, c| a.max(c[0].abs()).max(c[1].abs()))
+            .max(1e-300);
+        modes.push(Mode {
+            period: 2.0 * std::f64::consts::PI / w2.sqrt(),
+            shape: full
+                .chunks(3)
+                .map(|c| [c[0] / scale, c[1] / scale])
+                .collect(),
+        });
+    }
+    Ok(ModalAnalysis {
+        positions: section.positions(),
+        modes,
+    })
+}

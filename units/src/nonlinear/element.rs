@@ -1,0 +1,310 @@
+//! The 2D beam-column element in its two formulations: internal force and
+//! tangent stiffness in global coordinates from the element's nodal
+//! displacements `p = [u1, w1, theta1, u2, w2, theta2]` (m, m, rad; x horizontal,
+//! z up, theta counter-clockwise).
+//!
+//! - [`Formulation::Corotational`]: a linear Euler-Bernoulli element in a frame that
+//!   follows the chord (Crisfield 1991, ch. 7; Battini 2002): any rigid motion,
+//!   however large, produces no force, and the local rotations are wrapped to
+//!   (-pi, pi] so a node may turn any number of times.
+//! - [`Formulation::Seed002`]: seed 002's kinematically nonlinear element (P2
+//!   App. B): linear axial and Hermite transverse displacement in the undeformed
+//!   element frame, strain `u' + w'^2 / 2`, curvature `w''`, so the restoring force
+//!   is a cubic polynomial of the DOFs; five-point Gauss integrates it exactly
+//!   (degree 8 in the element coordinate). Valid for moderate rotations.
+
+// Small dense element blocks read best indexed as in the formulas.
+#![allow(clippy::needless_range_loop)]
+
+use serde::Deserialize;
+
+/// Which element kinematics a section uses.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Formulation {
+    /// Large displacements and rotations.
+    #[default]
+    Corotational,
+    /// Moderate rotations, restoring force cubic in the DOFs (seed 002).
+    Seed002,
+}
+
+/// An element's stress-free geometry and stiffness.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Element {
+    /// Unstretched length (m).
+    pub length: f64,
+    /// Direction cosines of the stress-free chord.
+    pub cos0: f64,
+    pub sin0: f64,
+    /// Axial stiffness EA (N) and bending stiffness EI (N m^2).
+    pub ea: f64,
+    pub ei: f64,
+}
+
+/// Internal force (N, N m) and tangent stiffness of one element, global frame.
+pub type ElementForce = ([f64; 6], [[f64; 6]; 6]);
+
+/// The element's axial force N (N) and end moments M1, M2 (N m, counter-clockwise
+/// on the element), plus its current chord length (m) and angle (rad).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct LocalForces {
+    pub axial: f64,
+    pub moments: [f64; 2],
+    pub chord: f64,
+    pub angle: f64,
+}
+
+/// Five-point Gauss-Legendre on [0, 1]: (abscissa, weight).
+const GAUSS5: [(f64, f64); 5] = [
+    (0.046_910_077_030_668_0, 0.118_463_442_528_094_5),
+    (0.230_765_344_947_158_5, 0.239_314_335_249_683_2),
+    (0.5, 0.284_444_444_444_444_4),
+    (0.769_234_655_052_841_5, 0.239_314_335_249_683_2),
+    (0.953_089_922_969_332, 0.118_463_442_528_094_5),
+];
+
+/// Wraps an angle to (-pi, pi].
+fn wrap(angle: f64) -> f64 {
+    use std::f64::consts::PI;
+    let a = angle.rem_euclid(2.0 * PI);
+    if a > PI { a - 2.0 * PI } else { a }
+}
+
+impl Element {
+    /// Current chord (dx, dz) from the stress-free chord and the displacements.
+    fn chord(&self, p: &[f64; 6]) -> (f64, f64) {
+        (
+            self.length * self.cos0 + p[3] - p[0],
+            self.length * self.sin0 + p[4] - p[1],
+        )
+    }
+
+    /// Axial force, end moments, chord length and angle at `p`.
+    pub fn local_forces(&self, formulation: Formulation, p: &[f64; 6]) -> LocalForces {
+        match formulation {
+            Formulation::Corotational => self.corotational_local(p),
+            Formulation::Seed002 => self.seed002_local(p),
+        }
+    }
+
+    /// Internal force and (with `tangent`) tangent stiffness at `p`.
+    pub fn force(&self, formulation: Formulation, p: &[f64; 6], tangent: bool) -> ElementForce {
+        match formulation {
+            Formulation::Corotational => self.corotational(p, tangent),
+            Formulation::Seed002 => self.seed002(p, tangent),
+        }
+    }
+
+    /// Strain energy (J) at `p`.
+    pub fn strain_energy(&self, formulation: Formulation, p: &[f64; 6]) -> f64 {
+        match formulation {
+            Formulation::Corotational => {
+                let local = self.corotational_local(p);
+                let n = local.axial;
+                // theta^T (EI / l [4 2; 2 4]) theta / 2 from the end moments.
+                let k = self.ei / self.length;
+                let det = 12.0 * k * k;
+                let [m1, m2] = local.moments;
+                let t1 = (4.0 * k * m1 - 2.0 * k * m2) / det;
+                let t2 = (4.0 * k * m2 - 2.0 * k * m1) / det;
+                0.5 * n * n * self.length / self.ea + 0.5 * (m1 * t1 + m2 * t2)
+            }
+            Formulation::Seed002 => {
+                let v = self.local_dofs(p);
+                GAUSS5
+                    .iter()
+                    .map(|&(xi, w)| {
+                        let [du, dw, ddw] = self.derivative_rows(xi);
+                        let dot =
+                            |row: &[f64; 6]| row.iter().zip(&v).map(|(a, b)| a * b).sum::<f64>();
+                        let (u1, w1, w2) = (dot(&du), dot(&dw), dot(&ddw));
+                        let eps = u1 + 0.5 * w1 * w1;
+                        0.5 * w * self.length * (self.ea * eps * eps + self.ei * w2 * w2)
+                    })
+                    .sum()
+            }
+        }
+    }
+
+    fn corotational_local(&self, p: &[f64; 6]) -> LocalForces {
+        let (dx, dz) = self.chord(p);
+        let ln = dx.hypot(dz);
+        let beta = dz.atan2(dx);
+        let beta0 = self.sin0.atan2(self.cos0);
+        let t1 = wrap(p[2] + beta0 - beta);
+        let t2 = wrap(p[5] + beta0 - beta);
+        // ln - l0 without cancellation.
+        let stretch = (ln * ln - self.length * self.length) / (ln + self.length);
+        let k = self.ei / self.length;
+        LocalForces {
+            axial: self.ea * stretch / self.length,
+            moments: [k * (4.0 * t1 + 2.0 * t2), k * (2.0 * t1 + 4.0 * t2)],
+            chord: ln,
+            angle: beta,
+        }
+    }
+
+    /// f = B^T [N, M1, M2]; K = B^T D B + z z^T N / ln + (r z^T + z r^T)(M1 + M2) / ln^2
+    /// (Crisfield eq. 7.54 with this sign convention; checked by finite differences).
+    fn corotational(&self, p: &[f64; 6], tangent: bool) -> ElementForce {
+        let local = self.corotational_local(p);
+        let (ln, (c, s)) = (local.chord, (local.angle.cos(), local.angle.sin()));
+        let r = [-c, -s, 0.0, c, s, 0.0];
+        let z = [s, -c, 0.0, -s, c, 0.0];
+        // Rows of B: d(stretch), d(theta1 local), d(theta2 local).
+        let mut b = [[0.0; 6]; 3];
+        for i in 0..6 {
+            b[0][i] = r[i];
+            b[1][i] = -z[i] / ln;
+            b[2][i] = -z[i] / ln;
+        }
+        b[1][2] += 1.0;
+        b[2][5] += 1.0;
+        let stress = [local.axial, local.moments[0], local.moments[1]];
+        let mut f = [0.0; 6];
+        for i in 0..6 {
+            f[i] = (0..3).map(|a| b[a][i] * stress[a]).sum();
+        }
+        let mut k = [[0.0; 6]; 6];
+        if tangent {
+            let ka = self.ea / self.length;
+            let kb = self.ei / self.length;
+            let d = [
+                [ka, 0.0, 0.0],
+                [0.0, 4.0 * kb, 2.0 * kb],
+                [0.0, 2.0 * kb, 4.0 * kb],
+            ];
+            let (n, m) = (local.axial, local.moments[0] + local.moments[1]);
+            for i in 0..6 {
+                for j in 0..6 {
+                    let mut v = z[i] * z[j] * n / ln + (r[i] * z[j] + z[i] * r[j]) * m / (ln * ln);
+                    for a in 0..3 {
+                        for bb in 0..3 {
+                            v += b[a][i] * d[a][bb] * b[bb][j];
+                        }
+                    }
+                    k[i][j] = v;
+                }
+            }
+        }
+        (f, k)
+    }
+
+    /// Global displacements to the element frame (the stress-free chord).
+    fn local_dofs(&self, p: &[f64; 6]) -> [f64; 6] {
+        let (c, s) = (self.cos0, self.sin0);
+        [
+            c * p[0] + s * p[1],
+            -s * p[0] + c * p[1],
+            p[2],
+            c * p[3] + s * p[4],
+            -s * p[3] + c * p[4],
+            p[5],
+        ]
+    }
+
+    /// The derivative rows at element coordinate xi: u' (B_eps), w' (N_w') and
+    /// w'' (B_kappa), each against the local DOFs.
+    fn derivative_rows(&self, xi: f64) -> [[f64; 6]; 3] {
+        let l = self.length;
+        let du = [-1.0 / l, 0.0, 0.0, 1.0 / l, 0.0, 0.0];
+        let dw = [
+            0.0,
+            (-6.0 * xi + 6.0 * xi * xi) / l,
+            1.0 - 4.0 * xi + 3.0 * xi * xi,
+            0.0,
+            (6.0 * xi - 6.0 * xi * xi) / l,
+            -2.0 * xi + 3.0 * xi * xi,
+        ];
+        let ddw = [
+            0.0,
+            (-6.0 + 12.0 * xi) / (l * l),
+            (-4.0 + 6.0 * xi) / l,
+            0.0,
+            (6.0 - 12.0 * xi) / (l * l),
+            (-2.0 + 6.0 * xi) / l,
+        ];
+        [du, dw, ddw]
+    }
+
+    fn seed002_local(&self, p: &[f64; 6]) -> LocalForces {
+        let v = self.local_dofs(p);
+        let dot = |row: &[f64; 6]| row.iter().zip(&v).map(|(a, b)| a * b).sum::<f64>();
+        let [du, dw, _] = self.derivative_rows(0.5);
+        let (u1, w1) = (dot(&du), dot(&dw));
+        // The end moments are the rotational entries of the nodal force.
+        let (f, _) = self.seed002(p, false);
+        let (dx, dz) = self.chord(p);
+        LocalForces {
+            axial: self.ea * (u1 + 0.5 * w1 * w1),
+            moments: [f[2], f[5]],
+            chord: dx.hypot(dz),
+            angle: dz.atan2(dx),
+        }
+    }
+
+    /// f = int (a N + EI B_k^T w''), a = B_eps^T + w' N_w'^T;
+    /// K = int (EA a a^T + N N_w'^T N_w' + EI B_k^T B_k) (exact by five-point Gauss).
+    fn seed002(&self, p: &[f64; 6], tangent: bool) -> ElementForce {
+        let v = self.local_dofs(p);
+        let mut fl = [0.0; 6];
+        let mut kl = [[0.0; 6]; 6];
+        for &(xi, weight) in &GAUSS5 {
+            let w = weight * self.length;
+            let [du, dw, ddw] = self.derivative_rows(xi);
+            let dot = |row: &[f64; 6]| row.iter().zip(&v).map(|(a, b)| a * b).sum::<f64>();
+            let (u1, w1, w2) = (dot(&du), dot(&dw), dot(&ddw));
+            let n = self.ea * (u1 + 0.5 * w1 * w1);
+            let m = self.ei * w2;
+            let mut a = [0.0; 6];
+            for i in 0..6 {
+                a[i] = du[i] + w1 * dw[i];
+                fl[i] += w * (a[i] * n + ddw[i] * m);
+            }
+            if tangent {
+                for i in 0..6 {
+                    for j in 0..6 {
+                        kl[i][j] += w
+                            * (self.ea * a[i] * a[j]
+                                + n * dw[i] * dw[j]
+                                + self.ei * ddw[i] * ddw[j]);
+                    }
+                }
+            }
+        }
+        self.rotated_to_global(&fl, &kl, tangent)
+    }
+
+    /// T^T f and T^T K T with T the element's rotation.
+    fn rotated_to_global(&self, fl: &[f64; 6], kl: &[[f64; 6]; 6], tangent: bool) -> ElementForce {
+        let (c, s) = (self.cos0, self.sin0);
+        let mut t = [[0.0; 6]; 6];
+        for base in [0, 3] {
+            t[base][base] = c;
+            t[base][base + 1] = s;
+            t[base + 1][base] = -s;
+            t[base + 1][base + 1] = c;
+            t[base + 2][base + 2] = 1.0;
+        }
+        let mut f = [0.0; 6];
+        let mut k = [[0.0; 6]; 6];
+        for i in 0..6 {
+            f[i] = (0..6).map(|a| t[a][i] * fl[a]).sum();
+        }
+        if tangent {
+            let mut kt = [[0.0; 6]; 6];
+            for a in 0..6 {
+                for j in 0..6 {
+                    kt[a][j] = (0..6).map(|b| kl[a][b] * t[b][j]).sum();
+                }
+            }
+            for i in 0..6 {
+                for j in 0..6 {
+                    k[i][j] = (0..6).map(|a| t[a][i] * kt[a][j]).sum();
+                }
+            }
+        }
+        (f, k)
+    }
+}

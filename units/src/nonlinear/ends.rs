@@ -1,0 +1,192 @@
+//! The ends of a nonlinear section resolved to DOFs, their prescribed motion and
+//! loads at a time, and the unit's ports.
+
+use super::params::{DofCondition, NonlinearParams};
+use crate::beam::boundary::TimeFunction;
+use crate::contract::{Inputs, Port, PortKind};
+
+/// Names of the three DOFs of a node, as in port names.
+const DOF_NAMES: [&str; 3] = ["x", "z", "rotation"];
+const SIDES: [&str; 2] = ["start", "end"];
+
+/// One end DOF with its condition.
+#[derive(Clone, Debug)]
+pub struct Resolved {
+    /// 0 start, 1 end.
+    pub end: usize,
+    /// 0 x, 1 z, 2 rotation.
+    pub component: usize,
+    pub dof: usize,
+    pub condition: DofCondition,
+    /// The input port feeding it, if coupled.
+    pub input: Option<usize>,
+}
+
+impl Resolved {
+    /// Whether the DOF's motion is prescribed.
+    pub fn is_kinematic(&self) -> bool {
+        self.condition.is_kinematic()
+    }
+
+    /// Prescribed (q, v, a) at the step's end `t` over a step `h` (0 at the
+    /// initial time) from the start state `(q0, v0, a0)` of the DOF.
+    pub fn motion(&self, inputs: Inputs<'_>, t: f64, h: f64, start: [f64; 3]) -> [f64; 3] {
+        let [q0, v0, a0] = start;
+        match (&self.condition, self.input) {
+            (DofCondition::Held, _) => [0.0; 3],
+            (DofCondition::Displacement(f), _) => match (f.eval(t), self.input) {
+                (Some(v), _) => v,
+                (None, Some(i)) if h > 0.0 => {
+                    let rate = inputs.rate(i, h);
+                    [inputs.at(i, 1.0), rate, (rate - v0) / h]
+                }
+                (None, Some(i)) => [inputs.at(i, 1.0), 0.0, 0.0],
+                (None, None) => [q0, v0, a0],
+            },
+            // Trapezoidal rule on the velocity: consistent with Newmark (1/4, 1/2).
+            (DofCondition::Velocity, Some(i)) => {
+                let v1 = inputs.at(i, 1.0);
+                if h > 0.0 {
+                    [q0 + 0.5 * h * (v0 + v1), v1, 2.0 * (v1 - v0) / h - a0]
+                } else {
+                    [q0, v1, a0]
+                }
+            }
+            _ => [q0, v0, a0],
+        }
+    }
+
+    /// Applied force or moment at `t` (0 for a kinematic condition).
+    pub fn load(&self, inputs: Inputs<'_>, t: f64) -> f64 {
+        match (&self.condition, self.input) {
+            (DofCondition::Force(f), input) => match (f.eval(t), input) {
+                (Some([v, _, _]), _) => v,
+                (None, Some(i)) => inputs.at(i, 1.0),
+                (None, None) => 0.0,
+            },
+            _ => 0.0,
+        }
+    }
+}
+
+/// Every end DOF that is not free, with the input ports of the coupled ones.
+pub fn resolve(params: &NonlinearParams, nodes: usize) -> (Vec<Resolved>, Vec<Port>) {
+    let mut resolved = Vec::new();
+    let mut inputs = Vec::new();
+    for (end, side) in SIDES.iter().enumerate() {
+        let spec = if end == 0 {
+            &params.ends.start
+        } else {
+            &params.ends.end
+        };
+        let node = if end == 0 { 0 } else { nodes - 1 };
+        for (component, condition) in spec.conditions().into_iter().enumerate() {
+            let name = DOF_NAMES[component];
+            let rotation = component == 2;
+            let port = match &condition {
+                DofCondition::Free => continue,
+                DofCondition::Held => None,
+                DofCondition::Displacement(TimeFunction::Input(_)) => Some(if rotation {
+                    Port::input(&format!("{side}_rotation"), PortKind::Rotation)
+                } else {
+                    Port::input(
+                        &format!("{side}_displacement_{name}"),
+                        PortKind::Displacement,
+                    )
+                }),
+                DofCondition::Velocity => Some(if rotation {
+                    Port::input(&format!("{side}_angular_velocity"), PortKind::Generic)
+                        .with_unit("rad/s")
+                } else {
+                    Port::input(&format!("{side}_velocity_{name}"), PortKind::Velocity)
+                }),
+                DofCondition::Force(TimeFunction::Input(_)) => Some(if rotation {
+                    Port::input(&format!("{side}_moment"), PortKind::Moment)
+                } else {
+                    Port::input(&format!("{side}_force_{name}"), PortKind::Force)
+                }),
+                _ => None,
+            };
+            let input = port.map(|p| {
+                inputs.push(p);
+                inputs.len() - 1
+            });
+            resolved.push(Resolved {
+                end,
+                component,
+                dof: 3 * node + component,
+                condition,
+                input,
+            });
+        }
+    }
+    (resolved, inputs)
+}
+
+/// Names of the outputs after the end quantities.
+pub const EXTRA_OUTPUTS: [(&str, &str); 8] = [
+    ("kinetic_energy", "J"),
+    ("strain_energy", "J"),
+    ("newton_iterations", ""),
+    ("critical_step", "s"),
+    ("touchdown", "m"),
+    ("contact_length", "m"),
+    ("max_moment", "N.m"),
+    ("max_tension", "N"),
+];
+
+/// Per end: position x, z, rotation, velocity x, z, angular velocity, and the force
+/// x, z and moment the end exerts on what holds it (feeding through from that
+/// end's force inputs); then the extras; then tension, moment and curvature per
+/// station.
+pub fn output_ports(resolved: &[Resolved], stations: usize) -> Vec<Port> {
+    let mut out = Vec::new();
+    for (end, side) in SIDES.iter().enumerate() {
+        let loads: Vec<usize> = resolved
+            .iter()
+            .filter(|r| r.end == end && matches!(r.condition, DofCondition::Force(_)))
+            .filter_map(|r| r.input)
+            .collect();
+        out.push(Port::output(
+            &format!("{side}_position_x"),
+            PortKind::Displacement,
+        ));
+        out.push(Port::output(
+            &format!("{side}_position_z"),
+            PortKind::Displacement,
+        ));
+        out.push(Port::output(
+            &format!("{side}_rotation"),
+            PortKind::Rotation,
+        ));
+        out.push(Port::output(
+            &format!("{side}_velocity_x"),
+            PortKind::Velocity,
+        ));
+        out.push(Port::output(
+            &format!("{side}_velocity_z"),
+            PortKind::Velocity,
+        ));
+        out.push(
+            Port::output(&format!("{side}_angular_velocity"), PortKind::Generic).with_unit("rad/s"),
+        );
+        out.push(
+            Port::output(&format!("{side}_force_x"), PortKind::Force).with_feedthrough(&loads),
+        );
+        out.push(
+            Port::output(&format!("{side}_force_z"), PortKind::Force).with_feedthrough(&loads),
+        );
+        out.push(
+            Port::output(&format!("{side}_moment"), PortKind::Moment).with_feedthrough(&loads),
+        );
+    }
+    for (name, unit) in EXTRA_OUTPUTS {
+        out.push(Port::output(name, PortKind::Generic).with_unit(unit));
+    }
+    for i in 1..=stations {
+        out.push(Port::output(&format!("tension_{i}"), PortKind::Force));
+        out.push(Port::output(&format!("moment_{i}"), PortKind::Moment));
+        out.push(Port::output(&format!("curvature_{i}"), PortKind::Generic).with_unit("1/m"));
+    }
+    out
+}

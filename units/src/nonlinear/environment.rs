@@ -1,0 +1,234 @@
+//! Forces from the surroundings that depend on the motion: Morison drag on the
+//! velocity relative to a current, and contact of the nodes with a surface. Each
+//! is skipped entirely when the scene does not ask for it.
+
+// Small dense element blocks read best indexed as in the formulas.
+#![allow(clippy::needless_range_loop)]
+
+use super::model::Model;
+use super::params::{Current, NodalContact, NonlinearParams};
+use crate::numerics::banded::SymmetricBand;
+
+/// Drag of one element: 1/2 rho D l Cn and 1/2 rho pi D l Ct (kg/m).
+#[derive(Copy, Clone, Debug)]
+struct ElementDrag {
+    normal: f64,
+    tangential: f64,
+}
+
+/// The motion-dependent environment of a section.
+#[derive(Clone, Debug)]
+pub struct Environment {
+    drag: Vec<ElementDrag>,
+    current: Option<Current>,
+    contact: Option<NodalContact>,
+    /// Tributary length of each node (m), for contact.
+    tributary: Vec<f64>,
+}
+
+/// What the contact did at one state.
+#[derive(Copy, Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ContactSummary {
+    /// Arc length (m) of the first node in contact counted from the far end
+    /// (the touchdown point); NaN without contact.
+    pub touchdown: f64,
+    /// Sum of the tributary lengths in contact (m).
+    pub length: f64,
+    /// Largest penetration (m).
+    pub penetration: f64,
+}
+
+/// How the force's derivatives enter a Newton matrix: (band, stiffness factor,
+/// damping factor).
+pub type Tangent<'a> = Option<(&'a mut SymmetricBand, f64, f64)>;
+
+impl Environment {
+    /// From the parameters and the mesh.
+    pub fn new(params: &NonlinearParams, model: &Model) -> Environment {
+        let drag: Vec<ElementDrag> = model
+            .elements
+            .iter()
+            .zip(&model.segment_of)
+            .map(|(e, &s)| {
+                let s = &params.segments[s];
+                let k = 0.5 * params.water_density * s.diameter * e.length;
+                ElementDrag {
+                    normal: k * s.drag_normal,
+                    tangential: k * std::f64::consts::PI * s.drag_tangential,
+                }
+            })
+            .collect();
+        let any_drag = drag.iter().any(|d| d.normal > 0.0 || d.tangential > 0.0);
+        let mut tributary = vec![0.0; model.reference.len()];
+        for (e, el) in model.elements.iter().enumerate() {
+            tributary[e] += 0.5 * el.length;
+            tributary[e + 1] += 0.5 * el.length;
+        }
+        Environment {
+            drag: if any_drag { drag } else { Vec::new() },
+            current: params.current.clone(),
+            contact: params.contact.clone(),
+            tributary,
+        }
+    }
+
+    /// Whether there is nothing to compute.
+    pub fn is_empty(&self) -> bool {
+        self.drag.is_empty() && self.contact.is_none()
+    }
+
+    /// Adds `scale` times the drag and contact force (as it enters the left-hand
+    /// side) at (q, v, t) to `out`, and their tangents to the band.
+    pub fn add_force(
+        &self,
+        model: &Model,
+        (q, v, t): (&[f64], &[f64], f64),
+        scale: f64,
+        mut tangent: Tangent<'_>,
+        out: &mut [f64],
+    ) {
+        if !self.drag.is_empty() {
+            self.add_drag(
+                model,
+                q,
+                v,
+                scale,
+                tangent.as_mut().map(|(b, _, d)| (&mut **b, *d)),
+                out,
+            );
+        }
+        if self.contact.is_some() {
+            self.add_contact(model, q, t, scale, tangent.map(|(b, k, _)| (b, k)), out);
+        }
+    }
+
+    /// Drag per element on the midpoint's relative velocity, half to each node;
+    /// the damping tangent (velocity derivative) only.
+    fn add_drag(
+        &self,
+        model: &Model,
+        q: &[f64],
+        v: &[f64],
+        scale: f64,
+        mut tangent: Option<(&mut SymmetricBand, f64)>,
+        out: &mut [f64],
+    ) {
+        for (e, d) in self.drag.iter().enumerate() {
+            let b = 3 * e;
+            let (i, j) = (b, b + 3);
+            let el = &model.elements[e];
+            let dx = el.length * el.cos0 + q[j] - q[i];
+            let dz = el.length * el.sin0 + q[j + 1] - q[i + 1];
+            let ln = dx.hypot(dz).max(1e-12);
+            let tv = [dx / ln, dz / ln];
+            let zmid =
+                0.5 * (model.reference[e][1] + model.reference[e + 1][1] + q[i + 1] + q[j + 1]);
+            let u = self.current.as_ref().map_or(0.0, |c| c.at(zmid));
+            let vr = [0.5 * (v[i] + v[j]) - u, 0.5 * (v[i + 1] + v[j + 1])];
+            let vt = vr[0] * tv[0] + vr[1] * tv[1];
+            let vn = [vr[0] - vt * tv[0], vr[1] - vt * tv[1]];
+            let an = vn[0].hypot(vn[1]);
+            let f = [
+                d.normal * an * vn[0] + d.tangential * vt.abs() * vt * tv[0],
+                d.normal * an * vn[1] + d.tangential * vt.abs() * vt * tv[1],
+            ];
+            for node in [i, j] {
+                out[node] += scale * 0.5 * f[0];
+                out[node + 1] += scale * 0.5 * f[1];
+            }
+            if let Some((band, factor)) = tangent.as_mut() {
+                // d f / d vr = Cn (|vn| P + vn vn^T / |vn|) + 2 Ct |vt| t t^T.
+                let mut k = [[0.0; 2]; 2];
+                for r in 0..2 {
+                    for c in 0..2 {
+                        let p = if r == c { 1.0 } else { 0.0 } - tv[r] * tv[c];
+                        let outer = if an > 0.0 { vn[r] * vn[c] / an } else { 0.0 };
+                        k[r][c] = d.normal * (an * p + outer)
+                            + 2.0 * d.tangential * vt.abs() * tv[r] * tv[c];
+                    }
+                }
+                // Each node's velocity enters vr with 1/2, each node takes half the force.
+                for a in [i, j] {
+                    for bn in [i, j] {
+                        for r in 0..2 {
+                            for c in 0..2 {
+                                if a + r >= bn + c {
+                                    band.add(a + r, bn + c, *factor * 0.25 * k[r][c]);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Contact of each node with the surface: the law's force density times the
+    /// node's tributary length along the gradient of the gap d = z - f(x).
+    fn add_contact(
+        &self,
+        model: &Model,
+        q: &[f64],
+        t: f64,
+        scale: f64,
+        mut tangent: Option<(&mut SymmetricBand, f64)>,
+        out: &mut [f64],
+    ) {
+        let Some(contact) = &self.contact else { return };
+        let lambda = contact.method.lambda0();
+        for (j, r) in model.reference.iter().enumerate() {
+            let (x, z) = (r[0] + q[3 * j], r[1] + q[3 * j + 1]);
+            let Some((f, _)) = contact.surface.at(x, t) else {
+                continue;
+            };
+            let (_, g, k) = contact.method.evaluate(z - f, lambda);
+            if g == 0.0 && k == 0.0 {
+                continue;
+            }
+            let slope = surface_slope(contact, x, t);
+            let grad = [-slope, 1.0];
+            let w = self.tributary[j];
+            out[3 * j] += scale * w * g * grad[0];
+            out[3 * j + 1] += scale * w * g * grad[1];
+            if let Some((band, factor)) = tangent.as_mut() {
+                band.add(3 * j, 3 * j, *factor * w * k * grad[0] * grad[0]);
+                band.add(3 * j + 1, 3 * j, *factor * w * k * grad[1] * grad[0]);
+                band.add(3 * j + 1, 3 * j + 1, *factor * w * k);
+            }
+        }
+    }
+
+    /// Touchdown point, contact length and penetration at `q`.
+    pub fn contact_summary(&self, model: &Model, q: &[f64], t: f64) -> ContactSummary {
+        let mut s = ContactSummary {
+            touchdown: f64::NAN,
+            ..ContactSummary::default()
+        };
+        let Some(contact) = &self.contact else {
+            return s;
+        };
+        for (j, r) in model.reference.iter().enumerate().rev() {
+            let (x, z) = (r[0] + q[3 * j], r[1] + q[3 * j + 1]);
+            let Some((f, _)) = contact.surface.at(x, t) else {
+                continue;
+            };
+            if z - f <= 0.0 {
+                if s.touchdown.is_nan() {
+                    s.touchdown = model.arc[j];
+                }
+                s.length += self.tributary[j];
+                s.penetration = s.penetration.max(f - z);
+            }
+        }
+        s
+    }
+}
+
+/// df/dx by central differences over 1 mm (0 where the surface ends).
+fn surface_slope(contact: &NodalContact, x: f64, t: f64) -> f64 {
+    let h = 1e-3;
+    match (contact.surface.at(x + h, t), contact.surface.at(x - h, t)) {
+        (Some((a, _)), Some((b, _))) => (a - b) / (2.0 * h),
+        _ => 0.0,
+    }
+}

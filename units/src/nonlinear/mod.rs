@@ -1,0 +1,316 @@
+//! Geometrically nonlinear section unit (scene kind `nonlinear`): a planar chain
+//! of 2D beam-column elements (axial EA, bending EI) in one of two formulations
+//! (co-rotational, seed 002's cubic element; [`element`]), with weight, distributed
+//! loads, Morison drag on the velocity relative to a current, added mass, Rayleigh
+//! damping and nodal contact with a surface; ends fixed, pinned, free, moved in
+//! time, coupled in velocity or displacement, or loaded (time functions or coupled
+//! forces and moments). A static Newton with load continuation finds the
+//! equilibrium ([`statics`]); HHT-alpha with Newton or explicit central
+//! differences step the dynamics ([`dynamics`]). This is the reference model of a
+//! section: the cheaper units are measured against it.
+
+pub mod element;
+pub mod ends;
+pub mod environment;
+pub mod model;
+pub mod params;
+
+mod dynamics;
+mod statics;
+
+use crate::contract::{
+    Capabilities, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription, UnitError,
+};
+use crate::integrators::central_difference::CentralDifference;
+use crate::integrators::hht::HhtAlpha;
+use crate::numerics::banded::SymmetricBand;
+use ends::Resolved;
+use environment::{ContactSummary, Environment};
+use model::{BAND, Model};
+use params::Integrator;
+pub use params::NonlinearParams;
+
+crate::state_struct! {
+    /// Everything that changes while stepping.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct SectionState {
+        t: f64,
+        q: Vec<f64>,
+        v: Vec<f64>,
+        a: Vec<f64>,
+        /// Internal, drag and contact force at the current time (N, N m).
+        force: Vec<f64>,
+        /// Support reactions at the held DOFs: M a + C v + g - f (N, N m).
+        reaction: Vec<f64>,
+        contact: ContactSummary,
+        newton_iterations: u32,
+    }
+}
+
+/// The nonlinear section unit.
+pub struct NonlinearSection {
+    params: NonlinearParams,
+    description: UnitDescription,
+    model: Model,
+    environment: Environment,
+    ends: Vec<Resolved>,
+    m: SymmetricBand,
+    c: Option<SymmetricBand>,
+    /// Zero: the whole restoring force is the integrators' nonlinear force.
+    k: SymmetricBand,
+    /// Nodal loads of a unit x and z distributed load per `params.loads` entry.
+    patterns: Vec<[Vec<f64>; 2]>,
+    /// Weight and buoyancy (N).
+    weight: Vec<f64>,
+    /// Critical step 2 / omega_max of the tangent at the start of the dynamics (s).
+    critical_step: f64,
+    state: SectionState,
+    // Scratch.
+    hht: HhtAlpha,
+    explicit: CentralDifference,
+    work: dynamics::StepWork,
+}
+
+impl NonlinearSection {
+    /// Builds the unit; fails with the first bad parameter.
+    pub fn new(params: NonlinearParams) -> Result<NonlinearSection, UnitError> {
+        params.validate()?;
+        let model = Model::new(&params);
+        let n = model.dofs();
+        let (ends, inputs) = ends::resolve(&params, model.reference.len());
+        let outputs = ends::output_ports(&ends, params.stations.len());
+        let mut weight = vec![0.0; n];
+        for (i, s) in params.segments.iter().enumerate() {
+            let range = segment_range(&model, i);
+            model.add_distributed([0.0, -s.submerged_weight], range, &mut weight);
+        }
+        let patterns = params
+            .loads
+            .iter()
+            .map(|l| {
+                let mut px = vec![0.0; n];
+                let mut pz = vec![0.0; n];
+                model.add_distributed([1.0, 0.0], (l.from, l.to), &mut px);
+                model.add_distributed([0.0, 1.0], (l.from, l.to), &mut pz);
+                [px, pz]
+            })
+            .collect();
+        let alpha = match params.integrator {
+            Integrator::Hht { alpha, .. } => alpha,
+            Integrator::CentralDifference => 0.0,
+        };
+        let zeros = vec![0.0; n];
+        let m = model.mass(&zeros, &params.segments, params.mass, params.water_density);
+        Ok(NonlinearSection {
+            description: UnitDescription {
+                kind: "nonlinear".into(),
+                inputs,
+                outputs,
+                capabilities: Capabilities::default(),
+            },
+            environment: Environment::new(&params, &model),
+            state: SectionState {
+                t: 0.0,
+                q: zeros.clone(),
+                v: zeros.clone(),
+                a: zeros.clone(),
+                force: zeros.clone(),
+                reaction: zeros,
+                contact: ContactSummary {
+                    touchdown: f64::NAN,
+                    ..ContactSummary::default()
+                },
+                newton_iterations: 0,
+            },
+            hht: HhtAlpha::new(alpha, n, BAND),
+            explicit: CentralDifference::new(),
+            work: dynamics::StepWork::default(),
+            k: SymmetricBand::zeros(n, BAND),
+            c: None,
+            m,
+            critical_step: f64::NAN,
+            patterns,
+            weight,
+            ends,
+            model,
+            params,
+        })
+    }
+
+    /// The mesh.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// Displacements (m, rad) at the current time, three per node.
+    pub fn displacements(&self) -> &[f64] {
+        &self.state.q
+    }
+
+    /// Velocities at the current time.
+    pub fn velocities(&self) -> &[f64] {
+        &self.state.v
+    }
+
+    /// Node positions (m) at the current time.
+    pub fn positions(&self) -> Vec<[f64; 2]> {
+        self.model.positions(&self.state.q)
+    }
+
+    /// The critical step of central differences (s), after `initialize`.
+    pub fn critical_step(&self) -> f64 {
+        self.critical_step
+    }
+
+    /// The support reactions (N, N m) at the held DOFs (zero elsewhere).
+    pub fn reactions(&self) -> &[f64] {
+        &self.state.reaction
+    }
+
+    /// Newton iterations of the last step or static solve.
+    pub fn last_newton_iterations(&self) -> u32 {
+        self.state.newton_iterations
+    }
+
+    /// Kinetic and strain energy (J) at the current time.
+    pub fn energies(&self) -> [f64; 2] {
+        let kinetic = 0.5 * self.m.quadratic_form(&self.state.v);
+        let strain = (0..self.model.elements.len())
+            .map(|e| {
+                self.model.elements[e].strain_energy(
+                    self.model.formulation,
+                    &model::element_dofs(&self.state.q, e),
+                )
+            })
+            .sum();
+        [kinetic, strain]
+    }
+
+    /// External load at time t (weight, distributed loads, end loads) into `out`.
+    fn external_load(&self, inputs: Inputs<'_>, t: f64, out: &mut [f64]) {
+        out.copy_from_slice(&self.weight);
+        for (l, [px, pz]) in self.params.loads.iter().zip(&self.patterns) {
+            let fx = l.x.eval(t).map_or(0.0, |v| v[0]);
+            let fz = l.z.eval(t).map_or(0.0, |v| v[0]);
+            for i in 0..out.len() {
+                out[i] += fx * px[i] + fz * pz[i];
+            }
+        }
+        for r in &self.ends {
+            out[r.dof] += r.load(inputs, t);
+        }
+    }
+
+    fn held(&self) -> impl Iterator<Item = &Resolved> + '_ {
+        self.ends.iter().filter(|r| r.is_kinematic())
+    }
+
+    /// Tension (N), bending moment (N m) and curvature (1/m) at arc length `s`,
+    /// the moment interpolated linearly between the element's ends.
+    pub fn section_forces(&self, s: f64) -> [f64; 3] {
+        let (e, xi) = self.model.locate(s);
+        let local = self.model.local_forces(&self.state.q, e);
+        let moment = (1.0 - xi) * -local.moments[0] + xi * local.moments[1];
+        [local.axial, moment, moment / self.model.elements[e].ei]
+    }
+
+    /// Largest |moment| (N m) and tension (N) over the element ends.
+    fn extremes(&self) -> (f64, f64) {
+        (0..self.model.elements.len()).fold((0.0f64, f64::NEG_INFINITY), |(m, t), e| {
+            let l = self.model.local_forces(&self.state.q, e);
+            (
+                m.max(l.moments[0].abs()).max(l.moments[1].abs()),
+                t.max(l.axial),
+            )
+        })
+    }
+}
+
+/// The arc-length range of segment `i`.
+fn segment_range(model: &Model, i: usize) -> (f64, f64) {
+    let first = model.segment_of.iter().position(|&s| s == i).unwrap_or(0);
+    let last = model.segment_of.iter().rposition(|&s| s == i).unwrap_or(0);
+    (model.arc[first], model.arc[last + 1])
+}
+
+impl Unit for NonlinearSection {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        self.state.t = t0.as_secs();
+        self.state.q.fill(0.0);
+        self.state.v.fill(0.0);
+        if self.params.static_start {
+            self.solve_static(inputs)?;
+        }
+        self.prepare_dynamics()?;
+        self.initial_acceleration(inputs)
+    }
+
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        let iterations = self.step(inputs, t.as_secs(), (t + h).as_secs(), h.as_secs())?;
+        Ok(StepReport {
+            solver_iterations: iterations,
+        })
+    }
+
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+        let nodes = self.model.reference.len();
+        for end in 0..2 {
+            let node = if end == 0 { 0 } else { nodes - 1 };
+            let d = 3 * node;
+            let r = self.model.reference[node];
+            let base = 9 * end;
+            out[base] = r[0] + self.state.q[d];
+            out[base + 1] = r[1] + self.state.q[d + 1];
+            out[base + 2] = self.state.q[d + 2];
+            out[base + 3..base + 6].copy_from_slice(&self.state.v[d..d + 3]);
+            // The force on what holds the end: minus the support reaction.
+            for k in 0..3 {
+                out[base + 6 + k] = -self.state.reaction[d + k];
+            }
+            for c in self
+                .ends
+                .iter()
+                .filter(|c| c.end == end && !c.is_kinematic())
+            {
+                out[base + 6 + c.component] = -c.load(inputs, self.state.t);
+            }
+        }
+        let [kinetic, strain] = self.energies();
+        let (max_moment, max_tension) = self.extremes();
+        let extra = [
+            kinetic,
+            strain,
+            f64::from(self.state.newton_iterations),
+            self.critical_step,
+            self.state.contact.touchdown,
+            self.state.contact.length,
+            max_moment,
+            max_tension,
+        ];
+        out[18..26].copy_from_slice(&extra);
+        for (i, &s) in self.params.stations.iter().enumerate() {
+            out[26 + 3 * i..29 + 3 * i].copy_from_slice(&self.section_forces(s));
+        }
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.state);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.state.clone_from(&*slot.load::<SectionState>()?);
+        Ok(())
+    }
+
+    fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {
+        dynamics::modes(self, count)
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,231 @@
+//! The mesh of a nonlinear section and its assembled quantities: internal force
+//! and tangent, mass, nodal loads, and the element forces at stations.
+//!
+//! Nodes carry three DOFs `[u, w, theta]` (displacement from the stress-free
+//! position in x and z, m; rotation, rad); elements form a chain, so every matrix
+//! is banded with half-bandwidth 5.
+
+// Small dense element blocks read best indexed as in the formulas.
+#![allow(clippy::needless_range_loop)]
+
+use super::element::{Element, Formulation, LocalForces};
+use super::params::{MassKind, NonlinearParams, Segment};
+use crate::numerics::banded::SymmetricBand;
+
+/// Half-bandwidth of the assembled matrices.
+pub const BAND: usize = 5;
+
+/// The discretised structure.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub formulation: Formulation,
+    pub elements: Vec<Element>,
+    /// Segment of each element.
+    pub segment_of: Vec<usize>,
+    /// Stress-free node positions (m).
+    pub reference: Vec<[f64; 2]>,
+    /// Arc length of each node (m), unstretched.
+    pub arc: Vec<f64>,
+}
+
+/// The six DOFs of element `e` in `q`.
+pub fn element_dofs(q: &[f64], e: usize) -> [f64; 6] {
+    let mut p = [0.0; 6];
+    p.copy_from_slice(&q[3 * e..3 * e + 6]);
+    p
+}
+
+impl Model {
+    /// The mesh of `params` (validated).
+    pub fn new(params: &NonlinearParams) -> Model {
+        let mut elements = Vec::new();
+        let mut segment_of = Vec::new();
+        let mut reference = vec![params.start];
+        let mut arc = vec![0.0];
+        for (i, s) in params.segments.iter().enumerate() {
+            let (sin0, cos0) = s.angle.to_radians().sin_cos();
+            let l = s.length / s.elements as f64;
+            for _ in 0..s.elements {
+                elements.push(Element {
+                    length: l,
+                    cos0,
+                    sin0,
+                    ea: s.axial_stiffness,
+                    ei: s.bending_stiffness,
+                });
+                segment_of.push(i);
+                let [x, z] = reference[reference.len() - 1];
+                reference.push([x + l * cos0, z + l * sin0]);
+                arc.push(arc[arc.len() - 1] + l);
+            }
+        }
+        Model {
+            formulation: params.formulation,
+            elements,
+            segment_of,
+            reference,
+            arc,
+        }
+    }
+
+    /// Number of DOFs.
+    pub fn dofs(&self) -> usize {
+        3 * self.reference.len()
+    }
+
+    /// Adds the internal force at `q` to `out`, times `scale`; with `tangent`, adds
+    /// the tangent stiffness times its factor to the band.
+    pub fn add_internal_force(
+        &self,
+        q: &[f64],
+        scale: f64,
+        mut tangent: Option<(&mut SymmetricBand, f64)>,
+        out: &mut [f64],
+    ) {
+        let want = tangent.is_some();
+        for (e, element) in self.elements.iter().enumerate() {
+            let (f, k) = element.force(self.formulation, &element_dofs(q, e), want);
+            let base = 3 * e;
+            for i in 0..6 {
+                out[base + i] += scale * f[i];
+            }
+            if let Some((band, factor)) = tangent.as_mut() {
+                for i in 0..6 {
+                    for j in 0..=i {
+                        band.add(base + i, base + j, *factor * k[i][j]);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Axial force, end moments and chord of every element at `q`.
+    pub fn local_forces(&self, q: &[f64], e: usize) -> LocalForces {
+        self.elements[e].local_forces(self.formulation, &element_dofs(q, e))
+    }
+
+    /// The mass matrix (structural plus added mass of `segments`, water density
+    /// `rho` in kg/m^3), each element in the frame of its chord at `q`.
+    pub fn mass(&self, q: &[f64], segments: &[Segment], kind: MassKind, rho: f64) -> SymmetricBand {
+        let mut m = SymmetricBand::zeros(self.dofs(), BAND);
+        for (e, element) in self.elements.iter().enumerate() {
+            let s = &segments[self.segment_of[e]];
+            let area = std::f64::consts::PI * s.diameter * s.diameter / 4.0;
+            let axial = s.mass_per_length + rho * area * s.added_mass_tangential;
+            let normal = s.mass_per_length + rho * area * s.added_mass_normal;
+            let local = self.local_forces(q, e);
+            let (c, sn) = match self.formulation {
+                Formulation::Corotational => (local.angle.cos(), local.angle.sin()),
+                Formulation::Seed002 => (element.cos0, element.sin0),
+            };
+            let block = element_mass(element.length, axial, normal, kind);
+            add_rotated(&mut m, 3 * e, &block, c, sn);
+        }
+        m
+    }
+
+    /// Nodal loads of a distributed load (N/m, global x and z) on the elements
+    /// whose midpoint lies in [from, to], added to `out`: translations only for
+    /// the co-rotational element (its large rotations make end moments of a fixed
+    /// frame wrong), consistent (with end moments, stress-free frame) for seed 002.
+    pub fn add_distributed(&self, load: [f64; 2], range: (f64, f64), out: &mut [f64]) {
+        for (e, element) in self.elements.iter().enumerate() {
+            let mid = 0.5 * (self.arc[e] + self.arc[e + 1]);
+            if mid < range.0 || mid > range.1 {
+                continue;
+            }
+            let l = element.length;
+            let base = 3 * e;
+            for node in [0, 3] {
+                out[base + node] += 0.5 * l * load[0];
+                out[base + node + 1] += 0.5 * l * load[1];
+            }
+            if self.formulation == Formulation::Seed002 {
+                let normal = -element.sin0 * load[0] + element.cos0 * load[1];
+                out[base + 2] += normal * l * l / 12.0;
+                out[base + 5] -= normal * l * l / 12.0;
+            }
+        }
+    }
+
+    /// Current node positions (m) at `q`.
+    pub fn positions(&self, q: &[f64]) -> Vec<[f64; 2]> {
+        self.reference
+            .iter()
+            .enumerate()
+            .map(|(j, r)| [r[0] + q[3 * j], r[1] + q[3 * j + 1]])
+            .collect()
+    }
+
+    /// The element holding arc length `s` and the coordinate in it, in [0, 1].
+    pub fn locate(&self, s: f64) -> (usize, f64) {
+        let last = self.elements.len() - 1;
+        let e = (self.arc.partition_point(|&a| a <= s))
+            .saturating_sub(1)
+            .min(last);
+        (
+            e,
+            ((s - self.arc[e]) / self.elements[e].length).clamp(0.0, 1.0),
+        )
+    }
+}
+
+/// The 6x6 element mass in the element frame: linear axial (mass `axial`), Hermite
+/// transverse (mass `normal`, kg/m); lumped: half each to the nodes, rotary
+/// `normal l^3 / 78` (HRZ).
+fn element_mass(l: f64, axial: f64, normal: f64, kind: MassKind) -> [[f64; 6]; 6] {
+    let mut m = [[0.0; 6]; 6];
+    match kind {
+        MassKind::Consistent => {
+            let a = axial * l / 6.0;
+            m[0][0] = 2.0 * a;
+            m[3][3] = 2.0 * a;
+            m[0][3] = a;
+            m[3][0] = a;
+            let t = normal * l / 420.0;
+            let h = [
+                [156.0, 22.0 * l, 54.0, -13.0 * l],
+                [22.0 * l, 4.0 * l * l, 13.0 * l, -3.0 * l * l],
+                [54.0, 13.0 * l, 156.0, -22.0 * l],
+                [-13.0 * l, -3.0 * l * l, -22.0 * l, 4.0 * l * l],
+            ];
+            let idx = [1, 2, 4, 5];
+            for i in 0..4 {
+                for j in 0..4 {
+                    m[idx[i]][idx[j]] = t * h[i][j];
+                }
+            }
+        }
+        MassKind::Lumped => {
+            for node in [0, 3] {
+                m[node][node] = 0.5 * axial * l;
+                m[node + 1][node + 1] = 0.5 * normal * l;
+                m[node + 2][node + 2] = normal * l.powi(3) / 78.0;
+            }
+        }
+    }
+    m
+}
+
+/// Adds T^T m T (T the rotation by (c, s) of each node's translations) at `base`.
+fn add_rotated(band: &mut SymmetricBand, base: usize, m: &[[f64; 6]; 6], c: f64, s: f64) {
+    let mut t = [[0.0; 6]; 6];
+    for b in [0, 3] {
+        t[b][b] = c;
+        t[b][b + 1] = s;
+        t[b + 1][b] = -s;
+        t[b + 1][b + 1] = c;
+        t[b + 2][b + 2] = 1.0;
+    }
+    for i in 0..6 {
+        for j in 0..=i {
+            let mut v = 0.0;
+            for a in 0..6 {
+                for b in 0..6 {
+                    v += t[a][i] * m[a][b] * t[b][j];
+                }
+            }
+            band.add(base + i, base + j, v);
+        }
+    }
+}

@@ -1,0 +1,442 @@
+//! Parameters of the nonlinear section unit (scene kind `nonlinear`), SI units.
+//!
+//! Geometry is the stress-free shape: a start point and segments, each a straight
+//! run of equal elements at an angle. The displacements the unit computes are from
+//! that shape; end conditions prescribe displacements from it.
+
+use super::element::Formulation;
+use crate::beam::boundary::TimeFunction;
+use crate::contact::Law;
+use crate::contact::surface::Surface;
+use crate::contract::{
+    UnitError, require_finite, require_in_range, require_non_negative, require_positive,
+};
+use serde::Deserialize;
+
+/// A straight run of equal elements of one cross-section.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Segment {
+    /// Unstretched length (m).
+    pub length: f64,
+    /// Direction of the stress-free segment, counter-clockwise from +x (deg).
+    #[serde(default)]
+    pub angle: f64,
+    pub elements: usize,
+    /// EA (N).
+    pub axial_stiffness: f64,
+    /// EI (N m^2).
+    pub bending_stiffness: f64,
+    /// Structural mass per unit length (kg/m).
+    pub mass_per_length: f64,
+    /// Weight in water per unit length (N/m, positive down); 0 for no gravity.
+    #[serde(default)]
+    pub submerged_weight: f64,
+    /// Hydrodynamic diameter (m); needed for drag and added mass.
+    #[serde(default)]
+    pub diameter: f64,
+    /// Morison drag coefficients normal and tangential to the element.
+    #[serde(default)]
+    pub drag_normal: f64,
+    #[serde(default)]
+    pub drag_tangential: f64,
+    /// Added-mass coefficients normal and tangential.
+    #[serde(default)]
+    pub added_mass_normal: f64,
+    #[serde(default)]
+    pub added_mass_tangential: f64,
+}
+
+/// How one DOF of an end is held or loaded.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DofCondition {
+    /// Nothing acts on it.
+    Free,
+    /// Held at its stress-free value.
+    Held,
+    /// Prescribed displacement from the stress-free position (m or rad); `"input"`
+    /// reads it from a coupled input.
+    Displacement(TimeFunction),
+    /// Coupled velocity input (m/s or rad/s), integrated by the trapezoidal rule.
+    Velocity,
+    /// Applied force (N) or moment (N m); `"input"` reads it from a coupled input.
+    Force(TimeFunction),
+}
+
+impl DofCondition {
+    /// Whether the DOF's motion is prescribed.
+    pub fn is_kinematic(&self) -> bool {
+        matches!(
+            self,
+            DofCondition::Held | DofCondition::Displacement(_) | DofCondition::Velocity
+        )
+    }
+}
+
+/// Shorthand for an end; per-DOF keys override it.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EndKind {
+    /// x, z and rotation held.
+    Fixed,
+    /// x and z held, rotation free.
+    Pinned,
+    #[default]
+    Free,
+}
+
+/// One end of the structure.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct End {
+    #[serde(default)]
+    pub kind: EndKind,
+    pub x: Option<DofCondition>,
+    pub z: Option<DofCondition>,
+    pub rotation: Option<DofCondition>,
+}
+
+impl End {
+    /// The conditions on x, z and rotation.
+    pub fn conditions(&self) -> [DofCondition; 3] {
+        let base = |held: bool| {
+            if held {
+                DofCondition::Held
+            } else {
+                DofCondition::Free
+            }
+        };
+        let (t, r) = match self.kind {
+            EndKind::Fixed => (true, true),
+            EndKind::Pinned => (true, false),
+            EndKind::Free => (false, false),
+        };
+        [
+            self.x.clone().unwrap_or(base(t)),
+            self.z.clone().unwrap_or(base(t)),
+            self.rotation.clone().unwrap_or(base(r)),
+        ]
+    }
+}
+
+/// Both ends: `start` at arc length 0, `end` at the far end.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Ends {
+    #[serde(default)]
+    pub start: End,
+    #[serde(default)]
+    pub end: End,
+}
+
+/// A distributed load (N/m, global components) over an arc-length range.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DistributedLoad {
+    /// Arc-length range (m); elements whose midpoint lies in it carry the load.
+    #[serde(default)]
+    pub from: f64,
+    #[serde(default = "infinity")]
+    pub to: f64,
+    #[serde(default = "zero_function")]
+    pub x: TimeFunction,
+    #[serde(default = "zero_function")]
+    pub z: TimeFunction,
+}
+
+fn infinity() -> f64 {
+    f64::INFINITY
+}
+
+fn zero_function() -> TimeFunction {
+    TimeFunction::Constant(0.0)
+}
+
+/// The mass matrix.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MassKind {
+    /// Linear axial, Hermite transverse (seed 002), in each element's frame at the
+    /// start of the dynamics.
+    #[default]
+    Consistent,
+    /// Row-sum translational mass, rotary m l^3 / 78 (HRZ): for central differences.
+    Lumped,
+}
+
+/// The time integrator.
+#[derive(Copy, Clone, Debug, PartialEq, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Integrator {
+    /// HHT-alpha with Newton iterations.
+    Hht {
+        #[serde(default)]
+        alpha: f64,
+        #[serde(default = "default_tolerance")]
+        tolerance: f64,
+        #[serde(default = "default_iterations")]
+        max_iterations: u32,
+    },
+    /// Explicit central differences; the step must stay below the critical step.
+    CentralDifference,
+}
+
+impl Default for Integrator {
+    fn default() -> Self {
+        Integrator::Hht {
+            alpha: 0.0,
+            tolerance: default_tolerance(),
+            max_iterations: default_iterations(),
+        }
+    }
+}
+
+fn default_tolerance() -> f64 {
+    1e-10
+}
+
+fn default_iterations() -> u32 {
+    30
+}
+
+/// The start guess of the static solve.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StartShape {
+    /// The stress-free shape (ends moved to their prescribed positions).
+    #[default]
+    Reference,
+    /// The inextensible catenary through the two ends (hanging lines).
+    Catenary,
+}
+
+/// Contact with a surface z >= f(x, t), at the nodes.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodalContact {
+    pub method: Law,
+    pub surface: Surface,
+}
+
+/// A current: horizontal velocity (m/s) as a table over z (m), linear between and
+/// constant beyond its points.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Current {
+    pub z: Vec<f64>,
+    pub velocity: Vec<f64>,
+}
+
+/// Parameters of the nonlinear section unit.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NonlinearParams {
+    #[serde(default)]
+    pub formulation: Formulation,
+    /// Stress-free position of the start (m).
+    #[serde(default)]
+    pub start: [f64; 2],
+    pub segments: Vec<Segment>,
+    #[serde(default)]
+    pub ends: Ends,
+    #[serde(default)]
+    pub loads: Vec<DistributedLoad>,
+    #[serde(default)]
+    pub mass: MassKind,
+    #[serde(default)]
+    pub integrator: Integrator,
+    /// Rayleigh damping C = a M + b K0 (1/s, s).
+    #[serde(default)]
+    pub rayleigh_mass: f64,
+    #[serde(default)]
+    pub rayleigh_stiffness: f64,
+    /// Water density (kg/m^3) for drag and added mass.
+    #[serde(default = "water_density")]
+    pub water_density: f64,
+    #[serde(default)]
+    pub current: Option<Current>,
+    #[serde(default)]
+    pub contact: Option<NodalContact>,
+    /// Start from the static equilibrium under the loads at t = 0.
+    #[serde(default)]
+    pub static_start: bool,
+    #[serde(default)]
+    pub start_shape: StartShape,
+    /// Load increments of the static solve (halved on failure, at most 12 times).
+    #[serde(default = "default_load_steps")]
+    pub load_steps: u32,
+    /// Arc lengths (m) where tension, moment and curvature are reported.
+    #[serde(default)]
+    pub stations: Vec<f64>,
+}
+
+fn water_density() -> f64 {
+    1025.0
+}
+
+fn default_load_steps() -> u32 {
+    10
+}
+
+impl NonlinearParams {
+    /// Total unstretched length (m).
+    pub fn length(&self) -> f64 {
+        self.segments.iter().map(|s| s.length).sum()
+    }
+
+    /// Checks every parameter, naming the first bad one.
+    pub fn validate(&self) -> Result<(), UnitError> {
+        if self.segments.is_empty() {
+            return Err(UnitError::parameter(
+                "segments",
+                "[]",
+                "at least one segment",
+            ));
+        }
+        require_finite("start[0]", self.start[0])?;
+        require_finite("start[1]", self.start[1])?;
+        for (i, s) in self.segments.iter().enumerate() {
+            validate_segment(&format!("segments[{i}]"), s)?;
+        }
+        require_non_negative("rayleigh_mass", self.rayleigh_mass)?;
+        require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
+        require_positive("water_density", self.water_density)?;
+        require_in_range("load_steps", f64::from(self.load_steps), 1.0, 10_000.0, "")?;
+        if let Integrator::Hht {
+            alpha,
+            tolerance,
+            max_iterations,
+        } = self.integrator
+        {
+            require_in_range("integrator.alpha", alpha, 0.0, 1.0 / 3.0, "")?;
+            require_in_range("integrator.tolerance", tolerance, 1e-15, 1e-2, "")?;
+            require_in_range(
+                "integrator.max_iterations",
+                f64::from(max_iterations),
+                1.0,
+                1000.0,
+                "",
+            )?;
+        }
+        let length = self.length();
+        for (i, &s) in self.stations.iter().enumerate() {
+            require_in_range(&format!("stations[{i}]"), s, 0.0, length, "m")?;
+        }
+        for (i, l) in self.loads.iter().enumerate() {
+            if l.from.is_nan() || l.to.is_nan() || l.from > l.to {
+                return Err(UnitError::parameter(
+                    &format!("loads[{i}]"),
+                    format!("from = {}, to = {}", l.from, l.to),
+                    "expected from <= to",
+                ));
+            }
+        }
+        if let Some(c) = &self.current {
+            validate_current(c)?;
+        }
+        if let Some(c) = &self.contact {
+            c.method.validate()?;
+            c.surface.validate()?;
+        }
+        let hydro = self.segments.iter().any(|s| {
+            s.drag_normal + s.drag_tangential + s.added_mass_normal + s.added_mass_tangential > 0.0
+        });
+        if self.current.is_some() && !hydro {
+            return Err(UnitError::parameter(
+                "current",
+                "a current profile",
+                "drag coefficients and a diameter on some segment (a current without drag acts on nothing)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+fn validate_segment(key: &str, s: &Segment) -> Result<(), UnitError> {
+    require_in_range(&format!("{key}.length"), s.length, 1e-3, 1e6, "m")?;
+    require_finite(&format!("{key}.angle"), s.angle)?;
+    require_in_range(
+        &format!("{key}.elements"),
+        s.elements as f64,
+        1.0,
+        100_000.0,
+        "",
+    )?;
+    require_in_range(
+        &format!("{key}.axial_stiffness"),
+        s.axial_stiffness,
+        1.0,
+        1e13,
+        "N",
+    )?;
+    require_in_range(
+        &format!("{key}.bending_stiffness"),
+        s.bending_stiffness,
+        1e-9,
+        1e12,
+        "N m^2",
+    )?;
+    require_in_range(
+        &format!("{key}.mass_per_length"),
+        s.mass_per_length,
+        1e-6,
+        1e6,
+        "kg/m",
+    )?;
+    require_finite(&format!("{key}.submerged_weight"), s.submerged_weight)?;
+    for (name, v) in [
+        ("diameter", s.diameter),
+        ("drag_normal", s.drag_normal),
+        ("drag_tangential", s.drag_tangential),
+        ("added_mass_normal", s.added_mass_normal),
+        ("added_mass_tangential", s.added_mass_tangential),
+    ] {
+        require_in_range(&format!("{key}.{name}"), v, 0.0, 100.0, "")?;
+    }
+    let hydro = s.drag_normal + s.drag_tangential + s.added_mass_normal + s.added_mass_tangential;
+    if hydro > 0.0 && s.diameter <= 0.0 {
+        return Err(UnitError::parameter(
+            &format!("{key}.diameter"),
+            s.diameter,
+            "a diameter > 0 where drag or added-mass coefficients are given",
+        ));
+    }
+    Ok(())
+}
+
+fn validate_current(c: &Current) -> Result<(), UnitError> {
+    if c.z.is_empty() || c.z.len() != c.velocity.len() {
+        return Err(UnitError::parameter(
+            "current",
+            format!("{} depths, {} velocities", c.z.len(), c.velocity.len()),
+            "as many velocities as depths, at least one",
+        ));
+    }
+    if c.z.windows(2).any(|w| w[0] >= w[1])
+        || c.z.iter().chain(&c.velocity).any(|v| !v.is_finite())
+    {
+        return Err(UnitError::parameter(
+            "current.z",
+            format!("{:?}", c.z),
+            "finite, strictly increasing depths",
+        ));
+    }
+    Ok(())
+}
+
+impl Current {
+    /// Horizontal current (m/s) at height z.
+    pub fn at(&self, z: f64) -> f64 {
+        let last = self.z.len() - 1;
+        if z <= self.z[0] {
+            self.velocity[0]
+        } else if z >= self.z[last] {
+            self.velocity[last]
+        } else {
+            let i = self.z.partition_point(|&v| v <= z) - 1;
+            let f = (z - self.z[i]) / (self.z[i + 1] - self.z[i]);
+            self.velocity[i] + f * (self.velocity[i + 1] - self.velocity[i])
+        }
+    }
+}

@@ -1,0 +1,270 @@
+//! Static equilibrium of a nonlinear section: Newton on the tangent stiffness with
+//! load continuation (loads and prescribed end displacements ramped together,
+//! increments halved on failure), from the stress-free shape or from the
+//! inextensible catenary through the ends.
+
+use super::NonlinearSection;
+use super::element::Formulation;
+use super::params::StartShape;
+use crate::contract::{Inputs, UnitError};
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
+
+/// Newton iterations per load level.
+const MAX_ITERATIONS: u32 = 60;
+/// Halvings of the load increment before giving up.
+const MAX_HALVINGS: u32 = 12;
+/// Correction relative to max(1, |q|) at which Newton has converged.
+const TOLERANCE: f64 = 1e-10;
+
+impl NonlinearSection {
+    /// The equilibrium under the loads and end positions at the current time,
+    /// at rest; the error names the load level reached.
+    pub(super) fn solve_static(&mut self, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let n = self.model.dofs();
+        let t = self.state.t;
+        let mut load = vec![0.0; n];
+        self.external_load(inputs, t, &mut load);
+        let targets: Vec<(usize, f64)> = self
+            .held()
+            .map(|r| (r.dof, r.motion(inputs, t, 0.0, [0.0; 3])[0]))
+            .collect();
+        let mut q = vec![0.0; n];
+        let direct = self.params.start_shape == StartShape::Catenary;
+        if direct {
+            self.catenary_guess(&targets, &mut q);
+        }
+        let start: Vec<f64> = targets.iter().map(|&(d, _)| q[d]).collect();
+        let mut level = 0.0;
+        let mut increment = 1.0 / f64::from(self.params.load_steps);
+        let mut halvings = 0;
+        let mut trial = q.clone();
+        let mut work = NewtonWork::new(n);
+        let mut total = 0;
+        let mut done = false;
+        while !done {
+            let next = if direct {
+                1.0
+            } else {
+                (level + increment).min(1.0)
+            };
+            trial.copy_from_slice(&q);
+            for (k, &(d, target)) in targets.iter().enumerate() {
+                trial[d] = start[k] + next * (target - start[k]);
+            }
+            match self.newton(&mut trial, next, &load, &targets, &mut work) {
+                Ok(iterations) => {
+                    total += iterations;
+                    q.copy_from_slice(&trial);
+                    level = next;
+                    done = level >= 1.0;
+                }
+                Err(reason) if halvings < MAX_HALVINGS && !direct => {
+                    halvings += 1;
+                    increment *= 0.5;
+                    let _ = reason;
+                }
+                Err(reason) => {
+                    return Err(UnitError::Numerical(format!(
+                        "nonlinear section: the static solve failed at t = {t} s after reaching load level {level:.4} of 1 (trying {next:.4}): {reason}"
+                    )));
+                }
+            }
+        }
+        self.state.q.copy_from_slice(&q);
+        self.state.v.fill(0.0);
+        self.state.newton_iterations = total;
+        Ok(())
+    }
+
+    /// Newton at load level `level`; held DOFs stay at their values in `q`.
+    fn newton(
+        &self,
+        q: &mut [f64],
+        level: f64,
+        load: &[f64],
+        held: &[(usize, f64)],
+        w: &mut NewtonWork,
+    ) -> Result<u32, String> {
+        let zeros = &w.zeros;
+        for iteration in 1..=MAX_ITERATIONS {
+            w.residual.fill(0.0);
+            w.tangent.fill_zero();
+            self.model
+                .add_internal_force(q, 1.0, Some((&mut w.tangent, 1.0)), &mut w.residual);
+            self.environment.add_force(
+                &self.model,
+                (q, zeros, self.state.t),
+                1.0,
+                Some((&mut w.tangent, 1.0, 0.0)),
+                &mut w.residual,
+            );
+            for (r, f) in w.residual.iter_mut().zip(load) {
+                *r = -(*r - level * f);
+            }
+            for &(d, _) in held {
+                w.tangent.set_identity_row(d);
+                w.residual[d] = 0.0;
+            }
+            let ok = match w.factor.as_mut() {
+                Some(f) => f.refactorise(&w.tangent),
+                None => {
+                    w.factor = BandLdlt::new(&w.tangent);
+                    w.factor.is_some()
+                }
+            };
+            if !ok {
+                return Err(format!(
+                    "the tangent stiffness is not positive definite (iteration {iteration}: a free body, a buckled or slack part)"
+                ));
+            }
+            if let Some(f) = &w.factor {
+                f.solve_in_place(&mut w.residual);
+            }
+            let step = w.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+            if !step.is_finite() {
+                return Err(format!("non-finite correction at iteration {iteration}"));
+            }
+            for (qi, dq) in q.iter_mut().zip(&w.residual) {
+                *qi += dq;
+            }
+            let size = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+            if step < TOLERANCE * size {
+                return Ok(iteration);
+            }
+        }
+        Err(format!(
+            "Newton did not converge in {MAX_ITERATIONS} iterations"
+        ))
+    }
+
+    /// The inextensible catenary through the ends at their target positions (a
+    /// straight line when the chord is as long as the section), as displacements.
+    fn catenary_guess(&self, targets: &[(usize, f64)], q: &mut [f64]) {
+        let nodes = self.model.reference.len();
+        let at = |node: usize| {
+            let r = self.model.reference[node];
+            let mut p = r;
+            for &(d, v) in targets {
+                if d / 3 == node && d % 3 < 2 {
+                    p[d % 3] = r[d % 3] + v;
+                }
+            }
+            p
+        };
+        let (a, b) = (at(0), at(nodes - 1));
+        let length = *self.model.arc.last().unwrap_or(&0.0);
+        // Stretched by about its weight over EA, so every element starts in tension
+        // (a slack chain without bending stiffness has no positive tangent).
+        let stretch = self.params.segments.iter().fold(1e-4f64, |m, s| {
+            m.max(s.submerged_weight.abs() * length / s.axial_stiffness)
+        });
+        let shape = Catenary::through(a, b, length * (1.0 + stretch));
+        for j in 0..nodes {
+            let (p, angle) = shape.at(self.model.arc[j] * (1.0 + stretch));
+            let r = self.model.reference[j];
+            q[3 * j] = p[0] - r[0];
+            q[3 * j + 1] = p[1] - r[1];
+            let e = j.min(self.model.elements.len() - 1);
+            let el = &self.model.elements[e];
+            let rotation = angle - el.sin0.atan2(el.cos0);
+            q[3 * j + 2] = match self.model.formulation {
+                Formulation::Corotational => rotation,
+                Formulation::Seed002 => rotation.sin().atan2(rotation.cos()),
+            };
+        }
+    }
+}
+
+/// Buffers of the static Newton iterations.
+struct NewtonWork {
+    residual: Vec<f64>,
+    zeros: Vec<f64>,
+    tangent: SymmetricBand,
+    factor: Option<BandLdlt>,
+}
+
+impl NewtonWork {
+    fn new(n: usize) -> NewtonWork {
+        NewtonWork {
+            residual: vec![0.0; n],
+            zeros: vec![0.0; n],
+            tangent: SymmetricBand::zeros(n, super::model::BAND),
+            factor: None,
+        }
+    }
+}
+
+/// An inextensible catenary of a given length between two points, or the straight
+/// line when the chord is at least that long.
+#[derive(Copy, Clone, Debug)]
+pub(super) struct Catenary {
+    start: [f64; 2],
+    end: [f64; 2],
+    length: f64,
+    /// Catenary parameter a = H / w (m); infinite for the straight line.
+    a: f64,
+    /// Horizontal position of the vertex relative to the start, in the frame where
+    /// x increases from start to end (m).
+    x0: f64,
+}
+
+impl Catenary {
+    /// The catenary through `start` and `end` of arc length `length` (m).
+    pub fn through(start: [f64; 2], end: [f64; 2], length: f64) -> Catenary {
+        let (dx, dz) = ((end[0] - start[0]).abs(), end[1] - start[1]);
+        let span = (length * length - dz * dz).max(0.0).sqrt();
+        if dx < 1e-9 || span <= dx * (1.0 + 1e-12) {
+            return Catenary {
+                start,
+                end,
+                length,
+                a: f64::INFINITY,
+                x0: 0.0,
+            };
+        }
+        // 2 a sinh(dx / 2a) = span is decreasing in a: bisection on ln a (bounded).
+        let f = |a: f64| 2.0 * a * (dx / (2.0 * a)).sinh() - span;
+        let (mut lo, mut hi) = ((dx * 1e-6).ln(), (dx * 1e9).ln());
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            let v = f(mid.exp());
+            if !v.is_finite() || v > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let a = (0.5 * (lo + hi)).exp();
+        let x0 = 0.5 * dx - a * (dz / (2.0 * a * (dx / (2.0 * a)).sinh())).asinh();
+        Catenary {
+            start,
+            end,
+            length,
+            a,
+            x0,
+        }
+    }
+
+    /// Position (m) and tangent angle (rad, from +x) at arc length `s` from the start.
+    pub fn at(&self, s: f64) -> ([f64; 2], f64) {
+        let sign = if self.end[0] >= self.start[0] {
+            1.0
+        } else {
+            -1.0
+        };
+        if !self.a.is_finite() {
+            let (dx, dz) = (self.end[0] - self.start[0], self.end[1] - self.start[1]);
+            let f = s / self.length;
+            return (
+                [self.start[0] + f * dx, self.start[1] + f * dz],
+                dz.atan2(dx),
+            );
+        }
+        let (a, x0) = (self.a, self.x0);
+        let u = (s / a + (-x0 / a).sinh()).asinh();
+        let x = x0 + a * u;
+        let z = a * (u.cosh() - (-x0 / a).cosh());
+        let angle = u.tanh().atan2(sign / u.cosh());
+        ([self.start[0] + sign * x, self.start[1] + z], angle)
+    }
+}
