@@ -88,20 +88,31 @@ fn a_tip_moment_of_2_pi_ei_over_l_rolls_a_cantilever_into_a_circle() {
         "tip rotation {}",
         q[tip + 2]
     );
-    // Under a pure end moment every element turns by 2 pi / n with no axial force:
-    // the nodes are the vertices of a regular n-gon of side L / n, closing on the
-    // root, on the circle of radius L / (2 n sin(pi / n)) tangent at the root.
+    // Under a pure end moment every element turns by 2 theta = 2 pi / n with no
+    // axial force, so its shallow-arch strain makes the chord l (1 - theta^2 / 6),
+    // the chord of the circular arc to O(theta^4): the nodes are the vertices of a
+    // regular n-gon of that side, closing on the root, on a circle tangent at the
+    // root whose radius is L / (2 pi) to O(theta^4).
     let n = 40.0;
-    let r = l / (2.0 * n * (std::f64::consts::PI / n).sin());
-    for (j, p) in section.positions().iter().enumerate() {
+    let theta = std::f64::consts::PI / n;
+    let side = l / n * (1.0 - theta * theta / 6.0);
+    let r = side / (2.0 * theta.sin());
+    assert!(
+        (r - l / (2.0 * std::f64::consts::PI)).abs() < 1e-5 * r,
+        "radius {r}"
+    );
+    let positions = section.positions();
+    for (j, p) in positions.iter().enumerate() {
         let d = p[0].hypot(p[1] - r);
         assert!(
             (d - r).abs() < 1e-9 * l,
             "node {j} at distance {d} from the centre, radius {r}"
         );
     }
+    let (root, end) = (positions[0], positions[positions.len() - 1]);
     assert!(
-        q[tip].abs() - l < 1e-9 && (q[tip] + l).abs() < 1e-9 * l && q[tip + 1].abs() < 1e-9 * l
+        (end[0] - root[0]).hypot(end[1] - root[1]) < 1e-9 * l,
+        "the polygon closes"
     );
 }
 

@@ -42,7 +42,7 @@ impl NonlinearSection {
     }
 
     /// Mass in the element frames of the current state, Rayleigh damping on the
-    /// tangent there, and the critical step of central differences.
+    /// tangent there, and (for central differences) the critical step.
     pub(super) fn prepare_dynamics(&mut self) -> Result<(), UnitError> {
         let p = &self.params;
         self.m = self
@@ -54,6 +54,9 @@ impl NonlinearSection {
             c.set_combination(&[(p.rayleigh_mass, &self.m), (p.rayleigh_stiffness, &k)]);
             c
         });
+        if self.params.integrator != Integrator::CentralDifference {
+            return Ok(());
+        }
         let held: Vec<usize> = self.held().map(|r| r.dof).collect();
         let mut m = self.m.clone();
         for &d in &held {

@@ -3,8 +3,8 @@
 //! displacements `p = [u1, w1, theta1, u2, w2, theta2]` (m, m, rad; x horizontal,
 //! z up, theta counter-clockwise).
 //!
-//! - [`Formulation::Corotational`]: a linear Euler-Bernoulli element in a frame that
-//!   follows the chord (Crisfield 1991, ch. 7; Battini 2002): any rigid motion,
+//! - [`Formulation::Corotational`]: a shallow-arch Euler-Bernoulli element in a
+//!   frame that follows the chord (Crisfield 1991, ch. 7; Battini 2002): any rigid motion,
 //!   however large, produces no force, and the local rotations are wrapped to
 //!   (-pi, pi] so a node may turn any number of times.
 //! - [`Formulation::Seed002`]: seed 002's kinematically nonlinear element (P2
@@ -100,15 +100,11 @@ impl Element {
     pub fn strain_energy(&self, formulation: Formulation, p: &[f64; 6]) -> f64 {
         match formulation {
             Formulation::Corotational => {
-                let local = self.corotational_local(p);
-                let n = local.axial;
-                // theta^T (EI / l [4 2; 2 4]) theta / 2 from the end moments.
-                let k = self.ei / self.length;
-                let det = 12.0 * k * k;
-                let [m1, m2] = local.moments;
-                let t1 = (4.0 * k * m1 - 2.0 * k * m2) / det;
-                let t2 = (4.0 * k * m2 - 2.0 * k * m1) / det;
-                0.5 * n * n * self.length / self.ea + 0.5 * (m1 * t1 + m2 * t2)
+                let ([t1, t2], stretch, ..) = self.corotational_kinematics(p);
+                let l0 = self.length;
+                let strain = stretch / l0 + (2.0 * t1 * t1 - t1 * t2 + 2.0 * t2 * t2) / 30.0;
+                0.5 * self.ea * l0 * strain * strain
+                    + self.ei / l0 * (2.0 * t1 * t1 + 2.0 * t1 * t2 + 2.0 * t2 * t2)
             }
             Formulation::Seed002 => {
                 let v = self.local_dofs(p);
@@ -127,7 +123,8 @@ impl Element {
         }
     }
 
-    fn corotational_local(&self, p: &[f64; 6]) -> LocalForces {
+    /// Local rotations (wrapped), stretch and the chord at `p`.
+    fn corotational_kinematics(&self, p: &[f64; 6]) -> ([f64; 2], f64, f64, f64) {
         let (dx, dz) = self.chord(p);
         let ln = dx.hypot(dz);
         let beta = dz.atan2(dx);
@@ -136,17 +133,34 @@ impl Element {
         let t2 = wrap(p[5] + beta0 - beta);
         // ln - l0 without cancellation.
         let stretch = (ln * ln - self.length * self.length) / (ln + self.length);
-        let k = self.ei / self.length;
+        ([t1, t2], stretch, ln, beta)
+    }
+
+    /// Shallow-arch local strain (Crisfield 1991 sec. 7.3; Battini 2002): the
+    /// axial strain `u / l0 + (2 t1^2 - t1 t2 + 2 t2^2) / 30` couples the local
+    /// rotations to the axial force, which gives a tensioned element the
+    /// geometric stiffness of the Hermite beam against rotation of its nodes (a
+    /// hanging line with small EI would otherwise have unresisted rotations).
+    fn corotational_local(&self, p: &[f64; 6]) -> LocalForces {
+        let ([t1, t2], stretch, ln, beta) = self.corotational_kinematics(p);
+        let l0 = self.length;
+        let strain = stretch / l0 + (2.0 * t1 * t1 - t1 * t2 + 2.0 * t2 * t2) / 30.0;
+        let n = self.ea * strain;
+        let k = self.ei / l0;
         LocalForces {
-            axial: self.ea * stretch / self.length,
-            moments: [k * (4.0 * t1 + 2.0 * t2), k * (2.0 * t1 + 4.0 * t2)],
+            axial: n,
+            moments: [
+                k * (4.0 * t1 + 2.0 * t2) + n * l0 * (4.0 * t1 - t2) / 30.0,
+                k * (2.0 * t1 + 4.0 * t2) + n * l0 * (4.0 * t2 - t1) / 30.0,
+            ],
             chord: ln,
             angle: beta,
         }
     }
 
     /// f = B^T [N, M1, M2]; K = B^T D B + z z^T N / ln + (r z^T + z r^T)(M1 + M2) / ln^2
-    /// (Crisfield eq. 7.54 with this sign convention; checked by finite differences).
+    /// with D the local tangent (Crisfield eq. 7.54 with this sign convention;
+    /// checked by finite differences).
     fn corotational(&self, p: &[f64; 6], tangent: bool) -> ElementForce {
         let local = self.corotational_local(p);
         let (ln, (c, s)) = (local.chord, (local.angle.cos(), local.angle.sin()));
@@ -168,13 +182,7 @@ impl Element {
         }
         let mut k = [[0.0; 6]; 6];
         if tangent {
-            let ka = self.ea / self.length;
-            let kb = self.ei / self.length;
-            let d = [
-                [ka, 0.0, 0.0],
-                [0.0, 4.0 * kb, 2.0 * kb],
-                [0.0, 2.0 * kb, 4.0 * kb],
-            ];
+            let d = self.local_tangent(p, local.axial);
             let (n, m) = (local.axial, local.moments[0] + local.moments[1]);
             for i in 0..6 {
                 for j in 0..6 {
@@ -189,6 +197,27 @@ impl Element {
             }
         }
         (f, k)
+    }
+
+    /// d[N, M1, M2] / d[stretch, t1, t2] of the shallow-arch local element.
+    fn local_tangent(&self, p: &[f64; 6], n: f64) -> [[f64; 3]; 3] {
+        let ([t1, t2], ..) = self.corotational_kinematics(p);
+        let (l0, ea) = (self.length, self.ea);
+        let k = self.ei / l0;
+        let (g1, g2) = ((4.0 * t1 - t2) / 30.0, (4.0 * t2 - t1) / 30.0);
+        [
+            [ea / l0, ea * g1, ea * g2],
+            [
+                ea * g1,
+                4.0 * k + 4.0 * n * l0 / 30.0 + ea * l0 * g1 * g1,
+                2.0 * k - n * l0 / 30.0 + ea * l0 * g1 * g2,
+            ],
+            [
+                ea * g2,
+                2.0 * k - n * l0 / 30.0 + ea * l0 * g1 * g2,
+                4.0 * k + 4.0 * n * l0 / 30.0 + ea * l0 * g2 * g2,
+            ],
+        ]
     }
 
     /// Global displacements to the element frame (the stress-free chord).

@@ -9,10 +9,13 @@ use crate::contract::{Inputs, Port, PortKind};
 const DOF_NAMES: [&str; 3] = ["x", "z", "rotation"];
 const SIDES: [&str; 2] = ["start", "end"];
 
+/// `Resolved::end` of an interior support.
+pub const INTERIOR: usize = 2;
+
 /// One end DOF with its condition.
 #[derive(Clone, Debug)]
 pub struct Resolved {
-    /// 0 start, 1 end.
+    /// 0 start, 1 end, [`INTERIOR`] for an interior support.
     pub end: usize,
     /// 0 x, 1 z, 2 rotation.
     pub component: usize,
@@ -118,6 +121,25 @@ pub fn resolve(params: &NonlinearParams, nodes: usize) -> (Vec<Resolved>, Vec<Po
                 condition,
                 input,
             });
+        }
+    }
+    for support in &params.supports {
+        let Some(node) = params.node_at(support.at) else {
+            continue;
+        };
+        for (component, held) in [support.x, support.z, support.rotation]
+            .into_iter()
+            .enumerate()
+        {
+            if held {
+                resolved.push(Resolved {
+                    end: INTERIOR,
+                    component,
+                    dof: 3 * node + component,
+                    condition: DofCondition::Held,
+                    input: None,
+                });
+            }
         }
     }
     (resolved, inputs)

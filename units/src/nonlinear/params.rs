@@ -130,6 +130,20 @@ pub struct Ends {
     pub end: End,
 }
 
+/// An interior support: the DOFs of the node at arc length `at` it holds.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Support {
+    /// Arc length (m) of the node held; it must be a node of the mesh.
+    pub at: f64,
+    #[serde(default)]
+    pub x: bool,
+    #[serde(default)]
+    pub z: bool,
+    #[serde(default)]
+    pub rotation: bool,
+}
+
 /// A distributed load (N/m, global components) over an arc-length range.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -240,6 +254,9 @@ pub struct NonlinearParams {
     pub segments: Vec<Segment>,
     #[serde(default)]
     pub ends: Ends,
+    /// Interior supports (e.g. a frame's corner held horizontally).
+    #[serde(default)]
+    pub supports: Vec<Support>,
     #[serde(default)]
     pub loads: Vec<DistributedLoad>,
     #[serde(default)]
@@ -285,6 +302,23 @@ impl NonlinearParams {
         self.segments.iter().map(|s| s.length).sum()
     }
 
+    /// The node at arc length `s` (within 1e-9 of the length), if there is one.
+    pub fn node_at(&self, s: f64) -> Option<usize> {
+        let (mut arc, mut node) = (0.0, 0);
+        let tolerance = 1e-9 * self.length();
+        for segment in &self.segments {
+            let l = segment.length / segment.elements as f64;
+            for _ in 0..segment.elements {
+                if (arc - s).abs() <= tolerance {
+                    return Some(node);
+                }
+                arc += l;
+                node += 1;
+            }
+        }
+        ((arc - s).abs() <= tolerance).then_some(node)
+    }
+
     /// Checks every parameter, naming the first bad one.
     pub fn validate(&self) -> Result<(), UnitError> {
         if self.segments.is_empty() {
@@ -322,6 +356,16 @@ impl NonlinearParams {
         let length = self.length();
         for (i, &s) in self.stations.iter().enumerate() {
             require_in_range(&format!("stations[{i}]"), s, 0.0, length, "m")?;
+        }
+        for (i, support) in self.supports.iter().enumerate() {
+            require_in_range(&format!("supports[{i}].at"), support.at, 0.0, length, "m")?;
+            if self.node_at(support.at).is_none() {
+                return Err(UnitError::parameter(
+                    &format!("supports[{i}].at"),
+                    support.at,
+                    "the arc length of a node (segment ends and element boundaries)",
+                ));
+            }
         }
         for (i, l) in self.loads.iter().enumerate() {
             if l.from.is_nan() || l.to.is_nan() || l.from > l.to {
@@ -413,8 +457,7 @@ fn validate_current(c: &Current) -> Result<(), UnitError> {
             "as many velocities as depths, at least one",
         ));
     }
-    if c.z.windows(2).any(|w| w[0] >= w[1])
-        || c.z.iter().chain(&c.velocity).any(|v| !v.is_finite())
+    if c.z.windows(2).any(|w| w[0] >= w[1]) || c.z.iter().chain(&c.velocity).any(|v| !v.is_finite())
     {
         return Err(UnitError::parameter(
             "current.z",

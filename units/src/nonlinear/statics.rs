@@ -85,7 +85,6 @@ impl NonlinearSection {
         held: &[(usize, f64)],
         w: &mut NewtonWork,
     ) -> Result<u32, String> {
-        let zeros = &w.zeros;
         for iteration in 1..=MAX_ITERATIONS {
             w.residual.fill(0.0);
             w.tangent.fill_zero();
@@ -93,7 +92,7 @@ impl NonlinearSection {
                 .add_internal_force(q, 1.0, Some((&mut w.tangent, 1.0)), &mut w.residual);
             self.environment.add_force(
                 &self.model,
-                (q, zeros, self.state.t),
+                (q, &w.zeros, self.state.t),
                 1.0,
                 Some((&mut w.tangent, 1.0, 0.0)),
                 &mut w.residual,
@@ -105,18 +104,11 @@ impl NonlinearSection {
                 w.tangent.set_identity_row(d);
                 w.residual[d] = 0.0;
             }
-            let ok = match w.factor.as_mut() {
-                Some(f) => f.refactorise(&w.tangent),
-                None => {
-                    w.factor = BandLdlt::new(&w.tangent);
-                    w.factor.is_some()
-                }
-            };
-            if !ok {
-                return Err(format!(
-                    "the tangent stiffness is not positive definite (iteration {iteration}: a free body, a buckled or slack part)"
-                ));
-            }
+            let shifted = w.factorise_regularised().map_err(|()| {
+                format!(
+                    "the tangent stiffness is not positive definite even shifted (iteration {iteration}: a free body, a buckled or slack part)"
+                )
+            })?;
             if let Some(f) = &w.factor {
                 f.solve_in_place(&mut w.residual);
             }
@@ -128,7 +120,8 @@ impl NonlinearSection {
                 *qi += dq;
             }
             let size = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-            if step < TOLERANCE * size {
+            // A shifted step is a damped one: only a plain Newton step may converge.
+            if !shifted && step < TOLERANCE * size {
                 return Ok(iteration);
             }
         }
@@ -180,6 +173,7 @@ struct NewtonWork {
     residual: Vec<f64>,
     zeros: Vec<f64>,
     tangent: SymmetricBand,
+    shifted: SymmetricBand,
     factor: Option<BandLdlt>,
 }
 
@@ -189,7 +183,46 @@ impl NewtonWork {
             residual: vec![0.0; n],
             zeros: vec![0.0; n],
             tangent: SymmetricBand::zeros(n, super::model::BAND),
+            shifted: SymmetricBand::zeros(n, super::model::BAND),
             factor: None,
+        }
+    }
+
+    /// Factorises the tangent; where it is not positive definite (a mechanism held
+    /// only by the load it is about to carry, e.g. a string at zero tension),
+    /// factorises `K + mu diag(K)` instead with mu = 1e-8, 1e-7, ... 1e2
+    /// (Levenberg-Marquardt). Returns whether it shifted; `Err` when no shift helps.
+    fn factorise_regularised(&mut self) -> Result<bool, ()> {
+        if self.refactorise(false) {
+            return Ok(false);
+        }
+        let mut mu = 1e-8;
+        while mu <= 1e2 {
+            self.shifted.copy_from(&self.tangent);
+            for i in 0..self.tangent.size() {
+                let d = self.tangent.get(i, i).abs().max(1e-12);
+                self.shifted.add(i, i, mu * d);
+            }
+            if self.refactorise(true) {
+                return Ok(true);
+            }
+            mu *= 10.0;
+        }
+        Err(())
+    }
+
+    fn refactorise(&mut self, shifted: bool) -> bool {
+        let a = if shifted {
+            &self.shifted
+        } else {
+            &self.tangent
+        };
+        match self.factor.as_mut() {
+            Some(f) => f.refactorise(a),
+            None => {
+                self.factor = BandLdlt::new(a);
+                self.factor.is_some()
+            }
         }
     }
 }
