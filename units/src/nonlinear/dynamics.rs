@@ -18,6 +18,8 @@ pub(super) struct StepWork {
     f0: Vec<f64>,
     f1: Vec<f64>,
     g0: Vec<f64>,
+    /// Displacements at the step's start.
+    q0: Vec<f64>,
     held: Vec<(usize, [f64; 3])>,
 }
 
@@ -114,6 +116,11 @@ impl NonlinearSection {
         factor.solve_in_place(&mut rhs);
         self.state.a.copy_from_slice(&rhs);
         self.state.force.copy_from_slice(&force);
+        self.state.elastic.fill(0.0);
+        let q = std::mem::take(&mut self.state.q);
+        self.model
+            .add_internal_force(&q, 1.0, None, &mut self.state.elastic);
+        self.state.q = q;
         self.finish(&load);
         Ok(())
     }
@@ -178,11 +185,17 @@ impl NonlinearSection {
             let start = [self.state.q[d], self.state.v[d], self.state.a[d]];
             w.held.push((d, r.motion(inputs, t1, h, start)));
         }
+        w.q0.clear();
+        w.q0.extend_from_slice(&self.state.q);
         let iterations = match self.params.integrator {
             Integrator::Hht {
                 tolerance,
                 max_iterations,
                 ..
+            }
+            | Integrator::EnergyConserving {
+                tolerance,
+                max_iterations,
             } => {
                 w.g0.clear();
                 w.g0.extend_from_slice(&self.state.force);
@@ -192,7 +205,7 @@ impl NonlinearSection {
                     h,
                     f0: &w.f0,
                     f1: &w.f1,
-                    g0: Some(&w.g0),
+                    g0: (!self.energy_conserving()).then_some(w.g0.as_slice()),
                     held: &w.held,
                 };
                 let mut hht = std::mem::take(&mut self.hht);
@@ -219,18 +232,63 @@ impl NonlinearSection {
             }
         };
         self.state.t = t1;
-        let (q, v) = (
-            std::mem::take(&mut self.state.q),
-            std::mem::take(&mut self.state.v),
-        );
-        let mut force = std::mem::take(&mut self.state.force);
-        self.restoring_force(&q, &v, t1, &mut force);
-        self.state.q = q;
-        self.state.v = v;
-        self.state.force = force;
+        self.update_forces(&w.q0);
         self.finish(&w.f1);
         self.state.newton_iterations = iterations;
         Ok(iterations)
+    }
+}
+
+impl NonlinearSection {
+    fn energy_conserving(&self) -> bool {
+        matches!(self.params.integrator, Integrator::EnergyConserving { .. })
+    }
+
+    /// The elastic force the step used at its end (the element forces at q1, or
+    /// 2 g_bar(q0, q1) - g0 for the energy-conserving integrator) and the total
+    /// restoring force at the step's end.
+    fn update_forces(&mut self, q0: &[f64]) {
+        let s = &mut self.state;
+        if matches!(self.params.integrator, Integrator::EnergyConserving { .. }) {
+            for g in s.elastic.iter_mut() {
+                *g = -*g;
+            }
+            self.model
+                .add_discrete_gradient((q0, &s.q), 2.0, None, &mut s.elastic);
+        } else {
+            s.elastic.fill(0.0);
+            self.model
+                .add_internal_force(&s.q, 1.0, None, &mut s.elastic);
+        }
+        s.force.copy_from_slice(&s.elastic);
+        if !self.environment.is_empty() {
+            self.environment
+                .add_force(&self.model, (&s.q, &s.v, s.t), 1.0, None, &mut s.force);
+        }
+    }
+
+    /// The elastic force of an iterate q1 as it enters the residual, times
+    /// `scale`, with its tangent.
+    fn add_elastic(
+        &self,
+        q: &[f64],
+        scale: f64,
+        tangent: Option<(&mut SymmetricBand, f64)>,
+        out: &mut [f64],
+    ) {
+        if self.energy_conserving() {
+            self.model.add_discrete_gradient(
+                (&self.state.q, q),
+                2.0 * scale,
+                tangent.map(|(b, f)| (b, 2.0 * f)),
+                out,
+            );
+            for (o, g) in out.iter_mut().zip(&self.state.elastic) {
+                *o -= scale * g;
+            }
+        } else {
+            self.model.add_internal_force(q, scale, tangent, out);
+        }
     }
 }
 
@@ -275,7 +333,7 @@ impl SecondOrderSystem for NonlinearSection {
         force.fill(0.0);
         match tangent {
             Some((band, scales)) => {
-                self.model.add_internal_force(
+                self.add_elastic(
                     q,
                     scales.stiffness,
                     Some((&mut *band, scales.stiffness)),
@@ -292,7 +350,13 @@ impl SecondOrderSystem for NonlinearSection {
                     );
                 }
             }
-            None => self.restoring_force(q, v, t, force),
+            None => {
+                self.add_elastic(q, 1.0, None, force);
+                if !self.environment.is_empty() {
+                    self.environment
+                        .add_force(&self.model, (q, v, t), 1.0, None, force);
+                }
+            }
         }
     }
 }

@@ -40,6 +40,9 @@ crate::state_struct! {
         a: Vec<f64>,
         /// Internal, drag and contact force at the current time (N, N m).
         force: Vec<f64>,
+        /// Its elastic part as the integrator used it (with the energy-conserving
+        /// integrator, 2 g_bar - g0 of the last step).
+        elastic: Vec<f64>,
         /// Support reactions at the held DOFs: M a + C v + g - f (N, N m).
         reaction: Vec<f64>,
         contact: ContactSummary,
@@ -97,7 +100,7 @@ impl NonlinearSection {
             .collect();
         let alpha = match params.integrator {
             Integrator::Hht { alpha, .. } => alpha,
-            Integrator::CentralDifference => 0.0,
+            Integrator::EnergyConserving { .. } | Integrator::CentralDifference => 0.0,
         };
         let zeros = vec![0.0; n];
         let m = model.mass(&zeros, &params.segments, params.mass, params.water_density);
@@ -115,6 +118,7 @@ impl NonlinearSection {
                 v: zeros.clone(),
                 a: zeros.clone(),
                 force: zeros.clone(),
+                elastic: zeros.clone(),
                 reaction: zeros,
                 contact: ContactSummary {
                     touchdown: f64::NAN,
