@@ -204,7 +204,7 @@ fn energy_drift(
     let (mut t, mut reference, mut worst) = (Time::ZERO, f64::NAN, 0.0f64);
     while t.as_secs() < duration {
         driver.do_step(t, step).expect("step");
-        t = t + step;
+        t += step;
         let [kinetic, strain] = driver.energies();
         let e = kinetic + strain;
         assert!(e.is_finite(), "energy at t = {} s", t.as_secs());
