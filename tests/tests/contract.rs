@@ -71,6 +71,18 @@ fn inline(kind: &str, parameters: &str) -> ExportConfig {
     }
 }
 
+/// A hanging line with every effect on: weight, drag in a current, added mass,
+/// Rayleigh damping, contact, a coupled velocity and a coupled force.
+const NONLINEAR_SAMPLE: &str = r#"
+segments = [{ length = 10.0, angle = -60.0, elements = 8, axial_stiffness = 1e7, bending_stiffness = 1e3, mass_per_length = 10.0, submerged_weight = 50.0, diameter = 0.1, drag_normal = 1.0, drag_tangential = 0.1, added_mass_normal = 1.0 }]
+ends.start = { kind = "pinned", x = "velocity" }
+ends.end = { z = { force = "input" } }
+current = { z = [-20.0, 0.0], velocity = [0.0, 0.5] }
+contact = { method = { kind = "penalty", penalty = 1e5 }, surface = { shape = { kind = "flat", height = -8.0 } } }
+rayleigh_stiffness = 0.001
+stations = [5.0]
+"#;
+
 /// One sample per registry kind (an FMU sample needs a folder to export into).
 fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
     let exported = fmu::export("examples/b3_force_displacement.toml", "b", dir);
@@ -84,6 +96,7 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             "beam",
             from_scene("examples/pipe_span_coupling.toml", "upper"),
         ),
+        ("nonlinear", inline("nonlinear", NONLINEAR_SAMPLE)),
         (
             "span",
             inline(

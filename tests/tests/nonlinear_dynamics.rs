@@ -253,3 +253,37 @@ fn central_differences_keep_the_energy_below_the_reported_critical_step_and_refu
         .expect_err("a step above the critical step is refused");
     assert!(err.to_string().contains("critical step"), "{err}");
 }
+
+/// Largest |z - z_rest| of the frame's beam midpoint per second over 10 s under
+/// p = amplitude sin(omega_1 t) on the beam.
+fn frame_envelope(amplitude: f64) -> Vec<f64> {
+    let mut frame = section(&seed002_frame(&format!(
+        "loads = [{{ from = 10.0, to = 20.0, z = {{ amplitude = {amplitude}, angular_frequency = 6.401 }} }}]"
+    )));
+    let mid = 30 + 1; // node 30 (arc 15 m), z DOF
+    let step = Time::from_secs(1e-3).expect("step");
+    let mut t = Time::ZERO;
+    let mut envelope = vec![0.0f64; 10];
+    for k in 0..10_000 {
+        frame.do_step(t, step).expect("step");
+        t += step;
+        let z = frame.displacements()[3 * mid - 2];
+        envelope[k / 1000] = envelope[k / 1000].max(z.abs());
+    }
+    envelope
+}
+
+#[test]
+fn seed002_frame_at_resonance_stays_bounded_nonlinearly_while_the_linear_response_grows() {
+    // p = 3 N/m (seed 002 P3): stiffening bounds the response, which peaks
+    // after about 5 s; at 3e-4 N/m the frame is linear, and scaled by 1e4 its
+    // resonant response grows linearly in time.
+    let nonlinear = frame_envelope(3.0);
+    let linear: Vec<f64> = frame_envelope(3e-4).iter().map(|v| v * 1e4).collect();
+    let peak = nonlinear.iter().cloned().fold(0.0, f64::max);
+    let when = nonlinear.iter().position(|&v| v == peak).expect("peak");
+    assert!((3..=7).contains(&when), "nonlinear peak in second {when}: {nonlinear:?}");
+    assert!(nonlinear[9] < 0.5 * peak, "bounded and decaying after the peak: {nonlinear:?}");
+    assert!(linear[9] > 8.0 * linear[0] && linear.windows(2).all(|w| w[1] > w[0]), "linear grows: {linear:?}");
+    assert!(linear[9] > 3.0 * peak, "the linear response exceeds the nonlinear one: {linear:?} vs {peak}");
+}

@@ -10,6 +10,7 @@ use slender_units::benchmark::algebraic_loop::{
 };
 use slender_units::benchmark::oscillator::{Oscillator, OscillatorParams};
 use slender_units::cable::{Cable, CableParams, Effects};
+use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::signal::artefact::{Artefact, ArtefactParams};
 use slender_units::signal::characteristic_load::{CharacteristicLoad, CharacteristicLoadParams};
 use slender_units::span::coupling::{SpanCoupling, SpanCouplingParams};
@@ -80,6 +81,13 @@ pub const KINDS: &[Kind] = &[
         summary: "Euler-Bernoulli pipe section: Hermite elements, HHT-alpha, two conditions per end, contact with a surface",
         effects: &[],
         build: |p, _| Ok(Box::new(Beam::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "nonlinear",
+        parameters: field_names::<NonlinearParams>,
+        summary: "geometrically nonlinear planar section: co-rotational or seed 002 beam-columns (EA, EI), weight, drag, added mass, contact; static Newton, HHT-alpha, energy-conserving or central differences",
+        effects: &[],
+        build: |p, _| Ok(Box::new(NonlinearSection::new(parameters(p)?)?)),
     },
     Kind {
         name: "span",

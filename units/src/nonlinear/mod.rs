@@ -218,6 +218,17 @@ impl NonlinearSection {
         [local.axial, moment, moment / self.model.elements[e].ei]
     }
 
+    /// Position (m) at arc length `s`, linear between the nodes.
+    pub fn position_at(&self, s: f64) -> [f64; 2] {
+        let (e, xi) = self.model.locate(s);
+        let (r0, r1) = (self.model.reference[e], self.model.reference[e + 1]);
+        let q = &self.state.q;
+        let at = |k: usize| {
+            (1.0 - xi) * (r0[k] + q[3 * e + k]) + xi * (r1[k] + q[3 * e + 3 + k])
+        };
+        [at(0), at(1)]
+    }
+
     /// Largest |moment| (N m) and tension (N) over the element ends.
     fn extremes(&self) -> (f64, f64) {
         (0..self.model.elements.len()).fold((0.0f64, f64::NEG_INFINITY), |(m, t), e| {
@@ -289,15 +300,18 @@ impl Unit for NonlinearSection {
             kinetic,
             strain,
             f64::from(self.state.newton_iterations),
-            self.critical_step,
-            self.state.contact.touchdown,
+            // Outputs stay finite: 0 for "not computed" and "nothing in contact".
+            if self.critical_step.is_finite() { self.critical_step } else { 0.0 },
+            if self.state.contact.touchdown.is_finite() { self.state.contact.touchdown } else { 0.0 },
             self.state.contact.length,
             max_moment,
             max_tension,
         ];
         out[18..26].copy_from_slice(&extra);
         for (i, &s) in self.params.stations.iter().enumerate() {
-            out[26 + 3 * i..29 + 3 * i].copy_from_slice(&self.section_forces(s));
+            let base = 26 + 5 * i;
+            out[base..base + 3].copy_from_slice(&self.section_forces(s));
+            out[base + 3..base + 5].copy_from_slice(&self.position_at(s));
         }
     }
 
