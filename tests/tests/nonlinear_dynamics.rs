@@ -282,8 +282,20 @@ fn seed002_frame_at_resonance_stays_bounded_nonlinearly_while_the_linear_respons
     let linear: Vec<f64> = frame_envelope(3e-4).iter().map(|v| v * 1e4).collect();
     let peak = nonlinear.iter().cloned().fold(0.0, f64::max);
     let when = nonlinear.iter().position(|&v| v == peak).expect("peak");
-    assert!((3..=7).contains(&when), "nonlinear peak in second {when}: {nonlinear:?}");
-    assert!(nonlinear[9] < 0.5 * peak, "bounded and decaying after the peak: {nonlinear:?}");
-    assert!(linear[9] > 8.0 * linear[0] && linear.windows(2).all(|w| w[1] > w[0]), "linear grows: {linear:?}");
-    assert!(linear[9] > 3.0 * peak, "the linear response exceeds the nonlinear one: {linear:?} vs {peak}");
+    assert!(
+        (3..=7).contains(&when),
+        "nonlinear peak in second {when}: {nonlinear:?}"
+    );
+    assert!(
+        nonlinear[9] < 0.5 * peak,
+        "bounded and decaying after the peak: {nonlinear:?}"
+    );
+    assert!(
+        linear[9] > 8.0 * linear[0] && linear.windows(2).all(|w| w[1] > w[0]),
+        "linear grows: {linear:?}"
+    );
+    assert!(
+        linear[9] > 3.0 * peak,
+        "the linear response exceeds the nonlinear one: {linear:?} vs {peak}"
+    );
 }

@@ -223,9 +223,7 @@ impl NonlinearSection {
         let (e, xi) = self.model.locate(s);
         let (r0, r1) = (self.model.reference[e], self.model.reference[e + 1]);
         let q = &self.state.q;
-        let at = |k: usize| {
-            (1.0 - xi) * (r0[k] + q[3 * e + k]) + xi * (r1[k] + q[3 * e + 3 + k])
-        };
+        let at = |k: usize| (1.0 - xi) * (r0[k] + q[3 * e + k]) + xi * (r1[k] + q[3 * e + 3 + k]);
         [at(0), at(1)]
     }
 
@@ -301,8 +299,16 @@ impl Unit for NonlinearSection {
             strain,
             f64::from(self.state.newton_iterations),
             // Outputs stay finite: 0 for "not computed" and "nothing in contact".
-            if self.critical_step.is_finite() { self.critical_step } else { 0.0 },
-            if self.state.contact.touchdown.is_finite() { self.state.contact.touchdown } else { 0.0 },
+            if self.critical_step.is_finite() {
+                self.critical_step
+            } else {
+                0.0
+            },
+            if self.state.contact.touchdown.is_finite() {
+                self.state.contact.touchdown
+            } else {
+                0.0
+            },
             self.state.contact.length,
             max_moment,
             max_tension,

@@ -354,28 +354,7 @@ impl NonlinearParams {
         require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
         require_positive("water_density", self.water_density)?;
         require_in_range("load_steps", f64::from(self.load_steps), 1.0, 10_000.0, "")?;
-        if let Integrator::Hht { alpha, .. } = self.integrator {
-            require_in_range("integrator.alpha", alpha, 0.0, 1.0 / 3.0, "")?;
-        }
-        if let Integrator::Hht {
-            tolerance,
-            max_iterations,
-            ..
-        }
-        | Integrator::EnergyConserving {
-            tolerance,
-            max_iterations,
-        } = self.integrator
-        {
-            require_in_range("integrator.tolerance", tolerance, 1e-15, 1e-2, "")?;
-            require_in_range(
-                "integrator.max_iterations",
-                f64::from(max_iterations),
-                1.0,
-                1000.0,
-                "",
-            )?;
-        }
+        self.integrator.validate()?;
         let length = self.length();
         for (i, &s) in self.stations.iter().enumerate() {
             require_in_range(&format!("stations[{i}]"), s, 0.0, length, "m")?;
@@ -415,6 +394,35 @@ impl NonlinearParams {
                 "a current profile",
                 "drag coefficients and a diameter on some segment (a current without drag acts on nothing)",
             ));
+        }
+        Ok(())
+    }
+}
+
+impl Integrator {
+    /// Checks the integrator's settings.
+    fn validate(&self) -> Result<(), UnitError> {
+        if let Integrator::Hht { alpha, .. } = *self {
+            require_in_range("integrator.alpha", alpha, 0.0, 1.0 / 3.0, "")?;
+        }
+        if let Integrator::Hht {
+            tolerance,
+            max_iterations,
+            ..
+        }
+        | Integrator::EnergyConserving {
+            tolerance,
+            max_iterations,
+        } = *self
+        {
+            require_in_range("integrator.tolerance", tolerance, 1e-15, 1e-2, "")?;
+            require_in_range(
+                "integrator.max_iterations",
+                f64::from(max_iterations),
+                1.0,
+                1000.0,
+                "",
+            )?;
         }
         Ok(())
     }
