@@ -239,7 +239,7 @@ impl SecondOrderSystem for Beam {
         Matrices {
             mass: &self.m,
             damping: Some(&self.c),
-            stiffness: &self.k,
+            stiffness: Some(&self.k),
         }
     }
 

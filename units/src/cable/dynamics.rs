@@ -159,7 +159,7 @@ impl SecondOrderSystem for CableStep<'_> {
         Matrices {
             mass: &d.m_ff,
             damping: d.damped.then_some(&d.c_ff),
-            stiffness: &d.k_ff,
+            stiffness: Some(&d.k_ff),
         }
     }
 

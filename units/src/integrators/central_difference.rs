@@ -77,7 +77,9 @@ impl CentralDifference {
         // M a1 = f1 - K q1 - C v_half - g(q1, v_half).
         self.rhs.copy_from_slice(f1);
         let m = system.matrices();
-        m.stiffness.mul_add(-1.0, &self.q, &mut self.rhs);
+        if let Some(k) = m.stiffness {
+            k.mul_add(-1.0, &self.q, &mut self.rhs);
+        }
         if let Some(c) = m.damping {
             c.mul_add(-1.0, &self.v_half, &mut self.rhs);
         }
@@ -119,6 +121,9 @@ impl CentralDifference {
     /// estimate: step below it with a margin.
     pub fn critical_step(m: &Matrices<'_>, max_iterations: usize) -> Result<f64, UnitError> {
         let n = m.mass.size();
+        let stiffness = m.stiffness.ok_or_else(|| {
+            UnitError::Numerical("critical step: no stiffness matrix given".into())
+        })?;
         let mass = BandLdlt::new(m.mass).ok_or_else(|| {
             UnitError::Numerical("critical step: the mass matrix is not positive definite".into())
         })?;
@@ -130,7 +135,7 @@ impl CentralDifference {
         let mut lambda = 0.0_f64;
         for _ in 0..max_iterations {
             y.fill(0.0);
-            m.stiffness.mul_add(1.0, &x, &mut y);
+            stiffness.mul_add(1.0, &x, &mut y);
             mass.solve_in_place(&mut y);
             let norm = y.iter().map(|v| v * v).sum::<f64>().sqrt();
             let x_norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -199,7 +204,7 @@ mod tests {
             Matrices {
                 mass: &self.m,
                 damping: None,
-                stiffness: &self.k,
+                stiffness: Some(&self.k),
             }
         }
         fn motion(&self) -> [&[f64]; 3] {

@@ -19,7 +19,9 @@ pub struct Matrices<'a> {
     pub mass: &'a SymmetricBand,
     /// `None` when the system has no damping (its products are skipped).
     pub damping: Option<&'a SymmetricBand>,
-    pub stiffness: &'a SymmetricBand,
+    /// `None` when the whole restoring force is the nonlinear force (a
+    /// geometrically nonlinear structure): no products with a zero matrix.
+    pub stiffness: Option<&'a SymmetricBand>,
 }
 
 /// How the nonlinear force's derivatives enter the Newton matrix: the tangent
@@ -163,16 +165,11 @@ impl HhtAlpha {
             return;
         }
         let (alpha, beta, gamma) = self.parameters();
-        match m.damping {
-            Some(c) => self.linear.set_combination(&[
-                (1.0 / (beta * h * h), m.mass),
-                ((1.0 - alpha) * gamma / (beta * h), c),
-                (1.0 - alpha, m.stiffness),
-            ]),
-            None => self
-                .linear
-                .set_combination(&[(1.0 / (beta * h * h), m.mass), (1.0 - alpha, m.stiffness)]),
-        }
+        self.linear.set_present_combination(&[
+            (1.0 / (beta * h * h), Some(m.mass)),
+            ((1.0 - alpha) * gamma / (beta * h), m.damping),
+            (1.0 - alpha, m.stiffness),
+        ]);
         let mut with_held = self.linear.clone();
         for (d, _) in held {
             with_held.set_identity_row(*d);
@@ -222,7 +219,9 @@ impl HhtAlpha {
         if let Some(c) = m.damping {
             c.mul_add(alpha, &self.v0, &mut self.constant);
         }
-        m.stiffness.mul_add(alpha, &self.q0, &mut self.constant);
+        if let Some(k) = m.stiffness {
+            k.mul_add(alpha, &self.q0, &mut self.constant);
+        }
     }
 
     /// One step of `system` from `loads.t0` to `loads.t1`; returns the Newton
@@ -356,7 +355,9 @@ impl HhtAlpha {
         if let Some(c) = m.damping {
             c.mul_add(1.0 - alpha, &self.v1, r);
         }
-        m.stiffness.mul_add(1.0 - alpha, &self.y, r);
+        if let Some(k) = m.stiffness {
+            k.mul_add(1.0 - alpha, &self.y, r);
+        }
         for (d, _) in held {
             r[*d] = 0.0;
         }

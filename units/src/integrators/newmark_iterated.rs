@@ -63,16 +63,11 @@ impl IteratedNewmark {
         if self.factor.is_some() && self.h == h {
             return Ok(());
         }
-        match m.damping {
-            Some(c) => self.effective.set_combination(&[
-                (1.0, m.stiffness),
-                (2.0 / h, c),
-                (4.0 / (h * h), m.mass),
-            ]),
-            None => self
-                .effective
-                .set_combination(&[(1.0, m.stiffness), (4.0 / (h * h), m.mass)]),
-        }
+        self.effective.set_present_combination(&[
+            (1.0, m.stiffness),
+            (2.0 / h, m.damping),
+            (4.0 / (h * h), Some(m.mass)),
+        ]);
         self.factor = Some(BandLdlt::new(&self.effective).ok_or_else(|| {
             UnitError::Numerical(format!(
                 "the effective stiffness for h = {h} s is not positive definite"

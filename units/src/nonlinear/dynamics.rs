@@ -68,7 +68,7 @@ impl NonlinearSection {
         let matrices = Matrices {
             mass: &m,
             damping: None,
-            stiffness: &k,
+            stiffness: Some(&k),
         };
         // With held DOFs as identity rows their "frequency" is 1 rad/s: harmless.
         self.critical_step = CentralDifference::critical_step(&matrices, 10_000)?;
@@ -96,9 +96,12 @@ impl NonlinearSection {
         }
         let mut load = vec![0.0; n];
         self.external_load(inputs, t, &mut load);
-        let mut force = vec![0.0; n];
-        self.restoring_force(&self.state.q.clone(), &self.state.v.clone(), t, &mut force);
-        let mut rhs: Vec<f64> = load.iter().zip(&force).map(|(f, g)| f - g).collect();
+        self.refresh_forces(None);
+        let mut rhs: Vec<f64> = load
+            .iter()
+            .zip(&self.state.force)
+            .map(|(f, g)| f - g)
+            .collect();
         if let Some(c) = &self.c {
             c.mul_add(-1.0, &self.state.v, &mut rhs);
         }
@@ -115,24 +118,8 @@ impl NonlinearSection {
         // Held accelerations are zero at rest here, so no right-hand-side coupling.
         factor.solve_in_place(&mut rhs);
         self.state.a.copy_from_slice(&rhs);
-        self.state.force.copy_from_slice(&force);
-        self.state.elastic.fill(0.0);
-        let q = std::mem::take(&mut self.state.q);
-        self.model
-            .add_internal_force(&q, 1.0, None, &mut self.state.elastic);
-        self.state.q = q;
         self.finish(&load);
         Ok(())
-    }
-
-    /// Internal, drag and contact force at (q, v, t), unweighted.
-    fn restoring_force(&self, q: &[f64], v: &[f64], t: f64, out: &mut [f64]) {
-        out.fill(0.0);
-        self.model.add_internal_force(q, 1.0, None, out);
-        if !self.environment.is_empty() {
-            self.environment
-                .add_force(&self.model, (q, v, t), 1.0, None, out);
-        }
     }
 
     /// Reactions (M a + C v + g - f at the held DOFs) and the contact summary.
@@ -185,8 +172,10 @@ impl NonlinearSection {
             let start = [self.state.q[d], self.state.v[d], self.state.a[d]];
             w.held.push((d, r.motion(inputs, t1, h, start)));
         }
-        w.q0.clear();
-        w.q0.extend_from_slice(&self.state.q);
+        if self.energy_conserving() {
+            w.q0.clear();
+            w.q0.extend_from_slice(&self.state.q);
+        }
         let iterations = match self.params.integrator {
             Integrator::Hht {
                 tolerance,
@@ -232,7 +221,8 @@ impl NonlinearSection {
             }
         };
         self.state.t = t1;
-        self.update_forces(&w.q0);
+        let q0 = self.energy_conserving().then_some(w.q0.as_slice());
+        self.refresh_forces(q0);
         self.finish(&w.f1);
         self.state.newton_iterations = iterations;
         Ok(iterations)
@@ -244,12 +234,12 @@ impl NonlinearSection {
         matches!(self.params.integrator, Integrator::EnergyConserving { .. })
     }
 
-    /// The elastic force the step used at its end (the element forces at q1, or
-    /// 2 g_bar(q0, q1) - g0 for the energy-conserving integrator) and the total
-    /// restoring force at the step's end.
-    fn update_forces(&mut self, q0: &[f64]) {
+    /// The elastic force at the current state as the integrator used it (the
+    /// element forces, or after an energy-conserving step from `q0`, 2 g_bar(q0,
+    /// q) - g0) and the total restoring force with drag and contact.
+    fn refresh_forces(&mut self, step_start: Option<&[f64]>) {
         let s = &mut self.state;
-        if matches!(self.params.integrator, Integrator::EnergyConserving { .. }) {
+        if let Some(q0) = step_start {
             for g in s.elastic.iter_mut() {
                 *g = -*g;
             }
@@ -292,8 +282,8 @@ impl NonlinearSection {
     }
 }
 
-/// The section for the integrators: M and C constant, K zero, the restoring force
-/// nonlinear with its tangent.
+/// The section for the integrators: M and C constant, no linear stiffness, the
+/// whole restoring force nonlinear with its tangent.
 impl SecondOrderSystem for NonlinearSection {
     fn label(&self) -> &str {
         "nonlinear section"
@@ -303,7 +293,7 @@ impl SecondOrderSystem for NonlinearSection {
         Matrices {
             mass: &self.m,
             damping: self.c.as_ref(),
-            stiffness: &self.k,
+            stiffness: None,
         }
     }
 
@@ -331,32 +321,24 @@ impl SecondOrderSystem for NonlinearSection {
     ) {
         force.resize(q.len(), 0.0);
         force.fill(0.0);
-        match tangent {
-            Some((band, scales)) => {
-                self.add_elastic(
-                    q,
-                    scales.stiffness,
-                    Some((&mut *band, scales.stiffness)),
-                    force,
-                );
-                if !self.environment.is_empty() {
-                    let tangent = Some((band, scales.stiffness, scales.damping));
-                    self.environment.add_force(
-                        &self.model,
-                        (q, v, t),
-                        scales.stiffness,
-                        tangent,
-                        force,
-                    );
-                }
-            }
-            None => {
-                self.add_elastic(q, 1.0, None, force);
-                if !self.environment.is_empty() {
-                    self.environment
-                        .add_force(&self.model, (q, v, t), 1.0, None, force);
-                }
-            }
+        // Without a tangent the force enters unweighted.
+        let (mut band, scales) = match tangent {
+            Some((band, scales)) => (Some(band), scales),
+            None => (
+                None,
+                TangentScales {
+                    stiffness: 1.0,
+                    damping: 0.0,
+                },
+            ),
+        };
+        let stiffness = scales.stiffness;
+        let elastic_tangent = band.as_mut().map(|b| (&mut **b, stiffness));
+        self.add_elastic(q, stiffness, elastic_tangent, force);
+        if !self.environment.is_empty() {
+            let tangent = band.map(|b| (b, stiffness, scales.damping));
+            self.environment
+                .add_force(&self.model, (q, v, t), stiffness, tangent, force);
         }
     }
 }

@@ -55,6 +55,15 @@ pub struct LocalForces {
     pub angle: f64,
 }
 
+/// Where a co-rotational element is: its local rotations (rad, wrapped to
+/// (-pi, pi]), stretch (m), chord length (m) and chord angle (rad).
+struct Kinematics {
+    rotations: [f64; 2],
+    stretch: f64,
+    chord: f64,
+    angle: f64,
+}
+
 /// Five-point Gauss-Legendre on [0, 1]: (abscissa, weight).
 const GAUSS5: [(f64, f64); 5] = [
     (0.046_910_077_030_668_0, 0.118_463_442_528_094_5),
@@ -83,7 +92,7 @@ impl Element {
     /// Axial force, end moments, chord length and angle at `p`.
     pub fn local_forces(&self, formulation: Formulation, p: &[f64; 6]) -> LocalForces {
         match formulation {
-            Formulation::Corotational => self.corotational_local(p),
+            Formulation::Corotational => self.corotational_local(&self.corotational_kinematics(p)),
             Formulation::Seed002 => self.seed002_local(p),
         }
     }
@@ -100,9 +109,9 @@ impl Element {
     pub fn strain_energy(&self, formulation: Formulation, p: &[f64; 6]) -> f64 {
         match formulation {
             Formulation::Corotational => {
-                let ([t1, t2], stretch, ..) = self.corotational_kinematics(p);
-                let l0 = self.length;
-                let strain = stretch / l0 + (2.0 * t1 * t1 - t1 * t2 + 2.0 * t2 * t2) / 30.0;
+                let kinematics = self.corotational_kinematics(p);
+                let [t1, t2] = kinematics.rotations;
+                let (l0, strain) = (self.length, self.shallow_arch_strain(&kinematics));
                 0.5 * self.ea * l0 * strain * strain
                     + self.ei / l0 * (2.0 * t1 * t1 + 2.0 * t1 * t2 + 2.0 * t2 * t2)
             }
@@ -124,16 +133,20 @@ impl Element {
     }
 
     /// Local rotations (wrapped), stretch and the chord at `p`.
-    fn corotational_kinematics(&self, p: &[f64; 6]) -> ([f64; 2], f64, f64, f64) {
+    fn corotational_kinematics(&self, p: &[f64; 6]) -> Kinematics {
         let (dx, dz) = self.chord(p);
         let ln = dx.hypot(dz);
         let beta = dz.atan2(dx);
         let beta0 = self.sin0.atan2(self.cos0);
         let t1 = wrap(p[2] + beta0 - beta);
         let t2 = wrap(p[5] + beta0 - beta);
-        // ln - l0 without cancellation.
-        let stretch = (ln * ln - self.length * self.length) / (ln + self.length);
-        ([t1, t2], stretch, ln, beta)
+        Kinematics {
+            rotations: [t1, t2],
+            // ln - l0 without cancellation.
+            stretch: (ln * ln - self.length * self.length) / (ln + self.length),
+            chord: ln,
+            angle: beta,
+        }
     }
 
     /// Shallow-arch local strain (Crisfield 1991 sec. 7.3; Battini 2002): the
@@ -141,11 +154,10 @@ impl Element {
     /// rotations to the axial force, which gives a tensioned element the
     /// geometric stiffness of the Hermite beam against rotation of its nodes (a
     /// hanging line with small EI would otherwise have unresisted rotations).
-    fn corotational_local(&self, p: &[f64; 6]) -> LocalForces {
-        let ([t1, t2], stretch, ln, beta) = self.corotational_kinematics(p);
+    fn corotational_local(&self, kinematics: &Kinematics) -> LocalForces {
+        let [t1, t2] = kinematics.rotations;
         let l0 = self.length;
-        let strain = stretch / l0 + (2.0 * t1 * t1 - t1 * t2 + 2.0 * t2 * t2) / 30.0;
-        let n = self.ea * strain;
+        let n = self.ea * self.shallow_arch_strain(kinematics);
         let k = self.ei / l0;
         LocalForces {
             axial: n,
@@ -153,16 +165,23 @@ impl Element {
                 k * (4.0 * t1 + 2.0 * t2) + n * l0 * (4.0 * t1 - t2) / 30.0,
                 k * (2.0 * t1 + 4.0 * t2) + n * l0 * (4.0 * t2 - t1) / 30.0,
             ],
-            chord: ln,
-            angle: beta,
+            chord: kinematics.chord,
+            angle: kinematics.angle,
         }
+    }
+
+    /// The axial strain `u / l0 + (2 t1^2 - t1 t2 + 2 t2^2) / 30`.
+    fn shallow_arch_strain(&self, kinematics: &Kinematics) -> f64 {
+        let [t1, t2] = kinematics.rotations;
+        kinematics.stretch / self.length + (2.0 * t1 * t1 - t1 * t2 + 2.0 * t2 * t2) / 30.0
     }
 
     /// f = B^T [N, M1, M2]; K = B^T D B + z z^T N / ln + (r z^T + z r^T)(M1 + M2) / ln^2
     /// with D the local tangent (Crisfield eq. 7.54 with this sign convention;
     /// checked by finite differences).
     fn corotational(&self, p: &[f64; 6], tangent: bool) -> ElementForce {
-        let local = self.corotational_local(p);
+        let kinematics = self.corotational_kinematics(p);
+        let local = self.corotational_local(&kinematics);
         let (ln, (c, s)) = (local.chord, (local.angle.cos(), local.angle.sin()));
         let r = [-c, -s, 0.0, c, s, 0.0];
         let z = [s, -c, 0.0, -s, c, 0.0];
@@ -182,7 +201,7 @@ impl Element {
         }
         let mut k = [[0.0; 6]; 6];
         if tangent {
-            let d = self.local_tangent(p, local.axial);
+            let d = self.local_tangent(kinematics.rotations, local.axial);
             let (n, m) = (local.axial, local.moments[0] + local.moments[1]);
             for i in 0..6 {
                 for j in 0..6 {
@@ -200,8 +219,7 @@ impl Element {
     }
 
     /// d[N, M1, M2] / d[stretch, t1, t2] of the shallow-arch local element.
-    fn local_tangent(&self, p: &[f64; 6], n: f64) -> [[f64; 3]; 3] {
-        let ([t1, t2], ..) = self.corotational_kinematics(p);
+    fn local_tangent(&self, [t1, t2]: [f64; 2], n: f64) -> [[f64; 3]; 3] {
         let (l0, ea) = (self.length, self.ea);
         let k = self.ei / l0;
         let (g1, g2) = ((4.0 * t1 - t2) / 30.0, (4.0 * t2 - t1) / 30.0);

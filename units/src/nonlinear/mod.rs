@@ -59,8 +59,6 @@ pub struct NonlinearSection {
     ends: Vec<Resolved>,
     m: SymmetricBand,
     c: Option<SymmetricBand>,
-    /// Zero: the whole restoring force is the integrators' nonlinear force.
-    k: SymmetricBand,
     /// Nodal loads of a unit x and z distributed load per `params.loads` entry.
     patterns: Vec<[Vec<f64>; 2]>,
     /// Weight and buoyancy (N).
@@ -103,7 +101,8 @@ impl NonlinearSection {
             Integrator::EnergyConserving { .. } | Integrator::CentralDifference => 0.0,
         };
         let zeros = vec![0.0; n];
-        let m = model.mass(&zeros, &params.segments, params.mass, params.water_density);
+        // Formed about the start state by `initialize`.
+        let m = SymmetricBand::zeros(n, BAND);
         Ok(NonlinearSection {
             description: UnitDescription {
                 kind: "nonlinear".into(),
@@ -129,7 +128,6 @@ impl NonlinearSection {
             hht: HhtAlpha::new(alpha, n, BAND),
             explicit: CentralDifference::new(),
             work: dynamics::StepWork::default(),
-            k: SymmetricBand::zeros(n, BAND),
             c: None,
             m,
             critical_step: f64::NAN,

@@ -58,10 +58,9 @@ impl NonlinearSection {
                     level = next;
                     done = level >= 1.0;
                 }
-                Err(reason) if halvings < MAX_HALVINGS && !direct => {
+                Err(_) if halvings < MAX_HALVINGS && !direct => {
                     halvings += 1;
                     increment *= 0.5;
-                    let _ = reason;
                 }
                 Err(reason) => {
                     return Err(UnitError::Numerical(format!(

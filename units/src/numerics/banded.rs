@@ -86,6 +86,20 @@ impl SymmetricBand {
         }
     }
 
+    /// `self = sum c_i X_i` over the terms whose matrix is present, in order
+    /// (same shape): an absent damping or stiffness adds nothing.
+    pub fn set_present_combination(&mut self, terms: &[(f64, Option<&SymmetricBand>)]) {
+        self.band.fill(0.0);
+        for (c, m) in terms {
+            if let Some(m) = m {
+                debug_assert_eq!((m.n, m.w), (self.n, self.w));
+                for (a, b) in self.band.iter_mut().zip(&m.band) {
+                    *a += c * b;
+                }
+            }
+        }
+    }
+
     /// `y += alpha * A x`.
     pub fn mul_add(&self, alpha: f64, x: &[f64], y: &mut [f64]) {
         let w = self.w;
