@@ -78,7 +78,8 @@ segments = [{ length = 10.0, angle = -60.0, elements = 8, axial_stiffness = 1e7,
 ends.start = { kind = "pinned", x = "velocity" }
 ends.end = { z = { force = "input" } }
 current = { z = [-20.0, 0.0], velocity = [0.0, 0.5] }
-contact = { method = { kind = "penalty", penalty = 1e5 }, surface = { shape = { kind = "flat", height = -8.0 } } }
+contact = { method = { kind = "penalty", penalty = 1e5 }, surface = { shape = { kind = "flat", height = -8.5 } } }
+stinger = { method = { kind = "augmented_lagrangian", penalty = 1e5 }, surface = { shape = { kind = "rollers", positions = [2.0], tops = [-3.44], radius = 0.3 } } }
 rayleigh_stiffness = 0.001
 stations = [5.0]
 "#;

@@ -20,12 +20,15 @@ pub enum Shape {
         half_width: f64,
         bump_height: f64,
     },
-    /// Circular rollers of `radius` with tops at `height`, centred at `positions`;
-    /// no surface between them.
+    /// Circular rollers of `radius` with tops at `height` (or, per roller, at
+    /// `tops`: a stinger's curve), centred at `positions`; no surface between them.
     Rollers {
         positions: Vec<f64>,
         radius: f64,
+        #[serde(default)]
         height: f64,
+        #[serde(default)]
+        tops: Vec<f64>,
     },
     /// Piecewise linear through (x, y), constant beyond the ends.
     Table { x: Vec<f64>, y: Vec<f64> },
@@ -77,9 +80,20 @@ impl Surface {
                 positions,
                 radius,
                 height,
+                tops,
             } => {
                 require_positive("surface.radius", *radius)?;
                 require_finite("surface.height", *height)?;
+                if !tops.is_empty() && tops.len() != positions.len() {
+                    return Err(UnitError::parameter(
+                        "surface.tops",
+                        format!("{} tops for {} rollers", tops.len(), positions.len()),
+                        "one top height per roller, or none",
+                    ));
+                }
+                for top in tops {
+                    require_finite("surface.tops", *top)?;
+                }
                 if positions.is_empty() {
                     return Err(UnitError::parameter(
                         "surface.positions",
@@ -155,10 +169,15 @@ impl Surface {
                 positions,
                 radius,
                 height,
+                tops,
             } => positions
                 .iter()
-                .filter(|&&c| (x - c).abs() < *radius)
-                .map(|&c| height - radius + (radius * radius - (x - c).powi(2)).sqrt())
+                .enumerate()
+                .filter(|&(_, &c)| (x - c).abs() < *radius)
+                .map(|(i, &c)| {
+                    let top = tops.get(i).unwrap_or(height);
+                    top - radius + (radius * radius - (x - c).powi(2)).sqrt()
+                })
                 .fold(None, |best: Option<f64>, v| {
                     Some(best.map_or(v, |b| b.max(v)))
                 })?,

@@ -270,7 +270,7 @@ impl HhtAlpha {
             };
             let factor = factor.ok_or_else(|| {
                 UnitError::Numerical(format!(
-                    "{}: the Newton matrix is not positive definite at t = {} s (iteration {iteration})",
+                    "{}: the Newton matrix is singular or not finite at t = {} s (iteration {iteration})",
                     system.label(),
                     loads.t1
                 ))
@@ -334,13 +334,12 @@ impl HhtAlpha {
         for (d, _) in loads.held {
             self.jacobian.set_identity_row(*d);
         }
-        match self.factor.as_mut() {
-            Some(f) => f.refactorise(&self.jacobian),
-            None => {
-                self.factor = BandLdlt::new(&self.jacobian);
-                self.factor.is_some()
-            }
-        }
+        // A nonlinear structure past a limit point (or a slack part under a large
+        // step) has an indefinite Newton matrix: accepted while nonsingular.
+        let factor = self.factor.get_or_insert_with(|| {
+            BandLdlt::zeros(self.jacobian.size(), self.jacobian.half_bandwidth())
+        });
+        factor.refactorise_nonsingular(&self.jacobian)
     }
 
     /// residual = constant + g1 + M a1 + (1 - alpha) (C v1 + K q1), zero at held DOFs.

@@ -3,8 +3,8 @@
 //! by HHT-alpha with Newton or by explicit central differences; the initial
 //! acceleration; modes about the current state.
 
-use super::NonlinearSection;
 use super::params::Integrator;
+use super::{NonlinearSection, contact};
 use crate::contract::{Inputs, ModalAnalysis, Mode, UnitError};
 use crate::integrators::central_difference::CentralDifference;
 use crate::integrators::hht::{
@@ -20,6 +20,8 @@ pub(super) struct StepWork {
     g0: Vec<f64>,
     /// Displacements at the step's start.
     q0: Vec<f64>,
+    /// The state at the step's start, restored before sub-stepping.
+    backup: Option<super::SectionState>,
     held: Vec<(usize, [f64; 3])>,
 }
 
@@ -36,7 +38,9 @@ impl NonlinearSection {
         self.environment.add_force(
             &self.model,
             (&self.state.q, &zeros, self.state.t),
+            &self.state.lambda,
             1.0,
+            false,
             Some((&mut k, 1.0, 0.0)),
             &mut scratch,
         );
@@ -84,10 +88,8 @@ impl NonlinearSection {
             .held()
             .map(|r| {
                 let d = r.dof;
-                (
-                    d,
-                    r.motion(inputs, t, 0.0, [self.state.q[d], self.state.v[d], 0.0]),
-                )
+                let start = [self.state.q[d], self.state.v[d], 0.0];
+                (d, r.motion(inputs, (t, 0.0), (0.0, 1.0), start))
             })
             .collect();
         for &(d, [q, v, _]) in &held {
@@ -95,7 +97,7 @@ impl NonlinearSection {
             self.state.v[d] = v;
         }
         let mut load = vec![0.0; n];
-        self.external_load(inputs, t, &mut load);
+        self.external_load(inputs, (t, 1.0), &mut load);
         self.refresh_forces(None);
         let mut rhs: Vec<f64> = load
             .iter()
@@ -118,12 +120,13 @@ impl NonlinearSection {
         // Held accelerations are zero at rest here, so no right-hand-side coupling.
         factor.solve_in_place(&mut rhs);
         self.state.a.copy_from_slice(&rhs);
-        self.finish(&load);
-        Ok(())
+        self.finish(&load, false)
     }
 
-    /// Reactions (M a + C v + g - f at the held DOFs) and the contact summary.
-    fn finish(&mut self, load: &[f64]) {
+    /// Reactions (M a + C v + g - f at the held DOFs), the contact summary (a
+    /// node deeper than nodal contact represents is an error), the bend moments
+    /// and, after a step, the Lagrangian updates.
+    fn finish(&mut self, load: &[f64], after_step: bool) -> Result<(), UnitError> {
         let s = &mut self.state;
         for ((r, g), f) in s.reaction.iter_mut().zip(&s.force).zip(load) {
             *r = g - f;
@@ -132,11 +135,25 @@ impl NonlinearSection {
         if let Some(c) = &self.c {
             c.mul_add(1.0, &s.v, &mut s.reaction);
         }
-        s.contact = self.environment.contact_summary(&self.model, &s.q, s.t);
+        let contacts = &self.environment.contacts;
+        if !contacts.is_empty() {
+            s.contact = contacts.summary(&self.model, (&s.q, s.t, &s.lambda));
+            if after_step {
+                contacts.update_lambda(&self.model, (&s.q, s.t), &mut s.lambda);
+            }
+        }
+        let now = self.bend_moments();
+        let s = &mut self.state;
+        if !after_step {
+            s.bend_step = now;
+        }
+        s.bend_now = now;
+        contact::check_penetration(&s.contact, s.t)
     }
 
     /// One step from t0 to t1 = t0 + h (s); returns the Newton iterations (0 for
-    /// central differences). On failure the state is unchanged.
+    /// central differences). Where Newton fails, the step is retried in 2, 4, ...
+    /// equal sub-steps up to `max_substeps`. On failure the state is unchanged.
     pub(super) fn step(
         &mut self,
         inputs: Inputs<'_>,
@@ -145,32 +162,76 @@ impl NonlinearSection {
         h: f64,
     ) -> Result<u32, UnitError> {
         let mut w = std::mem::take(&mut self.work);
-        let result = self.step_with(inputs, &mut w, t0, t1, h);
-        self.work = w;
-        if result.is_err() {
-            self.state.t = t0;
+        match w.backup.as_mut() {
+            Some(b) => b.clone_from(&self.state),
+            None => w.backup = Some(self.state.clone()),
         }
+        let mut pieces = 1;
+        let result = loop {
+            match self.step_in_pieces(inputs, &mut w, (t0, t1, h), pieces) {
+                Ok(iterations) => break Ok(iterations),
+                Err(failure) => {
+                    if let Some(b) = &w.backup {
+                        self.state.clone_from(b);
+                    }
+                    match failure {
+                        Failure::Newton(_) if pieces < self.params.max_substeps => pieces *= 2,
+                        Failure::Newton(e) | Failure::Other(e) => break Err(e),
+                    }
+                }
+            }
+        };
+        self.work = w;
         result
+    }
+
+    /// The step as `pieces` equal sub-steps; the bend moments' maxima over all.
+    fn step_in_pieces(
+        &mut self,
+        inputs: Inputs<'_>,
+        w: &mut StepWork,
+        (t0, t1, h): (f64, f64, f64),
+        pieces: u32,
+    ) -> Result<u32, Failure> {
+        let mut bend = self.state.bend_now;
+        let mut total = 0;
+        for k in 0..pieces {
+            let (s0, s1) = (
+                f64::from(k) / f64::from(pieces),
+                f64::from(k + 1) / f64::from(pieces),
+            );
+            let a = if k == 0 { t0 } else { t0 + s0 * h };
+            let b = if k + 1 == pieces { t1 } else { t0 + s1 * h };
+            // The coupling step's own length when whole (bit-identical to before).
+            let length = h / f64::from(pieces);
+            total += self.step_with(inputs, w, (a, b, length), (s0, s1))?;
+            bend = [
+                bend[0].max(self.state.bend_now[0]),
+                bend[1].max(self.state.bend_now[1]),
+            ];
+        }
+        self.state.bend_step = bend;
+        self.state.newton_iterations = total;
+        Ok(total)
     }
 
     fn step_with(
         &mut self,
         inputs: Inputs<'_>,
         w: &mut StepWork,
-        t0: f64,
-        t1: f64,
-        h: f64,
-    ) -> Result<u32, UnitError> {
+        (t0, t1, h): (f64, f64, f64),
+        (s0, s1): (f64, f64),
+    ) -> Result<u32, Failure> {
         let n = self.model.dofs();
         w.f0.resize(n, 0.0);
         w.f1.resize(n, 0.0);
-        self.external_load(inputs, t0, &mut w.f0);
-        self.external_load(inputs, t1, &mut w.f1);
+        self.external_load(inputs, (t0, s0), &mut w.f0);
+        self.external_load(inputs, (t1, s1), &mut w.f1);
         w.held.clear();
         for r in self.ends.iter().filter(|r| r.is_kinematic()) {
             let d = r.dof;
             let start = [self.state.q[d], self.state.v[d], self.state.a[d]];
-            w.held.push((d, r.motion(inputs, t1, h, start)));
+            w.held.push((d, r.motion(inputs, (t1, h), (s0, s1), start)));
         }
         if self.energy_conserving() {
             w.q0.clear();
@@ -204,29 +265,34 @@ impl NonlinearSection {
                 };
                 let result = hht.step(self, &loads, newton);
                 self.hht = hht;
-                result?
+                result.map_err(Failure::Newton)?
             }
             Integrator::CentralDifference => {
                 if h > self.critical_step {
-                    return Err(UnitError::Numerical(format!(
+                    return Err(Failure::Other(UnitError::Numerical(format!(
                         "nonlinear section: the step {h} s exceeds the critical step {:.4e} s of central differences (2 / omega_max of the tangent at the start)",
                         self.critical_step
-                    )));
+                    ))));
                 }
                 let mut explicit = std::mem::take(&mut self.explicit);
                 let result = explicit.step(self, t1, h, &w.f1, &w.held);
                 self.explicit = explicit;
-                result?;
+                result.map_err(Failure::Other)?;
                 0
             }
         };
         self.state.t = t1;
         let q0 = self.energy_conserving().then_some(w.q0.as_slice());
         self.refresh_forces(q0);
-        self.finish(&w.f1);
-        self.state.newton_iterations = iterations;
+        self.finish(&w.f1, true).map_err(Failure::Other)?;
         Ok(iterations)
     }
+}
+
+/// Why a step failed: Newton (worth retrying in sub-steps) or anything else.
+pub(super) enum Failure {
+    Newton(UnitError),
+    Other(UnitError),
 }
 
 impl NonlinearSection {
@@ -251,9 +317,35 @@ impl NonlinearSection {
                 .add_internal_force(&s.q, 1.0, None, &mut s.elastic);
         }
         s.force.copy_from_slice(&s.elastic);
+        let contacts = &self.environment.contacts;
+        if contacts.is_discrete() {
+            if let Some(q0) = step_start {
+                for g in s.stepped_contact.iter_mut() {
+                    *g = -*g;
+                }
+                let dg = (q0, s.q.as_slice(), s.t);
+                contacts.add_discrete_gradient(&self.model, dg, 1.0, None, &mut s.stepped_contact);
+            } else {
+                // The discrete gradient of a step of zero length is the gradient.
+                s.stepped_contact.fill(0.0);
+                let at = (s.q.as_slice(), s.q.as_slice(), s.t);
+                contacts.add_discrete_gradient(&self.model, at, 0.5, None, &mut s.stepped_contact);
+            }
+            for (f, c) in s.force.iter_mut().zip(&s.stepped_contact) {
+                *f += c;
+            }
+        }
         if !self.environment.is_empty() {
-            self.environment
-                .add_force(&self.model, (&s.q, &s.v, s.t), 1.0, None, &mut s.force);
+            let state = (s.q.as_slice(), s.v.as_slice(), s.t);
+            self.environment.add_force(
+                &self.model,
+                state,
+                &s.lambda,
+                1.0,
+                true,
+                None,
+                &mut s.force,
+            );
         }
     }
 
@@ -336,9 +428,26 @@ impl SecondOrderSystem for NonlinearSection {
         let elastic_tangent = band.as_mut().map(|b| (&mut **b, stiffness));
         self.add_elastic(q, stiffness, elastic_tangent, force);
         if !self.environment.is_empty() {
+            let contacts = &self.environment.contacts;
+            if contacts.is_discrete() {
+                let tangent = band.as_mut().map(|b| (&mut **b, stiffness));
+                let dg = (self.state.q.as_slice(), q, t);
+                contacts.add_discrete_gradient(&self.model, dg, stiffness, tangent, force);
+                for (f, c) in force.iter_mut().zip(&self.state.stepped_contact) {
+                    *f -= stiffness * c;
+                }
+            }
             let tangent = band.map(|b| (b, stiffness, scales.damping));
-            self.environment
-                .add_force(&self.model, (q, v, t), stiffness, tangent, force);
+            let lambda = &self.state.lambda;
+            self.environment.add_force(
+                &self.model,
+                (q, v, t),
+                lambda,
+                stiffness,
+                true,
+                tangent,
+                force,
+            );
         }
     }
 }

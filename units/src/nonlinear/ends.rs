@@ -32,23 +32,31 @@ impl Resolved {
     }
 
     /// Prescribed (q, v, a) at the step's end `t` over a step `h` (0 at the
-    /// initial time) from the start state `(q0, v0, a0)` of the DOF.
-    pub fn motion(&self, inputs: Inputs<'_>, t: f64, h: f64, start: [f64; 3]) -> [f64; 3] {
+    /// initial time) from the start state `(q0, v0, a0)` of the DOF; the step runs
+    /// over the fractions `(s0, s1)` of the coupling step (a sub-step when the
+    /// unit divides it), where coupled inputs are read.
+    pub fn motion(
+        &self,
+        inputs: Inputs<'_>,
+        (t, h): (f64, f64),
+        (s0, s1): (f64, f64),
+        start: [f64; 3],
+    ) -> [f64; 3] {
         let [q0, v0, a0] = start;
         match (&self.condition, self.input) {
             (DofCondition::Held, _) => [0.0; 3],
             (DofCondition::Displacement(f), _) => match (f.eval(t), self.input) {
                 (Some(v), _) => v,
                 (None, Some(i)) if h > 0.0 => {
-                    let rate = inputs.rate(i, h);
-                    [inputs.at(i, 1.0), rate, (rate - v0) / h]
+                    let rate = inputs.rate(i, h / (s1 - s0));
+                    [inputs.at(i, s1), rate, (rate - v0) / h]
                 }
-                (None, Some(i)) => [inputs.at(i, 1.0), 0.0, 0.0],
+                (None, Some(i)) => [inputs.at(i, s1), 0.0, 0.0],
                 (None, None) => [q0, v0, a0],
             },
             // Trapezoidal rule on the velocity: consistent with Newmark (1/4, 1/2).
             (DofCondition::Velocity, Some(i)) => {
-                let v1 = inputs.at(i, 1.0);
+                let v1 = inputs.at(i, s1);
                 if h > 0.0 {
                     [q0 + 0.5 * h * (v0 + v1), v1, 2.0 * (v1 - v0) / h - a0]
                 } else {
@@ -59,12 +67,13 @@ impl Resolved {
         }
     }
 
-    /// Applied force or moment at `t` (0 for a kinematic condition).
-    pub fn load(&self, inputs: Inputs<'_>, t: f64) -> f64 {
+    /// Applied force or moment at `t`, a coupled one read at fraction `s` of the
+    /// coupling step (0 for a kinematic condition).
+    pub fn load(&self, inputs: Inputs<'_>, t: f64, s: f64) -> f64 {
         match (&self.condition, self.input) {
             (DofCondition::Force(f), input) => match (f.eval(t), input) {
                 (Some([v, _, _]), _) => v,
-                (None, Some(i)) => inputs.at(i, 1.0),
+                (None, Some(i)) => inputs.at(i, s),
                 (None, None) => 0.0,
             },
             _ => 0.0,
@@ -146,15 +155,18 @@ pub fn resolve(params: &NonlinearParams, nodes: usize) -> (Vec<Resolved>, Vec<Po
 }
 
 /// Names of the outputs after the end quantities.
-pub const EXTRA_OUTPUTS: [(&str, &str); 8] = [
+pub const EXTRA_OUTPUTS: [(&str, &str); 11] = [
     ("kinetic_energy", "J"),
     ("strain_energy", "J"),
+    ("potential_energy", "J"),
     ("newton_iterations", ""),
     ("critical_step", "s"),
     ("touchdown", "m"),
     ("contact_length", "m"),
     ("max_moment", "N.m"),
     ("max_tension", "N"),
+    ("sagbend_moment", "N.m"),
+    ("overbend_moment", "N.m"),
 ];
 
 /// Per end: position x, z, rotation, velocity x, z, angular velocity, and the force

@@ -1,12 +1,14 @@
 //! Forces from the surroundings that depend on the motion: Morison drag on the
-//! velocity relative to a current, and contact of the nodes with a surface. Each
-//! is skipped entirely when the scene does not ask for it.
+//! velocity relative to a current, and contact of the nodes with the seabed and
+//! a stinger ([`super::contact`]). Each is skipped entirely when the scene does
+//! not ask for it.
 
 // Small dense element blocks read best indexed as in the formulas.
 #![allow(clippy::needless_range_loop)]
 
+use super::contact::NodalContacts;
 use super::model::Model;
-use super::params::{Current, NodalContact, NonlinearParams};
+use super::params::{Current, NonlinearParams};
 use crate::numerics::banded::SymmetricBand;
 
 /// Drag of one element: 1/2 rho D l Cn and 1/2 rho pi D l Ct (kg/m).
@@ -21,21 +23,8 @@ struct ElementDrag {
 pub struct Environment {
     drag: Vec<ElementDrag>,
     current: Option<Current>,
-    contact: Option<NodalContact>,
-    /// Tributary length of each node (m), for contact.
-    tributary: Vec<f64>,
-}
-
-/// What the contact did at one state.
-#[derive(Copy, Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct ContactSummary {
-    /// Arc length (m) of the first node in contact counted from the far end
-    /// (the touchdown point); NaN without contact.
-    pub touchdown: f64,
-    /// Sum of the tributary lengths in contact (m).
-    pub length: f64,
-    /// Largest penetration (m).
-    pub penetration: f64,
+    /// Contact of the nodes with the seabed and the stinger.
+    pub contacts: NodalContacts,
 }
 
 /// How the force's derivatives enter a Newton matrix: (band, stiffness factor,
@@ -59,31 +48,30 @@ impl Environment {
             })
             .collect();
         let any_drag = drag.iter().any(|d| d.normal > 0.0 || d.tangential > 0.0);
-        let mut tributary = vec![0.0; model.reference.len()];
-        for (e, el) in model.elements.iter().enumerate() {
-            tributary[e] += 0.5 * el.length;
-            tributary[e + 1] += 0.5 * el.length;
-        }
         Environment {
             drag: if any_drag { drag } else { Vec::new() },
             current: params.current.clone(),
-            contact: params.contact.clone(),
-            tributary,
+            contacts: NodalContacts::new(params, model),
         }
     }
 
     /// Whether there is nothing to compute.
     pub fn is_empty(&self) -> bool {
-        self.drag.is_empty() && self.contact.is_none()
+        self.drag.is_empty() && self.contacts.is_empty()
     }
 
     /// Adds `scale` times the drag and contact force (as it enters the left-hand
-    /// side) at (q, v, t) to `out`, and their tangents to the band.
+    /// side) at (q, v, t) with the contacts' Lagrangian parameters `lambda` to
+    /// `out`, and their tangents to the band. With `stepped`, the contact laws
+    /// that act by their discrete gradient over a step are left out.
+    #[allow(clippy::too_many_arguments)]
     pub fn add_force(
         &self,
         model: &Model,
         (q, v, t): (&[f64], &[f64], f64),
+        lambda: &[f64],
         scale: f64,
+        stepped: bool,
         mut tangent: Tangent<'_>,
         out: &mut [f64],
     ) {
@@ -97,8 +85,10 @@ impl Environment {
                 out,
             );
         }
-        if self.contact.is_some() {
-            self.add_contact(model, q, t, scale, tangent.map(|(b, k, _)| (b, k)), out);
+        if !self.contacts.is_empty() {
+            let tangent = tangent.map(|(b, k, _)| (b, k));
+            self.contacts
+                .add_force(model, (q, t, lambda), scale, stepped, tangent, out);
         }
     }
 
@@ -161,74 +151,5 @@ impl Environment {
                 }
             }
         }
-    }
-
-    /// Contact of each node with the surface: the law's force density times the
-    /// node's tributary length along the gradient of the gap d = z - f(x).
-    fn add_contact(
-        &self,
-        model: &Model,
-        q: &[f64],
-        t: f64,
-        scale: f64,
-        mut tangent: Option<(&mut SymmetricBand, f64)>,
-        out: &mut [f64],
-    ) {
-        let Some(contact) = &self.contact else { return };
-        let lambda = contact.method.lambda0();
-        for (j, r) in model.reference.iter().enumerate() {
-            let (x, z) = (r[0] + q[3 * j], r[1] + q[3 * j + 1]);
-            let Some((f, _)) = contact.surface.at(x, t) else {
-                continue;
-            };
-            let (_, g, k) = contact.method.evaluate(z - f, lambda);
-            if g == 0.0 && k == 0.0 {
-                continue;
-            }
-            let slope = surface_slope(contact, x, t);
-            let grad = [-slope, 1.0];
-            let w = self.tributary[j];
-            out[3 * j] += scale * w * g * grad[0];
-            out[3 * j + 1] += scale * w * g * grad[1];
-            if let Some((band, factor)) = tangent.as_mut() {
-                band.add(3 * j, 3 * j, *factor * w * k * grad[0] * grad[0]);
-                band.add(3 * j + 1, 3 * j, *factor * w * k * grad[1] * grad[0]);
-                band.add(3 * j + 1, 3 * j + 1, *factor * w * k);
-            }
-        }
-    }
-
-    /// Touchdown point, contact length and penetration at `q`.
-    pub fn contact_summary(&self, model: &Model, q: &[f64], t: f64) -> ContactSummary {
-        let mut s = ContactSummary {
-            touchdown: f64::NAN,
-            ..ContactSummary::default()
-        };
-        let Some(contact) = &self.contact else {
-            return s;
-        };
-        for (j, r) in model.reference.iter().enumerate().rev() {
-            let (x, z) = (r[0] + q[3 * j], r[1] + q[3 * j + 1]);
-            let Some((f, _)) = contact.surface.at(x, t) else {
-                continue;
-            };
-            if z - f <= 0.0 {
-                if s.touchdown.is_nan() {
-                    s.touchdown = model.arc[j];
-                }
-                s.length += self.tributary[j];
-                s.penetration = s.penetration.max(f - z);
-            }
-        }
-        s
-    }
-}
-
-/// df/dx by central differences over 1 mm (0 where the surface ends).
-fn surface_slope(contact: &NodalContact, x: f64, t: f64) -> f64 {
-    let h = 1e-3;
-    match (contact.surface.at(x + h, t), contact.surface.at(x - h, t)) {
-        (Some((a, _)), Some((b, _))) => (a - b) / (2.0 * h),
-        _ => 0.0,
     }
 }

@@ -9,6 +9,7 @@
 //! differences step the dynamics ([`dynamics`]). This is the reference model of a
 //! section: the cheaper units are measured against it.
 
+pub mod contact;
 pub mod element;
 pub mod ends;
 pub mod environment;
@@ -24,8 +25,9 @@ use crate::contract::{
 use crate::integrators::central_difference::CentralDifference;
 use crate::integrators::hht::HhtAlpha;
 use crate::numerics::banded::SymmetricBand;
+use contact::ContactSummary;
 use ends::Resolved;
-use environment::{ContactSummary, Environment};
+use environment::Environment;
 use model::{BAND, Model};
 use params::Integrator;
 pub use params::NonlinearParams;
@@ -45,7 +47,16 @@ crate::state_struct! {
         elastic: Vec<f64>,
         /// Support reactions at the held DOFs: M a + C v + g - f (N, N m).
         reaction: Vec<f64>,
+        /// Force of the contact laws stepped by their discrete gradient as the
+        /// integrator used it (2 F_bar - F0 of the last step).
+        stepped_contact: Vec<f64>,
+        /// Lagrangian parameters of the contacts, per surface and node.
+        lambda: Vec<f64>,
         contact: ContactSummary,
+        /// Largest sag-bend and overbend moments (N m) at the current time and
+        /// over the last step (its start and end).
+        bend_now: [f64; 2],
+        bend_step: [f64; 2],
         newton_iterations: u32,
     }
 }
@@ -101,6 +112,7 @@ impl NonlinearSection {
             Integrator::EnergyConserving { .. } | Integrator::CentralDifference => 0.0,
         };
         let zeros = vec![0.0; n];
+        let environment = Environment::new(&params, &model);
         // Formed about the start state by `initialize`.
         let m = SymmetricBand::zeros(n, BAND);
         Ok(NonlinearSection {
@@ -110,7 +122,6 @@ impl NonlinearSection {
                 outputs,
                 capabilities: Capabilities::default(),
             },
-            environment: Environment::new(&params, &model),
             state: SectionState {
                 t: 0.0,
                 q: zeros.clone(),
@@ -118,13 +129,18 @@ impl NonlinearSection {
                 a: zeros.clone(),
                 force: zeros.clone(),
                 elastic: zeros.clone(),
-                reaction: zeros,
+                reaction: zeros.clone(),
+                stepped_contact: zeros,
+                lambda: environment.contacts.initial_lambda(),
                 contact: ContactSummary {
                     touchdown: f64::NAN,
                     ..ContactSummary::default()
                 },
+                bend_now: [0.0; 2],
+                bend_step: [0.0; 2],
                 newton_iterations: 0,
             },
+            environment,
             hht: HhtAlpha::new(alpha, n, BAND),
             explicit: CentralDifference::new(),
             work: dynamics::StepWork::default(),
@@ -174,8 +190,10 @@ impl NonlinearSection {
         self.state.newton_iterations
     }
 
-    /// Kinetic and strain energy (J) at the current time.
-    pub fn energies(&self) -> [f64; 2] {
+    /// Kinetic, strain and potential energy (J) at the current time; the
+    /// potential is the contact energy plus that of the weight and the constant
+    /// end loads, -f . q (zero at the stress-free shape).
+    pub fn energies(&self) -> [f64; 3] {
         let kinetic = 0.5 * self.m.quadratic_form(&self.state.v);
         let strain = (0..self.model.elements.len())
             .map(|e| {
@@ -185,11 +203,25 @@ impl NonlinearSection {
                 )
             })
             .sum();
-        [kinetic, strain]
+        let mut work: f64 = self
+            .weight
+            .iter()
+            .zip(&self.state.q)
+            .map(|(w, q)| w * q)
+            .sum();
+        for r in &self.ends {
+            if let params::DofCondition::Force(crate::beam::boundary::TimeFunction::Constant(f)) =
+                r.condition
+            {
+                work += f * self.state.q[r.dof];
+            }
+        }
+        [kinetic, strain, self.state.contact.energy - work]
     }
 
-    /// External load at time t (weight, distributed loads, end loads) into `out`.
-    fn external_load(&self, inputs: Inputs<'_>, t: f64, out: &mut [f64]) {
+    /// External load at time t (weight, distributed loads, end loads; coupled ones
+    /// read at fraction `s` of the coupling step) into `out`.
+    fn external_load(&self, inputs: Inputs<'_>, (t, s): (f64, f64), out: &mut [f64]) {
         out.copy_from_slice(&self.weight);
         for (l, [px, pz]) in self.params.loads.iter().zip(&self.patterns) {
             let fx = l.x.eval(t).map_or(0.0, |v| v[0]);
@@ -199,7 +231,7 @@ impl NonlinearSection {
             }
         }
         for r in &self.ends {
-            out[r.dof] += r.load(inputs, t);
+            out[r.dof] += r.load(inputs, t, s);
         }
     }
 
@@ -235,6 +267,27 @@ impl NonlinearSection {
             )
         })
     }
+
+    /// Largest sag-bend and overbend moments (N m) over the element ends: the
+    /// bending moment where the section is concave upwards (d2z/dx2 > 0, the sag
+    /// bend above the touchdown point) and convex (the overbend on a stinger).
+    fn bend_moments(&self) -> [f64; 2] {
+        let mut bend = [0.0f64; 2];
+        for e in 0..self.model.elements.len() {
+            let l = self.model.local_forces(&self.state.q, e);
+            let forward = l.angle.cos();
+            for m in [-l.moments[0], l.moments[1]] {
+                // Positive m turns the tangent counter-clockwise along the arc.
+                let concave = m * forward;
+                if concave > 0.0 {
+                    bend[0] = bend[0].max(m.abs());
+                } else if concave < 0.0 {
+                    bend[1] = bend[1].max(m.abs());
+                }
+            }
+        }
+        bend
+    }
 }
 
 /// The arc-length range of segment `i`.
@@ -253,6 +306,7 @@ impl Unit for NonlinearSection {
         self.state.t = t0.as_secs();
         self.state.q.fill(0.0);
         self.state.v.fill(0.0);
+        self.state.lambda = self.environment.contacts.initial_lambda();
         if self.params.static_start {
             self.solve_static(inputs)?;
         }
@@ -287,14 +341,15 @@ impl Unit for NonlinearSection {
                 .iter()
                 .filter(|c| c.end == end && !c.is_kinematic())
             {
-                out[base + 6 + c.component] = -c.load(inputs, self.state.t);
+                out[base + 6 + c.component] = -c.load(inputs, self.state.t, 1.0);
             }
         }
-        let [kinetic, strain] = self.energies();
+        let [kinetic, strain, potential] = self.energies();
         let (max_moment, max_tension) = self.extremes();
         let extra = [
             kinetic,
             strain,
+            potential,
             f64::from(self.state.newton_iterations),
             // Outputs stay finite: 0 for "not computed" and "nothing in contact".
             if self.critical_step.is_finite() {
@@ -310,10 +365,13 @@ impl Unit for NonlinearSection {
             self.state.contact.length,
             max_moment,
             max_tension,
+            self.state.bend_step[0],
+            self.state.bend_step[1],
         ];
-        out[18..26].copy_from_slice(&extra);
+        let stations = 18 + extra.len();
+        out[18..stations].copy_from_slice(&extra);
         for (i, &s) in self.params.stations.iter().enumerate() {
-            let base = 26 + 5 * i;
+            let base = stations + 5 * i;
             out[base..base + 3].copy_from_slice(&self.section_forces(s));
             out[base + 3..base + 5].copy_from_slice(&self.position_at(s));
         }

@@ -240,6 +240,9 @@ pub enum StartShape {
     Reference,
     /// The inextensible catenary through the two ends (hanging lines).
     Catenary,
+    /// The polyline `start_points`, nodes spread over it by arc length (S-lay
+    /// pipes on a stinger, any shape far from the stress-free one).
+    Points,
 }
 
 /// Contact with a surface z >= f(x, t), at the nodes.
@@ -290,13 +293,23 @@ pub struct NonlinearParams {
     pub water_density: f64,
     #[serde(default)]
     pub current: Option<Current>,
+    /// Contact with the seabed (its nodes define the touchdown point).
     #[serde(default)]
     pub contact: Option<NodalContact>,
+    /// Contact with a stinger (rollers), not counted for touchdown.
+    #[serde(default)]
+    pub stinger: Option<NodalContact>,
     /// Start from the static equilibrium under the loads at t = 0.
     #[serde(default)]
     pub static_start: bool,
     #[serde(default)]
     pub start_shape: StartShape,
+    /// The polyline (x, z in m) of `start_shape = "points"`.
+    #[serde(default)]
+    pub start_points: Vec<[f64; 2]>,
+    /// The most sub-steps (1, 2, 4, ...) a step is divided into when Newton fails.
+    #[serde(default = "default_max_substeps")]
+    pub max_substeps: u32,
     /// Load increments of the static solve (halved on failure, at most 12 times).
     #[serde(default = "default_load_steps")]
     pub load_steps: u32,
@@ -307,6 +320,10 @@ pub struct NonlinearParams {
 
 fn water_density() -> f64 {
     1025.0
+}
+
+fn default_max_substeps() -> u32 {
+    32
 }
 
 fn default_load_steps() -> u32 {
@@ -354,6 +371,13 @@ impl NonlinearParams {
         require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
         require_positive("water_density", self.water_density)?;
         require_in_range("load_steps", f64::from(self.load_steps), 1.0, 10_000.0, "")?;
+        require_in_range(
+            "max_substeps",
+            f64::from(self.max_substeps),
+            1.0,
+            1024.0,
+            "",
+        )?;
         self.integrator.validate()?;
         let length = self.length();
         for (i, &s) in self.stations.iter().enumerate() {
@@ -381,10 +405,8 @@ impl NonlinearParams {
         if let Some(c) = &self.current {
             validate_current(c)?;
         }
-        if let Some(c) = &self.contact {
-            c.method.validate()?;
-            c.surface.validate()?;
-        }
+        super::contact::validate(self)?;
+        self.validate_start_points()?;
         let hydro = self.segments.iter().any(|s| {
             s.drag_normal + s.drag_tangential + s.added_mass_normal + s.added_mass_tangential > 0.0
         });
@@ -393,6 +415,32 @@ impl NonlinearParams {
                 "current",
                 "a current profile",
                 "drag coefficients and a diameter on some segment (a current without drag acts on nothing)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl NonlinearParams {
+    /// `start_points` are given exactly when `start_shape = "points"`: at least two
+    /// finite points, consecutive ones distinct.
+    fn validate_start_points(&self) -> Result<(), UnitError> {
+        let points = &self.start_points;
+        let wanted = self.start_shape == StartShape::Points;
+        if wanted == points.is_empty() {
+            return Err(UnitError::parameter(
+                "start_points",
+                format!("{} points", points.len()),
+                "at least two points exactly when start_shape = \"points\"",
+            ));
+        }
+        let bad = points.iter().flatten().any(|v| !v.is_finite())
+            || points.windows(2).any(|w| w[0] == w[1]);
+        if bad || (wanted && points.len() < 2) {
+            return Err(UnitError::parameter(
+                "start_points",
+                format!("{points:?}"),
+                "at least two finite points, consecutive ones distinct",
             ));
         }
         Ok(())

@@ -23,15 +23,17 @@ impl NonlinearSection {
         let n = self.model.dofs();
         let t = self.state.t;
         let mut load = vec![0.0; n];
-        self.external_load(inputs, t, &mut load);
+        self.external_load(inputs, (t, 1.0), &mut load);
         let targets: Vec<(usize, f64)> = self
             .held()
-            .map(|r| (r.dof, r.motion(inputs, t, 0.0, [0.0; 3])[0]))
+            .map(|r| (r.dof, r.motion(inputs, (t, 0.0), (0.0, 1.0), [0.0; 3])[0]))
             .collect();
         let mut q = vec![0.0; n];
-        let direct = self.params.start_shape == StartShape::Catenary;
-        if direct {
-            self.catenary_guess(&targets, &mut q);
+        let direct = self.params.start_shape != StartShape::Reference;
+        match self.params.start_shape {
+            StartShape::Reference => {}
+            StartShape::Catenary => self.catenary_guess(&targets, &mut q),
+            StartShape::Points => self.points_guess(&mut q),
         }
         let start: Vec<f64> = targets.iter().map(|&(d, _)| q[d]).collect();
         let mut level = 0.0;
@@ -92,7 +94,9 @@ impl NonlinearSection {
             self.environment.add_force(
                 &self.model,
                 (q, &w.zeros, self.state.t),
+                &self.state.lambda,
                 1.0,
+                false,
                 Some((&mut w.tangent, 1.0, 0.0)),
                 &mut w.residual,
             );
@@ -115,12 +119,20 @@ impl NonlinearSection {
             if !step.is_finite() {
                 return Err(format!("non-finite correction at iteration {iteration}"));
             }
+            // A correction that moves a node by more than the shortest element or
+            // turns it by more than 0.5 rad is scaled down (a damped step).
+            let limit = self.correction_limit(&w.residual);
             for (qi, dq) in q.iter_mut().zip(&w.residual) {
-                *qi += dq;
+                *qi += limit * dq;
             }
             let size = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+            if std::env::var("DBG").is_ok() {
+                eprintln!(
+                    "level {level} it {iteration} step {step:.3e} limit {limit:.3} shifted {shifted}"
+                );
+            }
             // A shifted step is a damped one: only a plain Newton step may converge.
-            if !shifted && step < TOLERANCE * size {
+            if !shifted && limit == 1.0 && step < TOLERANCE * size {
                 return Ok(iteration);
             }
         }
@@ -163,6 +175,65 @@ impl NonlinearSection {
                 Formulation::Corotational => rotation,
                 Formulation::Seed002 => rotation.sin().atan2(rotation.cos()),
             };
+        }
+    }
+}
+
+impl NonlinearSection {
+    /// The factor (at most 1) that keeps a Newton correction within the shortest
+    /// element's length per node and 0.5 rad per rotation.
+    fn correction_limit(&self, dq: &[f64]) -> f64 {
+        let shortest = self
+            .model
+            .elements
+            .iter()
+            .fold(f64::INFINITY, |m, e| m.min(e.length));
+        dq.chunks(3).fold(1.0f64, |f, c| {
+            let moved = c[0].hypot(c[1]);
+            let f = if moved > shortest {
+                f.min(shortest / moved)
+            } else {
+                f
+            };
+            if c[2].abs() > 0.5 {
+                f.min(0.5 / c[2].abs())
+            } else {
+                f
+            }
+        })
+    }
+
+    /// The nodes spread over the polyline `start_points` in proportion to their
+    /// arc length, each rotated to the direction between its neighbours.
+    fn points_guess(&self, q: &mut [f64]) {
+        let points = &self.params.start_points;
+        let mut cumulative = vec![0.0];
+        for w in points.windows(2) {
+            let l = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+            cumulative.push(cumulative.last().unwrap_or(&0.0) + l);
+        }
+        let total = *cumulative.last().unwrap_or(&1.0);
+        let length = *self.model.arc.last().unwrap_or(&1.0);
+        let on_polyline = |s: f64| {
+            let target = s / length * total;
+            let i = cumulative
+                .partition_point(|&c| c <= target)
+                .clamp(1, points.len() - 1);
+            let f = (target - cumulative[i - 1]) / (cumulative[i] - cumulative[i - 1]);
+            let (a, b) = (points[i - 1], points[i]);
+            [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]
+        };
+        let nodes = self.model.reference.len();
+        let guess: Vec<[f64; 2]> = self.model.arc.iter().map(|&s| on_polyline(s)).collect();
+        for j in 0..nodes {
+            let (a, b) = (guess[j.saturating_sub(1)], guess[(j + 1).min(nodes - 1)]);
+            let angle = (b[1] - a[1]).atan2(b[0] - a[0]);
+            let r = self.model.reference[j];
+            let el = &self.model.elements[j.min(nodes - 2)];
+            let rotation = angle - el.sin0.atan2(el.cos0);
+            q[3 * j] = guess[j][0] - r[0];
+            q[3 * j + 1] = guess[j][1] - r[1];
+            q[3 * j + 2] = rotation.sin().atan2(rotation.cos());
         }
     }
 }

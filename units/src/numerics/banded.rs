@@ -152,6 +152,16 @@ pub struct BandLdlt {
 }
 
 impl BandLdlt {
+    /// An empty factor of order `n` and half-bandwidth `w`, to be filled by a
+    /// refactorisation.
+    pub fn zeros(n: usize, w: usize) -> BandLdlt {
+        BandLdlt {
+            n,
+            w,
+            band: vec![0.0; n * (w + 1)],
+        }
+    }
+
     /// Factorises `a`; `None` when a pivot is not positive (the matrix is not
     /// positive definite).
     pub fn new(a: &SymmetricBand) -> Option<BandLdlt> {
@@ -160,7 +170,7 @@ impl BandLdlt {
             w: a.w,
             band: a.band.clone(),
         };
-        f.factorise_in_place().then_some(f)
+        f.factorise_in_place(false).then_some(f)
     }
 
     /// Refactorises for `a` (same shape) reusing this factor's memory; false when a
@@ -171,13 +181,30 @@ impl BandLdlt {
             self.w = a.w;
         }
         self.band.clone_from(&a.band);
-        self.factorise_in_place()
+        self.factorise_in_place(false)
     }
 
-    fn factorise_in_place(&mut self) -> bool {
+    /// Refactorises for a symmetric `a` that may be indefinite (a Newton matrix of
+    /// a structure past a limit point): negative pivots are kept; false when a
+    /// pivot is zero to round-off (below 1e-13 of the largest diagonal entry) or
+    /// not finite. Without pivoting, so meant for matrices dominated by a positive
+    /// mass term.
+    pub fn refactorise_nonsingular(&mut self, a: &SymmetricBand) -> bool {
+        self.n = a.n;
+        self.w = a.w;
+        self.band.clone_from(&a.band);
+        self.factorise_in_place(true)
+    }
+
+    fn factorise_in_place(&mut self, indefinite: bool) -> bool {
         let (n, w) = (self.n, self.w);
         let f = &mut self.band;
         let s = w + 1;
+        let smallest = if indefinite {
+            1e-13 * (0..n).fold(0.0f64, |m, j| m.max(f[j * s].abs()))
+        } else {
+            0.0
+        };
         for j in 0..n {
             // d_j = a_jj - sum_k l_jk^2 d_k
             let mut d = f[j * s];
@@ -185,7 +212,12 @@ impl BandLdlt {
                 let l = f[j * s + k];
                 d -= l * l * f[(j - k) * s];
             }
-            if !(d > 0.0 && d.is_finite()) {
+            let admissible = if indefinite {
+                d.abs() > smallest
+            } else {
+                d > 0.0
+            };
+            if !(admissible && d.is_finite()) {
                 return false;
             }
             f[j * s] = d;

@@ -1,0 +1,432 @@
+//! Contact of a section with the seabed (`contact`, which defines the touchdown
+//! point) and a stinger (`stinger`). On a continuous surface z >= f(x, t) each
+//! node presses with the law's force density times its tributary length along
+//! the gradient of the gap d = z - f(x). Rollers are points: each roller's top
+//! meets the element passing over it (gap: the element's height there minus the
+//! top; the law's force per roller, its penalty in N/m), so a roller supports the
+//! pipe wherever it is, not only at nodes. Penalty-type laws act at the current
+//! state; the energy-conserving law, under the energy-conserving integrator, acts
+//! over a step by its discrete gradient; the augmented laws update their
+//! Lagrangian parameter per contact point after each step.
+
+use super::model::Model;
+use super::params::{Integrator, NodalContact, NonlinearParams};
+use crate::contact::surface::Shape;
+use crate::contact::{LambdaUpdate, Law};
+use crate::contract::UnitError;
+use crate::numerics::banded::SymmetricBand;
+
+/// What the contact did at one state.
+#[derive(Copy, Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ContactSummary {
+    /// Arc length (m) of the first node on the seabed counted from the far end
+    /// (the touchdown point); NaN without contact.
+    pub touchdown: f64,
+    /// Sum of the tributary lengths on the seabed (m).
+    pub length: f64,
+    /// Largest penetration of any surface (m).
+    pub penetration: f64,
+    /// Largest penetration relative to the node's tributary length.
+    pub relative_penetration: f64,
+    /// Sum of the contact energies w Xi(d) (J).
+    pub energy: f64,
+}
+
+/// The contact surfaces of a section.
+#[derive(Clone, Debug, Default)]
+pub struct NodalContacts {
+    /// Seabed first (when given), then the stinger.
+    list: Vec<NodalContact>,
+    /// Whether `list[0]` is the seabed (counts for touchdown).
+    has_seabed: bool,
+    /// Where each surface's Lagrangian parameters start in the state's list.
+    offsets: Vec<usize>,
+    /// Tributary length of each node (m).
+    tributary: Vec<f64>,
+    /// Energy-conserving laws act by their discrete gradient over a step.
+    discrete: bool,
+}
+
+/// Stiffness factor for the tangent band.
+pub type ContactTangent<'a> = Option<(&'a mut SymmetricBand, f64)>;
+
+/// One contact point: the gap (m), its gradient over up to four translational
+/// DOFs, and its weight (tributary length for a node, 1 for a roller).
+#[derive(Copy, Clone, Debug)]
+struct Point {
+    gap: f64,
+    dofs: [usize; 4],
+    grad: [f64; 4],
+    count: usize,
+    weight: f64,
+    /// Node (or roller) index, for the Lagrangian parameter and the summary.
+    index: usize,
+    /// Arc length (m) of the node, or of the roller's point on the section.
+    arc: f64,
+}
+
+impl Point {
+    fn along(&self, dq: impl Fn(usize) -> f64) -> f64 {
+        (0..self.count)
+            .map(|k| self.grad[k] * dq(self.dofs[k]))
+            .sum()
+    }
+
+    fn add_force(&self, f: f64, out: &mut [f64]) {
+        for k in 0..self.count {
+            out[self.dofs[k]] += f * self.grad[k];
+        }
+    }
+
+    fn add_tangent(&self, band: &mut SymmetricBand, k: f64) {
+        for a in 0..self.count {
+            for b in 0..self.count {
+                let (i, j) = (self.dofs[a], self.dofs[b]);
+                if i >= j {
+                    band.add(i, j, k * self.grad[a] * self.grad[b]);
+                }
+            }
+        }
+    }
+}
+
+/// The contact points of surface `contact` at `q` (time t): rollers in order,
+/// nodes in order of decreasing arc length.
+fn for_each_point(
+    contact: &NodalContact,
+    model: &Model,
+    tributary: &[f64],
+    (q, t): (&[f64], f64),
+    mut visit: impl FnMut(Point),
+) {
+    if let Shape::Rollers { positions, .. } = &contact.surface.shape {
+        for (i, &xr) in positions.iter().enumerate() {
+            let Some((top, _)) = contact.surface.at(xr, t) else {
+                continue;
+            };
+            if let Some(e) = roller_element(model, q, xr, top) {
+                visit(roller_point(model, q, e, (i, xr, top)));
+            }
+        }
+        return;
+    }
+    for j in (0..model.reference.len()).rev() {
+        let r = model.reference[j];
+        let x = r[0] + q[3 * j];
+        let Some((f, _)) = contact.surface.at(x, t) else {
+            continue;
+        };
+        visit(Point {
+            gap: r[1] + q[3 * j + 1] - f,
+            dofs: [3 * j, 3 * j + 1, 0, 0],
+            grad: [-surface_slope(contact, x, t), 1.0, 0.0, 0.0],
+            count: 2,
+            weight: tributary[j],
+            index: j,
+            arc: model.arc[j],
+        });
+    }
+}
+
+/// The element passing over a roller at x = `xr` nearest its top (none when no
+/// element spans xr).
+fn roller_element(model: &Model, q: &[f64], xr: f64, top: f64) -> Option<usize> {
+    let mut best: Option<(usize, f64)> = None;
+    for e in 0..model.elements.len() {
+        let (xa, xb) = (node_x(model, q, e), node_x(model, q, e + 1));
+        if (xr - xa) * (xr - xb) > 0.0 || xa == xb {
+            continue;
+        }
+        let gap = roller_point(model, q, e, (0, xr, top)).gap.abs();
+        if best.is_none_or(|(_, g)| gap < g) {
+            best = Some((e, gap));
+        }
+    }
+    best.map(|(e, _)| e)
+}
+
+fn node_x(model: &Model, q: &[f64], j: usize) -> f64 {
+    model.reference[j][0] + q[3 * j]
+}
+
+/// The gap between element `e` (straight between its nodes) and roller `i`'s top
+/// at x = xr, with its gradient over the element's end translations.
+fn roller_point(model: &Model, q: &[f64], e: usize, (i, xr, top): (usize, f64, f64)) -> Point {
+    let (a, b) = (e, e + 1);
+    let (xa, za) = (node_x(model, q, a), model.reference[a][1] + q[3 * a + 1]);
+    let (xb, zb) = (node_x(model, q, b), model.reference[b][1] + q[3 * b + 1]);
+    let xi = (xr - xa) / (xb - xa);
+    let slope = (zb - za) / (xb - xa);
+    Point {
+        gap: (1.0 - xi) * za + xi * zb - top,
+        dofs: [3 * a, 3 * a + 1, 3 * b, 3 * b + 1],
+        grad: [-slope * (1.0 - xi), 1.0 - xi, -slope * xi, xi],
+        count: 4,
+        weight: 1.0,
+        index: i,
+        arc: model.arc[a] + xi.clamp(0.0, 1.0) * model.elements[e].length,
+    }
+}
+
+impl NodalContacts {
+    /// From the parameters and the mesh.
+    pub fn new(params: &NonlinearParams, model: &Model) -> NodalContacts {
+        let list: Vec<NodalContact> = params
+            .contact
+            .iter()
+            .chain(&params.stinger)
+            .cloned()
+            .collect();
+        let mut tributary = vec![0.0; model.reference.len()];
+        for (e, el) in model.elements.iter().enumerate() {
+            tributary[e] += 0.5 * el.length;
+            tributary[e + 1] += 0.5 * el.length;
+        }
+        let mut offsets = vec![0];
+        for c in &list {
+            let points = match &c.surface.shape {
+                Shape::Rollers { positions, .. } => positions.len(),
+                _ => tributary.len(),
+            };
+            offsets.push(offsets.last().unwrap_or(&0) + points);
+        }
+        let discrete = matches!(params.integrator, Integrator::EnergyConserving { .. })
+            && list.iter().any(|c| is_energy_conserving(&c.method));
+        NodalContacts {
+            has_seabed: params.contact.is_some(),
+            list,
+            offsets,
+            tributary,
+            discrete,
+        }
+    }
+
+    /// Whether there are no surfaces.
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// Whether energy-conserving laws act by their discrete gradient.
+    pub fn is_discrete(&self) -> bool {
+        self.discrete
+    }
+
+    /// The Lagrangian parameters at the start, per surface and contact point.
+    pub fn initial_lambda(&self) -> Vec<f64> {
+        self.list
+            .iter()
+            .zip(self.offsets.windows(2))
+            .flat_map(|(c, w)| std::iter::repeat_n(c.method.lambda0(), w[1] - w[0]))
+            .collect()
+    }
+
+    /// Adds `scale` times the contact force at `q` (time t) to `out` and its
+    /// tangent; with `skip_discrete`, the laws stepped by their discrete gradient
+    /// are left out.
+    pub fn add_force(
+        &self,
+        model: &Model,
+        (q, t, lambda): (&[f64], f64, &[f64]),
+        scale: f64,
+        skip_discrete: bool,
+        mut tangent: ContactTangent<'_>,
+        out: &mut [f64],
+    ) {
+        for (c, contact) in self.list.iter().enumerate() {
+            if skip_discrete && self.discrete && is_energy_conserving(&contact.method) {
+                continue;
+            }
+            let lambda = &lambda[self.offsets[c]..];
+            for_each_point(contact, model, &self.tributary, (q, t), |p| {
+                let (_, g, k) = contact.method.evaluate(p.gap, lambda[p.index]);
+                if g == 0.0 && k == 0.0 {
+                    return;
+                }
+                p.add_force(scale * p.weight * g, out);
+                if let Some((band, factor)) = tangent.as_mut() {
+                    p.add_tangent(band, *factor * p.weight * k);
+                }
+            });
+        }
+    }
+
+    /// Adds `scale` times twice the discrete gradient over the step from `q0` to
+    /// `q1` of the energy-conserving laws' energy: per point
+    /// w (Xi(d1) - Xi(d0)) / (g . dq) g with g the mean of the gap's gradients at
+    /// q0 and q1, so the force's work over the step is exactly the energy change
+    /// (the mean gap force where the point slides along the surface). A roller is
+    /// measured on the element over it at q1.
+    pub fn add_discrete_gradient(
+        &self,
+        model: &Model,
+        (q0, q1, t): (&[f64], &[f64], f64),
+        scale: f64,
+        mut tangent: ContactTangent<'_>,
+        out: &mut [f64],
+    ) {
+        if !self.discrete {
+            return;
+        }
+        for contact in self.list.iter().filter(|c| is_energy_conserving(&c.method)) {
+            for_each_point(contact, model, &self.tributary, (q1, t), |p1| {
+                let Some(p0) = start_point(contact, model, (q0, t), &p1) else {
+                    return;
+                };
+                if p0.gap > 0.0 && p1.gap > 0.0 {
+                    return;
+                }
+                let mut mean = p1;
+                for k in 0..p1.count {
+                    mean.grad[k] = 0.5 * (p0.grad[k] + p1.grad[k]);
+                }
+                let along = mean.along(|d| q1[d] - q0[d]);
+                let (xi0, g0, k0) = contact.method.evaluate(p0.gap, 0.0);
+                let (xi1, g1, k1) = contact.method.evaluate(p1.gap, 0.0);
+                // The secant and its derivative in the end gap (the exact one, so
+                // Newton converges where a point enters or leaves contact).
+                let (secant, slope) = if along.abs() > 1e-12 * (1.0 + p0.gap.abs() + p1.gap.abs()) {
+                    let secant = (xi1 - xi0) / along;
+                    // Between 0 and the law's largest slope (a convex energy), which
+                    // also bounds round-off where the point hardly moves.
+                    (secant, ((g1 - secant) / along).clamp(0.0, k0.max(k1)))
+                } else {
+                    (0.5 * (g0 + g1), 0.5 * k1)
+                };
+                mean.add_force(2.0 * scale * p1.weight * secant, out);
+                if let Some((band, factor)) = tangent.as_mut() {
+                    p1.add_tangent(band, *factor * p1.weight * 2.0 * slope);
+                }
+            });
+        }
+    }
+
+    /// After a step: the Lagrangian update of the augmented laws that update per
+    /// time step.
+    pub fn update_lambda(&self, model: &Model, (q, t): (&[f64], f64), lambda: &mut [f64]) {
+        for (c, contact) in self.list.iter().enumerate() {
+            if contact.method.lambda_update() != Some(LambdaUpdate::TimeStep) {
+                continue;
+            }
+            let lambda = &mut lambda[self.offsets[c]..];
+            for_each_point(contact, model, &self.tributary, (q, t), |p| {
+                let l = &mut lambda[p.index];
+                *l = contact.method.updated_lambda(p.gap, *l);
+            });
+        }
+    }
+
+    /// Touchdown point, seabed contact length, penetration and energy at `q`.
+    pub fn summary(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> ContactSummary {
+        let mut s = ContactSummary {
+            touchdown: f64::NAN,
+            ..ContactSummary::default()
+        };
+        for (c, contact) in self.list.iter().enumerate() {
+            let seabed = c == 0 && self.has_seabed;
+            let lambda = &lambda[self.offsets[c]..];
+            let depth_limit = match contact.surface.shape {
+                Shape::Rollers { radius, .. } => Some(radius),
+                _ => None,
+            };
+            for_each_point(contact, model, &self.tributary, (q, t), |p| {
+                s.energy += p.weight * contact.method.evaluate(p.gap, lambda[p.index]).0;
+                if p.gap > 0.0 {
+                    return;
+                }
+                if seabed {
+                    if s.touchdown.is_nan() {
+                        s.touchdown = p.arc;
+                    }
+                    s.length += p.weight;
+                }
+                s.penetration = s.penetration.max(-p.gap);
+                let limit = depth_limit.unwrap_or(p.weight);
+                s.relative_penetration = s.relative_penetration.max(-p.gap / limit);
+            });
+        }
+        s
+    }
+}
+
+/// The point matching `p1` at the step's start `q0`: the same node, or the same
+/// roller on the same element.
+fn start_point(
+    contact: &NodalContact,
+    model: &Model,
+    (q0, t): (&[f64], f64),
+    p1: &Point,
+) -> Option<Point> {
+    if p1.count == 4 {
+        let e = p1.dofs[0] / 3;
+        let Shape::Rollers { positions, .. } = &contact.surface.shape else {
+            return None;
+        };
+        let xr = positions[p1.index];
+        let (top, _) = contact.surface.at(xr, t)?;
+        Some(roller_point(model, q0, e, (p1.index, xr, top)))
+    } else {
+        let j = p1.index;
+        let r = model.reference[j];
+        let x = r[0] + q0[3 * j];
+        let (f, _) = contact.surface.at(x, t)?;
+        Some(Point {
+            gap: r[1] + q0[3 * j + 1] - f,
+            grad: [-surface_slope(contact, x, t), 1.0, 0.0, 0.0],
+            ..*p1
+        })
+    }
+}
+
+/// The most a point may penetrate a surface, relative to a node's tributary
+/// length or a roller's radius: deeper, the contact no longer represents the
+/// pipe resting on the surface.
+pub const MAX_RELATIVE_PENETRATION: f64 = 1.0;
+
+/// Checks a contact summary after a step.
+pub fn check_penetration(s: &ContactSummary, t: f64) -> Result<(), UnitError> {
+    if s.relative_penetration > MAX_RELATIVE_PENETRATION {
+        return Err(UnitError::Numerical(format!(
+            "nonlinear section: at t = {t} s the section is {:.4} m deep in a contact surface, more than a node's tributary length or a roller's radius (the contact cannot represent it: raise the penalty or refine the mesh)",
+            s.penetration
+        )));
+    }
+    Ok(())
+}
+
+/// Checks the contact settings against the integrator.
+pub fn validate(params: &NonlinearParams) -> Result<(), UnitError> {
+    for (key, c) in [("contact", &params.contact), ("stinger", &params.stinger)] {
+        let Some(c) = c else { continue };
+        c.method.validate()?;
+        c.surface.validate()?;
+        if c.method.lambda_update() == Some(LambdaUpdate::NewtonIteration) {
+            return Err(UnitError::parameter(
+                &format!("{key}.method.update"),
+                "newton_iteration",
+                "time_step (the nodes update their Lagrangian parameter after each step)",
+            ));
+        }
+        let energy_integrator = matches!(params.integrator, Integrator::EnergyConserving { .. });
+        if is_energy_conserving(&c.method) && !energy_integrator {
+            return Err(UnitError::parameter(
+                &format!("{key}.method.kind"),
+                "energy_conserving",
+                "integrator.kind = \"energy_conserving\" with this law (else use `penalty`)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn is_energy_conserving(law: &Law) -> bool {
+    matches!(law, Law::EnergyConserving { .. })
+}
+
+/// df/dx by central differences over 1 mm (0 where the surface ends).
+fn surface_slope(contact: &NodalContact, x: f64, t: f64) -> f64 {
+    let h = 1e-3;
+    match (contact.surface.at(x + h, t), contact.surface.at(x - h, t)) {
+        (Some((a, _)), Some((b, _))) => (a - b) / (2.0 * h),
+        _ => 0.0,
+    }
+}
