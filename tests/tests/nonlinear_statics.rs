@@ -221,3 +221,83 @@ ends.end = {{ kind = "pinned", x = {{ displacement = {ex} }}, z = {{ displacemen
         );
     }
 }
+
+/// Seed 000's polyester line (Table 1, 2.5 MN at 50 deg from the vertical, current
+/// 0 to 0.5 m/s) as a nonlinear section with negligible EI against the `cable`
+/// unit (both 80 elements, both with weight and current drag): the top position,
+/// the top angle and the angle at the truncation point (z = 960 m, paper 39.2 deg,
+/// cable unit 39.25 deg).
+#[test]
+fn the_polyester_line_matches_the_cable_unit_at_the_top_and_the_truncation_point() {
+    use slender_units::cable::{Cable, CableParams, Effects};
+    let line = CableParams::seed000_polyester(80);
+    let a = 50f64.to_radians();
+    let top_force = [2.5e6 * a.sin(), 2.5e6 * a.cos()];
+    let mut cable = Driver::new(Cable::new(line.clone(), Effects::all()).expect("cable"));
+    cable
+        .set_inputs(&[top_force[0], top_force[1], 0.0, 0.0])
+        .expect("inputs");
+    cable.initialize(Time::ZERO).expect("cable statics");
+    let reference = cable
+        .static_state()
+        .expect("static state")
+        .positions
+        .clone();
+    let text = format!(
+        r#"
+static_start = true
+segments = [{{ length = {length}, angle = 39.4, elements = 80, axial_stiffness = {ea}, bending_stiffness = 1.0e2, mass_per_length = {m}, submerged_weight = {w}, diameter = {d}, drag_normal = {cd}, added_mass_normal = 1.0 }}]
+ends.start = {{ kind = "pinned" }}
+ends.end = {{ x = {{ force = {fx} }}, z = {{ force = {fz} }} }}
+current = {{ z = [0.0, 1200.0], velocity = [0.0, 0.5] }}
+"#,
+        length = line.length,
+        ea = line.axial_stiffness(),
+        m = line.mass_per_length,
+        w = line.submerged_weight,
+        d = line.diameter,
+        cd = line.drag_normal,
+        fx = top_force[0],
+        fz = top_force[1],
+    );
+    let section = solved(&text);
+    let ours = section.positions();
+    let angle = |p: &[[f64; 2]], i: usize, j: usize| {
+        (p[j][1] - p[i][1]).atan2(p[j][0] - p[i][0]).to_degrees()
+    };
+    // The truncation point: where the line crosses 80 % of the depth.
+    let crossing = |p: &[[f64; 2]]| {
+        p.windows(2)
+            .position(|w| w[0][1] <= 960.0 && w[1][1] > 960.0)
+            .expect("crosses z = 960 m")
+    };
+    let (k, kc) = (crossing(&ours), crossing(&reference));
+    assert_eq!(k, kc, "the same element crosses z = 960 m");
+    for (what, got, want) in [
+        ("top x", ours[80][0], reference[80][0]),
+        ("top z", ours[80][1], reference[80][1]),
+        ("node 64 x", ours[64][0], reference[64][0]),
+    ] {
+        println!("{what}: {got:.3} m, cable unit {want:.3} m");
+        assert!(
+            (got - want).abs() < 1e-3 * line.length,
+            "{what}: {got} m against {want} m"
+        );
+    }
+    let top = (angle(&ours, 79, 80), angle(&reference, 79, 80));
+    let truncation = (angle(&ours, k, k + 1), angle(&reference, k, k + 1));
+    println!(
+        "top angle {:.3} deg (cable {:.3}); truncation-point angle {:.3} deg (cable {:.3}, paper 39.2)",
+        top.0, top.1, truncation.0, truncation.1
+    );
+    assert!((top.0 - top.1).abs() < 0.01, "top angle {top:?}");
+    assert!(
+        (truncation.0 - truncation.1).abs() < 0.05,
+        "truncation angle {truncation:?}"
+    );
+    assert!(
+        (truncation.0 - 39.25).abs() < 0.1,
+        "truncation angle {} deg",
+        truncation.0
+    );
+}
