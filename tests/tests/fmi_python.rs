@@ -82,31 +82,39 @@ fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
     (names, rows)
 }
 
-#[test]
-#[ignore = "needs FMPy and pythonfmu in .venv: ./scripts/test.sh runs it"]
-fn fmpy_simulation_of_an_exported_unit_matches_the_native_unit_alone() {
+/// FMPy's run of `unit` of `scene` exported as an FMU, with its first input (if
+/// any) held at `force`, against the native unit stepped alike: the worst
+/// relative difference over every output and row.
+fn fmpy_against_native(
+    scene: &str,
+    unit: &str,
+    force: Option<f64>,
+    (stop, step): (f64, f64),
+) -> (usize, f64) {
     let dir = tempfile::tempdir().unwrap();
-    let (scene, unit, force) = ("examples/b3_force_displacement.toml", "b", 2.0);
     let file = fmu::export(scene, unit, dir.path());
     let csv = dir.path().join("fmpy.csv");
-    let out = python_script(&[
-        "simulate",
-        &file.display().to_string(),
-        &csv.display().to_string(),
-        "2.0",
-        "0.01",
-        &format!("force={force}"),
-    ]);
-    assert!(out.status.success());
+    let mut args = vec![
+        "simulate".to_owned(),
+        file.display().to_string(),
+        csv.display().to_string(),
+        stop.to_string(),
+        step.to_string(),
+    ];
+    args.extend(force.map(|f| format!("force={f}")));
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    assert!(python_script(&args).status.success());
     let (names, rows) = read_csv(&csv);
     // The native unit with the same constant input (FMPy holds unconnected
     // inputs at their start values).
     let config = ExportConfig::from_scene(&load(scene), unit).unwrap();
     let mut native = config.driver().unwrap();
-    native.set_hold(0, Hold::ZeroOrder).unwrap();
-    native.set_inputs(&[force]).unwrap();
+    if let Some(f) = force {
+        native.set_hold(0, Hold::ZeroOrder).unwrap();
+        native.set_inputs(&[f]).unwrap();
+    }
     native.initialize(Time::ZERO).unwrap();
-    let h = Time::from_secs(0.01).unwrap();
+    let h = Time::from_secs(step).unwrap();
     let ports: Vec<String> = native
         .description()
         .outputs
@@ -125,9 +133,33 @@ fn fmpy_simulation_of_an_exported_unit_matches_the_native_unit_alone() {
             worst = worst.max((row[column] - v).abs() / v.abs().max(1e-3));
         }
     }
-    println!("{} rows, worst relative difference {worst:.2e}", rows.len());
-    assert_eq!(rows.len(), 201);
+    println!(
+        "{scene} {unit}: {} rows, worst relative difference {worst:.2e}",
+        rows.len()
+    );
+    (rows.len(), worst)
+}
+
+#[test]
+#[ignore = "needs FMPy and pythonfmu in .venv: ./scripts/test.sh runs it"]
+fn fmpy_simulation_of_an_exported_unit_matches_the_native_unit_alone() {
+    let (rows, worst) = fmpy_against_native(
+        "examples/b3_force_displacement.toml",
+        "b",
+        Some(2.0),
+        (2.0, 0.01),
+    );
+    assert_eq!(rows, 201);
     // FMPy's CSV keeps 16 significant digits.
+    assert!(worst < 1e-14, "{worst:e}");
+}
+
+#[test]
+#[ignore = "needs FMPy and pythonfmu in .venv: ./scripts/test.sh runs it"]
+fn fmpy_simulation_of_the_nonlinear_frame_fmu_matches_the_native_section() {
+    let (rows, worst) =
+        fmpy_against_native("examples/seed002_frame.toml", "frame", None, (1.0, 0.001));
+    assert_eq!(rows, 1001);
     assert!(worst < 1e-14, "{worst:e}");
 }
 
