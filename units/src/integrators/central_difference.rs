@@ -13,6 +13,7 @@
 use super::hht::{Matrices, SecondOrderSystem};
 use crate::contract::UnitError;
 use crate::numerics::banded::BandLdlt;
+use crate::numerics::lanczos::largest_eigenvalue;
 
 /// The integrator: the factorised mass (with identity rows at prescribed DOFs) and
 /// the step's buffers.
@@ -114,49 +115,31 @@ impl CentralDifference {
         Ok(())
     }
 
-    /// The critical step `2 / omega_max` (s) of the linear part, with omega_max^2
-    /// the largest eigenvalue of `M^-1 K` by power iteration (at most
-    /// `max_iterations`, stopping when it changes by less than 1e-10 relative).
-    /// Power iteration approaches omega_max from below, so the step is an upper
-    /// estimate: step below it with a margin.
-    pub fn critical_step(m: &Matrices<'_>, max_iterations: usize) -> Result<f64, UnitError> {
-        let n = m.mass.size();
+    /// The critical step `2 / omega_max` (s) of the linear part, omega_max^2 the
+    /// largest eigenvalue of K x = lambda M x by Lanczos (at most `max_steps`
+    /// steps) and taken at its upper bound, so the step errs on the safe side.
+    pub fn critical_step(m: &Matrices<'_>, max_steps: usize) -> Result<f64, UnitError> {
         let stiffness = m.stiffness.ok_or_else(|| {
             UnitError::Numerical("critical step: no stiffness matrix given".into())
         })?;
-        let mass = BandLdlt::new(m.mass).ok_or_else(|| {
-            UnitError::Numerical("critical step: the mass matrix is not positive definite".into())
+        let top = largest_eigenvalue(stiffness, m.mass, 1e-10, max_steps).ok_or_else(|| {
+            UnitError::Numerical(
+                "critical step: the mass matrix is not positive definite or M^-1 K is not finite"
+                    .into(),
+            )
         })?;
-        // A start vector with every mode in it.
-        let mut x: Vec<f64> = (0..n)
-            .map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0)
-            .collect();
-        let mut y = vec![0.0; n];
-        let mut lambda = 0.0_f64;
-        for _ in 0..max_iterations {
-            y.fill(0.0);
-            stiffness.mul_add(1.0, &x, &mut y);
-            mass.solve_in_place(&mut y);
-            let norm = y.iter().map(|v| v * v).sum::<f64>().sqrt();
-            let x_norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
-            if !(norm.is_finite() && norm > 0.0) {
-                return Err(UnitError::Numerical(
-                    "critical step: M^-1 K has no positive eigenvalue".into(),
-                ));
-            }
-            let next = norm / x_norm;
-            for (xi, yi) in x.iter_mut().zip(&y) {
-                *xi = yi / norm;
-            }
-            let converged = (next - lambda).abs() <= 1e-10 * next;
-            lambda = next;
-            if converged {
-                return Ok(2.0 / lambda.sqrt());
-            }
+        if !(top.estimate > 0.0) {
+            return Err(UnitError::Numerical(
+                "critical step: M^-1 K has no positive eigenvalue".into(),
+            ));
         }
-        Err(UnitError::Numerical(format!(
-            "critical step: the power iteration did not settle in {max_iterations} iterations"
-        )))
+        if top.upper_bound - top.estimate > 1e-6 * top.estimate {
+            return Err(UnitError::Numerical(format!(
+                "critical step: Lanczos did not settle in {} steps (omega_max^2 between {:.6e} and {:.6e})",
+                top.steps, top.estimate, top.upper_bound
+            )));
+        }
+        Ok(2.0 / top.upper_bound.sqrt())
     }
 }
 
@@ -285,7 +268,7 @@ mod tests {
         let omega_max = 2.0
             * k.sqrt()
             * ((2.0 * j - 1.0) * std::f64::consts::PI / (2.0 * (2.0 * j + 1.0))).sin();
-        let h = CentralDifference::critical_step(&chain.matrices(), 100_000).unwrap();
+        let h = CentralDifference::critical_step(&chain.matrices(), 200).unwrap();
         let exact = 2.0 / omega_max;
         assert!(((h - exact) / exact).abs() < 1e-4, "{h} vs {exact}");
     }

@@ -2,4 +2,5 @@
 
 pub mod banded;
 pub mod bounded;
+pub mod lanczos;
 pub mod modal;
