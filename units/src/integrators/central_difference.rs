@@ -128,7 +128,7 @@ impl CentralDifference {
                     .into(),
             )
         })?;
-        if !(top.estimate > 0.0) {
+        if top.estimate.is_nan() || top.estimate <= 0.0 {
             return Err(UnitError::Numerical(
                 "critical step: M^-1 K has no positive eigenvalue".into(),
             ));
