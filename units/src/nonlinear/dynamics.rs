@@ -153,7 +153,8 @@ impl NonlinearSection {
 
     /// One step from t0 to t1 = t0 + h (s); returns the Newton iterations (0 for
     /// central differences). Where Newton fails, the step is retried in 2, 4, ...
-    /// equal sub-steps up to `max_substeps`. On failure the state is unchanged.
+    /// equal sub-steps up to `max_substeps`. On a Newton failure the state is
+    /// unchanged; after any other failure only its time is reset.
     pub(super) fn step(
         &mut self,
         inputs: Inputs<'_>,
@@ -162,21 +163,32 @@ impl NonlinearSection {
         h: f64,
     ) -> Result<u32, UnitError> {
         let mut w = std::mem::take(&mut self.work);
-        match w.backup.as_mut() {
-            Some(b) => b.clone_from(&self.state),
-            None => w.backup = Some(self.state.clone()),
-        }
+        // A whole step leaves the state at its start when Newton fails, so the
+        // copy for sub-stepping is only taken then (nothing per ordinary step).
         let mut pieces = 1;
         let result = loop {
             match self.step_in_pieces(inputs, &mut w, (t0, t1, h), pieces) {
                 Ok(iterations) => break Ok(iterations),
                 Err(failure) => {
-                    if let Some(b) = &w.backup {
-                        self.state.clone_from(b);
+                    if pieces > 1 {
+                        if let Some(b) = &w.backup {
+                            self.state.clone_from(b);
+                        }
                     }
                     match failure {
-                        Failure::Newton(_) if pieces < self.params.max_substeps => pieces *= 2,
-                        Failure::Newton(e) | Failure::Other(e) => break Err(e),
+                        Failure::Newton(_) if pieces < self.params.max_substeps => {
+                            if pieces == 1 {
+                                match w.backup.as_mut() {
+                                    Some(b) => b.clone_from(&self.state),
+                                    None => w.backup = Some(self.state.clone()),
+                                }
+                            }
+                            pieces *= 2;
+                        }
+                        Failure::Newton(e) | Failure::Other(e) => {
+                            self.state.t = t0;
+                            break Err(e);
+                        }
                     }
                 }
             }

@@ -175,6 +175,11 @@ impl NonlinearSection {
         self.model.positions(&self.state.q)
     }
 
+    /// The Newton matrix of the last implicit iteration (for solver comparisons).
+    pub fn newton_matrix(&self) -> &SymmetricBand {
+        self.hht.newton_matrix()
+    }
+
     /// The critical step of central differences (s), after `initialize`.
     pub fn critical_step(&self) -> f64 {
         self.critical_step

@@ -186,8 +186,8 @@ impl BandLdlt {
 
     /// Refactorises for a symmetric `a` that may be indefinite (a Newton matrix of
     /// a structure past a limit point): negative pivots are kept; false when a
-    /// pivot is zero to round-off (below 1e-13 of the largest diagonal entry) or
-    /// not finite. Without pivoting, so meant for matrices dominated by a positive
+    /// pivot is zero to round-off (below 1e-13 of its diagonal entry) or not
+    /// finite. Without pivoting, so meant for matrices dominated by a positive
     /// mass term.
     pub fn refactorise_nonsingular(&mut self, a: &SymmetricBand) -> bool {
         self.n = a.n;
@@ -200,14 +200,10 @@ impl BandLdlt {
         let (n, w) = (self.n, self.w);
         let f = &mut self.band;
         let s = w + 1;
-        let smallest = if indefinite {
-            1e-13 * (0..n).fold(0.0f64, |m, j| m.max(f[j * s].abs()))
-        } else {
-            0.0
-        };
         for j in 0..n {
             // d_j = a_jj - sum_k l_jk^2 d_k
             let mut d = f[j * s];
+            let smallest = 1e-13 * d.abs();
             for k in 1..=w.min(j) {
                 let l = f[j * s + k];
                 d -= l * l * f[(j - k) * s];
@@ -308,6 +304,30 @@ mod tests {
         f.solve_in_place(&mut x);
         BandLdlt::new(&b).unwrap().solve_in_place(&mut y);
         assert_eq!(x, y);
+    }
+
+    #[test]
+    fn an_indefinite_nonsingular_matrix_factorises_and_a_singular_one_is_refused() {
+        // [[1, 2], [2, 1]] (eigenvalues 3, -1) next to an identity row and a large
+        // entry: the pivots are checked against their own diagonal.
+        let mut a = SymmetricBand::zeros(3, 1);
+        a.add(0, 0, 1.0);
+        a.add(1, 0, 2.0);
+        a.add(1, 1, 1.0);
+        a.add(2, 2, 1e12);
+        assert!(BandLdlt::new(&a).is_none(), "not positive definite");
+        let mut f = BandLdlt::zeros(3, 1);
+        assert!(f.refactorise_nonsingular(&a));
+        let mut x = vec![3.0, 3.0, 2e12];
+        f.solve_in_place(&mut x);
+        for (got, want) in x.iter().zip([1.0, 1.0, 2.0]) {
+            assert!((got - want).abs() < 1e-12, "{x:?}");
+        }
+        let mut singular = SymmetricBand::zeros(2, 1);
+        singular.add(0, 0, 1.0);
+        singular.add(1, 0, 1.0);
+        singular.add(1, 1, 1.0);
+        assert!(!BandLdlt::zeros(2, 1).refactorise_nonsingular(&singular));
     }
 
     #[test]
