@@ -68,6 +68,14 @@ pub trait SecondOrderSystem {
     fn after_iteration(&mut self, q: &[f64], t: f64) {
         let _ = (q, t);
     }
+
+    /// May scale a Newton correction `dq` down (a damped step, e.g. to keep a
+    /// rotation from jumping by turns where the tangent is nearly singular);
+    /// returns the factor applied (1 leaves it unchanged).
+    fn limit_correction(&self, dq: &mut [f64]) -> f64 {
+        let _ = dq;
+        1.0
+    }
 }
 
 /// What one step needs besides the system.
@@ -279,6 +287,7 @@ impl HhtAlpha {
                 *r = -*r;
             }
             factor.solve_in_place(&mut self.residual);
+            let damped = system.limit_correction(&mut self.residual) < 1.0;
             let step = self.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
             self.history.push(step);
             for (y, dy) in self.y.iter_mut().zip(&self.residual) {
@@ -290,7 +299,7 @@ impl HhtAlpha {
             }
             // Relative to the solution's size: below ~1e-12 |y| only round-off moves.
             let size = self.y.iter().fold(1.0f64, |m, y| m.max(y.abs()));
-            if linear || step < newton.tolerance * size {
+            if linear || (!damped && step < newton.tolerance * size) {
                 converged = Some(iteration);
                 break;
             }

@@ -415,6 +415,18 @@ impl SecondOrderSystem for NonlinearSection {
         false
     }
 
+    /// A correction moving a node by more than the shortest element or turning
+    /// it by more than 0.5 rad is scaled down: where a slack part makes the
+    /// tangent nearly singular, an undamped step can turn a node by whole turns,
+    /// which the wrapped local rotations accept as an equilibrium.
+    fn limit_correction(&self, dq: &mut [f64]) -> f64 {
+        let factor = self.correction_limit(dq);
+        if factor < 1.0 {
+            dq.iter_mut().for_each(|d| *d *= factor);
+        }
+        factor
+    }
+
     fn nonlinear_force(
         &mut self,
         q: &[f64],

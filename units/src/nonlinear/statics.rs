@@ -182,7 +182,7 @@ impl NonlinearSection {
 impl NonlinearSection {
     /// The factor (at most 1) that keeps a Newton correction within the shortest
     /// element's length per node and 0.5 rad per rotation.
-    fn correction_limit(&self, dq: &[f64]) -> f64 {
+    pub(super) fn correction_limit(&self, dq: &[f64]) -> f64 {
         let shortest = self
             .model
             .elements
