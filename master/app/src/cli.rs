@@ -158,10 +158,20 @@ pub enum Command {
     /// Writes study.csv, study.md and study.svg.
     Study {
         scene: PathBuf,
-        /// SETTING=V1,V2,...; SETTING is elements, step, velocity_tolerance or
+        /// KEY=V1,V2,...; KEY is a scene key by its path (simulation.step,
+        /// master.scheme, master.acceleration.kind,
+        /// units.<name>.parameters.<key>, an array element by index) or a short
+        /// name: elements (every cable unit), step, velocity_tolerance,
         /// force_tolerance. Repeat for several sweeps.
         #[arg(long = "vary", required = true)]
         sweeps: Vec<slender_app::study::Sweep>,
+        /// Run every combination of the sweeps' values instead of one sweep at a
+        /// time.
+        #[arg(long)]
+        grid: bool,
+        /// Runs at once (default: the machine's cores); results do not depend on it.
+        #[arg(long)]
+        jobs: Option<usize>,
         /// Simulated time of each run (s); default: the scene's duration.
         #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,

@@ -179,21 +179,28 @@ pub fn mode_shapes(
 /// per simulated second (right) against the setting's value, log-log.
 pub fn study(path: &Path, title: &str, rows: &[crate::study::StudyRow]) -> Result<(), PlotError> {
     let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
-    let mut knobs: Vec<crate::study::Knob> = Vec::new();
-    for r in rows {
-        if !knobs.contains(&r.setting) {
-            knobs.push(r.setting);
+    // One row of panels per group whose values are numbers.
+    let mut knobs: Vec<String> = Vec::new();
+    for r in rows
+        .iter()
+        .filter(|r| r.value.is_finite() && r.settings.len() == 1)
+    {
+        if !knobs.contains(&r.group) {
+            knobs.push(r.group.clone());
         }
     }
-    let root = SVGBackend::new(path, (1100, 60 + 300 * knobs.len() as u32)).into_drawing_area();
+    let root =
+        SVGBackend::new(path, (1100, 60 + 300 * knobs.len().max(1) as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let root = root
         .titled(title, ("sans-serif", 22))
         .map_err(|e| fail(&e))?;
-    let cells = root.split_evenly((knobs.len(), 2));
+    let cells = root.split_evenly((knobs.len().max(1), 2));
     for (k, knob) in knobs.iter().enumerate() {
-        let mine: Vec<&crate::study::StudyRow> =
-            rows.iter().filter(|r| r.setting == *knob).collect();
+        let mine: Vec<&crate::study::StudyRow> = rows
+            .iter()
+            .filter(|r| r.group == *knob && r.value.is_finite())
+            .collect();
         let names: Vec<String> = mine
             .first()
             .map(|r| r.errors.iter().map(|e| e.0.clone()).collect())
@@ -217,22 +224,10 @@ pub fn study(path: &Path, title: &str, rows: &[crate::study::StudyRow]) -> Resul
                 .map(|r| (r.value, r.cost_per_simulated_second))
                 .collect(),
         )];
-        log_log_panel(
-            &cells[2 * k],
-            &knob.to_string(),
-            "epsilon vs finest",
-            0,
-            &errors,
-        )
-        .map_err(|e| fail(&e))?;
-        log_log_panel(
-            &cells[2 * k + 1],
-            &knob.to_string(),
-            "s per simulated s",
-            1,
-            &cost,
-        )
-        .map_err(|e| fail(&e))?;
+        log_log_panel(&cells[2 * k], knob, "epsilon vs reference", 0, &errors)
+            .map_err(|e| fail(&e))?;
+        log_log_panel(&cells[2 * k + 1], knob, "s per simulated s", 1, &cost)
+            .map_err(|e| fail(&e))?;
     }
     root.present().map_err(|e| fail(&e))
 }

@@ -91,6 +91,11 @@ impl Scene {
         Ok(scene)
     }
 
+    /// The scene's TOML text as loaded.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
     fn error(
         &self,
         span: Option<std::ops::Range<usize>>,

@@ -1,7 +1,7 @@
 //! `slender modes` and `slender study`.
 
 use super::{CliError, count_in, load, positive, report_written, results_folder};
-use slender_app::study::{self, Sweep};
+use slender_app::study::{self, StudyPlan};
 use std::path::{Path, PathBuf};
 
 /// Modes of a unit about its initial state: a table on screen, modes.csv and
@@ -62,15 +62,11 @@ pub fn modes(
 
 /// A convergence and cost study; the rows are written even when some runs fail
 /// (those are marked FAILED with their reason).
-pub fn study(
-    path: &Path,
-    sweeps: &[Sweep],
-    duration: Option<f64>,
-    out: Option<PathBuf>,
-) -> Result<(), CliError> {
-    if let Some(d) = duration {
+pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), CliError> {
+    if let Some(d) = plan.duration {
         positive("--duration", d)?;
     }
+    count_in("--jobs", plan.jobs, 1, 1024)?;
     let scene = load(path)?;
     let dir = out.unwrap_or_else(|| {
         let mut d = scene.default_output_dir().into_os_string();
@@ -79,10 +75,10 @@ pub fn study(
     });
     results_folder(&dir)?;
     println!(
-        "{:<20} {:>10}  epsilon vs finest          it/step   s per sim. s",
+        "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"
     );
-    let rows = study::run_study(path, sweeps, duration, print_row).map_err(CliError::input)?;
+    let rows = study::run_study(path, plan, print_row).map_err(CliError::input)?;
     let failed = rows.iter().filter(|r| r.error.is_some()).count();
     let csv = dir.join("study.csv");
     std::fs::write(&csv, study::to_csv(&rows))
@@ -108,16 +104,23 @@ pub fn study(
     Ok(())
 }
 
+/// One finished run (groups print when all their runs are done).
 fn print_row(r: &study::StudyRow) {
     let eps: Vec<String> = r
         .errors
         .iter()
         .map(|(n, e)| format!("{n} {e:.2e}"))
         .collect();
+    let (setting, value) = if r.settings.len() == 1 {
+        (r.settings[0].0.clone(), r.settings[0].1.clone())
+    } else {
+        let keys: Vec<String> = r.settings.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        (keys.join(" "), String::new())
+    };
     println!(
-        "{:<20} {:>10}  {:<26} {:>6.2}   {:.3e}{}",
-        r.setting.to_string(),
-        r.value,
+        "{:<28} {:>14}  {:<26} {:>6.2}   {:.3e}{}",
+        setting,
+        value,
         eps.join(", "),
         r.iterations_per_step,
         r.cost_per_simulated_second,

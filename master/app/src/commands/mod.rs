@@ -56,9 +56,25 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         Command::Study {
             scene,
             sweeps,
+            grid,
+            jobs,
             duration,
             out,
-        } => analysis::study(&scene, &sweeps, duration, out),
+        } => {
+            let plan = slender_app::study::StudyPlan {
+                sweeps,
+                design: if grid {
+                    slender_app::study::Design::Grid
+                } else {
+                    slender_app::study::Design::OneAtATime
+                },
+                duration,
+                jobs: jobs.unwrap_or_else(|| {
+                    std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
+                }),
+            };
+            analysis::study(&scene, &plan, out)
+        }
         Command::Span {
             action,
             flexural_rigidity,

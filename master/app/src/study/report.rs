@@ -1,0 +1,116 @@
+//! A study's rows as CSV and as a Markdown table.
+
+use super::StudyRow;
+
+/// The setting column: the key of a one-at-a-time sweep, or every key=value of a
+/// grid point.
+fn setting_of(r: &StudyRow) -> String {
+    if r.settings.len() == 1 {
+        r.settings[0].0.clone()
+    } else {
+        r.settings
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect::<Vec<_>>()
+            .join(";")
+    }
+}
+
+fn value_of(r: &StudyRow) -> String {
+    r.settings
+        .first()
+        .map(|(_, v)| v.clone())
+        .unwrap_or_default()
+}
+
+fn names(rows: &[StudyRow]) -> Vec<&str> {
+    rows.first()
+        .map(|r| r.errors.iter().map(|(n, _)| n.as_str()).collect())
+        .unwrap_or_default()
+}
+
+/// The rows as CSV: setting, value, epsilon and observed order per indicator,
+/// iterations per step, cost, error.
+pub fn to_csv(rows: &[StudyRow]) -> String {
+    let names = names(rows);
+    let eps: Vec<String> = names.iter().map(|n| format!("epsilon_{n}")).collect();
+    let orders: Vec<String> = names.iter().map(|n| format!("order_{n}")).collect();
+    let mut out = format!(
+        "setting,value,{},{},iterations_per_step,cost_per_simulated_second,error\n",
+        eps.join(","),
+        orders.join(",")
+    );
+    for r in rows {
+        let eps: Vec<String> = r.errors.iter().map(|(_, e)| format!("{e:e}")).collect();
+        let orders: Vec<String> = r.orders.iter().map(|(_, p)| format!("{p}")).collect();
+        out += &format!(
+            "{},{},{},{},{},{:e},{}\n",
+            setting_of(r).replace(',', ";"),
+            value_of(r).replace(',', ";"),
+            eps.join(","),
+            orders.join(","),
+            r.iterations_per_step,
+            r.cost_per_simulated_second,
+            r.error.as_deref().unwrap_or("").replace(',', ";")
+        );
+    }
+    out
+}
+
+/// The rows as a Markdown table.
+pub fn to_markdown(rows: &[StudyRow]) -> String {
+    let names = names(rows);
+    let mut out = format!(
+        "| setting | value | {} | {} | iterations/step | cost (s per simulated s) |\n|---|---|{}{}---|---|\n",
+        names
+            .iter()
+            .map(|n| format!("epsilon {n}"))
+            .collect::<Vec<_>>()
+            .join(" | "),
+        names
+            .iter()
+            .map(|n| format!("order {n}"))
+            .collect::<Vec<_>>()
+            .join(" | "),
+        "---|".repeat(names.len()),
+        "---|".repeat(names.len())
+    );
+    for r in rows {
+        let eps: Vec<String> = r
+            .errors
+            .iter()
+            .map(|(_, e)| {
+                if r.reference {
+                    "reference".into()
+                } else {
+                    format!("{e:.2e}")
+                }
+            })
+            .collect();
+        let orders: Vec<String> = r
+            .orders
+            .iter()
+            .map(|(_, p)| {
+                if p.is_finite() {
+                    format!("{p:.2}")
+                } else {
+                    "-".into()
+                }
+            })
+            .collect();
+        out += &format!(
+            "| {} | {} | {} | {} | {:.2} | {:.2e} |{}\n",
+            setting_of(r),
+            value_of(r),
+            eps.join(" | "),
+            orders.join(" | "),
+            r.iterations_per_step,
+            r.cost_per_simulated_second,
+            r.error
+                .as_ref()
+                .map(|e| format!(" failed: {e}"))
+                .unwrap_or_default()
+        );
+    }
+    out
+}

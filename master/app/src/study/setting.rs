@@ -1,0 +1,306 @@
+//! What a study varies: a scene key by its path (`simulation.step`,
+//! `master.scheme`, `master.acceleration.kind`,
+//! `units.<name>.parameters.segments.0.elements`, ...) or one of the short names
+//! of seed 000's Appendix B study, and the values it takes. A value is applied to
+//! the scene's TOML before the scene is checked, so any key the scene reference
+//! documents can vary.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// The short names: `elements` sets every `cable` unit's element count; the
+/// others name a master or simulation key.
+const SHORT: [(&str, &str); 4] = [
+    ("elements", ""),
+    ("step", "simulation.step"),
+    ("velocity_tolerance", "master.tolerances.velocity"),
+    ("force_tolerance", "master.tolerances.force"),
+];
+
+/// Which value of a sweep is the reference of the others.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Refinement {
+    /// The smallest value is the finest (steps, tolerances): errors shrink with it.
+    Smaller,
+    /// The largest value is the finest (element counts).
+    Larger,
+    /// No order: the first value given is the reference.
+    None,
+}
+
+/// A varied key.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Setting {
+    /// As the user wrote it (a short name or a dotted path).
+    pub name: String,
+    /// The dotted path; empty for `elements` (every cable unit).
+    path: Vec<String>,
+}
+
+impl Setting {
+    /// How the setting's values are ordered by fineness.
+    pub fn refinement(&self) -> Refinement {
+        let last = self.path.last().map_or(self.name.as_str(), String::as_str);
+        if last == "elements" || self.name == "elements" {
+            Refinement::Larger
+        } else if last == "step"
+            || last.ends_with("tolerance")
+            || self.path.iter().any(|p| p == "tolerances")
+        {
+            Refinement::Smaller
+        } else {
+            Refinement::None
+        }
+    }
+
+    /// Sets `value` in the scene (its TOML, before the scene is checked).
+    /// `units.<name>` finds a unit by its name, a number indexes an array, and
+    /// missing tables are made (a parameter left at its default can vary).
+    pub fn apply(&self, scene: &mut toml::Table, value: &toml::Value) -> Result<(), String> {
+        if self.path.is_empty() {
+            return set_cable_elements(scene, value);
+        }
+        let (last, parents) = self.path.split_last().ok_or("an empty key")?;
+        let mut here: &mut toml::Table = scene;
+        let mut walked = String::new();
+        let mut i = 0;
+        while i < parents.len() {
+            let part = &parents[i];
+            walked = if walked.is_empty() {
+                part.clone()
+            } else {
+                format!("{walked}.{part}")
+            };
+            if i == 0 && part == "units" {
+                let name = parents
+                    .get(1)
+                    .ok_or("`units` needs a unit name: units.<name>.<key>")?;
+                here = unit_table(here, name)?;
+                walked = format!("units.{name}");
+                i += 2;
+                continue;
+            }
+            let entry = here
+                .entry(part.clone())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            here = match entry {
+                toml::Value::Table(t) => t,
+                toml::Value::Array(items) => {
+                    let index = parents.get(i + 1).and_then(|p| p.parse::<usize>().ok());
+                    let count = items.len();
+                    let item = index.and_then(|k| items.get_mut(k)).ok_or_else(|| {
+                        format!("`{walked}` is a list of {count}: give an index 0..{count} next")
+                    })?;
+                    walked = format!("{walked}.{}", parents[i + 1]);
+                    i += 1;
+                    item.as_table_mut()
+                        .ok_or_else(|| format!("`{walked}` is not a table"))?
+                }
+                _ => return Err(format!("`{walked}` is a value, not a table")),
+            };
+            i += 1;
+        }
+        here.insert(last.clone(), value.clone());
+        Ok(())
+    }
+}
+
+/// The table of unit `name` in the scene's `[[units]]`.
+fn unit_table<'a>(scene: &'a mut toml::Table, name: &str) -> Result<&'a mut toml::Table, String> {
+    let units = scene
+        .get_mut("units")
+        .and_then(toml::Value::as_array_mut)
+        .ok_or("the scene has no [[units]]")?;
+    let names: Vec<String> = units
+        .iter()
+        .filter_map(|u| {
+            u.get("name")
+                .and_then(toml::Value::as_str)
+                .map(str::to_owned)
+        })
+        .collect();
+    units
+        .iter_mut()
+        .find(|u| u.get("name").and_then(toml::Value::as_str) == Some(name))
+        .and_then(toml::Value::as_table_mut)
+        .ok_or_else(|| format!("no unit named `{name}`; the scene has {}", names.join(", ")))
+}
+
+fn set_cable_elements(scene: &mut toml::Table, value: &toml::Value) -> Result<(), String> {
+    let units = scene.get_mut("units").and_then(toml::Value::as_array_mut);
+    let mut found = false;
+    for unit in units.into_iter().flatten() {
+        if unit.get("kind").and_then(toml::Value::as_str) == Some("cable") {
+            let parameters = unit
+                .as_table_mut()
+                .ok_or("a unit is not a table")?
+                .entry("parameters")
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            if let Some(p) = parameters.as_table_mut() {
+                p.insert("elements".into(), value.clone());
+                found = true;
+            }
+        }
+    }
+    if found {
+        Ok(())
+    } else {
+        Err("the scene has no `cable` unit whose elements could vary".into())
+    }
+}
+
+impl FromStr for Setting {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Setting, String> {
+        let name = s.trim();
+        if let Some((_, path)) = SHORT.iter().find(|(short, _)| *short == name) {
+            let path = path
+                .split('.')
+                .filter(|p| !p.is_empty())
+                .map(str::to_owned)
+                .collect();
+            return Ok(Setting {
+                name: name.to_owned(),
+                path,
+            });
+        }
+        let path: Vec<String> = name.split('.').map(str::to_owned).collect();
+        let known = ["simulation", "master", "units", "output", "structure"];
+        if path.len() < 2 || path.iter().any(String::is_empty) || !known.contains(&path[0].as_str())
+        {
+            let shorts = SHORT.iter().map(|(s, _)| *s);
+            return Err(format!(
+                "unknown study setting `{name}`{}: expected elements, step, velocity_tolerance, force_tolerance or a scene key path such as master.scheme or units.<name>.parameters.<key>",
+                slender_coupling::error::did_you_mean(name, shorts)
+            ));
+        }
+        Ok(Setting {
+            name: name.to_owned(),
+            path,
+        })
+    }
+}
+
+impl fmt::Display for Setting {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.name)
+    }
+}
+
+/// A command-line value as TOML: an integer, a float, true/false, else a string.
+pub fn parse_value(text: &str) -> toml::Value {
+    let t = text.trim();
+    if let Ok(i) = t.parse::<i64>() {
+        toml::Value::Integer(i)
+    } else if let Ok(x) = t.parse::<f64>() {
+        toml::Value::Float(x)
+    } else if let Ok(b) = t.parse::<bool>() {
+        toml::Value::Boolean(b)
+    } else {
+        toml::Value::String(t.to_owned())
+    }
+}
+
+/// A value as a number, when it is one.
+pub fn numeric(value: &toml::Value) -> Option<f64> {
+    match value {
+        toml::Value::Integer(i) => Some(*i as f64),
+        toml::Value::Float(x) => Some(*x),
+        _ => None,
+    }
+}
+
+/// A value as the table shows it.
+pub fn label(value: &toml::Value) -> String {
+    match value {
+        toml::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene() -> toml::Table {
+        toml::from_str(
+            r#"
+[simulation]
+step = 0.01
+[master]
+scheme = "jacobi"
+[[units]]
+name = "a"
+kind = "cable"
+parameters = { elements = 10 }
+[[units]]
+name = "b"
+kind = "nonlinear"
+[units.parameters]
+segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
+"#,
+        )
+        .unwrap()
+    }
+
+    fn set(key: &str, value: &str) -> Result<toml::Table, String> {
+        let mut t = scene();
+        key.parse::<Setting>()?.apply(&mut t, &parse_value(value))?;
+        Ok(t)
+    }
+
+    #[test]
+    fn paths_reach_units_by_name_arrays_by_index_and_make_missing_tables() {
+        let t = set("units.b.parameters.segments.1.elements", "16").unwrap();
+        assert_eq!(
+            t["units"][1]["parameters"]["segments"][1]["elements"].as_integer(),
+            Some(16)
+        );
+        let t = set("master.acceleration.kind", "aitken").unwrap();
+        assert_eq!(t["master"]["acceleration"]["kind"].as_str(), Some("aitken"));
+        let t = set("step", "0.005").unwrap();
+        assert_eq!(t["simulation"]["step"].as_float(), Some(0.005));
+        let t = set("elements", "40").unwrap();
+        assert_eq!(
+            t["units"][0]["parameters"]["elements"].as_integer(),
+            Some(40)
+        );
+        assert!(t["units"][1]["parameters"].get("elements").is_none());
+    }
+
+    #[test]
+    fn bad_paths_say_what_is_there() {
+        assert!(
+            set("units.c.parameters.x", "1")
+                .unwrap_err()
+                .contains("the scene has a, b")
+        );
+        assert!(
+            set("units.b.parameters.segments.5.elements", "1")
+                .unwrap_err()
+                .contains("list of 2")
+        );
+        assert!(
+            set("master.scheme.kind", "1")
+                .unwrap_err()
+                .contains("is a value")
+        );
+        assert!(
+            set("nonsense", "1")
+                .unwrap_err()
+                .contains("unknown study setting")
+        );
+    }
+
+    #[test]
+    fn refinement_follows_the_key() {
+        let r = |k: &str| k.parse::<Setting>().unwrap().refinement();
+        assert_eq!(r("simulation.step"), Refinement::Smaller);
+        assert_eq!(r("master.tolerances.force"), Refinement::Smaller);
+        assert_eq!(
+            r("units.b.parameters.segments.0.elements"),
+            Refinement::Larger
+        );
+        assert_eq!(r("master.scheme"), Refinement::None);
+    }
+}
