@@ -50,6 +50,25 @@ pub fn stiffness(ei: f64, lengths: &[f64]) -> SymmetricBand {
     m
 }
 
+/// Geometric stiffness of a constant axial tension, -T y'' (T in N, negative in
+/// compression), assembled over elements: T / (30 l) times the Hermite matrix of
+/// integral N'^T N' dx, added to the bending stiffness where a section carries
+/// tension (a hanging pipe; EI -> 0 leaves a taut string).
+pub fn add_geometric_stiffness(k: &mut SymmetricBand, tension: f64, lengths: &[f64]) {
+    if tension == 0.0 {
+        return;
+    }
+    for (e, &l) in lengths.iter().enumerate() {
+        let m = [
+            [36.0, 3.0 * l, -36.0, 3.0 * l],
+            [3.0 * l, 4.0 * l * l, -3.0 * l, -l * l],
+            [-36.0, -3.0 * l, 36.0, -3.0 * l],
+            [3.0 * l, -l * l, -3.0 * l, 4.0 * l * l],
+        ];
+        add_element(k, e, &m, tension / (30.0 * l));
+    }
+}
+
 /// Consistent mass mu y'' assembled over elements.
 pub fn mass(mu: f64, lengths: &[f64]) -> SymmetricBand {
     let mut m = SymmetricBand::zeros(2 * (lengths.len() + 1), BAND);

@@ -127,7 +127,8 @@ impl Beam {
         let nodes = lengths.len() + 1;
         let n = 2 * nodes;
         let m = elements::mass(params.mass_per_length, &lengths);
-        let k = elements::stiffness(params.flexural_rigidity, &lengths);
+        let mut k = elements::stiffness(params.flexural_rigidity, &lengths);
+        elements::add_geometric_stiffness(&mut k, params.tension, &lengths);
         let mut c = SymmetricBand::zeros(n, elements::BAND);
         c.set_combination(&[
             (

@@ -81,6 +81,10 @@ pub struct BeamParams {
     pub flexural_rigidity: f64,
     /// mu (kg/m).
     pub mass_per_length: f64,
+    /// Constant axial tension T (N; negative in compression): adds -T y'' to the
+    /// equation, so `shear` at an end is the transverse force EI y''' - T y'.
+    #[serde(default)]
+    pub tension: f64,
     /// c_d (N s/m^2): distributed viscous damping c_d y' (seed 004 eq. 2.11).
     #[serde(default)]
     pub damping_per_length: f64,
@@ -161,6 +165,7 @@ impl BeamParams {
             element_lengths: None,
             flexural_rigidity,
             mass_per_length,
+            tension: 0.0,
             damping_per_length: 0.0,
             rayleigh_mass: 0.0,
             rayleigh_stiffness: 0.0,
@@ -244,6 +249,7 @@ impl BeamParams {
         )?;
         require_non_negative("rayleigh_mass", self.rayleigh_mass)?;
         require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
+        require_in_range("tension", self.tension, -1e10, 1e10, "N")?;
         for (name, poly) in [
             ("distributed_load", &self.distributed_load),
             ("initial_deflection", &self.initial_deflection),
