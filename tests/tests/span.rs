@@ -16,6 +16,7 @@ fn bode_span(cd: f64) -> Span {
         mass_per_length: 1e2,
         damping_per_length: cd,
         length: 10.0,
+        tension: 0.0,
     }
 }
 
@@ -286,9 +287,40 @@ mod unit {
             mass_per_length: 1e2,
             damping_per_length: cd,
             length: 10.0,
+            tension: 0.0,
             approximation,
             order,
             band: 2.0 * std::f64::consts::PI * 10.0,
+        }
+    }
+
+    #[test]
+    fn with_tension_only_the_fit_is_offered() {
+        for a in [
+            Approximation::Taylor,
+            Approximation::TermPade,
+            Approximation::FunctionPade,
+        ] {
+            let mut p = params(a, 8, 5.0);
+            p.tension = 1e5;
+            let e = SpanUnit::new(p).err().expect("refused");
+            assert!(e.to_string().contains("`fit` with a tension"), "{e}");
+        }
+        let mut p = params(Approximation::Fit, 12, 5.0);
+        p.tension = 1e5;
+        let mut unit = Driver::new(SpanUnit::new(p).expect("fit with tension"));
+        unit.set_inputs(&[1e-3]).unwrap();
+        unit.initialize(Time::ZERO).unwrap();
+        // A rotation at the upper end against the tension: a stiff, bounded answer.
+        let mut out = [0.0];
+        for k in 0..1000 {
+            unit.do_step(
+                Time::from_secs(1e-3).unwrap() * k,
+                Time::from_secs(1e-3).unwrap(),
+            )
+            .unwrap();
+            unit.outputs(&mut out).unwrap();
+            assert!(out[0].is_finite());
         }
     }
 
@@ -365,6 +397,7 @@ mod unit {
             mass_per_length: 1e2,
             damping_per_length: 5.0,
             length: 10.0,
+            tension: 0.0,
         };
         Driver::new(slender_app::span_study::fe_span(&span, elements).unwrap())
     }

@@ -18,6 +18,7 @@ const SPAN: Span = Span {
     mass_per_length: 1.0e2,
     damping_per_length: 5.0,
     length: 10.0,
+    tension: 0.0,
 };
 const BAND: f64 = 2.0 * std::f64::consts::PI * 10.0;
 
@@ -27,6 +28,7 @@ fn params(orientation: Orientation, order: usize) -> SpanCouplingParams {
         mass_per_length: SPAN.mass_per_length,
         damping_per_length: SPAN.damping_per_length,
         length: SPAN.length,
+        tension: SPAN.tension,
         orientation,
         order,
         band: BAND,
@@ -172,6 +174,83 @@ fn the_coupling_unit_matches_an_fe_span_with_the_same_four_end_conditions() {
             to_fe64[j] < 2.0 * fe_convergence[j].max(1e-3),
             "output {j}: {to_fe64:?} vs {fe_convergence:?}"
         );
+    }
+}
+
+/// With a tension that dominates the bending stiffness at the span's length
+/// (T k^2 about 100 x EI k^4 for the first mode), the exact transfer matrix of
+/// EI y'''' - T y'' + ... (shears as transverse forces) and its fit follow the FE
+/// span with the same tension as closely as without it.
+#[test]
+fn with_tension_the_coupling_unit_matches_an_fe_span_with_the_same_tension() {
+    let tensioned = Span {
+        tension: 1.0e5,
+        ..SPAN
+    };
+    let (h, steps) = (0.001, 10_000);
+    let mut p = params(Orientation::UpperMotion, 24);
+    p.tension = tensioned.tension;
+    p.discretization = Discretization::Trapezoidal;
+    let mut unit = Driver::new(SpanCoupling::new(p).unwrap());
+    let span_out = drive(&mut unit, [0, 1, 2, 3], &motion, h, steps);
+    let fe = |n| {
+        let mut beam =
+            Driver::new(slender_app::coupling_study::fe_span(&tensioned, n, 0.05).unwrap());
+        drive(&mut beam, [2, 3, 4, 5], &motion, h, steps)
+    };
+    let (fe32, fe64) = (fe(32), fe(64));
+    let to_fe64 = relative_errors(&fe64, &span_out);
+    let fe_convergence = relative_errors(&fe64, &fe32);
+    println!("tensioned span unit vs FE 64: {to_fe64:?}; FE 32 vs FE 64: {fe_convergence:?}");
+    for j in 0..4 {
+        assert!(to_fe64[j] < 0.02, "output {j}: {to_fe64:?}");
+        assert!(
+            to_fe64[j] < 2.0 * fe_convergence[j].max(1e-3),
+            "output {j}: {to_fe64:?} vs {fe_convergence:?}"
+        );
+    }
+    // At rest: the exact static transfer matrix with tension against the FE beam's
+    // static response is covered by the fit's exact static gain; the tension changes
+    // it (a string is far stiffer than the bare span).
+    let zero = C64::new(0.0, 0.0);
+    let (inputs, outputs) = Orientation::UpperMotion.quantities();
+    let bare = SPAN.transfer(zero, inputs, outputs).unwrap();
+    let taut = tensioned.transfer(zero, inputs, outputs).unwrap();
+    assert!(
+        taut[2][3].norm() < 0.1 * bare[2][3].norm(),
+        "lower deflection per lower shear: {} vs {}",
+        taut[2][3],
+        bare[2][3]
+    );
+}
+
+/// The tensioned transfer matrix tends to seed 004's as T -> 0 (its first-order
+/// change is about T L, e.g. the upper moment T L theta a rotation makes against
+/// the tension), across the switch between the exponential and the cosh/sinh
+/// bases of a root pair.
+#[test]
+fn the_tensioned_transfer_matrix_tends_to_the_tension_free_one() {
+    let (inputs, outputs) = Orientation::UpperMotion.quantities();
+    for w in [0.0, 1e-3, 0.3, 2.0, 30.0] {
+        let s = C64::new(0.0, w);
+        let bare = SPAN.transfer(s, inputs, outputs).unwrap();
+        let slight = Span {
+            tension: 1e-10,
+            ..SPAN
+        }
+        .transfer(s, inputs, outputs)
+        .unwrap();
+        for o in 0..4 {
+            for i in 0..4 {
+                let scale = bare[o][i].norm().max(1e-2);
+                assert!(
+                    (slight[o][i] - bare[o][i]).norm() < 1e-6 * scale,
+                    "w {w}, entry {o}{i}: {} vs {}",
+                    slight[o][i],
+                    bare[o][i]
+                );
+            }
+        }
     }
 }
 

@@ -44,6 +44,7 @@ fn span(approximation: Approximation, order: usize) -> SpanUnit {
         mass_per_length: MU,
         damping_per_length: CD,
         length: L,
+        tension: 0.0,
         approximation,
         order,
         band: 2.0 * std::f64::consts::PI * 10.0,

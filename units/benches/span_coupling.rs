@@ -39,6 +39,7 @@ fn step(c: &mut Criterion) {
             mass_per_length: 1.0e2,
             damping_per_length: 5.0,
             length: 10.0,
+            tension: 0.0,
             orientation: Orientation::UpperMotion,
             order,
             band: 2.0 * std::f64::consts::PI * 10.0,

@@ -46,6 +46,7 @@ pub fn fe_span(span: &Span, elements: usize, alpha: f64) -> Result<Beam, UnitErr
         },
     );
     p.damping_per_length = span.damping_per_length;
+    p.tension = span.tension;
     p.static_start = true;
     p.alpha = alpha;
     Beam::new(p)
@@ -147,6 +148,7 @@ pub fn coupling_study(span: &Span, plan: &CouplingPlan) -> Result<CouplingReport
                 mass_per_length: span.mass_per_length,
                 damping_per_length: span.damping_per_length,
                 length: span.length,
+                tension: span.tension,
                 orientation: Orientation::UpperMotion,
                 order,
                 band: 2.0 * std::f64::consts::PI * 10.0,

@@ -31,6 +31,7 @@ pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, UnitError> {
         },
     );
     p.damping_per_length = span.damping_per_length;
+    p.tension = span.tension;
     p.newton_max_iterations = 5;
     Beam::new(p)
 }
@@ -300,6 +301,7 @@ fn span_unit_rows(
                 mass_per_length: span.mass_per_length,
                 damping_per_length: span.damping_per_length,
                 length: span.length,
+                tension: span.tension,
                 approximation: a,
                 order,
                 band: 2.0 * std::f64::consts::PI * 10.0,

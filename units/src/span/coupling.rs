@@ -322,6 +322,10 @@ pub struct SpanCouplingParams {
     pub damping_per_length: f64,
     /// L (m).
     pub length: f64,
+    /// Constant axial tension T (N), default 0: the shears are then the
+    /// transverse forces EI y''' - T y'.
+    #[serde(default)]
+    pub tension: f64,
     #[serde(default)]
     pub orientation: Orientation,
     /// Number of poles (even, 2..=40), default 16.
@@ -406,6 +410,7 @@ impl SpanCoupling {
             mass_per_length: params.mass_per_length,
             damping_per_length: params.damping_per_length,
             length: params.length,
+            tension: params.tension,
         };
         if !(0.0..=1.0 / 3.0 + 1e-12).contains(&params.alpha) {
             return Err(UnitError::parameter(

@@ -1,8 +1,11 @@
 //! Exact transfer functions of the damped Euler-Bernoulli span
-//! EI Y'''' + s (c_d + mu s) Y = 0 between any four of its eight end quantities.
+//! EI Y'''' - T Y'' + s (c_d + mu s) Y = 0 (T a constant axial tension, 0 in seed
+//! 004) between any four of its eight end quantities.
 //!
 //! The end quantities are numbered as in seed 004 eq. 5.2: 1 y(0), 2 y'(0),
-//! 3 EI y''(0), 4 EI y'''(0), 5 y(L), 6 y'(L), 7 EI y''(L), 8 EI y'''(L). With four
+//! 3 EI y''(0), 4 EI y'''(0) - T y'(0), 5 y(L), 6 y'(L), 7 EI y''(L),
+//! 8 EI y'''(L) - T y'(L) (the shear is the transverse force; T = 0 gives the
+//! source's). With four
 //! chosen as inputs, the other four are outputs: `H(s) = Phi_out(s) Phi_in(s)^-1`,
 //! where `Phi` maps the coefficients of the general solution to the end quantities.
 //!
@@ -28,6 +31,8 @@ pub struct Span {
     pub damping_per_length: f64,
     /// L (m).
     pub length: f64,
+    /// Constant axial tension T (N), 0 in seed 004.
+    pub tension: f64,
 }
 
 impl Span {
@@ -35,6 +40,7 @@ impl Span {
     /// ([`check_section`](crate::beam::params::check_section)).
     pub fn validate(&self) -> Result<(), UnitError> {
         require_in_range("length", self.length, 1e-2, 1e5, "m")?;
+        require_in_range("tension", self.tension, -1e10, 1e10, "N")?;
         crate::beam::params::check_section(
             self.flexural_rigidity,
             self.mass_per_length,
@@ -50,6 +56,9 @@ impl Span {
     /// Rows of the eight end quantities (1..8 as 0..7) against the four basis
     /// coefficients at s.
     pub fn boundary_matrix(&self, s: C64) -> [[C64; 4]; 8] {
+        if self.tension != 0.0 {
+            return self.tensioned_boundary_matrix(s);
+        }
         let (l, ei) = (self.length, self.flexural_rigidity);
         let b4 = self.beta4(s);
         let root = if b4.norm() == 0.0 {
@@ -99,6 +108,57 @@ impl Span {
                 phi[4 * end + 1][k] = b * e;
                 phi[4 * end + 2][k] = ei * b * b * e;
                 phi[4 * end + 3][k] = ei * b * b * b * e;
+            }
+        }
+        phi
+    }
+
+    /// The boundary matrix with tension: the roots of EI b^4 - T b^2 + s (c_d +
+    /// mu s) = 0 come in pairs +-r (r^2 = (T +- sqrt(T^2 - 4 EI s (c_d + mu s))) /
+    /// (2 EI)). A pair with |r| L >= 1 uses exp(+-r (x - x_k)) anchored so each is
+    /// at most 1 on [0, L]; a small pair uses cosh(r x) and sinh(r x) / r by their
+    /// series, and when both pairs are small the second pair is replaced by the
+    /// divided differences of the first's functions in r^2 (tending to x^2 / 2 and
+    /// x^3 / 6), so the basis stays independent as T and s go to 0.
+    fn tensioned_boundary_matrix(&self, s: C64) -> [[C64; 4]; 8] {
+        let (l, ei, t) = (self.length, self.flexural_rigidity, self.tension);
+        let q = s * (self.damping_per_length + self.mass_per_length * s) / ei;
+        let tau = C64::from(t / ei);
+        let disc = (tau * tau - 4.0 * q).sqrt();
+        let squares = [(tau + disc) / 2.0, (tau - disc) / 2.0];
+        let small = squares.map(|r2| r2.sqrt().norm() * l < 1.0);
+        let mut phi = [[C64::new(0.0, 0.0); 4]; 8];
+        for (end, x) in [(0usize, 0.0f64), (1, l)] {
+            // Value and first three derivatives of the four basis functions at x.
+            let mut columns = [[C64::new(0.0, 0.0); 4]; 4];
+            for (pair, r2) in squares.iter().enumerate() {
+                let r = r2.sqrt();
+                let pair_columns = if !small[pair] {
+                    [r, -r].map(|b| {
+                        let anchor = if b.re > 0.0 { l } else { 0.0 };
+                        let e = (b * (x - anchor)).exp();
+                        [e, b * e, b * b * e, b * b * b * e]
+                    })
+                } else if pair == 1 && small[0] {
+                    let (a, b) = (squares[0], squares[1]);
+                    [
+                        series(x, |m| divided(a, b, m, 0)),
+                        series(x, |m| divided(a, b, m, 1)),
+                    ]
+                } else {
+                    [
+                        series(x, |m| even_power(*r2, m, 0)),
+                        series(x, |m| even_power(*r2, m, 1)),
+                    ]
+                };
+                columns[2 * pair] = pair_columns[0];
+                columns[2 * pair + 1] = pair_columns[1];
+            }
+            for (k, col) in columns.iter().enumerate() {
+                phi[4 * end][k] = col[0];
+                phi[4 * end + 1][k] = col[1];
+                phi[4 * end + 2][k] = ei * col[2];
+                phi[4 * end + 3][k] = ei * col[3] - t * col[1];
             }
         }
         phi
@@ -156,6 +216,47 @@ impl Span {
         let lb = b * self.length;
         (lb.sin() + lb.sinh()) / (b * (lb.cos() * lb.cosh() + 1.0))
     }
+}
+
+/// Terms of the series kept: |r x| < 1 makes term m smaller than 1 / m!.
+const SERIES_TERMS: usize = 30;
+
+/// Value and first three derivatives at x of f = sum_m c(m) x^m / m!.
+fn series(x: f64, c: impl Fn(usize) -> C64) -> [C64; 4] {
+    let mut out = [C64::new(0.0, 0.0); 4];
+    for (k, o) in out.iter_mut().enumerate() {
+        // The k-th derivative of x^m / m! is x^(m - k) / (m - k)!.
+        let mut power = 1.0;
+        for m in k..SERIES_TERMS {
+            if m > k {
+                power *= x / (m - k) as f64;
+            }
+            *o += c(m) * power;
+        }
+    }
+    out
+}
+
+/// Coefficient m of cosh(r x) (parity 0) or sinh(r x) / r (parity 1) with
+/// r^2 = a: a^n where m = 2n + parity, else 0.
+fn even_power(a: C64, m: usize, parity: usize) -> C64 {
+    if m % 2 != parity {
+        return C64::new(0.0, 0.0);
+    }
+    a.powu(((m - parity) / 2) as u32)
+}
+
+/// Coefficient m of the divided difference in r^2 between a and b of cosh
+/// (parity 0) or sinh / r (parity 1): (a^n - b^n) / (a - b) = sum_j a^j
+/// b^(n-1-j), n = (m - parity) / 2, without the quotient's cancellation.
+fn divided(a: C64, b: C64, m: usize, parity: usize) -> C64 {
+    if m % 2 != parity || m < 2 {
+        return C64::new(0.0, 0.0);
+    }
+    let n = (m - parity) / 2;
+    (0..n)
+        .map(|j| a.powu(j as u32) * b.powu((n - 1 - j) as u32))
+        .sum()
 }
 
 /// The four quantities not in `inputs`, in increasing order.

@@ -39,6 +39,10 @@ pub struct SpanParams {
     pub damping_per_length: f64,
     /// L (m).
     pub length: f64,
+    /// Constant axial tension T (N), default 0; with tension only `fit` applies
+    /// (the Taylor and Pade forms are those of the tension-free span).
+    #[serde(default)]
+    pub tension: f64,
     #[serde(default)]
     pub approximation: Approximation,
     /// Order in s (even, 2..=24), default 8.
@@ -66,6 +70,7 @@ impl SpanParams {
             mass_per_length: self.mass_per_length,
             damping_per_length: self.damping_per_length,
             length: self.length,
+            tension: self.tension,
         }
     }
 
@@ -104,6 +109,13 @@ impl SpanUnit {
     pub fn new(params: SpanParams) -> Result<SpanUnit, UnitError> {
         let span = params.span();
         span.validate()?;
+        if span.tension != 0.0 && params.approximation != Approximation::Fit {
+            return Err(UnitError::parameter(
+                "approximation",
+                format!("{:?}", params.approximation),
+                "`fit` with a tension (the other forms are the tension-free span's)",
+            ));
+        }
         let system = match params.approximation {
             Approximation::Fit => super::fit::fit(&span, params.order, params.band)?,
             _ => StateSpace::realize(&params.approximation()?, &span, params.band)?,

@@ -88,6 +88,9 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
                 mass_per_length,
                 damping_per_length: damping,
                 length,
+                // The Taylor and Pade forms the span commands compare are the
+                // tension-free span's.
+                tension: 0.0,
             };
             span::span(&span, action, &out)
         }
