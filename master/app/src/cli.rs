@@ -125,6 +125,9 @@ pub enum Command {
     },
     /// Check a scene without running it: parse, build every unit, resolve connections.
     Check { scene: PathBuf },
+    /// Print the scene as it runs: a `[structure]` written out as plain units and
+    /// connections (checked first).
+    Expand { scene: PathBuf },
     /// Measure a scene's cost per simulated second (median of repeated runs, no output written).
     Bench {
         scene: PathBuf,

@@ -106,7 +106,7 @@ fn a_grid_runs_every_combination_against_the_finest_corner() {
 #[test]
 fn a_key_that_does_not_apply_is_refused_before_anything_runs() {
     for (key, says) in [
-        ("units.nn.parameters.elements=10,20", "no unit named `nn`"),
+        ("units.nn.parameters.elements=10,20", "no entry named `nn`"),
         (
             "units.n.parameters.elemnts=10,20",
             "unknown field `elemnts`",

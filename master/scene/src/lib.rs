@@ -7,6 +7,7 @@ pub mod export;
 pub mod fields;
 pub mod kinds;
 pub mod spec;
+pub mod structure;
 
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;
@@ -69,6 +70,7 @@ impl Scene {
     /// Checks a scene given as text; `path` names it in messages and anchors
     /// relative output folders.
     pub fn parse(path: &Path, source: String) -> Result<Scene, SceneError> {
+        let source = expand_structure(path, source)?;
         let spec: SceneSpec = toml::from_str(&source).map_err(|e| SceneError {
             file: path.to_owned(),
             line: e.span().map(|s| line_of(&source, s.start)),
@@ -91,7 +93,8 @@ impl Scene {
         Ok(scene)
     }
 
-    /// The scene's TOML text as loaded.
+    /// The scene's TOML text as loaded (with a `[structure]` expanded into plain
+    /// units and connections).
     pub fn source(&self) -> &str {
         &self.source
     }
@@ -422,4 +425,26 @@ fn key_at(source: &str, offset: usize) -> String {
 
 fn line_of(source: &str, offset: usize) -> usize {
     source[..offset.min(source.len())].matches('\n').count() + 1
+}
+
+/// The scene text with its `[structure]` (if any) written out as plain units and
+/// connections; unchanged without one.
+fn expand_structure(path: &Path, source: String) -> Result<String, SceneError> {
+    if !source.contains("structure") {
+        return Ok(source);
+    }
+    let error = |message: String| SceneError {
+        file: path.to_owned(),
+        line: None,
+        key: "structure".into(),
+        message,
+    };
+    let Ok(mut table) = toml::from_str::<toml::Table>(&source) else {
+        // Let the spec parser report the syntax error with its line.
+        return Ok(source);
+    };
+    if !structure::expand(&mut table).map_err(error)? {
+        return Ok(source);
+    }
+    toml::to_string(&table).map_err(|e| error(e.to_string()))
 }

@@ -41,6 +41,7 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
     match command {
         Command::Run { scene, out, quiet } => scene::run(&scene, out, quiet),
         Command::Check { scene } => scene::check(&scene),
+        Command::Expand { scene } => scene::expand(&scene),
         Command::Bench {
             scene,
             repeats,

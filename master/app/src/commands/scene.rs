@@ -85,6 +85,14 @@ fn print_summary(result: &RunResult) {
     }
 }
 
+/// Prints the scene as it runs (a `[structure]` expanded), after checking it.
+pub fn expand(path: &Path) -> Result<(), CliError> {
+    let scene = load(path)?;
+    scene.build().map_err(|e| CliError::input(e.to_string()))?;
+    print!("{}", scene.source());
+    Ok(())
+}
+
 /// Checks a scene and prints its units, ports, connections and schedule.
 pub fn check(path: &Path) -> Result<(), CliError> {
     let scene = load(path)?;

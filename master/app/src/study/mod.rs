@@ -158,7 +158,9 @@ pub fn run_study(
             path.display()
         ));
     }
-    let table: toml::Table = toml::from_str(base.source()).map_err(|e| e.to_string())?;
+    // The scene as written (a `[structure]` still a structure, so its keys vary).
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let table: toml::Table = toml::from_str(&text).map_err(|e| e.to_string())?;
     let indicators: Vec<String> = base
         .spec
         .output

@@ -71,30 +71,18 @@ impl Setting {
             } else {
                 format!("{walked}.{part}")
             };
-            if i == 0 && part == "units" {
-                let name = parents
-                    .get(1)
-                    .ok_or("`units` needs a unit name: units.<name>.<key>")?;
-                here = unit_table(here, name)?;
-                walked = format!("units.{name}");
-                i += 2;
-                continue;
-            }
             let entry = here
                 .entry(part.clone())
                 .or_insert_with(|| toml::Value::Table(toml::Table::new()));
             here = match entry {
                 toml::Value::Table(t) => t,
                 toml::Value::Array(items) => {
-                    let index = parents.get(i + 1).and_then(|p| p.parse::<usize>().ok());
-                    let count = items.len();
-                    let item = index.and_then(|k| items.get_mut(k)).ok_or_else(|| {
-                        format!("`{walked}` is a list of {count}: give an index 0..{count} next")
+                    let next = parents.get(i + 1).ok_or_else(|| {
+                        format!("`{walked}` is a list: give an index or a name next")
                     })?;
-                    walked = format!("{walked}.{}", parents[i + 1]);
+                    walked = format!("{walked}.{next}");
                     i += 1;
-                    item.as_table_mut()
-                        .ok_or_else(|| format!("`{walked}` is not a table"))?
+                    element(items, next, &walked)?
                 }
                 _ => return Err(format!("`{walked}` is a value, not a table")),
             };
@@ -105,13 +93,15 @@ impl Setting {
     }
 }
 
-/// The table of unit `name` in the scene's `[[units]]`.
-fn unit_table<'a>(scene: &'a mut toml::Table, name: &str) -> Result<&'a mut toml::Table, String> {
-    let units = scene
-        .get_mut("units")
-        .and_then(toml::Value::as_array_mut)
-        .ok_or("the scene has no [[units]]")?;
-    let names: Vec<String> = units
+/// The element of a list by index, or the table whose `name` is `key`
+/// (`units.<name>`, `structure.sections.<name>`).
+fn element<'a>(
+    items: &'a mut [toml::Value],
+    key: &str,
+    walked: &str,
+) -> Result<&'a mut toml::Table, String> {
+    let count = items.len();
+    let names: Vec<String> = items
         .iter()
         .filter_map(|u| {
             u.get("name")
@@ -119,11 +109,22 @@ fn unit_table<'a>(scene: &'a mut toml::Table, name: &str) -> Result<&'a mut toml
                 .map(str::to_owned)
         })
         .collect();
-    units
-        .iter_mut()
-        .find(|u| u.get("name").and_then(toml::Value::as_str) == Some(name))
-        .and_then(toml::Value::as_table_mut)
-        .ok_or_else(|| format!("no unit named `{name}`; the scene has {}", names.join(", ")))
+    let found = match key.parse::<usize>() {
+        Ok(k) => items.get_mut(k),
+        Err(_) => items
+            .iter_mut()
+            .find(|u| u.get("name").and_then(toml::Value::as_str) == Some(key)),
+    };
+    found.and_then(toml::Value::as_table_mut).ok_or_else(|| {
+        if names.is_empty() {
+            format!("`{walked}`: the list has {count} entries, give an index 0..{count}")
+        } else {
+            format!(
+                "`{walked}`: no entry named `{key}`; the list has {}",
+                names.join(", ")
+            )
+        }
+    })
 }
 
 fn set_cable_elements(scene: &mut toml::Table, value: &toml::Value) -> Result<(), String> {
@@ -273,12 +274,12 @@ segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
         assert!(
             set("units.c.parameters.x", "1")
                 .unwrap_err()
-                .contains("the scene has a, b")
+                .contains("no entry named `c`; the list has a, b")
         );
         assert!(
             set("units.b.parameters.segments.5.elements", "1")
                 .unwrap_err()
-                .contains("list of 2")
+                .contains("the list has 2 entries")
         );
         assert!(
             set("master.scheme.kind", "1")
