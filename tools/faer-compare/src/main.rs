@@ -48,6 +48,44 @@ fn median(runs: usize, mut f: impl FnMut()) -> f64 {
     times[runs / 2]
 }
 
+/// The symmetric eigendecomposition (all pairs) of the dense Newton matrix, as
+/// `slender modes` does after its Cholesky reduction: nalgebra against faer.
+fn eigen_comparison() {
+    println!();
+    println!(
+        "| DOFs | nalgebra SymmetricEigen (ms) | faer self_adjoint_eigen (ms) | faer / nalgebra | largest eigenvalue difference (relative) |"
+    );
+    println!("|---|---|---|---|---|");
+    for elements in [10, 100, 400] {
+        let a = newton_matrix(elements);
+        let n = a.size();
+        let dense = nalgebra::DMatrix::from_fn(n, n, |i, j| a.get(i.max(j), i.min(j)));
+        let f = faer::Mat::<f64>::from_fn(n, n, |i, j| a.get(i.max(j), i.min(j)));
+        let runs = if n < 1000 { 21 } else { 5 };
+        let mut top_n = 0.0;
+        let t_n = median(runs, || {
+            let e = nalgebra::SymmetricEigen::new(dense.clone());
+            top_n = e.eigenvalues.max();
+        });
+        let mut top_f = 0.0;
+        let t_f = median(runs, || {
+            let e = f.self_adjoint_eigen(Side::Lower).expect("evd");
+            top_f = e
+                .S()
+                .column_vector()
+                .iter()
+                .fold(f64::NEG_INFINITY, |m, v| m.max(*v));
+        });
+        println!(
+            "| {n} | {:.2} | {:.2} | {:.2} | {:.1e} |",
+            t_n * 1e3,
+            t_f * 1e3,
+            t_f / t_n,
+            ((top_f - top_n) / top_n).abs()
+        );
+    }
+}
+
 fn main() {
     println!(
         "| DOFs | band LDL^T (us) | faer sparse LLT (us) | faer / band | max difference of x |"
@@ -99,4 +137,5 @@ fn main() {
             diff / scale
         );
     }
+    eigen_comparison();
 }

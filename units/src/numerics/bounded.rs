@@ -1,6 +1,6 @@
 //! nalgebra's iterative decompositions with a bound on their iterations.
 //!
-//! `DMatrix::svd`, `complex_eigenvalues` and `SymmetricEigen::new` iterate until
+//! `DMatrix::svd` and `complex_eigenvalues` iterate until
 //! they converge, without limit: on a matrix with non-finite entries (extreme
 //! parameters overflow) they never return. These wrappers check the entries first
 //! and stop after a number of iterations that a convergent problem of that size
@@ -8,7 +8,7 @@
 //! converge they return exactly what the unbounded calls return (same tolerance).
 
 use crate::contract::UnitError;
-use nalgebra::{Complex, DMatrix, DVector, SVD, Schur, SymmetricEigen};
+use nalgebra::{Complex, DMatrix, DVector, SVD, Schur};
 
 /// Iterations allowed for an n x m problem: far more than QR-type iterations need
 /// (a few per eigen- or singular value), far fewer than a hang.
@@ -69,20 +69,6 @@ pub fn complex_eigenvalues(
         })
 }
 
-/// The eigen-decomposition of a symmetric matrix, or an error.
-pub fn symmetric_eigen(
-    what: &str,
-    m: DMatrix<f64>,
-) -> Result<SymmetricEigen<f64, nalgebra::Dyn>, UnitError> {
-    finite(what, &m)?;
-    let limit = max_iterations(m.nrows(), m.ncols());
-    SymmetricEigen::try_new(m, f64::EPSILON, limit).ok_or_else(|| {
-        UnitError::Numerical(format!(
-            "{what}: the symmetric eigenproblem did not converge in {limit} iterations"
-        ))
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -91,8 +77,7 @@ mod tests {
     fn non_finite_matrices_are_refused_at_once() {
         let m = DMatrix::from_element(3, 3, f64::INFINITY);
         assert!(svd("test", m.clone()).is_err());
-        assert!(complex_eigenvalues("test", m.clone()).is_err());
-        assert!(symmetric_eigen("test", m).is_err());
+        assert!(complex_eigenvalues("test", m).is_err());
     }
 
     #[test]
@@ -102,11 +87,6 @@ mod tests {
         });
         let ours = complex_eigenvalues("test", m.clone()).unwrap();
         assert_eq!(ours, m.clone().complex_eigenvalues());
-        let s = (&m + m.transpose()) * 0.5;
-        assert_eq!(
-            symmetric_eigen("test", s.clone()).unwrap().eigenvalues,
-            SymmetricEigen::new(s).eigenvalues
-        );
         let b = DVector::from_element(4, 1.0);
         assert_eq!(
             least_squares("test", m.clone(), &b, 1e-14).unwrap(),
