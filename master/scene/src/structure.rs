@@ -8,15 +8,18 @@
 //! cut it by arc length (`to`, m; the last runs to the end), each with a
 //! `fidelity` and, optionally, its element count. At a cut the upper section's end
 //! follows the lower section's start in velocity (x, z, rotation) and the lower
-//! section's start carries the force and moment the upper end exerts: force and
-//! velocity in the global frame, rotation and moment where both sides carry
-//! bending. `reference = true` adds the whole structure as one unit
+//! start carries the force and moment the upper end exerts (with `static_start`,
+//! the other way round): force and velocity in the global frame, rotation and
+//! moment where both sides carry bending. `reference = true` adds the whole structure as one unit
 //! (`<name>_reference`), the monolithic twin to measure the sections against.
 //!
+//! With `static_start`, the whole structure's equilibrium is solved once here;
+//! each section starts its own static solve from that shape, and each moving cut
+//! end is placed where the equilibrium puts it (`velocity_from`), so the
+//! master's initial iterations find the same state.
+//!
 //! Fidelities today: `nonlinear` (the geometrically nonlinear section at the
-//! given element count). The statics of a cut structure need the monolithic
-//! equilibrium at the cuts, so `static_start` is refused for now; sections start
-//! from the stress-free shape at rest.
+//! given element count).
 
 use toml::{Table, Value};
 
@@ -40,26 +43,41 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
         .and_then(Value::as_table)
         .ok_or("`structure.model`: expected the parameters of a `nonlinear` unit")?
         .clone();
-    if model.get("static_start").and_then(Value::as_bool) == Some(true) {
-        return Err("`structure.model.static_start`: not yet available for a cut structure (the sections start from the stress-free shape)".into());
-    }
     let segments = segments_of(&model)?;
     let length: f64 = segments.iter().map(|s| s.length).sum();
     let cuts = cuts_of(&structure, length)?;
+    let statics = if model.get("static_start").and_then(Value::as_bool) == Some(true) {
+        Some(crate::structure_statics::Equilibrium::solve(&model)?)
+    } else {
+        None
+    };
+    // At each cut one side moves with the other's velocity and the other carries
+    // the force: by default the upper section's end moves and the lower start is
+    // loaded (the more robust coupling in the tests); with a static start the
+    // other way round, so that in the master's first initial iterate every
+    // section hangs from what holds it and its own static solve is well posed.
+    let force_on_upper = vec![statics.is_some(); cuts.len().saturating_sub(1)];
     let mut units = Vec::new();
     let mut connections = Vec::new();
     for (k, cut) in cuts.iter().enumerate() {
-        let first = k == 0;
-        let last = k + 1 == cuts.len();
-        units.push(Value::Table(section_unit(
-            &name, &model, &segments, cut, first, last,
-        )?));
-        if !last {
+        // Whether this section's start / end is the moving (velocity) side of its cut.
+        let moving_start = k > 0 && force_on_upper[k - 1];
+        let moving_end = k + 1 < cuts.len() && !force_on_upper[k];
+        let coupling = (
+            (k > 0).then_some(moving_start),
+            (k + 1 < cuts.len()).then_some(moving_end),
+        );
+        let mut unit = section_unit(&name, &model, &segments, cut, coupling)?;
+        if let Some(equilibrium) = &statics {
+            equilibrium.start_section(&mut unit, (cut.from, cut.to), (moving_start, moving_end))?;
+        }
+        units.push(Value::Table(unit));
+        if k + 1 < cuts.len() {
             let (upper, lower) = (
                 format!("{name}_{}", cut.name),
                 format!("{name}_{}", cuts[k + 1].name),
             );
-            connections.extend(cut_connections(&upper, &lower));
+            connections.extend(cut_connections(&upper, &lower, force_on_upper[k]));
         }
     }
     if structure.get("reference").and_then(Value::as_bool) == Some(true) {
@@ -182,14 +200,14 @@ fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
 
 /// The `nonlinear` unit of one section: the model's segments clipped to its range,
 /// its start at the stress-free position of the cut, the structure's ends at the
-/// structure's ends and coupled ends at the cuts.
+/// structure's ends, and at a cut (`coupling`: start, end; None at the
+/// structure's ends) a moving end (true) or a loaded one (false).
 fn section_unit(
     name: &str,
     model: &Table,
     segments: &[Segment],
     cut: &Cut,
-    first: bool,
-    last: bool,
+    coupling: (Option<bool>, Option<bool>),
 ) -> Result<Table, String> {
     let mut parameters = model.clone();
     let (mut position, mut arc) = (start_of(model), 0.0f64);
@@ -240,11 +258,12 @@ fn section_unit(
         .and_then(Value::as_table)
         .cloned()
         .unwrap_or_default();
-    if !first {
-        ends.insert("start".into(), coupled_start());
-    }
-    if !last {
-        ends.insert("end".into(), coupled_end());
+    for (key, moving) in [("start", coupling.0), ("end", coupling.1)] {
+        match moving {
+            Some(true) => ends.insert(key.into(), coupled_motion()),
+            Some(false) => ends.insert(key.into(), coupled_load()),
+            None => None,
+        };
     }
     parameters.insert("ends".into(), Value::Table(ends));
     let mut unit = Table::new();
@@ -280,8 +299,8 @@ fn distribute(segments: &mut [Table], n: usize) {
     }
 }
 
-/// The lower section's start at a cut: loaded by the upper end's force and moment.
-fn coupled_start() -> Value {
+/// The loaded side of a cut: the other side's force and moment.
+fn coupled_load() -> Value {
     let force = || {
         let mut t = Table::new();
         t.insert("force".into(), Value::String("input".into()));
@@ -294,8 +313,8 @@ fn coupled_start() -> Value {
     Value::Table(t)
 }
 
-/// The upper section's end at a cut: moved with the lower start's velocity.
-fn coupled_end() -> Value {
+/// The moving side of a cut: the other side's velocity.
+fn coupled_motion() -> Value {
     let mut t = Table::new();
     for dof in ["x", "z", "rotation"] {
         t.insert(dof.into(), Value::String("velocity".into()));
@@ -303,39 +322,33 @@ fn coupled_end() -> Value {
     Value::Table(t)
 }
 
-fn cut_connections(upper: &str, lower: &str) -> Vec<Value> {
+/// The six links of a cut: velocity from the loaded side to the moving side and
+/// force back (`force_on_upper`: the upper section's end is the loaded side).
+fn cut_connections(upper: &str, lower: &str, force_on_upper: bool) -> Vec<Value> {
     let link = |from: String, to: String| {
         let mut t = Table::new();
         t.insert("from".into(), Value::String(from));
         t.insert("to".into(), Value::String(to));
         Value::Table(t)
     };
-    vec![
-        link(
-            format!("{lower}.start_velocity_x"),
-            format!("{upper}.end_velocity_x"),
-        ),
-        link(
-            format!("{lower}.start_velocity_z"),
-            format!("{upper}.end_velocity_z"),
-        ),
-        link(
-            format!("{lower}.start_angular_velocity"),
-            format!("{upper}.end_angular_velocity"),
-        ),
-        link(
-            format!("{upper}.end_force_x"),
-            format!("{lower}.start_force_x"),
-        ),
-        link(
-            format!("{upper}.end_force_z"),
-            format!("{lower}.start_force_z"),
-        ),
-        link(
-            format!("{upper}.end_moment"),
-            format!("{lower}.start_moment"),
-        ),
-    ]
+    let (loaded, moving) = if force_on_upper {
+        (format!("{upper}.end"), format!("{lower}.start"))
+    } else {
+        (format!("{lower}.start"), format!("{upper}.end"))
+    };
+    let mut links = Vec::new();
+    for (motion, load) in [
+        ("velocity_x", "force_x"),
+        ("velocity_z", "force_z"),
+        ("angular_velocity", "moment"),
+    ] {
+        links.push(link(
+            format!("{loaded}_{motion}"),
+            format!("{moving}_{motion}"),
+        ));
+        links.push(link(format!("{moving}_{load}"), format!("{loaded}_{load}")));
+    }
+    links
 }
 
 fn append(scene: &mut Table, key: &str, items: Vec<Value>) -> Result<(), String> {

@@ -55,10 +55,13 @@ impl Resolved {
                 (None, None) => [q0, v0, a0],
             },
             // Trapezoidal rule on the velocity: consistent with Newmark (1/4, 1/2).
-            (DofCondition::Velocity, Some(i)) => {
+            (DofCondition::Velocity | DofCondition::VelocityFrom(_), Some(i)) => {
                 let v1 = inputs.at(i, s1);
                 if h > 0.0 {
                     [q0 + 0.5 * h * (v0 + v1), v1, 2.0 * (v1 - v0) / h - a0]
+                } else if let DofCondition::VelocityFrom(start) = self.condition {
+                    // At the start (statics, initial state): its given displacement.
+                    [start, v1, a0]
                 } else {
                     [q0, v1, a0]
                 }
@@ -106,7 +109,7 @@ pub fn resolve(params: &NonlinearParams, nodes: usize) -> (Vec<Resolved>, Vec<Po
                         PortKind::Displacement,
                     )
                 }),
-                DofCondition::Velocity => Some(if rotation {
+                DofCondition::Velocity | DofCondition::VelocityFrom(_) => Some(if rotation {
                     Port::input(&format!("{side}_angular_velocity"), PortKind::Generic)
                         .with_unit("rad/s")
                 } else {

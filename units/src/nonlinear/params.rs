@@ -60,6 +60,9 @@ pub enum DofCondition {
     Displacement(TimeFunction),
     /// Coupled velocity input (m/s or rad/s), integrated by the trapezoidal rule.
     Velocity,
+    /// A coupled velocity input starting from this displacement (m or rad) rather
+    /// than the stress-free value: a cut that starts in a static shape.
+    VelocityFrom(f64),
     /// Applied force (N) or moment (N m); `"input"` reads it from a coupled input.
     Force(TimeFunction),
 }
@@ -69,7 +72,10 @@ impl DofCondition {
     pub fn is_kinematic(&self) -> bool {
         matches!(
             self,
-            DofCondition::Held | DofCondition::Displacement(_) | DofCondition::Velocity
+            DofCondition::Held
+                | DofCondition::Displacement(_)
+                | DofCondition::Velocity
+                | DofCondition::VelocityFrom(_)
         )
     }
 }
@@ -407,6 +413,13 @@ impl NonlinearParams {
         }
         super::contact::validate(self)?;
         self.validate_start_points()?;
+        for (side, end) in [("start", &self.ends.start), ("end", &self.ends.end)] {
+            for (dof, c) in ["x", "z", "rotation"].iter().zip(end.conditions()) {
+                if let DofCondition::VelocityFrom(d) = c {
+                    require_finite(&format!("ends.{side}.{dof}.velocity_from"), d)?;
+                }
+            }
+        }
         let hydro = self.segments.iter().any(|s| {
             s.drag_normal + s.drag_tangential + s.added_mass_normal + s.added_mass_tangential > 0.0
         });
