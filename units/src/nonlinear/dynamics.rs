@@ -420,7 +420,7 @@ impl SecondOrderSystem for NonlinearSection {
     /// tangent nearly singular, an undamped step can turn a node by whole turns,
     /// which the wrapped local rotations accept as an equilibrium.
     fn limit_correction(&self, dq: &mut [f64]) -> f64 {
-        let factor = self.correction_limit(dq);
+        let factor = self.model.correction_limit(dq);
         if factor < 1.0 {
             dq.iter_mut().for_each(|d| *d *= factor);
         }

@@ -325,15 +325,7 @@ impl Element {
 
     /// T^T f and T^T K T with T the element's rotation.
     fn rotated_to_global(&self, fl: &[f64; 6], kl: &[[f64; 6]; 6], tangent: bool) -> ElementForce {
-        let (c, s) = (self.cos0, self.sin0);
-        let mut t = [[0.0; 6]; 6];
-        for base in [0, 3] {
-            t[base][base] = c;
-            t[base][base + 1] = s;
-            t[base + 1][base] = -s;
-            t[base + 1][base + 1] = c;
-            t[base + 2][base + 2] = 1.0;
-        }
+        let t = rotation(self.cos0, self.sin0);
         let mut f = [0.0; 6];
         let mut k = [[0.0; 6]; 6];
         for i in 0..6 {
@@ -354,4 +346,18 @@ impl Element {
         }
         (f, k)
     }
+}
+
+/// The 6x6 rotation of an element's DOFs from the global frame to the frame at
+/// angle (cos, sin): each node's translations rotated, its rotation kept.
+pub fn rotation(c: f64, s: f64) -> [[f64; 6]; 6] {
+    let mut t = [[0.0; 6]; 6];
+    for base in [0, 3] {
+        t[base][base] = c;
+        t[base][base + 1] = s;
+        t[base + 1][base] = -s;
+        t[base + 1][base + 1] = c;
+        t[base + 2][base + 2] = 1.0;
+    }
+    t
 }

@@ -26,6 +26,8 @@ pub struct Model {
     pub reference: Vec<[f64; 2]>,
     /// Arc length of each node (m), unstretched.
     pub arc: Vec<f64>,
+    /// The shortest element (m): the most a Newton correction moves a node.
+    shortest: f64,
 }
 
 /// The six DOFs of element `e` in `q`.
@@ -59,13 +61,33 @@ impl Model {
                 arc.push(arc[arc.len() - 1] + l);
             }
         }
+        let shortest = elements.iter().fold(f64::INFINITY, |m, e| m.min(e.length));
         Model {
             formulation: params.formulation,
             elements,
             segment_of,
             reference,
             arc,
+            shortest,
         }
+    }
+
+    /// The factor (at most 1) that keeps a Newton correction `dq` within the
+    /// shortest element's length per node and 0.5 rad per rotation.
+    pub fn correction_limit(&self, dq: &[f64]) -> f64 {
+        dq.chunks(3).fold(1.0f64, |f, c| {
+            let moved = c[0].hypot(c[1]);
+            let f = if moved > self.shortest {
+                f.min(self.shortest / moved)
+            } else {
+                f
+            };
+            if c[2].abs() > 0.5 {
+                f.min(0.5 / c[2].abs())
+            } else {
+                f
+            }
+        })
     }
 
     /// Number of DOFs.
@@ -249,14 +271,7 @@ fn element_mass(l: f64, axial: f64, normal: f64, kind: MassKind) -> [[f64; 6]; 6
 
 /// Adds T^T m T (T the rotation by (c, s) of each node's translations) at `base`.
 fn add_rotated(band: &mut SymmetricBand, base: usize, m: &[[f64; 6]; 6], c: f64, s: f64) {
-    let mut t = [[0.0; 6]; 6];
-    for b in [0, 3] {
-        t[b][b] = c;
-        t[b][b + 1] = s;
-        t[b + 1][b] = -s;
-        t[b + 1][b + 1] = c;
-        t[b + 2][b + 2] = 1.0;
-    }
+    let t = super::element::rotation(c, s);
     for i in 0..6 {
         for j in 0..=i {
             let mut v = 0.0;

@@ -121,7 +121,7 @@ impl NonlinearSection {
             }
             // A correction that moves a node by more than the shortest element or
             // turns it by more than 0.5 rad is scaled down (a damped step).
-            let limit = self.correction_limit(&w.residual);
+            let limit = self.model.correction_limit(&w.residual);
             for (qi, dq) in q.iter_mut().zip(&w.residual) {
                 *qi += limit * dq;
             }
@@ -180,29 +180,6 @@ impl NonlinearSection {
 }
 
 impl NonlinearSection {
-    /// The factor (at most 1) that keeps a Newton correction within the shortest
-    /// element's length per node and 0.5 rad per rotation.
-    pub(super) fn correction_limit(&self, dq: &[f64]) -> f64 {
-        let shortest = self
-            .model
-            .elements
-            .iter()
-            .fold(f64::INFINITY, |m, e| m.min(e.length));
-        dq.chunks(3).fold(1.0f64, |f, c| {
-            let moved = c[0].hypot(c[1]);
-            let f = if moved > shortest {
-                f.min(shortest / moved)
-            } else {
-                f
-            };
-            if c[2].abs() > 0.5 {
-                f.min(0.5 / c[2].abs())
-            } else {
-                f
-            }
-        })
-    }
-
     /// The nodes spread over the polyline `start_points` in proportion to their
     /// arc length, each rotated to the direction between its neighbours.
     fn points_guess(&self, q: &mut [f64]) {

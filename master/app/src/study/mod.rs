@@ -210,27 +210,29 @@ fn run_all<O: Send>(
 ) -> Vec<O> {
     let order = costliest_first(tasks);
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let done: std::sync::Mutex<Vec<Option<O>>> =
-        std::sync::Mutex::new((0..tasks.len()).map(|_| None).collect());
-    std::thread::scope(|scope| {
-        for _ in 0..jobs.clamp(1, tasks.len().max(1)) {
-            scope.spawn(|| {
-                loop {
-                    let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    let Some(&task) = order.get(k) else { break };
-                    let outcome = run(tasks[task]);
-                    if let Ok(mut d) = done.lock() {
-                        d[task] = Some(outcome);
+    // Each worker keeps what it ran; a run that panics (a bug, not bad input)
+    // panics the study as it would without threads.
+    let mut done: Vec<(usize, O)> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..jobs.clamp(1, tasks.len().max(1)))
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut mine = Vec::new();
+                    while let Some(&task) =
+                        order.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+                    {
+                        mine.push((task, run(tasks[task])));
                     }
-                }
-            });
-        }
+                    mine
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
     });
-    done.into_inner()
-        .unwrap_or_default()
-        .into_iter()
-        .map(|o| o.expect("every task ran"))
-        .collect()
+    done.sort_by_key(|(task, _)| *task);
+    done.into_iter().map(|(_, outcome)| outcome).collect()
 }
 
 /// Task indices by likely cost, descending: a run's cost grows with its element
