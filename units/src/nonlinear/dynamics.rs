@@ -142,8 +142,9 @@ impl NonlinearSection {
                 contacts.update_lambda(&self.model, (&s.q, s.t), &mut s.lambda);
             }
         }
-        let now = self.bend_moments();
+        let (largest, now) = self.extremes();
         let s = &mut self.state;
+        s.largest = largest;
         if !after_step {
             s.bend_step = now;
         }

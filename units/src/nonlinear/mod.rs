@@ -57,6 +57,8 @@ crate::state_struct! {
         /// over the last step (its start and end).
         bend_now: [f64; 2],
         bend_step: [f64; 2],
+        /// Largest |moment| (N m) and tension (N) at the current time.
+        largest: [f64; 2],
         newton_iterations: u32,
     }
 }
@@ -138,6 +140,7 @@ impl NonlinearSection {
                 },
                 bend_now: [0.0; 2],
                 bend_step: [0.0; 2],
+                largest: [0.0; 2],
                 newton_iterations: 0,
             },
             environment,
@@ -262,24 +265,16 @@ impl NonlinearSection {
         [at(0), at(1)]
     }
 
-    /// Largest |moment| (N m) and tension (N) over the element ends.
-    fn extremes(&self) -> (f64, f64) {
-        (0..self.model.elements.len()).fold((0.0f64, f64::NEG_INFINITY), |(m, t), e| {
-            let l = self.model.local_forces(&self.state.q, e);
-            (
-                m.max(l.moments[0].abs()).max(l.moments[1].abs()),
-                t.max(l.axial),
-            )
-        })
-    }
-
-    /// Largest sag-bend and overbend moments (N m) over the element ends: the
+    /// In one pass over the element ends: the largest |moment| (N m), the largest
+    /// tension (N), and the largest sag-bend and overbend moments (N m): the
     /// bending moment where the section is concave upwards (d2z/dx2 > 0, the sag
     /// bend above the touchdown point) and convex (the overbend on a stinger).
-    fn bend_moments(&self) -> [f64; 2] {
-        let mut bend = [0.0f64; 2];
+    fn extremes(&self) -> ([f64; 2], [f64; 2]) {
+        let (mut largest, mut bend) = ([0.0f64, f64::NEG_INFINITY], [0.0f64; 2]);
         for e in 0..self.model.elements.len() {
             let l = self.model.local_forces(&self.state.q, e);
+            largest[0] = largest[0].max(l.moments[0].abs()).max(l.moments[1].abs());
+            largest[1] = largest[1].max(l.axial);
             let forward = l.angle.cos();
             for m in [-l.moments[0], l.moments[1]] {
                 // Positive m turns the tangent counter-clockwise along the arc.
@@ -291,7 +286,7 @@ impl NonlinearSection {
                 }
             }
         }
-        bend
+        (largest, bend)
     }
 }
 
@@ -350,7 +345,7 @@ impl Unit for NonlinearSection {
             }
         }
         let [kinetic, strain, potential] = self.energies();
-        let (max_moment, max_tension) = self.extremes();
+        let [max_moment, max_tension] = self.state.largest;
         let extra = [
             kinetic,
             strain,
