@@ -182,6 +182,37 @@ pub enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Fidelity study of a scene's `[structure]`: run its sections at chosen
+    /// fidelities (full grid or one section at a time), each combination against
+    /// the monolithic reference (the whole structure as one nonlinear unit): epsilon
+    /// of each quantity of interest, cost, speed-up, iterations, non-converged
+    /// steps, the Pareto front and the cheapest combination within --tolerance.
+    /// Writes fidelity.csv, fidelity.json, fidelity.md and fidelity.svg.
+    Fidelity {
+        scene: PathBuf,
+        /// NAME=CHOICE,CHOICE,...: a section and its fidelities (nonlinear,
+        /// cable), each optionally with an element count, e.g.
+        /// lower=nonlinear,cable,nonlinear:16. Repeat for several sections.
+        #[arg(long = "section", required = true)]
+        sections: Vec<slender_app::fidelity::SectionChoices>,
+        /// Run every combination of the sections' choices instead of one
+        /// section at a time.
+        #[arg(long)]
+        grid: bool,
+        /// Largest epsilon of every quantity for a combination to count as good
+        /// enough (default 0.01).
+        #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
+        tolerance: f64,
+        /// Runs at once (default: the machine's cores); results do not depend on it.
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Simulated time of each run (s); default: the scene's duration.
+        #[arg(long, allow_negative_numbers = true)]
+        duration: Option<f64>,
+        /// Results folder (default: results/<scene name>-fidelity).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// The suspended span (seed 004 ch. 5): Bode plots and accuracy against cost.
     Span {
         #[command(subcommand)]

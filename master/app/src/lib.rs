@@ -3,10 +3,14 @@
 //!
 //! - [`run`]: running a scene with recording, summary and plots;
 //! - [`record`], [`plot`], [`indicators`]: CSV time series, SVG figures, phi / epsilon;
-//! - [`study`], [`span_study`], [`coupling_study`]: convergence and cost studies.
+//! - [`study`], [`span_study`], [`coupling_study`]: convergence and cost studies;
+//! - [`fidelity`]: a structure's sections at chosen fidelities against the monolithic model;
+//! - [`parallel`]: independent runs on a few threads.
 
 pub mod coupling_study;
+pub mod fidelity;
 pub mod indicators;
+pub mod parallel;
 pub mod plot;
 pub mod record;
 pub mod run;

@@ -13,7 +13,7 @@ pub struct PlotError {
 }
 
 impl PlotError {
-    fn new(path: &Path, reason: &dyn std::fmt::Display) -> PlotError {
+    pub(crate) fn new(path: &Path, reason: &dyn std::fmt::Display) -> PlotError {
         PlotError {
             path: path.display().to_string(),
             reason: reason.to_string(),

@@ -170,6 +170,50 @@ fn study_sweeps_a_setting_and_writes_a_table() {
 }
 
 #[test]
+fn fidelity_runs_a_structures_sections_and_names_the_cheapest() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-fidelity-{}", std::process::id()));
+    let d = dir.to_str().unwrap();
+    let out = slender(&[
+        "fidelity",
+        "examples/structure_mooring.toml",
+        "--duration",
+        "5",
+        "--section",
+        "lower=cable,nonlinear:16",
+        "--tolerance",
+        "0.001",
+        "--jobs",
+        "2",
+        "--out",
+        d,
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("Cheapest within epsilon <= 0.001"));
+    for file in [
+        "fidelity.csv",
+        "fidelity.json",
+        "fidelity.md",
+        "fidelity.svg",
+    ] {
+        assert!(dir.join(file).exists(), "{file}");
+    }
+    let csv = std::fs::read_to_string(dir.join("fidelity.csv")).unwrap();
+    // The reference and two combinations.
+    assert_eq!(csv.lines().count(), 4, "{csv}");
+    let out = slender(&[
+        "fidelity",
+        "examples/structure_mooring.toml",
+        "--section",
+        "middle=cable",
+        "--out",
+        d,
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("its sections are lower, upper"));
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
 fn span_bode_and_study_write_their_figures() {
     let dir = std::env::temp_dir().join(format!("slender-cli-span-{}", std::process::id()));
     let d = dir.to_str().unwrap();

@@ -8,6 +8,7 @@ pub mod fields;
 pub mod kinds;
 pub mod spec;
 pub mod structure;
+mod structure_cable;
 mod structure_statics;
 
 use slender_coupling::Master;

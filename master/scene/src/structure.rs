@@ -56,27 +56,63 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
     // loaded (the more robust coupling in the tests); with a static start the
     // other way round, so that in the master's first initial iterate every
     // section hangs from what holds it and its own static solve is well posed.
-    let force_on_upper = vec![statics.is_some(); cuts.len().saturating_sub(1)];
+    // A cable's top takes force and its bottom velocity: its cuts are always
+    // the second way round.
+    let force_on_upper: Vec<bool> = cuts
+        .windows(2)
+        .map(|w| statics.is_some() || w.iter().any(|c| c.fidelity == Fidelity::Cable))
+        .collect();
+    let water = crate::structure_cable::Water::of(&structure)?;
     let mut units = Vec::new();
     let mut connections = Vec::new();
     for (k, cut) in cuts.iter().enumerate() {
-        // Whether this section's start / end is the moving (velocity) side of its cut.
-        let moving_start = k > 0 && force_on_upper[k - 1];
-        let moving_end = k + 1 < cuts.len() && !force_on_upper[k];
-        let coupling = (
-            (k > 0).then_some(moving_start),
-            (k + 1 < cuts.len()).then_some(moving_end),
-        );
-        let mut unit = section_unit(&name, &model, &segments, cut, coupling)?;
-        if let Some(equilibrium) = &statics {
-            equilibrium.start_section(&mut unit, (cut.from, cut.to), (moving_start, moving_end))?;
-        }
+        // Per end at a cut: whether this section is the moving (velocity) side,
+        // and whether the cut is pinned (a side without bending).
+        let start = (k > 0).then(|| End {
+            moving: force_on_upper[k - 1],
+            pinned: !cuts[k - 1].fidelity.bends() || !cut.fidelity.bends(),
+        });
+        let end = (k + 1 < cuts.len()).then(|| End {
+            moving: !force_on_upper[k],
+            pinned: !cuts[k + 1].fidelity.bends() || !cut.fidelity.bends(),
+        });
+        let unit = match cut.fidelity {
+            Fidelity::Nonlinear => {
+                let mut unit = section_unit(&name, &model, &segments, cut, (start, end))?;
+                if let Some(equilibrium) = &statics {
+                    equilibrium.start_section(&mut unit, (cut.from, cut.to))?;
+                    let loaded = (
+                        start.is_some_and(|e| !e.moving),
+                        end.is_some_and(|e| !e.moving),
+                    );
+                    equilibrium.first_guess_loads(&mut unit, (cut.from, cut.to), loaded);
+                }
+                unit
+            }
+            Fidelity::Cable => {
+                cable_fits(&model, &cuts, k)?;
+                let anchor = statics
+                    .as_ref()
+                    .map(|e| e.position_at(cut.from))
+                    .ok_or(format!(
+                        "`structure.sections.{}.fidelity` = \"cable\": a cable section takes its static state from its top force, so the structure needs `structure.model.static_start = true` to place it",
+                        cut.name
+                    ))?;
+                let mut unit = crate::structure_cable::cable_unit(
+                    &name, &model, &segments, cut, water, anchor,
+                )?;
+                // Its static state needs the force at its top in the master's
+                // first initial iterate: the equilibrium's, as the first guess.
+                if let Some(e) = &statics {
+                    e.first_guess_force(&mut unit, "top", e.force_at(cut.to));
+                }
+                unit
+            }
+        };
         units.push(Value::Table(unit));
         if k + 1 < cuts.len() {
-            let (upper, lower) = (
-                format!("{name}_{}", cut.name),
-                format!("{name}_{}", cuts[k + 1].name),
-            );
+            let upper = (format!("{name}_{}", cut.name), cut.fidelity);
+            let lower = (format!("{name}_{}", cuts[k + 1].name), cuts[k + 1].fidelity);
             connections.extend(cut_connections(&upper, &lower, force_on_upper[k]));
         }
     }
@@ -94,11 +130,21 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
 
 /// A straight segment of the stress-free shape.
 #[derive(Clone, Debug)]
-struct Segment {
-    length: f64,
+pub(crate) struct Segment {
+    /// Arc length of its start (m).
+    pub from: f64,
+    pub length: f64,
     angle_deg: f64,
-    elements: f64,
-    table: Table,
+    pub elements: f64,
+    /// The segment as written (its section properties).
+    pub table: Table,
+}
+
+impl Segment {
+    /// Length (m) of the segment inside [from, to].
+    pub fn overlap(&self, from: f64, to: f64) -> f64 {
+        ((self.from + self.length).min(to) - self.from.max(from)).max(0.0)
+    }
 }
 
 fn segments_of(model: &Table) -> Result<Vec<Segment>, String> {
@@ -106,6 +152,7 @@ fn segments_of(model: &Table) -> Result<Vec<Segment>, String> {
         .get("segments")
         .and_then(Value::as_array)
         .ok_or("`structure.model.segments`: expected a list of segments")?;
+    let mut from = 0.0;
     list.iter()
         .enumerate()
         .map(|(i, s)| {
@@ -120,24 +167,61 @@ fn segments_of(model: &Table) -> Result<Vec<Segment>, String> {
                         "`structure.model.segments[{i}].{key}`: expected a number"
                     ))
             };
-            Ok(Segment {
+            let segment = Segment {
+                from,
                 length: number("length", None)?,
                 angle_deg: number("angle", Some(0.0))?,
                 elements: number("elements", None)?,
                 table: t.clone(),
-            })
+            };
+            from += segment.length;
+            Ok(segment)
         })
         .collect()
 }
 
-/// One section: its name, arc-length range and element count (None: as the
-/// model's segments).
+/// One section: its name, arc-length range (m), fidelity and element count
+/// (None: as the model's segments).
 #[derive(Clone, Debug)]
-struct Cut {
-    name: String,
-    from: f64,
-    to: f64,
-    elements: Option<usize>,
+pub(crate) struct Cut {
+    pub name: String,
+    pub from: f64,
+    pub to: f64,
+    pub fidelity: Fidelity,
+    pub elements: Option<usize>,
+}
+
+/// The fidelities a section can take, as written in scenes.
+pub const FIDELITIES: [&str; 2] = Fidelity::NAMES;
+
+/// Which model a section is.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Fidelity {
+    /// The geometrically nonlinear section (`nonlinear` unit).
+    Nonlinear,
+    /// Seed 000's cable, linear about its static state, no bending (`cable` unit).
+    Cable,
+}
+
+impl Fidelity {
+    /// The fidelities' names as written in scenes.
+    pub const NAMES: [&'static str; 2] = ["nonlinear", "cable"];
+
+    fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
+        match word {
+            "nonlinear" => Ok(Fidelity::Nonlinear),
+            "cable" => Ok(Fidelity::Cable),
+            other => Err(format!(
+                "`{key}` = \"{other}\": expected one of {} (the other fidelities are not built yet)",
+                Fidelity::NAMES.join(", ")
+            )),
+        }
+    }
+
+    /// Whether the model carries bending (rotation and moment at its cuts).
+    fn bends(self) -> bool {
+        self == Fidelity::Nonlinear
+    }
 }
 
 fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
@@ -155,15 +239,7 @@ fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
             .get("name")
             .and_then(Value::as_str)
             .ok_or(format!("`{key}.name`: expected a name"))?;
-        let fidelity = t
-            .get("fidelity")
-            .and_then(Value::as_str)
-            .unwrap_or("nonlinear");
-        if fidelity != "nonlinear" {
-            return Err(format!(
-                "`{key}.fidelity` = \"{fidelity}\": expected \"nonlinear\" (the other fidelities are not built yet)"
-            ));
-        }
+        let (fidelity, fidelity_elements) = fidelity_of(&key, t.get("fidelity"))?;
         let last = i + 1 == list.len();
         let to = match t
             .get("to")
@@ -178,19 +254,20 @@ fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
                 ));
             }
         };
-        let elements = match t.get("elements") {
-            None => None,
-            Some(v) => Some(
-                v.as_integer()
-                    .filter(|&n| n >= 1)
-                    .ok_or(format!("`{key}.elements`: expected a whole number >= 1"))?
-                    as usize,
-            ),
+        let elements = match (t.get("elements"), fidelity_elements) {
+            (None, elements) => elements,
+            (Some(v), None) => Some(whole(&format!("{key}.elements"), v)?),
+            (Some(_), Some(_)) => {
+                return Err(format!(
+                    "`{key}`: the element count is given twice (`elements` and `fidelity.elements`)"
+                ));
+            }
         };
         cuts.push(Cut {
             name: name.to_owned(),
             from,
             to,
+            fidelity,
             elements,
         });
         from = to;
@@ -198,16 +275,90 @@ fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
     Ok(cuts)
 }
 
+/// Whether section `k` can be a cable: its top takes a coupled force, so it
+/// cannot end the structure, and its bottom a coupled velocity, so at the
+/// structure's start it must be anchored (x and z held).
+fn cable_fits(model: &Table, cuts: &[Cut], k: usize) -> Result<(), String> {
+    let key = format!("structure.sections.{}.fidelity", cuts[k].name);
+    if k + 1 == cuts.len() {
+        return Err(format!(
+            "`{key}` = \"cable\": the cable's top takes a coupled force, so a cable cannot be the structure's last section; give the end to a nonlinear section"
+        ));
+    }
+    if k == 0 {
+        let start = model
+            .get("ends")
+            .and_then(|e| e.get("start"))
+            .and_then(Value::as_table);
+        let word = |k: &str| start.and_then(|s| s.get(k)).and_then(Value::as_str);
+        let anchored = matches!(word("kind"), Some("fixed" | "pinned"))
+            || (word("x") == Some("held") && word("z") == Some("held"));
+        if !anchored {
+            return Err(format!(
+                "`{key}` = \"cable\": a cable at the structure's start needs an anchor there (`structure.model.ends.start`: kind \"pinned\" or \"fixed\")"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A section's `fidelity`: a name, or a table `{ kind = NAME, elements = N }`
+/// (default: nonlinear).
+fn fidelity_of(key: &str, value: Option<&Value>) -> Result<(Fidelity, Option<usize>), String> {
+    let key = format!("{key}.fidelity");
+    match value {
+        None => Ok((Fidelity::Nonlinear, None)),
+        Some(Value::String(word)) => Ok((Fidelity::parse(&key, word)?, None)),
+        Some(Value::Table(t)) => {
+            if let Some(unknown) = t.keys().find(|k| *k != "kind" && *k != "elements") {
+                return Err(format!(
+                    "`{key}.{unknown}`: unknown key; expected `kind` and optionally `elements`"
+                ));
+            }
+            let word = t.get("kind").and_then(Value::as_str).ok_or(format!(
+                "`{key}.kind`: expected one of {}",
+                Fidelity::NAMES.join(", ")
+            ))?;
+            let elements = t
+                .get("elements")
+                .map(|v| whole(&format!("{key}.elements"), v))
+                .transpose()?;
+            Ok((Fidelity::parse(&format!("{key}.kind"), word)?, elements))
+        }
+        Some(_) => Err(format!(
+            "`{key}`: expected a name ({}) or a table {{ kind, elements }}",
+            Fidelity::NAMES.join(", ")
+        )),
+    }
+}
+
+/// A whole number >= 1 at `key`.
+fn whole(key: &str, v: &Value) -> Result<usize, String> {
+    v.as_integer()
+        .filter(|&n| n >= 1)
+        .map(|n| n as usize)
+        .ok_or(format!("`{key}`: expected a whole number >= 1"))
+}
+
+/// How a section's end at a cut is coupled.
+#[derive(Copy, Clone, Debug)]
+struct End {
+    /// It moves with the other side's velocity (else it carries its force).
+    moving: bool,
+    /// Rotation and moment do not cross the cut (one side does not bend).
+    pinned: bool,
+}
+
 /// The `nonlinear` unit of one section: the model's segments clipped to its range,
 /// its start at the stress-free position of the cut, the structure's ends at the
 /// structure's ends, and at a cut (`coupling`: start, end; None at the
-/// structure's ends) a moving end (true) or a loaded one (false).
+/// structure's ends) a moving or loaded end.
 fn section_unit(
     name: &str,
     model: &Table,
     segments: &[Segment],
     cut: &Cut,
-    coupling: (Option<bool>, Option<bool>),
+    coupling: (Option<End>, Option<End>),
 ) -> Result<Table, String> {
     let mut parameters = model.clone();
     let (mut position, mut arc) = (start_of(model), 0.0f64);
@@ -258,10 +409,16 @@ fn section_unit(
         .and_then(Value::as_table)
         .cloned()
         .unwrap_or_default();
-    for (key, moving) in [("start", coupling.0), ("end", coupling.1)] {
-        match moving {
-            Some(true) => ends.insert(key.into(), coupled_motion()),
-            Some(false) => ends.insert(key.into(), coupled_load()),
+    for (key, coupled) in [("start", coupling.0), ("end", coupling.1)] {
+        match coupled {
+            Some(End {
+                moving: true,
+                pinned,
+            }) => ends.insert(key.into(), coupled_motion(pinned)),
+            Some(End {
+                moving: false,
+                pinned,
+            }) => ends.insert(key.into(), coupled_load(pinned)),
             None => None,
         };
     }
@@ -299,54 +456,93 @@ fn distribute(segments: &mut [Table], n: usize) {
     }
 }
 
-/// The loaded side of a cut: the other side's force and moment.
-fn coupled_load() -> Value {
+/// The loaded side of a cut: the other side's force and moment (a pinned cut's
+/// rotation is free).
+fn coupled_load(pinned: bool) -> Value {
     let force = || {
         let mut t = Table::new();
         t.insert("force".into(), Value::String("input".into()));
         Value::Table(t)
     };
     let mut t = Table::new();
-    for dof in ["x", "z", "rotation"] {
-        t.insert(dof.into(), force());
-    }
+    t.insert("x".into(), force());
+    t.insert("z".into(), force());
+    t.insert(
+        "rotation".into(),
+        if pinned {
+            Value::String("free".into())
+        } else {
+            force()
+        },
+    );
     Value::Table(t)
 }
 
-/// The moving side of a cut: the other side's velocity.
-fn coupled_motion() -> Value {
+/// The moving side of a cut: the other side's velocity (a pinned cut's rotation
+/// is free).
+fn coupled_motion(pinned: bool) -> Value {
     let mut t = Table::new();
     for dof in ["x", "z", "rotation"] {
-        t.insert(dof.into(), Value::String("velocity".into()));
+        let free = pinned && dof == "rotation";
+        t.insert(
+            dof.into(),
+            Value::String(if free { "free" } else { "velocity" }.into()),
+        );
     }
     Value::Table(t)
 }
 
-/// The six links of a cut: velocity from the loaded side to the moving side and
-/// force back (`force_on_upper`: the upper section's end is the loaded side).
-fn cut_connections(upper: &str, lower: &str, force_on_upper: bool) -> Vec<Value> {
+/// A section's port at one of its ends (`at_end`: its end, else its start) for
+/// a quantity `velocity_x`, `force_z`, `angular_velocity`, `moment`, ...: the
+/// `nonlinear` unit's `end_force_x`, the `cable` unit's `top_force_x` (its end
+/// is its top).
+fn port(unit: &(String, Fidelity), at_end: bool, quantity: &str) -> String {
+    let side = match (unit.1, at_end) {
+        (Fidelity::Nonlinear, true) => "end",
+        (Fidelity::Nonlinear, false) => "start",
+        (Fidelity::Cable, true) => "top",
+        (Fidelity::Cable, false) => "bottom",
+    };
+    format!("{}.{side}_{quantity}", unit.0)
+}
+
+/// The links of a cut: velocity from the loaded side to the moving side and
+/// force back (`force_on_upper`: the upper section's end is the loaded side);
+/// rotation and moment too unless one side does not bend.
+fn cut_connections(
+    upper: &(String, Fidelity),
+    lower: &(String, Fidelity),
+    force_on_upper: bool,
+) -> Vec<Value> {
     let link = |from: String, to: String| {
         let mut t = Table::new();
         t.insert("from".into(), Value::String(from));
         t.insert("to".into(), Value::String(to));
         Value::Table(t)
     };
-    let (loaded, moving) = if force_on_upper {
-        (format!("{upper}.end"), format!("{lower}.start"))
+    let ((loaded, loaded_at_end), (moving, moving_at_end)) = if force_on_upper {
+        ((upper, true), (lower, false))
     } else {
-        (format!("{lower}.start"), format!("{upper}.end"))
+        ((lower, false), (upper, true))
     };
+    let bends = upper.1.bends() && lower.1.bends();
     let mut links = Vec::new();
     for (motion, load) in [
         ("velocity_x", "force_x"),
         ("velocity_z", "force_z"),
         ("angular_velocity", "moment"),
     ] {
+        if motion == "angular_velocity" && !bends {
+            continue;
+        }
         links.push(link(
-            format!("{loaded}_{motion}"),
-            format!("{moving}_{motion}"),
+            port(loaded, loaded_at_end, motion),
+            port(moving, moving_at_end, motion),
         ));
-        links.push(link(format!("{moving}_{load}"), format!("{loaded}_{load}")));
+        links.push(link(
+            port(moving, moving_at_end, load),
+            port(loaded, loaded_at_end, load),
+        ));
     }
     links
 }

@@ -33,14 +33,9 @@ impl Equilibrium {
     }
 
     /// Sets a section's static start: the equilibrium shape over [from, to] as its
-    /// start polyline, and its moving cut ends (`moving`: start, end) where the
-    /// equilibrium puts them.
-    pub fn start_section(
-        &self,
-        unit: &mut Table,
-        (from, to): (f64, f64),
-        moving: (bool, bool),
-    ) -> Result<(), String> {
+    /// start polyline, and its moving cut ends (each DOF coupled by `velocity`)
+    /// where the equilibrium puts them.
+    pub fn start_section(&self, unit: &mut Table, (from, to): (f64, f64)) -> Result<(), String> {
         let section = self.section.unit();
         let points = ((to - from) * POINTS_PER_METRE).ceil().max(20.0) as usize;
         let shape: Vec<Value> = (0..=points)
@@ -56,24 +51,76 @@ impl Equilibrium {
         parameters.insert("static_start".into(), Value::Boolean(true));
         parameters.insert("start_shape".into(), Value::String("points".into()));
         parameters.insert("start_points".into(), Value::Array(shape));
-        for (key, at, is_moving) in [("start", from, moving.0), ("end", to, moving.1)] {
-            if !is_moving {
+        let Some(ends) = parameters.get_mut("ends").and_then(Value::as_table_mut) else {
+            return Ok(());
+        };
+        for (key, at) in [("start", from), ("end", to)] {
+            let Some(end) = ends.get_mut(key).and_then(Value::as_table_mut) else {
                 continue;
-            }
-            let mut end = Table::new();
+            };
             for (dof, d) in ["x", "z", "rotation"].iter().zip(self.displacement_at(at)) {
-                let mut condition = Table::new();
-                condition.insert("velocity_from".into(), Value::Float(d));
-                end.insert((*dof).into(), Value::Table(condition));
+                if let Some(condition) = end.get_mut(*dof)
+                    && condition.as_str() == Some("velocity")
+                {
+                    let mut from = Table::new();
+                    from.insert("velocity_from".into(), Value::Float(d));
+                    *condition = Value::Table(from);
+                }
             }
-            let ends = parameters
-                .entry("ends")
-                .or_insert_with(|| Value::Table(Table::new()))
-                .as_table_mut()
-                .ok_or("`ends` is not a table")?;
-            ends.insert(key.into(), Value::Table(end));
         }
         Ok(())
+    }
+
+    /// The force (N) the structure beyond arc length `s` exerts on the part
+    /// before it in the equilibrium: the tension along the tangent (the shear of
+    /// the bending is left out; it serves as a first guess of a cut's force).
+    pub fn force_at(&self, s: f64) -> [f64; 2] {
+        let section = self.section.unit();
+        let h = 1e-6 * section.model().arc.last().copied().unwrap_or(1.0);
+        let (p0, p1) = (section.position_at(s - h), section.position_at(s + h));
+        let chord = ((p1[0] - p0[0]).powi(2) + (p1[1] - p0[1]).powi(2)).sqrt();
+        let tension = section.section_forces(s)[0];
+        [
+            tension * (p1[0] - p0[0]) / chord,
+            tension * (p1[1] - p0[1]) / chord,
+        ]
+    }
+
+    /// A section's loaded cut ends (`loaded`: start, end) take the equilibrium's
+    /// force there as the first guess of their force inputs, so each section's
+    /// static solve in the master's first initial iterate hangs as the whole
+    /// structure does (the master iterates the moment and the rest).
+    pub fn first_guess_loads(
+        &self,
+        unit: &mut Table,
+        (from, to): (f64, f64),
+        loaded: (bool, bool),
+    ) {
+        if loaded.0 {
+            // The force on a start is the part before's pull on the part after.
+            let f = self.force_at(from);
+            self.first_guess_force(unit, "start", [-f[0], -f[1]]);
+        }
+        if loaded.1 {
+            self.first_guess_force(unit, "end", self.force_at(to));
+        }
+    }
+
+    /// Sets `<side>_force_x` and `<side>_force_z` (N) in the unit's `inputs`.
+    pub fn first_guess_force(&self, unit: &mut Table, side: &str, force: [f64; 2]) {
+        if let Some(inputs) = unit
+            .entry("inputs")
+            .or_insert_with(|| Value::Table(Table::new()))
+            .as_table_mut()
+        {
+            inputs.insert(format!("{side}_force_x"), Value::Float(force[0]));
+            inputs.insert(format!("{side}_force_z"), Value::Float(force[1]));
+        }
+    }
+
+    /// Position (m) at arc length `s` in the equilibrium.
+    pub fn position_at(&self, s: f64) -> [f64; 2] {
+        self.section.unit().position_at(s)
     }
 
     /// Displacement (x, z from the stress-free position, m; rotation, rad) at arc

@@ -1,6 +1,7 @@
 //! `slender modes` and `slender study`.
 
 use super::{CliError, count_in, load, positive, report_written, results_folder};
+use slender_app::fidelity::{self, FidelityPlan};
 use slender_app::study::{self, StudyPlan};
 use std::path::{Path, PathBuf};
 
@@ -99,6 +100,54 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
         eprintln!(
             "note: {failed} of {} runs failed (marked FAILED above and in study.csv)",
             rows.len()
+        );
+    }
+    Ok(())
+}
+
+/// A fidelity study of a structure's sections; the rows are written even when
+/// some combinations fail (those are marked FAILED with their reason).
+pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Result<(), CliError> {
+    if let Some(d) = plan.duration {
+        positive("--duration", d)?;
+    }
+    positive("--tolerance", plan.tolerance)?;
+    count_in("--jobs", plan.jobs, 1, 1024)?;
+    let scene = load(path)?;
+    let dir = out.unwrap_or_else(|| {
+        let mut d = scene.default_output_dir().into_os_string();
+        d.push("-fidelity");
+        PathBuf::from(d)
+    });
+    results_folder(&dir)?;
+    let report =
+        fidelity::run_fidelity(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
+    let write = |name: &str, text: String| -> Result<PathBuf, CliError> {
+        let file = dir.join(name);
+        std::fs::write(&file, text)
+            .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
+        Ok(file)
+    };
+    let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
+    let files = vec![
+        write("fidelity.csv", fidelity::report::to_csv(&report))?,
+        write("fidelity.json", json)?,
+        write("fidelity.md", fidelity::report::to_markdown(&report))?,
+    ];
+    let svg = dir.join("fidelity.svg");
+    fidelity::report::plot(
+        &svg,
+        &format!("Fidelity and cost: {}", path.display()),
+        &report,
+    )
+    .map_err(CliError::failure)?;
+    println!("{}", fidelity::report::conclusion(&report));
+    report_written(&[files, vec![svg]].concat());
+    let failed = report.rows.iter().filter(|r| r.error.is_some()).count();
+    if failed > 0 {
+        eprintln!(
+            "note: {failed} of {} runs failed (marked FAILED in fidelity.md and fidelity.csv)",
+            report.rows.len()
         );
     }
     Ok(())

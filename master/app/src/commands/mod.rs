@@ -76,6 +76,30 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
             };
             analysis::study(&scene, &plan, out)
         }
+        Command::Fidelity {
+            scene,
+            sections,
+            grid,
+            tolerance,
+            jobs,
+            duration,
+            out,
+        } => {
+            let plan = slender_app::fidelity::FidelityPlan {
+                sections,
+                design: if grid {
+                    slender_app::study::Design::Grid
+                } else {
+                    slender_app::study::Design::OneAtATime
+                },
+                duration,
+                jobs: jobs.unwrap_or_else(|| {
+                    std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
+                }),
+                tolerance,
+            };
+            analysis::fidelity(&scene, &plan, out)
+        }
         Command::Span {
             action,
             flexural_rigidity,

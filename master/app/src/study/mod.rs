@@ -180,7 +180,8 @@ pub fn run_study(
     }
     let groups = groups(plan);
     let all: Vec<&Vec<Assignment>> = groups.iter().flat_map(|(_, runs)| runs).collect();
-    let mut outcomes = run_all(&all, plan.jobs, |assignments| {
+    let order = costliest_first(&all);
+    let mut outcomes = crate::parallel::run_all(&all, &order, plan.jobs, |assignments| {
         run_one(path, &table, assignments, plan.duration, &indicators)
     });
     let mut rows = Vec::new();
@@ -199,41 +200,6 @@ pub fn run_study(
 
 /// A varied key with its value.
 type Assignment = (Setting, toml::Value);
-
-/// Runs every task on `jobs` threads, each taking the next task when it is free,
-/// the likely costliest first (the finest step or largest element count of each
-/// group, groups interleaved), and returns the outcomes in the tasks' order.
-fn run_all<O: Send>(
-    tasks: &[&Vec<Assignment>],
-    jobs: usize,
-    run: impl Fn(&Vec<Assignment>) -> O + Sync,
-) -> Vec<O> {
-    let order = costliest_first(tasks);
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    // Each worker keeps what it ran; a run that panics (a bug, not bad input)
-    // panics the study as it would without threads.
-    let mut done: Vec<(usize, O)> = std::thread::scope(|scope| {
-        let workers: Vec<_> = (0..jobs.clamp(1, tasks.len().max(1)))
-            .map(|_| {
-                scope.spawn(|| {
-                    let mut mine = Vec::new();
-                    while let Some(&task) =
-                        order.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
-                    {
-                        mine.push((task, run(tasks[task])));
-                    }
-                    mine
-                })
-            })
-            .collect();
-        workers
-            .into_iter()
-            .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
-    });
-    done.sort_by_key(|(task, _)| *task);
-    done.into_iter().map(|(_, outcome)| outcome).collect()
-}
 
 /// Task indices by likely cost, descending: a run's cost grows with its element
 /// counts and falls with its step.
@@ -289,7 +255,11 @@ fn groups(plan: &StudyPlan) -> Vec<(String, Vec<Vec<Assignment>>)> {
 }
 
 /// The scene of `table`, with `duration` when given.
-fn scene_with(path: &Path, table: &toml::Table, duration: Option<f64>) -> Result<Scene, String> {
+pub(crate) fn scene_with(
+    path: &Path,
+    table: &toml::Table,
+    duration: Option<f64>,
+) -> Result<Scene, String> {
     let text = toml::to_string(table).map_err(|e| e.to_string())?;
     let mut scene = Scene::parse(path, text).map_err(|e| e.to_string())?;
     if let Some(d) = duration {

@@ -1,0 +1,576 @@
+//! `slender fidelity`: a structure's sections at chosen fidelities (which model,
+//! how fine), each combination run in parallel and measured against the
+//! monolithic reference (the whole structure as one `nonlinear` unit at the
+//! model's own mesh): the relative error epsilon (seed 000 eqs. 10-11) of each
+//! quantity of interest, cost per simulated second, speed-up, iterations per
+//! step and non-converged steps; the Pareto front of worst error against cost,
+//! and the cheapest combination within a tolerance. A combination that cannot
+//! be set up or fails is reported with its reason and the study goes on.
+
+pub mod quantities;
+pub mod report;
+
+use crate::indicators::{indicator, interpolate, normalized_error};
+use crate::run::{RunOptions, run_scene};
+use crate::study::Design;
+use quantities::{Features, SectionUnit};
+use serde::Serialize;
+use std::path::Path;
+use std::str::FromStr;
+use toml::{Table, Value};
+
+/// One way to model a section: a fidelity and, optionally, its element count
+/// (`nonlinear:16`); without a count, the model's own mesh over the section.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Choice {
+    pub fidelity: String,
+    pub elements: Option<usize>,
+}
+
+impl Choice {
+    /// As written on the command line.
+    pub fn label(&self) -> String {
+        match self.elements {
+            Some(n) => format!("{}:{n}", self.fidelity),
+            None => self.fidelity.clone(),
+        }
+    }
+}
+
+/// A section's choices: `NAME=CHOICE,CHOICE,...`.
+#[derive(Clone, Debug)]
+pub struct SectionChoices {
+    pub section: String,
+    pub choices: Vec<Choice>,
+}
+
+impl FromStr for SectionChoices {
+    type Err = String;
+    fn from_str(s: &str) -> Result<SectionChoices, String> {
+        let (section, list) = s.split_once('=').ok_or(format!(
+            "`{s}`: expected NAME=CHOICE,CHOICE,..., e.g. lower=nonlinear,cable,nonlinear:16"
+        ))?;
+        let choices = list
+            .split(',')
+            .map(|c| {
+                let (fidelity, elements) = match c.split_once(':') {
+                    Some((f, n)) => (
+                        f,
+                        Some(n.parse::<usize>().ok().filter(|&n| n >= 1).ok_or(format!(
+                            "`{s}`: `{c}`: the element count after `:` must be a whole number >= 1"
+                        ))?),
+                    ),
+                    None => (c, None),
+                };
+                if !slender_scene::structure::FIDELITIES.contains(&fidelity) {
+                    return Err(format!(
+                        "`{s}`: `{fidelity}` is not a fidelity; expected one of {}",
+                        slender_scene::structure::FIDELITIES.join(", ")
+                    ));
+                }
+                Ok(Choice {
+                    fidelity: fidelity.to_owned(),
+                    elements,
+                })
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        if choices.is_empty() || section.is_empty() {
+            return Err(format!(
+                "`{s}`: expected a section name and at least one choice"
+            ));
+        }
+        Ok(SectionChoices {
+            section: section.to_owned(),
+            choices,
+        })
+    }
+}
+
+/// What a fidelity study runs.
+#[derive(Clone, Debug)]
+pub struct FidelityPlan {
+    pub sections: Vec<SectionChoices>,
+    /// Every combination, or one section's choices at a time (the others as
+    /// the scene has them).
+    pub design: Design,
+    /// Simulated time of each run (s); the scene's when `None`.
+    pub duration: Option<f64>,
+    /// Runs at once.
+    pub jobs: usize,
+    /// The largest epsilon of every quantity a combination may have to count as
+    /// good enough.
+    pub tolerance: f64,
+}
+
+/// One run: a combination (or the reference) and what it measured.
+#[derive(Clone, Debug, Serialize)]
+pub struct FidelityRow {
+    /// Each section's choice (all sections, in order).
+    pub combination: Vec<(String, String)>,
+    pub reference: bool,
+    /// epsilon of each quantity against the reference.
+    pub errors: Vec<(String, f64)>,
+    /// The largest of `errors`.
+    pub worst_error: f64,
+    pub cost_per_simulated_second: f64,
+    /// The reference's cost over this run's.
+    pub speed_up: f64,
+    pub iterations_per_step: f64,
+    pub non_converged_steps: u64,
+    /// Not beaten in both worst error and cost by another combination.
+    pub pareto: bool,
+    pub within_tolerance: bool,
+    pub error: Option<String>,
+}
+
+/// A fidelity study's result.
+#[derive(Clone, Debug, Serialize)]
+pub struct FidelityReport {
+    pub scene: String,
+    pub tolerance: f64,
+    pub quantities: Vec<String>,
+    /// The reference first, then the combinations.
+    pub rows: Vec<FidelityRow>,
+    /// Index in `rows` of the cheapest combination within the tolerance.
+    pub cheapest: Option<usize>,
+}
+
+/// The structure as the study sees it.
+struct Structure {
+    name: String,
+    /// Section names in order, with their arc-length starts (m).
+    sections: Vec<(String, f64)>,
+    features: Features,
+}
+
+/// A run's recording reduced to the quantities.
+struct Outcome {
+    time: Vec<f64>,
+    series: Vec<Vec<f64>>,
+    iterations_per_step: f64,
+    non_converged_steps: u64,
+    cost: f64,
+    error: Option<String>,
+}
+
+/// Runs the plan on the scene at `path`. `Err` when the study cannot start (the
+/// scene does not load or has no `[structure]`, a section is not there).
+pub fn run_fidelity(
+    path: &Path,
+    plan: &FidelityPlan,
+    progress: impl Fn(&str) + Sync,
+) -> Result<FidelityReport, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut table: Table = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    // The scene must load as written.
+    crate::study::scene_with(path, &table, plan.duration)?;
+    let structure = structure_of(&table)?;
+    for s in &plan.sections {
+        if !structure.sections.iter().any(|(n, _)| *n == s.section) {
+            let names: Vec<&str> = structure.sections.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(format!(
+                "--section {}: the structure has no section `{}`; its sections are {}",
+                s.section,
+                s.section,
+                names.join(", ")
+            ));
+        }
+    }
+    // Runs record only what the study reads, and carry no twin.
+    if let Some(s) = table.get_mut("structure").and_then(Value::as_table_mut) {
+        s.remove("reference");
+    }
+    table.remove("output");
+    let mut tasks: Vec<Option<Vec<(String, Choice)>>> = vec![None];
+    tasks.extend(combinations(plan).into_iter().map(Some));
+    let order = order_of(&tasks);
+    let names = quantities::names(structure.features);
+    let outcomes = crate::parallel::run_all(&tasks, &order, plan.jobs, |task| {
+        let outcome = run_one(path, &table, &structure, task.as_deref(), plan.duration);
+        progress(&describe(task.as_deref(), &outcome));
+        outcome
+    });
+    let rows = rows_of(
+        &structure,
+        &table,
+        &tasks,
+        &outcomes,
+        &names,
+        plan.tolerance,
+    );
+    let cheapest = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| !r.reference && r.within_tolerance)
+        .min_by(|a, b| {
+            a.1.cost_per_simulated_second
+                .total_cmp(&b.1.cost_per_simulated_second)
+        })
+        .map(|(k, _)| k);
+    Ok(FidelityReport {
+        scene: path.display().to_string(),
+        tolerance: plan.tolerance,
+        quantities: names.iter().map(|n| (*n).to_owned()).collect(),
+        rows,
+        cheapest,
+    })
+}
+
+/// The scene's `[structure]`: name, sections and what its model has.
+fn structure_of(table: &Table) -> Result<Structure, String> {
+    let s = table
+        .get("structure")
+        .and_then(Value::as_table)
+        .ok_or("a fidelity study needs a scene with a `[structure]`")?;
+    let name = s
+        .get("name")
+        .and_then(Value::as_str)
+        .ok_or("`structure.name`: expected a name")?
+        .to_owned();
+    let model = s.get("model").and_then(Value::as_table);
+    let features = Features {
+        seabed: model.is_some_and(|m| m.contains_key("contact")),
+        stinger: model.is_some_and(|m| m.contains_key("stinger")),
+    };
+    let mut sections = Vec::new();
+    let mut from = 0.0;
+    for t in s
+        .get("sections")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(Value::as_table)
+    {
+        let name = t.get("name").and_then(Value::as_str).unwrap_or_default();
+        sections.push((name.to_owned(), from));
+        from = t
+            .get("to")
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+            .unwrap_or(f64::NAN);
+    }
+    Ok(Structure {
+        name,
+        sections,
+        features,
+    })
+}
+
+/// The combinations the plan asks for.
+fn combinations(plan: &FidelityPlan) -> Vec<Vec<(String, Choice)>> {
+    match plan.design {
+        Design::OneAtATime => plan
+            .sections
+            .iter()
+            .flat_map(|s| {
+                s.choices
+                    .iter()
+                    .map(|c| vec![(s.section.clone(), c.clone())])
+            })
+            .collect(),
+        Design::Grid => plan.sections.iter().fold(vec![Vec::new()], |runs, s| {
+            runs.into_iter()
+                .flat_map(|run| {
+                    s.choices.iter().map(move |c| {
+                        let mut next = run.clone();
+                        next.push((s.section.clone(), c.clone()));
+                        next
+                    })
+                })
+                .collect()
+        }),
+    }
+}
+
+/// Start order: the reference first, then the combinations with the most
+/// nonlinear elements asked for (the likely costliest).
+fn order_of(tasks: &[Option<Vec<(String, Choice)>>]) -> Vec<usize> {
+    let weight = |t: &Option<Vec<(String, Choice)>>| match t {
+        None => f64::INFINITY,
+        Some(c) => c
+            .iter()
+            .map(|(_, c)| match c.fidelity.as_str() {
+                "nonlinear" => c.elements.map_or(1e6, |n| n as f64),
+                _ => c.elements.map_or(1.0, |n| n as f64 * 1e-3),
+            })
+            .sum(),
+    };
+    let mut order: Vec<usize> = (0..tasks.len()).collect();
+    order.sort_by(|&a, &b| weight(&tasks[b]).total_cmp(&weight(&tasks[a])));
+    order
+}
+
+/// The scene of one run: the combination's choices on the sections, or (for
+/// the reference, `None`) the whole structure as one section; and its sections'
+/// units.
+fn run_table(
+    table: &Table,
+    structure: &Structure,
+    combination: Option<&[(String, Choice)]>,
+) -> Result<(Table, Vec<SectionUnit>), String> {
+    let mut table = table.clone();
+    let s = table
+        .get_mut("structure")
+        .and_then(Value::as_table_mut)
+        .ok_or("no `[structure]`")?;
+    let sections = s
+        .get_mut("sections")
+        .and_then(Value::as_array_mut)
+        .ok_or("`structure.sections`: expected a list")?;
+    let Some(combination) = combination else {
+        let mut whole = Table::new();
+        whole.insert("name".into(), Value::String("monolithic".into()));
+        *sections = vec![Value::Table(whole)];
+        let units = vec![SectionUnit {
+            unit: format!("{}_monolithic", structure.name),
+            kind: "nonlinear".into(),
+            from: 0.0,
+        }];
+        return finish(table, units, structure.features);
+    };
+    for (name, choice) in combination {
+        let section = sections
+            .iter_mut()
+            .filter_map(Value::as_table_mut)
+            .find(|t| t.get("name").and_then(Value::as_str) == Some(name))
+            .ok_or(format!("no section `{name}`"))?;
+        section.insert("fidelity".into(), Value::String(choice.fidelity.clone()));
+        match choice.elements {
+            Some(n) => section.insert("elements".into(), Value::Integer(n as i64)),
+            None => section.remove("elements"),
+        };
+    }
+    let units = sections
+        .iter()
+        .filter_map(Value::as_table)
+        .zip(&structure.sections)
+        .map(|(t, (name, from))| SectionUnit {
+            unit: format!("{}_{name}", structure.name),
+            kind: match t.get("fidelity") {
+                Some(Value::String(w)) => w.clone(),
+                Some(Value::Table(f)) => f
+                    .get("kind")
+                    .and_then(Value::as_str)
+                    .unwrap_or("nonlinear")
+                    .to_owned(),
+                _ => "nonlinear".to_owned(),
+            },
+            from: *from,
+        })
+        .collect();
+    finish(table, units, structure.features)
+}
+
+/// Adds the `[output]` that records the quantities' signals.
+fn finish(
+    mut table: Table,
+    units: Vec<SectionUnit>,
+    features: Features,
+) -> Result<(Table, Vec<SectionUnit>), String> {
+    let signals = quantities::signals(&units, features);
+    let mut output = Table::new();
+    output.insert(
+        "signals".into(),
+        Value::Array(signals.into_iter().map(Value::String).collect()),
+    );
+    table.insert("output".into(), Value::Table(output));
+    Ok((table, units))
+}
+
+fn run_one(
+    path: &Path,
+    table: &Table,
+    structure: &Structure,
+    combination: Option<&[(String, Choice)]>,
+    duration: Option<f64>,
+) -> Outcome {
+    let failed = |error: String| Outcome {
+        time: Vec::new(),
+        series: Vec::new(),
+        iterations_per_step: f64::NAN,
+        non_converged_steps: 0,
+        cost: f64::NAN,
+        error: Some(error),
+    };
+    let (table, units) = match run_table(table, structure, combination) {
+        Ok(t) => t,
+        Err(e) => return failed(e),
+    };
+    let scene = match crate::study::scene_with(path, &table, duration) {
+        Ok(s) => s,
+        Err(e) => return failed(e),
+    };
+    let options = RunOptions {
+        output_dir: None,
+        progress: false,
+    };
+    let result = match run_scene(&scene, &options) {
+        Ok(r) => r,
+        Err(e) => return failed(e.to_string()),
+    };
+    let series: Result<Vec<Vec<f64>>, String> = quantities::names(structure.features)
+        .iter()
+        .map(|n| quantities::series(n, &units, &result.recorder))
+        .collect();
+    let counters = &result.summary.counters;
+    match series {
+        Ok(series) => Outcome {
+            time: result.recorder.time.clone(),
+            series,
+            iterations_per_step: counters.mean_iterations(),
+            non_converged_steps: counters.non_converged_steps,
+            cost: result.summary.cost_per_simulated_second,
+            error: result.summary.error.clone(),
+        },
+        Err(e) => failed(e),
+    }
+}
+
+/// A line of progress for a finished run.
+fn describe(combination: Option<&[(String, Choice)]>, o: &Outcome) -> String {
+    let what = match combination {
+        None => "reference (monolithic)".to_owned(),
+        Some(c) => c
+            .iter()
+            .map(|(s, c)| format!("{s}={}", c.label()))
+            .collect::<Vec<_>>()
+            .join(" "),
+    };
+    match &o.error {
+        Some(e) => format!("{what}: FAILED: {e}"),
+        None => format!("{what}: {:.3e} s per simulated s", o.cost),
+    }
+}
+
+/// The report's rows: errors against the reference (task 0), speed-ups, the
+/// Pareto front and the tolerance.
+fn rows_of(
+    structure: &Structure,
+    table: &Table,
+    tasks: &[Option<Vec<(String, Choice)>>],
+    outcomes: &[Outcome],
+    names: &[&str],
+    tolerance: f64,
+) -> Vec<FidelityRow> {
+    let reference = &outcomes[0];
+    let mut rows: Vec<FidelityRow> = tasks
+        .iter()
+        .zip(outcomes)
+        .map(|(task, o)| {
+            let errors: Vec<(String, f64)> = names
+                .iter()
+                .enumerate()
+                .map(|(i, n)| ((*n).to_owned(), epsilon(o, reference, i)))
+                .collect();
+            let worst = errors.iter().map(|e| e.1).fold(0.0f64, |a, e| {
+                if e.is_nan() || a.is_nan() {
+                    f64::NAN
+                } else {
+                    a.max(e)
+                }
+            });
+            FidelityRow {
+                combination: combination_of(structure, table, task.as_deref()),
+                reference: task.is_none(),
+                worst_error: if task.is_none() { 0.0 } else { worst },
+                errors,
+                cost_per_simulated_second: o.cost,
+                speed_up: reference.cost / o.cost,
+                iterations_per_step: o.iterations_per_step,
+                non_converged_steps: o.non_converged_steps,
+                pareto: false,
+                within_tolerance: false,
+                error: o.error.clone(),
+            }
+        })
+        .collect();
+    let usable = |r: &FidelityRow| {
+        !r.reference
+            && r.error.is_none()
+            && r.worst_error.is_finite()
+            && r.cost_per_simulated_second.is_finite()
+    };
+    for k in 0..rows.len() {
+        let r = &rows[k];
+        let ok = usable(r);
+        let beaten = rows.iter().any(|o| {
+            usable(o)
+                && o.worst_error <= r.worst_error
+                && o.cost_per_simulated_second <= r.cost_per_simulated_second
+                && (o.worst_error < r.worst_error
+                    || o.cost_per_simulated_second < r.cost_per_simulated_second)
+        });
+        rows[k].pareto = ok && !beaten;
+        rows[k].within_tolerance = ok && rows[k].worst_error <= tolerance;
+    }
+    rows
+}
+
+/// epsilon of quantity `i` of run `o` against the reference, at the run's times.
+fn epsilon(o: &Outcome, reference: &Outcome, i: usize) -> f64 {
+    if std::ptr::eq(o, reference) {
+        return 0.0;
+    }
+    let (Some(x), Some(r)) = (o.series.get(i), reference.series.get(i)) else {
+        return f64::NAN;
+    };
+    if o.time.is_empty() || reference.time.is_empty() {
+        return f64::NAN;
+    }
+    let resampled: Vec<f64> = o
+        .time
+        .iter()
+        .map(|&t| interpolate(&reference.time, r, t))
+        .collect();
+    indicator("", normalized_error(&o.time, &[x], &[&resampled])).relative_error
+}
+
+/// Every section's choice in a run: the combination's, else the scene's.
+fn combination_of(
+    structure: &Structure,
+    table: &Table,
+    combination: Option<&[(String, Choice)]>,
+) -> Vec<(String, String)> {
+    let Some(combination) = combination else {
+        return vec![("monolithic".into(), "nonlinear".into())];
+    };
+    let written: Vec<&Table> = table
+        .get("structure")
+        .and_then(|s| s.get("sections"))
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(Value::as_table)
+        .collect();
+    structure
+        .sections
+        .iter()
+        .zip(written)
+        .map(|((name, _), t)| {
+            let chosen = combination
+                .iter()
+                .find(|(s, _)| s == name)
+                .map(|(_, c)| c.label());
+            let label = chosen.unwrap_or_else(|| scene_choice(t));
+            (name.clone(), label)
+        })
+        .collect()
+}
+
+/// A section's fidelity as the scene writes it, in the command line's form.
+fn scene_choice(t: &Table) -> String {
+    let (kind, elements) = match t.get("fidelity") {
+        Some(Value::String(w)) => (w.clone(), t.get("elements")),
+        Some(Value::Table(f)) => (
+            f.get("kind")
+                .and_then(Value::as_str)
+                .unwrap_or("nonlinear")
+                .to_owned(),
+            f.get("elements").or(t.get("elements")),
+        ),
+        _ => ("nonlinear".to_owned(), t.get("elements")),
+    };
+    match elements.and_then(Value::as_integer) {
+        Some(n) => format!("{kind}:{n}"),
+        None => kind,
+    }
+}

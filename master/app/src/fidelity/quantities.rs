@@ -1,0 +1,127 @@
+//! A structure's quantities of interest, read from whatever units its sections
+//! are: the force at its top end and at its start (the anchor or the laid pipe's
+//! end), and, where the model has them, the touchdown point, the largest sag-bend
+//! and overbend moments. Each is a time series built from the recorded outputs
+//! of the sections' units (`nonlinear` or `cable`), so every combination of
+//! fidelities and the monolithic reference are measured the same way.
+
+use crate::record::Recorder;
+
+/// One section of a run: its unit, its kind and where it starts (m of arc).
+#[derive(Clone, Debug)]
+pub struct SectionUnit {
+    pub unit: String,
+    pub kind: String,
+    pub from: f64,
+}
+
+/// What the structure's model has: seabed contact (touchdown, sag bend) and a
+/// stinger (overbend).
+#[derive(Copy, Clone, Debug, Default)]
+pub struct Features {
+    pub seabed: bool,
+    pub stinger: bool,
+}
+
+/// The quantities' names (with their units) for a model with `features`.
+pub fn names(features: Features) -> Vec<&'static str> {
+    let mut names = vec!["top_force", "start_force"];
+    if features.seabed {
+        names.extend(["touchdown", "sagbend_moment"]);
+    }
+    if features.stinger {
+        names.push("overbend_moment");
+    }
+    names
+}
+
+/// The outputs to record for the quantities of `sections`.
+pub fn signals(sections: &[SectionUnit], features: Features) -> Vec<String> {
+    let mut signals = Vec::new();
+    if let Some(last) = sections.last() {
+        signals.extend(end_force(last, true).map(|(_, p)| p));
+    }
+    if let Some(first) = sections.first() {
+        signals.extend(end_force(first, false).map(|(_, p)| p));
+    }
+    for s in sections.iter().filter(|s| s.kind == "nonlinear") {
+        if features.seabed {
+            signals.push(format!("{}.touchdown", s.unit));
+            signals.push(format!("{}.sagbend_moment", s.unit));
+        }
+        if features.stinger {
+            signals.push(format!("{}.overbend_moment", s.unit));
+        }
+    }
+    signals.dedup();
+    signals
+}
+
+/// The two force components at a section's end (`top`) or start, by kind.
+fn end_force(section: &SectionUnit, top: bool) -> [(usize, String); 2] {
+    let side = match (section.kind.as_str(), top) {
+        ("cable", true) => "top",
+        ("cable", false) => "bottom",
+        (_, true) => "end",
+        (_, false) => "start",
+    };
+    [0, 1].map(|k| {
+        (
+            k,
+            format!("{}.{side}_force_{}", section.unit, ["x", "z"][k]),
+        )
+    })
+}
+
+/// The quantity `name`'s time series from a run's recording; the error names a
+/// missing output.
+pub fn series(
+    name: &str,
+    sections: &[SectionUnit],
+    recorder: &Recorder,
+) -> Result<Vec<f64>, String> {
+    let column = |signal: &str| {
+        recorder
+            .column(signal)
+            .ok_or(format!("the run recorded no `{signal}`"))
+    };
+    let magnitude = |section: Option<&SectionUnit>, top: bool| -> Result<Vec<f64>, String> {
+        let section = section.ok_or("a structure without sections")?;
+        let [(_, x), (_, z)] = end_force(section, top);
+        let (x, z) = (column(&x)?, column(&z)?);
+        Ok(x.iter().zip(z).map(|(x, z)| x.hypot(*z)).collect())
+    };
+    let bending: Vec<&SectionUnit> = sections.iter().filter(|s| s.kind == "nonlinear").collect();
+    let largest = |output: &str| -> Result<Vec<f64>, String> {
+        let mut out = vec![0.0f64; recorder.time.len()];
+        for s in &bending {
+            for (o, v) in out.iter_mut().zip(column(&format!("{}.{output}", s.unit))?) {
+                *o = o.max(v.abs());
+            }
+        }
+        Ok(out)
+    };
+    match name {
+        "top_force" => magnitude(sections.last(), true),
+        "start_force" => magnitude(sections.first(), false),
+        "sagbend_moment" | "overbend_moment" => largest(name),
+        "touchdown" => {
+            // The highest section in contact gives the touchdown point: its own
+            // arc length from its start, plus where it starts.
+            let columns: Vec<(f64, &[f64])> = bending
+                .iter()
+                .rev()
+                .map(|s| Ok((s.from, column(&format!("{}.touchdown", s.unit))?)))
+                .collect::<Result<_, String>>()?;
+            Ok((0..recorder.time.len())
+                .map(|k| {
+                    columns
+                        .iter()
+                        .find(|(_, c)| c[k] > 0.0)
+                        .map_or(0.0, |(from, c)| from + c[k])
+                })
+                .collect())
+        }
+        other => Err(format!("no quantity `{other}`")),
+    }
+}

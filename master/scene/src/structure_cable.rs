@@ -1,0 +1,229 @@
+//! The `cable` fidelity of a structure's section: seed 000's cable unit (bar
+//! elements, linear about its static state, exact Morison drag) over the
+//! section's arc-length range, in the cable's own frame (z up from the seabed).
+//!
+//! The cable has no bending stiffness, so its cuts are pinned: force and velocity
+//! cross them, rotation and moment do not (the neighbouring section's end turns
+//! freely). The section takes its static state from the force at its top (a
+//! `full` line), so it needs the structure's static start to place its anchor
+//! where the equilibrium puts the section's start.
+
+use crate::structure::{Cut, Segment};
+use toml::{Table, Value};
+
+/// Section properties that must be equal along a cable section (the cable unit
+/// has one cross-section).
+const UNIFORM: [&str; 9] = [
+    "axial_stiffness",
+    "mass_per_length",
+    "submerged_weight",
+    "diameter",
+    "drag_normal",
+    "drag_tangential",
+    "added_mass_normal",
+    "added_mass_tangential",
+    "bending_stiffness",
+];
+
+/// Where the structure's frame puts the water: the seabed height (m, in the
+/// structure's frame) and the water depth (m).
+#[derive(Copy, Clone, Debug)]
+pub struct Water {
+    pub seabed: f64,
+    pub depth: f64,
+}
+
+impl Water {
+    /// `structure.seabed` (default 0) and `structure.water_depth` (needed by a
+    /// cable section only: `None` when absent).
+    pub fn of(structure: &Table) -> Result<Option<Water>, String> {
+        let number = |key: &str| -> Result<Option<f64>, String> {
+            match structure.get(key) {
+                None => Ok(None),
+                Some(v) => v
+                    .as_float()
+                    .or_else(|| v.as_integer().map(|i| i as f64))
+                    .filter(|x| x.is_finite())
+                    .map(Some)
+                    .ok_or(format!("`structure.{key}`: expected a number (m)")),
+            }
+        };
+        let seabed = number("seabed")?.unwrap_or(0.0);
+        match number("water_depth")? {
+            Some(depth) if depth > 0.0 => Ok(Some(Water { seabed, depth })),
+            Some(depth) => Err(format!(
+                "`structure.water_depth` = {depth}: expected a depth > 0 m"
+            )),
+            None => Ok(None),
+        }
+    }
+}
+
+/// The `cable` unit of one section, anchored (its bottom node) at `anchor`
+/// (structure frame, m).
+pub fn cable_unit(
+    name: &str,
+    model: &Table,
+    segments: &[Segment],
+    cut: &Cut,
+    water: Option<Water>,
+    anchor: [f64; 2],
+) -> Result<Table, String> {
+    let key = format!("structure.sections.{}", cut.name);
+    let water = water.ok_or(format!(
+        "`{key}.fidelity` = \"cable\": the cable needs `structure.water_depth` (m; and `structure.seabed`, the seabed's z in the structure's frame, default 0)"
+    ))?;
+    let inside: Vec<&Segment> = segments_in(segments, cut.from, cut.to);
+    let first = inside
+        .first()
+        .ok_or(format!("section `{}` is empty", cut.name))?;
+    let property = |s: &Segment, k: &str| -> f64 {
+        s.table
+            .get(k)
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+            .unwrap_or(0.0)
+    };
+    for s in &inside[1..] {
+        if let Some(k) = UNIFORM
+            .iter()
+            .find(|k| property(s, k) != property(first, k))
+        {
+            return Err(format!(
+                "`{key}.fidelity` = \"cable\": the section's segments differ in `{k}`; the cable unit has one cross-section"
+            ));
+        }
+    }
+    let diameter = property(first, "diameter");
+    if diameter <= 0.0 {
+        return Err(format!(
+            "`{key}.fidelity` = \"cable\": the cable takes EA as E pi D^2 / 4, so its segments need `diameter` > 0 m"
+        ));
+    }
+    let elements = cut.elements.unwrap_or_else(|| {
+        let share: f64 = inside
+            .iter()
+            .map(|s| s.elements * s.overlap(cut.from, cut.to) / s.length)
+            .sum();
+        share.round().max(1.0) as usize
+    });
+    let mut p = Table::new();
+    let mut put = |k: &str, v: f64| {
+        p.insert(k.into(), Value::Float(v));
+    };
+    put("length", cut.to - cut.from);
+    put("diameter", diameter);
+    put(
+        "youngs_modulus",
+        property(first, "axial_stiffness") / (std::f64::consts::PI * diameter * diameter / 4.0),
+    );
+    for k in [
+        "mass_per_length",
+        "submerged_weight",
+        "added_mass_normal",
+        "added_mass_tangential",
+        "drag_normal",
+        "drag_tangential",
+    ] {
+        put(k, property(first, k));
+    }
+    let model_number = |k: &str, default: f64| {
+        model
+            .get(k)
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+            .unwrap_or(default)
+    };
+    put("rayleigh_mass", model_number("rayleigh_mass", 0.0));
+    put(
+        "rayleigh_stiffness",
+        model_number("rayleigh_stiffness", 0.0),
+    );
+    put("water_density", model_number("water_density", 1025.0));
+    put("water_depth", water.depth);
+    p.insert("elements".into(), Value::Integer(elements as i64));
+    p.insert(
+        "anchor".into(),
+        Value::Array(vec![
+            Value::Float(anchor[0]),
+            Value::Float(anchor[1] - water.seabed),
+        ]),
+    );
+    let current = model.get("current").and_then(Value::as_table);
+    if let Some(current) = current {
+        p.insert("current".into(), cable_current(current, water.seabed)?);
+    }
+    let effects = effects(&p, current.is_some());
+    let mut unit = Table::new();
+    unit.insert("name".into(), Value::String(format!("{name}_{}", cut.name)));
+    unit.insert("kind".into(), Value::String("cable".into()));
+    unit.insert(
+        "effects".into(),
+        Value::Array(
+            effects
+                .into_iter()
+                .map(|e| Value::String(e.into()))
+                .collect(),
+        ),
+    );
+    unit.insert("parameters".into(), Value::Table(p));
+    Ok(unit)
+}
+
+/// The segments overlapping [from, to].
+fn segments_in(segments: &[Segment], from: f64, to: f64) -> Vec<&Segment> {
+    segments
+        .iter()
+        .filter(|s| s.overlap(from, to) > 1e-12 * s.length)
+        .collect()
+}
+
+/// The structure's current table (z in its frame) as the cable's (z above the
+/// seabed).
+fn cable_current(current: &Table, seabed: f64) -> Result<Value, String> {
+    let list = |k: &str| -> Result<Vec<f64>, String> {
+        current
+            .get(k)
+            .and_then(Value::as_array)
+            .map(|a| {
+                a.iter()
+                    .filter_map(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+                    .collect()
+            })
+            .ok_or(format!(
+                "`structure.model.current.{k}`: expected a list of numbers"
+            ))
+    };
+    let z: Vec<Value> = list("z")?
+        .into_iter()
+        .map(|z| Value::Float(z - seabed))
+        .collect();
+    let speed: Vec<Value> = list("velocity")?.into_iter().map(Value::Float).collect();
+    let mut t = Table::new();
+    t.insert("kind".into(), Value::String("table".into()));
+    t.insert("z".into(), Value::Array(z));
+    t.insert("speed".into(), Value::Array(speed));
+    Ok(Value::Table(t))
+}
+
+/// The cable effects the section's properties call for; geometric stiffness
+/// always (a cable has no transverse stiffness without it).
+fn effects(p: &Table, current: bool) -> Vec<&'static str> {
+    let nonzero = |k: &str| p.get(k).and_then(Value::as_float).unwrap_or(0.0) != 0.0;
+    let mut effects = vec!["geometric_stiffness"];
+    if nonzero("submerged_weight") {
+        effects.push("weight");
+    }
+    if nonzero("added_mass_normal") || nonzero("added_mass_tangential") {
+        effects.push("added_mass");
+    }
+    let drag = nonzero("drag_normal") || nonzero("drag_tangential");
+    if drag {
+        effects.push("drag");
+    }
+    if drag && current {
+        effects.push("current");
+    }
+    if nonzero("rayleigh_mass") || nonzero("rayleigh_stiffness") {
+        effects.push("structural_damping");
+    }
+    effects
+}

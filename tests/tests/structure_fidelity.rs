@@ -1,0 +1,246 @@
+//! Fidelities per section (issue 13): seed 000's mooring line as a structure whose
+//! lower section is the geometrically nonlinear unit, seed 000's cable (linear
+//! about its static state) or a coarser mesh. The cable follows the monolithic
+//! twin to the model difference, a same-mesh partition to the coupling
+//! tolerance; swapping a section's fidelity changes its unit and its cuts only;
+//! `slender fidelity` reports every combination against the monolithic
+//! reference, goes on past a combination that cannot run, and gives the same
+//! errors whatever the number of jobs.
+
+use slender_app::fidelity::{FidelityPlan, SectionChoices, run_fidelity};
+use slender_app::study::Design;
+use slender_scene::Scene;
+use slender_tests::{root, run};
+use toml::{Table, Value};
+
+/// The mooring example, `duration` s long, with its sections replaced by
+/// `sections` (TOML of `[[structure.sections]]`).
+fn mooring(duration: f64, sections: Option<&str>) -> String {
+    let text = std::fs::read_to_string(root().join("examples/structure_mooring.toml")).unwrap();
+    let text = text.replace("duration = 60.0", &format!("duration = {duration}"));
+    match sections {
+        None => text,
+        Some(s) => {
+            let (head, tail) = text.split_once("[[structure.sections]]").unwrap();
+            let (_, output) = tail.split_once("[output]").unwrap();
+            format!("{head}{s}\n[output]{output}")
+        }
+    }
+}
+
+fn parse(text: &str) -> Result<Scene, String> {
+    Scene::parse(
+        &root().join("examples/structure_mooring.toml"),
+        text.to_owned(),
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// epsilon of the top force (x and z) against the twin.
+fn top_force_epsilon(text: &str) -> f64 {
+    let s = run(&parse(text).expect("scene"));
+    assert!(s.error.is_none(), "{:?}", s.error);
+    let i = s.indicators.iter().find(|i| i.name == "top_force").unwrap();
+    i.relative_error
+}
+
+const CABLE: &str = "[[structure.sections]]\nname = \"lower\"\nto = 1547.2\nfidelity = \"cable\"\n[[structure.sections]]\nname = \"upper\"\n";
+
+#[test]
+fn a_cable_lower_section_follows_the_nonlinear_twin() {
+    // The cable leaves out the bending (EI = 100 N m^2 on a 1934 m line) and
+    // the geometric nonlinearity about the static state: 3e-4 measured over
+    // 20 s; a same-mesh nonlinear lower section: 7e-7, the coupling tolerance.
+    let cable = top_force_epsilon(&mooring(20.0, Some(CABLE)));
+    let same = top_force_epsilon(&mooring(
+        20.0,
+        Some(&CABLE.replace("fidelity = \"cable\"", "fidelity = \"nonlinear\"")),
+    ));
+    println!("epsilon of the top force: cable {cable:.3e}, nonlinear {same:.3e}");
+    assert!(cable < 1e-3 && cable > 10.0 * same, "cable {cable:e}");
+    assert!(same < 1e-5, "same mesh {same:e}");
+}
+
+#[test]
+fn a_cable_between_two_nonlinear_sections_couples_at_both_its_ends() {
+    let sections = format!(
+        "[[structure.sections]]\nname = \"bottom\"\nto = 700.0\n{}",
+        CABLE
+    );
+    let e = top_force_epsilon(&mooring(20.0, Some(&sections)));
+    assert!(e < 1e-3, "{e:e}");
+}
+
+/// The expanded scene's units (by name) and connections.
+fn expanded(text: &str) -> (Vec<(String, Value)>, Vec<Value>) {
+    let scene = parse(text).expect("scene");
+    let t: Table = toml::from_str(scene.source()).unwrap();
+    let units = t["units"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|u| (u["name"].as_str().unwrap().to_owned(), u.clone()))
+        .collect();
+    (units, t["connections"].as_array().unwrap().clone())
+}
+
+#[test]
+fn swapping_a_section_to_cable_changes_its_unit_and_its_cuts_only() {
+    let three = |middle: &str| {
+        format!(
+            "[[structure.sections]]\nname = \"bottom\"\nto = 700.0\n[[structure.sections]]\nname = \"lower\"\nto = 1547.2\nfidelity = \"{middle}\"\n[[structure.sections]]\nname = \"upper\"\n"
+        )
+    };
+    let (a_units, a_links) = expanded(&mooring(20.0, Some(&three("nonlinear"))));
+    let (b_units, b_links) = expanded(&mooring(20.0, Some(&three("cable"))));
+    assert_eq!(a_units.len(), b_units.len());
+    for ((name, a), (_, b)) in a_units.iter().zip(&b_units) {
+        if name == "line_lower" {
+            assert_eq!(b["kind"].as_str(), Some("cable"));
+            continue;
+        }
+        // The neighbours differ only in the rotation at the shared cut, which
+        // turns freely next to a section without bending (a pinned cut).
+        let (mut a, mut b) = (a.clone(), b.clone());
+        let side = match name.as_str() {
+            "line_bottom" => Some("end"),
+            "line_upper" => Some("start"),
+            _ => None,
+        };
+        if let Some(side) = side {
+            let rotation = |u: &mut Value| {
+                u["parameters"]["ends"][side]
+                    .as_table_mut()
+                    .unwrap()
+                    .remove("rotation")
+            };
+            assert_eq!(
+                rotation(&mut b).and_then(|r| r.as_str().map(str::to_owned)),
+                Some("free".into())
+            );
+            rotation(&mut a);
+        }
+        assert_eq!(a, b, "{name} changed beyond its cut's rotation");
+    }
+    let away = |links: &[Value]| -> Vec<Value> {
+        links
+            .iter()
+            .filter(|l| {
+                !l["from"].as_str().unwrap().starts_with("line_lower.")
+                    && !l["to"].as_str().unwrap().starts_with("line_lower.")
+            })
+            .cloned()
+            .collect()
+    };
+    assert_eq!(away(&a_links), away(&b_links));
+    // Force and velocity cross a pinned cut; rotation and moment do not.
+    assert_eq!(a_links.len(), 12);
+    assert_eq!(b_links.len(), 8);
+}
+
+fn plan(sections: &[&str], design: Design, jobs: usize) -> FidelityPlan {
+    FidelityPlan {
+        sections: sections
+            .iter()
+            .map(|s| s.parse::<SectionChoices>().unwrap())
+            .collect(),
+        design,
+        duration: Some(10.0),
+        jobs,
+        tolerance: 1e-3,
+    }
+}
+
+#[test]
+fn a_fidelity_study_measures_every_combination_against_the_monolithic_line() {
+    let path = root().join("examples/structure_mooring.toml");
+    let sections = [
+        "lower=nonlinear,cable,nonlinear:16",
+        "upper=nonlinear,cable",
+    ];
+    let report = run_fidelity(&path, &plan(&sections, Design::OneAtATime, 2), |_| {}).unwrap();
+    let row = |label: &str| {
+        report
+            .rows
+            .iter()
+            .find(|r| {
+                r.combination
+                    .iter()
+                    .any(|(s, c)| format!("{s}={c}") == label)
+                    && {
+                        let first = &r.combination;
+                        label.starts_with("upper") || first[1].1 == "nonlinear"
+                    }
+            })
+            .unwrap_or_else(|| panic!("no row {label}"))
+    };
+    assert!(report.rows[0].reference && report.rows[0].worst_error == 0.0);
+    assert_eq!(report.quantities, ["top_force", "start_force"]);
+    let same = row("lower=nonlinear");
+    let cable = row("lower=cable");
+    let coarse = row("lower=nonlinear:16");
+    println!(
+        "worst epsilon: same mesh {:.2e}, cable {:.2e}, 16 elements {:.2e}",
+        same.worst_error, cable.worst_error, coarse.worst_error
+    );
+    assert!(same.worst_error < 1e-5, "{}", same.worst_error);
+    assert!(cable.worst_error < 1e-3 && cable.worst_error > same.worst_error);
+    assert!(coarse.worst_error < 1e-3 && coarse.worst_error > same.worst_error);
+    for r in [same, cable, coarse] {
+        assert!(r.error.is_none() && r.non_converged_steps == 0);
+        assert!(r.iterations_per_step > 1.0 && r.speed_up > 0.0);
+    }
+    // The structure's top cannot be a cable: reported, and the study goes on.
+    let failed = row("upper=cable");
+    assert!(
+        failed
+            .error
+            .as_deref()
+            .is_some_and(|e| e.contains("last section")),
+        "{:?}",
+        failed.error
+    );
+    // The cheapest within the tolerance is on the Pareto front.
+    let cheapest = &report.rows[report.cheapest.expect("a combination within 1e-3")];
+    assert!(cheapest.pareto && cheapest.within_tolerance);
+    assert!(report.rows.iter().all(|r| !r.within_tolerance
+        || r.cost_per_simulated_second >= cheapest.cost_per_simulated_second));
+}
+
+#[test]
+fn a_fidelity_grid_gives_the_same_errors_on_one_job_and_on_two() {
+    let path = root().join("examples/structure_mooring.toml");
+    let sections = ["lower=cable,nonlinear:16"];
+    let errors = |jobs| {
+        let report = run_fidelity(&path, &plan(&sections, Design::Grid, jobs), |_| {}).unwrap();
+        report
+            .rows
+            .iter()
+            .map(|r| {
+                (
+                    r.combination.clone(),
+                    r.errors.clone(),
+                    r.iterations_per_step,
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(errors(1), errors(2));
+}
+
+#[test]
+fn a_fidelity_study_refuses_a_section_that_is_not_there() {
+    let path = root().join("examples/structure_mooring.toml");
+    let e = run_fidelity(&path, &plan(&["middle=cable"], Design::Grid, 1), |_| {}).unwrap_err();
+    assert!(e.contains("middle") && e.contains("lower, upper"), "{e}");
+    let e = "lower=beam".parse::<SectionChoices>().unwrap_err();
+    assert!(e.contains("beam") && e.contains("cable"), "{e}");
+    let e = "lower=nonlinear:0".parse::<SectionChoices>().unwrap_err();
+    assert!(e.contains("whole number"), "{e}");
+    // A cable section needs the static start and the water depth.
+    let text = mooring(10.0, Some(CABLE));
+    let e = parse(&text.replace("static_start = true", "")).unwrap_err();
+    assert!(e.contains("static_start"), "{e}");
+    let e = parse(&text.replace("water_depth = 1200.0", "")).unwrap_err();
+    assert!(e.contains("water_depth"), "{e}");
+}
