@@ -8,8 +8,6 @@ pub mod fields;
 pub mod kinds;
 pub mod spec;
 pub mod structure;
-mod structure_cable;
-mod structure_statics;
 
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;

@@ -36,6 +36,22 @@ impl CliError {
     }
 }
 
+/// A study's design from `--grid`.
+fn design(grid: bool) -> slender_app::study::Design {
+    if grid {
+        slender_app::study::Design::Grid
+    } else {
+        slender_app::study::Design::OneAtATime
+    }
+}
+
+/// `--jobs`, default the machine's cores.
+fn jobs_or_cores(jobs: Option<usize>) -> usize {
+    jobs.unwrap_or_else(|| {
+        std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
+    })
+}
+
 /// Runs one command.
 pub fn dispatch(command: Command) -> Result<(), CliError> {
     match command {
@@ -64,15 +80,9 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         } => {
             let plan = slender_app::study::StudyPlan {
                 sweeps,
-                design: if grid {
-                    slender_app::study::Design::Grid
-                } else {
-                    slender_app::study::Design::OneAtATime
-                },
+                design: design(grid),
                 duration,
-                jobs: jobs.unwrap_or_else(|| {
-                    std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
-                }),
+                jobs: jobs_or_cores(jobs),
             };
             analysis::study(&scene, &plan, out)
         }
@@ -87,15 +97,9 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         } => {
             let plan = slender_app::fidelity::FidelityPlan {
                 sections,
-                design: if grid {
-                    slender_app::study::Design::Grid
-                } else {
-                    slender_app::study::Design::OneAtATime
-                },
+                design: design(grid),
                 duration,
-                jobs: jobs.unwrap_or_else(|| {
-                    std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
-                }),
+                jobs: jobs_or_cores(jobs),
                 tolerance,
             };
             analysis::fidelity(&scene, &plan, out)

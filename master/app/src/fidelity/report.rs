@@ -144,7 +144,6 @@ pub fn plot(path: &Path, title: &str, report: &FidelityReport) -> Result<(), Plo
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .draw()
         .map_err(|e| fail(&e))?;
-    let point = |r: &FidelityRow| (r.cost_per_simulated_second, r.worst_error);
     let mut front: Vec<(f64, f64)> = usable
         .iter()
         .filter(|r| r.pareto)
@@ -164,35 +163,8 @@ pub fn plot(path: &Path, title: &str, report: &FidelityReport) -> Result<(), Plo
         .map_err(|e| fail(&e))?
         .label(format!("tolerance {}", report.tolerance))
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.mix(0.5)));
-    if let Some(r) = report.rows.iter().find(|r| r.reference) {
-        let c = r.cost_per_simulated_second;
-        if c.is_finite() && c > 0.0 {
-            chart
-                .draw_series(LineSeries::new(
-                    [(c, ylo / 3.0), (c, yhi * 3.0)],
-                    BLACK.mix(0.5).stroke_width(1),
-                ))
-                .map_err(|e| fail(&e))?
-                .label("reference's cost")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
-        }
-    }
-    for r in &usable {
-        let colour = if r.pareto { RED } else { BLACK };
-        chart
-            .draw_series([
-                Circle::new(point(r), 4, colour.filled()).into_dyn(),
-                Text::new(label(r), point(r), ("sans-serif", 11)).into_dyn(),
-            ])
-            .map_err(|e| fail(&e))?;
-    }
-    if let Some(r) = report.cheapest.map(|k| &report.rows[k]) {
-        chart
-            .draw_series([Circle::new(point(r), 9, GREEN.stroke_width(2))])
-            .map_err(|e| fail(&e))?
-            .label("cheapest within tolerance")
-            .legend(|(x, y)| Circle::new((x + 10, y), 5, GREEN.stroke_width(2)));
-    }
+    draw_reference_cost(&mut chart, report, (ylo / 3.0, yhi * 3.0)).map_err(|e| fail(&e))?;
+    draw_points(&mut chart, report, &usable).map_err(|e| fail(&e))?;
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
@@ -200,4 +172,62 @@ pub fn plot(path: &Path, title: &str, report: &FidelityReport) -> Result<(), Plo
         .draw()
         .map_err(|e| fail(&e))?;
     root.present().map_err(|e| fail(&e))
+}
+
+/// A row's place in the figure: (cost, worst epsilon).
+fn point(r: &FidelityRow) -> (f64, f64) {
+    (r.cost_per_simulated_second, r.worst_error)
+}
+
+type LogLog<'a> = ChartContext<
+    'a,
+    SVGBackend<'a>,
+    Cartesian2d<
+        plotters::coord::combinators::LogCoord<f64>,
+        plotters::coord::combinators::LogCoord<f64>,
+    >,
+>;
+
+/// Every usable combination as a labelled point (red on the Pareto front), the
+/// cheapest within the tolerance ringed.
+fn draw_points(
+    chart: &mut LogLog<'_>,
+    report: &FidelityReport,
+    usable: &[&FidelityRow],
+) -> Result<(), Box<dyn std::error::Error>> {
+    for r in usable {
+        let colour = if r.pareto { RED } else { BLACK };
+        chart.draw_series([
+            Circle::new(point(r), 4, colour.filled()).into_dyn(),
+            Text::new(label(r), point(r), ("sans-serif", 11)).into_dyn(),
+        ])?;
+    }
+    if let Some(r) = report.cheapest.map(|k| &report.rows[k]) {
+        chart
+            .draw_series([Circle::new(point(r), 9, GREEN.stroke_width(2))])?
+            .label("cheapest within tolerance")
+            .legend(|(x, y)| Circle::new((x + 10, y), 5, GREEN.stroke_width(2)));
+    }
+    Ok(())
+}
+
+/// The reference's cost as a vertical line over `(ylo, yhi)`.
+fn draw_reference_cost(
+    chart: &mut LogLog<'_>,
+    report: &FidelityReport,
+    (ylo, yhi): (f64, f64),
+) -> Result<(), Box<dyn std::error::Error>> {
+    if let Some(r) = report.rows.iter().find(|r| r.reference) {
+        let c = r.cost_per_simulated_second;
+        if c.is_finite() && c > 0.0 {
+            chart
+                .draw_series(LineSeries::new(
+                    [(c, ylo), (c, yhi)],
+                    BLACK.mix(0.5).stroke_width(1),
+                ))?
+                .label("reference's cost")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
+        }
+    }
+    Ok(())
 }

@@ -99,22 +99,10 @@ impl Equilibrium {
         if loaded.0 {
             // The force on a start is the part before's pull on the part after.
             let f = self.force_at(from);
-            self.first_guess_force(unit, "start", [-f[0], -f[1]]);
+            first_guess_force(unit, "start", [-f[0], -f[1]]);
         }
         if loaded.1 {
-            self.first_guess_force(unit, "end", self.force_at(to));
-        }
-    }
-
-    /// Sets `<side>_force_x` and `<side>_force_z` (N) in the unit's `inputs`.
-    pub fn first_guess_force(&self, unit: &mut Table, side: &str, force: [f64; 2]) {
-        if let Some(inputs) = unit
-            .entry("inputs")
-            .or_insert_with(|| Value::Table(Table::new()))
-            .as_table_mut()
-        {
-            inputs.insert(format!("{side}_force_x"), Value::Float(force[0]));
-            inputs.insert(format!("{side}_force_z"), Value::Float(force[1]));
+            first_guess_force(unit, "end", self.force_at(to));
         }
     }
 
@@ -131,5 +119,18 @@ impl Equilibrium {
         let (e, xi) = model.locate(s);
         let q = section.displacements();
         std::array::from_fn(|k| (1.0 - xi) * q[3 * e + k] + xi * q[3 * e + 3 + k])
+    }
+}
+
+/// Sets `<side>_force_x` and `<side>_force_z` (N) in the unit's `inputs`: the
+/// first guess of force inputs fed through the master's loops.
+pub fn first_guess_force(unit: &mut Table, side: &str, force: [f64; 2]) {
+    if let Some(inputs) = unit
+        .entry("inputs")
+        .or_insert_with(|| Value::Table(Table::new()))
+        .as_table_mut()
+    {
+        inputs.insert(format!("{side}_force_x"), Value::Float(force[0]));
+        inputs.insert(format!("{side}_force_z"), Value::Float(force[1]));
     }
 }

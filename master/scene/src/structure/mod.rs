@@ -21,6 +21,12 @@
 //! Fidelities today: `nonlinear` (the geometrically nonlinear section at the
 //! given element count).
 
+mod cable;
+mod cuts;
+mod load;
+mod statics;
+
+use cuts::{End, Side, coupled_load, coupled_motion};
 use toml::{Table, Value};
 
 /// Expands `[structure]` in `scene` into units and connections; false when the
@@ -38,18 +44,34 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
         .and_then(Value::as_str)
         .ok_or("`structure.name`: expected the name the section units start with")?
         .to_owned();
-    let model = structure
+    let mut model = structure
         .get("model")
         .and_then(Value::as_table)
         .ok_or("`structure.model`: expected the parameters of a `nonlinear` unit")?
         .clone();
+    let top_load = load::TopLoad::of(&structure, &model)?;
+    let statics_model = match &top_load {
+        Some(load) => load.held_at_rest(&model),
+        None => model.clone(),
+    };
+    if let Some(load) = &top_load {
+        load.take_input(&mut model);
+    }
     let segments = segments_of(&model)?;
     let length: f64 = segments.iter().map(|s| s.length).sum();
     let cuts = cuts_of(&structure, length)?;
     let statics = if model.get("static_start").and_then(Value::as_bool) == Some(true) {
-        Some(crate::structure_statics::Equilibrium::solve(&model)?)
+        Some(statics::Equilibrium::solve(&statics_model)?)
     } else {
         None
+    };
+    let built = Built {
+        water: cable::Water::of(&structure)?,
+        name,
+        model,
+        segments,
+        statics,
+        top_load,
     };
     // At each cut one side moves with the other's velocity and the other carries
     // the force: by default the upper section's end moves and the lower start is
@@ -60,12 +82,51 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
     // the second way round.
     let force_on_upper: Vec<bool> = cuts
         .windows(2)
-        .map(|w| statics.is_some() || w.iter().any(|c| c.fidelity == Fidelity::Cable))
+        .map(|w| built.statics.is_some() || w.iter().any(|c| c.fidelity == Fidelity::Cable))
         .collect();
-    let water = crate::structure_cable::Water::of(&structure)?;
     let mut units = Vec::new();
     let mut connections = Vec::new();
-    for (k, cut) in cuts.iter().enumerate() {
+    for k in 0..cuts.len() {
+        units.push(Value::Table(built.section(&cuts, k, &force_on_upper)?));
+        if k + 1 < cuts.len() {
+            let (links, artefacts) = cuts::cut_connections(
+                &built.side(&cuts[k]),
+                &built.side(&cuts[k + 1]),
+                force_on_upper[k],
+            )?;
+            connections.extend(links);
+            units.extend(artefacts);
+        }
+    }
+    if let (Some(load), Some(last)) = (&built.top_load, cuts.last()) {
+        connections.extend(load.links(&built.side(last).unit, last.fidelity));
+    }
+    if let Some((unit, fidelity)) = built.reference(&structure, length)? {
+        if let Some(load) = &built.top_load {
+            connections.extend(load.links(&format!("{}_reference", built.name), fidelity));
+        }
+        units.push(Value::Table(unit));
+    }
+    append(scene, "units", units)?;
+    append(scene, "connections", connections)?;
+    Ok(true)
+}
+
+/// What every section is built from.
+struct Built {
+    name: String,
+    /// The model as the units take it (a top load as a coupled input).
+    model: Table,
+    segments: Vec<Segment>,
+    statics: Option<statics::Equilibrium>,
+    water: Option<cable::Water>,
+    top_load: Option<load::TopLoad>,
+}
+
+impl Built {
+    /// Section `k`'s unit.
+    fn section(&self, cuts: &[Cut], k: usize, force_on_upper: &[bool]) -> Result<Table, String> {
+        let cut = &cuts[k];
         // Per end at a cut: whether this section is the moving (velocity) side,
         // and whether the cut is pinned (a side without bending).
         let start = (k > 0).then(|| End {
@@ -76,10 +137,11 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
             moving: !force_on_upper[k],
             pinned: !cuts[k + 1].fidelity.bends() || !cut.fidelity.bends(),
         });
-        let unit = match cut.fidelity {
+        let mut unit = match cut.fidelity {
             Fidelity::Nonlinear => {
-                let mut unit = section_unit(&name, &model, &segments, cut, (start, end))?;
-                if let Some(equilibrium) = &statics {
+                let mut unit =
+                    section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
+                if let Some(equilibrium) = &self.statics {
                     equilibrium.start_section(&mut unit, (cut.from, cut.to))?;
                     let loaded = (
                         start.is_some_and(|e| !e.moving),
@@ -90,42 +152,98 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
                 unit
             }
             Fidelity::Cable => {
-                cable_fits(&model, &cuts, k)?;
-                let anchor = statics
-                    .as_ref()
-                    .map(|e| e.position_at(cut.from))
-                    .ok_or(format!(
-                        "`structure.sections.{}.fidelity` = \"cable\": a cable section takes its static state from its top force, so the structure needs `structure.model.static_start = true` to place it",
-                        cut.name
-                    ))?;
-                let mut unit = crate::structure_cable::cable_unit(
-                    &name, &model, &segments, cut, water, anchor,
+                cable_fits(&self.model, cuts, k, self.top_load.is_some())?;
+                let anchor = self.statics.as_ref().map(|e| e.position_at(cut.from)).ok_or(format!(
+                    "`structure.sections.{}.fidelity` = \"cable\": a cable section takes its static state from its top force, so the structure needs `structure.model.static_start = true` to place it",
+                    cut.name
+                ))?;
+                let mut unit = cable::cable_unit(
+                    &self.name,
+                    &self.model,
+                    &self.segments,
+                    cut,
+                    self.water,
+                    anchor,
                 )?;
                 // Its static state needs the force at its top in the master's
                 // first initial iterate: the equilibrium's, as the first guess.
-                if let Some(e) = &statics {
-                    e.first_guess_force(&mut unit, "top", e.force_at(cut.to));
+                if let (Some(e), true) = (&self.statics, k + 1 < cuts.len()) {
+                    statics::first_guess_force(&mut unit, "top", e.force_at(cut.to));
                 }
                 unit
             }
         };
-        units.push(Value::Table(unit));
-        if k + 1 < cuts.len() {
-            let upper = (format!("{name}_{}", cut.name), cut.fidelity);
-            let lower = (format!("{name}_{}", cuts[k + 1].name), cuts[k + 1].fidelity);
-            connections.extend(cut_connections(&upper, &lower, force_on_upper[k]));
+        if let (Some(load), true) = (&self.top_load, k + 1 == cuts.len()) {
+            load.first_guess(&mut unit, cut.fidelity);
+        }
+        Ok(unit)
+    }
+
+    /// How a cut sees a section.
+    fn side<'a>(&self, cut: &'a Cut) -> Side<'a> {
+        Side {
+            unit: format!("{}_{}", self.name, cut.name),
+            fidelity: cut.fidelity,
+            physical: cut.physical.as_ref(),
         }
     }
-    if structure.get("reference").and_then(Value::as_bool) == Some(true) {
-        let mut unit = Table::new();
-        unit.insert("name".into(), Value::String(format!("{name}_reference")));
-        unit.insert("kind".into(), Value::String("nonlinear".into()));
-        unit.insert("parameters".into(), Value::Table(model.clone()));
-        units.push(Value::Table(unit));
+
+    /// The monolithic twin `<name>_reference` (`reference = true` or
+    /// "nonlinear": the model as one unit; "cable": the whole structure as one
+    /// cable) and its fidelity; None without one.
+    fn reference(
+        &self,
+        structure: &Table,
+        length: f64,
+    ) -> Result<Option<(Table, Fidelity)>, String> {
+        let fidelity = match structure.get("reference") {
+            None | Some(Value::Boolean(false)) => return Ok(None),
+            Some(Value::Boolean(true)) => Fidelity::Nonlinear,
+            Some(Value::String(word)) => Fidelity::parse("structure.reference", word)?,
+            Some(other) => {
+                return Err(format!(
+                    "`structure.reference` = {other}: expected true, false or a fidelity ({})",
+                    Fidelity::NAMES.join(", ")
+                ));
+            }
+        };
+        let mut unit = match fidelity {
+            Fidelity::Nonlinear => {
+                let mut unit = Table::new();
+                unit.insert(
+                    "name".into(),
+                    Value::String(format!("{}_reference", self.name)),
+                );
+                unit.insert("kind".into(), Value::String("nonlinear".into()));
+                unit.insert("parameters".into(), Value::Table(self.model.clone()));
+                unit
+            }
+            Fidelity::Cable => {
+                let whole = [Cut {
+                    name: "reference".into(),
+                    from: 0.0,
+                    to: length,
+                    fidelity,
+                    elements: None,
+                    physical: None,
+                }];
+                cable_fits(&self.model, &whole, 0, self.top_load.is_some())?;
+                let start = start_of(&self.model);
+                cable::cable_unit(
+                    &self.name,
+                    &self.model,
+                    &self.segments,
+                    &whole[0],
+                    self.water,
+                    start,
+                )?
+            }
+        };
+        if let Some(load) = &self.top_load {
+            load.first_guess(&mut unit, fidelity);
+        }
+        Ok(Some((unit, fidelity)))
     }
-    append(scene, "units", units)?;
-    append(scene, "connections", connections)?;
-    Ok(true)
 }
 
 /// A straight segment of the stress-free shape.
@@ -189,6 +307,8 @@ pub(crate) struct Cut {
     pub to: f64,
     pub fidelity: Fidelity,
     pub elements: Option<usize>,
+    /// A physical section's artefacts (`sensor`, `actuator`).
+    pub physical: Option<Table>,
 }
 
 /// The fidelities a section can take, as written in scenes.
@@ -263,12 +383,22 @@ fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
                 ));
             }
         };
+        let physical = match t.get("physical") {
+            None => None,
+            Some(Value::Table(p)) => Some(p.clone()),
+            Some(_) => {
+                return Err(format!(
+                    "`{key}.physical`: expected a table {{ sensor = {{ ... }}, actuator = {{ ... }} }} of `artefact` parameters"
+                ));
+            }
+        };
         cuts.push(Cut {
             name: name.to_owned(),
             from,
             to,
             fidelity,
             elements,
+            physical,
         });
         from = to;
     }
@@ -278,11 +408,11 @@ fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
 /// Whether section `k` can be a cable: its top takes a coupled force, so it
 /// cannot end the structure, and its bottom a coupled velocity, so at the
 /// structure's start it must be anchored (x and z held).
-fn cable_fits(model: &Table, cuts: &[Cut], k: usize) -> Result<(), String> {
+fn cable_fits(model: &Table, cuts: &[Cut], k: usize, top_load: bool) -> Result<(), String> {
     let key = format!("structure.sections.{}.fidelity", cuts[k].name);
-    if k + 1 == cuts.len() {
+    if k + 1 == cuts.len() && !top_load {
         return Err(format!(
-            "`{key}` = \"cable\": the cable's top takes a coupled force, so a cable cannot be the structure's last section; give the end to a nonlinear section"
+            "`{key}` = \"cable\": the cable's top takes a coupled force, so a cable can be the structure's last section only under `structure.top_load`; otherwise give the end to a nonlinear section"
         ));
     }
     if k == 0 {
@@ -338,15 +468,6 @@ fn whole(key: &str, v: &Value) -> Result<usize, String> {
         .filter(|&n| n >= 1)
         .map(|n| n as usize)
         .ok_or(format!("`{key}`: expected a whole number >= 1"))
-}
-
-/// How a section's end at a cut is coupled.
-#[derive(Copy, Clone, Debug)]
-struct End {
-    /// It moves with the other side's velocity (else it carries its force).
-    moving: bool,
-    /// Rotation and moment do not cross the cut (one side does not bend).
-    pinned: bool,
 }
 
 /// The `nonlinear` unit of one section: the model's segments clipped to its range,
@@ -454,97 +575,6 @@ fn distribute(segments: &mut [Table], n: usize) {
         let e = ((n as f64) * l / total).round().max(1.0);
         t.insert("elements".into(), Value::Integer(e as i64));
     }
-}
-
-/// The loaded side of a cut: the other side's force and moment (a pinned cut's
-/// rotation is free).
-fn coupled_load(pinned: bool) -> Value {
-    let force = || {
-        let mut t = Table::new();
-        t.insert("force".into(), Value::String("input".into()));
-        Value::Table(t)
-    };
-    let mut t = Table::new();
-    t.insert("x".into(), force());
-    t.insert("z".into(), force());
-    t.insert(
-        "rotation".into(),
-        if pinned {
-            Value::String("free".into())
-        } else {
-            force()
-        },
-    );
-    Value::Table(t)
-}
-
-/// The moving side of a cut: the other side's velocity (a pinned cut's rotation
-/// is free).
-fn coupled_motion(pinned: bool) -> Value {
-    let mut t = Table::new();
-    for dof in ["x", "z", "rotation"] {
-        let free = pinned && dof == "rotation";
-        t.insert(
-            dof.into(),
-            Value::String(if free { "free" } else { "velocity" }.into()),
-        );
-    }
-    Value::Table(t)
-}
-
-/// A section's port at one of its ends (`at_end`: its end, else its start) for
-/// a quantity `velocity_x`, `force_z`, `angular_velocity`, `moment`, ...: the
-/// `nonlinear` unit's `end_force_x`, the `cable` unit's `top_force_x` (its end
-/// is its top).
-fn port(unit: &(String, Fidelity), at_end: bool, quantity: &str) -> String {
-    let side = match (unit.1, at_end) {
-        (Fidelity::Nonlinear, true) => "end",
-        (Fidelity::Nonlinear, false) => "start",
-        (Fidelity::Cable, true) => "top",
-        (Fidelity::Cable, false) => "bottom",
-    };
-    format!("{}.{side}_{quantity}", unit.0)
-}
-
-/// The links of a cut: velocity from the loaded side to the moving side and
-/// force back (`force_on_upper`: the upper section's end is the loaded side);
-/// rotation and moment too unless one side does not bend.
-fn cut_connections(
-    upper: &(String, Fidelity),
-    lower: &(String, Fidelity),
-    force_on_upper: bool,
-) -> Vec<Value> {
-    let link = |from: String, to: String| {
-        let mut t = Table::new();
-        t.insert("from".into(), Value::String(from));
-        t.insert("to".into(), Value::String(to));
-        Value::Table(t)
-    };
-    let ((loaded, loaded_at_end), (moving, moving_at_end)) = if force_on_upper {
-        ((upper, true), (lower, false))
-    } else {
-        ((lower, false), (upper, true))
-    };
-    let bends = upper.1.bends() && lower.1.bends();
-    let mut links = Vec::new();
-    for (motion, load) in [
-        ("velocity_x", "force_x"),
-        ("velocity_z", "force_z"),
-        ("angular_velocity", "moment"),
-    ] {
-        if motion == "angular_velocity" && !bends {
-            continue;
-        }
-        links.push(link(
-            port(loaded, loaded_at_end, motion),
-            port(moving, moving_at_end, motion),
-        ));
-        links.push(link(
-            port(moving, moving_at_end, load),
-            port(loaded, loaded_at_end, load),
-        ));
-    }
-    links
 }
 
 fn append(scene: &mut Table, key: &str, items: Vec<Value>) -> Result<(), String> {

@@ -74,25 +74,7 @@ pub fn cable_unit(
         "`{key}.fidelity` = \"cable\": the cable needs `structure.water_depth` (m; and `structure.seabed`, the seabed's z in the structure's frame, default 0)"
     ))?;
     let inside: Vec<&Segment> = segments_in(segments, cut.from, cut.to);
-    let first = inside
-        .first()
-        .ok_or(format!("section `{}` is empty", cut.name))?;
-    let property = |s: &Segment, k: &str| -> f64 {
-        s.table
-            .get(k)
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-            .unwrap_or(0.0)
-    };
-    for s in &inside[1..] {
-        if let Some(k) = UNIFORM
-            .iter()
-            .find(|k| property(s, k) != property(first, k))
-        {
-            return Err(format!(
-                "`{key}.fidelity` = \"cable\": the section's segments differ in `{k}`; the cable unit has one cross-section"
-            ));
-        }
-    }
+    let first = one_cross_section(&key, &inside)?;
     let diameter = property(first, "diameter");
     if diameter <= 0.0 {
         return Err(format!(
@@ -151,21 +133,48 @@ pub fn cable_unit(
     if let Some(current) = current {
         p.insert("current".into(), cable_current(current, water.seabed)?);
     }
-    let effects = effects(&p, current.is_some());
+    Ok(unit_table(
+        format!("{name}_{}", cut.name),
+        effects(&p, current.is_some()),
+        p,
+    ))
+}
+
+/// A `cable` unit as a scene table.
+fn unit_table(name: String, effects: Vec<&str>, parameters: Table) -> Table {
     let mut unit = Table::new();
-    unit.insert("name".into(), Value::String(format!("{name}_{}", cut.name)));
+    unit.insert("name".into(), Value::String(name));
     unit.insert("kind".into(), Value::String("cable".into()));
-    unit.insert(
-        "effects".into(),
-        Value::Array(
-            effects
-                .into_iter()
-                .map(|e| Value::String(e.into()))
-                .collect(),
-        ),
-    );
-    unit.insert("parameters".into(), Value::Table(p));
-    Ok(unit)
+    let effects = effects.into_iter().map(|e| Value::String(e.into()));
+    unit.insert("effects".into(), Value::Array(effects.collect()));
+    unit.insert("parameters".into(), Value::Table(parameters));
+    unit
+}
+
+/// A segment's section property `k` (0 when not given).
+fn property(s: &Segment, k: &str) -> f64 {
+    s.table
+        .get(k)
+        .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+        .unwrap_or(0.0)
+}
+
+/// The cross-section of a cable section: its segments must agree on it.
+fn one_cross_section<'a>(key: &str, inside: &[&'a Segment]) -> Result<&'a Segment, String> {
+    let first = *inside
+        .first()
+        .ok_or(format!("`{key}`: the section is empty"))?;
+    for s in &inside[1..] {
+        if let Some(k) = UNIFORM
+            .iter()
+            .find(|k| property(s, k) != property(first, k))
+        {
+            return Err(format!(
+                "`{key}.fidelity` = \"cable\": the section's segments differ in `{k}`; the cable unit has one cross-section"
+            ));
+        }
+    }
+    Ok(first)
 }
 
 /// The segments overlapping [from, to].

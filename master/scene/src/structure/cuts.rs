@@ -1,0 +1,205 @@
+//! What crosses a cut between two sections: one side moves with the other's
+//! velocity (x, z, and rotation where both bend) and the other carries the force
+//! (and moment) the moving side exerts, in the global frame. A cut next to a
+//! section without bending (a cable) is pinned: no rotation or moment crosses it
+//! and the bending side's end turns freely. Next to a physical section the
+//! signals pass through artefact units, as in a hybrid test: what the physical
+//! side emits through its sensor, what it receives through its actuator.
+
+use super::Fidelity;
+use toml::{Table, Value};
+
+/// How a section's end at a cut is coupled.
+#[derive(Copy, Clone, Debug)]
+pub struct End {
+    /// It moves with the other side's velocity (else it carries its force).
+    pub moving: bool,
+    /// Rotation and moment do not cross the cut (one side does not bend).
+    pub pinned: bool,
+}
+
+/// A section as its cut sees it: unit name, fidelity, and the artefacts of a
+/// physical section (`sensor`, `actuator`: `artefact` parameters without
+/// `quantity`).
+pub struct Side<'a> {
+    pub unit: String,
+    pub fidelity: Fidelity,
+    pub physical: Option<&'a Table>,
+}
+
+/// The loaded side of a cut: the other side's force and moment (a pinned cut's
+/// rotation is free).
+pub fn coupled_load(pinned: bool) -> Value {
+    let force = || {
+        let mut t = Table::new();
+        t.insert("force".into(), Value::String("input".into()));
+        Value::Table(t)
+    };
+    let mut t = Table::new();
+    t.insert("x".into(), force());
+    t.insert("z".into(), force());
+    t.insert(
+        "rotation".into(),
+        if pinned {
+            Value::String("free".into())
+        } else {
+            force()
+        },
+    );
+    Value::Table(t)
+}
+
+/// The moving side of a cut: the other side's velocity (a pinned cut's rotation
+/// is free).
+pub fn coupled_motion(pinned: bool) -> Value {
+    let mut t = Table::new();
+    for dof in ["x", "z", "rotation"] {
+        let free = pinned && dof == "rotation";
+        t.insert(
+            dof.into(),
+            Value::String(if free { "free" } else { "velocity" }.into()),
+        );
+    }
+    Value::Table(t)
+}
+
+/// A section's port at one of its ends (`at_end`: its end, else its start) for
+/// a quantity `velocity_x`, `force_z`, `angular_velocity`, `moment`, ...: the
+/// `nonlinear` unit's `end_force_x`, the `cable` unit's `top_force_x` (its end
+/// is its top).
+pub fn port(unit: &str, fidelity: Fidelity, at_end: bool, quantity: &str) -> String {
+    let side = match (fidelity, at_end) {
+        (Fidelity::Nonlinear, true) => "end",
+        (Fidelity::Nonlinear, false) => "start",
+        (Fidelity::Cable, true) => "top",
+        (Fidelity::Cable, false) => "bottom",
+    };
+    format!("{unit}.{side}_{quantity}")
+}
+
+/// A connection from an output to an input.
+pub fn link(from: String, to: String) -> Value {
+    let mut t = Table::new();
+    t.insert("from".into(), Value::String(from));
+    t.insert("to".into(), Value::String(to));
+    Value::Table(t)
+}
+
+/// The links of a cut (and the artefact units of a physical side): velocity
+/// from the loaded side to the moving side and force back (`force_on_upper`:
+/// the upper section's end is the loaded side); rotation and moment too unless
+/// one side does not bend.
+pub fn cut_connections(
+    upper: &Side<'_>,
+    lower: &Side<'_>,
+    force_on_upper: bool,
+) -> Result<(Vec<Value>, Vec<Value>), String> {
+    let ((loaded, loaded_at_end), (moving, moving_at_end)) = if force_on_upper {
+        ((upper, true), (lower, false))
+    } else {
+        ((lower, false), (upper, true))
+    };
+    if upper.physical.is_some() && lower.physical.is_some() {
+        return Err(format!(
+            "`{}` and `{}` are both physical: a cut needs a numerical side",
+            upper.unit, lower.unit
+        ));
+    }
+    let bends = upper.fidelity.bends() && lower.fidelity.bends();
+    let mut links = Vec::new();
+    let mut units = Vec::new();
+    for (motion, load) in [
+        ("velocity_x", "force_x"),
+        ("velocity_z", "force_z"),
+        ("angular_velocity", "moment"),
+    ] {
+        if motion == "angular_velocity" && !bends {
+            continue;
+        }
+        links.push(link(
+            port(&loaded.unit, loaded.fidelity, loaded_at_end, motion),
+            port(&moving.unit, moving.fidelity, moving_at_end, motion),
+        ));
+        links.push(link(
+            port(&moving.unit, moving.fidelity, moving_at_end, load),
+            port(&loaded.unit, loaded.fidelity, loaded_at_end, load),
+        ));
+    }
+    for (side, at_end) in [(upper, true), (lower, false)] {
+        if let Some(physical) = side.physical {
+            let prefix = format!("{}_{}", side.unit, if at_end { "end" } else { "start" });
+            let moving_side = std::ptr::eq(side, moving);
+            units.extend(through_artefacts(
+                &mut links,
+                &side.unit,
+                &prefix,
+                physical,
+                moving_side,
+            )?);
+        }
+    }
+    Ok((links, units))
+}
+
+/// Puts the physical section `unit`'s x and z links through a sensor (what it
+/// emits: force when it is the moving side, velocity otherwise) and an actuator
+/// (what it receives); returns the two artefact units `<prefix>_sensor` and
+/// `<prefix>_actuator`. Rotation and moment pass untouched.
+fn through_artefacts(
+    links: &mut Vec<Value>,
+    unit: &str,
+    prefix: &str,
+    physical: &Table,
+    moving: bool,
+) -> Result<Vec<Value>, String> {
+    let (emits, receives) = if moving {
+        ("force", "velocity")
+    } else {
+        ("velocity", "force")
+    };
+    let mut units = Vec::new();
+    for (role, quantity) in [("sensor", emits), ("actuator", receives)] {
+        let name = format!("{prefix}_{role}");
+        let mut parameters = match physical.get(role) {
+            None => Table::new(),
+            Some(Value::Table(t)) => t.clone(),
+            Some(_) => {
+                return Err(format!(
+                    "`physical.{role}` of `{unit}`: expected a table of `artefact` parameters"
+                ));
+            }
+        };
+        if parameters.contains_key("quantity") || parameters.contains_key("channels") {
+            return Err(format!(
+                "`physical.{role}` of `{unit}`: `quantity` and `channels` follow from the cut; leave them out"
+            ));
+        }
+        parameters.insert("quantity".into(), Value::String(quantity.into()));
+        let mut artefact = Table::new();
+        artefact.insert("name".into(), Value::String(name.clone()));
+        artefact.insert("kind".into(), Value::String("artefact".into()));
+        artefact.insert("parameters".into(), Value::Table(parameters));
+        units.push(Value::Table(artefact));
+        // The x and z links of this quantity into or out of the physical unit.
+        for axis in ["x", "z"] {
+            let suffix = format!("_{quantity}_{axis}");
+            let Some(l) = links.iter_mut().find(|l| {
+                let (from, to) = (
+                    l["from"].as_str().unwrap_or(""),
+                    l["to"].as_str().unwrap_or(""),
+                );
+                let ours = if role == "sensor" { from } else { to };
+                ours.starts_with(&format!("{unit}.")) && ours.ends_with(&suffix)
+            }) else {
+                continue;
+            };
+            let (from, to) = (
+                l["from"].as_str().unwrap_or_default().to_owned(),
+                l["to"].as_str().unwrap_or_default().to_owned(),
+            );
+            *l = link(from, format!("{name}.in_{axis}"));
+            links.push(link(format!("{name}.out_{axis}"), to));
+        }
+    }
+    Ok(units)
+}
