@@ -44,7 +44,7 @@ fn top_force_epsilon(text: &str) -> f64 {
     i.relative_error
 }
 
-const CABLE: &str = "[[structure.sections]]\nname = \"lower\"\nto = 1547.2\nfidelity = \"cable\"\n[[structure.sections]]\nname = \"upper\"\n";
+const CABLE: &str = "[[structure.sections]]\nname = \"lower\"\nto = 1571.375\nfidelity = \"cable\"\n[[structure.sections]]\nname = \"upper\"\n";
 
 #[test]
 fn a_cable_lower_section_follows_the_nonlinear_twin() {
@@ -88,7 +88,7 @@ fn expanded(text: &str) -> (Vec<(String, Value)>, Vec<Value>) {
 fn swapping_a_section_to_cable_changes_its_unit_and_its_cuts_only() {
     let three = |middle: &str| {
         format!(
-            "[[structure.sections]]\nname = \"bottom\"\nto = 700.0\n[[structure.sections]]\nname = \"lower\"\nto = 1547.2\nfidelity = \"{middle}\"\n[[structure.sections]]\nname = \"upper\"\n"
+            "[[structure.sections]]\nname = \"bottom\"\nto = 700.0\n[[structure.sections]]\nname = \"lower\"\nto = 1571.375\nfidelity = \"{middle}\"\n[[structure.sections]]\nname = \"upper\"\n"
         )
     };
     let (a_units, a_links) = expanded(&mooring(20.0, Some(&three("nonlinear"))));
