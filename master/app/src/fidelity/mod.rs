@@ -347,11 +347,15 @@ fn run_table(
             unit: format!("{}_{name}", structure.name),
             kind: match t.get("fidelity") {
                 Some(Value::String(w)) => w.clone(),
-                Some(Value::Table(f)) => f
-                    .get("kind")
-                    .and_then(Value::as_str)
-                    .unwrap_or("nonlinear")
-                    .to_owned(),
+                // An FMU section has the ports of the fidelity it names.
+                Some(Value::Table(f)) => match f.get("kind").and_then(Value::as_str) {
+                    Some("fmu") => f
+                        .get("ports")
+                        .and_then(Value::as_str)
+                        .unwrap_or("nonlinear"),
+                    kind => kind.unwrap_or("nonlinear"),
+                }
+                .to_owned(),
                 _ => "nonlinear".to_owned(),
             },
             from: *from,

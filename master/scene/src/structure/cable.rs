@@ -8,7 +8,7 @@
 //! `full` line), so it needs the structure's static start to place its anchor
 //! where the equilibrium puts the section's start.
 
-use crate::structure::{Cut, Segment};
+use super::sections::{Cut, Segment};
 use toml::{Table, Value};
 
 /// Section properties that must be equal along a cable section (the cable unit

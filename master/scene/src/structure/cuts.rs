@@ -6,7 +6,7 @@
 //! signals pass through artefact units, as in a hybrid test: what the physical
 //! side emits through its sensor, what it receives through its actuator.
 
-use super::Fidelity;
+use super::sections::Fidelity;
 use toml::{Table, Value};
 
 /// How a section's end at a cut is coupled.

@@ -3,8 +3,8 @@
 //! and z, whatever fidelity the last section has. The static force at t = 0
 //! (`static`, N) holds the structure in its equilibrium.
 
-use super::Fidelity;
 use super::cuts::{link, port};
+use super::sections::Fidelity;
 use toml::{Table, Value};
 
 /// The top load: the outputs driving x and z, and the force at rest.

@@ -1,0 +1,113 @@
+//! The `nonlinear` fidelity of a section: the model's own unit over the
+//! section's arc-length range, coupled at its cuts.
+
+use super::cuts::{End, coupled_load, coupled_motion};
+use super::sections::{Cut, Segment};
+use toml::{Table, Value};
+
+/// The `nonlinear` unit of one section: the model's segments clipped to its range,
+/// its start at the stress-free position of the cut, the structure's ends at the
+/// structure's ends, and at a cut (`coupling`: start, end; None at the
+/// structure's ends) a moving or loaded end.
+pub(super) fn section_unit(
+    name: &str,
+    model: &Table,
+    segments: &[Segment],
+    cut: &Cut,
+    coupling: (Option<End>, Option<End>),
+) -> Result<Table, String> {
+    let mut parameters = model.clone();
+    let (mut position, mut arc) = (start_of(model), 0.0f64);
+    let mut clipped = Vec::new();
+    let mut start = None;
+    for s in segments {
+        let (a, b) = (arc.max(cut.from), (arc + s.length).min(cut.to));
+        let (c, sn) = (
+            s.angle_deg.to_radians().cos(),
+            s.angle_deg.to_radians().sin(),
+        );
+        if b > a + 1e-12 * s.length {
+            if start.is_none() {
+                let d = cut.from - arc;
+                start = Some([position[0] + d * c, position[1] + d * sn]);
+            }
+            let mut t = s.table.clone();
+            let share = (b - a) / s.length;
+            t.insert("length".into(), Value::Float(b - a));
+            let elements = (s.elements * share).round().max(1.0);
+            t.insert("elements".into(), Value::Integer(elements as i64));
+            clipped.push(t);
+        }
+        position = [position[0] + s.length * c, position[1] + s.length * sn];
+        arc += s.length;
+    }
+    if let Some(n) = cut.elements {
+        distribute(&mut clipped, n);
+    }
+    let start = start.ok_or(format!("section `{}` is empty", cut.name))?;
+    parameters.insert(
+        "start".into(),
+        Value::Array(vec![Value::Float(start[0]), Value::Float(start[1])]),
+    );
+    parameters.insert(
+        "segments".into(),
+        Value::Array(clipped.into_iter().map(Value::Table).collect()),
+    );
+    for key in ["supports", "loads", "stations"] {
+        if parameters.contains_key(key) {
+            return Err(format!(
+                "`structure.model.{key}`: not yet available for a cut structure"
+            ));
+        }
+    }
+    let mut ends = model
+        .get("ends")
+        .and_then(Value::as_table)
+        .cloned()
+        .unwrap_or_default();
+    for (key, coupled) in [("start", coupling.0), ("end", coupling.1)] {
+        match coupled {
+            Some(End {
+                moving: true,
+                pinned,
+            }) => ends.insert(key.into(), coupled_motion(pinned)),
+            Some(End {
+                moving: false,
+                pinned,
+            }) => ends.insert(key.into(), coupled_load(pinned)),
+            None => None,
+        };
+    }
+    parameters.insert("ends".into(), Value::Table(ends));
+    let mut unit = Table::new();
+    unit.insert("name".into(), Value::String(format!("{name}_{}", cut.name)));
+    unit.insert("kind".into(), Value::String("nonlinear".into()));
+    unit.insert("parameters".into(), Value::Table(parameters));
+    Ok(unit)
+}
+
+pub(super) fn start_of(model: &Table) -> [f64; 2] {
+    let at = |i: usize| {
+        model
+            .get("start")
+            .and_then(Value::as_array)
+            .and_then(|a| a.get(i))
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+            .unwrap_or(0.0)
+    };
+    [at(0), at(1)]
+}
+
+/// Spreads `n` elements over the clipped segments in proportion to their lengths
+/// (at least one each).
+fn distribute(segments: &mut [Table], n: usize) {
+    let lengths: Vec<f64> = segments
+        .iter()
+        .map(|t| t["length"].as_float().unwrap_or(0.0))
+        .collect();
+    let total: f64 = lengths.iter().sum();
+    for (t, l) in segments.iter_mut().zip(&lengths) {
+        let e = ((n as f64) * l / total).round().max(1.0);
+        t.insert("elements".into(), Value::Integer(e as i64));
+    }
+}

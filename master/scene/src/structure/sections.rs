@@ -1,0 +1,258 @@
+//! The structure's description: its segments (the stress-free shape), its
+//! sections (cuts by arc length) and each section's fidelity.
+
+use toml::{Table, Value};
+
+/// A straight segment of the stress-free shape.
+#[derive(Clone, Debug)]
+pub(crate) struct Segment {
+    /// Arc length of its start (m).
+    pub from: f64,
+    pub length: f64,
+    pub angle_deg: f64,
+    pub elements: f64,
+    /// The segment as written (its section properties).
+    pub table: Table,
+}
+
+impl Segment {
+    /// Length (m) of the segment inside [from, to].
+    pub fn overlap(&self, from: f64, to: f64) -> f64 {
+        ((self.from + self.length).min(to) - self.from.max(from)).max(0.0)
+    }
+}
+
+pub(super) fn segments_of(model: &Table) -> Result<Vec<Segment>, String> {
+    let list = model
+        .get("segments")
+        .and_then(Value::as_array)
+        .ok_or("`structure.model.segments`: expected a list of segments")?;
+    let mut from = 0.0;
+    list.iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let t = s
+                .as_table()
+                .ok_or(format!("`structure.model.segments[{i}]`: expected a table"))?;
+            let number = |key: &str, default: Option<f64>| {
+                t.get(key)
+                    .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+                    .or(default)
+                    .ok_or(format!(
+                        "`structure.model.segments[{i}].{key}`: expected a number"
+                    ))
+            };
+            let segment = Segment {
+                from,
+                length: number("length", None)?,
+                angle_deg: number("angle", Some(0.0))?,
+                elements: number("elements", None)?,
+                table: t.clone(),
+            };
+            from += segment.length;
+            Ok(segment)
+        })
+        .collect()
+}
+
+/// One section: its name, arc-length range (m), fidelity and element count
+/// (None: as the model's segments).
+#[derive(Clone, Debug)]
+pub(crate) struct Cut {
+    pub name: String,
+    pub from: f64,
+    pub to: f64,
+    pub fidelity: Fidelity,
+    pub elements: Option<usize>,
+    /// A physical section's artefacts (`sensor`, `actuator`).
+    pub physical: Option<Table>,
+    /// The `fmu` parameters of an external FMU in place of the section's unit.
+    pub fmu: Option<Table>,
+}
+
+/// The fidelities a section can take, as written in scenes.
+pub const FIDELITIES: [&str; 2] = Fidelity::NAMES;
+
+/// Which model a section is.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Fidelity {
+    /// The geometrically nonlinear section (`nonlinear` unit).
+    Nonlinear,
+    /// Seed 000's cable, linear about its static state, no bending (`cable` unit).
+    Cable,
+}
+
+impl Fidelity {
+    /// The fidelities' names as written in scenes.
+    pub const NAMES: [&'static str; 2] = ["nonlinear", "cable"];
+
+    pub fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
+        match word {
+            "nonlinear" => Ok(Fidelity::Nonlinear),
+            "cable" => Ok(Fidelity::Cable),
+            other => Err(format!(
+                "`{key}` = \"{other}\": expected one of {} (the other fidelities are not built yet)",
+                Fidelity::NAMES.join(", ")
+            )),
+        }
+    }
+
+    /// Whether the model carries bending (rotation and moment at its cuts).
+    pub fn bends(self) -> bool {
+        self == Fidelity::Nonlinear
+    }
+}
+
+pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
+    let list = structure
+        .get("sections")
+        .and_then(Value::as_array)
+        .filter(|l| !l.is_empty())
+        .ok_or("`structure.sections`: expected at least one section")?;
+    let mut cuts = Vec::new();
+    let mut from = 0.0;
+    for (i, s) in list.iter().enumerate() {
+        let key = format!("structure.sections[{i}]");
+        let t = s.as_table().ok_or(format!("`{key}`: expected a table"))?;
+        let name = t
+            .get("name")
+            .and_then(Value::as_str)
+            .ok_or(format!("`{key}.name`: expected a name"))?;
+        let model = fidelity_of(&key, t.get("fidelity"))?;
+        let (fidelity, fidelity_elements) = (model.fidelity, model.elements);
+        let last = i + 1 == list.len();
+        let to = match t
+            .get("to")
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+        {
+            Some(to) if !last && to > from && to < length => to,
+            None if last => length,
+            Some(to) if last && (to - length).abs() <= 1e-9 * length => length,
+            other => {
+                return Err(format!(
+                    "`{key}.to` = {other:?}: expected an arc length in ({from}, {length}) m, increasing, and none (or the length) for the last section"
+                ));
+            }
+        };
+        let elements = match (t.get("elements"), fidelity_elements) {
+            (None, elements) => elements,
+            (Some(v), None) => Some(whole(&format!("{key}.elements"), v)?),
+            (Some(_), Some(_)) => {
+                return Err(format!(
+                    "`{key}`: the element count is given twice (`elements` and `fidelity.elements`)"
+                ));
+            }
+        };
+        let physical = match t.get("physical") {
+            None => None,
+            Some(Value::Table(p)) => Some(p.clone()),
+            Some(_) => {
+                return Err(format!(
+                    "`{key}.physical`: expected a table {{ sensor = {{ ... }}, actuator = {{ ... }} }} of `artefact` parameters"
+                ));
+            }
+        };
+        cuts.push(Cut {
+            name: name.to_owned(),
+            from,
+            to,
+            fidelity,
+            elements,
+            physical,
+            fmu: model.fmu,
+        });
+        from = to;
+    }
+    Ok(cuts)
+}
+
+/// A section's `fidelity`: a name, or a table `{ kind = NAME, elements = N }`
+/// (default: nonlinear), or `{ kind = "fmu", file, ports, ... }`: an external
+/// FMU in place of the unit, with the ports of the `ports` fidelity (default
+/// nonlinear) and the `fmu` kind's parameters.
+fn fidelity_of(key: &str, value: Option<&Value>) -> Result<SectionModel, String> {
+    let key = format!("{key}.fidelity");
+    let native = |fidelity, elements| SectionModel {
+        fidelity,
+        elements,
+        fmu: None,
+    };
+    match value {
+        None => Ok(native(Fidelity::Nonlinear, None)),
+        Some(Value::String(word)) => Ok(native(Fidelity::parse(&key, word)?, None)),
+        Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("fmu") => {
+            fmu_of(&key, t)
+        }
+        Some(Value::Table(t)) => {
+            if let Some(unknown) = t.keys().find(|k| *k != "kind" && *k != "elements") {
+                return Err(format!(
+                    "`{key}.{unknown}`: unknown key; expected `kind` and optionally `elements`"
+                ));
+            }
+            let word = t.get("kind").and_then(Value::as_str).ok_or(format!(
+                "`{key}.kind`: expected one of {}, fmu",
+                Fidelity::NAMES.join(", ")
+            ))?;
+            let elements = t
+                .get("elements")
+                .map(|v| whole(&format!("{key}.elements"), v))
+                .transpose()?;
+            Ok(native(
+                Fidelity::parse(&format!("{key}.kind"), word)?,
+                elements,
+            ))
+        }
+        Some(_) => Err(format!(
+            "`{key}`: expected a name ({}) or a table {{ kind, elements }}",
+            Fidelity::NAMES.join(", ")
+        )),
+    }
+}
+
+/// A section's model: the fidelity its ports follow, its element count, and the
+/// `fmu` parameters of an external FMU in its place.
+struct SectionModel {
+    fidelity: Fidelity,
+    elements: Option<usize>,
+    fmu: Option<Table>,
+}
+
+/// `{ kind = "fmu", file = "x.fmu", ports = "nonlinear" | "cable", start, preload, logging }`.
+fn fmu_of(key: &str, t: &Table) -> Result<SectionModel, String> {
+    const KEYS: [&str; 6] = ["kind", "file", "ports", "start", "preload", "logging"];
+    if let Some(unknown) = t.keys().find(|k| !KEYS.contains(&k.as_str())) {
+        return Err(format!(
+            "`{key}.{unknown}`: unknown key; an FMU section takes {}",
+            KEYS.join(", ")
+        ));
+    }
+    if t.get("file").and_then(Value::as_str).is_none() {
+        return Err(format!(
+            "`{key}.file`: expected the FMU file (relative to the scene's folder)"
+        ));
+    }
+    let fidelity = match t.get("ports") {
+        None => Fidelity::Nonlinear,
+        Some(v) => Fidelity::parse(
+            &format!("{key}.ports"),
+            v.as_str()
+                .ok_or(format!("`{key}.ports`: expected a fidelity's name"))?,
+        )?,
+    };
+    let mut fmu = t.clone();
+    fmu.remove("kind");
+    fmu.remove("ports");
+    Ok(SectionModel {
+        fidelity,
+        elements: None,
+        fmu: Some(fmu),
+    })
+}
+
+/// A whole number >= 1 at `key`.
+fn whole(key: &str, v: &Value) -> Result<usize, String> {
+    v.as_integer()
+        .filter(|&n| n >= 1)
+        .map(|n| n as usize)
+        .ok_or(format!("`{key}`: expected a whole number >= 1"))
+}

@@ -1,0 +1,82 @@
+//! A section as an external FMU (issue 13): `fidelity = { kind = "fmu", file,
+//! ports }` puts an FMU in place of a section's unit, wired by the ports of the
+//! fidelity it names. The mooring line's lower section exported by slender and
+//! coupled back as an FMU gives the native run's results bit for bit.
+
+use slender_fmi::export::ExportConfig;
+use slender_scene::Scene;
+use slender_scene::export::SceneExport;
+use slender_scene::export::package;
+use slender_tests::{fmu::library, root, run};
+
+/// The mooring example over 10 s with a nonlinear lower section, `lower` being
+/// that section's `fidelity` value.
+fn mooring(lower: &str) -> String {
+    let text = std::fs::read_to_string(root().join("examples/structure_mooring.toml")).unwrap();
+    text.replace("duration = 60.0", "duration = 10.0")
+        .replace("fidelity = \"cable\"", &format!("fidelity = {lower}"))
+}
+
+#[test]
+fn a_section_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let native_path = dir.path().join("native.toml");
+    std::fs::write(&native_path, mooring("\"nonlinear\"")).unwrap();
+    let native = Scene::load(&native_path).unwrap_or_else(|e| panic!("{e}"));
+    let config = ExportConfig::from_scene(&native, "line_lower").unwrap_or_else(|e| panic!("{e}"));
+    package(&config, &library(), &dir.path().join("lower.fmu")).unwrap_or_else(|e| panic!("{e}"));
+
+    let fmu_path = dir.path().join("fmu.toml");
+    std::fs::write(
+        &fmu_path,
+        mooring("{ kind = \"fmu\", file = \"lower.fmu\", ports = \"nonlinear\" }"),
+    )
+    .unwrap();
+    let with_fmu = Scene::load(&fmu_path).unwrap_or_else(|e| panic!("{e}"));
+    let t: toml::Table = toml::from_str(with_fmu.source()).unwrap();
+    let lower = t["units"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|u| u["name"].as_str() == Some("line_lower"))
+        .unwrap()
+        .clone();
+    assert_eq!(lower["kind"].as_str(), Some("fmu"));
+    // The first guesses of its force inputs stay with it.
+    assert!(lower["inputs"]["end_force_x_in"].as_float().is_some());
+
+    let (a, b) = (run(&native), run(&with_fmu));
+    assert!(
+        a.error.is_none() && b.error.is_none(),
+        "{:?} {:?}",
+        a.error,
+        b.error
+    );
+    assert_eq!(a.names, b.names);
+    assert_eq!(
+        a.columns, b.columns,
+        "the FMU section differs from the native one"
+    );
+    assert_eq!(a.counters.iterations, b.counters.iterations);
+}
+
+#[test]
+fn an_fmu_section_needs_its_file_and_known_keys() {
+    let path = root().join("examples/structure_mooring.toml");
+    for (fidelity, says) in [
+        ("{ kind = \"fmu\" }", "fidelity.file"),
+        (
+            "{ kind = \"fmu\", file = \"x.fmu\", elements = 3 }",
+            "fidelity.elements",
+        ),
+        (
+            "{ kind = \"fmu\", file = \"x.fmu\", ports = \"beam\" }",
+            "fidelity.ports",
+        ),
+    ] {
+        let e = Scene::parse(&path, mooring(fidelity))
+            .expect_err(fidelity)
+            .to_string();
+        assert!(e.contains(says), "{fidelity}: {e}");
+    }
+}
