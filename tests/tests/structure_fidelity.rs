@@ -71,6 +71,42 @@ fn a_cable_between_two_nonlinear_sections_couples_at_both_its_ends() {
     assert!(e < 1e-3, "{e:e}");
 }
 
+#[test]
+fn a_static_lower_section_is_the_line_s_stiffness_at_the_cut() {
+    let text = mooring(20.0, Some(&CABLE.replace("\"cable\"", "\"static\"")));
+    let (units, _) = expanded(&text);
+    let lower = &units.iter().find(|(n, _)| n == "line_lower").unwrap().1;
+    assert_eq!(lower["kind"].as_str(), Some("static_section"));
+    let k: Vec<Vec<f64>> = lower["parameters"]["stiffness"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            r.as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_float().unwrap())
+                .collect()
+        })
+        .collect();
+    // The tangent of a conservative section: symmetric in the end's
+    // translations to the central differences' accuracy (1.3e-4 measured).
+    let scale = k[0][0].abs().max(k[1][1].abs());
+    assert!((k[0][1] - k[1][0]).abs() < 1e-3 * scale, "{k:?}");
+    // A taut line pulls its end back when the end moves out along it.
+    assert!(k[0][0] < 0.0 && k[1][1] < 0.0, "{k:?}");
+    // Against the twin: 1.1 % on the top force over the first 20 s, 0.56 %
+    // over 60 s (the static section has no mass, drag or current response of
+    // its own).
+    let e = top_force_epsilon(&text);
+    println!("epsilon of the top force with a static lower section: {e:.3e}");
+    assert!(e < 2e-2, "{e:e}");
+    // Refused where it cannot stand: not first, or without the static start.
+    let upper_static = "[[structure.sections]]\nname = \"lower\"\nto = 1571.375\n[[structure.sections]]\nname = \"upper\"\nfidelity = \"static\"\n";
+    let e = parse(&mooring(20.0, Some(upper_static))).unwrap_err();
+    assert!(e.contains("first section"), "{e}");
+}
+
 /// The expanded scene's units (by name) and connections.
 fn expanded(text: &str) -> (Vec<(String, Value)>, Vec<Value>) {
     let scene = parse(text).expect("scene");
@@ -234,6 +270,7 @@ fn a_fidelity_study_refuses_a_section_that_is_not_there() {
     let e = run_fidelity(&path, &plan(&["middle=cable"], Design::Grid, 1), |_| {}).unwrap_err();
     assert!(e.contains("middle") && e.contains("lower, upper"), "{e}");
     let e = "lower=beam".parse::<SectionChoices>().unwrap_err();
+    assert!(e.contains("static"), "{e}");
     assert!(e.contains("beam") && e.contains("cable"), "{e}");
     let e = "lower=nonlinear:0".parse::<SectionChoices>().unwrap_err();
     assert!(e.contains("whole number"), "{e}");

@@ -19,6 +19,7 @@ pub mod nonlinear;
 pub mod numerics;
 pub mod signal;
 pub mod span;
+pub mod static_section;
 
 pub use contract::{
     Capabilities, Causality, Driver, DriverSlot, HeldInputs, Hold, HoldSupport, Inputs,

@@ -191,7 +191,7 @@ pub enum Command {
     Fidelity {
         scene: PathBuf,
         /// NAME=CHOICE,CHOICE,...: a section and its fidelities (nonlinear,
-        /// cable), each optionally with an element count, e.g.
+        /// cable, static), each optionally with an element count, e.g.
         /// lower=nonlinear,cable,nonlinear:16. Repeat for several sections.
         #[arg(long = "section", required = true)]
         sections: Vec<slender_app::fidelity::SectionChoices>,

@@ -15,6 +15,7 @@ use slender_units::signal::artefact::{Artefact, ArtefactParams};
 use slender_units::signal::characteristic_load::{CharacteristicLoad, CharacteristicLoadParams};
 use slender_units::span::coupling::{SpanCoupling, SpanCouplingParams};
 use slender_units::span::unit::{SpanParams, SpanUnit};
+use slender_units::static_section::{StaticSection, StaticSectionParams};
 use slender_units::{Unit, UnitError};
 use std::path::Path;
 
@@ -109,6 +110,13 @@ pub const KINDS: &[Kind] = &[
         summary: "seed 004 sec. 6.6: touchdown point x_C = -3 y(0) / y'(0) from a section's end values (valid for y > 0, y' < 0)",
         effects: &[],
         build: |p, _| Ok(Box::new(TouchdownEstimate::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "static_section",
+        parameters: field_names::<StaticSectionParams>,
+        summary: "a section as its linearised static response at its free end: end force, moment and start reaction from constant stiffnesses (the `static` fidelity of a structure's section)",
+        effects: &[],
+        build: |p, _| Ok(Box::new(StaticSection::new(parameters(p)?)?)),
     },
     Kind {
         name: "characteristic_load",

@@ -53,6 +53,20 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
         .windows(2)
         .map(|w| built.statics.is_some() || w.iter().any(|c| c.fidelity == Fidelity::Cable))
         .collect();
+    // A static first section has no motion of its own: its end moves with its
+    // neighbour and returns the force, so that neighbour's start is loaded and
+    // every section above must be held at its end: all cuts the first way round.
+    let force_on_upper = if cuts.first().is_some_and(|c| c.fidelity == Fidelity::Static) {
+        if let Some(c) = cuts.iter().find(|c| c.fidelity == Fidelity::Cable) {
+            return Err(format!(
+                "`structure.sections.{}.fidelity` = \"cable\": a cable's cuts are loaded at its top, which a static first section's cuts cannot be; use one or the other",
+                c.name
+            ));
+        }
+        vec![false; force_on_upper.len()]
+    } else {
+        force_on_upper
+    };
     let mut units = Vec::new();
     let mut connections = Vec::new();
     for k in 0..cuts.len() {
@@ -192,6 +206,21 @@ impl Built {
                 }
                 unit
             }
+            Fidelity::Static => {
+                let key = format!("structure.sections.{}.fidelity", cut.name);
+                let equilibrium = match (&self.statics, k, cuts.len()) {
+                    (Some(e), 0, 2..) => e,
+                    _ => {
+                        return Err(format!(
+                            "`{key}` = \"static\": a static section is the structure's first section (a laid pipe from its held start), one of several, and is found from the equilibrium of `structure.model.static_start = true`"
+                        ));
+                    }
+                };
+                let mut section =
+                    section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
+                equilibrium.start_section(&mut section, (cut.from, cut.to))?;
+                equilibrium.static_section(&key, &section, (cut.from, cut.to))?
+            }
             Fidelity::Cable => {
                 cable_fits(&self.model, cuts, k, self.top_load.is_some())?;
                 let anchor = self.statics.as_ref().map(|e| e.position_at(cut.from)).ok_or(format!(
@@ -255,6 +284,11 @@ impl Built {
             }
         };
         let mut unit = match fidelity {
+            Fidelity::Static => {
+                return Err(
+                    "`structure.reference` = \"static\": the reference is a whole structure in motion; expected true, \"nonlinear\" or \"cable\"".into(),
+                );
+            }
             Fidelity::Nonlinear => {
                 let mut unit = Table::new();
                 unit.insert(

@@ -71,7 +71,7 @@ pub(crate) struct Cut {
 }
 
 /// The fidelities a section can take, as written in scenes.
-pub const FIDELITIES: [&str; 2] = Fidelity::NAMES;
+pub const FIDELITIES: [&str; 3] = Fidelity::NAMES;
 
 /// Which model a section is.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -80,16 +80,20 @@ pub(crate) enum Fidelity {
     Nonlinear,
     /// Seed 000's cable, linear about its static state, no bending (`cable` unit).
     Cable,
+    /// The section's linearised static response at its end (`static_section`
+    /// unit): a laid pipe below the touchdown region.
+    Static,
 }
 
 impl Fidelity {
     /// The fidelities' names as written in scenes.
-    pub const NAMES: [&'static str; 2] = ["nonlinear", "cable"];
+    pub const NAMES: [&'static str; 3] = ["nonlinear", "cable", "static"];
 
     pub fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
         match word {
             "nonlinear" => Ok(Fidelity::Nonlinear),
             "cable" => Ok(Fidelity::Cable),
+            "static" => Ok(Fidelity::Static),
             other => Err(format!(
                 "`{key}` = \"{other}\": expected one of {} (the other fidelities are not built yet)",
                 Fidelity::NAMES.join(", ")
@@ -99,7 +103,7 @@ impl Fidelity {
 
     /// Whether the model carries bending (rotation and moment at its cuts).
     pub fn bends(self) -> bool {
-        self == Fidelity::Nonlinear
+        self != Fidelity::Cable
     }
 }
 

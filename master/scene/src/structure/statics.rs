@@ -111,6 +111,54 @@ impl Equilibrium {
         self.section.unit().position_at(s)
     }
 
+    /// The `static_section` unit of `section` (a `nonlinear` unit's table over
+    /// [from, to] of arc length): the end force and moment and the start reaction
+    /// of the section's own static solve with its end held where the equilibrium
+    /// puts it, and their derivatives with the end's position by central
+    /// differences (steps of 1e-5 of the section's length and 1e-5 rad); six
+    /// more static solves. The error names `key`.
+    pub fn static_section(
+        &self,
+        key: &str,
+        section: &Table,
+        (from, to): (f64, f64),
+    ) -> Result<Table, String> {
+        let at_rest = self.displacement_at(to);
+        let length = to - from;
+        let steps = [1e-5 * length, 1e-5 * length, 1e-5];
+        let response = |d: [f64; 3]| {
+            end_held_response(section, d).map_err(|e| format!("`{key}` = \"static\": {e}"))
+        };
+        let base = response(at_rest)?;
+        let mut columns = [[0.0; 5]; 3];
+        for (j, column) in columns.iter_mut().enumerate() {
+            let (mut plus, mut minus) = (at_rest, at_rest);
+            plus[j] += steps[j];
+            minus[j] -= steps[j];
+            let (p, m) = (response(plus)?, response(minus)?);
+            for i in 0..5 {
+                column[i] = (p[i] - m[i]) / (2.0 * steps[j]);
+            }
+        }
+        let row = |i: usize| Value::Array((0..3).map(|j| Value::Float(columns[j][i])).collect());
+        let numbers = |v: &[f64]| Value::Array(v.iter().map(|&x| Value::Float(x)).collect());
+        let mut parameters = Table::new();
+        parameters.insert("stiffness".into(), Value::Array((0..3).map(row).collect()));
+        parameters.insert("force".into(), numbers(&base[..3]));
+        parameters.insert(
+            "start_stiffness".into(),
+            Value::Array((3..5).map(row).collect()),
+        );
+        parameters.insert("start_force".into(), numbers(&base[3..]));
+        let mut unit = Table::new();
+        if let Some(name) = section.get("name") {
+            unit.insert("name".into(), name.clone());
+        }
+        unit.insert("kind".into(), Value::String("static_section".into()));
+        unit.insert("parameters".into(), Value::Table(parameters));
+        Ok(unit)
+    }
+
     /// Displacement (x, z from the stress-free position, m; rotation, rad) at arc
     /// length `s`, linear between the nodes.
     fn displacement_at(&self, s: f64) -> [f64; 3] {
@@ -133,4 +181,55 @@ pub fn first_guess_force(unit: &mut Table, side: &str, force: [f64; 2]) {
         inputs.insert(format!("{side}_force_x"), Value::Float(force[0]));
         inputs.insert(format!("{side}_force_z"), Value::Float(force[1]));
     }
+}
+
+/// End force x, z, end moment and start reaction x, z of a `nonlinear`
+/// section's static solve with its end displaced by `d` (x, z, rotation) from
+/// the stress-free position.
+fn end_held_response(section: &Table, d: [f64; 3]) -> Result<[f64; 5], String> {
+    let mut parameters = section
+        .get("parameters")
+        .and_then(Value::as_table)
+        .cloned()
+        .ok_or("a section without parameters")?;
+    let mut end = Table::new();
+    for (dof, value) in ["x", "z", "rotation"].iter().zip(d) {
+        let mut condition = Table::new();
+        condition.insert("displacement".into(), Value::Float(value));
+        end.insert((*dof).into(), Value::Table(condition));
+    }
+    if let Some(ends) = parameters.get_mut("ends").and_then(Value::as_table_mut) {
+        ends.insert("end".into(), Value::Table(end));
+    }
+    parameters.insert("static_start".into(), Value::Boolean(true));
+    let params: NonlinearParams = Value::Table(parameters)
+        .try_into()
+        .map_err(|e| format!("{e}"))?;
+    let unit = NonlinearSection::new(params).map_err(|e| e.to_string())?;
+    let names: Vec<String> = unit
+        .description()
+        .outputs
+        .iter()
+        .map(|p| p.name.clone())
+        .collect();
+    let mut section = Driver::new(unit);
+    section
+        .initialize(Time::ZERO)
+        .map_err(|e| format!("the section's static solve with its end held: {e}"))?;
+    let mut out = vec![0.0; names.len()];
+    section.outputs(&mut out).map_err(|e| e.to_string())?;
+    let pick = |name: &str| {
+        names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| out[i])
+            .ok_or(format!("the section has no output `{name}`"))
+    };
+    Ok([
+        pick("end_force_x")?,
+        pick("end_force_z")?,
+        pick("end_moment")?,
+        pick("start_force_x")?,
+        pick("start_force_z")?,
+    ])
 }
