@@ -82,6 +82,28 @@ pub struct Expression {
     pub decay_amplitude: f64,
     /// 1/s
     pub decay_rate: f64,
+    /// More sines added to it (a vessel's motion as a sum of wave components).
+    pub sines: Vec<Sine>,
+}
+
+/// One sine `amplitude sin(angular_frequency t + phase)`.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Sine {
+    pub amplitude: f64,
+    /// rad/s
+    pub angular_frequency: f64,
+    /// rad
+    pub phase: f64,
+}
+
+impl Sine {
+    /// Value and its first two time derivatives at t.
+    pub fn eval(&self, t: f64) -> [f64; 3] {
+        let (w, a) = (self.angular_frequency, self.amplitude);
+        let arg = w * t + self.phase;
+        [a * arg.sin(), a * w * arg.cos(), -a * w * w * arg.sin()]
+    }
 }
 
 impl TimeFunction {
@@ -91,14 +113,23 @@ impl TimeFunction {
             TimeFunction::Constant(c) => Some([*c, 0.0, 0.0]),
             TimeFunction::Input(_) => None,
             TimeFunction::Expression(e) => {
-                let (w, a) = (e.angular_frequency, e.amplitude);
-                let arg = w * t + e.phase;
+                let first = Sine {
+                    amplitude: e.amplitude,
+                    angular_frequency: e.angular_frequency,
+                    phase: e.phase,
+                };
                 let ex = e.decay_amplitude * (-e.decay_rate * t).exp();
-                Some([
-                    e.offset + a * arg.sin() + ex,
-                    a * w * arg.cos() - e.decay_rate * ex,
-                    -a * w * w * arg.sin() + e.decay_rate * e.decay_rate * ex,
-                ])
+                let mut v = [
+                    e.offset + ex,
+                    -e.decay_rate * ex,
+                    e.decay_rate * e.decay_rate * ex,
+                ];
+                for sine in std::iter::once(&first).chain(&e.sines) {
+                    for (v, s) in v.iter_mut().zip(sine.eval(t)) {
+                        *v += s;
+                    }
+                }
+                Some(v)
             }
         }
     }
@@ -115,8 +146,13 @@ impl TimeFunction {
                 e.decay_amplitude,
                 e.decay_rate,
             ]
-            .iter()
-            .all(|v| v.is_finite()),
+            .into_iter()
+            .chain(
+                e.sines
+                    .iter()
+                    .flat_map(|s| [s.amplitude, s.angular_frequency, s.phase]),
+            )
+            .all(f64::is_finite),
         };
         if ok {
             Ok(())
@@ -174,5 +210,36 @@ impl Boundary {
             .iter()
             .map(|c| (0, c))
             .chain(self.right.iter().map(|c| (1, c)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sum_of_sines_has_the_derivatives_of_its_values() {
+        let f: TimeFunction = toml::from_str::<toml::Table>(
+            "f = { offset = 2.0, amplitude = 1.5, angular_frequency = 0.6, sines = [{ amplitude = 0.5, angular_frequency = 1.1, phase = 0.3 }, { amplitude = 0.2, angular_frequency = 0.4 }] }",
+        )
+        .unwrap()["f"]
+            .clone()
+            .try_into()
+            .unwrap();
+        let t = 3.7;
+        let [v, dv, ddv] = f.eval(t).unwrap();
+        let want =
+            2.0 + 1.5 * (0.6 * t).sin() + 0.5 * (1.1 * t + 0.3).sin() + 0.2 * (0.4 * t).sin();
+        assert!((v - want).abs() < 1e-14);
+        let h = 1e-4;
+        let at = |t: f64| f.eval(t).unwrap();
+        assert!((dv - (at(t + h)[0] - at(t - h)[0]) / (2.0 * h)).abs() < 1e-7);
+        assert!((ddv - (at(t + h)[1] - at(t - h)[1]) / (2.0 * h)).abs() < 1e-7);
+        let bad: Result<TimeFunction, _> =
+            toml::from_str::<toml::Table>("f = { sines = [{ amplitude = 1.0, period = 3.0 }] }")
+                .unwrap()["f"]
+                .clone()
+                .try_into();
+        assert!(bad.is_err());
     }
 }

@@ -45,6 +45,10 @@ pub enum Motion {
         amplitude: f64,
         angular_frequency: f64,
     },
+    /// A sum of sines (a vessel's heave as wave components).
+    Sines {
+        sines: Vec<crate::beam::boundary::Sine>,
+    },
 }
 
 /// A surface: shape plus motion.
@@ -125,13 +129,25 @@ impl Surface {
                 }
             }
         }
-        if let Motion::Sine {
-            amplitude,
-            angular_frequency,
-        } = self.motion
-        {
-            require_finite("surface.motion.amplitude", amplitude)?;
-            require_finite("surface.motion.angular_frequency", angular_frequency)?;
+        match &self.motion {
+            Motion::None => {}
+            &Motion::Sine {
+                amplitude,
+                angular_frequency,
+            } => {
+                require_finite("surface.motion.amplitude", amplitude)?;
+                require_finite("surface.motion.angular_frequency", angular_frequency)?;
+            }
+            Motion::Sines { sines } => {
+                for s in sines {
+                    require_finite("surface.motion.sines.amplitude", s.amplitude)?;
+                    require_finite(
+                        "surface.motion.sines.angular_frequency",
+                        s.angular_frequency,
+                    )?;
+                    require_finite("surface.motion.sines.phase", s.phase)?;
+                }
+            }
         }
         Ok(())
     }
@@ -139,15 +155,19 @@ impl Surface {
     /// Surface height f(x, t) (m) and its rate df/dt (m/s); `None` where there is no
     /// surface (between rollers).
     pub fn at(&self, x: f64, t: f64) -> Option<(f64, f64)> {
-        let (dz, rate) = match self.motion {
+        let (dz, rate) = match &self.motion {
             Motion::None => (0.0, 0.0),
-            Motion::Sine {
+            &Motion::Sine {
                 amplitude,
                 angular_frequency,
             } => (
                 amplitude * (angular_frequency * t).sin(),
                 amplitude * angular_frequency * (angular_frequency * t).cos(),
             ),
+            Motion::Sines { sines } => sines.iter().fold((0.0, 0.0), |(z, r), s| {
+                let [v, dv, _] = s.eval(t);
+                (z + v, r + dv)
+            }),
         };
         let f = match &self.shape {
             Shape::Flat { height } => *height,
