@@ -1,6 +1,7 @@
 //! Contact surfaces y >= f(x, t): flat, tilted, a smooth bump, a set of rollers and
 //! a tabulated profile, optionally moving vertically.
 
+use crate::beam::boundary::Sine;
 use crate::contract::{UnitError, require_finite, require_positive};
 use serde::Deserialize;
 
@@ -46,9 +47,25 @@ pub enum Motion {
         angular_frequency: f64,
     },
     /// A sum of sines (a vessel's heave as wave components).
-    Sines {
-        sines: Vec<crate::beam::boundary::Sine>,
+    Sines { sines: Vec<Sine> },
+    /// Rollers moving with their vessel: heave (m, sums of sines) and pitch
+    /// (rad, counter-clockwise, sums of sines) about `pivot` ([x, z], m), each
+    /// roller's centre carried rigidly (rollers only: a circle stays a circle).
+    Vessel {
+        #[serde(default)]
+        heave: Vec<Sine>,
+        #[serde(default)]
+        pitch: Vec<Sine>,
+        pivot: [f64; 2],
     },
+}
+
+/// The sum of `sines` at t (value, rate).
+fn sum(sines: &[Sine], t: f64) -> (f64, f64) {
+    sines.iter().fold((0.0, 0.0), |(v, r), s| {
+        let [a, da, _] = s.eval(t);
+        (v + a, r + da)
+    })
 }
 
 /// A surface: shape plus motion.
@@ -138,24 +155,60 @@ impl Surface {
                 require_finite("surface.motion.amplitude", amplitude)?;
                 require_finite("surface.motion.angular_frequency", angular_frequency)?;
             }
-            Motion::Sines { sines } => {
-                for s in sines {
-                    require_finite("surface.motion.sines.amplitude", s.amplitude)?;
-                    require_finite(
-                        "surface.motion.sines.angular_frequency",
-                        s.angular_frequency,
-                    )?;
-                    require_finite("surface.motion.sines.phase", s.phase)?;
+            Motion::Sines { sines } => finite_sines("surface.motion.sines", sines)?,
+            Motion::Vessel {
+                heave,
+                pitch,
+                pivot,
+            } => {
+                if !matches!(self.shape, Shape::Rollers { .. }) {
+                    return Err(UnitError::parameter(
+                        "surface.motion.kind",
+                        "vessel",
+                        "a vessel's pitch carries rollers only (a circle turned about its vessel stays a circle); move other surfaces by `sines`",
+                    ));
                 }
+                finite_sines("surface.motion.heave", heave)?;
+                finite_sines("surface.motion.pitch", pitch)?;
+                require_finite("surface.motion.pivot", pivot[0])?;
+                require_finite("surface.motion.pivot", pivot[1])?;
             }
         }
         Ok(())
     }
 
-    /// Surface height f(x, t) (m) and its rate df/dt (m/s); `None` where there is no
-    /// surface (between rollers).
-    pub fn at(&self, x: f64, t: f64) -> Option<(f64, f64)> {
-        let (dz, rate) = match &self.motion {
+    /// Roller `i`'s top at time t: its centre's x and the height of its top (m);
+    /// `None` when the surface has no roller `i`.
+    pub fn roller(&self, i: usize, t: f64) -> Option<(f64, f64)> {
+        let Shape::Rollers {
+            positions,
+            radius,
+            height,
+            tops,
+        } = &self.shape
+        else {
+            return None;
+        };
+        let (x, top) = (*positions.get(i)?, *tops.get(i).unwrap_or(height));
+        Some(match &self.motion {
+            Motion::Vessel {
+                heave,
+                pitch,
+                pivot,
+            } => {
+                let (theta, (dz, _)) = (sum(pitch, t).0, sum(heave, t));
+                let (c, s) = (theta.cos(), theta.sin());
+                let (rx, rz) = (x - pivot[0], top - radius - pivot[1]);
+                let centre = [pivot[0] + c * rx - s * rz, pivot[1] + s * rx + c * rz + dz];
+                (centre[0], centre[1] + radius)
+            }
+            _ => (x, top + self.heave(t).0),
+        })
+    }
+
+    /// Vertical motion of the whole surface (m) and its rate (m/s) (not pitch).
+    fn heave(&self, t: f64) -> (f64, f64) {
+        match &self.motion {
             Motion::None => (0.0, 0.0),
             &Motion::Sine {
                 amplitude,
@@ -164,11 +217,49 @@ impl Surface {
                 amplitude * (angular_frequency * t).sin(),
                 amplitude * angular_frequency * (angular_frequency * t).cos(),
             ),
-            Motion::Sines { sines } => sines.iter().fold((0.0, 0.0), |(z, r), s| {
-                let [v, dv, _] = s.eval(t);
-                (z + v, r + dv)
-            }),
-        };
+            Motion::Sines { sines } => sum(sines, t),
+            Motion::Vessel { heave, .. } => sum(heave, t),
+        }
+    }
+
+    /// Height (m) over x of the rollers at time t; `None` between them.
+    fn rollers_at(&self, x: f64, t: f64, count: usize, radius: f64) -> Option<f64> {
+        (0..count)
+            .filter_map(|i| self.roller(i, t))
+            .filter(|&(c, _)| (x - c).abs() < radius)
+            .map(|(c, top)| top - radius + (radius * radius - (x - c).powi(2)).sqrt())
+            .fold(None, |best: Option<f64>, v| {
+                Some(best.map_or(v, |b| b.max(v)))
+            })
+    }
+
+    /// Surface height f(x, t) (m) and its rate df/dt (m/s); `None` where there is no
+    /// surface (between rollers).
+    pub fn at(&self, x: f64, t: f64) -> Option<(f64, f64)> {
+        if let Shape::Rollers {
+            positions, radius, ..
+        } = &self.shape
+        {
+            let (count, radius) = (positions.len(), *radius);
+            let f = self.rollers_at(x, t, count, radius)?;
+            // Rollers carried by a pitching vessel also move sideways: the
+            // height's rate at a fixed x by central differences.
+            let rate = match &self.motion {
+                Motion::Vessel { .. } => {
+                    let dt = 1e-6;
+                    match (
+                        self.rollers_at(x, t + dt, count, radius),
+                        self.rollers_at(x, t - dt, count, radius),
+                    ) {
+                        (Some(a), Some(b)) => (a - b) / (2.0 * dt),
+                        _ => 0.0,
+                    }
+                }
+                _ => self.heave(t).1,
+            };
+            return Some((f, rate));
+        }
+        let (dz, rate) = self.heave(t);
         let f = match &self.shape {
             Shape::Flat { height } => *height,
             Shape::Tilted { height, slope } => height + slope * x,
@@ -185,22 +276,7 @@ impl Surface {
                     *height
                 }
             }
-            Shape::Rollers {
-                positions,
-                radius,
-                height,
-                tops,
-            } => positions
-                .iter()
-                .enumerate()
-                .filter(|&(_, &c)| (x - c).abs() < *radius)
-                .map(|(i, &c)| {
-                    let top = tops.get(i).unwrap_or(height);
-                    top - radius + (radius * radius - (x - c).powi(2)).sqrt()
-                })
-                .fold(None, |best: Option<f64>, v| {
-                    Some(best.map_or(v, |b| b.max(v)))
-                })?,
+            Shape::Rollers { .. } => return None,
             Shape::Table { x: xs, y } => {
                 let last = xs.len() - 1;
                 if x <= xs[0] {
@@ -214,5 +290,66 @@ impl Surface {
             }
         };
         Some((f + dz, rate))
+    }
+}
+
+fn finite_sines(key: &str, sines: &[Sine]) -> Result<(), UnitError> {
+    for s in sines {
+        require_finite(key, s.amplitude)?;
+        require_finite(key, s.angular_frequency)?;
+        require_finite(key, s.phase)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stinger(motion: &str) -> Surface {
+        let text = format!(
+            "shape = {{ kind = \"rollers\", positions = [10.0, 20.0], radius = 0.5, tops = [1.0, 2.0] }}\nmotion = {motion}"
+        );
+        let s: Surface = toml::from_str(&text).unwrap();
+        s.validate().unwrap();
+        s
+    }
+
+    #[test]
+    fn a_pitching_vessel_carries_its_rollers_round_its_pivot() {
+        // A constant pitch of 0.1 rad (sin(pi / 2)) about (30, 0), 2 m of heave.
+        let s = stinger(
+            "{ kind = \"vessel\", pivot = [30.0, 0.0], heave = [{ amplitude = 2.0, phase = 1.5707963267948966 }], pitch = [{ amplitude = 0.1, phase = 1.5707963267948966 }] }",
+        );
+        let (c, sn) = (0.1f64.cos(), 0.1f64.sin());
+        for (i, (x, top)) in [(10.0, 1.0), (20.0, 2.0)].into_iter().enumerate() {
+            let (rx, rz) = (x - 30.0, top - 0.5);
+            let want = (30.0 + c * rx - sn * rz, sn * rx + c * rz + 2.0 + 0.5);
+            let (xr, zr) = s.roller(i, 3.0).unwrap();
+            assert!((xr - want.0).abs() < 1e-12 && (zr - want.1).abs() < 1e-12);
+            // The surface's height over the roller's top is the top, at rest.
+            let (f, rate) = s.at(xr, 3.0).unwrap();
+            assert!((f - zr).abs() < 1e-12 && rate.abs() < 1e-6, "{f} {rate}");
+        }
+        assert!(s.roller(2, 0.0).is_none());
+    }
+
+    #[test]
+    fn a_heaving_surface_rises_at_the_heave_rate() {
+        let s = stinger(
+            "{ kind = \"vessel\", pivot = [0.0, 0.0], heave = [{ amplitude = 1.5, angular_frequency = 0.6 }] }",
+        );
+        let t = 1.3;
+        let (_, rate) = s.at(10.0, t).unwrap();
+        assert!((rate - 1.5 * 0.6 * (0.6 * t).cos()).abs() < 1e-6);
+        let same =
+            stinger("{ kind = \"sines\", sines = [{ amplitude = 1.5, angular_frequency = 0.6 }] }");
+        assert_eq!(s.at(10.2, t).unwrap().0, same.at(10.2, t).unwrap().0);
+        // Pitch is refused on a continuous surface.
+        let flat: Surface = toml::from_str(
+            "shape = { kind = \"flat\", height = 0.0 }\nmotion = { kind = \"vessel\", pivot = [0.0, 0.0] }",
+        )
+        .unwrap();
+        assert!(flat.validate().is_err());
     }
 }

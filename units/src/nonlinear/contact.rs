@@ -100,8 +100,9 @@ fn for_each_point(
     mut visit: impl FnMut(Point),
 ) {
     if let Shape::Rollers { positions, .. } = &contact.surface.shape {
-        for (i, &xr) in positions.iter().enumerate() {
-            let Some((top, _)) = contact.surface.at(xr, t) else {
+        for i in 0..positions.len() {
+            // Where the roller is at t (a pitching vessel carries it sideways).
+            let Some((xr, top)) = contact.surface.roller(i, t) else {
                 continue;
             };
             if let Some(e) = roller_element(model, q, xr, top) {
@@ -358,11 +359,7 @@ fn start_point(
 ) -> Option<Point> {
     if p1.count == 4 {
         let e = p1.dofs[0] / 3;
-        let Shape::Rollers { positions, .. } = &contact.surface.shape else {
-            return None;
-        };
-        let xr = positions[p1.index];
-        let (top, _) = contact.surface.at(xr, t)?;
+        let (xr, top) = contact.surface.roller(p1.index, t)?;
         Some(roller_point(model, q0, e, (p1.index, xr, top)))
     } else {
         let j = p1.index;
