@@ -146,6 +146,11 @@ impl Surface {
                 }
             }
         }
+        self.validate_motion()
+    }
+
+    /// Checks the motion (pitch carries rollers only).
+    fn validate_motion(&self) -> Result<(), UnitError> {
         match &self.motion {
             Motion::None => {}
             &Motion::Sine {

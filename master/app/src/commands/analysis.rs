@@ -68,13 +68,7 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
         positive("--duration", d)?;
     }
     count_in("--jobs", plan.jobs, 1, 1024)?;
-    let scene = load(path)?;
-    let dir = out.unwrap_or_else(|| {
-        let mut d = scene.default_output_dir().into_os_string();
-        d.push("-study");
-        PathBuf::from(d)
-    });
-    results_folder(&dir)?;
+    let dir = study_folder(path, out, "-study")?;
     println!(
         "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"
@@ -105,6 +99,19 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
     Ok(())
 }
 
+/// A study's results folder: `out`, else the scene's with `suffix`; the scene
+/// must load.
+fn study_folder(path: &Path, out: Option<PathBuf>, suffix: &str) -> Result<PathBuf, CliError> {
+    let scene = load(path)?;
+    let dir = out.unwrap_or_else(|| {
+        let mut d = scene.default_output_dir().into_os_string();
+        d.push(suffix);
+        PathBuf::from(d)
+    });
+    results_folder(&dir)?;
+    Ok(dir)
+}
+
 /// A fidelity study of a structure's sections; the rows are written even when
 /// some combinations fail (those are marked FAILED with their reason).
 pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Result<(), CliError> {
@@ -113,13 +120,7 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
     }
     positive("--tolerance", plan.tolerance)?;
     count_in("--jobs", plan.jobs, 1, 1024)?;
-    let scene = load(path)?;
-    let dir = out.unwrap_or_else(|| {
-        let mut d = scene.default_output_dir().into_os_string();
-        d.push("-fidelity");
-        PathBuf::from(d)
-    });
-    results_folder(&dir)?;
+    let dir = study_folder(path, out, "-fidelity")?;
     let report =
         fidelity::run_fidelity(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
     let write = |name: &str, text: String| -> Result<PathBuf, CliError> {
