@@ -110,6 +110,13 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/pipe_span_coupling.toml", "span"),
         ),
         (
+            "static_section",
+            inline(
+                "static_section",
+                "stiffness = [[-2.7e7, 100.0, -30.0], [3.0, -2.0e6, 2.7e6], [-30.0, 2.5e6, -7.8e6]]\nforce = [-8.2e4, 5.8, -14.7]\nstart_stiffness = [[2.7e7, -115.0, 29.0], [-2.2e3, 0.01, 0.0]]\nstart_force = [8.2e4, -1.0e3]",
+            ),
+        ),
+        (
             "touchdown_estimate",
             from_scene("examples/pipe_static_contact.toml", "estimate"),
         ),
