@@ -11,7 +11,9 @@
 //!   coefficients.
 
 pub mod basis;
+pub mod bootstrap;
 pub mod design;
+pub mod marginal;
 pub mod pce;
 
 /// Why a study's numerics cannot go on.

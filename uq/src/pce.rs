@@ -212,7 +212,7 @@ fn tables(families: &[Family], xi: &[f64], degree: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
-fn design_matrix(
+pub(crate) fn design_matrix(
     families: &[Family],
     indices: &[Vec<usize>],
     xi: &[Vec<f64>],

@@ -3,6 +3,7 @@
 //! each from a 500-point maximin Latin hypercube.
 
 use slender_uq::basis::Family;
+use slender_uq::bootstrap::intervals;
 use slender_uq::design::latin_hypercube;
 use slender_uq::pce::{Settings, fit};
 use std::f64::consts::PI;
@@ -72,6 +73,25 @@ fn ishigami_moments_and_sobol_indices_from_500_lhs_points() {
     );
 }
 
+/// The g-function's variance and first-order and total indices.
+fn g_truth(coefficients: &[f64]) -> (f64, Vec<f64>, Vec<f64>) {
+    let vi: Vec<f64> = coefficients
+        .iter()
+        .map(|a| 1.0 / (3.0 * (1.0 + a) * (1.0 + a)))
+        .collect();
+    let v = vi.iter().map(|v| 1.0 + v).product::<f64>() - 1.0;
+    let total = (0..vi.len())
+        .map(|i| {
+            let others: f64 = (0..vi.len())
+                .filter(|&j| j != i)
+                .map(|j| 1.0 + vi[j])
+                .product();
+            vi[i] * others / v
+        })
+        .collect();
+    (v, vi.iter().map(|x| x / v).collect(), total)
+}
+
 #[test]
 fn g_function_moments_and_sobol_indices_from_500_lhs_points() {
     // g = prod (|4 x_i - 2| + a_i) / (1 + a_i), x_i ~ U(0, 1): mean 1,
@@ -92,11 +112,7 @@ fn g_function_moments_and_sobol_indices_from_500_lhs_points() {
         .map(|u| u.iter().map(|u| 2.0 * u - 1.0).collect())
         .collect();
     let pce = fit(&[Family::Legendre; 4], &xi, &y, Settings::default()).unwrap();
-    let vi: Vec<f64> = coefficients
-        .iter()
-        .map(|a| 1.0 / (3.0 * (1.0 + a) * (1.0 + a)))
-        .collect();
-    let v = vi.iter().map(|v| 1.0 + v).product::<f64>() - 1.0;
+    let (v, first, total) = g_truth(&coefficients);
     println!(
         "degree {}, {} terms, LOO {:.2e}; mean {:.4}, variance {:.5} ({v:.5})",
         pce.degree,
@@ -107,22 +123,29 @@ fn g_function_moments_and_sobol_indices_from_500_lhs_points() {
     );
     assert!((pce.mean() - 1.0).abs() < 0.01);
     assert!((pce.variance() - v).abs() < 0.01 * v);
-    for i in 0..4 {
-        let s = vi[i] / v;
-        let t = vi[i]
-            * vi.iter()
-                .enumerate()
-                .filter(|(j, _)| *j != i)
-                .map(|(_, v)| 1.0 + v)
-                .product::<f64>()
-            / v;
-        println!(
-            "x{}: S {:.4} ({s:.4}), T {:.4} ({t:.4})",
-            i + 1,
-            pce.first_order(i),
-            pce.total(i)
+    // 95 % bootstrap intervals (200 resamples): each holds its estimate, and
+    // the truth lies within 0.005 of it.
+    let ci = intervals(&pce, (&xi, &y), 200, 0.95, 11).unwrap();
+    let near = |(lo, hi): (f64, f64), estimate: f64, truth: f64| {
+        assert!(lo <= estimate && estimate <= hi, "{lo} {estimate} {hi}");
+        assert!(
+            truth >= lo - 0.005 && truth <= hi + 0.005,
+            "{truth} outside [{lo}, {hi}]"
         );
-        assert!((pce.first_order(i) - s).abs() < 0.01);
-        assert!((pce.total(i) - t).abs() < 0.01);
+    };
+    for i in 0..4 {
+        let (s, t) = (first[i], total[i]);
+        let (si, ti) = (pce.first_order(i), pce.total(i));
+        println!(
+            "x{}: S {si:.4} ({s:.4}) in [{:.4}, {:.4}], T {ti:.4} ({t:.4}) in [{:.4}, {:.4}]",
+            i + 1,
+            ci.first_order[i].0,
+            ci.first_order[i].1,
+            ci.total[i].0,
+            ci.total[i].1
+        );
+        assert!((si - s).abs() < 0.01 && (ti - t).abs() < 0.01);
+        near(ci.first_order[i], si, s);
+        near(ci.total[i], ti, t);
     }
 }
