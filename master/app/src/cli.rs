@@ -213,6 +213,26 @@ pub enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Uncertainty study of a scene's `[uncertainty]` inputs: a nested maximin
+    /// Latin hypercube of co-simulations (in parallel, resumable: runs.csv keeps
+    /// each finished run), a sparse polynomial chaos per output indicator's phi,
+    /// its mean, sd and Sobol' indices with 95 % bootstrap intervals. Writes
+    /// runs.csv, uq.json and uq.md.
+    Uq {
+        scene: PathBuf,
+        /// Design size: `uncertainty.samples` times a power of two (default: it).
+        #[arg(long)]
+        samples: Option<usize>,
+        /// Runs at once (default: the machine's cores); results do not depend on it.
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Simulated time of each run (s); default: the scene's duration.
+        #[arg(long, allow_negative_numbers = true)]
+        duration: Option<f64>,
+        /// Results folder (default: results/<scene name>-uq).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// The suspended span (seed 004 ch. 5): Bode plots and accuracy against cost.
     Span {
         #[command(subcommand)]

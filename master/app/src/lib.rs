@@ -16,3 +16,4 @@ pub mod record;
 pub mod run;
 pub mod span_study;
 pub mod study;
+pub mod uq;

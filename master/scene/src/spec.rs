@@ -22,6 +22,47 @@ pub struct SceneSpec {
     pub connections: Vec<ConnectionSpec>,
     #[serde(default)]
     pub output: OutputSpec,
+    /// Uncertain inputs for `slender uq` (a run ignores it).
+    #[serde(default)]
+    pub uncertainty: Option<UncertaintySpec>,
+}
+
+/// `[uncertainty]`: distributions given to scene keys, and the indicators whose
+/// fidelity phi `slender uq` expands in polynomial chaos.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UncertaintySpec {
+    /// Points of the first Latin hypercube; a larger `--samples` doubles it
+    /// (keeping its runs) as many times as it takes.
+    pub samples: usize,
+    /// Seed of the designs.
+    #[serde(default = "first_seed")]
+    pub seed: u64,
+    /// Indicator names (`[[output.indicators]]`) whose phi is expanded.
+    pub outputs: Vec<String>,
+    /// Optional note on scale, e.g. model to full scale by Froude.
+    #[serde(default)]
+    pub scale: String,
+    pub inputs: Vec<UncertainInput>,
+}
+
+fn first_seed() -> u64 {
+    1
+}
+
+/// One uncertain input: a scene key by its path (as `slender study` takes it)
+/// and its distribution.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UncertainInput {
+    /// Short name in reports, e.g. `theta1`.
+    pub name: String,
+    /// The scene key, e.g. `units.sensor.parameters.scale.0`.
+    pub key: String,
+    pub distribution: slender_uq::marginal::Marginal,
+    /// Unit of measure of the input, e.g. `N` or `s`.
+    #[serde(default)]
+    pub unit: String,
 }
 
 /// `[simulation]`: the time window.

@@ -52,24 +52,9 @@ fn jobs_or_cores(jobs: Option<usize>) -> usize {
     })
 }
 
-/// Runs one command.
-pub fn dispatch(command: Command) -> Result<(), CliError> {
+/// The study commands: their plans from the arguments.
+fn studies(command: Command) -> Result<(), CliError> {
     match command {
-        Command::Run { scene, out, quiet } => scene::run(&scene, out, quiet),
-        Command::Check { scene } => scene::check(&scene),
-        Command::Expand { scene } => scene::expand(&scene),
-        Command::Bench {
-            scene,
-            repeats,
-            json,
-        } => scene::bench(&scene, repeats, json),
-        Command::Modes {
-            scene,
-            unit,
-            count,
-            out,
-            plot,
-        } => analysis::modes(&scene, &unit, count, out, plot),
         Command::Study {
             scene,
             sweeps,
@@ -104,6 +89,43 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
             };
             analysis::fidelity(&scene, &plan, out)
         }
+        Command::Uq {
+            scene,
+            samples,
+            jobs,
+            duration,
+            out,
+        } => {
+            let plan = slender_app::uq::UqPlan {
+                samples,
+                jobs: jobs_or_cores(jobs),
+                duration,
+            };
+            analysis::uq(&scene, &plan, out)
+        }
+        _ => Err(CliError::failure("not a study command")),
+    }
+}
+
+/// Runs one command.
+pub fn dispatch(command: Command) -> Result<(), CliError> {
+    match command {
+        Command::Run { scene, out, quiet } => scene::run(&scene, out, quiet),
+        Command::Check { scene } => scene::check(&scene),
+        Command::Expand { scene } => scene::expand(&scene),
+        Command::Bench {
+            scene,
+            repeats,
+            json,
+        } => scene::bench(&scene, repeats, json),
+        Command::Modes {
+            scene,
+            unit,
+            count,
+            out,
+            plot,
+        } => analysis::modes(&scene, &unit, count, out, plot),
+        c @ (Command::Study { .. } | Command::Fidelity { .. } | Command::Uq { .. }) => studies(c),
         Command::Span {
             action,
             flexural_rigidity,

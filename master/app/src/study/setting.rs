@@ -77,9 +77,10 @@ impl Setting {
             here = match entry {
                 toml::Value::Table(t) => t,
                 toml::Value::Array(items) => {
-                    let next = parents.get(i + 1).ok_or_else(|| {
-                        format!("`{walked}` is a list: give an index or a name next")
-                    })?;
+                    let Some(next) = parents.get(i + 1) else {
+                        // The key ends in an index into a list of values.
+                        return set_item(items, last, value, &walked);
+                    };
                     walked = format!("{walked}.{next}");
                     i += 1;
                     element(items, next, &walked)?
@@ -91,6 +92,25 @@ impl Setting {
         here.insert(last.clone(), value.clone());
         Ok(())
     }
+}
+
+/// Sets item `index` of a list of values (e.g. `scale.0` of an artefact).
+fn set_item(
+    items: &mut [toml::Value],
+    index: &str,
+    value: &toml::Value,
+    walked: &str,
+) -> Result<(), String> {
+    let count = items.len();
+    let item = index
+        .parse::<usize>()
+        .ok()
+        .and_then(|k| items.get_mut(k))
+        .ok_or_else(|| {
+            format!("`{walked}.{index}`: the list has {count} entries, give an index 0..{count}")
+        })?;
+    *item = value.clone();
+    Ok(())
 }
 
 /// The element of a list by index, or the table whose `name` is `key`

@@ -1,0 +1,261 @@
+//! `slender uq`: a scene's uncertain inputs (`[uncertainty]`) sampled by a
+//! maximin Latin hypercube (nested: a larger design doubles the first, keeping
+//! its runs), each point a co-simulation run in parallel and appended to
+//! `runs.csv` as it finishes (a study that stops resumes where it stopped), then
+//! a sparse polynomial chaos per output indicator's fidelity phi with its mean,
+//! standard deviation and first-order and total Sobol' indices (95 % bootstrap
+//! intervals).
+
+pub mod report;
+
+use crate::run::{RunOptions, run_scene};
+use crate::study::setting::Setting;
+use serde::Serialize;
+use slender_scene::Scene;
+use slender_scene::spec::UncertaintySpec;
+use slender_uq::bootstrap::{Intervals, intervals};
+use slender_uq::design::{double, latin_hypercube};
+use slender_uq::pce::{Settings, fit};
+use std::path::Path;
+use std::sync::Mutex;
+
+/// What a study runs.
+#[derive(Clone, Debug)]
+pub struct UqPlan {
+    /// Design size: the scene's `samples` times a power of two (default: it).
+    pub samples: Option<usize>,
+    pub jobs: usize,
+    /// Simulated time of each run (s); the scene's when `None`.
+    pub duration: Option<f64>,
+}
+
+/// One output's expansion.
+#[derive(Clone, Debug, Serialize)]
+pub struct OutputResult {
+    pub name: String,
+    pub mean: f64,
+    pub sd: f64,
+    pub first_order: Vec<f64>,
+    pub total: Vec<f64>,
+    pub intervals: Intervals,
+    pub degree: usize,
+    pub terms: usize,
+    pub loo_error: f64,
+}
+
+/// A study's result.
+#[derive(Clone, Debug, Serialize)]
+pub struct UqReport {
+    pub scene: String,
+    pub samples: usize,
+    pub inputs: Vec<String>,
+    pub failed_runs: usize,
+    pub outputs: Vec<OutputResult>,
+}
+
+/// One run: its inputs and its outputs' phi (NaN when it failed).
+pub type Run = (Vec<f64>, Vec<f64>);
+
+/// Runs the study, reusing the rows of `runs` (the earlier runs of the same
+/// design) and calling `done` with each new run's index as it finishes.
+pub fn run_uq(
+    path: &Path,
+    plan: &UqPlan,
+    earlier: &[Run],
+    done: impl Fn(usize, &Run) + Sync,
+) -> Result<(UqReport, Vec<Run>), String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let table: toml::Table =
+        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let scene = crate::study::scene_with(path, &table, plan.duration)?;
+    let spec = scene
+        .spec
+        .uncertainty
+        .clone()
+        .ok_or("a UQ study needs an `[uncertainty]` table in the scene")?;
+    let settings = check(&scene, &spec)?;
+    // A key that does not apply (a unit that is not there) is bad input: probe
+    // each with its input's median.
+    for (input, setting) in spec.inputs.iter().zip(&settings) {
+        let mut probe = table.clone();
+        let median = toml::Value::Float(input.distribution.from_unit(0.5));
+        setting
+            .apply(&mut probe, &median)
+            .and_then(|()| crate::study::scene_with(path, &probe, plan.duration).map(|_| ()))
+            .map_err(|e| format!("`uncertainty.inputs` `{}` ({}): {e}", input.name, input.key))?;
+    }
+    let samples = plan.samples.unwrap_or(spec.samples);
+    let design = design_of(&spec, samples)?;
+    let points: Vec<Vec<f64>> = design
+        .iter()
+        .map(|u| {
+            spec.inputs
+                .iter()
+                .zip(u)
+                .map(|(i, &u)| i.distribution.from_unit(u))
+                .collect()
+        })
+        .collect();
+    let order: Vec<usize> = (0..points.len()).collect();
+    let fresh = Mutex::new(());
+    let runs = crate::parallel::run_all(&order, &order, plan.jobs, |&k| {
+        // An earlier run of the same point is kept; a failed one is tried again.
+        let same = |r: &&Run| r.0 == points[k] && r.1.iter().all(|v| v.is_finite());
+        if let Some(run) = earlier.get(k).filter(same) {
+            return run.clone();
+        }
+        let run = (
+            points[k].clone(),
+            run_one(
+                path,
+                &table,
+                &settings,
+                &points[k],
+                plan.duration,
+                &spec.outputs,
+            ),
+        );
+        // One writer at a time: the caller appends the row to its file.
+        let _turn = fresh.lock().unwrap_or_else(|e| e.into_inner());
+        done(k, &run);
+        run
+    });
+    let report = expand(path, &spec, &runs)?;
+    Ok((report, runs))
+}
+
+/// The design of `samples` points: the first LHS doubled as often as it takes.
+fn design_of(spec: &UncertaintySpec, samples: usize) -> Result<Vec<Vec<f64>>, String> {
+    let mut n = spec.samples;
+    let mut doublings = 0;
+    while n < samples {
+        n *= 2;
+        doublings += 1;
+    }
+    if n != samples {
+        return Err(format!(
+            "--samples {samples}: expected `uncertainty.samples` = {} times a power of two (the design doubles, keeping its runs)",
+            spec.samples
+        ));
+    }
+    let mut design = latin_hypercube(spec.samples, spec.inputs.len(), 20, spec.seed)
+        .map_err(|e| e.to_string())?;
+    for k in 0..doublings {
+        design =
+            double(&design, spec.seed.wrapping_add(1 + k as u64)).map_err(|e| e.to_string())?;
+    }
+    Ok(design)
+}
+
+/// Each input's key as a study setting; the error names what does not fit.
+fn check(scene: &Scene, spec: &UncertaintySpec) -> Result<Vec<Setting>, String> {
+    if spec.inputs.is_empty() || spec.outputs.is_empty() || spec.samples < 4 {
+        return Err("`uncertainty`: expected inputs, outputs and samples >= 4".into());
+    }
+    for name in &spec.outputs {
+        if !scene.spec.output.indicators.iter().any(|i| &i.name == name) {
+            return Err(format!(
+                "`uncertainty.outputs`: `{name}` is not an indicator of the scene ([[output.indicators]])"
+            ));
+        }
+    }
+    spec.inputs
+        .iter()
+        .map(|i| {
+            i.distribution
+                .validate()
+                .map_err(|e| format!("`uncertainty.inputs` `{}`: {e}", i.name))?;
+            i.key
+                .parse::<Setting>()
+                .map_err(|e| format!("`uncertainty.inputs` `{}`: {e}", i.name))
+        })
+        .collect()
+}
+
+/// One run's outputs' phi (NaN for each when it cannot run or fails).
+fn run_one(
+    path: &Path,
+    table: &toml::Table,
+    settings: &[Setting],
+    point: &[f64],
+    duration: Option<f64>,
+    outputs: &[String],
+) -> Vec<f64> {
+    let failed = vec![f64::NAN; outputs.len()];
+    let mut table = table.clone();
+    for (s, &x) in settings.iter().zip(point) {
+        if s.apply(&mut table, &toml::Value::Float(x)).is_err() {
+            return failed;
+        }
+    }
+    let Ok(scene) = crate::study::scene_with(path, &table, duration) else {
+        return failed;
+    };
+    let options = RunOptions {
+        output_dir: None,
+        progress: false,
+    };
+    match run_scene(&scene, &options) {
+        Ok(r) if r.summary.error.is_none() => outputs
+            .iter()
+            .map(|name| {
+                r.summary
+                    .indicators
+                    .iter()
+                    .find(|i| &i.name == name)
+                    .map_or(f64::NAN, |i| i.fidelity)
+            })
+            .collect(),
+        _ => failed,
+    }
+}
+
+/// The expansion of each output over the runs that succeeded.
+fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport, String> {
+    let families: Vec<_> = spec
+        .inputs
+        .iter()
+        .map(|i| i.distribution.family())
+        .collect();
+    let ok: Vec<&Run> = runs
+        .iter()
+        .filter(|r| r.1.iter().all(|v| v.is_finite()))
+        .collect();
+    let xi: Vec<Vec<f64>> = ok
+        .iter()
+        .map(|r| {
+            spec.inputs
+                .iter()
+                .zip(&r.0)
+                .map(|(i, &x)| i.distribution.to_standard(x))
+                .collect()
+        })
+        .collect();
+    let mut outputs = Vec::new();
+    for (k, name) in spec.outputs.iter().enumerate() {
+        let y: Vec<f64> = ok.iter().map(|r| r.1[k]).collect();
+        let pce =
+            fit(&families, &xi, &y, Settings::default()).map_err(|e| format!("{name}: {e}"))?;
+        let ci =
+            intervals(&pce, (&xi, &y), 200, 0.95, spec.seed).map_err(|e| format!("{name}: {e}"))?;
+        let dims = families.len();
+        outputs.push(OutputResult {
+            name: name.clone(),
+            mean: pce.mean(),
+            sd: pce.variance().sqrt(),
+            first_order: (0..dims).map(|i| pce.first_order(i)).collect(),
+            total: (0..dims).map(|i| pce.total(i)).collect(),
+            intervals: ci,
+            degree: pce.degree,
+            terms: pce.coefficients.len(),
+            loo_error: pce.loo_error,
+        });
+    }
+    Ok(UqReport {
+        scene: path.display().to_string(),
+        samples: runs.len(),
+        inputs: spec.inputs.iter().map(|i| i.name.clone()).collect(),
+        failed_runs: runs.len() - ok.len(),
+        outputs,
+    })
+}

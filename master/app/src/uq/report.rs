@@ -1,0 +1,84 @@
+//! A UQ study's runs as CSV (read back to resume) and its expansions as
+//! Markdown.
+
+use super::{Run, UqReport};
+
+/// The header of `runs.csv`: index, inputs, outputs.
+pub fn header(inputs: &[String], outputs: &[String]) -> String {
+    format!("index,{},{}\n", inputs.join(","), outputs.join(","))
+}
+
+/// One row of `runs.csv` (values in full precision, so a resumed study reads
+/// back the same bits).
+pub fn row(index: usize, run: &Run) -> String {
+    let values: Vec<String> = run
+        .0
+        .iter()
+        .chain(&run.1)
+        .map(|v| format!("{v:e}"))
+        .collect();
+    format!("{index},{}\n", values.join(","))
+}
+
+/// The runs of an earlier `runs.csv` by index (a missing index is an empty run
+/// that will not match); rows that do not parse are left out.
+pub fn read_runs(text: &str, inputs: usize, outputs: usize) -> Vec<Run> {
+    let mut runs: Vec<Run> = Vec::new();
+    for line in text.lines().skip(1) {
+        let fields: Vec<&str> = line.split(',').collect();
+        if fields.len() != 1 + inputs + outputs {
+            continue;
+        }
+        let (Ok(index), Ok(values)) = (
+            fields[0].parse::<usize>(),
+            fields[1..]
+                .iter()
+                .map(|f| f.parse::<f64>())
+                .collect::<Result<Vec<f64>, _>>(),
+        ) else {
+            continue;
+        };
+        if runs.len() <= index {
+            runs.resize(index + 1, (Vec::new(), Vec::new()));
+        }
+        runs[index] = (values[..inputs].to_vec(), values[inputs..].to_vec());
+    }
+    runs
+}
+
+/// The expansions as Markdown: moments, indices with intervals, the dominant inputs.
+pub fn to_markdown(report: &UqReport) -> String {
+    let mut out = format!(
+        "UQ study of `{}`: {} runs ({} failed, left out); sparse PCE per output, 95 % bootstrap intervals.\n",
+        report.scene, report.samples, report.failed_runs
+    );
+    for o in &report.outputs {
+        out += &format!(
+            "\n## {}\n\nE = {:.4} (in [{:.4}, {:.4}]), sd = {:.4}; degree {}, {} terms, LOO error {:.2e}\n\n| input | first-order | total |\n|---|---|---|\n",
+            o.name,
+            o.mean,
+            o.intervals.mean.0,
+            o.intervals.mean.1,
+            o.sd,
+            o.degree,
+            o.terms,
+            o.loo_error
+        );
+        for (i, name) in report.inputs.iter().enumerate() {
+            let (f, t) = (o.intervals.first_order[i], o.intervals.total[i]);
+            out += &format!(
+                "| {name} | {:.3} [{:.3}, {:.3}] | {:.3} [{:.3}, {:.3}] |\n",
+                o.first_order[i], f.0, f.1, o.total[i], t.0, t.1
+            );
+        }
+        let mut ranked: Vec<usize> = (0..report.inputs.len()).collect();
+        ranked.sort_by(|&a, &b| o.total[b].total_cmp(&o.total[a]));
+        let top: Vec<String> = ranked
+            .iter()
+            .take(3)
+            .map(|&i| format!("{} ({:.2})", report.inputs[i], o.total[i]))
+            .collect();
+        out += &format!("\nMost influential (total index): {}.\n", top.join(", "));
+    }
+    out
+}

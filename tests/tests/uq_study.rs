@@ -1,0 +1,99 @@
+//! `slender uq` (issue 14): seed 000's Table 2 artefacts as uncertain inputs of
+//! the active-truncation scene. A study grows by doubling its Latin hypercube
+//! and keeps the runs it already has (resume), its results do not depend on the
+//! number of jobs, and bad `[uncertainty]` tables are refused with the key.
+
+use slender_app::uq::{Run, UqPlan, run_uq};
+use slender_tests::root;
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+/// The example with a first design of `samples` points, in a temporary folder.
+fn scene(dir: &std::path::Path, samples: usize, change: Option<(&str, &str)>) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/truncation_uq.toml")).unwrap();
+    let mut text = text.replace("samples = 208", &format!("samples = {samples}"));
+    if let Some((from, to)) = change {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    let path = dir.join("uq.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn plan(samples: Option<usize>, jobs: usize) -> UqPlan {
+    UqPlan {
+        samples,
+        jobs,
+        duration: Some(5.0),
+    }
+}
+
+#[test]
+fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene(dir.path(), 16, None);
+    let fresh = Mutex::new(Vec::new());
+    let (first, runs) = run_uq(&path, &plan(None, 2), &[], |k, _| {
+        fresh.lock().unwrap().push(k)
+    })
+    .unwrap();
+    assert_eq!(runs.len(), 16);
+    assert_eq!(fresh.lock().unwrap().len(), 16);
+    assert_eq!(first.inputs.len(), 12);
+    // Doubled: 16 more runs, the first 16 kept as they were.
+    fresh.lock().unwrap().clear();
+    let (second, more) = run_uq(&path, &plan(Some(32), 2), &runs, |k, _| {
+        fresh.lock().unwrap().push(k)
+    })
+    .unwrap();
+    let mut new: Vec<usize> = fresh.lock().unwrap().clone();
+    new.sort();
+    assert_eq!(new, (16..32).collect::<Vec<_>>());
+    assert_eq!(&more[..16], &runs[..]);
+    for o in &second.outputs {
+        assert!(o.mean.is_finite() && o.sd >= 0.0, "{o:?}");
+        assert!(o.total.iter().all(|t| (-1e-9..=1.0 + 1e-9).contains(t)));
+    }
+    // One job: the same runs and the same expansions.
+    let (again, runs1) = run_uq(&path, &plan(Some(32), 1), &[], |_, _| {}).unwrap();
+    let bits = |r: &[Run]| -> Vec<u64> {
+        r.iter()
+            .flat_map(|(x, y)| x.iter().chain(y).map(|v| v.to_bits()))
+            .collect()
+    };
+    assert_eq!(bits(&runs1), bits(&more));
+    assert_eq!(
+        serde_json::to_string(&again).unwrap(),
+        serde_json::to_string(&second).unwrap()
+    );
+}
+
+#[test]
+fn bad_uncertainty_tables_are_refused_with_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    for (change, says) in [
+        (
+            ("outputs = [\"phi1\", \"phi2\"]", "outputs = [\"phi3\"]"),
+            "phi3",
+        ),
+        (("sd = 0.015 } },", "sd = -1.0 } },"), "theta1"),
+        (
+            (
+                "units.sensor.parameters.scale.0",
+                "units.nobody.parameters.scale.0",
+            ),
+            "theta1",
+        ),
+    ] {
+        let path = scene(dir.path(), 16, Some(change));
+        let e = run_uq(&path, &plan(None, 1), &[], |_, _| {});
+        match e {
+            Err(e) => assert!(e.contains(says), "{change:?}: {e}"),
+            Ok((r, _)) => panic!("{change:?} accepted: {} failed runs", r.failed_runs),
+        }
+    }
+    let path = scene(dir.path(), 16, None);
+    let e = run_uq(&path, &plan(Some(24), 1), &[], |_, _| {}).unwrap_err();
+    assert!(e.contains("power of two"), "{e}");
+}
