@@ -65,11 +65,7 @@ pub fn modes(
 /// A convergence and cost study; the rows are written even when some runs fail
 /// (those are marked FAILED with their reason).
 pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), CliError> {
-    if let Some(d) = plan.duration {
-        positive("--duration", d)?;
-    }
-    count_in("--jobs", plan.jobs, 1, 1024)?;
-    let dir = study_folder(path, out, "-study")?;
+    let dir = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
     println!(
         "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"
@@ -101,8 +97,17 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
 }
 
 /// A study's results folder: `out`, else the scene's with `suffix`; the scene
-/// must load.
-fn study_folder(path: &Path, out: Option<PathBuf>, suffix: &str) -> Result<PathBuf, CliError> {
+/// must load, `--duration` be positive and `--jobs` sensible.
+fn study_folder(
+    path: &Path,
+    out: Option<PathBuf>,
+    suffix: &str,
+    (duration, jobs): (Option<f64>, usize),
+) -> Result<PathBuf, CliError> {
+    if let Some(d) = duration {
+        positive("--duration", d)?;
+    }
+    count_in("--jobs", jobs, 1, 1024)?;
     let scene = load(path)?;
     let dir = out.unwrap_or_else(|| {
         let mut d = scene.default_output_dir().into_os_string();
@@ -116,12 +121,8 @@ fn study_folder(path: &Path, out: Option<PathBuf>, suffix: &str) -> Result<PathB
 /// A fidelity study of a structure's sections; the rows are written even when
 /// some combinations fail (those are marked FAILED with their reason).
 pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Result<(), CliError> {
-    if let Some(d) = plan.duration {
-        positive("--duration", d)?;
-    }
     positive("--tolerance", plan.tolerance)?;
-    count_in("--jobs", plan.jobs, 1, 1024)?;
-    let dir = study_folder(path, out, "-fidelity")?;
+    let dir = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
     let report =
         fidelity::run_fidelity(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
     let write = |name: &str, text: String| -> Result<PathBuf, CliError> {
@@ -157,11 +158,7 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
 
 /// An uncertainty study; resumes from the folder's runs.csv when it is there.
 pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>) -> Result<(), CliError> {
-    if let Some(d) = plan.duration {
-        positive("--duration", d)?;
-    }
-    count_in("--jobs", plan.jobs, 1, 1024)?;
-    let dir = study_folder(path, out, "-uq")?;
+    let dir = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
     let scene = load(path)?;
     let spec =
         scene.spec.uncertainty.clone().ok_or_else(|| {
