@@ -232,6 +232,18 @@ pub enum Command {
         /// Results folder (default: results/<scene name>-uq).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Run only shard K of N (K/N, 1-based: every N-th design point from
+        /// K), into <out>/shard-K-of-N/runs.csv, for a cluster's job array.
+        #[arg(long, value_parser = parse_shard)]
+        shard: Option<(usize, usize)>,
+        /// Merge the shards' runs under <out> (running any that are missing)
+        /// and expand: the same results as one local run.
+        #[arg(long, conflicts_with = "shard")]
+        merge: bool,
+        /// Write the Slurm scripts for N shards (uq-shards.sbatch, a job array,
+        /// and submit.sh, which submits it and the merge after it).
+        #[arg(long, conflicts_with_all = ["shard", "merge"])]
+        slurm: Option<usize>,
     },
     /// The suspended span (seed 004 ch. 5): Bode plots and accuracy against cost.
     Span {
@@ -280,4 +292,15 @@ pub enum Command {
     },
     /// List the unit kinds a scene can use.
     Kinds,
+}
+
+/// `K/N` with 1 <= K <= N.
+fn parse_shard(text: &str) -> Result<(usize, usize), String> {
+    let (k, n) = text
+        .split_once('/')
+        .ok_or(format!("`{text}`: expected K/N, e.g. 2/8"))?;
+    match (k.parse::<usize>(), n.parse::<usize>()) {
+        (Ok(k), Ok(n)) if k >= 1 && k <= n => Ok((k, n)),
+        _ => Err(format!("`{text}`: expected K/N with 1 <= K <= N")),
+    }
 }

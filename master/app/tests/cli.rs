@@ -214,6 +214,71 @@ fn fidelity_runs_a_structures_sections_and_names_the_cheapest() {
 }
 
 #[test]
+fn uq_shards_merged_give_the_local_files_byte_for_byte() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-uq-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let written = std::fs::read_to_string(root.join("examples/truncation_uq.toml"))
+        .unwrap()
+        .replace("samples = 208", "samples = 12");
+    let scene = dir.join("uq.toml");
+    std::fs::write(&scene, written).unwrap();
+    let s = scene.to_str().unwrap();
+    let (local, sharded) = (dir.join("local"), dir.join("sharded"));
+    let run = |args: &[&str]| {
+        let out = slender(args);
+        assert!(out.status.success(), "{args:?}: {}", text(&out.stderr));
+    };
+    let common = ["--duration", "2", "--jobs", "2"];
+    run(&[
+        &["uq", s, "--out", local.to_str().unwrap()][..],
+        &common[..],
+    ]
+    .concat());
+    for k in ["1/3", "2/3", "3/3"] {
+        run(&[
+            &["uq", s, "--out", sharded.to_str().unwrap(), "--shard", k][..],
+            &common[..],
+        ]
+        .concat());
+    }
+    run(&[
+        &["uq", s, "--out", sharded.to_str().unwrap(), "--merge"][..],
+        &common[..],
+    ]
+    .concat());
+    for file in ["runs.csv", "uq.json", "uq.md"] {
+        let a = std::fs::read(local.join(file)).unwrap();
+        let b = std::fs::read(sharded.join(file)).unwrap();
+        assert!(
+            a == b,
+            "{file} differs between the local run and the merged shards"
+        );
+    }
+    // The Slurm scripts: a job array of the shards, the merge after it.
+    run(&[
+        "uq",
+        s,
+        "--out",
+        sharded.to_str().unwrap(),
+        "--slurm",
+        "4",
+        "--duration",
+        "2",
+    ]);
+    let array = std::fs::read_to_string(sharded.join("uq-shards.sbatch")).unwrap();
+    assert!(
+        array.contains("#SBATCH --array=1-4")
+            && array.contains("--shard \"$SLURM_ARRAY_TASK_ID/4\"")
+    );
+    let submit = std::fs::read_to_string(sharded.join("submit.sh")).unwrap();
+    assert!(submit.contains("--dependency=afterok") && submit.contains("--merge"));
+    let out = slender(&["uq", s, "--shard", "5/4"]);
+    assert_eq!(out.status.code(), Some(2));
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
 fn span_bode_and_study_write_their_figures() {
     let dir = std::env::temp_dir().join(format!("slender-cli-span-{}", std::process::id()));
     let d = dir.to_str().unwrap();

@@ -3,7 +3,6 @@
 use super::{CliError, count_in, load, positive, report_written, results_folder};
 use slender_app::fidelity::{self, FidelityPlan};
 use slender_app::study::{self, StudyPlan};
-use slender_app::uq::{self, UqPlan};
 use std::path::{Path, PathBuf};
 
 /// Modes of a unit about its initial state: a table on screen, modes.csv and
@@ -98,7 +97,7 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
 
 /// A study's results folder: `out`, else the scene's with `suffix`; the scene
 /// must load, `--duration` be positive and `--jobs` sensible.
-fn study_folder(
+pub(super) fn study_folder(
     path: &Path,
     out: Option<PathBuf>,
     suffix: &str,
@@ -153,66 +152,6 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
             report.rows.len()
         );
     }
-    Ok(())
-}
-
-/// An uncertainty study; resumes from the folder's runs.csv when it is there.
-pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>) -> Result<(), CliError> {
-    let dir = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
-    let scene = load(path)?;
-    let spec =
-        scene.spec.uncertainty.clone().ok_or_else(|| {
-            CliError::input(format!("{}: no `[uncertainty]` table", path.display()))
-        })?;
-    let names: Vec<String> = spec.inputs.iter().map(|i| i.name.clone()).collect();
-    let header = uq::report::header(&names, &spec.outputs);
-    let csv = dir.join("runs.csv");
-    let earlier = match std::fs::read_to_string(&csv) {
-        Ok(text) if text.starts_with(&header) => {
-            uq::report::read_runs(&text, names.len(), spec.outputs.len())
-        }
-        _ => Vec::new(),
-    };
-    if !earlier.is_empty() {
-        println!("resuming: {} runs in {}", earlier.len(), csv.display());
-    }
-    let file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&csv)
-        .map_err(|e| CliError::failure(format!("{}: {e}", csv.display())))?;
-    let file = std::sync::Mutex::new(file);
-    if earlier.is_empty() {
-        std::fs::write(&csv, &header)
-            .map_err(|e| CliError::failure(format!("{}: {e}", csv.display())))?;
-    }
-    let (report, runs) = uq::run_uq(path, plan, &earlier, |k, run| {
-        use std::io::Write;
-        let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
-        // A row that cannot be written is run again on resume.
-        let _ = f.write_all(uq::report::row(k, run).as_bytes());
-    })
-    .map_err(CliError::input)?;
-    // The finished file in index order, whatever order the runs ended in.
-    let rows: String = runs
-        .iter()
-        .enumerate()
-        .map(|(k, r)| uq::report::row(k, r))
-        .collect();
-    let write = |name: &str, text: String| -> Result<PathBuf, CliError> {
-        let file = dir.join(name);
-        std::fs::write(&file, text)
-            .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
-        Ok(file)
-    };
-    let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
-    let files = vec![
-        write("runs.csv", header + &rows)?,
-        write("uq.json", json)?,
-        write("uq.md", uq::report::to_markdown(&report))?,
-    ];
-    print!("{}", uq::report::to_markdown(&report));
-    report_written(&files);
     Ok(())
 }
 

@@ -6,6 +6,7 @@ mod analysis;
 mod fmu;
 mod scene;
 mod span;
+mod uq;
 
 use crate::cli::Command;
 use slender_scene::Scene;
@@ -95,13 +96,25 @@ fn studies(command: Command) -> Result<(), CliError> {
             jobs,
             duration,
             out,
+            shard,
+            merge,
+            slurm,
         } => {
             let plan = slender_app::uq::UqPlan {
                 samples,
                 jobs: jobs_or_cores(jobs),
                 duration,
+                shard: None,
             };
-            analysis::uq(&scene, &plan, out)
+            let mode = match (shard, slurm) {
+                (Some((k, n)), _) => uq::Mode::Shard(k, n),
+                (_, Some(0)) => {
+                    return Err(CliError::input("--slurm 0: expected at least one shard"));
+                }
+                (_, Some(n)) => uq::Mode::Slurm(n),
+                _ => uq::Mode::Whole { merge },
+            };
+            uq::uq(&scene, &plan, out, mode)
         }
         _ => Err(CliError::failure("not a study command")),
     }

@@ -27,6 +27,9 @@ pub struct UqPlan {
     pub jobs: usize,
     /// Simulated time of each run (s); the scene's when `None`.
     pub duration: Option<f64>,
+    /// Run only shard K of N (1-based): the points whose index is K - 1 modulo
+    /// N, and no expansion (`merge` makes it from every shard's runs).
+    pub shard: Option<(usize, usize)>,
 }
 
 /// One output's expansion.
@@ -57,13 +60,14 @@ pub struct UqReport {
 pub type Run = (Vec<f64>, Vec<f64>);
 
 /// Runs the study, reusing the rows of `runs` (the earlier runs of the same
-/// design) and calling `done` with each new run's index as it finishes.
+/// design, or every shard's) and calling `done` with each new run's index as it
+/// finishes. The report is None for a shard.
 pub fn run_uq(
     path: &Path,
     plan: &UqPlan,
     earlier: &[Run],
     done: impl Fn(usize, &Run) + Sync,
-) -> Result<(UqReport, Vec<Run>), String> {
+) -> Result<(Option<UqReport>, Vec<Run>), String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let table: toml::Table =
         toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -96,9 +100,14 @@ pub fn run_uq(
                 .collect()
         })
         .collect();
-    let order: Vec<usize> = (0..points.len()).collect();
+    let order: Vec<usize> = match plan.shard {
+        Some((k, n)) if k >= 1 && k <= n => (k - 1..points.len()).step_by(n).collect(),
+        Some((k, n)) => return Err(format!("--shard {k}/{n}: expected K in 1..=N")),
+        None => (0..points.len()).collect(),
+    };
     let fresh = Mutex::new(());
-    let runs = crate::parallel::run_all(&order, &order, plan.jobs, |&k| {
+    let tasks: Vec<usize> = (0..order.len()).collect();
+    let runs = crate::parallel::run_all(&order, &tasks, plan.jobs, |&k| {
         // An earlier run of the same point is kept; a failed one is tried again.
         let same = |r: &&Run| r.0 == points[k] && r.1.iter().all(|v| v.is_finite());
         if let Some(run) = earlier.get(k).filter(same) {
@@ -120,8 +129,21 @@ pub fn run_uq(
         done(k, &run);
         run
     });
+    if plan.shard.is_some() {
+        let shard: Vec<Run> = order.iter().zip(runs).map(|(_, r)| r).collect();
+        return Ok((None, shard_rows(&order, shard)));
+    }
     let report = expand(path, &spec, &runs)?;
-    Ok((report, runs))
+    Ok((Some(report), runs))
+}
+
+/// A shard's runs at their design indices (the others empty).
+fn shard_rows(order: &[usize], runs: Vec<Run>) -> Vec<Run> {
+    let mut all = vec![(Vec::new(), Vec::new()); order.last().map_or(0, |k| k + 1)];
+    for (&k, run) in order.iter().zip(runs) {
+        all[k] = run;
+    }
+    all
 }
 
 /// The design of `samples` points: the first LHS doubled as often as it takes.

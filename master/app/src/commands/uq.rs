@@ -1,0 +1,206 @@
+//! `slender uq`: a whole study, one shard of it, the merge of the shards, or
+//! the Slurm scripts that run the shards as a job array and merge them.
+
+use super::analysis::study_folder;
+use super::{CliError, load, report_written};
+use slender_app::uq::{self, Run, UqPlan};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// How `slender uq` was asked to run.
+pub enum Mode {
+    /// Every run and the expansion (after a merge, the shards' runs reused).
+    Whole { merge: bool },
+    /// Shard K of N: its runs only, in `<out>/shard-K-of-N/runs.csv`.
+    Shard(usize, usize),
+    /// Write the Slurm scripts for N shards and their merge.
+    Slurm(usize),
+}
+
+/// Runs the command.
+pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Result<(), CliError> {
+    let dir = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
+    let scene = load(path)?;
+    let spec =
+        scene.spec.uncertainty.clone().ok_or_else(|| {
+            CliError::input(format!("{}: no `[uncertainty]` table", path.display()))
+        })?;
+    let names: Vec<String> = spec.inputs.iter().map(|i| i.name.clone()).collect();
+    let header = uq::report::header(&names, &spec.outputs);
+    let read = |csv: &Path| match std::fs::read_to_string(csv) {
+        Ok(text) if text.starts_with(&header) => {
+            uq::report::read_runs(&text, names.len(), spec.outputs.len())
+        }
+        _ => Vec::new(),
+    };
+    match mode {
+        Mode::Slurm(n) => slurm_scripts(path, plan, &dir, n),
+        Mode::Shard(k, n) => {
+            let shard_dir = dir.join(format!("shard-{k}-of-{n}"));
+            super::results_folder(&shard_dir)?;
+            let csv = shard_dir.join("runs.csv");
+            let earlier = read(&csv);
+            let plan = UqPlan {
+                shard: Some((k, n)),
+                ..plan.clone()
+            };
+            let (_, runs) = run_appending(path, &plan, &csv, &header, earlier)?;
+            println!(
+                "shard {k} of {n}: {} runs",
+                runs.iter().filter(|r| !r.0.is_empty()).count()
+            );
+            Ok(())
+        }
+        Mode::Whole { merge } => {
+            let csv = dir.join("runs.csv");
+            let mut earlier = read(&csv);
+            if merge {
+                earlier = merged(&dir, &read)?;
+                println!(
+                    "merging: {} runs from the shards",
+                    earlier.iter().filter(|r| !r.0.is_empty()).count()
+                );
+            }
+            let (report, runs) = run_appending(path, plan, &csv, &header, earlier)?;
+            let report = report.ok_or_else(|| CliError::failure("no report from a whole study"))?;
+            let write = |name: &str, text: String| -> Result<PathBuf, CliError> {
+                let file = dir.join(name);
+                std::fs::write(&file, text)
+                    .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
+                Ok(file)
+            };
+            let rows: String = runs
+                .iter()
+                .enumerate()
+                .map(|(k, r)| uq::report::row(k, r))
+                .collect();
+            let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
+            let files = vec![
+                write("runs.csv", header + &rows)?,
+                write("uq.json", json)?,
+                write("uq.md", uq::report::to_markdown(&report))?,
+            ];
+            print!("{}", uq::report::to_markdown(&report));
+            report_written(&files);
+            Ok(())
+        }
+    }
+}
+
+/// Runs the plan, appending each new run to `csv` as it finishes (a file
+/// with another header starts afresh), then rewrites it in index order.
+fn run_appending(
+    path: &Path,
+    plan: &UqPlan,
+    csv: &Path,
+    header: &str,
+    earlier: Vec<Run>,
+) -> Result<(Option<uq::UqReport>, Vec<Run>), CliError> {
+    let fail = |e: std::io::Error| CliError::failure(format!("{}: {e}", csv.display()));
+    // The file starts with the runs already done (resumed or merged), so an
+    // interruption from here on loses nothing.
+    let done: String = earlier
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| !r.0.is_empty())
+        .map(|(k, r)| uq::report::row(k, r))
+        .collect();
+    if !done.is_empty() {
+        println!("reusing the runs already in {}", csv.display());
+    }
+    std::fs::write(csv, format!("{header}{done}")).map_err(fail)?;
+    let file = std::fs::OpenOptions::new()
+        .append(true)
+        .open(csv)
+        .map_err(fail)?;
+    let file = std::sync::Mutex::new(file);
+    let (report, runs) = uq::run_uq(path, plan, &earlier, |k, run| {
+        let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
+        // A row that cannot be written is run again on resume.
+        let _ = f.write_all(uq::report::row(k, run).as_bytes());
+    })
+    .map_err(CliError::input)?;
+    let rows: String = runs
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| !r.0.is_empty())
+        .map(|(k, r)| uq::report::row(k, r))
+        .collect();
+    std::fs::write(csv, format!("{header}{rows}")).map_err(fail)?;
+    Ok((report, runs))
+}
+
+/// Every shard's runs under `dir`, by design index.
+fn merged(dir: &Path, read: &dyn Fn(&Path) -> Vec<Run>) -> Result<Vec<Run>, CliError> {
+    let entries =
+        std::fs::read_dir(dir).map_err(|e| CliError::input(format!("{}: {e}", dir.display())))?;
+    let mut all: Vec<Run> = Vec::new();
+    let mut shards = 0;
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if !name.starts_with("shard-") {
+            continue;
+        }
+        shards += 1;
+        for (k, run) in read(&entry.path().join("runs.csv")).into_iter().enumerate() {
+            if run.0.is_empty() {
+                continue;
+            }
+            if all.len() <= k {
+                all.resize(k + 1, (Vec::new(), Vec::new()));
+            }
+            all[k] = run;
+        }
+    }
+    if shards == 0 {
+        return Err(CliError::input(format!(
+            "{}: no shard-K-of-N folders to merge (run `slender uq SCENE --shard K/N` first)",
+            dir.display()
+        )));
+    }
+    Ok(all)
+}
+
+/// `uq-shards.sbatch` (a job array, one shard per task) and `submit.sh` (it,
+/// then the merge once every shard is done).
+fn slurm_scripts(path: &Path, plan: &UqPlan, dir: &Path, n: usize) -> Result<(), CliError> {
+    let exe = std::env::current_exe().map_err(CliError::failure)?;
+    let scene = std::fs::canonicalize(path)
+        .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+    let out = std::fs::canonicalize(dir).map_err(CliError::failure)?;
+    let mut common = format!("--out {:?}", out.display().to_string());
+    if let Some(s) = plan.samples {
+        common += &format!(" --samples {s}");
+    }
+    if let Some(d) = plan.duration {
+        common += &format!(" --duration {d}");
+    }
+    let command = format!(
+        "{:?} uq {:?} {common}",
+        exe.display().to_string(),
+        scene.display().to_string()
+    );
+    let array = format!(
+        "#!/bin/sh\n#SBATCH --job-name=slender-uq\n#SBATCH --array=1-{n}\n#SBATCH --ntasks=1\n#SBATCH --cpus-per-task={jobs}\n#SBATCH --output={o}/shard-%a.log\n{command} --jobs {jobs} --shard \"$SLURM_ARRAY_TASK_ID/{n}\"\n",
+        jobs = plan.jobs,
+        o = out.display()
+    );
+    let submit = format!(
+        "#!/bin/sh\n# Submits the {n} shards as a job array, then the merge once all succeed.\nset -e\njob=$(sbatch --parsable {o}/uq-shards.sbatch)\nsbatch --dependency=afterok:\"$job\" --job-name=slender-uq-merge --output={o}/merge.log --wrap '{command} --jobs {jobs} --merge'\n",
+        o = out.display(),
+        jobs = plan.jobs
+    );
+    let write = |name: &str, text: &str| -> Result<PathBuf, CliError> {
+        let file = dir.join(name);
+        std::fs::write(&file, text)
+            .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
+        Ok(file)
+    };
+    let files = vec![
+        write("uq-shards.sbatch", &array)?,
+        write("submit.sh", &submit)?,
+    ];
+    report_written(&files);
+    println!("submit with: sh {}", out.join("submit.sh").display());
+    Ok(())
+}
