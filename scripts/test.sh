@@ -45,6 +45,17 @@ cargo test --release -p slender-tests --test fmi_python --test uq_python -- --ig
 python_passed=$(count passed)
 passed=$((passed + python_passed))
 ignored=$((ignored - python_passed))
+
+step "cluster test: a UQ study through a local single-node Slurm (ignored above)"
+if [ "$(id -u)" = 0 ]; then
+    ./scripts/slurm-up.sh
+    cargo test --release -p slender-tests --test uq_slurm -- --ignored 2>&1 | tee "$log"
+    slurm_passed=$(count passed)
+    passed=$((passed + slurm_passed))
+    ignored=$((ignored - slurm_passed))
+else
+    echo "skipped: starting Slurm needs root (it installs slurm-wlm and munge and starts their daemons)"
+fi
 rm -f "$log"
 
 step "example scenes (outputs bit-identical to tests/reference/scene-fingerprints.txt)"
