@@ -17,7 +17,8 @@ pub enum Mode {
     Slurm(usize),
 }
 
-/// Runs the command.
+/// Runs the command. A whole study writes runs.csv, uq.json, uq.md,
+/// sobol.svg (like seed 000's Fig. 11) and scatter.svg (like its Fig. 8).
 pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Result<(), CliError> {
     let dir = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
     let scene = load(path)?;
@@ -75,11 +76,16 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                 .map(|(k, r)| uq::report::row(k, r))
                 .collect();
             let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
-            let files = vec![
+            let mut files = vec![
                 write("runs.csv", header + &rows)?,
                 write("uq.json", json)?,
                 write("uq.md", uq::report::to_markdown(&report))?,
             ];
+            uq::plot::sobol_bars(&dir.join("sobol.svg"), &report).map_err(CliError::failure)?;
+            files.push(dir.join("sobol.svg"));
+            uq::plot::scatter(&dir.join("scatter.svg"), &report, &runs)
+                .map_err(CliError::failure)?;
+            files.push(dir.join("scatter.svg"));
             print!("{}", uq::report::to_markdown(&report));
             report_written(&files);
             Ok(())

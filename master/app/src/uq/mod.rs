@@ -6,6 +6,7 @@
 //! standard deviation and first-order and total Sobol' indices (95 % bootstrap
 //! intervals).
 
+pub mod plot;
 pub mod report;
 
 use crate::run::{RunOptions, run_scene};
