@@ -74,7 +74,8 @@ impl Pce {
             .filter(|(a, _)| keep(a))
             .map(|(_, c)| c * c)
             .sum();
-        part / self.variance()
+        // (+ 0.0: an empty sum is -0.0, which would print as "-0.000".)
+        part / self.variance() + 0.0
     }
 
     /// The expansion at standard inputs `xi`.

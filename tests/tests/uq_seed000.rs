@@ -1,0 +1,55 @@
+//! Seed 000 sec. 4 (issue 14): E and sd of phi1 and phi2 over Table 2's
+//! artefacts from 416 LHS runs, and the Sobol' ranking, against the paper's PCE
+//! (E phi1 = 1.32, sd 0.13; E phi2 = 1.77, sd 0.17; phi1 most sensitive to
+//! theta9, then the calibrations theta1 and theta2). Tolerance: one published
+//! standard deviation on the means, half of it on the sds, theta9 first.
+//!
+//! Known gap: with today's signal-loss reading (`loss_duration_mean` = theta9
+//! seconds, mean loss 0.1-0.5 s) 208 runs give E phi1 = 0.36 (sd 0.22) and
+//! E phi2 = 1.16 (sd 0.21): the losses freeze the signals far longer than the
+//! paper's. theta9 does rank first for phi1 (total index 0.46). Deciding the
+//! reading against the paper's figures (issue 14) is still to do.
+
+use slender_app::uq::{UqPlan, run_uq};
+use slender_tests::{published, root};
+
+#[test]
+#[ignore = "known gap: today's signal-loss reading gives E phi1 = 0.36 against the paper's 1.32 (see the note); 416 runs take 6 min"]
+fn moments_and_ranking_match_the_paper() {
+    let path = root().join("examples/truncation_uq.toml");
+    let plan = UqPlan {
+        samples: Some(416),
+        jobs: std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get),
+        duration: None,
+        shard: None,
+    };
+    let (report, _) = run_uq(&path, &plan, &[], |_, _| {}).unwrap();
+    let report = report.unwrap();
+    let paper = published();
+    let f = &paper["fidelity_results"];
+    let number = |k: &str| f[k].as_float().unwrap();
+    for (o, mean, sd) in [
+        (
+            &report.outputs[0],
+            number("pce_mean_phi1"),
+            number("pce_std_phi1"),
+        ),
+        (
+            &report.outputs[1],
+            number("pce_mean_phi2"),
+            number("pce_std_phi2"),
+        ),
+    ] {
+        println!(
+            "{}: E {:.3} (paper {mean}), sd {:.3} (paper {sd})",
+            o.name, o.mean, o.sd
+        );
+        assert!((o.mean - mean).abs() < sd, "{}: E {}", o.name, o.mean);
+        assert!((o.sd - sd).abs() < 0.5 * sd, "{}: sd {}", o.name, o.sd);
+    }
+    let phi1 = &report.outputs[0];
+    let first = (0..phi1.total.len())
+        .max_by(|&a, &b| phi1.total[a].total_cmp(&phi1.total[b]))
+        .unwrap();
+    assert_eq!(report.inputs[first], "theta9");
+}
