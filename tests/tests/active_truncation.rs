@@ -140,22 +140,6 @@ fn hard_cases_run_the_full_duration_with_finite_values() {
             ),
         ),
         (
-            "largest Table 2 delays",
-            variant(
-                TABLE2,
-                &[
-                    (
-                        "delay = 0.026                      # theta7: 2.6 ms x 10, inside U(0, 50 ms)",
-                        "delay = 0.05",
-                    ),
-                    (
-                        "delay = 0.026                      # theta10",
-                        "delay = 0.05",
-                    ),
-                ],
-            ),
-        ),
-        (
             "h = 100 ms",
             variant(SUBSTRUCTURED, &[("step = 0.01", "step = 0.1")]),
         ),
@@ -176,6 +160,45 @@ fn hard_cases_run_the_full_duration_with_finite_values() {
         );
         assert!(all_finite(&s), "{label}: non-finite values");
     }
+}
+
+/// Table 2's largest delays, 50 ms on the force and on the velocity: a 100 ms
+/// round trip in the coupling loop. The delay's negative damping makes the
+/// truncated line's motion grow (no delay compensation yet, issue 15) until the
+/// lower cable's drag iterations cannot follow; the run must stop there with the
+/// unit, the time and the reason, every recorded value finite. (With losses
+/// read as 0.3 s freezes the loop was broken often enough to reach 200 s, which
+/// hid this; with losses of 3 steps it is not.)
+#[test]
+fn the_largest_table2_delays_grow_until_the_run_stops_with_the_reason() {
+    let scene = variant(
+        TABLE2,
+        &[
+            (
+                "delay = 0.026                      # theta7: 2.6 ms x 10, inside U(0, 50 ms)",
+                "delay = 0.05",
+            ),
+            (
+                "delay = 0.026                      # theta10",
+                "delay = 0.05",
+            ),
+        ],
+    );
+    let s = run(&scene);
+    let (phi1, _) = indicator(&s, "phi1");
+    eprintln!("largest delays: {:?}, phi1 = {phi1:.2}", s.error);
+    assert!(all_finite(&s), "non-finite values recorded");
+    match &s.error {
+        Some(e) => assert!(
+            e.contains("unit `n`")
+                && e.contains("do_step failed at t =")
+                && e.contains("did not converge"),
+            "{e}"
+        ),
+        None => panic!("the 100 ms loop delay no longer grows: phi1 = {phi1}; update this test"),
+    }
+    // The growth shows before the stop: the top motion is far from the emulated one.
+    assert!(phi1 < 0.0, "phi1 {phi1}");
 }
 
 #[test]

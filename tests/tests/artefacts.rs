@@ -18,6 +18,7 @@ fn params() -> ArtefactParams {
         hold_period: 0.0,
         loss_probability: 0.0,
         loss_duration_mean: 0.0,
+        loss_duration_rate: 0.0,
         seed: 7,
     }
 }
@@ -127,6 +128,39 @@ fn signal_losses_start_and_last_as_asked() {
     // While lost the value is frozen.
     let frozen = s.windows(2).filter(|w| w[1].1 == w[0].1).count() as u64;
     assert!(frozen >= lost_steps - losses);
+}
+
+#[test]
+fn losses_read_in_steps_last_one_over_zeta2_steps() {
+    // Seed 000's other reading: d in synchronisation steps, density
+    // zeta2 exp(-zeta2 d), mean 1 / zeta2 steps: zeta2 = 0.47 gives about 2.1
+    // steps (21 ms at 10 ms), zeta2 = 0.1 the 10 steps of the reading in seconds.
+    for zeta2 in [0.47, 0.1] {
+        let steps = 1_000_000;
+        let (_, a) = ramp(
+            ArtefactParams {
+                loss_probability: 0.01,
+                loss_duration_rate: zeta2,
+                ..params()
+            },
+            steps,
+        );
+        let (lost_steps, losses) = a.loss_statistics();
+        let mean_steps = lost_steps as f64 / losses as f64;
+        eprintln!(
+            "zeta2 {zeta2}: {mean_steps:.2} steps per loss (expected {:.2})",
+            1.0 / zeta2 + 0.5
+        );
+        assert!((mean_steps - (1.0 / zeta2 + 0.5)).abs() < 0.05 * (1.0 / zeta2 + 0.5));
+    }
+    // Both readings at once are refused.
+    let both = ArtefactParams {
+        loss_probability: 0.01,
+        loss_duration_mean: 0.1,
+        loss_duration_rate: 0.1,
+        ..params()
+    };
+    assert!(Artefact::new(both).is_err());
 }
 
 #[test]

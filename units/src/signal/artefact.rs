@@ -50,9 +50,15 @@ pub struct ArtefactParams {
     /// Probability that a signal loss starts at a synchronisation step, in [0, 1).
     #[serde(default)]
     pub loss_probability: f64,
-    /// Mean duration of a signal loss (s); durations are exponential.
+    /// Mean duration of a signal loss (s); durations are exponential. (Seed 000's
+    /// zeta2 read as seconds: see docs/active-truncation.md.)
     #[serde(default)]
     pub loss_duration_mean: f64,
+    /// The other reading of seed 000's zeta2: durations in synchronisation steps
+    /// with density zeta2 exp(-zeta2 d), mean 1 / zeta2 steps (1/steps). Give
+    /// this or `loss_duration_mean`, not both.
+    #[serde(default)]
+    pub loss_duration_rate: f64,
     /// Seed of the random generator.
     #[serde(default = "one")]
     pub seed: u64,
@@ -125,11 +131,13 @@ impl Artefact {
                 "expected a value in [0, 1)",
             ));
         }
-        if params.loss_probability > 0.0 && params.loss_duration_mean <= 0.0 {
+        require_non_negative("loss_duration_rate", params.loss_duration_rate)?;
+        let readings = [params.loss_duration_mean, params.loss_duration_rate];
+        if params.loss_probability > 0.0 && readings.iter().filter(|&&v| v > 0.0).count() != 1 {
             return Err(UnitError::parameter(
                 "loss_duration_mean",
-                params.loss_duration_mean,
-                "expected > 0 when loss_probability > 0",
+                format!("{readings:?}"),
+                "expected one of loss_duration_mean (s) or loss_duration_rate (1/steps) > 0 when loss_probability > 0",
             ));
         }
         let inputs = params
@@ -271,9 +279,16 @@ impl Unit for Artefact {
         if p.loss_probability > 0.0 && t_end >= s.lost_until {
             let u: f64 = s.rng.random();
             if u < p.loss_probability {
-                let exp = Exp::new(1.0 / p.loss_duration_mean)
+                // Seconds (mean loss_duration_mean), or steps of this length
+                // (mean 1 / loss_duration_rate).
+                let (rate, seconds_per_unit) = if p.loss_duration_rate > 0.0 {
+                    (p.loss_duration_rate, h.as_secs())
+                } else {
+                    (1.0 / p.loss_duration_mean, 1.0)
+                };
+                let exp = Exp::new(rate)
                     .map_err(|e| UnitError::Numerical(format!("loss duration law: {e}")))?;
-                s.lost_until = t_end + exp.sample(&mut s.rng);
+                s.lost_until = t_end + exp.sample(&mut s.rng) * seconds_per_unit;
                 s.losses += 1;
             }
         }
