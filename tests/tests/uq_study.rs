@@ -56,6 +56,10 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     let second = second.unwrap();
     for o in &second.outputs {
         assert!(o.mean.is_finite() && o.sd >= 0.0, "{o:?}");
+        // The moments on each nested design: 16 points, then all 32.
+        let sizes: Vec<usize> = o.convergence.iter().map(|c| c.0).collect();
+        assert_eq!(sizes, [16, 32]);
+        assert_eq!(o.convergence[1].1, o.mean);
         assert!(o.total.iter().all(|t| (-1e-9..=1.0 + 1e-9).contains(t)));
     }
     // One job: the same runs and the same expansions.

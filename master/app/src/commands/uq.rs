@@ -18,7 +18,8 @@ pub enum Mode {
 }
 
 /// Runs the command. A whole study writes runs.csv, uq.json, uq.md,
-/// sobol.svg (like seed 000's Fig. 11) and scatter.svg (like its Fig. 8).
+/// sobol.svg (like seed 000's Fig. 11), convergence.svg (Fig. 9's moments
+/// against the design size) and scatter.svg (like its Fig. 8).
 pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Result<(), CliError> {
     let dir = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
     let scene = load(path)?;
@@ -82,7 +83,9 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                 write("uq.md", uq::report::to_markdown(&report))?,
             ];
             uq::plot::sobol_bars(&dir.join("sobol.svg"), &report).map_err(CliError::failure)?;
-            files.push(dir.join("sobol.svg"));
+            uq::plot::convergence(&dir.join("convergence.svg"), &report)
+                .map_err(CliError::failure)?;
+            files.extend([dir.join("sobol.svg"), dir.join("convergence.svg")]);
             uq::plot::scatter(&dir.join("scatter.svg"), &report, &runs)
                 .map_err(CliError::failure)?;
             files.push(dir.join("scatter.svg"));

@@ -45,6 +45,9 @@ pub struct OutputResult {
     pub degree: usize,
     pub terms: usize,
     pub loo_error: f64,
+    /// (design size, mean, sd) of the expansion fitted on each nested design
+    /// (the first `samples` points, then twice as many, ...), the whole last.
+    pub convergence: Vec<(usize, f64, f64)>,
 }
 
 /// A study's result.
@@ -233,6 +236,47 @@ fn run_one(
     }
 }
 
+/// The runs' inputs as the families' standard variables.
+fn standard(spec: &UncertaintySpec, runs: &[&Run]) -> Vec<Vec<f64>> {
+    runs.iter()
+        .map(|r| {
+            spec.inputs
+                .iter()
+                .zip(&r.0)
+                .map(|(i, &x)| i.distribution.to_standard(x))
+                .collect()
+        })
+        .collect()
+}
+
+/// Mean and sd of output `k` from each nested design: the first `samples`
+/// runs, twice as many, ... up to all of them (like seed 000's Fig. 9).
+fn convergence(
+    spec: &UncertaintySpec,
+    runs: &[Run],
+    k: usize,
+) -> Result<Vec<(usize, f64, f64)>, String> {
+    let families: Vec<_> = spec
+        .inputs
+        .iter()
+        .map(|i| i.distribution.family())
+        .collect();
+    let mut out = Vec::new();
+    let mut size = spec.samples;
+    while size <= runs.len() {
+        let ok: Vec<&Run> = runs[..size]
+            .iter()
+            .filter(|r| r.1.iter().all(|v| v.is_finite()))
+            .collect();
+        let y: Vec<f64> = ok.iter().map(|r| r.1[k]).collect();
+        let pce = fit(&families, &standard(spec, &ok), &y, Settings::default())
+            .map_err(|e| format!("{} on {size} runs: {e}", spec.outputs[k]))?;
+        out.push((size, pce.mean(), pce.variance().sqrt()));
+        size *= 2;
+    }
+    Ok(out)
+}
+
 /// The expansion of each output over the runs that succeeded.
 fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport, String> {
     let families: Vec<_> = spec
@@ -244,16 +288,7 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
         .iter()
         .filter(|r| r.1.iter().all(|v| v.is_finite()))
         .collect();
-    let xi: Vec<Vec<f64>> = ok
-        .iter()
-        .map(|r| {
-            spec.inputs
-                .iter()
-                .zip(&r.0)
-                .map(|(i, &x)| i.distribution.to_standard(x))
-                .collect()
-        })
-        .collect();
+    let xi = standard(spec, &ok);
     let mut outputs = Vec::new();
     for (k, name) in spec.outputs.iter().enumerate() {
         let y: Vec<f64> = ok.iter().map(|r| r.1[k]).collect();
@@ -272,6 +307,7 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
             degree: pce.degree,
             terms: pce.coefficients.len(),
             loo_error: pce.loo_error,
+            convergence: convergence(spec, runs, k)?,
         });
     }
     Ok(UqReport {

@@ -118,3 +118,73 @@ pub fn scatter(path: &Path, report: &UqReport, runs: &[Run]) -> Result<(), PlotE
     }
     root.present().map_err(|e| fail(&e))
 }
+
+/// Each output's mean and mean +- sd against the design size (log2), one panel
+/// per output: the moments' convergence as the nested design grows (Fig. 9).
+pub fn convergence(path: &Path, report: &UqReport) -> Result<(), PlotError> {
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
+    let panels = report.outputs.len().max(1);
+    let root = SVGBackend::new(path, (800, 280 * panels as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    for (area, o) in root.split_evenly((panels, 1)).iter().zip(&report.outputs) {
+        let sizes: Vec<f64> = o.convergence.iter().map(|c| c.0 as f64).collect();
+        let (lo, hi) = o
+            .convergence
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| {
+                (a.min(c.1 - c.2), b.max(c.1 + c.2))
+            });
+        let (x0, x1) = (
+            sizes.first().copied().unwrap_or(1.0),
+            sizes.last().copied().unwrap_or(2.0),
+        );
+        let pad = 0.1 * (hi - lo).max(1e-9);
+        let mut chart = ChartBuilder::on(area)
+            .caption(
+                format!("{}: mean and mean +- sd against the design size", o.name),
+                ("sans-serif", 16),
+            )
+            .margin(10)
+            .x_label_area_size(30)
+            .y_label_area_size(50)
+            .build_cartesian_2d((x0 / 1.2..x1 * 1.2).log_scale(), lo - pad..hi + pad)
+            .map_err(|e| fail(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("runs")
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .draw()
+            .map_err(|e| fail(&e))?;
+        for (series, colour) in [
+            (
+                o.convergence
+                    .iter()
+                    .map(|c| (c.0 as f64, c.1))
+                    .collect::<Vec<_>>(),
+                BLUE,
+            ),
+            (
+                o.convergence
+                    .iter()
+                    .map(|c| (c.0 as f64, c.1 + c.2))
+                    .collect(),
+                RED,
+            ),
+            (
+                o.convergence
+                    .iter()
+                    .map(|c| (c.0 as f64, c.1 - c.2))
+                    .collect(),
+                RED,
+            ),
+        ] {
+            chart
+                .draw_series(LineSeries::new(series.clone(), colour.stroke_width(2)))
+                .map_err(|e| fail(&e))?;
+            chart
+                .draw_series(series.iter().map(|&p| Circle::new(p, 4, colour.filled())))
+                .map_err(|e| fail(&e))?;
+        }
+    }
+    root.present().map_err(|e| fail(&e))
+}

@@ -71,6 +71,12 @@ pub fn to_markdown(report: &UqReport) -> String {
                 o.first_order[i], f.0, f.1, o.total[i], t.0, t.1
             );
         }
+        let steps: Vec<String> = o
+            .convergence
+            .iter()
+            .map(|(n, m, sd)| format!("{n} runs: E = {m:.4}, sd = {sd:.4}"))
+            .collect();
+        out += &format!("\nNested designs: {}.\n", steps.join("; "));
         let mut ranked: Vec<usize> = (0..report.inputs.len()).collect();
         ranked.sort_by(|&a, &b| o.total[b].total_cmp(&o.total[a]));
         let top: Vec<String> = ranked
