@@ -110,6 +110,37 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
 }
 
 #[test]
+fn failed_runs_are_left_out_and_reported_with_their_reason() {
+    // A loss probability beyond 1 is refused by the artefact: those points
+    // fail, the others expand.
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene(
+        dir.path(),
+        16,
+        Some((
+            "\"units.sensor.parameters.loss_probability\", distribution = { kind = \"uniform\", low = 0.01, high = 0.10 }",
+            "\"units.sensor.parameters.loss_probability\", distribution = { kind = \"uniform\", low = 0.3, high = 1.2 }",
+        )),
+    );
+    let (report, runs) = run_uq(&path, &plan(None, 2), &[], |_, _| {}).unwrap();
+    let report = report.unwrap();
+    let failed: Vec<usize> = (0..runs.len())
+        .filter(|&k| runs[k].1.iter().any(|v| v.is_nan()))
+        .collect();
+    assert!(
+        !failed.is_empty() && failed.len() < runs.len(),
+        "{failed:?}"
+    );
+    assert_eq!(report.failed_runs, failed.len());
+    let listed: Vec<usize> = report.failures.iter().map(|f| f.0).collect();
+    assert_eq!(listed, failed);
+    for (k, why) in &report.failures {
+        assert!(runs[*k].0[7] >= 1.0, "run {k}: {why}");
+        assert!(why.contains("loss_probability"), "{why}");
+    }
+}
+
+#[test]
 fn bad_uncertainty_tables_are_refused_with_the_key() {
     let dir = tempfile::tempdir().unwrap();
     for (change, says) in [

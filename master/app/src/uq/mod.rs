@@ -57,6 +57,8 @@ pub struct UqReport {
     pub samples: usize,
     pub inputs: Vec<String>,
     pub failed_runs: usize,
+    /// Each failed run's design index and reason.
+    pub failures: Vec<(usize, String)>,
     pub outputs: Vec<OutputResult>,
 }
 
@@ -111,33 +113,38 @@ pub fn run_uq(
     };
     let fresh = Mutex::new(());
     let tasks: Vec<usize> = (0..order.len()).collect();
-    let runs = crate::parallel::run_all(&order, &tasks, plan.jobs, |&k| {
+    let outcomes = crate::parallel::run_all(&order, &tasks, plan.jobs, |&k| {
         // An earlier run of the same point is kept; a failed one is tried again.
         let same = |r: &&Run| r.0 == points[k] && r.1.iter().all(|v| v.is_finite());
         if let Some(run) = earlier.get(k).filter(same) {
-            return run.clone();
+            return (run.clone(), None);
         }
-        let run = (
-            points[k].clone(),
-            run_one(
-                path,
-                &table,
-                &settings,
-                &points[k],
-                plan.duration,
-                &spec.outputs,
-            ),
+        let outcome = run_one(
+            path,
+            &table,
+            &settings,
+            &points[k],
+            plan.duration,
+            &spec.outputs,
         );
+        let (values, why) = match outcome {
+            Ok(values) => (values, None),
+            Err(why) => (vec![f64::NAN; spec.outputs.len()], Some((k, why))),
+        };
+        let run = (points[k].clone(), values);
         // One writer at a time: the caller appends the row to its file.
         let _turn = fresh.lock().unwrap_or_else(|e| e.into_inner());
         done(k, &run);
-        run
+        (run, why)
     });
+    let failures: Vec<(usize, String)> = outcomes.iter().filter_map(|o| o.1.clone()).collect();
+    let runs: Vec<Run> = outcomes.into_iter().map(|o| o.0).collect();
     if plan.shard.is_some() {
         let shard: Vec<Run> = order.iter().zip(runs).map(|(_, r)| r).collect();
         return Ok((None, shard_rows(&order, shard)));
     }
-    let report = expand(path, &spec, &runs)?;
+    let mut report = expand(path, &spec, &runs)?;
+    report.failures = failures;
     Ok((Some(report), runs))
 }
 
@@ -198,7 +205,7 @@ fn check(scene: &Scene, spec: &UncertaintySpec) -> Result<Vec<Setting>, String> 
         .collect()
 }
 
-/// One run's outputs' phi (NaN for each when it cannot run or fails).
+/// One run's outputs' phi; the error says why it cannot run or failed.
 fn run_one(
     path: &Path,
     table: &toml::Table,
@@ -206,34 +213,30 @@ fn run_one(
     point: &[f64],
     duration: Option<f64>,
     outputs: &[String],
-) -> Vec<f64> {
-    let failed = vec![f64::NAN; outputs.len()];
+) -> Result<Vec<f64>, String> {
     let mut table = table.clone();
     for (s, &x) in settings.iter().zip(point) {
-        if s.apply(&mut table, &toml::Value::Float(x)).is_err() {
-            return failed;
-        }
+        s.apply(&mut table, &toml::Value::Float(x))?;
     }
-    let Ok(scene) = crate::study::scene_with(path, &table, duration) else {
-        return failed;
-    };
+    let scene = crate::study::scene_with(path, &table, duration)?;
     let options = RunOptions {
         output_dir: None,
         progress: false,
     };
-    match run_scene(&scene, &options) {
-        Ok(r) if r.summary.error.is_none() => outputs
-            .iter()
-            .map(|name| {
-                r.summary
-                    .indicators
-                    .iter()
-                    .find(|i| &i.name == name)
-                    .map_or(f64::NAN, |i| i.fidelity)
-            })
-            .collect(),
-        _ => failed,
+    let r = run_scene(&scene, &options).map_err(|e| e.to_string())?;
+    if let Some(e) = r.summary.error {
+        return Err(e);
     }
+    Ok(outputs
+        .iter()
+        .map(|name| {
+            r.summary
+                .indicators
+                .iter()
+                .find(|i| &i.name == name)
+                .map_or(f64::NAN, |i| i.fidelity)
+        })
+        .collect())
 }
 
 /// The runs' inputs as the families' standard variables.
@@ -315,6 +318,7 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
         samples: runs.len(),
         inputs: spec.inputs.iter().map(|i| i.name.clone()).collect(),
         failed_runs: runs.len() - ok.len(),
+        failures: Vec::new(),
         outputs,
     })
 }

@@ -52,6 +52,15 @@ pub fn to_markdown(report: &UqReport) -> String {
         "UQ study of `{}`: {} runs ({} failed, left out); sparse PCE per output, 95 % bootstrap intervals.\n",
         report.scene, report.samples, report.failed_runs
     );
+    for (k, why) in report.failures.iter().take(5) {
+        out += &format!("- run {k} failed: {}\n", why.replace('\n', " "));
+    }
+    if report.failures.len() > 5 {
+        out += &format!(
+            "- and {} more (uq.json lists them all)\n",
+            report.failures.len() - 5
+        );
+    }
     for o in &report.outputs {
         out += &format!(
             "\n## {}\n\nE = {:.4} (in [{:.4}, {:.4}]), sd = {:.4}; degree {}, {} terms, LOO error {:.2e}\n\n| input | first-order | total |\n|---|---|---|\n",
