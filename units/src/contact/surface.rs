@@ -60,6 +60,13 @@ pub enum Motion {
     },
 }
 
+/// Where a surface is at one time: its pitch (cos, sin) about the vessel's
+/// pivot when it pitches, and its heave (m).
+struct Pose {
+    turn: Option<(f64, f64, [f64; 2])>,
+    dz: f64,
+}
+
 /// The sum of `sines` at t (value, rate).
 fn sum(sines: &[Sine], t: f64) -> (f64, f64) {
     sines.iter().fold((0.0, 0.0), |(v, r), s| {
@@ -185,6 +192,39 @@ impl Surface {
     /// Roller `i`'s top at time t: its centre's x and the height of its top (m);
     /// `None` when the surface has no roller `i`.
     pub fn roller(&self, i: usize, t: f64) -> Option<(f64, f64)> {
+        self.roller_in(i, &self.pose(t))
+    }
+
+    /// Every roller's top at time t (centre's x, top's height; m), in order, the
+    /// vessel's motion evaluated once.
+    pub fn rollers(&self, t: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let count = match &self.shape {
+            Shape::Rollers { positions, .. } => positions.len(),
+            _ => 0,
+        };
+        let pose = self.pose(t);
+        (0..count).filter_map(move |i| self.roller_in(i, &pose))
+    }
+
+    /// The surface's rigid motion at time t.
+    fn pose(&self, t: f64) -> Pose {
+        match &self.motion {
+            Motion::Vessel { pitch, pivot, .. } => {
+                let theta = sum(pitch, t).0;
+                Pose {
+                    turn: Some((theta.cos(), theta.sin(), *pivot)),
+                    dz: self.heave(t).0,
+                }
+            }
+            _ => Pose {
+                turn: None,
+                dz: self.heave(t).0,
+            },
+        }
+    }
+
+    /// Roller `i`'s top with the surface at `pose`.
+    fn roller_in(&self, i: usize, pose: &Pose) -> Option<(f64, f64)> {
         let Shape::Rollers {
             positions,
             radius,
@@ -195,19 +235,16 @@ impl Surface {
             return None;
         };
         let (x, top) = (*positions.get(i)?, *tops.get(i).unwrap_or(height));
-        Some(match &self.motion {
-            Motion::Vessel {
-                heave,
-                pitch,
-                pivot,
-            } => {
-                let (theta, (dz, _)) = (sum(pitch, t).0, sum(heave, t));
-                let (c, s) = (theta.cos(), theta.sin());
+        Some(match pose.turn {
+            Some((c, s, pivot)) => {
                 let (rx, rz) = (x - pivot[0], top - radius - pivot[1]);
-                let centre = [pivot[0] + c * rx - s * rz, pivot[1] + s * rx + c * rz + dz];
+                let centre = [
+                    pivot[0] + c * rx - s * rz,
+                    pivot[1] + s * rx + c * rz + pose.dz,
+                ];
                 (centre[0], centre[1] + radius)
             }
-            _ => (x, top + self.heave(t).0),
+            None => (x, top + pose.dz),
         })
     }
 
@@ -228,9 +265,8 @@ impl Surface {
     }
 
     /// Height (m) over x of the rollers at time t; `None` between them.
-    fn rollers_at(&self, x: f64, t: f64, count: usize, radius: f64) -> Option<f64> {
-        (0..count)
-            .filter_map(|i| self.roller(i, t))
+    fn rollers_at(&self, x: f64, t: f64, radius: f64) -> Option<f64> {
+        self.rollers(t)
             .filter(|&(c, _)| (x - c).abs() < radius)
             .map(|(c, top)| top - radius + (radius * radius - (x - c).powi(2)).sqrt())
             .fold(None, |best: Option<f64>, v| {
@@ -241,20 +277,16 @@ impl Surface {
     /// Surface height f(x, t) (m) and its rate df/dt (m/s); `None` where there is no
     /// surface (between rollers).
     pub fn at(&self, x: f64, t: f64) -> Option<(f64, f64)> {
-        if let Shape::Rollers {
-            positions, radius, ..
-        } = &self.shape
-        {
-            let (count, radius) = (positions.len(), *radius);
-            let f = self.rollers_at(x, t, count, radius)?;
+        if let &Shape::Rollers { radius, .. } = &self.shape {
+            let f = self.rollers_at(x, t, radius)?;
             // Rollers carried by a pitching vessel also move sideways: the
             // height's rate at a fixed x by central differences.
             let rate = match &self.motion {
                 Motion::Vessel { .. } => {
                     let dt = 1e-6;
                     match (
-                        self.rollers_at(x, t + dt, count, radius),
-                        self.rollers_at(x, t - dt, count, radius),
+                        self.rollers_at(x, t + dt, radius),
+                        self.rollers_at(x, t - dt, radius),
                     ) {
                         (Some(a), Some(b)) => (a - b) / (2.0 * dt),
                         _ => 0.0,

@@ -99,12 +99,9 @@ fn for_each_point(
     (q, t): (&[f64], f64),
     mut visit: impl FnMut(Point),
 ) {
-    if let Shape::Rollers { positions, .. } = &contact.surface.shape {
-        for i in 0..positions.len() {
-            // Where the roller is at t (a pitching vessel carries it sideways).
-            let Some((xr, top)) = contact.surface.roller(i, t) else {
-                continue;
-            };
+    if let Shape::Rollers { .. } = &contact.surface.shape {
+        // Where each roller is at t (a pitching vessel carries it sideways).
+        for (i, (xr, top)) in contact.surface.rollers(t).enumerate() {
             if let Some(e) = roller_element(model, q, xr, top) {
                 visit(roller_point(model, q, e, (i, xr, top)));
             }

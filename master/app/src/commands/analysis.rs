@@ -64,7 +64,7 @@ pub fn modes(
 /// A convergence and cost study; the rows are written even when some runs fail
 /// (those are marked FAILED with their reason).
 pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), CliError> {
-    let dir = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
+    let (dir, _) = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
     println!(
         "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"
@@ -96,13 +96,13 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
 }
 
 /// A study's results folder: `out`, else the scene's with `suffix`; the scene
-/// must load, `--duration` be positive and `--jobs` sensible.
+/// must load (returned with it), `--duration` be positive and `--jobs` sensible.
 pub(super) fn study_folder(
     path: &Path,
     out: Option<PathBuf>,
     suffix: &str,
     (duration, jobs): (Option<f64>, usize),
-) -> Result<PathBuf, CliError> {
+) -> Result<(PathBuf, slender_scene::Scene), CliError> {
     if let Some(d) = duration {
         positive("--duration", d)?;
     }
@@ -114,14 +114,14 @@ pub(super) fn study_folder(
         PathBuf::from(d)
     });
     results_folder(&dir)?;
-    Ok(dir)
+    Ok((dir, scene))
 }
 
 /// A fidelity study of a structure's sections; the rows are written even when
 /// some combinations fail (those are marked FAILED with their reason).
 pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Result<(), CliError> {
     positive("--tolerance", plan.tolerance)?;
-    let dir = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
+    let (dir, _) = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
     let report =
         fidelity::run_fidelity(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
     let write = |name: &str, text: String| -> Result<PathBuf, CliError> {

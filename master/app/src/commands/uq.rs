@@ -2,7 +2,7 @@
 //! the Slurm scripts that run the shards as a job array and merge them.
 
 use super::analysis::study_folder;
-use super::{CliError, load, report_written};
+use super::{CliError, report_written};
 use slender_app::uq::{self, Run, UqPlan};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -21,8 +21,7 @@ pub enum Mode {
 /// sobol.svg (like seed 000's Fig. 11), convergence.svg (Fig. 9's moments
 /// against the design size) and scatter.svg (like its Fig. 8).
 pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Result<(), CliError> {
-    let dir = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
-    let scene = load(path)?;
+    let (dir, scene) = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
     let spec =
         scene.spec.uncertainty.clone().ok_or_else(|| {
             CliError::input(format!("{}: no `[uncertainty]` table", path.display()))
@@ -71,16 +70,13 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                     .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
                 Ok(file)
             };
-            let rows: String = runs
-                .iter()
-                .enumerate()
-                .map(|(k, r)| uq::report::row(k, r))
-                .collect();
+            // runs.csv is already complete and in index order.
             let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
+            let markdown = uq::report::to_markdown(&report);
             let mut files = vec![
-                write("runs.csv", header + &rows)?,
+                csv.clone(),
                 write("uq.json", json)?,
-                write("uq.md", uq::report::to_markdown(&report))?,
+                write("uq.md", markdown.clone())?,
             ];
             uq::plot::sobol_bars(&dir.join("sobol.svg"), &report).map_err(CliError::failure)?;
             uq::plot::convergence(&dir.join("convergence.svg"), &report)
@@ -89,7 +85,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
             uq::plot::scatter(&dir.join("scatter.svg"), &report, &runs)
                 .map_err(CliError::failure)?;
             files.push(dir.join("scatter.svg"));
-            print!("{}", uq::report::to_markdown(&report));
+            print!("{markdown}");
             report_written(&files);
             Ok(())
         }

@@ -345,19 +345,16 @@ fn run_table(
         .zip(&structure.sections)
         .map(|(t, (name, from))| SectionUnit {
             unit: format!("{}_{name}", structure.name),
-            kind: match t.get("fidelity") {
-                Some(Value::String(w)) => w.clone(),
-                // An FMU section has the ports of the fidelity it names.
-                Some(Value::Table(f)) => match f.get("kind").and_then(Value::as_str) {
-                    Some("fmu") => f
-                        .get("ports")
-                        .and_then(Value::as_str)
-                        .unwrap_or("nonlinear"),
-                    kind => kind.unwrap_or("nonlinear"),
-                }
-                .to_owned(),
-                _ => "nonlinear".to_owned(),
-            },
+            // An FMU section has the ports of the fidelity it names.
+            kind: match written_kind(t) {
+                "fmu" => t
+                    .get("fidelity")
+                    .and_then(|f| f.get("ports"))
+                    .and_then(Value::as_str)
+                    .unwrap_or("nonlinear"),
+                kind => kind,
+            }
+            .to_owned(),
             from: *from,
         })
         .collect();
@@ -463,7 +460,14 @@ fn rows_of(
             let errors: Vec<(String, f64)> = names
                 .iter()
                 .enumerate()
-                .map(|(i, n)| ((*n).to_owned(), epsilon(o, reference, i)))
+                .map(|(i, n)| {
+                    let e = if task.is_none() {
+                        0.0
+                    } else {
+                        epsilon(o, reference, i)
+                    };
+                    ((*n).to_owned(), e)
+                })
                 .collect();
             let worst = errors.iter().map(|e| e.1).fold(0.0f64, |a, e| {
                 if e.is_nan() || a.is_nan() {
@@ -475,7 +479,7 @@ fn rows_of(
             FidelityRow {
                 combination: combination_of(structure, table, task.as_deref()),
                 reference: task.is_none(),
-                worst_error: if task.is_none() { 0.0 } else { worst },
+                worst_error: worst,
                 errors,
                 cost_per_simulated_second: o.cost,
                 speed_up: reference.cost / o.cost,
@@ -511,9 +515,6 @@ fn rows_of(
 
 /// epsilon of quantity `i` of run `o` against the reference, at the run's times.
 fn epsilon(o: &Outcome, reference: &Outcome, i: usize) -> f64 {
-    if std::ptr::eq(o, reference) {
-        return 0.0;
-    }
     let (Some(x), Some(r)) = (o.series.get(i), reference.series.get(i)) else {
         return f64::NAN;
     };
@@ -562,19 +563,23 @@ fn combination_of(
 
 /// A section's fidelity as the scene writes it, in the command line's form.
 fn scene_choice(t: &Table) -> String {
-    let (kind, elements) = match t.get("fidelity") {
-        Some(Value::String(w)) => (w.clone(), t.get("elements")),
-        Some(Value::Table(f)) => (
-            f.get("kind")
-                .and_then(Value::as_str)
-                .unwrap_or("nonlinear")
-                .to_owned(),
-            f.get("elements").or(t.get("elements")),
-        ),
-        _ => ("nonlinear".to_owned(), t.get("elements")),
-    };
+    let kind = written_kind(t);
+    let elements = t
+        .get("fidelity")
+        .and_then(|f| f.get("elements"))
+        .or(t.get("elements"));
     match elements.and_then(Value::as_integer) {
         Some(n) => format!("{kind}:{n}"),
-        None => kind,
+        None => kind.to_owned(),
+    }
+}
+
+/// A section's fidelity as written: a name, or a table's `kind` (default
+/// nonlinear).
+fn written_kind(t: &Table) -> &str {
+    match t.get("fidelity") {
+        Some(Value::String(w)) => w,
+        Some(Value::Table(f)) => f.get("kind").and_then(Value::as_str).unwrap_or("nonlinear"),
+        _ => "nonlinear",
     }
 }

@@ -53,7 +53,6 @@ pub fn signals(sections: &[SectionUnit], features: Features) -> Vec<String> {
             signals.push(format!("{}.overbend_moment", s.unit));
         }
     }
-    signals.dedup();
     signals
 }
 

@@ -14,6 +14,7 @@ use crate::study::setting::Setting;
 use serde::Serialize;
 use slender_scene::Scene;
 use slender_scene::spec::UncertaintySpec;
+use slender_uq::basis::Family;
 use slender_uq::bootstrap::{Intervals, intervals};
 use slender_uq::design::{double, latin_hypercube};
 use slender_uq::pce::{Settings, fit};
@@ -252,27 +253,24 @@ fn standard(spec: &UncertaintySpec, runs: &[&Run]) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// Mean and sd of output `k` from each nested design: the first `samples`
-/// runs, twice as many, ... up to all of them (like seed 000's Fig. 9).
+/// Mean and sd of output `k` from each nested design smaller than the whole:
+/// the first `samples` runs, twice as many, ... (like seed 000's Fig. 9; the
+/// caller adds the whole design's, already fitted).
 fn convergence(
     spec: &UncertaintySpec,
+    families: &[Family],
     runs: &[Run],
     k: usize,
 ) -> Result<Vec<(usize, f64, f64)>, String> {
-    let families: Vec<_> = spec
-        .inputs
-        .iter()
-        .map(|i| i.distribution.family())
-        .collect();
     let mut out = Vec::new();
     let mut size = spec.samples;
-    while size <= runs.len() {
+    while size < runs.len() {
         let ok: Vec<&Run> = runs[..size]
             .iter()
             .filter(|r| r.1.iter().all(|v| v.is_finite()))
             .collect();
         let y: Vec<f64> = ok.iter().map(|r| r.1[k]).collect();
-        let pce = fit(&families, &standard(spec, &ok), &y, Settings::default())
+        let pce = fit(families, &standard(spec, &ok), &y, Settings::default())
             .map_err(|e| format!("{} on {size} runs: {e}", spec.outputs[k]))?;
         out.push((size, pce.mean(), pce.variance().sqrt()));
         size *= 2;
@@ -310,7 +308,10 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
             degree: pce.degree,
             terms: pce.coefficients.len(),
             loo_error: pce.loo_error,
-            convergence: convergence(spec, runs, k)?,
+            convergence: convergence(spec, &families, runs, k)?
+                .into_iter()
+                .chain([(runs.len(), pce.mean(), pce.variance().sqrt())])
+                .collect(),
         });
     }
     Ok(UqReport {
