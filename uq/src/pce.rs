@@ -271,13 +271,13 @@ fn lars_path(psi: &DMatrix<f64>, y: &[f64]) -> Vec<usize> {
     // fits are too close to interpolation for their LOO error to mean much, and
     // each step costs O(n k^2).
     let limit = (m - 1).min(n / 3);
-    let c0 = x.transpose() * &yc;
+    let c0 = x.tr_mul(&yc);
     let Some(first) = (0..m - 1).max_by(|&a, &b| c0[a].abs().total_cmp(&c0[b].abs())) else {
         return Vec::new();
     };
     let mut active = vec![first];
     while active.len() <= limit {
-        let c = x.transpose() * (&yc - &mu);
+        let c = x.tr_mul(&(&yc - &mu));
         let big_c = active.iter().map(|&j| c[j].abs()).fold(0.0, f64::max);
         if big_c <= 1e-14 * yc.norm() {
             break;
@@ -285,14 +285,14 @@ fn lars_path(psi: &DMatrix<f64>, y: &[f64]) -> Vec<usize> {
         let xa = DMatrix::from_fn(n, active.len(), |i, k| {
             x[(i, active[k])] * c[active[k]].signum()
         });
-        let Some(chol) = (xa.transpose() * &xa).cholesky() else {
+        let Some(chol) = xa.tr_mul(&xa).cholesky() else {
             active.pop();
             break;
         };
         let z = chol.solve(&DVector::from_element(active.len(), 1.0));
         let aa = 1.0 / z.sum().sqrt();
         let u = &xa * (z * aa);
-        let a = x.transpose() * &u;
+        let a = x.tr_mul(&u);
         let mut step = big_c / aa;
         let mut entering = None;
         for j in (0..m - 1).filter(|j| !active.contains(j)) {
@@ -327,7 +327,7 @@ fn ols_loo(psi: &DMatrix<f64>, columns: &[usize], y: &DVector<f64>) -> Option<(V
     {
         return None;
     }
-    let qty = q.transpose() * y;
+    let qty = q.tr_mul(y);
     let beta = r.solve_upper_triangular(&qty)?;
     let fitted = &a * &beta;
     let mean = y.mean();
