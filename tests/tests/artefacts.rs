@@ -17,6 +17,7 @@ fn params() -> ArtefactParams {
         delay: 0.0,
         hold_period: 0.0,
         loss_probability: 0.0,
+        loss_probability_per_second: 0.0,
         loss_duration_mean: 0.0,
         loss_duration_rate: 0.0,
         seed: 7,
@@ -25,14 +26,19 @@ fn params() -> ArtefactParams {
 
 /// Drives the unit with the ramp for `steps` steps; returns (t, output) pairs.
 fn ramp(p: ArtefactParams, steps: usize) -> (Vec<(f64, f64)>, Driver<Artefact>) {
+    ramp_at(p, steps, H)
+}
+
+/// The same at steps of `step` seconds.
+fn ramp_at(p: ArtefactParams, steps: usize, step: f64) -> (Vec<(f64, f64)>, Driver<Artefact>) {
     let mut a = Driver::new(Artefact::new(p).unwrap());
     a.set_inputs(&[0.0]).unwrap();
     a.initialize(Time::ZERO).unwrap();
-    let h = Time::from_secs(H).unwrap();
+    let h = Time::from_secs(step).unwrap();
     let mut out = Vec::with_capacity(steps);
     let mut y = [0.0];
     for k in 0..steps {
-        let t_end = (k + 1) as f64 * H;
+        let t_end = (k + 1) as f64 * step;
         a.set_inputs(&[t_end]).unwrap();
         a.do_step(h * k as i64, h).unwrap();
         a.outputs(&mut y).unwrap();
@@ -128,6 +134,42 @@ fn signal_losses_start_and_last_as_asked() {
     // While lost the value is frozen.
     let frozen = s.windows(2).filter(|w| w[1].1 == w[0].1).count() as u64;
     assert!(frozen >= lost_steps - losses);
+}
+
+#[test]
+fn a_loss_probability_per_second_starts_as_many_losses_whatever_the_step() {
+    // p = 0.5 per second: losses start as a Poisson process of rate -ln(1 - p)
+    // = ln 2 per second of signal, at 10 ms as at 1 ms steps.
+    let p = 0.5;
+    for (step, steps) in [(0.01, 400_000), (0.001, 4_000_000)] {
+        let (_, a) = ramp_at(
+            ArtefactParams {
+                loss_probability_per_second: p,
+                loss_duration_mean: 0.05,
+                ..params()
+            },
+            steps,
+            step,
+        );
+        let (lost_steps, losses) = a.loss_statistics();
+        // Each step not already lost is a trial, the one starting a loss too.
+        let trials = (steps as u64 - lost_steps + losses) as f64;
+        let q = 1.0 - (1.0 - p).powf(step);
+        let (expected, sd) = (q * trials, (trials * q * (1.0 - q)).sqrt());
+        eprintln!("step {step}: {losses} losses, expected {expected:.0} +- {sd:.0}");
+        assert!((losses as f64 - expected).abs() < 4.0 * sd);
+        // About ln 2 per second of signal at either step.
+        let per_second = losses as f64 / (trials * step);
+        assert!((per_second - std::f64::consts::LN_2).abs() < 0.1);
+    }
+    let both = ArtefactParams {
+        loss_probability: 0.01,
+        loss_probability_per_second: 0.5,
+        loss_duration_mean: 0.1,
+        ..params()
+    };
+    let why = Artefact::new(both).err().unwrap().to_string();
+    assert!(why.contains("not both"), "{why}");
 }
 
 #[test]

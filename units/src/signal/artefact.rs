@@ -50,6 +50,11 @@ pub struct ArtefactParams {
     /// Probability that a signal loss starts at a synchronisation step, in [0, 1).
     #[serde(default)]
     pub loss_probability: f64,
+    /// Or: probability that a signal loss starts within one second, in [0, 1);
+    /// a step of h seconds then starts one with probability 1 - (1 - p)^h, so
+    /// the loss rate does not depend on the synchronisation step.
+    #[serde(default)]
+    pub loss_probability_per_second: f64,
     /// Mean duration of a signal loss (s); durations are exponential. (Seed 000's
     /// zeta2 read as seconds: see docs/active-truncation.md.)
     #[serde(default)]
@@ -102,6 +107,44 @@ pub struct Artefact {
     delayed: Vec<f64>,
 }
 
+/// The signal-loss parameters: probabilities in [0, 1), one of per step or per
+/// second, and one duration reading when losses can start.
+fn check_losses(params: &ArtefactParams) -> Result<(), UnitError> {
+    require_non_negative("loss_duration_mean", params.loss_duration_mean)?;
+    if !(0.0..1.0).contains(&params.loss_probability) {
+        return Err(UnitError::parameter(
+            "loss_probability",
+            params.loss_probability,
+            "expected a value in [0, 1)",
+        ));
+    }
+    if !(0.0..1.0).contains(&params.loss_probability_per_second) {
+        return Err(UnitError::parameter(
+            "loss_probability_per_second",
+            params.loss_probability_per_second,
+            "expected a value in [0, 1)",
+        ));
+    }
+    if params.loss_probability > 0.0 && params.loss_probability_per_second > 0.0 {
+        return Err(UnitError::parameter(
+            "loss_probability_per_second",
+            params.loss_probability_per_second,
+            "expected loss_probability (per step) or loss_probability_per_second, not both",
+        ));
+    }
+    require_non_negative("loss_duration_rate", params.loss_duration_rate)?;
+    let readings = [params.loss_duration_mean, params.loss_duration_rate];
+    let losses = params.loss_probability + params.loss_probability_per_second > 0.0;
+    if losses && readings.iter().filter(|&&v| v > 0.0).count() != 1 {
+        return Err(UnitError::parameter(
+            "loss_duration_mean",
+            format!("{readings:?}"),
+            "expected one of loss_duration_mean (s) or loss_duration_rate (1/steps) > 0 when losses can start",
+        ));
+    }
+    Ok(())
+}
+
 impl Artefact {
     /// Builds the unit; fails with the first bad parameter.
     pub fn new(params: ArtefactParams) -> Result<Artefact, UnitError> {
@@ -123,23 +166,7 @@ impl Artefact {
         }
         require_non_negative("delay", params.delay)?;
         require_non_negative("hold_period", params.hold_period)?;
-        require_non_negative("loss_duration_mean", params.loss_duration_mean)?;
-        if !(0.0..1.0).contains(&params.loss_probability) {
-            return Err(UnitError::parameter(
-                "loss_probability",
-                params.loss_probability,
-                "expected a value in [0, 1)",
-            ));
-        }
-        require_non_negative("loss_duration_rate", params.loss_duration_rate)?;
-        let readings = [params.loss_duration_mean, params.loss_duration_rate];
-        if params.loss_probability > 0.0 && readings.iter().filter(|&&v| v > 0.0).count() != 1 {
-            return Err(UnitError::parameter(
-                "loss_duration_mean",
-                format!("{readings:?}"),
-                "expected one of loss_duration_mean (s) or loss_duration_rate (1/steps) > 0 when loss_probability > 0",
-            ));
-        }
+        check_losses(&params)?;
         let inputs = params
             .channels
             .iter()
@@ -276,9 +303,14 @@ impl Unit for Artefact {
         self.delayed_at(t_end);
         let p = &self.params;
         let s = &mut self.state;
-        if p.loss_probability > 0.0 && t_end >= s.lost_until {
+        let per_step = if p.loss_probability_per_second > 0.0 {
+            1.0 - (1.0 - p.loss_probability_per_second).powf(h.as_secs())
+        } else {
+            p.loss_probability
+        };
+        if per_step > 0.0 && t_end >= s.lost_until {
             let u: f64 = s.rng.random();
-            if u < p.loss_probability {
+            if u < per_step {
                 // Seconds (mean loss_duration_mean), or steps of this length
                 // (mean 1 / loss_duration_rate).
                 let (rate, seconds_per_unit) = if p.loss_duration_rate > 0.0 {
