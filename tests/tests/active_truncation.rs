@@ -8,6 +8,7 @@ use slender_tests::{Series, load, run};
 const SUBSTRUCTURED: &str = "examples/truncation_substructured.toml";
 const SIGNAL_LOSS: &str = "examples/truncation_signal_loss.toml";
 const TABLE2: &str = "examples/truncation_table2.toml";
+const FIG10: &str = "examples/truncation_fig10.toml";
 
 fn indicator(s: &Series, name: &str) -> (f64, f64) {
     let i = s
@@ -118,6 +119,52 @@ fn the_signal_loss_example_is_near_the_published_fidelity() {
     eprintln!("mean phi1 = {m1:.3} (published 1.30), phi2 = {m2:.3} (published 1.99)");
     assert!((m1 - 1.30).abs() < 0.25, "phi1 {m1}");
     assert!((m2 - 1.99).abs() < 0.35, "phi2 {m2}");
+}
+
+/// Fig. 10's scene with the artefacts' seeds and extra replacements: (phi1, phi2).
+fn fig10(seeds: (&str, &str), replacements: &[(&str, &str)]) -> (f64, f64) {
+    let seeds = [
+        ("seed = 21", format!("seed = {}", seeds.0)),
+        ("seed = 22", format!("seed = {}", seeds.1)),
+    ];
+    let all: Vec<(&str, &str)> = seeds
+        .iter()
+        .map(|(a, b)| (*a, b.as_str()))
+        .chain(replacements.iter().copied())
+        .collect();
+    let s = run(&variant(FIG10, &all));
+    assert!(s.error.is_none(), "{:?}", s.error);
+    (indicator(&s, "phi1").0, indicator(&s, "phi2").0)
+}
+
+#[test]
+fn the_fig10_realisation_gives_the_published_phi1_with_delays_at_full_scale() {
+    // Seed 000 Fig. 10: phi1 = 1.33 (the median of Table 2's phi1). Its losses
+    // and noise are random: two seed pairs differ by about 0.01, so 0.05 (0.4 of
+    // the paper's sd of phi1 over Table 2, 0.13) is the tolerance.
+    let runs = [fig10(("21", "22"), &[]), fig10(("1", "2"), &[])];
+    for (p1, p2) in runs {
+        eprintln!("Fig. 10: phi1 = {p1:.3} (published 1.33), phi2 = {p2:.3} (published 1.62)");
+        assert!((p1 - 1.33).abs() < 0.05, "phi1 {p1}");
+    }
+    // The caption's delays (2.6 ms, 1.3 ms) read in model scale (x 60^1/2 at
+    // full scale) lose that agreement: this is why the scene reads them at full
+    // scale, as Table 2's U(0, 5 dt).
+    let model_scale = [
+        ("delay = 0.0026 ", "delay = 0.02014 "),
+        ("delay = 0.0013 ", "delay = 0.01007 "),
+    ];
+    let (p1, _) = fig10(("21", "22"), &model_scale);
+    eprintln!("delays read in model scale: phi1 = {p1:.3}");
+    assert!((p1 - 1.33).abs() > 0.2, "phi1 {p1}");
+}
+
+#[test]
+#[ignore = "known gap: Fig. 10's phi2 is 1.98 here against the published 1.62 (phi1 agrees); see docs/active-truncation.md"]
+fn the_fig10_realisation_gives_the_published_phi2() {
+    let (_, p2) = fig10(("21", "22"), &[]);
+    // Within the paper's sd of phi2 over Table 2 (0.17).
+    assert!((p2 - 1.62).abs() < 0.17, "phi2 {p2}");
 }
 
 #[test]
