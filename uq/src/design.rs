@@ -5,7 +5,10 @@
 //! `candidates` random ones from a seed and keeps the one whose closest pair of
 //! points is farthest apart (maximin: space filling); [`double`] adds n points
 //! to an n-point LHS so that the 2n points are again an LHS, keeping the first n
-//! (the runs already done stay useful when a study grows).
+//! (the runs already done stay useful when a study grows). [`sobol`] takes the
+//! first n points of a seeded Owen-scrambled Sobol' sequence instead: nested by
+//! construction (a larger design starts with the smaller one), and its first 2^m
+//! points put one point in each of the 2^m strata of every projection.
 
 use crate::UqError;
 use rand::{Rng, SeedableRng, seq::SliceRandom};
@@ -96,6 +99,32 @@ pub fn double(design: &Design, seed: u64) -> Result<Design, UqError> {
     Ok(out)
 }
 
+/// Most points of a Sobol' design (the sequence's limit).
+pub const SOBOL_MAX_POINTS: usize = 1 << 16;
+/// Most dimensions of a Sobol' design.
+pub const SOBOL_MAX_DIMS: usize = sobol_burley::NUM_DIMENSIONS as usize;
+
+/// The first `n` points of the Owen-scrambled Sobol' sequence `seed` in `dims`
+/// dimensions (Burley's hash-based scrambling, Joe-Kuo direction numbers).
+pub fn sobol(n: usize, dims: usize, seed: u64) -> Result<Design, UqError> {
+    if !(2..=SOBOL_MAX_POINTS).contains(&n) || !(1..=SOBOL_MAX_DIMS).contains(&dims) {
+        return Err(UqError::input(
+            "sobol design",
+            format!(
+                "{n} points in {dims} dimensions: expected 2 to {SOBOL_MAX_POINTS} points in 1 to {SOBOL_MAX_DIMS} dimensions"
+            ),
+        ));
+    }
+    let seed = (seed ^ (seed >> 32)) as u32;
+    Ok((0..n as u32)
+        .map(|i| {
+            (0..dims as u32)
+                .map(|j| f64::from(sobol_burley::sample(i, j, seed)))
+                .collect()
+        })
+        .collect())
+}
+
 /// Whether every one-dimensional projection has one point per stratum; the
 /// error names the first dimension and stratum that does not.
 pub fn check_lhs(design: &Design) -> Result<(), String> {
@@ -143,5 +172,38 @@ mod tests {
         let bad = vec![vec![0.1], vec![0.2]];
         assert!(check_lhs(&bad).unwrap_err().contains("stratum 0"));
         assert!(double(&bad, 1).is_err());
+    }
+
+    #[test]
+    fn sobol_designs_are_nested_and_their_power_of_two_prefixes_stratified() {
+        let d = sobol(256, 12, 3).unwrap();
+        for m in 1..=8 {
+            check_lhs(&d[..1 << m].to_vec()).unwrap();
+        }
+        assert_eq!(&sobol(64, 12, 3).unwrap()[..], &d[..64]);
+        assert_ne!(sobol(64, 12, 4).unwrap(), d[..64]);
+        // A quadrature rule: the mean of prod(2 x_j) over [0, 1)^4 is 1. Over
+        // ten seeds, 256 Sobol' points miss it by 0.008 on average, random
+        // LHS by 0.056 (quasi-Monte Carlo converges faster than 1 / sqrt(n)).
+        let error = |d: &Design| {
+            let sum: f64 = d
+                .iter()
+                .map(|p| p[..4].iter().map(|x| 2.0 * x).product::<f64>())
+                .sum();
+            (sum / d.len() as f64 - 1.0).abs()
+        };
+        let (mut qmc, mut lhs) = (0.0, 0.0);
+        for seed in 0..10 {
+            qmc += error(&sobol(256, 4, seed).unwrap()) / 10.0;
+            lhs += error(&latin_hypercube(256, 4, 1, seed).unwrap()) / 10.0;
+        }
+        assert!(qmc < lhs / 3.0, "Sobol' {qmc}, LHS {lhs}");
+        assert!(
+            sobol(10, 257, 1)
+                .unwrap_err()
+                .to_string()
+                .contains("256 dimensions")
+        );
+        assert!(sobol(1 << 17, 2, 1).is_err());
     }
 }

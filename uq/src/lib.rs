@@ -2,17 +2,20 @@
 //!
 //! - [`design`]: Latin hypercube designs on the unit cube, seeded and optimised
 //!   for space filling (maximin), and their nested doubling (208 -> 416 -> 832
-//!   keeps the earlier runs);
+//!   keeps the earlier runs), and seeded Owen-scrambled Sobol' sequences;
 //! - [`basis`]: marginal distributions and their orthonormal polynomials
 //!   (Legendre for uniform, Hermite for normal inputs);
 //! - [`pce`]: sparse polynomial chaos: hyperbolic truncation, hybrid least-angle
 //!   regression with the leave-one-out error choosing the basis and the degree,
 //!   and the mean, variance and first-order and total Sobol' indices from the
-//!   coefficients.
+//!   coefficients;
+//! - [`distribution`]: an expansion's output distribution (quantiles, density)
+//!   from the surrogate on a large Sobol' sample.
 
 pub mod basis;
 pub mod bootstrap;
 pub mod design;
+pub mod distribution;
 pub mod marginal;
 pub mod pce;
 

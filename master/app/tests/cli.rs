@@ -247,6 +247,19 @@ fn uq_shards_merged_give_the_local_files_byte_for_byte() {
         &common[..],
     ]
     .concat());
+    for figure in [
+        "sobol.svg",
+        "convergence.svg",
+        "distribution.svg",
+        "scatter.svg",
+    ] {
+        assert!(local.join(figure).exists(), "{figure}");
+    }
+    let summary = std::fs::read_to_string(local.join("uq.md")).unwrap();
+    assert!(
+        summary.contains("maximin Latin hypercube") && summary.contains("90 % of outcomes in"),
+        "{summary}"
+    );
     for file in ["runs.csv", "uq.json", "uq.md"] {
         let a = std::fs::read(local.join(file)).unwrap();
         let b = std::fs::read(sharded.join(file)).unwrap();

@@ -32,9 +32,12 @@ pub struct SceneSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct UncertaintySpec {
-    /// Points of the first Latin hypercube; a larger `--samples` doubles it
-    /// (keeping its runs) as many times as it takes.
+    /// Points of the first design; a larger `--samples` doubles it (keeping its
+    /// runs) as many times as it takes.
     pub samples: usize,
+    /// How the design's points are placed.
+    #[serde(default)]
+    pub design: DesignKind,
     /// Seed of the designs.
     #[serde(default = "first_seed")]
     pub seed: u64,
@@ -44,6 +47,18 @@ pub struct UncertaintySpec {
     #[serde(default)]
     pub scale: String,
     pub inputs: Vec<UncertainInput>,
+}
+
+/// `uncertainty.design`: how the points of a study are placed in [0, 1)^d
+/// before the inputs' inverse CDFs.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum DesignKind {
+    /// Maximin Latin hypercube, doubled by splitting its strata.
+    #[default]
+    Lhs,
+    /// The first points of a seeded Owen-scrambled Sobol' sequence.
+    Sobol,
 }
 
 fn first_seed() -> u64 {

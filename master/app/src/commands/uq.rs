@@ -19,7 +19,8 @@ pub enum Mode {
 
 /// Runs the command. A whole study writes runs.csv, uq.json, uq.md,
 /// sobol.svg (like seed 000's Fig. 11), convergence.svg (Fig. 9's moments
-/// against the design size) and scatter.svg (like its Fig. 8).
+/// against the design size), distribution.svg (Fig. 9's distribution: the runs'
+/// histogram and the expansion's density) and scatter.svg (like its Fig. 8).
 pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Result<(), CliError> {
     let (dir, scene) = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
     let spec =
@@ -78,13 +79,22 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                 write("uq.json", json)?,
                 write("uq.md", markdown.clone())?,
             ];
-            uq::plot::sobol_bars(&dir.join("sobol.svg"), &report).map_err(CliError::failure)?;
-            uq::plot::convergence(&dir.join("convergence.svg"), &report)
+            let figure = |name: &str| dir.join(name);
+            uq::plot::sobol_bars(&figure("sobol.svg"), &report).map_err(CliError::failure)?;
+            uq::plot::convergence(&figure("convergence.svg"), &report)
                 .map_err(CliError::failure)?;
-            files.extend([dir.join("sobol.svg"), dir.join("convergence.svg")]);
-            uq::plot::scatter(&dir.join("scatter.svg"), &report, &runs)
+            uq::plot::distribution(&figure("distribution.svg"), &report, &runs)
                 .map_err(CliError::failure)?;
-            files.push(dir.join("scatter.svg"));
+            uq::plot::scatter(&figure("scatter.svg"), &report, &runs).map_err(CliError::failure)?;
+            files.extend(
+                [
+                    "sobol.svg",
+                    "convergence.svg",
+                    "distribution.svg",
+                    "scatter.svg",
+                ]
+                .map(figure),
+            );
             print!("{markdown}");
             report_written(&files);
             Ok(())

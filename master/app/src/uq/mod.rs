@@ -13,10 +13,11 @@ use crate::run::{RunOptions, run_scene};
 use crate::study::setting::Setting;
 use serde::Serialize;
 use slender_scene::Scene;
-use slender_scene::spec::UncertaintySpec;
+use slender_scene::spec::{DesignKind, UncertaintySpec};
 use slender_uq::basis::Family;
 use slender_uq::bootstrap::{Intervals, intervals};
-use slender_uq::design::{double, latin_hypercube};
+use slender_uq::design::{double, latin_hypercube, sobol};
+use slender_uq::distribution::{Distribution, distribution};
 use slender_uq::pce::{Settings, fit};
 use std::path::Path;
 use std::sync::Mutex;
@@ -49,6 +50,8 @@ pub struct OutputResult {
     /// (design size, mean, sd) of the expansion fitted on each nested design
     /// (the first `samples` points, then twice as many, ...), the whole last.
     pub convergence: Vec<(usize, f64, f64)>,
+    /// The output's distribution from the expansion (16 384 Sobol' points).
+    pub distribution: Distribution,
 }
 
 /// A study's result.
@@ -56,6 +59,8 @@ pub struct OutputResult {
 pub struct UqReport {
     pub scene: String,
     pub samples: usize,
+    /// How the points were placed, in words.
+    pub design: String,
     pub inputs: Vec<String>,
     pub failed_runs: usize,
     /// Each failed run's design index and reason.
@@ -158,7 +163,8 @@ fn shard_rows(order: &[usize], runs: Vec<Run>) -> Vec<Run> {
     all
 }
 
-/// The design of `samples` points: the first LHS doubled as often as it takes.
+/// The design of `samples` points: the first design doubled as often as it
+/// takes (a Latin hypercube splits its strata; a Sobol' sequence goes on).
 fn design_of(spec: &UncertaintySpec, samples: usize) -> Result<Vec<Vec<f64>>, String> {
     let mut n = spec.samples;
     let mut doublings = 0;
@@ -172,8 +178,12 @@ fn design_of(spec: &UncertaintySpec, samples: usize) -> Result<Vec<Vec<f64>>, St
             spec.samples
         ));
     }
-    let mut design = latin_hypercube(spec.samples, spec.inputs.len(), 20, spec.seed)
-        .map_err(|e| e.to_string())?;
+    let dims = spec.inputs.len();
+    if spec.design == DesignKind::Sobol {
+        return sobol(samples, dims, spec.seed).map_err(|e| e.to_string());
+    }
+    let mut design =
+        latin_hypercube(spec.samples, dims, 20, spec.seed).map_err(|e| e.to_string())?;
     for k in 0..doublings {
         design =
             double(&design, spec.seed.wrapping_add(1 + k as u64)).map_err(|e| e.to_string())?;
@@ -298,6 +308,9 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
         let ci =
             intervals(&pce, (&xi, &y), 200, 0.95, spec.seed).map_err(|e| format!("{name}: {e}"))?;
         let dims = families.len();
+        let marginals: Vec<_> = spec.inputs.iter().map(|i| i.distribution.clone()).collect();
+        let spread = distribution(&pce, &marginals, 1 << 14, 40, spec.seed)
+            .map_err(|e| format!("{name}: {e}"))?;
         outputs.push(OutputResult {
             name: name.clone(),
             mean: pce.mean(),
@@ -312,14 +325,54 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
                 .into_iter()
                 .chain([(runs.len(), pce.mean(), pce.variance().sqrt())])
                 .collect(),
+            distribution: spread,
         });
     }
     Ok(UqReport {
         scene: path.display().to_string(),
         samples: runs.len(),
+        design: match spec.design {
+            DesignKind::Lhs => "maximin Latin hypercube".into(),
+            DesignKind::Sobol => "Owen-scrambled Sobol' sequence".into(),
+        },
         inputs: spec.inputs.iter().map(|i| i.name.clone()).collect(),
         failed_runs: runs.len() - ok.len(),
         failures: Vec::new(),
         outputs,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(design: &str) -> UncertaintySpec {
+        toml::from_str(&format!(
+            r#"samples = 8
+design = "{design}"
+outputs = ["phi1"]
+inputs = [
+  {{ name = "a", key = "units.x.parameters.a", distribution = {{ kind = "uniform", low = 0.0, high = 1.0 }} }},
+  {{ name = "b", key = "units.x.parameters.b", distribution = {{ kind = "uniform", low = 0.0, high = 1.0 }} }},
+]"#
+        ))
+        .unwrap()
+    }
+
+    #[test]
+    fn both_designs_grow_keeping_their_points_and_refuse_other_sizes() {
+        for kind in ["lhs", "sobol"] {
+            let s = spec(kind);
+            let small = design_of(&s, 8).unwrap();
+            let large = design_of(&s, 32).unwrap();
+            assert_eq!(&large[..8], &small[..], "{kind}");
+            slender_uq::design::check_lhs(&large).unwrap();
+            assert!(design_of(&s, 24).unwrap_err().contains("power of two"));
+        }
+        assert_ne!(design_of(&spec("lhs"), 8), design_of(&spec("sobol"), 8));
+        let bad = toml::from_str::<UncertaintySpec>(
+            "samples = 8\ndesign = \"halton\"\noutputs = []\ninputs = []",
+        );
+        assert!(bad.unwrap_err().to_string().contains("lhs"));
+    }
 }

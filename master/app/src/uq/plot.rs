@@ -1,6 +1,7 @@
 //! A UQ study's figures: Sobol' indices per input as bars with their bootstrap
-//! intervals (like seed 000's Fig. 11) and each output against each input over
-//! the runs (like Fig. 8).
+//! intervals (like seed 000's Fig. 11), each output against each input over
+//! the runs (like Fig. 8), the moments against the design size and the outputs'
+//! distribution (Fig. 9).
 
 use super::{Run, UqReport};
 use crate::plot::PlotError;
@@ -183,6 +184,85 @@ pub fn convergence(path: &Path, report: &UqReport) -> Result<(), PlotError> {
                 .map_err(|e| fail(&e))?;
             chart
                 .draw_series(series.iter().map(|&p| Circle::new(p, 4, colour.filled())))
+                .map_err(|e| fail(&e))?;
+        }
+    }
+    root.present().map_err(|e| fail(&e))
+}
+
+/// Each output's distribution: the runs' histogram (bars) and the expansion's
+/// density (line), with the 5 %, 50 % and 95 % quantiles (Fig. 9's left half).
+pub fn distribution(path: &Path, report: &UqReport, runs: &[Run]) -> Result<(), PlotError> {
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
+    let panels = report.outputs.len().max(1);
+    let root = SVGBackend::new(path, (800, 280 * panels as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    for (k, (area, o)) in root
+        .split_evenly((panels, 1))
+        .iter()
+        .zip(&report.outputs)
+        .enumerate()
+    {
+        let d = &o.distribution;
+        let bins = d.density.len();
+        let width = (d.upper - d.edges[0]) / bins as f64;
+        let values: Vec<f64> = runs
+            .iter()
+            .map(|r| r.1[k])
+            .filter(|v| v.is_finite())
+            .collect();
+        let (lo, hi) = values
+            .iter()
+            .fold((d.edges[0], d.upper), |(a, b), &v| (a.min(v), b.max(v)));
+        let run_width = (hi - lo).max(1e-12) / 20.0;
+        let mut counts = [0usize; 20];
+        for v in &values {
+            counts[(((v - lo) / run_width) as usize).min(19)] += 1;
+        }
+        let run_density: Vec<f64> = counts
+            .iter()
+            .map(|&c| c as f64 / (values.len().max(1) as f64 * run_width))
+            .collect();
+        let top = d
+            .density
+            .iter()
+            .chain(&run_density)
+            .copied()
+            .fold(0.0, f64::max)
+            .max(1e-12);
+        let mut chart = ChartBuilder::on(area)
+            .caption(
+                format!("{}: runs (bars) and the expansion's density (line)", o.name),
+                ("sans-serif", 16),
+            )
+            .margin(10)
+            .x_label_area_size(30)
+            .y_label_area_size(50)
+            .build_cartesian_2d(lo..hi, 0.0..1.1 * top)
+            .map_err(|e| fail(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc(o.name.as_str())
+            .y_desc("density")
+            .draw()
+            .map_err(|e| fail(&e))?;
+        chart
+            .draw_series(run_density.iter().enumerate().map(|(b, &p)| {
+                let a = lo + b as f64 * run_width;
+                Rectangle::new([(a, 0.0), (a + run_width, p)], BLUE.mix(0.3).filled())
+            }))
+            .map_err(|e| fail(&e))?;
+        let line = d
+            .edges
+            .iter()
+            .zip(&d.density)
+            .map(|(&a, &p)| (a + 0.5 * width, p));
+        chart
+            .draw_series(LineSeries::new(line, RED.stroke_width(2)))
+            .map_err(|e| fail(&e))?;
+        for q in d.quantiles {
+            chart
+                .draw_series([PathElement::new(vec![(q, 0.0), (q, 1.1 * top)], BLACK)])
                 .map_err(|e| fail(&e))?;
         }
     }

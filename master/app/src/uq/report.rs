@@ -49,8 +49,8 @@ pub fn read_runs(text: &str, inputs: usize, outputs: usize) -> Vec<Run> {
 /// The expansions as Markdown: moments, indices with intervals, the dominant inputs.
 pub fn to_markdown(report: &UqReport) -> String {
     let mut out = format!(
-        "UQ study of `{}`: {} runs ({} failed, left out); sparse PCE per output, 95 % bootstrap intervals.\n",
-        report.scene, report.samples, report.failed_runs
+        "UQ study of `{}`: {} runs of a {} ({} failed, left out); sparse PCE per output, 95 % bootstrap intervals.\n",
+        report.scene, report.samples, report.design, report.failed_runs
     );
     for (k, why) in report.failures.iter().take(5) {
         out += &format!("- run {k} failed: {}\n", why.replace('\n', " "));
@@ -86,6 +86,11 @@ pub fn to_markdown(report: &UqReport) -> String {
             .map(|(n, m, sd)| format!("{n} runs: E = {m:.4}, sd = {sd:.4}"))
             .collect();
         out += &format!("\nNested designs: {}.\n", steps.join("; "));
+        let [q05, q50, q95] = o.distribution.quantiles;
+        out += &format!(
+            "\nDistribution (the expansion on {} Sobol' points): median {q50:.4}, 90 % of outcomes in [{q05:.4}, {q95:.4}].\n",
+            o.distribution.samples
+        );
         let mut ranked: Vec<usize> = (0..report.inputs.len()).collect();
         ranked.sort_by(|&a, &b| o.total[b].total_cmp(&o.total[a]));
         let top: Vec<String> = ranked
