@@ -4,16 +4,10 @@
 //! vibration (implicit and explicit) and the critical step of central differences.
 
 use slender_tests::published;
-use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
+use slender_tests::seed002::{cable as seed002_cable, frame as seed002_frame, section};
+use slender_units::nonlinear::NonlinearSection;
 use slender_units::{Driver, Time};
 use std::f64::consts::PI;
-
-fn section(text: &str) -> Driver<NonlinearSection> {
-    let params: NonlinearParams = toml::from_str(text).expect("parameters parse");
-    let mut driver = Driver::new(NonlinearSection::new(params).expect("valid parameters"));
-    driver.initialize(Time::ZERO).expect("initialize");
-    driver
-}
 
 fn floats(table: &toml::Value, key: &str) -> Vec<f64> {
     table[key]
@@ -27,46 +21,6 @@ fn floats(table: &toml::Value, key: &str) -> Vec<f64> {
 fn omegas(driver: &Driver<NonlinearSection>, count: usize) -> Vec<f64> {
     let modes = driver.modes(count).expect("modes");
     modes.modes.iter().map(|m| 2.0 * PI / m.period).collect()
-}
-
-/// Seed 002's steel section: E = 210 GPa, D = 50 mm, exact A, rho = 7800.
-fn steel() -> String {
-    let (e, d, rho) = (210e9, 0.05, 7800.0);
-    let area = PI * d * d / 4.0;
-    let inertia = PI * d.powi(4) / 64.0;
-    format!(
-        "axial_stiffness = {}, bending_stiffness = {}, mass_per_length = {}",
-        e * area,
-        e * inertia,
-        rho * area
-    )
-}
-
-fn seed002_cable(extra: &str) -> String {
-    format!(
-        r#"
-formulation = "seed002"
-segments = [{{ length = 20.0, elements = 20, {} }}]
-ends.start = {{ kind = "pinned" }}
-ends.end = {{ kind = "pinned" }}
-{extra}
-"#,
-        steel()
-    )
-}
-
-fn seed002_frame(extra: &str) -> String {
-    format!(
-        r#"
-formulation = "seed002"
-segments = [{{ length = 10.0, angle = 90.0, elements = 20, {s} }}, {{ length = 10.0, elements = 20, {s} }}]
-ends.start = {{ kind = "pinned" }}
-ends.end = {{ kind = "pinned" }}
-supports = [{{ at = 10.0, x = true }}]
-{extra}
-"#,
-        s = steel()
-    )
 }
 
 fn assert_close(what: &str, got: &[f64], want: &[f64], relative: f64) {

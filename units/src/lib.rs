@@ -17,6 +17,7 @@ pub mod contract;
 pub mod integrators;
 pub mod nonlinear;
 pub mod numerics;
+pub mod reduced;
 pub mod signal;
 pub mod span;
 pub mod static_section;

@@ -323,6 +323,30 @@ impl Element {
         self.rotated_to_global(&fl, &kl, tangent)
     }
 
+    /// Seed 002's restoring force term by term (P2 eqs. 55-57), global element
+    /// DOFs: `[K0 b, K1(a) b, K2(a, b) c]`, so that the internal force is
+    /// g(v) = K0 v + K1(v) v + K2(v, v) v; with G = N_w'^T N_w',
+    /// K1(a) b = int EA / 2 (B_eps^T a^T G b + 2 G a B_eps b) and
+    /// K2(a, b) c = int EA / 2 G a b^T G c (exact by five-point Gauss).
+    pub fn seed002_terms(&self, a: &[f64; 6], b: &[f64; 6], c: &[f64; 6]) -> [[f64; 6]; 3] {
+        let (la, lb, lc) = (self.local_dofs(a), self.local_dofs(b), self.local_dofs(c));
+        let dot = |row: &[f64; 6], v: &[f64; 6]| row.iter().zip(v).map(|(x, y)| x * y).sum::<f64>();
+        let mut local = [[0.0; 6]; 3];
+        for &(xi, weight) in &GAUSS5 {
+            let w = weight * self.length;
+            let [du, dw, ddw] = self.derivative_rows(xi);
+            let (ub, wb, kb) = (dot(&du, &lb), dot(&dw, &lb), dot(&ddw, &lb));
+            let (wa, wc) = (dot(&dw, &la), dot(&dw, &lc));
+            for i in 0..6 {
+                local[0][i] += w * (self.ea * du[i] * ub + self.ei * ddw[i] * kb);
+                local[1][i] += w * 0.5 * self.ea * (du[i] * wa * wb + 2.0 * dw[i] * wa * ub);
+                local[2][i] += w * 0.5 * self.ea * dw[i] * wa * wb * wc;
+            }
+        }
+        let t = rotation(self.cos0, self.sin0);
+        local.map(|f| std::array::from_fn(|i| (0..6).map(|k| t[k][i] * f[k]).sum()))
+    }
+
     /// T^T f and T^T K T with T the element's rotation.
     fn rotated_to_global(&self, fl: &[f64; 6], kl: &[[f64; 6]; 6], tangent: bool) -> ElementForce {
         let t = rotation(self.cos0, self.sin0);

@@ -188,6 +188,20 @@ impl NonlinearSection {
         self.critical_step
     }
 
+    /// The mass matrix of the dynamics (kg, kg m^2), banded.
+    pub fn mass_matrix(&self) -> &SymmetricBand {
+        &self.m
+    }
+
+    /// The DOFs held by kinematic end and support conditions (prescribed or
+    /// coupled motion), in increasing order.
+    pub fn held_dofs(&self) -> Vec<usize> {
+        let mut held: Vec<usize> = self.held().map(|r| r.dof).collect();
+        held.sort_unstable();
+        held.dedup();
+        held
+    }
+
     /// The support reactions (N, N m) at the held DOFs (zero elsewhere).
     pub fn reactions(&self) -> &[f64] {
         &self.state.reaction

@@ -1,0 +1,195 @@
+//! Bases of a seed 002 section about its stress-free state (seed 002 ch. 4):
+//! linear normal modes, modal derivatives in three forms, the Taylor basis's
+//! columns and the linearly dependent derivatives among them.
+//!
+//! With modes phi_i (frequencies w_i, m_i = phi_i^T M phi_i) the derivatives are
+//! - static: K0 x = -(dK_T/ds_j) phi_i (inertia dropped);
+//! - modified (P2 eq. 36): the singular differentiated eigenproblem made
+//!   regular by the restriction x^T phi_i = 0, a bordered system with
+//!   K0 - w_i^2 M and right-hand side (m_i^-1 dk_i M - dK_T/ds_j) phi_i,
+//!   dk_i = phi_i^T (dK_T/ds_j) phi_i;
+//! - novel (P2 eq. 25, the Taylor expansion of the equations of motion):
+//!   [K0 - (w_j + w_k)^2 M] x_jk = [m_j^-1 (phi_j^T K1(phi_k) phi_j -
+//!   phi_j^T K1(phi_j) phi_k) M - K1(phi_k)] phi_j, x_jk the symmetric half sum
+//!   (dphi_k/ds_j + dphi_j/ds_k) / 2.
+//!
+//! The Taylor basis's higher columns follow s_H = [s1 s1, s2 s1, s2 s2, s3 s1,
+//! ...]: x_ii for i = j and 2 x_ij otherwise.
+
+use super::polynomial::CubicSection;
+use crate::contract::UnitError;
+use crate::numerics::bounded::svd;
+use crate::numerics::modal::lowest_modes;
+use nalgebra::{DMatrix, DVector};
+
+/// How mode shapes are scaled.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Normalisation {
+    /// phi^T M phi = 1.
+    Mass,
+    /// phi^T K0 phi = 1 (amplitude proportional to 1 / omega: the scaling under
+    /// which seed 002's cable shows its -3/8 and -1/4 dependence).
+    Stiffness,
+}
+
+/// Which modal derivatives.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Derivative {
+    Static,
+    Modified,
+    Novel,
+}
+
+/// The lowest linear normal modes about the stress-free state: circular
+/// frequencies (rad/s) and shapes on the free DOFs, each signed so that its
+/// first clearly nonzero entry is positive.
+#[derive(Clone, Debug)]
+pub struct LinearModes {
+    pub omegas: Vec<f64>,
+    pub shapes: Vec<DVector<f64>>,
+}
+
+/// The `count` lowest modes of K0 and M, scaled by `normalisation`.
+pub fn linear_modes(
+    section: &CubicSection,
+    count: usize,
+    normalisation: Normalisation,
+) -> Result<LinearModes, UnitError> {
+    let pairs = lowest_modes(&section.mass, &section.k0, count, "the section is not held")?;
+    let mut modes = LinearModes {
+        omegas: Vec::new(),
+        shapes: Vec::new(),
+    };
+    for (w2, phi) in pairs {
+        let scale = match normalisation {
+            Normalisation::Mass => 1.0,
+            Normalisation::Stiffness => 1.0 / w2.sqrt(),
+        };
+        let largest = phi.amax();
+        let sign = phi
+            .iter()
+            .find(|v| v.abs() > 1e-6 * largest)
+            .map_or(1.0, |v| v.signum());
+        modes.omegas.push(w2.sqrt());
+        modes.shapes.push(phi * (scale * sign));
+    }
+    Ok(modes)
+}
+
+/// The modal derivative of `kind` for the mode pair (i, j), 0-based: for
+/// `Novel` the symmetric x_ij with the equation written for (j, k) = (i, j).
+pub fn derivative(
+    section: &CubicSection,
+    modes: &LinearModes,
+    kind: Derivative,
+    i: usize,
+    j: usize,
+) -> Result<DVector<f64>, UnitError> {
+    let count = modes.shapes.len();
+    if i >= count || j >= count {
+        return Err(UnitError::parameter(
+            "mode pair",
+            format!("({i}, {j})"),
+            &format!("expected indices below the {count} modes"),
+        ));
+    }
+    let (phi_i, phi_j) = (&modes.shapes[i], &modes.shapes[j]);
+    let (w_i, w_j) = (modes.omegas[i], modes.omegas[j]);
+    let solve = |a: DMatrix<f64>, b: DVector<f64>| {
+        a.lu().solve(&b).ok_or_else(|| {
+            UnitError::Numerical(format!(
+                "modal derivative ({i}, {j}): the operator is singular (an internal resonance?)"
+            ))
+        })
+    };
+    match kind {
+        Derivative::Static => solve(
+            section.k0.clone(),
+            -section.tangent_derivative(phi_j, phi_i),
+        ),
+        Derivative::Modified => {
+            let n = section.size();
+            let dk_phi = section.tangent_derivative(phi_j, phi_i);
+            let m_i = (phi_i.transpose() * &section.mass * phi_i)[0];
+            let dk = phi_i.dot(&dk_phi);
+            let rhs_top = &section.mass * phi_i * (dk / m_i) - dk_phi;
+            let mut a = DMatrix::zeros(n + 1, n + 1);
+            a.view_mut((0, 0), (n, n))
+                .copy_from(&(&section.k0 - &section.mass * (w_i * w_i)));
+            a.view_mut((0, n), (n, 1)).copy_from(phi_i);
+            a.view_mut((n, 0), (1, n)).copy_from(&phi_i.transpose());
+            let mut b = DVector::zeros(n + 1);
+            b.rows_mut(0, n).copy_from(&rhs_top);
+            Ok(solve(a, b)?.rows(0, n).into_owned())
+        }
+        Derivative::Novel => {
+            // (j, k) of the equation = (i, j) here.
+            let (phi_a, phi_b, w_a, w_b) = (phi_i, phi_j, w_i, w_j);
+            let m_a = (phi_a.transpose() * &section.mass * phi_a)[0];
+            let k1_b_a = section.k1(phi_b, phi_a);
+            let coefficient = (phi_a.dot(&k1_b_a) - phi_a.dot(&section.k1(phi_a, phi_b))) / m_a;
+            let rhs = &section.mass * phi_a * coefficient - k1_b_a;
+            let w = w_a + w_b;
+            solve(&section.k0 - &section.mass * (w * w), rhs)
+        }
+    }
+}
+
+/// The Taylor basis's higher columns for the first `n` modes, in the order of
+/// s_H = [s1 s1, s2 s1, s2 s2, s3 s1, ...]: x_ii, and 2 x_ij for i > j.
+pub fn derivative_columns(
+    section: &CubicSection,
+    modes: &LinearModes,
+    kind: Derivative,
+    n: usize,
+) -> Result<Vec<DVector<f64>>, UnitError> {
+    let mut columns = Vec::with_capacity(n * (n + 1) / 2);
+    for i in 0..n {
+        for j in 0..=i {
+            let x = derivative(section, modes, kind, i, j)?;
+            columns.push(if i == j { x } else { x * 2.0 });
+        }
+    }
+    Ok(columns)
+}
+
+/// Linearly dependent columns by seed 002's SVD test, with every column scaled
+/// to unit norm: as many columns depend on the others as the matrix has
+/// singular values below `tolerance` (0 for an exact dependence, 1 for
+/// orthogonal columns). Which ones: removed one at a time from the columns at
+/// `from` on (the earlier ones, e.g. the modes, are kept), each time the one
+/// whose removal leaves the largest smallest singular value (the latest on a
+/// tie). Returns their indices, increasing.
+pub fn dependent_columns(
+    columns: &[DVector<f64>],
+    tolerance: f64,
+    from: usize,
+) -> Result<Vec<usize>, UnitError> {
+    let unit: Vec<DVector<f64>> = columns
+        .iter()
+        .map(|c| c / c.norm().max(f64::MIN_POSITIVE))
+        .collect();
+    let singular = |keep: &[usize]| -> Result<DVector<f64>, UnitError> {
+        let m = DMatrix::from_columns(&keep.iter().map(|&k| unit[k].clone()).collect::<Vec<_>>());
+        Ok(svd("dependent modal derivatives", m)?.singular_values)
+    };
+    let mut keep: Vec<usize> = (0..columns.len()).collect();
+    let count = singular(&keep)?.iter().filter(|&&s| s < tolerance).count();
+    let mut dependent = Vec::new();
+    for _ in 0..count {
+        let mut best: Option<(f64, usize)> = None;
+        for (position, &k) in keep.iter().enumerate().filter(|(_, k)| **k >= from) {
+            let mut rest = keep.clone();
+            rest.remove(position);
+            let smallest = singular(&rest)?.min();
+            if best.is_none_or(|(s, _)| smallest >= s) {
+                best = Some((smallest, k));
+            }
+        }
+        let Some((_, k)) = best else { break };
+        keep.retain(|&j| j != k);
+        dependent.push(k);
+    }
+    dependent.sort_unstable();
+    Ok(dependent)
+}

@@ -1,0 +1,14 @@
+//! Reduced-order models of a nonlinear section (seed 002, issue 15): bases about
+//! the stress-free state and the reduced restoring forces.
+//!
+//! - [`polynomial`]: a seed 002 section's restoring force as the cubic
+//!   polynomial g(V) = K0 V + K1(V) V + K2(V, V) V over its free DOFs, with the
+//!   mass matrix;
+//! - [`basis`]: linear normal modes (mass or stiffness normalised), modal
+//!   derivatives in seed 002's three forms (static, modified with the geometric
+//!   restriction, and the novel ones from the Taylor expansion of the equations
+//!   of motion), the Taylor basis's columns and the detection of linearly
+//!   dependent derivatives.
+
+pub mod basis;
+pub mod polynomial;
