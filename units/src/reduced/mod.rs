@@ -8,7 +8,13 @@
 //!   derivatives in seed 002's three forms (static, modified with the geometric
 //!   restriction, and the novel ones from the Taylor expansion of the equations
 //!   of motion), the Taylor basis's columns and the detection of linearly
-//!   dependent derivatives.
+//!   dependent derivatives;
+//! - [`lrbf`]: the reduced restoring force by global reduced tensors (seed
+//!   002's RBF on a linear basis), and its tangent;
+//! - [`system`]: a reduced section as a second-order system the shared
+//!   integrators step.
 
 pub mod basis;
+pub mod lrbf;
 pub mod polynomial;
+pub mod system;

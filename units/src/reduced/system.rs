@@ -1,0 +1,126 @@
+//! A reduced section as a [`SecondOrderSystem`]: m s'' + Q1 s + g~_nl(s) =
+//! Phi^T F(t) on the coordinates s of a basis Phi, so the shared integrators
+//! (central differences, HHT-alpha) step it as they step the full section.
+//! m = Phi^T M Phi and Q1 = Phi^T K0 Phi are dense (a full band); the nonlinear
+//! part and its tangent come from the reduced tensors.
+
+use super::lrbf::ReducedForce;
+use super::polynomial::CubicSection;
+use crate::integrators::hht::{Matrices, SecondOrderSystem, TangentScales};
+use crate::numerics::banded::SymmetricBand;
+use nalgebra::{DMatrix, DVector};
+
+/// The reduced model and its motion.
+pub struct ReducedSection {
+    basis: DMatrix<f64>,
+    force: ReducedForce,
+    mass: SymmetricBand,
+    stiffness: SymmetricBand,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+}
+
+/// A dense symmetric matrix as a full band.
+fn full_band(m: &DMatrix<f64>) -> SymmetricBand {
+    let n = m.nrows();
+    let mut band = SymmetricBand::zeros(n, n.saturating_sub(1));
+    for i in 0..n {
+        for j in 0..=i {
+            band.add(i, j, 0.5 * (m[(i, j)] + m[(j, i)]));
+        }
+    }
+    band
+}
+
+impl ReducedSection {
+    /// The reduction of `section` on the columns of `basis` (free DOFs x N),
+    /// at rest in its stress-free state.
+    pub fn new(section: &CubicSection, basis: DMatrix<f64>) -> ReducedSection {
+        let force = ReducedForce::new(section, &basis);
+        let n = basis.ncols();
+        ReducedSection {
+            mass: full_band(&(basis.transpose() * &section.mass * &basis)),
+            stiffness: full_band(&force.q1),
+            force,
+            basis,
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+            a: vec![0.0; n],
+        }
+    }
+
+    /// Number of coordinates N.
+    pub fn size(&self) -> usize {
+        self.q.len()
+    }
+
+    /// Phi^T f: a load on the free DOFs as the reduced load.
+    pub fn project(&self, f: &DVector<f64>) -> DVector<f64> {
+        self.basis.tr_mul(f)
+    }
+
+    /// The coordinates s at the current time.
+    pub fn coordinates(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// The displacements Phi s on the free DOFs.
+    pub fn displacements(&self) -> DVector<f64> {
+        &self.basis * DVector::from_column_slice(&self.q)
+    }
+
+    /// The reduced tensors.
+    pub fn reduced_force(&mut self) -> &mut ReducedForce {
+        &mut self.force
+    }
+}
+
+impl SecondOrderSystem for ReducedSection {
+    fn label(&self) -> &str {
+        "reduced section"
+    }
+
+    fn matrices(&self) -> Matrices<'_> {
+        Matrices {
+            mass: &self.mass,
+            damping: None,
+            stiffness: Some(&self.stiffness),
+        }
+    }
+
+    fn motion(&self) -> [&[f64]; 3] {
+        [&self.q, &self.v, &self.a]
+    }
+
+    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
+        self.q.copy_from_slice(q);
+        self.v.copy_from_slice(v);
+        self.a.copy_from_slice(a);
+    }
+
+    fn is_linear(&self) -> bool {
+        false
+    }
+
+    fn nonlinear_force(
+        &mut self,
+        q: &[f64],
+        _v: &[f64],
+        _t: f64,
+        tangent: Option<(&mut SymmetricBand, TangentScales)>,
+        force: &mut Vec<f64>,
+    ) {
+        force.resize(self.size(), 0.0);
+        self.force.nonlinear(q, force);
+        if let Some((band, scales)) = tangent {
+            // The tangent is symmetric: its lower triangle fills the band.
+            self.force
+                .add_nonlinear_tangent(q, scales.stiffness, |i, j, value| {
+                    if j <= i {
+                        band.add(i, j, value);
+                    }
+                });
+        }
+    }
+}
