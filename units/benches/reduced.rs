@@ -1,0 +1,119 @@
+//! Criterion benchmark of reduced sections (issue 15, seed 002's LRBF):
+//! - the cable: one simulated second of the full 59-DOF model by central
+//!   differences at 1e-4 s (seed 002's reference) against its 3 modes + 5
+//!   derivatives reduction at 3e-4 s (the source: 0.8 s against 129 s of CPU
+//!   for 10 s, MATLAB);
+//! - the real-time capacity at 1 ms: one central-difference step of an LRBF
+//!   model of N coordinates on the frame (118 DOFs; the first N linear modes,
+//!   since the cost depends on N only), N up to 70 (the source: 44 at 1 ms).
+//!
+//! Run with `cargo bench -p slender-units --bench reduced`.
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use nalgebra::{DMatrix, DVector};
+use slender_units::integrators::central_difference::CentralDifference;
+use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
+use slender_units::reduced::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
+use slender_units::reduced::polynomial::CubicSection;
+use slender_units::reduced::system::ReducedSection;
+use slender_units::{Driver, Time};
+use std::hint::black_box;
+
+const STEEL: &str =
+    "axial_stiffness = 4.1233e8, bending_stiffness = 6.4427e4, mass_per_length = 15.315";
+
+fn section(text: &str) -> Driver<NonlinearSection> {
+    let params: NonlinearParams = toml::from_str(text).expect("parameters");
+    let mut driver = Driver::new(NonlinearSection::new(params).expect("section"));
+    driver.initialize(Time::ZERO).expect("initialize");
+    driver
+}
+
+fn cable(extra: &str) -> String {
+    format!(
+        "formulation = \"seed002\"\nsegments = [{{ length = 20.0, elements = 20, {STEEL} }}]\nends.start = {{ kind = \"pinned\" }}\nends.end = {{ kind = \"pinned\" }}\n{extra}"
+    )
+}
+
+fn frame() -> String {
+    format!(
+        "formulation = \"seed002\"\nsegments = [{{ length = 10.0, angle = 90.0, elements = 20, {STEEL} }}, {{ length = 10.0, elements = 20, {STEEL} }}]\nends.start = {{ kind = \"pinned\" }}\nends.end = {{ kind = \"pinned\" }}\nsupports = [{{ at = 10.0, x = true }}]"
+    )
+}
+
+/// A reduced model with its load pattern and integrator, at rest.
+fn reduced(
+    c: &CubicSection,
+    basis: DMatrix<f64>,
+) -> (ReducedSection, DVector<f64>, CentralDifference) {
+    let system = ReducedSection::new(c, basis);
+    let load = system.project(&DVector::from_element(c.size(), 1.0));
+    (system, load, CentralDifference::new())
+}
+
+fn cable_second(c: &mut Criterion) {
+    let mut group = c.benchmark_group("cable_one_simulated_second");
+    group.sample_size(10);
+    let load = "loads = [{ from = 0.0, to = 10.0, z = { amplitude = 1.0, angular_frequency = 1.6004, sines = [{ amplitude = 3.0, angular_frequency = 6.4014 }] } }]";
+    let text = cable(&format!(
+        "integrator = {{ kind = \"central_difference\" }}\n{load}"
+    ));
+    group.bench_function("full_59_dofs_cd_1e-4", |b| {
+        b.iter(|| {
+            let mut driver = section(&text);
+            let h = Time::from_secs(1e-4).expect("step");
+            let mut t = Time::ZERO;
+            for _ in 0..10_000 {
+                driver.do_step(t, h).expect("step");
+                t += h;
+            }
+            black_box(driver.displacements()[31])
+        })
+    });
+    let cubic = CubicSection::new(&section(&cable(""))).expect("cubic");
+    let modes = linear_modes(&cubic, 3, Normalisation::Stiffness).expect("modes");
+    let mds = derivative_columns(&cubic, &modes, Derivative::Novel, 3).expect("derivatives");
+    let mut columns = modes.shapes.clone();
+    columns.extend([0, 1, 3, 4, 5].map(|k| mds[k].clone()));
+    let basis = DMatrix::from_columns(&columns);
+    group.bench_function("crd3_8_coordinates_cd_3e-4", |b| {
+        b.iter(|| {
+            let (mut system, load, mut cd) = reduced(&cubic, basis.clone());
+            let h = 3e-4;
+            for k in 0..3334 {
+                let t1 = (k + 1) as f64 * h;
+                let f = &load * ((1.6004 * t1).sin() + 3.0 * (6.4014 * t1).sin());
+                cd.step(&mut system, t1, h, f.as_slice(), &[])
+                    .expect("step");
+            }
+            black_box(system.coordinates()[0])
+        })
+    });
+    group.finish();
+}
+
+fn lrbf_step(c: &mut Criterion) {
+    let mut group = c.benchmark_group("lrbf_cd_step");
+    group.sample_size(20);
+    let cubic = CubicSection::new(&section(&frame())).expect("cubic");
+    let modes = linear_modes(&cubic, 70, Normalisation::Mass).expect("modes");
+    for n in [10, 20, 30, 40, 44, 50, 60, 70] {
+        let basis = DMatrix::from_columns(&modes.shapes[..n]);
+        let (mut system, load, mut cd) = reduced(&cubic, basis);
+        let h = 1e-5;
+        let mut k = 0usize;
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter(|| {
+                k += 1;
+                let t1 = k as f64 * h;
+                let f = &load * (3.0 * (6.401 * t1).sin());
+                cd.step(&mut system, t1, h, f.as_slice(), &[])
+                    .expect("step");
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, cable_second, lrbf_step);
+criterion_main!(benches);
