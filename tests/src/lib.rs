@@ -53,6 +53,7 @@ pub fn run(scene: &Scene) -> Series {
         &RunOptions {
             output_dir: None,
             progress: false,
+            realtime: false,
         },
     )
     .unwrap_or_else(|e| panic!("{e}"));

@@ -2,8 +2,7 @@
 //! reduced tensors against the projected full force and tangent; the simply
 //! supported cable (notes sec. 8.4) reduced to 3 modes and 5 novel derivatives
 //! (CRD3) against the full 59-DOF model, with the Taylor coordinate relations
-//! that only the novel derivatives satisfy; the frame (sec. 8.5) reduced to 6
-//! modes and 21 derivatives against the full 118-DOF model.
+//! that only the novel derivatives satisfy (the frame: `reduced_frame.rs`).
 
 use nalgebra::{DMatrix, DVector};
 use slender_tests::seed002::{cable, section};
@@ -11,7 +10,7 @@ use slender_units::integrators::central_difference::CentralDifference;
 use slender_units::numerics::banded::SymmetricBand;
 use slender_units::reduced::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
 use slender_units::reduced::polynomial::CubicSection;
-use slender_units::reduced::system::ReducedSection;
+use slender_units::reduced::system::{ReducedSection, RestoringForce};
 use slender_units::{Driver, Time};
 
 /// A deterministic pseudo-random vector of `n` entries in [-scale, scale].
@@ -49,7 +48,10 @@ fn reduced_tensors_are_the_projected_force_and_tangent_at_random_states() {
         let s = random(basis.ncols(), seed, 0.3);
         let v = &basis * &s;
         let projected = basis.tr_mul(&c.force(&v));
-        let force = reduced.reduced_force().force(s.as_slice());
+        let RestoringForce::Tensors(tensors) = reduced.restoring_force() else {
+            panic!("tensors")
+        };
+        let force = tensors.force(s.as_slice());
         let error = (&force - &projected).amax() / projected.amax();
         // The full tangent at V = Phi s from the section's own element.
         let mut band = SymmetricBand::zeros(model.dofs(), 5);
@@ -57,7 +59,7 @@ fn reduced_tensors_are_the_projected_force_and_tangent_at_random_states() {
         model.add_internal_force(&c.expand(&v), 1.0, Some((&mut band, 1.0)), &mut sink);
         let kt = DMatrix::from_fn(free.len(), free.len(), |i, j| band.get(free[i], free[j]));
         let projected_tangent = basis.transpose() * kt * &basis;
-        let tangent = reduced.reduced_force().tangent(s.as_slice());
+        let tangent = tensors.tangent(s.as_slice());
         let tangent_error = (&tangent - &projected_tangent).amax() / projected_tangent.amax();
         eprintln!("state {seed}: force {error:.1e}, tangent {tangent_error:.1e}");
         assert!(error < 1e-11 && tangent_error < 1e-11);
@@ -165,71 +167,4 @@ fn crd3_reproduces_the_full_cable_and_its_coordinates_follow_the_taylor_relation
     // the modified ones have twice the amplitude, so their coordinate is half.
     assert!((novel.0 - 1.0).abs() < 1e-3 && novel.1 < 1e-3, "{novel:?}");
     assert!((modified.0 - 0.5).abs() < 0.01, "{modified:?}");
-}
-
-#[test]
-fn six_modes_and_21_derivatives_reproduce_the_nonlinear_frame() {
-    use slender_tests::seed002::frame;
-    // Seed 002 P3 sec. 5: p = 3 sin(6.401 t) N/m on the beam member; the
-    // beam's midpoint (arc 15 m, node 30) over 10 s, full model by central
-    // differences at 4.5e-5 s as the source's reference, the reduced one at
-    // 1e-4 s (the source's LRBF6 step).
-    let (h_full, h, duration) = (4.5e-5, 1e-4, 10.0);
-    let mid = 3 * 30 + 1;
-    let text = frame(
-        "integrator = { kind = \"central_difference\" }\nloads = [{ from = 10.0, to = 20.0, z = { amplitude = 3.0, angular_frequency = 6.401 } }]",
-    );
-    let mut driver = section(&text);
-    let step = Time::from_secs(h_full).unwrap();
-    let mut t = Time::ZERO;
-    let full: Vec<(f64, f64)> = (0..(duration / h_full).round() as usize)
-        .map(|_| {
-            driver.do_step(t, step).expect("full step");
-            t += step;
-            (t.as_secs(), driver.displacements()[mid])
-        })
-        .collect();
-    let c = CubicSection::new(&section(&frame(""))).unwrap();
-    let modes = linear_modes(&c, 6, Normalisation::Mass).unwrap();
-    let mut columns = modes.shapes.clone();
-    columns.extend(derivative_columns(&c, &modes, Derivative::Novel, 6).unwrap());
-    let mut pattern = vec![0.0; 3 * 41];
-    driver
-        .model()
-        .add_distributed([0.0, 1.0], (10.0, 20.0), &mut pattern);
-    let pattern = DVector::from_iterator(c.size(), c.free_dofs().iter().map(|&d| pattern[d]));
-    let at = c.free_dofs().iter().position(|&d| d == mid).unwrap();
-    let run = |columns: &[DVector<f64>]| {
-        let mut system = ReducedSection::new(&c, DMatrix::from_columns(columns));
-        let reduced_load = system.project(&pattern);
-        let mut integrator = CentralDifference::new();
-        (0..(duration / h).round() as usize)
-            .map(|k| {
-                let t1 = (k + 1) as f64 * h;
-                let f1 = &reduced_load * (3.0 * (6.401 * t1).sin());
-                integrator
-                    .step(&mut system, t1, h, f1.as_slice(), &[])
-                    .expect("reduced step");
-                (t1, system.displacements()[at])
-            })
-            .collect::<Vec<_>>()
-    };
-    // The full history at the reduced model's instants (linear interpolation
-    // between its steps).
-    let full_at = |t: f64| {
-        let k = ((t / h_full) as usize).clamp(1, full.len() - 1);
-        let (a, b) = (full[k - 1], full[k]);
-        a.1 + (b.1 - a.1) * (t - a.0) / (b.0 - a.0)
-    };
-    let size = rms(full.iter().map(|p| p.1));
-    let error = |history: &[(f64, f64)]| rms(history.iter().map(|&(t, v)| v - full_at(t))) / size;
-    let taylor = error(&run(&columns));
-    let linear_only = error(&run(&modes.shapes));
-    eprintln!(
-        "frame midpoint rms {size:.4} m: 6 modes + 21 derivatives {taylor:.2e}, 6 modes {linear_only:.2e}"
-    );
-    // Measured 3.3e-5 and 1.07: the modes alone lock (the derivatives carry the
-    // axial shortening that bending needs).
-    assert!(taylor < 1e-3, "{taylor}");
-    assert!(linear_only > 0.3, "{linear_only}");
 }

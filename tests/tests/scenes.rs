@@ -252,6 +252,7 @@ fn a_failing_run_leaves_readable_partial_results() {
         &RunOptions {
             output_dir: Some(dir.clone()),
             progress: false,
+            realtime: false,
         },
     )
     .unwrap();

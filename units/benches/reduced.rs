@@ -5,7 +5,10 @@
 //!   for 10 s, MATLAB);
 //! - the real-time capacity at 1 ms: one central-difference step of an LRBF
 //!   model of N coordinates on the frame (118 DOFs; the first N linear modes,
-//!   since the cost depends on N only), N up to 70 (the source: 44 at 1 ms).
+//!   since the cost depends on N only), N up to 70 (the source: 44 at 1 ms);
+//! - the same with sampled elements (ECSW) on a 200-element cable (599 free
+//!   DOFs), N up to 400, with all 200 elements and with 50 of them (the cost
+//!   depends on the sample's size, not on which elements it holds).
 //!
 //! Run with `cargo bench -p slender-units --bench reduced`.
 
@@ -14,6 +17,7 @@ use nalgebra::{DMatrix, DVector};
 use slender_units::integrators::central_difference::CentralDifference;
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::reduced::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
+use slender_units::reduced::ecsw::SampledForce;
 use slender_units::reduced::polynomial::CubicSection;
 use slender_units::reduced::system::ReducedSection;
 use slender_units::{Driver, Time};
@@ -115,5 +119,38 @@ fn lrbf_step(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, cable_second, lrbf_step);
+fn ecsw_step(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ecsw_cd_step");
+    group.sample_size(20);
+    let long = format!(
+        "formulation = \"seed002\"\nsegments = [{{ length = 20.0, elements = 200, {STEEL} }}]\nends.start = {{ kind = \"pinned\" }}\nends.end = {{ kind = \"pinned\" }}"
+    );
+    let cubic = CubicSection::new(&section(&long)).expect("cubic");
+    let modes = linear_modes(&cubic, 400, Normalisation::Mass).expect("modes");
+    for n in [100, 200, 300, 400] {
+        let basis = DMatrix::from_columns(&modes.shapes[..n]);
+        for (label, force) in [
+            ("all_200_elements", SampledForce::all(&cubic, &basis)),
+            ("50_elements", SampledForce::every(&cubic, &basis, 4)),
+        ] {
+            let mut system = ReducedSection::sampled(&cubic, basis.clone(), force);
+            let load = system.project(&DVector::from_element(cubic.size(), 1.0));
+            let mut cd = CentralDifference::new();
+            let h = 1e-6;
+            let mut k = 0usize;
+            group.bench_with_input(BenchmarkId::new(label, n), &n, |b, _| {
+                b.iter(|| {
+                    k += 1;
+                    let t1 = k as f64 * h;
+                    let f = &load * (3.0 * (6.401 * t1).sin());
+                    cd.step(&mut system, t1, h, f.as_slice(), &[])
+                        .expect("step");
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, cable_second, lrbf_step, ecsw_step);
 criterion_main!(benches);

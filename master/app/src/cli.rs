@@ -122,6 +122,11 @@ pub enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Pace each synchronisation step against the wall clock, as when the
+        /// scene drives a rig, and report the computing time per step and every
+        /// overrun (summary.json, overruns.csv).
+        #[arg(long)]
+        realtime: bool,
     },
     /// Check a scene without running it: parse, build every unit, resolve connections.
     Check { scene: PathBuf },

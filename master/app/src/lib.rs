@@ -12,6 +12,7 @@ pub mod fidelity;
 pub mod indicators;
 pub mod parallel;
 pub mod plot;
+pub mod realtime;
 pub mod record;
 pub mod run;
 pub mod span_study;

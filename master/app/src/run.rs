@@ -2,6 +2,7 @@
 //! record, and write `timeseries.csv`, `summary.json` and SVG plots.
 
 use crate::plot::{self, PlotError};
+use crate::realtime::{Pacer, RealtimeReport};
 use crate::record::Recorder;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
@@ -18,6 +19,9 @@ pub struct RunOptions {
     pub output_dir: Option<PathBuf>,
     /// Show a progress bar once the run has lasted a second.
     pub progress: bool,
+    /// Pace every step against the wall clock and report the computing times
+    /// (`--realtime`; no progress bar then).
+    pub realtime: bool,
 }
 
 /// What `summary.json` holds.
@@ -40,6 +44,9 @@ pub struct Summary {
     pub counters: Counters,
     /// Indicators of `[[output.indicators]]` over the recorded time.
     pub indicators: Vec<crate::indicators::Indicator>,
+    /// The computing time per step of a paced run (`--realtime`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub realtime: Option<RealtimeReport>,
 }
 
 /// The outcome of a run: the summary, the recording and the files written.
@@ -70,7 +77,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         csv_path.as_deref(),
     )?;
     let started = Instant::now();
-    let outcome = simulate(scene, &mut master, &mut recorder, options.progress);
+    let (outcome, realtime) = simulate(scene, &mut master, &mut recorder, options);
     let wall = started.elapsed().as_secs_f64();
     recorder.finish()?;
     if let Some(p) = csv_path {
@@ -115,7 +122,11 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         settings: master.settings().clone(),
         counters: master.counters(),
         indicators: indicators(scene, &recorder),
+        realtime,
     };
+    if let (Some(dir), Some(report)) = (&options.output_dir, &summary.realtime) {
+        files.push(write_overruns(dir, report)?);
+    }
     if let Some(dir) = &options.output_dir {
         let path = dir.join("summary.json");
         let text = serde_json::to_string_pretty(&summary)?;
@@ -186,19 +197,64 @@ impl From<MasterError> for RunError {
     }
 }
 
+/// Every overrun of a paced run as `overruns.csv` in `dir`.
+fn write_overruns(dir: &Path, report: &RealtimeReport) -> Result<PathBuf, RunError> {
+    let path = dir.join("overruns.csv");
+    let mut text = String::from("step,time_s,compute_s,late_s\n");
+    for o in &report.overruns {
+        text += &format!("{},{},{},{}\n", o.step, o.time_s, o.compute_s, o.late_s);
+    }
+    std::fs::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
+    Ok(path)
+}
+
+/// Steps the whole scene; with `realtime`, paced against the wall clock, and
+/// the computing times of the steps done.
 fn simulate(
     scene: &Scene,
     master: &mut Master,
     recorder: &mut Recorder,
+    options: &RunOptions,
+) -> (Result<(), RunError>, Option<RealtimeReport>) {
+    let mut pacer = options.realtime.then(|| {
+        Pacer::new(
+            scene.step.as_secs(),
+            usize::try_from(scene.steps).unwrap_or(0),
+        )
+    });
+    let outcome = step_all(
+        scene,
+        master,
+        recorder,
+        options.progress && !options.realtime,
+        pacer.as_mut(),
+    );
+    (outcome, pacer.map(|p| p.report()))
+}
+
+fn step_all(
+    scene: &Scene,
+    master: &mut Master,
+    recorder: &mut Recorder,
     progress: bool,
+    mut pacer: Option<&mut Pacer>,
 ) -> Result<(), RunError> {
     master.initialize(scene.start)?;
     recorder.observe(master)?;
     let started = Instant::now();
     let mut bar: Option<ProgressBar> = None;
     for i in 0..scene.steps {
+        if let Some(p) = pacer.as_deref_mut() {
+            p.begin();
+        }
         master.step()?;
         recorder.observe(master)?;
+        if let Some(p) = pacer.as_deref_mut() {
+            p.end(
+                usize::try_from(i).unwrap_or(usize::MAX),
+                (master.time() - scene.start).as_secs(),
+            );
+        }
         if progress && i % 64 == 0 {
             update_progress(&mut bar, started.elapsed(), i as u64, scene.steps as u64);
         }

@@ -434,3 +434,95 @@ fn a_key_that_does_not_apply_is_refused_before_anything_runs() {
         );
     }
 }
+
+/// An example scene with some text replaced, written into `dir`.
+fn variant_in(dir: &Path, example: &str, from: &[(&str, &str)]) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut text = std::fs::read_to_string(root.join(example)).unwrap();
+    for (a, b) in from {
+        assert!(text.contains(a), "{a}");
+        text = text.replace(a, b);
+    }
+    let path = dir.join(Path::new(example).file_name().unwrap());
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A run's summary.json.
+fn summary(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn realtime_runs_keep_the_clock_and_report_every_overrun() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-rt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let variant = |example: &str, from: &[(&str, &str)]| variant_in(&dir, example, from);
+    // Two masses, 30 steps of 10 ms: paced, the run lasts at least 0.3 s.
+    let scene = variant(
+        "examples/b1_two_masses.toml",
+        &[("duration = 1.0", "duration = 0.3")],
+    );
+    let out = dir.join("b1");
+    let run = slender(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--realtime",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let s = summary(&out);
+    assert!(s["wall_time_s"].as_f64().unwrap() >= 0.3 - 1e-3, "{s}");
+    let r = &s["realtime"];
+    assert_eq!(r["steps"].as_u64(), Some(30));
+    let histogram: u64 = r["histogram"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_u64().unwrap())
+        .sum();
+    assert_eq!(histogram, 30);
+    assert!(r["p999_s"].as_f64() <= r["worst_s"].as_f64());
+    assert!(text(&run.stdout).contains("real time    step 10.000 ms"));
+    // Seed 002's frame at 10 us steps: an implicit step of 118 DOFs takes far
+    // longer than 10 us, so (nearly) every step overruns, each one listed.
+    let scene = variant(
+        "examples/seed002_frame.toml",
+        &[
+            ("duration = 10.0", "duration = 0.002"),
+            ("step = 0.001", "step = 0.00001"),
+        ],
+    );
+    let out = dir.join("frame");
+    let run = slender(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--realtime",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let overruns = summary(&out)["realtime"]["overruns"]
+        .as_array()
+        .unwrap()
+        .len();
+    assert!(overruns >= 150, "{overruns} of 200 steps overran");
+    let csv = std::fs::read_to_string(out.join("overruns.csv")).unwrap();
+    assert_eq!(csv.lines().count(), overruns + 1);
+    assert!(text(&run.stdout).contains("overruns in 200 steps"));
+    // Without --realtime the summary has no such entry (and outputs are as before).
+    let plain = dir.join("plain");
+    let run = slender(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        plain.to_str().unwrap(),
+    ]);
+    assert!(run.status.success());
+    assert!(summary(&plain).get("realtime").is_none());
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -11,10 +11,13 @@
 //!   dependent derivatives;
 //! - [`lrbf`]: the reduced restoring force by global reduced tensors (seed
 //!   002's RBF on a linear basis), and its tangent;
+//! - [`ecsw`]: hyper-reduction, the reduced force summed over sampled,
+//!   weighted elements (energy-conserving sampling and weighting);
 //! - [`system`]: a reduced section as a second-order system the shared
 //!   integrators step.
 
 pub mod basis;
+pub mod ecsw;
 pub mod lrbf;
 pub mod polynomial;
 pub mod system;

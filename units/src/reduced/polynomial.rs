@@ -66,6 +66,23 @@ impl CubicSection {
         &self.free
     }
 
+    /// The section's mesh.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The rows of `basis` (free DOFs x N) at element `e`'s six DOFs (zero rows
+    /// at held DOFs): V_e = rows s.
+    pub fn element_rows(&self, basis: &DMatrix<f64>, e: usize) -> DMatrix<f64> {
+        let mut rows = DMatrix::zeros(6, basis.ncols());
+        for i in 0..6 {
+            if let Ok(k) = self.free.binary_search(&(3 * e + i)) {
+                rows.set_row(i, &basis.row(k));
+            }
+        }
+        rows
+    }
+
     /// A free-DOF vector as the model's full DOF vector (held DOFs zero).
     pub fn expand(&self, x: &DVector<f64>) -> Vec<f64> {
         let mut full = vec![0.0; self.model.dofs()];

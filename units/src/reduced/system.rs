@@ -1,21 +1,32 @@
-//! A reduced section as a [`SecondOrderSystem`]: m s'' + Q1 s + g~_nl(s) =
-//! Phi^T F(t) on the coordinates s of a basis Phi, so the shared integrators
-//! (central differences, HHT-alpha) step it as they step the full section.
-//! m = Phi^T M Phi and Q1 = Phi^T K0 Phi are dense (a full band); the nonlinear
-//! part and its tangent come from the reduced tensors.
+//! A reduced section as a [`SecondOrderSystem`]: m s'' + g~(s) = Phi^T F(t) on
+//! the coordinates s of a basis Phi, so the shared integrators (central
+//! differences, HHT-alpha) step it as they step the full section. m = Phi^T M
+//! Phi is dense (a full band). The restoring force comes from the reduced
+//! tensors (Q1 as the stiffness matrix, the rest as the nonlinear force) or from
+//! sampled elements (all of it nonlinear).
 
+use super::ecsw::SampledForce;
 use super::lrbf::ReducedForce;
 use super::polynomial::CubicSection;
 use crate::integrators::hht::{Matrices, SecondOrderSystem, TangentScales};
 use crate::numerics::banded::SymmetricBand;
 use nalgebra::{DMatrix, DVector};
 
+/// How a reduced section evaluates its restoring force.
+pub enum RestoringForce {
+    /// Global reduced tensors (seed 002's RBF): cost about N^4 / 6.
+    Tensors(ReducedForce),
+    /// Sampled, weighted elements (ECSW): cost about 12 N per element.
+    Sampled(SampledForce),
+}
+
 /// The reduced model and its motion.
 pub struct ReducedSection {
     basis: DMatrix<f64>,
-    force: ReducedForce,
+    force: RestoringForce,
     mass: SymmetricBand,
-    stiffness: SymmetricBand,
+    /// Q1 with the reduced tensors; none with sampled elements.
+    stiffness: Option<SymmetricBand>,
     q: Vec<f64>,
     v: Vec<f64>,
     a: Vec<f64>,
@@ -34,14 +45,33 @@ fn full_band(m: &DMatrix<f64>) -> SymmetricBand {
 }
 
 impl ReducedSection {
-    /// The reduction of `section` on the columns of `basis` (free DOFs x N),
-    /// at rest in its stress-free state.
+    /// The reduction of `section` on the columns of `basis` (free DOFs x N) by
+    /// reduced tensors, at rest in its stress-free state.
     pub fn new(section: &CubicSection, basis: DMatrix<f64>) -> ReducedSection {
         let force = ReducedForce::new(section, &basis);
+        let stiffness = Some(full_band(&force.q1));
+        ReducedSection::with(section, basis, RestoringForce::Tensors(force), stiffness)
+    }
+
+    /// The same with the restoring force of sampled elements.
+    pub fn sampled(
+        section: &CubicSection,
+        basis: DMatrix<f64>,
+        force: SampledForce,
+    ) -> ReducedSection {
+        ReducedSection::with(section, basis, RestoringForce::Sampled(force), None)
+    }
+
+    fn with(
+        section: &CubicSection,
+        basis: DMatrix<f64>,
+        force: RestoringForce,
+        stiffness: Option<SymmetricBand>,
+    ) -> ReducedSection {
         let n = basis.ncols();
         ReducedSection {
             mass: full_band(&(basis.transpose() * &section.mass * &basis)),
-            stiffness: full_band(&force.q1),
+            stiffness,
             force,
             basis,
             q: vec![0.0; n],
@@ -70,8 +100,8 @@ impl ReducedSection {
         &self.basis * DVector::from_column_slice(&self.q)
     }
 
-    /// The reduced tensors.
-    pub fn reduced_force(&mut self) -> &mut ReducedForce {
+    /// How the restoring force is evaluated.
+    pub fn restoring_force(&mut self) -> &mut RestoringForce {
         &mut self.force
     }
 }
@@ -85,7 +115,7 @@ impl SecondOrderSystem for ReducedSection {
         Matrices {
             mass: &self.mass,
             damping: None,
-            stiffness: Some(&self.stiffness),
+            stiffness: self.stiffness.as_ref(),
         }
     }
 
@@ -112,15 +142,25 @@ impl SecondOrderSystem for ReducedSection {
         force: &mut Vec<f64>,
     ) {
         force.resize(self.size(), 0.0);
-        self.force.nonlinear(q, force);
-        if let Some((band, scales)) = tangent {
-            // The tangent is symmetric: its lower triangle fills the band.
-            self.force
-                .add_nonlinear_tangent(q, scales.stiffness, |i, j, value| {
-                    if j <= i {
-                        band.add(i, j, value);
-                    }
-                });
+        match &mut self.force {
+            RestoringForce::Tensors(tensors) => {
+                tensors.nonlinear(q, force);
+                if let Some((band, scales)) = tangent {
+                    // The tangent is symmetric: its lower triangle fills the band.
+                    tensors.add_nonlinear_tangent(q, scales.stiffness, |i, j, value| {
+                        if j <= i {
+                            band.add(i, j, value);
+                        }
+                    });
+                }
+            }
+            RestoringForce::Sampled(sampled) => match tangent {
+                Some((band, scales)) => {
+                    let mut add = |i: usize, j: usize, value: f64| band.add(i, j, value);
+                    sampled.force(q, force, Some((scales.stiffness, &mut add)));
+                }
+                None => sampled.force(q, force, None),
+            },
         }
     }
 }

@@ -123,7 +123,12 @@ fn studies(command: Command) -> Result<(), CliError> {
 /// Runs one command.
 pub fn dispatch(command: Command) -> Result<(), CliError> {
     match command {
-        Command::Run { scene, out, quiet } => scene::run(&scene, out, quiet),
+        Command::Run {
+            scene,
+            out,
+            quiet,
+            realtime,
+        } => scene::run(&scene, out, quiet, realtime),
         Command::Check { scene } => scene::check(&scene),
         Command::Expand { scene } => scene::expand(&scene),
         Command::Bench {

@@ -7,13 +7,14 @@ use std::path::{Path, PathBuf};
 
 /// Runs a scene and prints its summary; a run that stops early is a failure
 /// (exit 1) with its results up to then on disk.
-pub fn run(path: &Path, out: Option<PathBuf>, quiet: bool) -> Result<(), CliError> {
+pub fn run(path: &Path, out: Option<PathBuf>, quiet: bool, realtime: bool) -> Result<(), CliError> {
     let scene = load(path)?;
     let dir = out.unwrap_or_else(|| scene.default_output_dir());
     results_folder(&dir)?;
     let options = RunOptions {
         output_dir: Some(dir),
         progress: !quiet,
+        realtime,
     };
     let result = run_scene(&scene, &options).map_err(CliError::input)?;
     print_summary(&result);
@@ -24,6 +25,38 @@ pub fn run(path: &Path, out: Option<PathBuf>, quiet: bool) -> Result<(), CliErro
             "the run stopped at t = {} s: {e}\n(results up to that time are in the files above)",
             s.start_s + s.simulated_s
         ))),
+    }
+}
+
+/// The computing times of a paced run: percentiles, histogram, overruns.
+fn print_realtime(r: &slender_app::realtime::RealtimeReport) {
+    let ms = |x: f64| x * 1e3;
+    println!(
+        "real time    step {:.3} ms: computing median {:.3} ms, 99 % {:.3} ms, 99.9 % {:.3} ms, worst {:.3} ms (step {})",
+        ms(r.step_s),
+        ms(r.median_s),
+        ms(r.p99_s),
+        ms(r.p999_s),
+        ms(r.worst_s),
+        r.worst_step
+    );
+    let bins: Vec<String> = r.histogram.iter().map(|c| c.to_string()).collect();
+    println!(
+        "             steps per tenth of the step: {} (last: a whole step or more)",
+        bins.join(" ")
+    );
+    match r.overruns.first() {
+        None => println!(
+            "             no overrun in {} steps: the scene keeps up with the clock",
+            r.steps
+        ),
+        Some(first) => println!(
+            "             {} overruns in {} steps (overruns.csv), the first at t = {} s, {:.3} ms late",
+            r.overruns.len(),
+            r.steps,
+            first.time_s,
+            ms(first.late_s)
+        ),
     }
 }
 
@@ -68,6 +101,9 @@ fn print_summary(result: &RunResult) {
         c.non_converged_steps,
         c.max_residual
     );
+    if let Some(r) = &s.realtime {
+        print_realtime(r);
+    }
     for i in &s.indicators {
         println!(
             "indicator    {:<12} phi = {:.3}, epsilon = {:.3e}",

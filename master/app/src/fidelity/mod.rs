@@ -403,6 +403,7 @@ fn run_one(
     let options = RunOptions {
         output_dir: None,
         progress: false,
+        realtime: false,
     };
     let result = match run_scene(&scene, &options) {
         Ok(r) => r,

@@ -304,6 +304,7 @@ fn run_one(
     let options = RunOptions {
         output_dir: None,
         progress: false,
+        realtime: false,
     };
     match run_scene(&scene, &options) {
         Ok(result) => Outcome {

@@ -233,6 +233,7 @@ fn run_one(
     let options = RunOptions {
         output_dir: None,
         progress: false,
+        realtime: false,
     };
     let r = run_scene(&scene, &options).map_err(|e| e.to_string())?;
     if let Some(e) = r.summary.error {
