@@ -15,6 +15,7 @@ fn params() -> ArtefactParams {
         bias: None,
         noise_variance: None,
         delay: 0.0,
+        lag: 0.0,
         hold_period: 0.0,
         loss_probability: 0.0,
         loss_probability_per_second: 0.0,

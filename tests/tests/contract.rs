@@ -132,6 +132,10 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             "oscillator",
             from_scene("examples/b1_two_masses.toml", "left"),
         ),
+        (
+            "delay_compensation",
+            from_scene("examples/hybrid_oscillator.toml", "compensation_x"),
+        ),
         ("fmu", inline("fmu", &fmu_table)),
         (
             "loop_linear_pair",

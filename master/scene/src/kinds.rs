@@ -13,6 +13,7 @@ use slender_units::cable::{Cable, CableParams, Effects};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::signal::artefact::{Artefact, ArtefactParams};
 use slender_units::signal::characteristic_load::{CharacteristicLoad, CharacteristicLoadParams};
+use slender_units::signal::compensation::{Compensation, CompensationParams};
 use slender_units::span::coupling::{SpanCoupling, SpanCouplingParams};
 use slender_units::span::unit::{SpanParams, SpanUnit};
 use slender_units::static_section::{StaticSection, StaticSectionParams};
@@ -128,9 +129,16 @@ pub const KINDS: &[Kind] = &[
     Kind {
         name: "artefact",
         parameters: field_names::<ArtefactParams>,
-        summary: "control-system artefacts on a signal: scale, bias, noise, delay, signal loss, zero-order hold",
+        summary: "control-system artefacts on a signal: scale, bias, noise, delay, first-order lag, signal loss, zero-order hold",
         effects: &[],
         build: |p, _| Ok(Box::new(Artefact::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "delay_compensation",
+        parameters: field_names::<CompensationParams>,
+        summary: "actuator delay compensation: each channel predicted `lead` seconds ahead by a polynomial through its last values",
+        effects: &[],
+        build: |p, _| Ok(Box::new(Compensation::new(parameters(p)?)?)),
     },
     Kind {
         name: "oscillator",

@@ -6,7 +6,8 @@
 //! Per synchronisation step, in this order: each channel's sample is
 //! `scale * input + bias + noise`; the samples are delayed by `delay` seconds
 //! (linear interpolation between samples, so any delay works, fractions of a step
-//! included); a signal loss freezes all channels at their last output; a
+//! included) and, with `lag`, pass a first-order lag (with the delay, an
+//! emulated actuator); a signal loss freezes all channels at their last output; a
 //! zero-order hold then updates the output only every `hold_period` seconds.
 //!
 //! Randomness comes from a seeded ChaCha8 generator that is part of the unit's
@@ -44,6 +45,10 @@ pub struct ArtefactParams {
     /// Time delay (s), >= 0.
     #[serde(default)]
     pub delay: f64,
+    /// Time constant of a first-order lag after the delay (s), >= 0; 0: none.
+    /// With `delay`, an emulated actuator: y' = (u(t - delay) - y) / lag.
+    #[serde(default)]
+    pub lag: f64,
     /// Zero-order hold period (s); 0: no hold.
     #[serde(default)]
     pub hold_period: f64,
@@ -85,6 +90,8 @@ crate::state_struct! {
         rng: ChaCha8Rng,
         /// Samples after scale, bias and noise: time then one value per channel.
         history: Vec<f64>,
+        /// The first-order lag's output per channel.
+        lagged: Vec<f64>,
         output: Vec<f64>,
         /// The loss lasts until this time (s); NEG_INFINITY when none.
         lost_until: f64,
@@ -166,6 +173,7 @@ impl Artefact {
         }
         require_non_negative("delay", params.delay)?;
         require_non_negative("hold_period", params.hold_period)?;
+        require_non_negative("lag", params.lag)?;
         check_losses(&params)?;
         let inputs = params
             .channels
@@ -194,6 +202,7 @@ impl Artefact {
             state: ArtefactState {
                 rng: ChaCha8Rng::seed_from_u64(params.seed),
                 history: Vec::new(),
+                lagged: vec![0.0; n],
                 output: vec![0.0; n],
                 lost_until: f64::NEG_INFINITY,
                 next_hold: 0.0,
@@ -293,6 +302,7 @@ impl Unit for Artefact {
         self.state.losses = 0;
         self.push_sample(inputs.end(), t, false);
         self.delayed_at(t);
+        self.state.lagged.copy_from_slice(&self.delayed);
         self.state.output.copy_from_slice(&self.delayed);
         Ok(())
     }
@@ -301,6 +311,14 @@ impl Unit for Artefact {
         let t_end = (t + h).as_secs();
         self.push_sample(inputs.end(), t_end, true);
         self.delayed_at(t_end);
+        if self.params.lag > 0.0 {
+            // Exact for an input held over the step.
+            let a = 1.0 - (-h.as_secs() / self.params.lag).exp();
+            for (y, u) in self.state.lagged.iter_mut().zip(self.delayed.iter_mut()) {
+                *y += a * (*u - *y);
+                *u = *y;
+            }
+        }
         let p = &self.params;
         let s = &mut self.state;
         let per_step = if p.loss_probability_per_second > 0.0 {

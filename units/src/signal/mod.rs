@@ -3,3 +3,4 @@
 
 pub mod artefact;
 pub mod characteristic_load;
+pub mod compensation;
