@@ -66,6 +66,20 @@ impl UnitAdapter {
     }
 
     /// Sets the hold of every input (before initialisation only).
+    /// Steps the unit in `n` sub-steps per synchronisation step (multi-rate),
+    /// before initialisation.
+    pub fn set_substeps(&mut self, n: u32) -> Result<(), MasterError> {
+        if self.driver.is_initialized() {
+            return Err(MasterError::Invalid(format!(
+                "unit `{}`: the sub-steps can only change before initialisation",
+                self.name
+            )));
+        }
+        self.driver
+            .set_substeps(n)
+            .map_err(|e| self.fail("set_substeps", Time::ZERO, 0, e))
+    }
+
     pub fn set_hold_all(&mut self, hold: Hold) -> Result<(), MasterError> {
         if self.driver.is_initialized() {
             return Err(MasterError::Invalid(format!(

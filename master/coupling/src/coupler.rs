@@ -153,6 +153,12 @@ impl Master {
         self.units[unit].set_hold_all(hold)
     }
 
+    /// Steps unit `unit` in `n` sub-steps per synchronisation step, its inputs
+    /// interpolated within the step (before `initialize`).
+    pub fn set_substeps(&mut self, unit: usize, n: u32) -> Result<(), MasterError> {
+        self.units[unit].set_substeps(n)
+    }
+
     /// Advances every unit by one synchronisation step.
     pub fn step(&mut self) -> Result<(), MasterError> {
         if !self.initialized {

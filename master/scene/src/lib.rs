@@ -229,8 +229,30 @@ impl Scene {
                     .set_hold(u, hold)
                     .map_err(|e| self.error(None, &format!("units[{u}].hold"), e.to_string()))?;
             }
+            if let Some(n) = spec.substeps {
+                self.check_substeps(u, n)?;
+                master.set_substeps(u, n).map_err(|e| {
+                    self.error(None, &format!("units[{u}].substeps"), e.to_string())
+                })?;
+            }
         }
         Ok(master)
+    }
+
+    /// A unit's `substeps`: at least 1, and the step splits into that many
+    /// whole nanoseconds.
+    fn check_substeps(&self, u: usize, n: u32) -> Result<(), SceneError> {
+        if self.step.split(n).is_none() {
+            return Err(self.error(
+                self.spec.units[u].name.span().into(),
+                &format!("units[{u}].substeps"),
+                format!(
+                    "{n}: expected a whole number >= 1 that splits the step ({}) into whole nanoseconds",
+                    self.step
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Builds unit `i` of the scene and adds it with its start inputs.

@@ -111,6 +111,10 @@ pub struct UnitSpec {
     /// Input hold for every input of the unit: "ramp" (default) or "zero_order".
     #[serde(default)]
     pub hold: Option<Hold>,
+    /// Multi-rate: the unit steps this many times per synchronisation step,
+    /// its inputs interpolated within the step as its hold says (default 1).
+    #[serde(default)]
+    pub substeps: Option<u32>,
     /// Constant values of inputs, by port name: used where nothing drives the input
     /// and as the first guess of inputs fed through a loop.
     #[serde(default)]

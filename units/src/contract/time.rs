@@ -24,6 +24,13 @@ impl Time {
     /// its negative.
     pub const MAX: Time = Time(i64::MAX);
 
+    /// `self / n` when it is a whole number of nanoseconds, else `None` (a
+    /// step split into `n` equal sub-steps).
+    pub fn split(self, n: u32) -> Option<Time> {
+        let n = i64::from(n);
+        (n > 0 && self.0 % n == 0).then(|| Time(self.0 / n))
+    }
+
     /// `self + other`, or `None` beyond the representable range.
     pub fn checked_add(self, other: Time) -> Option<Time> {
         self.0.checked_add(other.0).map(Time)
