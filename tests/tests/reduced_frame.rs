@@ -1,17 +1,20 @@
 //! Seed 002's frame (notes sec. 8.5) reduced (issue 15): 6 modes and 21 novel
-//! derivatives by the reduced tensors (LRBF) and by sampled elements (ECSW,
-//! beyond the source), against the full 118-DOF model under p = 3 sin(6.401 t)
-//! N/m on the beam member; the beam's midpoint (arc 15 m) over 10 s.
+//! derivatives by the reduced tensors (LRBF), by sampled elements (ECSW, beyond
+//! the source) and as the Taylor basis with 6 unknowns, against the full
+//! 118-DOF model under p = 3 sin(6.401 t) N/m on the beam member; the beam's
+//! midpoint (arc 15 m) over 10 s.
 
 use nalgebra::{DMatrix, DVector};
 use slender_tests::seed002::{frame, section};
 use slender_units::Time;
 use slender_units::integrators::central_difference::CentralDifference;
+use slender_units::integrators::hht::SecondOrderSystem;
 use slender_units::numerics::banded::SymmetricBand;
 use slender_units::reduced::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
 use slender_units::reduced::ecsw::SampledForce;
 use slender_units::reduced::polynomial::CubicSection;
 use slender_units::reduced::system::ReducedSection;
+use slender_units::reduced::taylor::TaylorSection;
 use std::sync::OnceLock;
 
 const DURATION: f64 = 10.0;
@@ -182,4 +185,73 @@ fn sampled_elements_trained_on_the_first_half_follow_the_full_frame() {
     assert!(results[0].0 < 25 && results[0].1 < 1e-2, "{results:?}");
     assert!(results[1].1 < 1e-3 && results[2].1 < 1e-4, "{results:?}");
     assert!(results.windows(2).all(|w| w[0].0 <= w[1].0), "{results:?}");
+}
+
+/// The Taylor basis of the frame (6 modes, their 21 derivatives) stepped at `h`
+/// over 10 s: the midpoint history, or why it stopped (a non-finite state, or
+/// an amplitude a hundred times the full model's).
+fn taylor_run(h: f64) -> Result<Vec<(f64, f64)>, String> {
+    let (c, basis, pattern, at) = reduction();
+    let modes = basis.columns(0, 6).into_owned();
+    let derivatives = basis.columns(6, 21).into_owned();
+    let mut taylor = TaylorSection::new(&c, &modes, &derivatives).map_err(|e| e.to_string())?;
+    let reduced_load = taylor.project(&pattern);
+    let bound = 100.0 * full().iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
+    let mut history = Vec::new();
+    for k in 0..(DURATION / h).round() as usize {
+        let t1 = (k + 1) as f64 * h;
+        taylor
+            .step(h, &(&reduced_load * load(t1)))
+            .map_err(|e| e.to_string())?;
+        let x = taylor.displacements()[at];
+        if x.abs() > bound {
+            return Err(format!("amplitude {x:.3e} m at t = {t1:.3} s"));
+        }
+        history.push((t1, x));
+    }
+    Ok(history)
+}
+
+#[test]
+fn the_taylor_basis_runs_at_steps_near_two_over_its_highest_mode() {
+    // Seed 002 P3 sec. 5: the Taylor basis (N = 6 unknowns) is stable up to
+    // 28 ms, close to 2 / omega_6 = 29.6 ms; the linear basis with the same 27
+    // columns is limited by the derivatives' frequencies (the source's LRBF ran
+    // at 0.1 ms). Measured here: 5.3e-4 at 1 ms; at 20, 25 and 28 ms it runs
+    // (2.1e-2, 3.2e-2, 4.0e-2: "visible deviations"); at 30 and 35 ms it grows
+    // without bound within a second; the linear basis's critical step is 0.14 ms
+    // (Lanczos, an upper bound on omega_max) and it fails at 5 ms in 0.04 s.
+    let e = error(&taylor_run(1e-3).expect("1 ms"));
+    assert!(e < 2e-3, "{e}");
+    for h in [0.02, 0.025, 0.028] {
+        let history = taylor_run(h).unwrap_or_else(|why| panic!("{h} s: {why}"));
+        let e = error(&history);
+        eprintln!("Taylor basis at {} ms: error {e:.2e}", h * 1e3);
+        assert!(e < 0.1, "{h} s: {e}");
+    }
+    for h in [0.03, 0.035] {
+        let why = taylor_run(h).expect_err("beyond 2 / omega_6");
+        eprintln!("Taylor basis at {} ms: {why}", h * 1e3);
+    }
+    let (c, basis, pattern, _) = reduction();
+    let mut linear = ReducedSection::new(&c, basis);
+    let critical = CentralDifference::critical_step(&linear.matrices(), 200).unwrap();
+    let reduced_load = linear.project(&pattern);
+    let mut integrator = CentralDifference::new();
+    let h = 0.005;
+    let outcome = (0..2000).try_for_each(|k| {
+        let t1 = (k + 1) as f64 * h;
+        integrator.step(
+            &mut linear,
+            t1,
+            h,
+            (&reduced_load * load(t1)).as_slice(),
+            &[],
+        )
+    });
+    eprintln!(
+        "linear basis: critical step {:.2} ms; at 5 ms: {outcome:?}",
+        critical * 1e3
+    );
+    assert!(critical < 0.005 && outcome.is_err());
 }

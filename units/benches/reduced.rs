@@ -20,6 +20,7 @@ use slender_units::reduced::basis::{Derivative, Normalisation, derivative_column
 use slender_units::reduced::ecsw::SampledForce;
 use slender_units::reduced::polynomial::CubicSection;
 use slender_units::reduced::system::ReducedSection;
+use slender_units::reduced::taylor::TaylorSection;
 use slender_units::{Driver, Time};
 use std::hint::black_box;
 
@@ -152,5 +153,74 @@ fn ecsw_step(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, cable_second, lrbf_step, ecsw_step);
+/// Seed 002's frame, one simulated second: the full 118 DOFs by central
+/// differences at 4.5e-5 s, the linear basis of 6 modes + 21 derivatives (LRBF)
+/// at 1e-4 s, and the Taylor basis with 6 unknowns at 1e-3 s (the source: 559.5
+/// s, 13.4 s and 0.7 s of MATLAB for 10 s).
+fn frame_second(c: &mut Criterion) {
+    let mut group = c.benchmark_group("frame_one_simulated_second");
+    group.sample_size(10);
+    let load =
+        "loads = [{ from = 10.0, to = 20.0, z = { amplitude = 3.0, angular_frequency = 6.401 } }]";
+    let text = format!(
+        "{}\nintegrator = {{ kind = \"central_difference\" }}\n{load}",
+        frame()
+    );
+    group.bench_function("full_118_dofs_cd_4.5e-5", |b| {
+        b.iter(|| {
+            let mut driver = section(&text);
+            let h = Time::from_secs(4.5e-5).expect("step");
+            let mut t = Time::ZERO;
+            for _ in 0..22_222 {
+                driver.do_step(t, h).expect("step");
+                t += h;
+            }
+            black_box(driver.displacements()[91])
+        })
+    });
+    let full = section(&frame());
+    let cubic = CubicSection::new(&full).expect("cubic");
+    let modes = linear_modes(&cubic, 6, Normalisation::Mass).expect("modes");
+    let mds = derivative_columns(&cubic, &modes, Derivative::Novel, 6).expect("derivatives");
+    let phi_l = DMatrix::from_columns(&modes.shapes);
+    let phi_h = DMatrix::from_columns(&mds);
+    let mut columns = modes.shapes.clone();
+    columns.extend(mds);
+    let basis = DMatrix::from_columns(&columns);
+    let mut pattern = vec![0.0; full.model().dofs()];
+    full.model()
+        .add_distributed([0.0, 1.0], (10.0, 20.0), &mut pattern);
+    let pattern =
+        DVector::from_iterator(cubic.size(), cubic.free_dofs().iter().map(|&d| pattern[d]));
+    group.bench_function("lrbf_27_coordinates_cd_1e-4", |b| {
+        b.iter(|| {
+            let mut system = ReducedSection::new(&cubic, basis.clone());
+            let load = system.project(&pattern);
+            let mut cd = CentralDifference::new();
+            for k in 0..10_000 {
+                let t1 = (k + 1) as f64 * 1e-4;
+                let f = &load * (3.0 * (6.401 * t1).sin());
+                cd.step(&mut system, t1, 1e-4, f.as_slice(), &[])
+                    .expect("step");
+            }
+            black_box(system.coordinates()[0])
+        })
+    });
+    group.bench_function("taylor_6_unknowns_cd_1e-3", |b| {
+        b.iter(|| {
+            let mut taylor = TaylorSection::new(&cubic, &phi_l, &phi_h).expect("taylor");
+            let load = taylor.project(&pattern);
+            for k in 0..1000 {
+                let t1 = (k + 1) as f64 * 1e-3;
+                taylor
+                    .step(1e-3, &(&load * (3.0 * (6.401 * t1).sin())))
+                    .expect("step");
+            }
+            black_box(taylor.coordinates()[0])
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, cable_second, lrbf_step, ecsw_step, frame_second);
 criterion_main!(benches);

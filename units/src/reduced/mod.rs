@@ -14,10 +14,13 @@
 //! - [`ecsw`]: hyper-reduction, the reduced force summed over sampled,
 //!   weighted elements (energy-conserving sampling and weighting);
 //! - [`system`]: a reduced section as a second-order system the shared
-//!   integrators step.
+//!   integrators step;
+//! - [`taylor`]: the Taylor basis with N unknowns (the derivatives follow the
+//!   modal coordinates), stepped by central differences up to 2 / omega_N.
 
 pub mod basis;
 pub mod ecsw;
 pub mod lrbf;
 pub mod polynomial;
 pub mod system;
+pub mod taylor;
