@@ -4,8 +4,8 @@
 //! and -1/4 (stiffness-normalised modes), the modified derivatives at twice the
 //! novel ones, and the frame's dependent derivatives at N = 6 and 7.
 
-use nalgebra::{DMatrix, DVector};
-use slender_tests::seed002::{cable, frame, section};
+use nalgebra::DMatrix;
+use slender_tests::seed002::{cable, frame, random_vector, section};
 use slender_units::reduced::basis::{
     Derivative, Normalisation, dependent_columns, derivative, derivative_columns, linear_modes,
 };
@@ -13,19 +13,6 @@ use slender_units::reduced::polynomial::CubicSection;
 
 fn cubic(text: &str) -> CubicSection {
     CubicSection::new(&section(text)).expect("a seed 002 section")
-}
-
-/// A deterministic pseudo-random vector of `n` entries in [-scale, scale].
-fn random(n: usize, seed: u64, scale: f64) -> DVector<f64> {
-    let mut x = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    DVector::from_fn(n, |_, _| {
-        x = x
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        scale * (2.0 * ((x >> 11) as f64 / (1u64 << 53) as f64) - 1.0)
-    })
 }
 
 #[test]
@@ -36,7 +23,7 @@ fn the_cubic_force_is_the_sections_own_at_random_states() {
     let model = driver.model();
     for seed in 0..5 {
         // Moderate displacements: 0.5 m transverse, 5 mm axial, 0.1 rad.
-        let v = random(c.size(), seed, 0.1);
+        let v = random_vector(c.size(), seed, 0.1);
         let full = c.expand(&v);
         let mut own = vec![0.0; model.dofs()];
         model.add_internal_force(&full, 1.0, None, &mut own);

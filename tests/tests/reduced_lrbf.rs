@@ -5,26 +5,13 @@
 //! that only the novel derivatives satisfy (the frame: `reduced_frame.rs`).
 
 use nalgebra::{DMatrix, DVector};
-use slender_tests::seed002::{cable, section};
+use slender_tests::seed002::{cable, random_vector, section};
 use slender_units::integrators::central_difference::CentralDifference;
 use slender_units::numerics::banded::SymmetricBand;
 use slender_units::reduced::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
 use slender_units::reduced::polynomial::CubicSection;
 use slender_units::reduced::system::{ReducedSection, RestoringForce};
 use slender_units::{Driver, Time};
-
-/// A deterministic pseudo-random vector of `n` entries in [-scale, scale].
-fn random(n: usize, seed: u64, scale: f64) -> DVector<f64> {
-    let mut x = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    DVector::from_fn(n, |_, _| {
-        x = x
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        scale * (2.0 * ((x >> 11) as f64 / (1u64 << 53) as f64) - 1.0)
-    })
-}
 
 /// Seed 002's cable basis: 3 stiffness-normalised modes and the derivatives
 /// x11, 2 x21, 2 x31, 2 x32, x33 (x22 depends on them and is left out).
@@ -45,7 +32,7 @@ fn reduced_tensors_are_the_projected_force_and_tangent_at_random_states() {
     let model = driver.model();
     let free = c.free_dofs().to_vec();
     for seed in 0..4 {
-        let s = random(basis.ncols(), seed, 0.3);
+        let s = random_vector(basis.ncols(), seed, 0.3);
         let v = &basis * &s;
         let projected = basis.tr_mul(&c.force(&v));
         let RestoringForce::Tensors(tensors) = reduced.restoring_force() else {

@@ -17,7 +17,8 @@
 //! polynomial tensors, whose size grows as C(N + 6, 6).
 //!
 //! Stepping: explicit, velocity-Verlet form with the state's mass solved every
-//! step (N x N, Cholesky); the velocity terms see the half-step velocity.
+//! step (N x N, Cholesky); the velocity terms see the half-step velocity. A
+//! step allocates nothing (its buffers are sized once).
 
 use super::ecsw::SampledForce;
 use super::polynomial::CubicSection;
@@ -37,9 +38,23 @@ pub struct TaylorSection {
     s: DVector<f64>,
     v: DVector<f64>,
     a: DVector<f64>,
-    // Scratch.
+    work: Work,
+}
+
+/// A step's buffers, sized once: a step allocates nothing.
+struct Work {
+    /// s_T at the step's end, and the velocity terms' [0; q].
     st: DVector<f64>,
+    q: DVector<f64>,
     g: Vec<f64>,
+    /// U (N_S x N), m U, U^T m U (its Cholesky factor after a solve).
+    u: DMatrix<f64>,
+    mu: DMatrix<f64>,
+    reduced: DMatrix<f64>,
+    rhs: DVector<f64>,
+    v_half: DVector<f64>,
+    s1: DVector<f64>,
+    a1: DVector<f64>,
 }
 
 impl TaylorSection {
@@ -53,6 +68,7 @@ impl TaylorSection {
     ) -> Result<TaylorSection, UnitError> {
         let n = modes.ncols();
         let pairs: Vec<[usize; 2]> = (0..n).flat_map(|i| (0..=i).map(move |j| [i, j])).collect();
+        let ns = n + pairs.len();
         if derivatives.ncols() != pairs.len() || derivatives.nrows() != modes.nrows() {
             return Err(UnitError::parameter(
                 "derivatives",
@@ -64,21 +80,31 @@ impl TaylorSection {
                 ),
             ));
         }
-        let mut basis = DMatrix::zeros(modes.nrows(), n + pairs.len());
+        let mut basis = DMatrix::zeros(modes.nrows(), ns);
         basis.columns_mut(0, n).copy_from(modes);
         basis.columns_mut(n, pairs.len()).copy_from(derivatives);
         let force = SampledForce::all(section, &basis);
         Ok(TaylorSection {
             mass: basis.transpose() * &section.mass * &basis,
             force,
-            st: DVector::zeros(n + pairs.len()),
-            g: vec![0.0; n + pairs.len()],
             basis,
             pairs,
             n,
             s: DVector::zeros(n),
             v: DVector::zeros(n),
             a: DVector::zeros(n),
+            work: Work {
+                st: DVector::zeros(ns),
+                q: DVector::zeros(ns),
+                g: vec![0.0; ns],
+                u: DMatrix::zeros(ns, n),
+                mu: DMatrix::zeros(ns, n),
+                reduced: DMatrix::zeros(n, n),
+                rhs: DVector::zeros(ns),
+                v_half: DVector::zeros(n),
+                s1: DVector::zeros(n),
+                a1: DVector::zeros(n),
+            },
         })
     }
 
@@ -99,74 +125,78 @@ impl TaylorSection {
 
     /// The displacements V(s) on the free DOFs.
     pub fn displacements(&self) -> DVector<f64> {
-        &self.basis * self.expanded(&self.s)
-    }
-
-    /// s_T = [s; s_H(s)].
-    fn expanded(&self, s: &DVector<f64>) -> DVector<f64> {
         let mut st = DVector::zeros(self.n + self.pairs.len());
-        st.rows_mut(0, self.n).copy_from(s);
-        for (p, [i, j]) in self.pairs.iter().enumerate() {
-            st[self.n + p] = s[*i] * s[*j];
-        }
-        st
+        expand(&self.pairs, self.n, &self.s, &mut st);
+        &self.basis * st
     }
 
-    /// U(s) = d s_T / d s (N_S x N).
-    fn jacobian(&self, s: &DVector<f64>) -> DMatrix<f64> {
-        let mut u = DMatrix::zeros(self.n + self.pairs.len(), self.n);
-        for k in 0..self.n {
-            u[(k, k)] = 1.0;
-        }
+    /// The acceleration at the work's s1 with velocity v_half into a1, under
+    /// the projected load `load` (N_S values).
+    fn acceleration(&mut self, load: &DVector<f64>) -> Result<(), UnitError> {
+        let (n, w) = (self.n, &mut self.work);
+        expand(&self.pairs, n, &w.s1, &mut w.st);
+        jacobian(&self.pairs, n, &w.s1, &mut w.u);
+        self.force.force(w.st.as_slice(), &mut w.g, None);
+        w.q.fill(0.0);
         for (p, &[i, j]) in self.pairs.iter().enumerate() {
-            u[(self.n + p, i)] += s[j];
-            u[(self.n + p, j)] += s[i];
+            w.q[n + p] = 2.0 * w.v_half[i] * w.v_half[j];
         }
-        u
-    }
-
-    /// The acceleration at coordinates `s`, velocity `v`, under the projected
-    /// load `load` (N_S values).
-    fn acceleration(
-        &mut self,
-        s: &DVector<f64>,
-        v: &DVector<f64>,
-        load: &DVector<f64>,
-    ) -> Result<DVector<f64>, UnitError> {
-        let u = self.jacobian(s);
-        self.st = self.expanded(s);
-        self.force.force(self.st.as_slice(), &mut self.g, None);
-        let mut rhs = load - DVector::from_column_slice(&self.g);
-        let mut q = DVector::zeros(self.n + self.pairs.len());
-        for (p, &[i, j]) in self.pairs.iter().enumerate() {
-            q[self.n + p] = 2.0 * v[i] * v[j];
+        // rhs = load - g - m q.
+        w.rhs.copy_from(load);
+        for (r, g) in w.rhs.iter_mut().zip(&w.g) {
+            *r -= g;
         }
-        rhs -= &self.mass * q;
-        let m = u.transpose() * &self.mass * &u;
-        m.cholesky()
-            .map(|c| c.solve(&u.tr_mul(&rhs)))
-            .ok_or_else(|| {
-                UnitError::Numerical(
-                    "Taylor basis: the reduced mass is not positive definite".into(),
-                )
-            })
+        w.rhs.gemv(-1.0, &self.mass, &w.q, 1.0);
+        self.mass.mul_to(&w.u, &mut w.mu);
+        w.u.tr_mul_to(&w.mu, &mut w.reduced);
+        w.u.tr_mul_to(&w.rhs, &mut w.a1);
+        let factor = nalgebra::Cholesky::new(std::mem::take(&mut w.reduced)).ok_or_else(|| {
+            UnitError::Numerical("Taylor basis: the reduced mass is not positive definite".into())
+        })?;
+        factor.solve_mut(&mut w.a1);
+        w.reduced = factor.unpack();
+        Ok(())
     }
 
     /// One central-difference step of `h` seconds, `load1` the projected load
     /// at the step's end (N_S values).
     pub fn step(&mut self, h: f64, load1: &DVector<f64>) -> Result<(), UnitError> {
-        let v_half = &self.v + &self.a * (0.5 * h);
-        let s1 = &self.s + &v_half * h;
-        let a1 = self.acceleration(&s1, &v_half, load1)?;
-        let v1 = v_half + &a1 * (0.5 * h);
-        if !(s1.iter().chain(v1.iter()).all(|x| x.is_finite())) {
+        let w = &mut self.work;
+        w.v_half.copy_from(&self.v);
+        w.v_half.axpy(0.5 * h, &self.a, 1.0);
+        w.s1.copy_from(&self.s);
+        w.s1.axpy(h, &w.v_half, 1.0);
+        self.acceleration(load1)?;
+        let w = &mut self.work;
+        w.v_half.axpy(0.5 * h, &w.a1, 1.0);
+        if !(w.s1.iter().chain(w.v_half.iter()).all(|x| x.is_finite())) {
             return Err(UnitError::Numerical(format!(
                 "Taylor basis: central differences became non-finite (is h = {h} s below 2 / omega_N?)"
             )));
         }
-        self.s = s1;
-        self.v = v1;
-        self.a = a1;
+        self.s.copy_from(&w.s1);
+        self.v.copy_from(&w.v_half);
+        self.a.copy_from(&w.a1);
         Ok(())
+    }
+}
+
+/// s_T = [s; s_H(s)] into `st`.
+fn expand(pairs: &[[usize; 2]], n: usize, s: &DVector<f64>, st: &mut DVector<f64>) {
+    st.rows_mut(0, n).copy_from(s);
+    for (p, [i, j]) in pairs.iter().enumerate() {
+        st[n + p] = s[*i] * s[*j];
+    }
+}
+
+/// U(s) = d s_T / d s (N_S x N) into `u`.
+fn jacobian(pairs: &[[usize; 2]], n: usize, s: &DVector<f64>, u: &mut DMatrix<f64>) {
+    u.fill(0.0);
+    for k in 0..n {
+        u[(k, k)] = 1.0;
+    }
+    for (p, &[i, j]) in pairs.iter().enumerate() {
+        u[(n + p, i)] += s[j];
+        u[(n + p, j)] += s[i];
     }
 }

@@ -15,7 +15,7 @@
 //! iterations of one step see the same artefacts.
 
 use crate::contract::{
-    Capabilities, HoldSupport, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
+    Capabilities, HoldSupport, Inputs, PortKind, StateSlot, StepReport, Time, Unit,
     UnitDescription, UnitError, require_finite, require_non_negative,
 };
 use rand::{Rng, SeedableRng};
@@ -31,7 +31,7 @@ pub struct ArtefactParams {
     /// generic (sets the ports' unit of measure and the master's tolerance).
     pub quantity: PortKind,
     /// Channel names; ports are `in_<name>` and `out_<name>`. Default ["x", "z"].
-    #[serde(default = "two_channels")]
+    #[serde(default = "super::two_channels")]
     pub channels: Vec<String>,
     /// Calibration factor per channel (default 1).
     #[serde(default)]
@@ -72,10 +72,6 @@ pub struct ArtefactParams {
     /// Seed of the random generator.
     #[serde(default = "one")]
     pub seed: u64,
-}
-
-fn two_channels() -> Vec<String> {
-    vec!["x".into(), "z".into()]
 }
 
 fn one() -> u64 {
@@ -156,13 +152,7 @@ impl Artefact {
     /// Builds the unit; fails with the first bad parameter.
     pub fn new(params: ArtefactParams) -> Result<Artefact, UnitError> {
         let n = params.channels.len();
-        if n == 0 {
-            return Err(UnitError::parameter(
-                "channels",
-                "[]",
-                "expected at least one channel",
-            ));
-        }
+        let (inputs, outputs) = super::channel_ports(&params.channels, params.quantity)?;
         let per_channel =
             |name: &str, v: &Option<Vec<f64>>, default: f64| per_channel(name, v, default, n);
         let scale = per_channel("scale", &params.scale, 1.0)?;
@@ -175,17 +165,6 @@ impl Artefact {
         require_non_negative("hold_period", params.hold_period)?;
         require_non_negative("lag", params.lag)?;
         check_losses(&params)?;
-        let inputs = params
-            .channels
-            .iter()
-            .map(|c| Port::input(&format!("in_{c}"), params.quantity))
-            .collect();
-        let all: Vec<usize> = (0..n).collect();
-        let outputs = params
-            .channels
-            .iter()
-            .map(|c| Port::output(&format!("out_{c}"), params.quantity).with_feedthrough(&all))
-            .collect();
         Ok(Artefact {
             noise_sd: variance.iter().map(|v| v.sqrt()).collect(),
             scale,

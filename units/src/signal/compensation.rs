@@ -10,7 +10,7 @@
 //! the ones there are.
 
 use crate::contract::{
-    Capabilities, HoldSupport, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
+    Capabilities, HoldSupport, Inputs, PortKind, StateSlot, StepReport, Time, Unit,
     UnitDescription, UnitError, require_non_negative,
 };
 use serde::Deserialize;
@@ -22,7 +22,7 @@ pub struct CompensationParams {
     /// Port kind of the command (displacement, velocity, force, ...).
     pub quantity: PortKind,
     /// Channel names (default `["x", "z"]`).
-    #[serde(default = "two_channels")]
+    #[serde(default = "super::two_channels")]
     pub channels: Vec<String>,
     /// How far ahead the command is predicted (s), >= 0: the actuator's delay
     /// plus its lag's time constant.
@@ -30,10 +30,6 @@ pub struct CompensationParams {
     /// Degree of the extrapolating polynomial, 0 to 3 (default 2).
     #[serde(default = "two")]
     pub order: usize,
-}
-
-fn two_channels() -> Vec<String> {
-    vec!["x".into(), "z".into()]
 }
 
 fn two() -> usize {
@@ -60,13 +56,7 @@ impl Compensation {
     /// Builds the unit; fails with the first bad parameter.
     pub fn new(params: CompensationParams) -> Result<Compensation, UnitError> {
         let n = params.channels.len();
-        if n == 0 {
-            return Err(UnitError::parameter(
-                "channels",
-                "[]",
-                "expected at least one channel",
-            ));
-        }
+        let (inputs, outputs) = super::channel_ports(&params.channels, params.quantity)?;
         require_non_negative("lead", params.lead)?;
         if params.order > 3 {
             return Err(UnitError::parameter(
@@ -75,17 +65,6 @@ impl Compensation {
                 "expected 0 to 3",
             ));
         }
-        let inputs = params
-            .channels
-            .iter()
-            .map(|c| Port::input(&format!("in_{c}"), params.quantity))
-            .collect();
-        let all: Vec<usize> = (0..n).collect();
-        let outputs = params
-            .channels
-            .iter()
-            .map(|c| Port::output(&format!("out_{c}"), params.quantity).with_feedthrough(&all))
-            .collect();
         Ok(Compensation {
             description: UnitDescription {
                 kind: "delay_compensation".into(),
