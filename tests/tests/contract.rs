@@ -133,6 +133,10 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/b1_two_masses.toml", "left"),
         ),
         (
+            "reduced",
+            from_scene("examples/seed002_frame_reduced.toml", "reduced"),
+        ),
+        (
             "delay_compensation",
             from_scene("examples/hybrid_oscillator.toml", "compensation_x"),
         ),

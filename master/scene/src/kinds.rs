@@ -11,6 +11,7 @@ use slender_units::benchmark::algebraic_loop::{
 use slender_units::benchmark::oscillator::{Oscillator, OscillatorParams};
 use slender_units::cable::{Cable, CableParams, Effects};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
+use slender_units::reduced::unit::{ReducedParams, ReducedUnit};
 use slender_units::signal::artefact::{Artefact, ArtefactParams};
 use slender_units::signal::characteristic_load::{CharacteristicLoad, CharacteristicLoadParams};
 use slender_units::signal::compensation::{Compensation, CompensationParams};
@@ -132,6 +133,13 @@ pub const KINDS: &[Kind] = &[
         summary: "control-system artefacts on a signal: scale, bias, noise, delay, first-order lag, signal loss, zero-order hold",
         effects: &[],
         build: |p, _| Ok(Box::new(Artefact::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "reduced",
+        parameters: field_names::<ReducedParams>,
+        summary: "a seed 002 section reduced about its stress-free state: modes, derivatives as coordinates (linear) or following them (taylor); loaded ends only",
+        effects: &[],
+        build: |p, _| Ok(Box::new(ReducedUnit::new(parameters(p)?)?)),
     },
     Kind {
         name: "delay_compensation",

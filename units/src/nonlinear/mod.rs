@@ -241,6 +241,32 @@ impl NonlinearSection {
         [kinetic, strain, self.state.contact.energy - work]
     }
 
+    /// The external load at time `t` (weight, distributed loads, end loads;
+    /// coupled ones read from `inputs` at fraction `s` of the coupling step)
+    /// into `out` (N, N m; all DOFs): what a reduced model of the section
+    /// projects.
+    pub fn load_at(&self, inputs: Inputs<'_>, t: f64, s: f64, out: &mut [f64]) {
+        self.external_load(inputs, (t, s), out);
+    }
+
+    /// Number of stations (`stations`).
+    pub fn station_count(&self) -> usize {
+        self.params.stations.len()
+    }
+
+    /// The stations' arc lengths (m).
+    pub fn stations(&self) -> &[f64] {
+        &self.params.stations
+    }
+
+    /// Whether every held DOF stays at its stress-free value (no prescribed or
+    /// coupled motion): the condition for a reduced model about the
+    /// stress-free state.
+    pub fn held_at_rest(&self) -> bool {
+        self.held()
+            .all(|r| matches!(r.condition, params::DofCondition::Held))
+    }
+
     /// External load at time t (weight, distributed loads, end loads; coupled ones
     /// read at fraction `s` of the coupling step) into `out`.
     fn external_load(&self, inputs: Inputs<'_>, (t, s): (f64, f64), out: &mut [f64]) {

@@ -16,7 +16,8 @@
 //! - [`system`]: a reduced section as a second-order system the shared
 //!   integrators step;
 //! - [`taylor`]: the Taylor basis with N unknowns (the derivatives follow the
-//!   modal coordinates), stepped by central differences up to 2 / omega_N.
+//!   modal coordinates), stepped by central differences up to 2 / omega_N;
+//! - [`unit`]: kind `reduced`, a reduced section as a unit for scenes.
 
 pub mod basis;
 pub mod ecsw;
@@ -24,3 +25,4 @@ pub mod lrbf;
 pub mod polynomial;
 pub mod system;
 pub mod taylor;
+pub mod unit;

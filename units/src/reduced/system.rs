@@ -100,6 +100,14 @@ impl ReducedSection {
         &self.basis * DVector::from_column_slice(&self.q)
     }
 
+    /// The displacements and velocities Phi s, Phi s' on the free DOFs.
+    pub fn displacements_and_velocities(&self) -> (DVector<f64>, DVector<f64>) {
+        (
+            self.displacements(),
+            &self.basis * DVector::from_column_slice(&self.v),
+        )
+    }
+
     /// How the restoring force is evaluated.
     pub fn restoring_force(&mut self) -> &mut RestoringForce {
         &mut self.force

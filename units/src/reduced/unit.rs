@@ -1,0 +1,282 @@
+//! Kind `reduced`: a seed 002 section reduced about its stress-free state, as a
+//! unit. Its `section` table is a `nonlinear` unit's parameters; `modes` linear
+//! modes make the basis, with their novel derivatives as further coordinates
+//! (`derivatives = "linear"`, seed 002's LRBF), as coordinates following the
+//! modes (`"taylor"`), or none. Loads (weight, distributed loads, loaded ends,
+//! coupled ones included) are the section's own, projected; so its inputs are
+//! the section's, and it takes the full section's place where the section is
+//! loaded at its coupled ends. Held DOFs must stay at rest (a coupled or
+//! prescribed motion needs constraint modes, not built).
+//!
+//! Stepping: central differences in as many equal sub-steps of the coupling
+//! step as keep each below 0.9 times the critical step (from the reduced
+//! frequencies). Outputs: each end's position, rotation, velocities (as the
+//! full section names them) and each station's position. Rollback restores the
+//! coordinates exactly.
+
+use super::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
+use super::polynomial::CubicSection;
+use super::system::ReducedSection;
+use super::taylor::TaylorSection;
+use crate::contract::{
+    Capabilities, HeldInputs, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
+    UnitDescription, UnitError,
+};
+use crate::integrators::central_difference::CentralDifference;
+use crate::integrators::hht::SecondOrderSystem;
+use crate::nonlinear::{NonlinearParams, NonlinearSection};
+use nalgebra::{DMatrix, DVector};
+use serde::Deserialize;
+
+/// How the modes' derivatives enter the basis.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Derivatives {
+    /// Modes only.
+    None,
+    /// Modes and their novel derivatives as coordinates (LRBF).
+    #[default]
+    Linear,
+    /// The derivatives follow the modal coordinates (Taylor basis).
+    Taylor,
+}
+
+/// Parameters (scene kind `reduced`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReducedParams {
+    /// The full section: a `nonlinear` unit's parameters, seed 002's element.
+    pub section: NonlinearParams,
+    /// Linear modes in the basis, >= 1.
+    pub modes: usize,
+    #[serde(default)]
+    pub derivatives: Derivatives,
+}
+
+enum Model {
+    Linear(ReducedSection, CentralDifference),
+    Taylor(TaylorSection),
+}
+
+crate::state_struct! {
+    /// The coordinates, their rates and accelerations.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct ReducedState {
+        motion: Vec<f64>,
+    }
+}
+
+/// The reduced unit.
+pub struct ReducedUnit {
+    section: NonlinearSection,
+    cubic: CubicSection,
+    model: Model,
+    critical: f64,
+    description: UnitDescription,
+    state: ReducedState,
+    load: Vec<f64>,
+}
+
+impl ReducedUnit {
+    /// Builds the unit: the section, its modes and derivatives, the reduced model.
+    pub fn new(params: ReducedParams) -> Result<ReducedUnit, UnitError> {
+        let mut section = NonlinearSection::new(params.section)?;
+        // The mass and the held DOFs are set up by `initialize` (at rest, zero
+        // inputs: the stress-free state is the expansion point).
+        let holds = section
+            .description()
+            .inputs
+            .iter()
+            .map(|p| p.hold)
+            .collect();
+        let zero = HeldInputs::new(holds);
+        section.initialize(Time::ZERO, zero.view())?;
+        if !section.held_at_rest() {
+            return Err(UnitError::parameter(
+                "section.ends",
+                "prescribed or coupled motion",
+                "expected held DOFs at rest: a reduced section takes loads at its ends, not motion",
+            ));
+        }
+        let cubic = CubicSection::new(&section)?;
+        let count = params.modes;
+        if count == 0 || count >= cubic.size() {
+            return Err(UnitError::parameter(
+                "modes",
+                count,
+                &format!(
+                    "expected 1 to {} (fewer than the free DOFs)",
+                    cubic.size() - 1
+                ),
+            ));
+        }
+        let modes = linear_modes(&cubic, count, Normalisation::Mass)?;
+        let phi = DMatrix::from_columns(&modes.shapes);
+        let (model, critical) = match params.derivatives {
+            Derivatives::Taylor => {
+                let mds = derivative_columns(&cubic, &modes, Derivative::Novel, count)?;
+                let taylor = TaylorSection::new(&cubic, &phi, &DMatrix::from_columns(&mds))?;
+                let critical = taylor.critical_step(&cubic)?;
+                (Model::Taylor(taylor), critical)
+            }
+            kind => {
+                let mut columns = modes.shapes.clone();
+                if kind == Derivatives::Linear {
+                    columns.extend(derivative_columns(
+                        &cubic,
+                        &modes,
+                        Derivative::Novel,
+                        count,
+                    )?);
+                }
+                let system = ReducedSection::new(&cubic, DMatrix::from_columns(&columns));
+                let critical = CentralDifference::critical_step(&system.matrices(), 400)?;
+                (Model::Linear(system, CentralDifference::new()), critical)
+            }
+        };
+        let outputs = output_ports(section.station_count());
+        let description = UnitDescription {
+            kind: "reduced".into(),
+            inputs: section.description().inputs.clone(),
+            outputs,
+            capabilities: Capabilities::default(),
+        };
+        Ok(ReducedUnit {
+            load: vec![0.0; section.model().dofs()],
+            state: ReducedState { motion: Vec::new() },
+            section,
+            cubic,
+            model,
+            critical,
+            description,
+        })
+    }
+
+    /// The critical step of central differences (s) about the stress-free state.
+    pub fn critical_step(&self) -> f64 {
+        self.critical
+    }
+
+    fn motion(&self) -> Vec<f64> {
+        let [q, v, a] = match &self.model {
+            Model::Linear(system, _) => system.motion(),
+            Model::Taylor(taylor) => taylor.motion(),
+        };
+        [q, v, a].concat()
+    }
+
+    /// Displacements and velocities on all DOFs.
+    fn full_motion(&self) -> (Vec<f64>, Vec<f64>) {
+        let (d, v) = match &self.model {
+            Model::Linear(system, _) => system.displacements_and_velocities(),
+            Model::Taylor(taylor) => taylor.displacements_and_velocities(),
+        };
+        (self.cubic.expand(&d), self.cubic.expand(&v))
+    }
+}
+
+/// Each end's position, rotation and velocities, then each station's position.
+fn output_ports(stations: usize) -> Vec<Port> {
+    let mut outputs = Vec::new();
+    for side in ["start", "end"] {
+        for (name, kind) in [
+            ("position_x", PortKind::Displacement),
+            ("position_z", PortKind::Displacement),
+            ("rotation", PortKind::Rotation),
+            ("velocity_x", PortKind::Velocity),
+            ("velocity_z", PortKind::Velocity),
+        ] {
+            outputs.push(Port::output(&format!("{side}_{name}"), kind));
+        }
+        outputs.push(
+            Port::output(&format!("{side}_angular_velocity"), PortKind::Generic).with_unit("rad/s"),
+        );
+    }
+    for i in 1..=stations {
+        outputs.push(Port::output(&format!("x_{i}"), PortKind::Displacement));
+        outputs.push(Port::output(&format!("z_{i}"), PortKind::Displacement));
+    }
+    outputs
+}
+
+impl Unit for ReducedUnit {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn initialize(&mut self, _t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let zero = vec![0.0; self.motion().len() / 3];
+        match &mut self.model {
+            Model::Linear(system, _) => system.set_motion(&zero, &zero, &zero),
+            Model::Taylor(taylor) => taylor.set_motion(&zero, &zero, &zero),
+        }
+        self.state.motion = self.motion();
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        let (t0, h) = (t.as_secs(), h.as_secs());
+        let substeps = (h / (0.9 * self.critical)).ceil().max(1.0) as usize;
+        let hk = h / substeps as f64;
+        for k in 1..=substeps {
+            let s = k as f64 / substeps as f64;
+            self.section.load_at(inputs, t0 + s * h, s, &mut self.load);
+            let free = DVector::from_iterator(
+                self.cubic.size(),
+                self.cubic.free_dofs().iter().map(|&d| self.load[d]),
+            );
+            match &mut self.model {
+                Model::Linear(system, cd) => {
+                    let f = system.project(&free);
+                    cd.step(system, t0 + s * h, hk, f.as_slice(), &[])?;
+                }
+                Model::Taylor(taylor) => {
+                    let f = taylor.project(&free);
+                    taylor.step(hk, &f)?;
+                }
+            }
+        }
+        self.state.motion = self.motion();
+        Ok(StepReport::default())
+    }
+
+    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
+        let (d, v) = self.full_motion();
+        let model = self.section.model();
+        let last = model.reference.len() - 1;
+        for (k, node) in [0, last].into_iter().enumerate() {
+            let [x, z] = model.reference[node];
+            let base = 6 * k;
+            out[base] = x + d[3 * node];
+            out[base + 1] = z + d[3 * node + 1];
+            out[base + 2] = d[3 * node + 2];
+            out[base + 3] = v[3 * node];
+            out[base + 4] = v[3 * node + 1];
+            out[base + 5] = v[3 * node + 2];
+        }
+        for (i, &s) in self.section.stations().iter().enumerate() {
+            let (e, xi) = model.locate(s);
+            for c in 0..2 {
+                let (a, b) = (d[3 * e + c], d[3 * (e + 1) + c]);
+                let reference = (1.0 - xi) * model.reference[e][c] + xi * model.reference[e + 1][c];
+                out[12 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
+            }
+        }
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.state);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.state.clone_from(&*slot.load::<ReducedState>()?);
+        let n = self.state.motion.len() / 3;
+        let m = &self.state.motion;
+        match &mut self.model {
+            Model::Linear(system, _) => system.set_motion(&m[..n], &m[n..2 * n], &m[2 * n..]),
+            Model::Taylor(taylor) => taylor.set_motion(&m[..n], &m[n..2 * n], &m[2 * n..]),
+        }
+        Ok(())
+    }
+}
