@@ -222,5 +222,46 @@ fn frame_second(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, cable_second, lrbf_step, ecsw_step, frame_second);
+/// The Taylor basis's step against N on the 200-element cable (599 free DOFs):
+/// N unknowns carrying N modes and their N (N + 1) / 2 derivatives, the force
+/// through all 200 elements. Seed 002 counts the basis size N_S = N (N + 3) / 2.
+fn taylor_step(c: &mut Criterion) {
+    let mut group = c.benchmark_group("taylor_cd_step");
+    group.sample_size(20);
+    let long = format!(
+        "formulation = \"seed002\"\nsegments = [{{ length = 20.0, elements = 200, {STEEL} }}]\nends.start = {{ kind = \"pinned\" }}\nends.end = {{ kind = \"pinned\" }}"
+    );
+    let cubic = CubicSection::new(&section(&long)).expect("cubic");
+    for n in [6, 10, 14, 18, 22, 26, 30, 34] {
+        let modes = linear_modes(&cubic, n, Normalisation::Mass).expect("modes");
+        let mds = derivative_columns(&cubic, &modes, Derivative::Novel, n).expect("derivatives");
+        let mut taylor = TaylorSection::new(
+            &cubic,
+            &DMatrix::from_columns(&modes.shapes),
+            &DMatrix::from_columns(&mds),
+        )
+        .expect("taylor");
+        let load = taylor.project(&DVector::from_element(cubic.size(), 1.0));
+        let h = 1e-6;
+        let mut k = 0usize;
+        let size = n * (n + 3) / 2;
+        group.bench_with_input(BenchmarkId::new("n_s", size), &n, |b, _| {
+            b.iter(|| {
+                k += 1;
+                let f = &load * (3.0 * (6.401 * k as f64 * h).sin());
+                taylor.step(h, &f).expect("step");
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    cable_second,
+    lrbf_step,
+    ecsw_step,
+    frame_second,
+    taylor_step
+);
 criterion_main!(benches);
