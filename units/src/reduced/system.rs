@@ -90,6 +90,11 @@ impl ReducedSection {
         self.basis.tr_mul(f)
     }
 
+    /// The same into `out` (sized as the basis's columns), allocating nothing.
+    pub fn project_into(&self, f: &DVector<f64>, out: &mut DVector<f64>) {
+        self.basis.tr_mul_to(f, out);
+    }
+
     /// The coordinates s at the current time.
     pub fn coordinates(&self) -> &[f64] {
         &self.q
@@ -98,6 +103,23 @@ impl ReducedSection {
     /// The displacements Phi s on the free DOFs.
     pub fn displacements(&self) -> DVector<f64> {
         &self.basis * DVector::from_column_slice(&self.q)
+    }
+
+    /// The same into `d` and `v`, allocating nothing.
+    pub fn displacements_and_velocities_into(&self, d: &mut DVector<f64>, v: &mut DVector<f64>) {
+        let n = self.q.len();
+        d.gemv(
+            1.0,
+            &self.basis,
+            &nalgebra::DVectorView::from_slice(&self.q, n),
+            0.0,
+        );
+        v.gemv(
+            1.0,
+            &self.basis,
+            &nalgebra::DVectorView::from_slice(&self.v, n),
+            0.0,
+        );
     }
 
     /// The displacements and velocities Phi s, Phi s' on the free DOFs.

@@ -118,6 +118,11 @@ impl TaylorSection {
         self.basis.tr_mul(f)
     }
 
+    /// The same into `out` (sized as the basis's columns), allocating nothing.
+    pub fn project_into(&self, f: &DVector<f64>, out: &mut DVector<f64>) {
+        self.basis.tr_mul_to(f, out);
+    }
+
     /// The modal coordinates s.
     pub fn coordinates(&self) -> &DVector<f64> {
         &self.s
@@ -133,6 +138,26 @@ impl TaylorSection {
         self.s.copy_from_slice(s);
         self.v.copy_from_slice(v);
         self.a.copy_from_slice(a);
+    }
+
+    /// Basis size N_S = N + N (N + 1) / 2.
+    pub fn basis_size(&self) -> usize {
+        self.n + self.pairs.len()
+    }
+
+    /// The displacements and velocities on the free DOFs into `d` and `v`,
+    /// allocating nothing (the step's buffers are used).
+    pub fn displacements_and_velocities_into(
+        &mut self,
+        d: &mut DVector<f64>,
+        v: &mut DVector<f64>,
+    ) {
+        let w = &mut self.work;
+        expand(&self.pairs, self.n, &self.s, &mut w.st);
+        d.gemv(1.0, &self.basis, &w.st, 0.0);
+        jacobian(&self.pairs, self.n, &self.s, &mut w.u);
+        w.u.mul_to(&self.v, &mut w.q);
+        v.gemv(1.0, &self.basis, &w.q, 0.0);
     }
 
     /// The displacements and velocities on the free DOFs.

@@ -12,7 +12,7 @@
 //! step as keep each below 0.9 times the critical step (from the reduced
 //! frequencies). Outputs: each end's position, rotation, velocities (as the
 //! full section names them) and each station's position. Rollback restores the
-//! coordinates exactly.
+//! coordinates exactly; a step allocates nothing.
 
 use super::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
 use super::polynomial::CubicSection;
@@ -74,7 +74,14 @@ pub struct ReducedUnit {
     critical: f64,
     description: UnitDescription,
     state: ReducedState,
+    /// A sub-step's load on all DOFs, on the free DOFs, and projected.
     load: Vec<f64>,
+    free_load: DVector<f64>,
+    projected: DVector<f64>,
+    /// Displacements and velocities (free DOFs), and the outputs they give.
+    displacement: DVector<f64>,
+    velocity: DVector<f64>,
+    values: Vec<f64>,
 }
 
 impl ReducedUnit {
@@ -110,30 +117,7 @@ impl ReducedUnit {
                 ),
             ));
         }
-        let modes = linear_modes(&cubic, count, Normalisation::Mass)?;
-        let phi = DMatrix::from_columns(&modes.shapes);
-        let (model, critical) = match params.derivatives {
-            Derivatives::Taylor => {
-                let mds = derivative_columns(&cubic, &modes, Derivative::Novel, count)?;
-                let taylor = TaylorSection::new(&cubic, &phi, &DMatrix::from_columns(&mds))?;
-                let critical = taylor.critical_step(&cubic)?;
-                (Model::Taylor(taylor), critical)
-            }
-            kind => {
-                let mut columns = modes.shapes.clone();
-                if kind == Derivatives::Linear {
-                    columns.extend(derivative_columns(
-                        &cubic,
-                        &modes,
-                        Derivative::Novel,
-                        count,
-                    )?);
-                }
-                let system = ReducedSection::new(&cubic, DMatrix::from_columns(&columns));
-                let critical = CentralDifference::critical_step(&system.matrices(), 400)?;
-                (Model::Linear(system, CentralDifference::new()), critical)
-            }
-        };
+        let (model, critical) = build_model(&cubic, count, params.derivatives)?;
         let outputs = output_ports(section.station_count());
         let description = UnitDescription {
             kind: "reduced".into(),
@@ -141,8 +125,17 @@ impl ReducedUnit {
             outputs,
             capabilities: Capabilities::default(),
         };
+        let columns = match &model {
+            Model::Linear(system, _) => system.size(),
+            Model::Taylor(taylor) => taylor.basis_size(),
+        };
         Ok(ReducedUnit {
             load: vec![0.0; section.model().dofs()],
+            free_load: DVector::zeros(cubic.size()),
+            projected: DVector::zeros(columns),
+            displacement: DVector::zeros(cubic.size()),
+            velocity: DVector::zeros(cubic.size()),
+            values: vec![0.0; description.outputs.len()],
             state: ReducedState { motion: Vec::new() },
             section,
             cubic,
@@ -165,14 +158,78 @@ impl ReducedUnit {
         [q, v, a].concat()
     }
 
-    /// Displacements and velocities on all DOFs.
-    fn full_motion(&self) -> (Vec<f64>, Vec<f64>) {
-        let (d, v) = match &self.model {
-            Model::Linear(system, _) => system.displacements_and_velocities(),
-            Model::Taylor(taylor) => taylor.displacements_and_velocities(),
+    /// Copies the motion into the state (its buffer reused).
+    fn store_motion(&mut self) {
+        let [q, v, a] = match &self.model {
+            Model::Linear(system, _) => system.motion(),
+            Model::Taylor(taylor) => taylor.motion(),
         };
-        (self.cubic.expand(&d), self.cubic.expand(&v))
+        let m = &mut self.state.motion;
+        m.clear();
+        m.extend_from_slice(q);
+        m.extend_from_slice(v);
+        m.extend_from_slice(a);
     }
+
+    /// Recomputes the outputs from the current motion (after a step, an
+    /// initialisation or a restore), allocating nothing.
+    fn refresh_outputs(&mut self) {
+        let (d, v) = (&mut self.displacement, &mut self.velocity);
+        match &mut self.model {
+            Model::Linear(system, _) => system.displacements_and_velocities_into(d, v),
+            Model::Taylor(taylor) => taylor.displacements_and_velocities_into(d, v),
+        }
+        let free = self.cubic.free_dofs();
+        let at = |x: &DVector<f64>, dof: usize| free.binary_search(&dof).map_or(0.0, |k| x[k]);
+        let model = self.section.model();
+        let last = model.reference.len() - 1;
+        let out = &mut self.values;
+        for (k, node) in [0, last].into_iter().enumerate() {
+            let [x, z] = model.reference[node];
+            let base = 6 * k;
+            out[base] = x + at(d, 3 * node);
+            out[base + 1] = z + at(d, 3 * node + 1);
+            out[base + 2] = at(d, 3 * node + 2);
+            out[base + 3] = at(v, 3 * node);
+            out[base + 4] = at(v, 3 * node + 1);
+            out[base + 5] = at(v, 3 * node + 2);
+        }
+        for (i, &s) in self.section.stations().iter().enumerate() {
+            let (e, xi) = model.locate(s);
+            for c in 0..2 {
+                let (a, b) = (at(d, 3 * e + c), at(d, 3 * (e + 1) + c));
+                let reference = (1.0 - xi) * model.reference[e][c] + xi * model.reference[e + 1][c];
+                out[12 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
+            }
+        }
+    }
+}
+
+/// The reduced model of `cubic` on `count` modes and its critical step (s).
+fn build_model(
+    cubic: &CubicSection,
+    count: usize,
+    derivatives: Derivatives,
+) -> Result<(Model, f64), UnitError> {
+    let modes = linear_modes(cubic, count, Normalisation::Mass)?;
+    let phi = DMatrix::from_columns(&modes.shapes);
+    Ok(match derivatives {
+        Derivatives::Taylor => {
+            let mds = derivative_columns(cubic, &modes, Derivative::Novel, count)?;
+            let taylor = TaylorSection::new(cubic, &phi, &DMatrix::from_columns(&mds))?;
+            let critical = taylor.critical_step(cubic)?;
+            (Model::Taylor(taylor), critical)
+        }
+        kind => {
+            let mut columns = modes.shapes.clone();
+            if kind == Derivatives::Linear {
+                columns.extend(derivative_columns(cubic, &modes, Derivative::Novel, count)?);
+            }
+            let system = ReducedSection::new(cubic, DMatrix::from_columns(&columns));
+            let critical = CentralDifference::critical_step(&system.matrices(), 400)?;
+            (Model::Linear(system, CentralDifference::new()), critical)
+        }
+    })
 }
 
 /// Each end's position, rotation and velocities, then each station's position.
@@ -210,7 +267,8 @@ impl Unit for ReducedUnit {
             Model::Linear(system, _) => system.set_motion(&zero, &zero, &zero),
             Model::Taylor(taylor) => taylor.set_motion(&zero, &zero, &zero),
         }
-        self.state.motion = self.motion();
+        self.store_motion();
+        self.refresh_outputs();
         Ok(())
     }
 
@@ -221,47 +279,27 @@ impl Unit for ReducedUnit {
         for k in 1..=substeps {
             let s = k as f64 / substeps as f64;
             self.section.load_at(inputs, t0 + s * h, s, &mut self.load);
-            let free = DVector::from_iterator(
-                self.cubic.size(),
-                self.cubic.free_dofs().iter().map(|&d| self.load[d]),
-            );
+            for (f, &d) in self.free_load.iter_mut().zip(self.cubic.free_dofs()) {
+                *f = self.load[d];
+            }
             match &mut self.model {
                 Model::Linear(system, cd) => {
-                    let f = system.project(&free);
-                    cd.step(system, t0 + s * h, hk, f.as_slice(), &[])?;
+                    system.project_into(&self.free_load, &mut self.projected);
+                    cd.step(system, t0 + s * h, hk, self.projected.as_slice(), &[])?;
                 }
                 Model::Taylor(taylor) => {
-                    let f = taylor.project(&free);
-                    taylor.step(hk, &f)?;
+                    taylor.project_into(&self.free_load, &mut self.projected);
+                    taylor.step(hk, &self.projected)?;
                 }
             }
         }
-        self.state.motion = self.motion();
+        self.store_motion();
+        self.refresh_outputs();
         Ok(StepReport::default())
     }
 
     fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
-        let (d, v) = self.full_motion();
-        let model = self.section.model();
-        let last = model.reference.len() - 1;
-        for (k, node) in [0, last].into_iter().enumerate() {
-            let [x, z] = model.reference[node];
-            let base = 6 * k;
-            out[base] = x + d[3 * node];
-            out[base + 1] = z + d[3 * node + 1];
-            out[base + 2] = d[3 * node + 2];
-            out[base + 3] = v[3 * node];
-            out[base + 4] = v[3 * node + 1];
-            out[base + 5] = v[3 * node + 2];
-        }
-        for (i, &s) in self.section.stations().iter().enumerate() {
-            let (e, xi) = model.locate(s);
-            for c in 0..2 {
-                let (a, b) = (d[3 * e + c], d[3 * (e + 1) + c]);
-                let reference = (1.0 - xi) * model.reference[e][c] + xi * model.reference[e + 1][c];
-                out[12 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
-            }
-        }
+        out.copy_from_slice(&self.values);
     }
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
@@ -277,6 +315,7 @@ impl Unit for ReducedUnit {
             Model::Linear(system, _) => system.set_motion(&m[..n], &m[n..2 * n], &m[2 * n..]),
             Model::Taylor(taylor) => taylor.set_motion(&m[..n], &m[n..2 * n], &m[2 * n..]),
         }
+        self.refresh_outputs();
         Ok(())
     }
 }
