@@ -55,15 +55,45 @@ pub fn linear_modes(
     count: usize,
     normalisation: Normalisation,
 ) -> Result<LinearModes, UnitError> {
-    let pairs = lowest_modes(&section.mass, &section.k0, count, "the section is not held")?;
+    shifted_modes(section, count, normalisation, 0.0)
+}
+
+/// The same for a section with rigid-body motion (free-free parts): the
+/// lowest modes of (K0 + shift M) phi = lambda M phi, omega^2 = lambda - shift
+/// (seed 002 T eqs. 5.10-5.11), so zero-frequency modes come out too. `shift`
+/// (1/s^2) should be of the order of the first flexible omega^2. Rigid-body
+/// modes can only be mass-normalised.
+pub fn shifted_modes(
+    section: &CubicSection,
+    count: usize,
+    normalisation: Normalisation,
+    shift: f64,
+) -> Result<LinearModes, UnitError> {
+    if !(shift.is_finite() && shift >= 0.0) {
+        return Err(UnitError::parameter(
+            "shift",
+            shift,
+            "expected a finite value >= 0",
+        ));
+    }
+    let shifted = &section.k0 + &section.mass * shift;
+    let pairs = lowest_modes(&section.mass, &shifted, count, "the section is not held")?;
     let mut modes = LinearModes {
         omegas: Vec::new(),
         shapes: Vec::new(),
     };
-    for (w2, phi) in pairs {
+    for (lambda, phi) in pairs {
+        let w2 = (lambda - shift).max(0.0);
         let scale = match normalisation {
             Normalisation::Mass => 1.0,
-            Normalisation::Stiffness => 1.0 / w2.sqrt(),
+            Normalisation::Stiffness if w2 > 0.0 => 1.0 / w2.sqrt(),
+            Normalisation::Stiffness => {
+                return Err(UnitError::parameter(
+                    "normalisation",
+                    "stiffness",
+                    "expected mass normalisation: a rigid-body mode has no stiffness",
+                ));
+            }
         };
         let largest = phi.amax();
         let sign = phi
@@ -74,6 +104,46 @@ pub fn linear_modes(
         modes.shapes.push(phi * (scale * sign));
     }
     Ok(modes)
+}
+
+/// Load-dependent Ritz vectors (Wilson, Yuan and Dickens 1982; seed 002 T sec.
+/// 4.1.2): psi_1 = K^-1 f, then K psi* = M psi_i, each M-orthogonalised against
+/// every earlier vector (twice, for round-off) and M-normalised. K is K0 +
+/// `shift` M (a shift for sections with rigid-body motion; 0 otherwise).
+pub fn ritz_vectors(
+    section: &CubicSection,
+    load: &DVector<f64>,
+    count: usize,
+    shift: f64,
+) -> Result<Vec<DVector<f64>>, UnitError> {
+    let k = &section.k0 + &section.mass * shift;
+    let factor = k.cholesky().ok_or_else(|| {
+        UnitError::Numerical(
+            "Ritz vectors: K is not positive definite (a free-free section needs a shift)".into(),
+        )
+    })?;
+    let m = &section.mass;
+    let mut vectors: Vec<DVector<f64>> = Vec::with_capacity(count);
+    let mut next = factor.solve(load);
+    for i in 0..count {
+        for _ in 0..2 {
+            for q in &vectors {
+                let c = q.dot(&(m * &next));
+                next.axpy(-c, q, 1.0);
+            }
+        }
+        let norm = next.dot(&(m * &next)).sqrt();
+        if !(norm.is_finite() && norm > 0.0) {
+            return Err(UnitError::Numerical(format!(
+                "Ritz vector {}: nothing left after orthogonalisation (the load excites fewer shapes)",
+                i + 1
+            )));
+        }
+        let psi = next / norm;
+        next = factor.solve(&(m * &psi));
+        vectors.push(psi);
+    }
+    Ok(vectors)
 }
 
 /// The modal derivative of `kind` for the mode pair (i, j), 0-based: for
