@@ -8,6 +8,7 @@
 use super::ecsw::SampledForce;
 use super::lrbf::ReducedForce;
 use super::polynomial::CubicSection;
+use crate::contract::UnitError;
 use crate::integrators::hht::{Matrices, SecondOrderSystem, TangentScales};
 use crate::numerics::banded::SymmetricBand;
 use nalgebra::{DMatrix, DVector};
@@ -128,6 +129,31 @@ impl ReducedSection {
             self.displacements(),
             &self.basis * DVector::from_column_slice(&self.v),
         )
+    }
+
+    /// Sets the acceleration that balances the projected load `f` at the
+    /// current coordinates and velocities: m a = f - Q1 s - g~_nl(s) (the start
+    /// of an explicit run; allocates, so not for every step).
+    pub fn set_initial_acceleration(&mut self, f: &DVector<f64>) -> Result<(), UnitError> {
+        let (q, v) = (self.q.clone(), self.v.clone());
+        let mut g = Vec::new();
+        self.nonlinear_force(&q, &v, 0.0, None, &mut g);
+        let mut rhs = f - DVector::from_vec(g);
+        if let Some(k) = &self.stiffness {
+            k.mul_add(-1.0, &q, rhs.as_mut_slice());
+        }
+        let a = self
+            .mass
+            .to_dense()
+            .cholesky()
+            .map(|c| c.solve(&rhs))
+            .ok_or_else(|| {
+                UnitError::Numerical(
+                    "reduced section: the reduced mass is not positive definite".into(),
+                )
+            })?;
+        self.a.copy_from_slice(a.as_slice());
+        Ok(())
     }
 
     /// How the restoring force is evaluated.

@@ -221,6 +221,16 @@ impl TaylorSection {
         Ok(())
     }
 
+    /// Sets the acceleration that balances the projected load `load` (N_S
+    /// values) at the current coordinates and velocities (the start of a run).
+    pub fn set_initial_acceleration(&mut self, load: &DVector<f64>) -> Result<(), UnitError> {
+        self.work.s1.copy_from(&self.s);
+        self.work.v_half.copy_from(&self.v);
+        self.acceleration(load)?;
+        self.a.copy_from(&self.work.a1);
+        Ok(())
+    }
+
     /// One central-difference step of `h` seconds, `load1` the projected load
     /// at the step's end (N_S values).
     pub fn step(&mut self, h: f64, load1: &DVector<f64>) -> Result<(), UnitError> {

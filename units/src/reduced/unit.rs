@@ -261,11 +261,25 @@ impl Unit for ReducedUnit {
         &self.description
     }
 
-    fn initialize(&mut self, _t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        // At rest in the stress-free state, accelerated by the load at t0.
         let zero = vec![0.0; self.motion().len() / 3];
+        self.section
+            .load_at(inputs, t0.as_secs(), 1.0, &mut self.load);
+        for (f, &d) in self.free_load.iter_mut().zip(self.cubic.free_dofs()) {
+            *f = self.load[d];
+        }
         match &mut self.model {
-            Model::Linear(system, _) => system.set_motion(&zero, &zero, &zero),
-            Model::Taylor(taylor) => taylor.set_motion(&zero, &zero, &zero),
+            Model::Linear(system, _) => {
+                system.set_motion(&zero, &zero, &zero);
+                system.project_into(&self.free_load, &mut self.projected);
+                system.set_initial_acceleration(&self.projected)?;
+            }
+            Model::Taylor(taylor) => {
+                taylor.set_motion(&zero, &zero, &zero);
+                taylor.project_into(&self.free_load, &mut self.projected);
+                taylor.set_initial_acceleration(&self.projected)?;
+            }
         }
         self.store_motion();
         self.refresh_outputs();
