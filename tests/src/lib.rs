@@ -143,6 +143,12 @@ impl Chain {
     }
 }
 
+/// Root mean square of a series.
+pub fn rms(x: impl Iterator<Item = f64>) -> f64 {
+    let (sum, n) = x.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
+    (sum / n.max(1) as f64).sqrt()
+}
+
 /// Observed order of convergence from errors at steps h and h/2.
 pub fn order(error_h: f64, error_half: f64) -> f64 {
     (error_h / error_half).log2()

@@ -8,6 +8,7 @@
 //! step's cost.
 
 use nalgebra::{DMatrix, DVector};
+use slender_tests::rms;
 use slender_tests::seed002::{section, steel};
 use slender_units::Time;
 use slender_units::integrators::central_difference::CentralDifference;
@@ -30,11 +31,6 @@ fn cable(extra: &str) -> String {
 
 fn load(t: f64) -> f64 {
     (W[0] * t).sin() + 3.0 * (W[1] * t).sin()
-}
-
-fn rms(x: impl Iterator<Item = f64>) -> f64 {
-    let (sum, n) = x.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
-    (sum / n.max(1) as f64).sqrt()
 }
 
 #[test]

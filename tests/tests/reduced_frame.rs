@@ -5,6 +5,7 @@
 //! midpoint (arc 15 m) over 10 s.
 
 use nalgebra::{DMatrix, DVector};
+use slender_tests::rms;
 use slender_tests::seed002::{frame, section};
 use slender_units::Time;
 use slender_units::integrators::central_difference::CentralDifference;
@@ -85,11 +86,6 @@ fn run(
         coordinates.push(DVector::from_column_slice(system.coordinates()));
     }
     (history, coordinates)
-}
-
-fn rms(x: impl Iterator<Item = f64>) -> f64 {
-    let (sum, n) = x.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
-    (sum / n.max(1) as f64).sqrt()
 }
 
 /// RMS difference from the full history (interpolated to the reduced

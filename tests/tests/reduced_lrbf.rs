@@ -5,6 +5,7 @@
 //! that only the novel derivatives satisfy (the frame: `reduced_frame.rs`).
 
 use nalgebra::{DMatrix, DVector};
+use slender_tests::rms;
 use slender_tests::seed002::{cable, random_vector, section};
 use slender_units::integrators::central_difference::CentralDifference;
 use slender_units::numerics::banded::SymmetricBand;
@@ -106,11 +107,6 @@ fn reduced_run(
         coordinates.push(system.coordinates().to_vec());
     }
     (midpoint, coordinates)
-}
-
-fn rms(x: impl Iterator<Item = f64>) -> f64 {
-    let (sum, n) = x.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
-    (sum / n.max(1) as f64).sqrt()
 }
 
 #[test]

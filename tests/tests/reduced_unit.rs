@@ -4,14 +4,9 @@
 //! cannot represent. (Rollback and the rest of the contract: contract.rs.)
 
 use slender_tests::seed002::{cable, section};
-use slender_tests::{load, run};
+use slender_tests::{load, rms, run};
 use slender_units::reduced::unit::{ReducedParams, ReducedUnit};
 use slender_units::{Driver, Time, Unit};
-
-fn rms(x: impl Iterator<Item = f64>) -> f64 {
-    let (sum, n) = x.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
-    (sum / n.max(1) as f64).sqrt()
-}
 
 #[test]
 fn the_reduced_frame_follows_the_full_one_in_a_scene() {

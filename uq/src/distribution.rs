@@ -34,6 +34,16 @@ pub fn distribution(
     if bins == 0 {
         return Err(UqError::input("distribution", "expected at least one bin"));
     }
+    if marginals.len() != pce.families.len() {
+        return Err(UqError::input(
+            "distribution",
+            format!(
+                "{} marginals for an expansion in {} inputs",
+                marginals.len(),
+                pce.families.len()
+            ),
+        ));
+    }
     let design = sobol(n, marginals.len(), seed)?;
     let mut values: Vec<f64> = design
         .iter()

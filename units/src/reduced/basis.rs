@@ -235,6 +235,9 @@ pub fn dependent_columns(
     tolerance: f64,
     from: usize,
 ) -> Result<Vec<usize>, UnitError> {
+    if columns.is_empty() {
+        return Ok(Vec::new());
+    }
     let unit: Vec<DVector<f64>> = columns
         .iter()
         .map(|c| c / c.norm().max(f64::MIN_POSITIVE))
@@ -249,6 +252,9 @@ pub fn dependent_columns(
     for _ in 0..count {
         let mut best: Option<(f64, usize)> = None;
         for (position, &k) in keep.iter().enumerate().filter(|(_, k)| **k >= from) {
+            if keep.len() == 1 {
+                break;
+            }
             let mut rest = keep.clone();
             rest.remove(position);
             let smallest = singular(&rest)?.min();

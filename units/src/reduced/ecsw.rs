@@ -86,11 +86,11 @@ impl SampledForce {
     ) -> Result<SampledForce, UnitError> {
         let all = SampledForce::all(section, basis);
         let (n, count) = (basis.ncols(), all.elements.len());
-        if snapshots.is_empty() {
+        if snapshots.is_empty() || snapshots.iter().any(|s| s.len() != n) {
             return Err(UnitError::parameter(
                 "snapshots",
-                "[]",
-                "expected at least one",
+                snapshots.len(),
+                &format!("expected at least one, each of the basis's {n} coordinates"),
             ));
         }
         let mut g = DMatrix::zeros(snapshots.len() * n, count);

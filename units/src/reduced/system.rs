@@ -106,7 +106,8 @@ impl ReducedSection {
         &self.basis * DVector::from_column_slice(&self.q)
     }
 
-    /// The same into `d` and `v`, allocating nothing.
+    /// The displacements and velocities Phi s, Phi s' on the free DOFs into
+    /// `d` and `v`, allocating nothing.
     pub fn displacements_and_velocities_into(&self, d: &mut DVector<f64>, v: &mut DVector<f64>) {
         let n = self.q.len();
         d.gemv(
@@ -121,14 +122,6 @@ impl ReducedSection {
             &nalgebra::DVectorView::from_slice(&self.v, n),
             0.0,
         );
-    }
-
-    /// The displacements and velocities Phi s, Phi s' on the free DOFs.
-    pub fn displacements_and_velocities(&self) -> (DVector<f64>, DVector<f64>) {
-        (
-            self.displacements(),
-            &self.basis * DVector::from_column_slice(&self.v),
-        )
     }
 
     /// Sets the acceleration that balances the projected load `f` at the

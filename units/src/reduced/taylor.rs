@@ -160,32 +160,6 @@ impl TaylorSection {
         v.gemv(1.0, &self.basis, &w.q, 0.0);
     }
 
-    /// The displacements and velocities on the free DOFs.
-    pub fn displacements_and_velocities(&self) -> (DVector<f64>, DVector<f64>) {
-        let mut u = DMatrix::zeros(self.n + self.pairs.len(), self.n);
-        jacobian(&self.pairs, self.n, &self.s, &mut u);
-        (self.displacements(), &self.basis * (u * &self.v))
-    }
-
-    /// The critical step of central differences about the stress-free state,
-    /// 2 / omega_N (s): only the modes remain when linearised.
-    pub fn critical_step(&self, section: &CubicSection) -> Result<f64, UnitError> {
-        let modes = self.basis.columns(0, self.n);
-        let (m, k) = (
-            modes.transpose() * &section.mass * modes,
-            modes.transpose() * &section.k0 * modes,
-        );
-        let top = crate::numerics::modal::lowest_modes(&m, &k, self.n, "the basis is not held")?
-            .last()
-            .map(|(w2, _)| *w2)
-            .unwrap_or(0.0);
-        Ok(if top > 0.0 {
-            2.0 / top.sqrt()
-        } else {
-            f64::INFINITY
-        })
-    }
-
     /// The displacements V(s) on the free DOFs.
     pub fn displacements(&self) -> DVector<f64> {
         let mut st = DVector::zeros(self.n + self.pairs.len());

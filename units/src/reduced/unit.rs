@@ -150,14 +150,6 @@ impl ReducedUnit {
         self.critical
     }
 
-    fn motion(&self) -> Vec<f64> {
-        let [q, v, a] = match &self.model {
-            Model::Linear(system, _) => system.motion(),
-            Model::Taylor(taylor) => taylor.motion(),
-        };
-        [q, v, a].concat()
-    }
-
     /// Copies the motion into the state (its buffer reused).
     fn store_motion(&mut self) {
         let [q, v, a] = match &self.model {
@@ -217,7 +209,8 @@ fn build_model(
         Derivatives::Taylor => {
             let mds = derivative_columns(cubic, &modes, Derivative::Novel, count)?;
             let taylor = TaylorSection::new(cubic, &phi, &DMatrix::from_columns(&mds))?;
-            let critical = taylor.critical_step(cubic)?;
+            // Linearised at rest only the modes remain: 2 / omega_N.
+            let critical = modes.omegas.last().map_or(f64::INFINITY, |w| 2.0 / w);
             (Model::Taylor(taylor), critical)
         }
         kind => {
@@ -263,7 +256,11 @@ impl Unit for ReducedUnit {
 
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         // At rest in the stress-free state, accelerated by the load at t0.
-        let zero = vec![0.0; self.motion().len() / 3];
+        let count = match &self.model {
+            Model::Linear(system, _) => system.size(),
+            Model::Taylor(taylor) => taylor.size(),
+        };
+        let zero = vec![0.0; count];
         self.section
             .load_at(inputs, t0.as_secs(), 1.0, &mut self.load);
         for (f, &d) in self.free_load.iter_mut().zip(self.cubic.free_dofs()) {

@@ -124,12 +124,7 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
     let (dir, _) = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
     let report =
         fidelity::run_fidelity(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
-    let write = |name: &str, text: String| -> Result<PathBuf, CliError> {
-        let file = dir.join(name);
-        std::fs::write(&file, text)
-            .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
-        Ok(file)
-    };
+    let write = |name: &str, text: String| super::write_in(&dir, name, text);
     let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
     let files = vec![
         write("fidelity.csv", fidelity::report::to_csv(&report))?,

@@ -65,12 +65,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
             }
             let (report, runs) = run_appending(path, plan, &csv, &header, earlier)?;
             let report = report.ok_or_else(|| CliError::failure("no report from a whole study"))?;
-            let write = |name: &str, text: String| -> Result<PathBuf, CliError> {
-                let file = dir.join(name);
-                std::fs::write(&file, text)
-                    .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
-                Ok(file)
-            };
+            let write = |name: &str, text: String| super::write_in(&dir, name, text);
             // runs.csv is already complete and in index order.
             let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
             let markdown = uq::report::to_markdown(&report);
