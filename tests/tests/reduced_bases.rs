@@ -8,8 +8,8 @@
 use nalgebra::DMatrix;
 use slender_tests::seed002::{cable, frame, random_vector, section};
 use slender_units::reduced::basis::{
-    Derivative, Normalisation, dependent_columns, derivative, derivative_columns, linear_modes,
-    ritz_vectors, shifted_modes,
+    Derivative, Normalisation, attachment_vectors, dependent_columns, derivative,
+    derivative_columns, linear_modes, ritz_vectors, shifted_modes,
 };
 use slender_units::reduced::polynomial::CubicSection;
 
@@ -204,4 +204,50 @@ fn shifted_modes_give_a_free_free_section_its_rigid_and_flexible_modes() {
     assert!((modes.omegas[3] - bending).abs() < 2e-3 * bending);
     assert!(shifted_modes(&c, 4, Normalisation::Stiffness, 1.0).is_err());
     assert!(ritz_vectors(&c, &nalgebra::DVector::from_element(c.size(), 1.0), 2, 0.0).is_err());
+}
+
+#[test]
+fn attachment_vectors_carry_the_static_response_to_end_loads() {
+    // The cable clamped at its start, free at its end: a unit force or moment
+    // at the free end gives a static shape that the lowest modes miss and the
+    // modes with the three attachment vectors hold exactly.
+    let text = cable("").replace(
+        "ends.start = { kind = \"pinned\" }",
+        "ends.start = { kind = \"fixed\" }",
+    );
+    let text = text.replace(
+        "ends.end = { kind = \"pinned\" }",
+        "ends.end = { x = { force = \"input\" }, z = { force = \"input\" }, rotation = { force = \"input\" } }",
+    );
+    let driver = section(&text);
+    let c = CubicSection::new(&driver).unwrap();
+    let loaded: Vec<usize> = driver
+        .loaded_end_dofs()
+        .iter()
+        .map(|d| c.free_dofs().binary_search(d).expect("a free DOF"))
+        .collect();
+    assert_eq!(loaded.len(), 3);
+    let modes = linear_modes(&c, 4, Normalisation::Mass).unwrap();
+    let statics = attachment_vectors(&c, &loaded, &modes.shapes).unwrap();
+    assert_eq!(statics.len(), 3);
+    let all = DMatrix::from_columns(&[modes.shapes.clone(), statics].concat());
+    let gram = all.transpose() * &c.mass * &all;
+    let off = (gram - DMatrix::identity(7, 7)).amax();
+    let fit = |b: &DMatrix<f64>, x: &nalgebra::DVector<f64>| {
+        let coefficients = b.clone().svd(true, true).solve(x, 1e-14).unwrap();
+        (b * coefficients - x).norm() / x.norm()
+    };
+    let modes_only = DMatrix::from_columns(&modes.shapes);
+    let (mut worst_with, mut best_without) = (0.0f64, f64::INFINITY);
+    for &dof in &loaded {
+        let e = nalgebra::DVector::from_fn(c.size(), |i, _| f64::from(u8::from(i == dof)));
+        let x = c.k0.clone().lu().solve(&e).unwrap();
+        worst_with = worst_with.max(fit(&all, &x));
+        best_without = best_without.min(fit(&modes_only, &x));
+    }
+    eprintln!(
+        "attachments: M-orthonormal to {off:.1e}; end-load responses missed by {worst_with:.1e} with them, at least {best_without:.1e} without"
+    );
+    assert!(off < 1e-10 && worst_with < 1e-10, "{off} {worst_with}");
+    assert!(best_without > 1e-6, "{best_without}");
 }

@@ -193,6 +193,20 @@ impl NonlinearSection {
         &self.m
     }
 
+    /// The end DOFs loaded by a concentrated force or moment (given or coupled),
+    /// in increasing order: where a reduced basis needs the static response.
+    pub fn loaded_end_dofs(&self) -> Vec<usize> {
+        let mut loaded: Vec<usize> = self
+            .ends
+            .iter()
+            .filter(|r| matches!(r.condition, params::DofCondition::Force(_)))
+            .map(|r| r.dof)
+            .collect();
+        loaded.sort_unstable();
+        loaded.dedup();
+        loaded
+    }
+
     /// The DOFs held by kinematic end and support conditions (prescribed or
     /// coupled motion), in increasing order.
     pub fn held_dofs(&self) -> Vec<usize> {

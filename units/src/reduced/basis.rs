@@ -146,6 +146,67 @@ pub fn ritz_vectors(
     Ok(vectors)
 }
 
+/// Attachment vectors (static modes, the residual flexibility a truncated modal
+/// basis lacks at concentrated loads): for each free DOF in `loaded` (indices
+/// of the section's free DOFs), K0^-1 e, M-orthogonalised against `basis` and
+/// the earlier ones (twice, for round-off) and M-normalised. A vector whose
+/// M-norm falls below 1e-8 of its own before orthogonalisation lies in the span
+/// already and is left out. A section with rigid-body motion has no K0^-1.
+pub fn attachment_vectors(
+    section: &CubicSection,
+    loaded: &[usize],
+    basis: &[DVector<f64>],
+) -> Result<Vec<DVector<f64>>, UnitError> {
+    let factor = section.k0.clone().cholesky().ok_or_else(|| {
+        UnitError::Numerical(
+            "attachment vectors: K0 is not positive definite (the section moves as a rigid body under its end loads: hold it where it is not loaded)".into(),
+        )
+    })?;
+    let m = &section.mass;
+    let mut vectors: Vec<DVector<f64>> = Vec::with_capacity(loaded.len());
+    for &dof in loaded {
+        let mut next = factor.solve(&DVector::from_fn(section.size(), |i, _| {
+            f64::from(u8::from(i == dof))
+        }));
+        let before = next.dot(&(m * &next)).sqrt();
+        for _ in 0..2 {
+            for q in basis.iter().chain(&vectors) {
+                let c = q.dot(&(m * &next)) / q.dot(&(m * q));
+                next.axpy(-c, q, 1.0);
+            }
+        }
+        let norm = next.dot(&(m * &next)).sqrt();
+        if norm > 1e-8 * before {
+            vectors.push(next / norm);
+        }
+    }
+    Ok(vectors)
+}
+
+/// The highest angular frequency (rad/s) of K0 and M restricted to the span
+/// of `columns` (free DOFs x n): 2 / omega is central differences' critical
+/// step on them.
+pub fn highest_frequency(section: &CubicSection, columns: &DMatrix<f64>) -> Result<f64, UnitError> {
+    let k = columns.tr_mul(&(&section.k0 * columns));
+    let m = columns.tr_mul(&(&section.mass * columns));
+    let l = m.cholesky().ok_or_else(|| {
+        UnitError::Numerical(
+            "reduced basis: the reduced mass is not positive definite (dependent columns)".into(),
+        )
+    })?;
+    let l = l.l();
+    let inverse = l.clone().try_inverse().ok_or_else(|| {
+        UnitError::Numerical("reduced basis: the reduced mass is singular".into())
+    })?;
+    let a = &inverse * k * inverse.transpose();
+    let a = (&a + a.transpose()) * 0.5;
+    let largest = a
+        .symmetric_eigenvalues()
+        .iter()
+        .fold(0.0f64, |x, &y| x.max(y));
+    Ok(largest.max(0.0).sqrt())
+}
+
 /// The modal derivative of `kind` for the mode pair (i, j), 0-based: for
 /// `Novel` the symmetric x_ij with the equation written for (j, k) = (i, j).
 pub fn derivative(

@@ -124,6 +124,18 @@ impl ReducedSection {
         );
     }
 
+    /// The accelerations Phi s'' on the free DOFs into `out`, allocating
+    /// nothing.
+    pub fn accelerations_into(&self, out: &mut DVector<f64>) {
+        let n = self.a.len();
+        out.gemv(
+            1.0,
+            &self.basis,
+            &nalgebra::DVectorView::from_slice(&self.a, n),
+            0.0,
+        );
+    }
+
     /// Sets the acceleration that balances the projected load `f` at the
     /// current coordinates and velocities: m a = f - Q1 s - g~_nl(s) (the start
     /// of an explicit run; allocates, so not for every step).

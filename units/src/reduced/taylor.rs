@@ -66,10 +66,30 @@ impl TaylorSection {
         modes: &DMatrix<f64>,
         derivatives: &DMatrix<f64>,
     ) -> Result<TaylorSection, UnitError> {
-        let n = modes.ncols();
-        let pairs: Vec<[usize; 2]> = (0..n).flat_map(|i| (0..=i).map(move |j| [i, j])).collect();
+        let none = DMatrix::zeros(modes.nrows(), 0);
+        TaylorSection::with_static_columns(section, modes, derivatives, &none)
+    }
+
+    /// The same with further linear coordinates that carry no derivatives
+    /// (`statics`, free DOFs x R: attachment vectors at loaded ends, whose
+    /// coupling with the modes the elements' force still holds exactly): N =
+    /// modes + R unknowns, s_H from the modal coordinates only.
+    pub fn with_static_columns(
+        section: &CubicSection,
+        modes: &DMatrix<f64>,
+        derivatives: &DMatrix<f64>,
+        statics: &DMatrix<f64>,
+    ) -> Result<TaylorSection, UnitError> {
+        let carried = modes.ncols();
+        let n = carried + statics.ncols();
+        let pairs: Vec<[usize; 2]> = (0..carried)
+            .flat_map(|i| (0..=i).map(move |j| [i, j]))
+            .collect();
         let ns = n + pairs.len();
-        if derivatives.ncols() != pairs.len() || derivatives.nrows() != modes.nrows() {
+        if derivatives.ncols() != pairs.len()
+            || derivatives.nrows() != modes.nrows()
+            || statics.nrows() != modes.nrows()
+        {
             return Err(UnitError::parameter(
                 "derivatives",
                 derivatives.ncols(),
@@ -81,7 +101,10 @@ impl TaylorSection {
             ));
         }
         let mut basis = DMatrix::zeros(modes.nrows(), ns);
-        basis.columns_mut(0, n).copy_from(modes);
+        basis.columns_mut(0, carried).copy_from(modes);
+        basis
+            .columns_mut(carried, statics.ncols())
+            .copy_from(statics);
         basis.columns_mut(n, pairs.len()).copy_from(derivatives);
         let force = SampledForce::all(section, &basis);
         Ok(TaylorSection {
@@ -140,7 +163,7 @@ impl TaylorSection {
         self.a.copy_from_slice(a);
     }
 
-    /// Basis size N_S = N + N (N + 1) / 2.
+    /// Basis size N_S = N + M (M + 1) / 2 (M the modes carrying derivatives).
     pub fn basis_size(&self) -> usize {
         self.n + self.pairs.len()
     }
@@ -158,6 +181,18 @@ impl TaylorSection {
         jacobian(&self.pairs, self.n, &self.s, &mut w.u);
         w.u.mul_to(&self.v, &mut w.q);
         v.gemv(1.0, &self.basis, &w.q, 0.0);
+    }
+
+    /// The accelerations V'' = Phi_T (U s'' + [0; q(s')]) on the free DOFs
+    /// into `out`, allocating nothing.
+    pub fn accelerations_into(&mut self, out: &mut DVector<f64>) {
+        let (n, w) = (self.n, &mut self.work);
+        jacobian(&self.pairs, n, &self.s, &mut w.u);
+        w.u.mul_to(&self.a, &mut w.q);
+        for (p, &[i, j]) in self.pairs.iter().enumerate() {
+            w.q[n + p] += 2.0 * self.v[i] * self.v[j];
+        }
+        out.gemv(1.0, &self.basis, &w.q, 0.0);
     }
 
     /// The displacements V(s) on the free DOFs.

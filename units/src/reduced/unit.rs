@@ -14,7 +14,10 @@
 //! full section names them) and each station's position. Rollback restores the
 //! coordinates exactly; a step allocates nothing.
 
-use super::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
+use super::basis::{
+    Derivative, Normalisation, attachment_vectors, dependent_columns, derivative_columns,
+    highest_frequency, linear_modes,
+};
 use super::polynomial::CubicSection;
 use super::system::ReducedSection;
 use super::taylor::TaylorSection;
@@ -24,6 +27,7 @@ use crate::contract::{
 };
 use crate::integrators::central_difference::CentralDifference;
 use crate::integrators::hht::SecondOrderSystem;
+use crate::nonlinear::model::element_dofs;
 use crate::nonlinear::{NonlinearParams, NonlinearSection};
 use nalgebra::{DMatrix, DVector};
 use serde::Deserialize;
@@ -51,6 +55,16 @@ pub struct ReducedParams {
     pub modes: usize,
     #[serde(default)]
     pub derivatives: Derivatives,
+    /// Add the static response to a unit load at each loaded end DOF
+    /// (attachment vectors, as further coordinates without derivatives): a
+    /// section coupled by forces at its cuts needs their local flexibility,
+    /// which its lowest modes miss.
+    #[serde(default = "yes")]
+    pub attachments: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 enum Model {
@@ -78,15 +92,22 @@ pub struct ReducedUnit {
     load: Vec<f64>,
     free_load: DVector<f64>,
     projected: DVector<f64>,
-    /// Displacements and velocities (free DOFs), and the outputs they give.
+    /// Displacements, velocities and accelerations (free DOFs), the
+    /// accelerations on all DOFs, and the outputs they give.
     displacement: DVector<f64>,
     velocity: DVector<f64>,
+    acceleration: DVector<f64>,
+    full: Vec<f64>,
+    residual: Vec<f64>,
     values: Vec<f64>,
+    /// The end DOFs loaded by a force or moment (model DOFs).
+    loaded: Vec<usize>,
 }
 
 impl ReducedUnit {
     /// Builds the unit: the section, its modes and derivatives, the reduced model.
     pub fn new(params: ReducedParams) -> Result<ReducedUnit, UnitError> {
+        refuse_what_is_not_reduced(&params.section)?;
         let mut section = NonlinearSection::new(params.section)?;
         // The mass and the held DOFs are set up by `initialize` (at rest, zero
         // inputs: the stress-free state is the expansion point).
@@ -117,7 +138,15 @@ impl ReducedUnit {
                 ),
             ));
         }
-        let (model, critical) = build_model(&cubic, count, params.derivatives)?;
+        let loaded_ends = section.loaded_end_dofs();
+        let loaded: Vec<usize> = match params.attachments {
+            true => loaded_ends
+                .iter()
+                .filter_map(|d| cubic.free_dofs().binary_search(d).ok())
+                .collect(),
+            false => Vec::new(),
+        };
+        let (model, critical) = build_model(&cubic, count, params.derivatives, &loaded)?;
         let outputs = output_ports(section.station_count());
         let description = UnitDescription {
             kind: "reduced".into(),
@@ -135,7 +164,11 @@ impl ReducedUnit {
             projected: DVector::zeros(columns),
             displacement: DVector::zeros(cubic.size()),
             velocity: DVector::zeros(cubic.size()),
+            acceleration: DVector::zeros(cubic.size()),
+            full: vec![0.0; section.model().dofs()],
+            residual: vec![0.0; section.model().dofs()],
             values: vec![0.0; description.outputs.len()],
+            loaded: loaded_ends,
             state: ReducedState { motion: Vec::new() },
             section,
             cubic,
@@ -166,10 +199,20 @@ impl ReducedUnit {
     /// Recomputes the outputs from the current motion (after a step, an
     /// initialisation or a restore), allocating nothing.
     fn refresh_outputs(&mut self) {
-        let (d, v) = (&mut self.displacement, &mut self.velocity);
+        let (d, v, a) = (
+            &mut self.displacement,
+            &mut self.velocity,
+            &mut self.acceleration,
+        );
         match &mut self.model {
-            Model::Linear(system, _) => system.displacements_and_velocities_into(d, v),
-            Model::Taylor(taylor) => taylor.displacements_and_velocities_into(d, v),
+            Model::Linear(system, _) => {
+                system.displacements_and_velocities_into(d, v);
+                system.accelerations_into(a);
+            }
+            Model::Taylor(taylor) => {
+                taylor.displacements_and_velocities_into(d, v);
+                taylor.accelerations_into(a);
+            }
         }
         let free = self.cubic.free_dofs();
         let at = |x: &DVector<f64>, dof: usize| free.binary_search(&dof).map_or(0.0, |k| x[k]);
@@ -178,7 +221,7 @@ impl ReducedUnit {
         let out = &mut self.values;
         for (k, node) in [0, last].into_iter().enumerate() {
             let [x, z] = model.reference[node];
-            let base = 6 * k;
+            let base = 9 * k;
             out[base] = x + at(d, 3 * node);
             out[base + 1] = z + at(d, 3 * node + 1);
             out[base + 2] = at(d, 3 * node + 2);
@@ -191,38 +234,167 @@ impl ReducedUnit {
             for c in 0..2 {
                 let (a, b) = (at(d, 3 * e + c), at(d, 3 * (e + 1) + c));
                 let reference = (1.0 - xi) * model.reference[e][c] + xi * model.reference[e + 1][c];
-                out[12 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
+                out[18 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
+            }
+        }
+        self.end_forces();
+    }
+
+    /// Each end's force on what holds or loads it (N, N m), as the full
+    /// section gives it: minus the reaction M a + g(V) - f at a held DOF,
+    /// minus the load at a loaded one, zero at a free one. The element forces
+    /// sum to zero in x and in z, so where one DOF holds a direction its
+    /// reaction is the section's balance sum (f - M a); the stiff axial
+    /// strain a few modes get wrong does not enter. Elsewhere (a rotation,
+    /// or a direction held twice) the end element's force gives it.
+    fn end_forces(&mut self) {
+        let free = self.cubic.free_dofs();
+        let dofs = self.full.len();
+        self.full.fill(0.0);
+        for (k, &dof) in free.iter().enumerate() {
+            self.full[dof] = self.displacement[k];
+        }
+        let model = self.section.model();
+        let last = model.reference.len() - 1;
+        let mut element_force = [[0.0; 6]; 2];
+        for (side, e) in [0, last - 1].into_iter().enumerate() {
+            let p = element_dofs(&self.full, e);
+            element_force[side] = model.elements[e].force(model.formulation, &p, false).0;
+        }
+        self.full.fill(0.0);
+        for (k, &dof) in free.iter().enumerate() {
+            self.full[dof] = self.acceleration[k];
+        }
+        // The residual f - M a on all DOFs (held ones do not accelerate).
+        let residual = &mut self.residual;
+        residual.copy_from_slice(&self.load);
+        self.section
+            .mass_matrix()
+            .mul_add(-1.0, &self.full, residual);
+        let held_in = |c: usize| {
+            (c..dofs)
+                .step_by(3)
+                .filter(|d| free.binary_search(d).is_err())
+                .count()
+        };
+        for (side, node) in [0, last].into_iter().enumerate() {
+            for c in 0..3 {
+                let dof = 3 * node + c;
+                let value = if free.binary_search(&dof).is_err() {
+                    if c < 2 && held_in(c) == 1 {
+                        residual.iter().skip(c).step_by(3).sum()
+                    } else {
+                        let local = if side == 0 { c } else { 3 + c };
+                        residual[dof] - element_force[side][local]
+                    }
+                } else if self.loaded.binary_search(&dof).is_ok() {
+                    -self.load[dof]
+                } else {
+                    0.0
+                };
+                self.values[9 * side + 6 + c] = value;
             }
         }
     }
 }
 
-/// The reduced model of `cubic` on `count` modes and its critical step (s).
+/// Seed 002's SVD tolerance for dependent derivatives (unit-norm columns).
+const DEPENDENCE_TOLERANCE: f64 = 3e-6;
+
+/// Refuses a section with effects the reduced model does not carry (it has
+/// mass, stiffness and the section's loads only), rather than dropping them.
+fn refuse_what_is_not_reduced(section: &NonlinearParams) -> Result<(), UnitError> {
+    let refuse = |key: &str, value: &dyn ToString| {
+        Err(UnitError::parameter(
+            &format!("section.{key}"),
+            value.to_string(),
+            "expected none: a reduced section carries mass, stiffness and loads, not damping, drag, current, contact or a static start",
+        ))
+    };
+    if section.rayleigh_mass != 0.0 || section.rayleigh_stiffness != 0.0 {
+        return refuse(
+            "rayleigh_mass/rayleigh_stiffness",
+            &format!("{}/{}", section.rayleigh_mass, section.rayleigh_stiffness),
+        );
+    }
+    for (i, s) in section.segments.iter().enumerate() {
+        if s.diameter > 0.0 && (s.drag_normal != 0.0 || s.drag_tangential != 0.0) {
+            return refuse(&format!("segments[{i}].drag_normal"), &s.drag_normal);
+        }
+    }
+    if section.current.is_some() {
+        return refuse("current", &"a current");
+    }
+    if section.contact.is_some() || section.stinger.is_some() {
+        return refuse("contact/stinger", &"contact");
+    }
+    if section.static_start {
+        return refuse("static_start", &true);
+    }
+    Ok(())
+}
+
+/// The reduced model of `cubic` on `count` modes (and the attachment vectors of
+/// the free DOFs `loaded`) and its critical step (s).
 fn build_model(
     cubic: &CubicSection,
     count: usize,
     derivatives: Derivatives,
+    loaded: &[usize],
 ) -> Result<(Model, f64), UnitError> {
     let modes = linear_modes(cubic, count, Normalisation::Mass)?;
     let phi = DMatrix::from_columns(&modes.shapes);
+    let statics = attachment_vectors(cubic, loaded, &modes.shapes)?;
     Ok(match derivatives {
         Derivatives::Taylor => {
             let mds = derivative_columns(cubic, &modes, Derivative::Novel, count)?;
-            let taylor = TaylorSection::new(cubic, &phi, &DMatrix::from_columns(&mds))?;
-            // Linearised at rest only the modes remain: 2 / omega_N.
-            let critical = modes.omegas.last().map_or(f64::INFINITY, |w| 2.0 / w);
+            let taylor = TaylorSection::with_static_columns(
+                cubic,
+                &phi,
+                &DMatrix::from_columns(&mds),
+                &columns_of(cubic.size(), &statics),
+            )?;
+            // Linearised at rest only the linear columns remain: 2 / omega_N,
+            // the last mode's unless attachment vectors stiffen the span.
+            let omega = match statics.is_empty() {
+                true => modes.omegas.last().copied().unwrap_or(0.0),
+                false => {
+                    let linear: Vec<_> = modes.shapes.iter().chain(&statics).cloned().collect();
+                    highest_frequency(cubic, &columns_of(cubic.size(), &linear))?
+                }
+            };
+            let critical = if omega > 0.0 {
+                2.0 / omega
+            } else {
+                f64::INFINITY
+            };
             (Model::Taylor(taylor), critical)
         }
         kind => {
             let mut columns = modes.shapes.clone();
+            columns.extend(statics);
             if kind == Derivatives::Linear {
+                let kept = columns.len();
                 columns.extend(derivative_columns(cubic, &modes, Derivative::Novel, count)?);
+                // A derivative in the span of the others (an attachment vector
+                // can hold one) would make the reduced mass singular.
+                let dependent = dependent_columns(&columns, DEPENDENCE_TOLERANCE, kept)?;
+                let mut k = 0;
+                columns.retain(|_| {
+                    k += 1;
+                    dependent.binary_search(&(k - 1)).is_err()
+                });
             }
             let system = ReducedSection::new(cubic, DMatrix::from_columns(&columns));
             let critical = CentralDifference::critical_step(&system.matrices(), 400)?;
             (Model::Linear(system, CentralDifference::new()), critical)
         }
     })
+}
+
+/// The vectors as the columns of a `rows` x n matrix (n may be 0).
+fn columns_of(rows: usize, vectors: &[DVector<f64>]) -> DMatrix<f64> {
+    DMatrix::from_fn(rows, vectors.len(), |i, j| vectors[j][i])
 }
 
 /// Each end's position, rotation and velocities, then each station's position.
@@ -241,6 +413,9 @@ fn output_ports(stations: usize) -> Vec<Port> {
         outputs.push(
             Port::output(&format!("{side}_angular_velocity"), PortKind::Generic).with_unit("rad/s"),
         );
+        outputs.push(Port::output(&format!("{side}_force_x"), PortKind::Force));
+        outputs.push(Port::output(&format!("{side}_force_z"), PortKind::Force));
+        outputs.push(Port::output(&format!("{side}_moment"), PortKind::Moment));
     }
     for i in 1..=stations {
         outputs.push(Port::output(&format!("x_{i}"), PortKind::Displacement));

@@ -20,7 +20,8 @@ use std::str::FromStr;
 use toml::{Table, Value};
 
 /// One way to model a section: a fidelity and, optionally, its element count
-/// (`nonlinear:16`); without a count, the model's own mesh over the section.
+/// (`nonlinear:16`; for `reduced` the number of modes, `reduced:4`); without a
+/// count, the model's own mesh over the section (6 modes).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Choice {
     pub fidelity: String,
@@ -334,9 +335,16 @@ fn run_table(
             .find(|t| t.get("name").and_then(Value::as_str) == Some(name))
             .ok_or(format!("no section `{name}`"))?;
         section.insert("fidelity".into(), Value::String(choice.fidelity.clone()));
-        match choice.elements {
-            Some(n) => section.insert("elements".into(), Value::Integer(n as i64)),
-            None => section.remove("elements"),
+        match (choice.fidelity.as_str(), choice.elements) {
+            ("reduced", Some(n)) => {
+                let mut fidelity = Table::new();
+                fidelity.insert("kind".into(), Value::String("reduced".into()));
+                fidelity.insert("modes".into(), Value::Integer(n as i64));
+                section.insert("fidelity".into(), Value::Table(fidelity));
+                section.remove("elements")
+            }
+            (_, Some(n)) => section.insert("elements".into(), Value::Integer(n as i64)),
+            (_, None) => section.remove("elements"),
         };
     }
     let units = sections
@@ -565,10 +573,15 @@ fn combination_of(
 /// A section's fidelity as the scene writes it, in the command line's form.
 fn scene_choice(t: &Table) -> String {
     let kind = written_kind(t);
+    let count = if kind == "reduced" {
+        "modes"
+    } else {
+        "elements"
+    };
     let elements = t
         .get("fidelity")
-        .and_then(|f| f.get("elements"))
-        .or(t.get("elements"));
+        .and_then(|f| f.get(count))
+        .or(t.get(count));
     match elements.and_then(Value::as_integer) {
         Some(n) => format!("{kind}:{n}"),
         None => kind.to_owned(),

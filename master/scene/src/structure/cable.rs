@@ -59,6 +59,25 @@ impl Water {
     }
 }
 
+/// A cable section carries no supports or distributed loads: refused rather
+/// than dropped where the model has them in its range.
+fn carries_nothing_along(
+    key: &str,
+    model: &Table,
+    segments: &[Segment],
+    cut: &Cut,
+) -> Result<(), String> {
+    let length = segments.iter().map(|s| s.length).sum();
+    for (what, list) in super::nonlinear::along(model, cut, length)? {
+        if what != "stations" && !list.is_empty() {
+            return Err(format!(
+                "`{key}.fidelity` = \"cable\": the cable carries no `structure.model.{what}`; give this range another fidelity or move the cut"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The `cable` unit of one section, anchored (its bottom node) at `anchor`
 /// (structure frame, m).
 pub fn cable_unit(
@@ -73,6 +92,7 @@ pub fn cable_unit(
     let water = water.ok_or(format!(
         "`{key}.fidelity` = \"cable\": the cable needs `structure.water_depth` (m; and `structure.seabed`, the seabed's z in the structure's frame, default 0)"
     ))?;
+    carries_nothing_along(&key, model, segments, cut)?;
     let inside: Vec<&Segment> = segments_in(segments, cut.from, cut.to);
     let first = one_cross_section(&key, &inside)?;
     let diameter = property(first, "diameter");

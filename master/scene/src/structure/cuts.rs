@@ -69,8 +69,8 @@ pub fn coupled_motion(pinned: bool) -> Value {
 /// is its top).
 pub fn port(unit: &str, fidelity: Fidelity, at_end: bool, quantity: &str) -> String {
     let side = match (fidelity, at_end) {
-        (Fidelity::Nonlinear | Fidelity::Static, true) => "end",
-        (Fidelity::Nonlinear | Fidelity::Static, false) => "start",
+        (Fidelity::Nonlinear | Fidelity::Static | Fidelity::Reduced, true) => "end",
+        (Fidelity::Nonlinear | Fidelity::Static | Fidelity::Reduced, false) => "start",
         (Fidelity::Cable, true) => "top",
         (Fidelity::Cable, false) => "bottom",
     };

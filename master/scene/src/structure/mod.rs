@@ -22,6 +22,7 @@ mod cable;
 mod cuts;
 mod load;
 mod nonlinear;
+mod reduced;
 mod sections;
 mod statics;
 
@@ -42,31 +43,7 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
         .ok_or("`structure`: expected a table")?
         .clone();
     let (built, cuts, length) = Built::new(&structure)?;
-    // At each cut one side moves with the other's velocity and the other carries
-    // the force: by default the upper section's end moves and the lower start is
-    // loaded (the more robust coupling in the tests); with a static start the
-    // other way round, so that in the master's first initial iterate every
-    // section hangs from what holds it and its own static solve is well posed.
-    // A cable's top takes force and its bottom velocity: its cuts are always
-    // the second way round.
-    let force_on_upper: Vec<bool> = cuts
-        .windows(2)
-        .map(|w| built.statics.is_some() || w.iter().any(|c| c.fidelity == Fidelity::Cable))
-        .collect();
-    // A static first section has no motion of its own: its end moves with its
-    // neighbour and returns the force, so that neighbour's start is loaded and
-    // every section above must be held at its end: all cuts the first way round.
-    let force_on_upper = if cuts.first().is_some_and(|c| c.fidelity == Fidelity::Static) {
-        if let Some(c) = cuts.iter().find(|c| c.fidelity == Fidelity::Cable) {
-            return Err(format!(
-                "`structure.sections.{}.fidelity` = \"cable\": a cable's cuts are loaded at its top, which a static first section's cuts cannot be; use one or the other",
-                c.name
-            ));
-        }
-        vec![false; force_on_upper.len()]
-    } else {
-        force_on_upper
-    };
+    let force_on_upper = orientation(&cuts, built.statics.is_some())?;
     let mut units = Vec::new();
     let mut connections = Vec::new();
     for k in 0..cuts.len() {
@@ -99,6 +76,68 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
     append(scene, "units", units)?;
     append(scene, "connections", connections)?;
     Ok(true)
+}
+
+/// Per cut, whether the upper section's end is the loaded side (it carries the
+/// force; the lower start moves with its velocity). At each cut one side moves
+/// with the other's velocity and the other carries the force: by default the
+/// upper section's end moves and the lower start is loaded (the more robust
+/// coupling in the tests); with a static start the other way round, so that in
+/// the master's first initial iterate every section hangs from what holds it
+/// and its own static solve is well posed. Some fidelities fix the way round: a
+/// cable's top takes force and its bottom velocity; a reduced section takes
+/// force at both its cuts; a static first section has no motion of its own, so
+/// every section above is held at its end (all cuts the first way round).
+fn orientation(cuts: &[Cut], static_start: bool) -> Result<Vec<bool>, String> {
+    let mut fixed: Vec<Option<(bool, &Cut)>> = vec![None; cuts.len().saturating_sub(1)];
+    let last = cuts.len() - 1;
+    for (k, cut) in cuts.iter().enumerate() {
+        let (below, above) = match cut.fidelity {
+            Fidelity::Cable => (Some(true), Some(true)),
+            Fidelity::Reduced => (Some(false), Some(true)),
+            Fidelity::Static if k == 0 => {
+                for c in 0..last {
+                    require(&mut fixed, c, false, cut)?;
+                }
+                (None, None)
+            }
+            _ => (None, None),
+        };
+        // `below`: the cut at this section's start; `above`: at its end.
+        if let (Some(way), true) = (below, k > 0) {
+            require(&mut fixed, k - 1, way, cut)?;
+        }
+        if let (Some(way), true) = (above, k < last) {
+            require(&mut fixed, k, way, cut)?;
+        }
+    }
+    Ok(fixed
+        .into_iter()
+        .map(|f| f.map_or(static_start, |(way, _)| way))
+        .collect())
+}
+
+/// Fixes cut `cut` the way `by` needs it (`upper_loaded`), or says which two
+/// sections disagree.
+fn require<'a>(
+    fixed: &mut [Option<(bool, &'a Cut)>],
+    cut: usize,
+    upper_loaded: bool,
+    by: &'a Cut,
+) -> Result<(), String> {
+    match fixed[cut] {
+        Some((way, other)) if way != upper_loaded => Err(format!(
+            "`structure.sections.{}.fidelity` = \"{}\" and `structure.sections.{}.fidelity` = \"{}\" need the cut between them coupled opposite ways (a cable is loaded at its top and moves at its bottom, a reduced section is loaded at both its cuts, a static first section holds every section above at its end); put a nonlinear section between them",
+            other.name,
+            other.fidelity.name(),
+            by.name,
+            by.fidelity.name(),
+        )),
+        _ => {
+            fixed[cut] = Some((upper_loaded, by));
+            Ok(())
+        }
+    }
 }
 
 /// An FMU exported from a `nonlinear` unit names its end inputs `<port>_in`
@@ -221,6 +260,11 @@ impl Built {
                 equilibrium.start_section(&mut section, (cut.from, cut.to))?;
                 equilibrium.static_section(&key, &section, (cut.from, cut.to))?
             }
+            Fidelity::Reduced => {
+                let section =
+                    section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
+                reduced::reduced_unit(section, cut, self.statics.is_some())?
+            }
             Fidelity::Cable => {
                 cable_fits(&self.model, cuts, k, self.top_load.is_some())?;
                 let anchor = self.statics.as_ref().map(|e| e.position_at(cut.from)).ok_or(format!(
@@ -284,10 +328,11 @@ impl Built {
             }
         };
         let mut unit = match fidelity {
-            Fidelity::Static => {
-                return Err(
-                    "`structure.reference` = \"static\": the reference is a whole structure in motion; expected true, \"nonlinear\" or \"cable\"".into(),
-                );
+            Fidelity::Static | Fidelity::Reduced => {
+                return Err(format!(
+                    "`structure.reference` = \"{}\": the reference is the whole structure at full fidelity; expected true, \"nonlinear\" or \"cable\"",
+                    fidelity.name()
+                ));
             }
             Fidelity::Nonlinear => {
                 let mut unit = Table::new();
@@ -308,6 +353,7 @@ impl Built {
                     elements: None,
                     physical: None,
                     fmu: None,
+                    reduced: None,
                 }];
                 cable_fits(&self.model, &whole, 0, self.top_load.is_some())?;
                 let start = start_of(&self.model);

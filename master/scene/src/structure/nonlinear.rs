@@ -53,12 +53,12 @@ pub(super) fn section_unit(
         "segments".into(),
         Value::Array(clipped.into_iter().map(Value::Table).collect()),
     );
-    for key in ["supports", "loads", "stations"] {
-        if parameters.contains_key(key) {
-            return Err(format!(
-                "`structure.model.{key}`: not yet available for a cut structure"
-            ));
-        }
+    let length = segments.iter().map(|s| s.length).sum();
+    for (key, list) in along(model, cut, length)? {
+        match list.is_empty() {
+            true => parameters.remove(key),
+            false => parameters.insert(key.into(), Value::Array(list)),
+        };
     }
     let mut ends = model
         .get("ends")
@@ -84,6 +84,74 @@ pub(super) fn section_unit(
     unit.insert("kind".into(), Value::String("nonlinear".into()));
     unit.insert("parameters".into(), Value::Table(parameters));
     Ok(unit)
+}
+
+/// The model's `supports`, `loads` and `stations` that fall inside the section,
+/// in the section's own arc length (m from its start): a load clipped to it, a
+/// station in [from, to) (the last section keeps its end). A support at a cut
+/// is refused: the cut's coupling moves or loads that node.
+pub(super) fn along(
+    model: &Table,
+    cut: &Cut,
+    length: f64,
+) -> Result<[(&'static str, Vec<Value>); 3], String> {
+    let tolerance = 1e-9 * length;
+    let number = |v: Option<&Value>| {
+        v.and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+    };
+    let list = |key: &str| {
+        model
+            .get(key)
+            .and_then(Value::as_array)
+            .cloned()
+            .unwrap_or_default()
+    };
+    let last = cut.to >= length - tolerance;
+    let mut supports = Vec::new();
+    for (i, support) in list("supports").into_iter().enumerate() {
+        let at = number(support.get("at")).ok_or(format!(
+            "`structure.model.supports[{i}].at`: expected an arc length (m)"
+        ))?;
+        let at_cut =
+            |c: f64| c > tolerance && c < length - tolerance && (at - c).abs() <= tolerance;
+        if at_cut(cut.from) || at_cut(cut.to) {
+            return Err(format!(
+                "`structure.model.supports[{i}].at` = {at}: a support at the cut of section `{}`; move the cut or the support",
+                cut.name
+            ));
+        }
+        if at > cut.from - tolerance && at < cut.to + tolerance {
+            supports.push(shifted(support, "at", at - cut.from));
+        }
+    }
+    let mut loads = Vec::new();
+    for load in list("loads") {
+        let from = number(load.get("from")).unwrap_or(0.0).max(cut.from);
+        let to = number(load.get("to")).unwrap_or(f64::INFINITY).min(cut.to);
+        if to > from + tolerance {
+            let clipped = shifted(load, "from", from - cut.from);
+            loads.push(shifted(clipped, "to", to - cut.from));
+        }
+    }
+    let stations = list("stations")
+        .into_iter()
+        .filter_map(|v| number(Some(&v)))
+        .filter(|&s| s >= cut.from - tolerance && (s < cut.to - tolerance || last))
+        .map(|s| Value::Float((s - cut.from).max(0.0)))
+        .collect();
+    Ok([
+        ("supports", supports),
+        ("loads", loads),
+        ("stations", stations),
+    ])
+}
+
+/// `table` with `key` set to `value`.
+fn shifted(mut table: Value, key: &str, value: f64) -> Value {
+    if let Some(t) = table.as_table_mut() {
+        t.insert(key.into(), Value::Float(value));
+    }
+    table
 }
 
 pub(super) fn start_of(model: &Table) -> [f64; 2] {

@@ -68,10 +68,12 @@ pub(crate) struct Cut {
     pub physical: Option<Table>,
     /// The `fmu` parameters of an external FMU in place of the section's unit.
     pub fmu: Option<Table>,
+    /// A reduced section's `modes` and `derivatives` (kind `reduced`).
+    pub reduced: Option<Table>,
 }
 
 /// The fidelities a section can take, as written in scenes.
-pub const FIDELITIES: [&str; 3] = Fidelity::NAMES;
+pub const FIDELITIES: [&str; 4] = Fidelity::NAMES;
 
 /// Which model a section is.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -83,21 +85,35 @@ pub(crate) enum Fidelity {
     /// The section's linearised static response at its end (`static_section`
     /// unit): a laid pipe below the touchdown region.
     Static,
+    /// The section reduced about its stress-free state (`reduced` unit, seed
+    /// 002): loaded at its cuts.
+    Reduced,
 }
 
 impl Fidelity {
     /// The fidelities' names as written in scenes.
-    pub const NAMES: [&'static str; 3] = ["nonlinear", "cable", "static"];
+    pub const NAMES: [&'static str; 4] = ["nonlinear", "cable", "static", "reduced"];
 
     pub fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
         match word {
             "nonlinear" => Ok(Fidelity::Nonlinear),
             "cable" => Ok(Fidelity::Cable),
             "static" => Ok(Fidelity::Static),
+            "reduced" => Ok(Fidelity::Reduced),
             other => Err(format!(
                 "`{key}` = \"{other}\": expected one of {} (the other fidelities are not built yet)",
                 Fidelity::NAMES.join(", ")
             )),
+        }
+    }
+
+    /// The name as written in scenes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Fidelity::Nonlinear => "nonlinear",
+            Fidelity::Cable => "cable",
+            Fidelity::Static => "static",
+            Fidelity::Reduced => "reduced",
         }
     }
 
@@ -164,6 +180,7 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
             elements,
             physical,
             fmu: model.fmu,
+            reduced: model.reduced,
         });
         from = to;
     }
@@ -171,19 +188,24 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
 }
 
 /// A section's `fidelity`: a name, or a table `{ kind = NAME, elements = N }`
-/// (default: nonlinear), or `{ kind = "fmu", file, ports, ... }`: an external
-/// FMU in place of the unit, with the ports of the `ports` fidelity (default
-/// nonlinear) and the `fmu` kind's parameters.
+/// (default: nonlinear; `reduced` also takes `modes` and `derivatives`), or
+/// `{ kind = "fmu", file, ports, ... }`: an external FMU in place of the unit,
+/// with the ports of the `ports` fidelity (default nonlinear) and the `fmu`
+/// kind's parameters.
 fn fidelity_of(key: &str, value: Option<&Value>) -> Result<SectionModel, String> {
     let key = format!("{key}.fidelity");
     let native = |fidelity, elements| SectionModel {
         fidelity,
         elements,
         fmu: None,
+        reduced: (fidelity == Fidelity::Reduced).then(Table::new),
     };
     match value {
         None => Ok(native(Fidelity::Nonlinear, None)),
         Some(Value::String(word)) => Ok(native(Fidelity::parse(&key, word)?, None)),
+        Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("reduced") => {
+            reduced_of(&key, t)
+        }
         Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("fmu") => {
             fmu_of(&key, t)
         }
@@ -213,12 +235,39 @@ fn fidelity_of(key: &str, value: Option<&Value>) -> Result<SectionModel, String>
     }
 }
 
-/// A section's model: the fidelity its ports follow, its element count, and the
-/// `fmu` parameters of an external FMU in its place.
+/// A section's model: the fidelity its ports follow, its element count, the
+/// `fmu` parameters of an external FMU in its place, and a reduced section's
+/// basis.
 struct SectionModel {
     fidelity: Fidelity,
     elements: Option<usize>,
     fmu: Option<Table>,
+    reduced: Option<Table>,
+}
+
+/// `{ kind = "reduced", modes, derivatives, elements }`: the basis's keys are
+/// the `reduced` unit's, checked when it is built.
+fn reduced_of(key: &str, t: &Table) -> Result<SectionModel, String> {
+    const KEYS: [&str; 5] = ["kind", "elements", "modes", "derivatives", "attachments"];
+    if let Some(unknown) = t.keys().find(|k| !KEYS.contains(&k.as_str())) {
+        return Err(format!(
+            "`{key}.{unknown}`: unknown key; a reduced section takes {}",
+            KEYS.join(", ")
+        ));
+    }
+    let elements = t
+        .get("elements")
+        .map(|v| whole(&format!("{key}.elements"), v))
+        .transpose()?;
+    let mut basis = t.clone();
+    basis.remove("kind");
+    basis.remove("elements");
+    Ok(SectionModel {
+        fidelity: Fidelity::Reduced,
+        elements,
+        fmu: None,
+        reduced: Some(basis),
+    })
 }
 
 /// `{ kind = "fmu", file = "x.fmu", ports = "nonlinear" | "cable", start, preload, logging }`.
@@ -250,6 +299,7 @@ fn fmu_of(key: &str, t: &Table) -> Result<SectionModel, String> {
         fidelity,
         elements: None,
         fmu: Some(fmu),
+        reduced: None,
     })
 }
 
