@@ -20,6 +20,7 @@
 //! - [`unit`]: kind `reduced`, a reduced section as a unit for scenes.
 
 pub mod basis;
+mod build;
 pub mod ecsw;
 pub mod lrbf;
 pub mod polynomial;

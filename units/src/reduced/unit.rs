@@ -8,28 +8,24 @@
 //! loaded at its coupled ends. Held DOFs must stay at rest (a coupled or
 //! prescribed motion needs constraint modes, not built).
 //!
-//! Stepping: central differences in as many equal sub-steps of the coupling
-//! step as keep each below 0.9 times the critical step (from the reduced
-//! frequencies). Outputs: each end's position, rotation, velocities (as the
-//! full section names them) and each station's position. Rollback restores the
+//! With `attachments` the static response to each loaded end DOF joins the
+//! basis. Stepping: central differences in as many equal sub-steps of the
+//! coupling step as keep each below 0.9 times the critical step (from the
+//! reduced frequencies), or the trapezoidal rule in one step (a linear basis).
+//! Outputs: each end's position, rotation, velocities and force (as the full
+//! section names them) and each station's position. Rollback restores the
 //! coordinates exactly; a step allocates nothing.
 
-use super::basis::{
-    Derivative, Normalisation, attachment_vectors, dependent_columns, derivative_columns,
-    highest_frequency, linear_modes,
-};
+use super::build::{Model, Stepper, build_model, refuse_what_is_not_reduced};
 use super::polynomial::CubicSection;
-use super::system::ReducedSection;
-use super::taylor::TaylorSection;
 use crate::contract::{
     Capabilities, HeldInputs, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
     UnitDescription, UnitError,
 };
-use crate::integrators::central_difference::CentralDifference;
-use crate::integrators::hht::SecondOrderSystem;
+use crate::integrators::hht::{NewtonSettings, SecondOrderSystem, StepLoads};
 use crate::nonlinear::model::element_dofs;
 use crate::nonlinear::{NonlinearParams, NonlinearSection};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use serde::Deserialize;
 
 /// How the modes' derivatives enter the basis.
@@ -55,6 +51,9 @@ pub struct ReducedParams {
     pub modes: usize,
     #[serde(default)]
     pub derivatives: Derivatives,
+    /// How the coordinates are stepped.
+    #[serde(default)]
+    pub integrator: Stepping,
     /// Add the static response to a unit load at each loaded end DOF
     /// (attachment vectors, as further coordinates without derivatives): a
     /// section coupled by forces at its cuts needs their local flexibility,
@@ -67,10 +66,26 @@ fn yes() -> bool {
     true
 }
 
-enum Model {
-    Linear(ReducedSection, CentralDifference),
-    Taylor(TaylorSection),
+/// How a reduced unit steps its coordinates.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stepping {
+    /// Central differences in sub-steps below 0.9 times the critical step.
+    #[default]
+    CentralDifference,
+    /// The trapezoidal rule (HHT-alpha with alpha = 0), Newton on the reduced
+    /// tangent, one step per coupling step: for a linear basis whose
+    /// derivatives' frequencies make the explicit step small.
+    Trapezoidal,
 }
+
+/// Newton's tolerance and bound for the trapezoidal rule (relative
+/// correction of the coordinates; the reduced tensors carry EA, so round-off
+/// floors the corrections near 1e-9).
+const NEWTON: NewtonSettings = NewtonSettings {
+    tolerance: 1e-8,
+    max_iterations: 20,
+};
 
 crate::state_struct! {
     /// The coordinates, their rates and accelerations.
@@ -99,6 +114,8 @@ pub struct ReducedUnit {
     acceleration: DVector<f64>,
     full: Vec<f64>,
     residual: Vec<f64>,
+    /// The coordinates and rates at a trapezoidal step's start.
+    start: Vec<f64>,
     values: Vec<f64>,
     /// The end DOFs loaded by a force or moment (model DOFs).
     loaded: Vec<usize>,
@@ -146,7 +163,12 @@ impl ReducedUnit {
                 .collect(),
             false => Vec::new(),
         };
-        let (model, critical) = build_model(&cubic, count, params.derivatives, &loaded)?;
+        let (model, critical) = build_model(
+            &cubic,
+            (count, params.derivatives),
+            &loaded,
+            params.integrator,
+        )?;
         let outputs = output_ports(section.station_count());
         let description = UnitDescription {
             kind: "reduced".into(),
@@ -167,6 +189,7 @@ impl ReducedUnit {
             acceleration: DVector::zeros(cubic.size()),
             full: vec![0.0; section.model().dofs()],
             residual: vec![0.0; section.model().dofs()],
+            start: vec![0.0; 2 * columns],
             values: vec![0.0; description.outputs.len()],
             loaded: loaded_ends,
             state: ReducedState { motion: Vec::new() },
@@ -181,6 +204,38 @@ impl ReducedUnit {
     /// The critical step of central differences (s) about the stress-free state.
     pub fn critical_step(&self) -> f64 {
         self.critical
+    }
+
+    /// One trapezoidal step from `t0` over `h` (s): the projected loads at both
+    /// ends, the nonlinear force at the start, Newton on the reduced tangent;
+    /// returns the Newton iterations.
+    fn implicit_step(&mut self, t0: f64, h: f64, inputs: Inputs<'_>) -> Result<u32, UnitError> {
+        let Model::Linear(system, Stepper::Implicit(implicit)) = &mut self.model else {
+            return Ok(0);
+        };
+        let (hht, f0, g0) = &mut **implicit;
+        for (s, out) in [(0.0, &mut *f0), (1.0, &mut self.projected)] {
+            self.section.load_at(inputs, t0 + s * h, s, &mut self.load);
+            for (f, &d) in self.free_load.iter_mut().zip(self.cubic.free_dofs()) {
+                *f = self.load[d];
+            }
+            system.project_into(&self.free_load, out);
+        }
+        let n = system.size();
+        self.start[..n].copy_from_slice(system.motion()[0]);
+        self.start[n..].copy_from_slice(system.motion()[1]);
+        let (q0, v0) = self.start.split_at(n);
+        system.nonlinear_force(q0, v0, t0, None, g0);
+        let loads = StepLoads {
+            t0,
+            t1: t0 + h,
+            h,
+            f0: f0.as_slice(),
+            f1: self.projected.as_slice(),
+            g0: Some(g0),
+            held: &[],
+        };
+        hht.step(system, &loads, NEWTON)
     }
 
     /// Copies the motion into the state (its buffer reused).
@@ -298,105 +353,6 @@ impl ReducedUnit {
     }
 }
 
-/// Seed 002's SVD tolerance for dependent derivatives (unit-norm columns).
-const DEPENDENCE_TOLERANCE: f64 = 3e-6;
-
-/// Refuses a section with effects the reduced model does not carry (it has
-/// mass, stiffness and the section's loads only), rather than dropping them.
-fn refuse_what_is_not_reduced(section: &NonlinearParams) -> Result<(), UnitError> {
-    let refuse = |key: &str, value: &dyn ToString| {
-        Err(UnitError::parameter(
-            &format!("section.{key}"),
-            value.to_string(),
-            "expected none: a reduced section carries mass, stiffness and loads, not damping, drag, current, contact or a static start",
-        ))
-    };
-    if section.rayleigh_mass != 0.0 || section.rayleigh_stiffness != 0.0 {
-        return refuse(
-            "rayleigh_mass/rayleigh_stiffness",
-            &format!("{}/{}", section.rayleigh_mass, section.rayleigh_stiffness),
-        );
-    }
-    for (i, s) in section.segments.iter().enumerate() {
-        if s.diameter > 0.0 && (s.drag_normal != 0.0 || s.drag_tangential != 0.0) {
-            return refuse(&format!("segments[{i}].drag_normal"), &s.drag_normal);
-        }
-    }
-    if section.current.is_some() {
-        return refuse("current", &"a current");
-    }
-    if section.contact.is_some() || section.stinger.is_some() {
-        return refuse("contact/stinger", &"contact");
-    }
-    if section.static_start {
-        return refuse("static_start", &true);
-    }
-    Ok(())
-}
-
-/// The reduced model of `cubic` on `count` modes (and the attachment vectors of
-/// the free DOFs `loaded`) and its critical step (s).
-fn build_model(
-    cubic: &CubicSection,
-    count: usize,
-    derivatives: Derivatives,
-    loaded: &[usize],
-) -> Result<(Model, f64), UnitError> {
-    let modes = linear_modes(cubic, count, Normalisation::Mass)?;
-    let phi = DMatrix::from_columns(&modes.shapes);
-    let statics = attachment_vectors(cubic, loaded, &modes.shapes)?;
-    Ok(match derivatives {
-        Derivatives::Taylor => {
-            let mds = derivative_columns(cubic, &modes, Derivative::Novel, count)?;
-            let taylor = TaylorSection::with_static_columns(
-                cubic,
-                &phi,
-                &DMatrix::from_columns(&mds),
-                &columns_of(cubic.size(), &statics),
-            )?;
-            // Linearised at rest only the linear columns remain: 2 / omega_N,
-            // the last mode's unless attachment vectors stiffen the span.
-            let omega = match statics.is_empty() {
-                true => modes.omegas.last().copied().unwrap_or(0.0),
-                false => {
-                    let linear: Vec<_> = modes.shapes.iter().chain(&statics).cloned().collect();
-                    highest_frequency(cubic, &columns_of(cubic.size(), &linear))?
-                }
-            };
-            let critical = if omega > 0.0 {
-                2.0 / omega
-            } else {
-                f64::INFINITY
-            };
-            (Model::Taylor(taylor), critical)
-        }
-        kind => {
-            let mut columns = modes.shapes.clone();
-            columns.extend(statics);
-            if kind == Derivatives::Linear {
-                let kept = columns.len();
-                columns.extend(derivative_columns(cubic, &modes, Derivative::Novel, count)?);
-                // A derivative in the span of the others (an attachment vector
-                // can hold one) would make the reduced mass singular.
-                let dependent = dependent_columns(&columns, DEPENDENCE_TOLERANCE, kept)?;
-                let mut k = 0;
-                columns.retain(|_| {
-                    k += 1;
-                    dependent.binary_search(&(k - 1)).is_err()
-                });
-            }
-            let system = ReducedSection::new(cubic, DMatrix::from_columns(&columns));
-            let critical = CentralDifference::critical_step(&system.matrices(), 400)?;
-            (Model::Linear(system, CentralDifference::new()), critical)
-        }
-    })
-}
-
-/// The vectors as the columns of a `rows` x n matrix (n may be 0).
-fn columns_of(rows: usize, vectors: &[DVector<f64>]) -> DMatrix<f64> {
-    DMatrix::from_fn(rows, vectors.len(), |i, j| vectors[j][i])
-}
-
 /// Each end's position, rotation and velocities, then each station's position.
 fn output_ports(stations: usize) -> Vec<Port> {
     let mut outputs = Vec::new();
@@ -460,6 +416,14 @@ impl Unit for ReducedUnit {
 
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let (t0, h) = (t.as_secs(), h.as_secs());
+        if let Model::Linear(_, Stepper::Implicit(_)) = self.model {
+            let iterations = self.implicit_step(t0, h, inputs)?;
+            self.store_motion();
+            self.refresh_outputs();
+            return Ok(StepReport {
+                solver_iterations: iterations,
+            });
+        }
         let substeps = (h / (0.9 * self.critical)).ceil().max(1.0) as usize;
         let hk = h / substeps as f64;
         for k in 1..=substeps {
@@ -469,10 +433,11 @@ impl Unit for ReducedUnit {
                 *f = self.load[d];
             }
             match &mut self.model {
-                Model::Linear(system, cd) => {
+                Model::Linear(system, Stepper::Explicit(cd)) => {
                     system.project_into(&self.free_load, &mut self.projected);
                     cd.step(system, t0 + s * h, hk, self.projected.as_slice(), &[])?;
                 }
+                Model::Linear(_, Stepper::Implicit(_)) => {}
                 Model::Taylor(taylor) => {
                     taylor.project_into(&self.free_load, &mut self.projected);
                     taylor.step(hk, &self.projected)?;
