@@ -137,6 +137,11 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/seed002_frame_reduced.toml", "reduced"),
         ),
         (
+            // Loaded at its cut, with attachment vectors and end forces.
+            "reduced",
+            from_scene("examples/structure_frame_reduced.toml", "frame_corner"),
+        ),
+        (
             "delay_compensation",
             from_scene("examples/hybrid_oscillator.toml", "compensation_x"),
         ),

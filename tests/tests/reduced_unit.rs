@@ -210,3 +210,33 @@ fn a_load_present_at_the_start_accelerates_the_first_step() {
     // move at all.
     assert!(error < 2e-3, "{error}");
 }
+
+#[test]
+fn it_reports_its_critical_step_from_the_reduced_frequencies() {
+    // The cable on a Taylor basis of 3 modes, no loaded end: 2 / omega_3.
+    let text = cable("");
+    let unit = reduced(&text, 3, "taylor").unwrap();
+    let c = slender_units::reduced::polynomial::CubicSection::new(&section(&text)).unwrap();
+    let modes = slender_units::reduced::basis::linear_modes(
+        &c,
+        3,
+        slender_units::reduced::basis::Normalisation::Mass,
+    )
+    .unwrap();
+    let expected = 2.0 / modes.omegas[2];
+    let mut driver = Driver::new(unit);
+    driver.initialize(Time::ZERO).unwrap();
+    let at = driver
+        .description()
+        .outputs
+        .iter()
+        .position(|p| p.name == "critical_step")
+        .expect("critical_step output");
+    let mut out = vec![0.0; driver.description().outputs.len()];
+    driver.outputs(&mut out).unwrap();
+    assert!(
+        (out[at] - expected).abs() <= 1e-12 * expected,
+        "{} {expected}",
+        out[at]
+    );
+}

@@ -124,25 +124,7 @@ pub struct ReducedUnit {
 impl ReducedUnit {
     /// Builds the unit: the section, its modes and derivatives, the reduced model.
     pub fn new(params: ReducedParams) -> Result<ReducedUnit, UnitError> {
-        refuse_what_is_not_reduced(&params.section)?;
-        let mut section = NonlinearSection::new(params.section)?;
-        // The mass and the held DOFs are set up by `initialize` (at rest, zero
-        // inputs: the stress-free state is the expansion point).
-        let holds = section
-            .description()
-            .inputs
-            .iter()
-            .map(|p| p.hold)
-            .collect();
-        let zero = HeldInputs::new(holds);
-        section.initialize(Time::ZERO, zero.view())?;
-        if !section.held_at_rest() {
-            return Err(UnitError::parameter(
-                "section.ends",
-                "prescribed or coupled motion",
-                "expected held DOFs at rest: a reduced section takes loads at its ends, not motion",
-            ));
-        }
+        let section = section_at_rest(params.section)?;
         let cubic = CubicSection::new(&section)?;
         let count = params.modes;
         if count == 0 || count >= cubic.size() {
@@ -156,13 +138,12 @@ impl ReducedUnit {
             ));
         }
         let loaded_ends = section.loaded_end_dofs();
-        let loaded: Vec<usize> = match params.attachments {
-            true => loaded_ends
-                .iter()
-                .filter_map(|d| cubic.free_dofs().binary_search(d).ok())
-                .collect(),
-            false => Vec::new(),
-        };
+        // Attachment vectors at the loaded end DOFs (as free-DOF indices).
+        let free = cubic.free_dofs();
+        let loaded: Vec<usize> = (loaded_ends.iter())
+            .filter(|_| params.attachments)
+            .filter_map(|d| free.binary_search(d).ok())
+            .collect();
         let (model, critical) = build_model(
             &cubic,
             (count, params.derivatives),
@@ -190,7 +171,12 @@ impl ReducedUnit {
             full: vec![0.0; section.model().dofs()],
             residual: vec![0.0; section.model().dofs()],
             start: vec![0.0; 2 * columns],
-            values: vec![0.0; description.outputs.len()],
+            values: {
+                // The critical step never changes; finite as every output.
+                let mut values = vec![0.0; description.outputs.len()];
+                values[18] = if critical.is_finite() { critical } else { 0.0 };
+                values
+            },
             loaded: loaded_ends,
             state: ReducedState { motion: Vec::new() },
             section,
@@ -289,7 +275,7 @@ impl ReducedUnit {
             for c in 0..2 {
                 let (a, b) = (at(d, 3 * e + c), at(d, 3 * (e + 1) + c));
                 let reference = (1.0 - xi) * model.reference[e][c] + xi * model.reference[e + 1][c];
-                out[18 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
+                out[19 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
             }
         }
         self.end_forces();
@@ -353,7 +339,35 @@ impl ReducedUnit {
     }
 }
 
-/// Each end's position, rotation and velocities, then each station's position.
+/// The full section, initialised at rest in its stress-free state (which sets
+/// up its mass and held DOFs); refused where it has what a reduced section does
+/// not carry or where a held DOF moves.
+fn section_at_rest(params: NonlinearParams) -> Result<NonlinearSection, UnitError> {
+    refuse_what_is_not_reduced(&params)?;
+    let mut section = NonlinearSection::new(params)?;
+    // The mass and the held DOFs are set up by `initialize` (at rest, zero
+    // inputs: the stress-free state is the expansion point).
+    let holds = section
+        .description()
+        .inputs
+        .iter()
+        .map(|p| p.hold)
+        .collect();
+    let zero = HeldInputs::new(holds);
+    section.initialize(Time::ZERO, zero.view())?;
+    if !section.held_at_rest() {
+        return Err(UnitError::parameter(
+            "section.ends",
+            "prescribed or coupled motion",
+            "expected held DOFs at rest: a reduced section takes loads at its ends, not motion",
+        ));
+    }
+    Ok(section)
+}
+
+/// Each end's position, rotation, velocities and force, the critical step of
+/// central differences (s; 0 when stepped implicitly), then each station's
+/// position.
 fn output_ports(stations: usize) -> Vec<Port> {
     let mut outputs = Vec::new();
     for side in ["start", "end"] {
@@ -373,6 +387,7 @@ fn output_ports(stations: usize) -> Vec<Port> {
         outputs.push(Port::output(&format!("{side}_force_z"), PortKind::Force));
         outputs.push(Port::output(&format!("{side}_moment"), PortKind::Moment));
     }
+    outputs.push(Port::output("critical_step", PortKind::Generic).with_unit("s"));
     for i in 1..=stations {
         outputs.push(Port::output(&format!("x_{i}"), PortKind::Displacement));
         outputs.push(Port::output(&format!("z_{i}"), PortKind::Displacement));
