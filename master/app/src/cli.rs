@@ -196,8 +196,9 @@ pub enum Command {
     Fidelity {
         scene: PathBuf,
         /// NAME=CHOICE,CHOICE,...: a section and its fidelities (nonlinear,
-        /// cable, static), each optionally with an element count, e.g.
-        /// lower=nonlinear,cable,nonlinear:16. Repeat for several sections.
+        /// cable, static, reduced), each optionally with an element count (for
+        /// reduced: its modes), e.g. lower=nonlinear,cable,nonlinear:16,reduced:4.
+        /// Repeat for several sections.
         #[arg(long = "section", required = true)]
         sections: Vec<slender_app::fidelity::SectionChoices>,
         /// Run every combination of the sections' choices instead of one
