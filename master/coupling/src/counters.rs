@@ -36,12 +36,21 @@ pub struct Counters {
     pub non_converged_steps: u64,
     /// Interface Jacobians evaluated by Newton.
     pub jacobian_evaluations: u64,
+    /// Steps started again without the secants reused from earlier steps, after
+    /// a unit failed on an iterate they proposed (IQN-ILS with `reuse_steps`).
+    /// Left out of the summary while zero.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub restarts: u64,
     /// Residual at the exit of the last step: the largest |change| / tolerance over
     /// the connections (<= 1 means converged); 0 for non-iterative schemes.
     pub last_residual: f64,
     /// Largest residual at exit over all steps.
     pub max_residual: f64,
     pub units: Vec<UnitCounters>,
+}
+
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }
 
 impl Counters {

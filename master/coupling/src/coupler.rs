@@ -62,6 +62,8 @@ pub struct Master {
     pub(crate) scaled_x: Vec<f64>,
     pub(crate) scaled_gx: Vec<f64>,
     pub(crate) scaled_next: Vec<f64>,
+    /// The step's first iterate, for a restart.
+    x_start: Vec<f64>,
     accelerator: Box<dyn Accelerator>,
     pub(crate) newton: Option<crate::newton::NewtonWork>,
     pub(crate) time: Time,
@@ -138,6 +140,7 @@ impl Master {
             scaled_x: vec![0.0; n_torn],
             scaled_gx: vec![0.0; n_torn],
             scaled_next: vec![0.0; n_torn],
+            x_start: vec![0.0; n_torn],
             accelerator,
             newton,
             time: Time::ZERO,
@@ -333,9 +336,31 @@ impl Master {
         }
     }
 
-    /// Iterative Jacobi or Gauss-Seidel with fixed-point updates of `x`.
+    /// Iterative Jacobi or Gauss-Seidel with fixed-point updates of `x`. When a
+    /// unit fails on an iterate and the accelerator had learnt from earlier
+    /// steps (IQN-ILS's reused secants can propose a value far outside what
+    /// this step needs), the step starts once more from its first iterate
+    /// without them; a second failure is the run's error.
     fn step_fixed_point(&mut self) -> Result<(u32, f64, bool), MasterError> {
         self.accelerator.start_step();
+        self.x_start.copy_from_slice(&self.x);
+        match self.iterate_fixed_point() {
+            // Only a later iterate comes from the accelerator (the first one is
+            // the prediction, and its sweep steps the units outside the loop).
+            Err(MasterError::Unit { iteration, .. } | MasterError::NonFinite { iteration, .. })
+                if iteration > 1 && self.accelerator.forget() =>
+            {
+                self.counters.restarts += 1;
+                self.restore_all(0)?;
+                self.x.copy_from_slice(&self.x_start);
+                self.previous.copy_from_slice(&self.accepted);
+                self.iterate_fixed_point()
+            }
+            other => other,
+        }
+    }
+
+    fn iterate_fixed_point(&mut self) -> Result<(u32, f64, bool), MasterError> {
         self.iterate(&mut |m, _| {
             m.scale_iterate();
             m.accelerator

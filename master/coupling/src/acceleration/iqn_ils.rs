@@ -19,6 +19,8 @@ pub struct IqnIls {
     reuse_steps: u64,
     step: u64,
     first_in_step: bool,
+    /// The step began with secants of earlier steps (what `forget` reports).
+    step_began_with_reuse: bool,
     /// Newest first; at most `n` pairs are kept.
     secants: Vec<Secant>,
     spare: Vec<Secant>,
@@ -39,6 +41,7 @@ impl IqnIls {
             reuse_steps: u64::from(reuse_steps),
             step: 0,
             first_in_step: true,
+            step_began_with_reuse: false,
             secants: Vec::with_capacity(columns + 1),
             spare: (0..=columns)
                 .map(|_| Secant {
@@ -144,6 +147,13 @@ impl Accelerator for IqnIls {
         self.first_in_step = true;
         let oldest = self.step.saturating_sub(self.reuse_steps);
         self.forget_older_than(oldest);
+        self.step_began_with_reuse = !self.secants.is_empty();
+    }
+
+    fn forget(&mut self) -> bool {
+        self.spare.append(&mut self.secants);
+        self.first_in_step = true;
+        std::mem::take(&mut self.step_began_with_reuse)
     }
 
     fn next(&mut self, x: &[f64], gx: &[f64], next: &mut [f64]) {

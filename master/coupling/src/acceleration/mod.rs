@@ -21,6 +21,11 @@ pub trait Accelerator: Send {
     fn start_step(&mut self);
     /// `x`: iterate used; `gx`: sweep result `G(x)`; writes the next iterate.
     fn next(&mut self, x: &[f64], gx: &[f64], next: &mut [f64]);
+    /// Forgets everything learnt (the step starts afresh); true when that
+    /// included what earlier steps taught, so that a repeat can differ.
+    fn forget(&mut self) -> bool {
+        false
+    }
 }
 
 /// Builds the accelerator of a fixed-point scheme for `n` torn values.
@@ -80,5 +85,39 @@ mod tests {
         iterations(&mut acc, &A, B).unwrap();
         let k = iterations(&mut acc, &A, [1.5, 2.5]).unwrap();
         assert!(k <= 3, "with reuse IQN-ILS took {k} iterations");
+    }
+
+    #[test]
+    fn forgetting_says_whether_the_step_began_with_reused_secants() {
+        // Without reuse nothing from earlier steps is there to forget.
+        let mut plain = IqnIls::new(0.5, 0, 2);
+        iterations(&mut plain, &A, B).unwrap();
+        plain.start_step();
+        assert!(!plain.forget());
+        // With reuse the next step begins with the last step's secants; once
+        // forgotten, the step iterates as the very first one did.
+        let mut reusing = IqnIls::new(0.5, 1, 2);
+        let first = iterations(&mut reusing, &A, B).unwrap();
+        reusing.start_step();
+        assert!(reusing.forget());
+        assert!(!reusing.forget());
+        let mut x = [0.0; 2];
+        let mut next = [0.0; 2];
+        let mut k = 1;
+        loop {
+            let gx = [
+                A[0][0] * x[0] + A[0][1] * x[1] + B[0],
+                A[1][0] * x[0] + A[1][1] * x[1] + B[1],
+            ];
+            if (gx[0] - x[0]).abs().max((gx[1] - x[1]).abs()) < 1e-10 || k > 200 {
+                break;
+            }
+            reusing.next(&x, &gx, &mut next);
+            x = next;
+            k += 1;
+        }
+        assert_eq!(k, first);
+        // Aitken and constant relaxation learn nothing across steps.
+        assert!(!Aitken::new(0.5, 2).forget());
     }
 }
