@@ -18,8 +18,16 @@ use nalgebra::{DMatrix, DVector};
 /// A linear basis's stepper.
 pub(super) enum Stepper {
     Explicit(CentralDifference),
-    /// The integrator, the projected load at the step's start and the force there.
-    Implicit(Box<(HhtAlpha, DVector<f64>, Vec<f64>)>),
+    Implicit(Box<Implicit>),
+}
+
+/// The trapezoidal rule's integrator and the step start it needs.
+pub(super) struct Implicit {
+    pub hht: HhtAlpha,
+    /// The projected load at the step's start.
+    pub f0: DVector<f64>,
+    /// The nonlinear force at the step's start.
+    pub g0: Vec<f64>,
 }
 
 /// The reduced model: a linear basis with its stepper, or a Taylor basis.
@@ -132,8 +140,11 @@ pub(super) fn build_model(
                 Stepping::Trapezoidal => {
                     let n = system.size();
                     let hht = HhtAlpha::new(0.0, n, n.saturating_sub(1));
-                    let stepper =
-                        Stepper::Implicit(Box::new((hht, DVector::zeros(n), vec![0.0; n])));
+                    let stepper = Stepper::Implicit(Box::new(Implicit {
+                        hht,
+                        f0: DVector::zeros(n),
+                        g0: vec![0.0; n],
+                    }));
                     (Model::Linear(system, stepper), f64::INFINITY)
                 }
             }

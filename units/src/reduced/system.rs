@@ -109,31 +109,20 @@ impl ReducedSection {
     /// The displacements and velocities Phi s, Phi s' on the free DOFs into
     /// `d` and `v`, allocating nothing.
     pub fn displacements_and_velocities_into(&self, d: &mut DVector<f64>, v: &mut DVector<f64>) {
-        let n = self.q.len();
-        d.gemv(
-            1.0,
-            &self.basis,
-            &nalgebra::DVectorView::from_slice(&self.q, n),
-            0.0,
-        );
-        v.gemv(
-            1.0,
-            &self.basis,
-            &nalgebra::DVectorView::from_slice(&self.v, n),
-            0.0,
-        );
+        self.basis_times(&self.q, d);
+        self.basis_times(&self.v, v);
     }
 
     /// The accelerations Phi s'' on the free DOFs into `out`, allocating
     /// nothing.
     pub fn accelerations_into(&self, out: &mut DVector<f64>) {
-        let n = self.a.len();
-        out.gemv(
-            1.0,
-            &self.basis,
-            &nalgebra::DVectorView::from_slice(&self.a, n),
-            0.0,
-        );
+        self.basis_times(&self.a, out);
+    }
+
+    /// Phi x into `out` (x in coordinates, `out` on the free DOFs).
+    fn basis_times(&self, x: &[f64], out: &mut DVector<f64>) {
+        let x = nalgebra::DVectorView::from_slice(x, x.len());
+        out.gemv(1.0, &self.basis, &x, 0.0);
     }
 
     /// Sets the acceleration that balances the projected load `f` at the

@@ -16,7 +16,7 @@
 //! section names them) and each station's position. Rollback restores the
 //! coordinates exactly; a step allocates nothing.
 
-use super::build::{Model, Stepper, build_model, refuse_what_is_not_reduced};
+use super::build::{Implicit, Model, Stepper, build_model, refuse_what_is_not_reduced};
 use super::polynomial::CubicSection;
 use crate::contract::{
     Capabilities, HeldInputs, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
@@ -79,6 +79,11 @@ pub enum Stepping {
     Trapezoidal,
 }
 
+/// Outputs per end (position, rotation, velocities, force and moment), and
+/// where the critical step sits: after both ends, before the stations.
+const PER_END: usize = 9;
+const CRITICAL_STEP: usize = 2 * PER_END;
+
 /// Newton's tolerance and bound for the trapezoidal rule (relative
 /// correction of the coordinates; the reduced tensors carry EA, so round-off
 /// floors the corrections near 1e-9).
@@ -119,6 +124,8 @@ pub struct ReducedUnit {
     values: Vec<f64>,
     /// The end DOFs loaded by a force or moment (model DOFs).
     loaded: Vec<usize>,
+    /// Whether a single DOF holds x (z): its reaction is the balance sum.
+    held_once: [bool; 2],
 }
 
 impl ReducedUnit {
@@ -174,10 +181,18 @@ impl ReducedUnit {
             values: {
                 // The critical step never changes; finite as every output.
                 let mut values = vec![0.0; description.outputs.len()];
-                values[18] = if critical.is_finite() { critical } else { 0.0 };
+                values[CRITICAL_STEP] = if critical.is_finite() { critical } else { 0.0 };
                 values
             },
             loaded: loaded_ends,
+            held_once: [0, 1].map(|c| {
+                let dofs = section.model().dofs();
+                (c..dofs)
+                    .step_by(3)
+                    .filter(|d| free.binary_search(d).is_err())
+                    .count()
+                    == 1
+            }),
             state: ReducedState { motion: Vec::new() },
             section,
             cubic,
@@ -199,12 +214,10 @@ impl ReducedUnit {
         let Model::Linear(system, Stepper::Implicit(implicit)) = &mut self.model else {
             return Ok(0);
         };
-        let (hht, f0, g0) = &mut **implicit;
+        let Implicit { hht, f0, g0 } = &mut **implicit;
         for (s, out) in [(0.0, &mut *f0), (1.0, &mut self.projected)] {
             self.section.load_at(inputs, t0 + s * h, s, &mut self.load);
-            for (f, &d) in self.free_load.iter_mut().zip(self.cubic.free_dofs()) {
-                *f = self.load[d];
-            }
+            gather(&self.load, self.cubic.free_dofs(), &mut self.free_load);
             system.project_into(&self.free_load, out);
         }
         let n = system.size();
@@ -262,7 +275,7 @@ impl ReducedUnit {
         let out = &mut self.values;
         for (k, node) in [0, last].into_iter().enumerate() {
             let [x, z] = model.reference[node];
-            let base = 9 * k;
+            let base = PER_END * k;
             out[base] = x + at(d, 3 * node);
             out[base + 1] = z + at(d, 3 * node + 1);
             out[base + 2] = at(d, 3 * node + 2);
@@ -275,7 +288,7 @@ impl ReducedUnit {
             for c in 0..2 {
                 let (a, b) = (at(d, 3 * e + c), at(d, 3 * (e + 1) + c));
                 let reference = (1.0 - xi) * model.reference[e][c] + xi * model.reference[e + 1][c];
-                out[19 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
+                out[CRITICAL_STEP + 1 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
             }
         }
         self.end_forces();
@@ -290,7 +303,6 @@ impl ReducedUnit {
     /// or a direction held twice) the end element's force gives it.
     fn end_forces(&mut self) {
         let free = self.cubic.free_dofs();
-        let dofs = self.full.len();
         self.full.fill(0.0);
         for (k, &dof) in free.iter().enumerate() {
             self.full[dof] = self.displacement[k];
@@ -312,17 +324,11 @@ impl ReducedUnit {
         self.section
             .mass_matrix()
             .mul_add(-1.0, &self.full, residual);
-        let held_in = |c: usize| {
-            (c..dofs)
-                .step_by(3)
-                .filter(|d| free.binary_search(d).is_err())
-                .count()
-        };
         for (side, node) in [0, last].into_iter().enumerate() {
             for c in 0..3 {
                 let dof = 3 * node + c;
                 let value = if free.binary_search(&dof).is_err() {
-                    if c < 2 && held_in(c) == 1 {
+                    if c < 2 && self.held_once[c] {
                         residual.iter().skip(c).step_by(3).sum()
                     } else {
                         let local = if side == 0 { c } else { 3 + c };
@@ -333,9 +339,16 @@ impl ReducedUnit {
                 } else {
                     0.0
                 };
-                self.values[9 * side + 6 + c] = value;
+                self.values[PER_END * side + 6 + c] = value;
             }
         }
+    }
+}
+
+/// The entries of `full` (all DOFs) at the `free` DOFs into `out`.
+fn gather(full: &[f64], free: &[usize], out: &mut DVector<f64>) {
+    for (o, &d) in out.iter_mut().zip(free) {
+        *o = full[d];
     }
 }
 
@@ -409,9 +422,7 @@ impl Unit for ReducedUnit {
         let zero = vec![0.0; count];
         self.section
             .load_at(inputs, t0.as_secs(), 1.0, &mut self.load);
-        for (f, &d) in self.free_load.iter_mut().zip(self.cubic.free_dofs()) {
-            *f = self.load[d];
-        }
+        gather(&self.load, self.cubic.free_dofs(), &mut self.free_load);
         match &mut self.model {
             Model::Linear(system, _) => {
                 system.set_motion(&zero, &zero, &zero);
@@ -444,9 +455,7 @@ impl Unit for ReducedUnit {
         for k in 1..=substeps {
             let s = k as f64 / substeps as f64;
             self.section.load_at(inputs, t0 + s * h, s, &mut self.load);
-            for (f, &d) in self.free_load.iter_mut().zip(self.cubic.free_dofs()) {
-                *f = self.load[d];
-            }
+            gather(&self.load, self.cubic.free_dofs(), &mut self.free_load);
             match &mut self.model {
                 Model::Linear(system, Stepper::Explicit(cd)) => {
                     system.project_into(&self.free_load, &mut self.projected);
