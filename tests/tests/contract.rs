@@ -110,13 +110,6 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/pipe_span_coupling.toml", "span"),
         ),
         (
-            "static_section",
-            inline(
-                "static_section",
-                "stiffness = [[-2.7e7, 100.0, -30.0], [3.0, -2.0e6, 2.7e6], [-30.0, 2.5e6, -7.8e6]]\nforce = [-8.2e4, 5.8, -14.7]\nstart_stiffness = [[2.7e7, -115.0, 29.0], [-2.2e3, 0.01, 0.0]]\nstart_force = [8.2e4, -1.0e3]",
-            ),
-        ),
-        (
             "touchdown_estimate",
             from_scene("examples/pipe_static_contact.toml", "estimate"),
         ),
@@ -137,15 +130,15 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/seed002_frame_reduced.toml", "reduced"),
         ),
         (
-            // Loaded at its cut, with attachment vectors and end forces.
-            "reduced",
-            from_scene("examples/structure_frame_reduced.toml", "frame_corner"),
-        ),
-        (
             "delay_compensation",
             from_scene("examples/hybrid_oscillator.toml", "compensation_x"),
         ),
         ("fmu", inline("fmu", &fmu_table)),
+        // The units a structure's sections become.
+    ]
+    .into_iter()
+    .chain(section_samples())
+    .chain([
         (
             "loop_linear_pair",
             from_scene("examples/b6_algebraic_loop.toml", "pair"),
@@ -153,6 +146,39 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
         (
             "loop_sphere",
             from_scene("examples/b6_algebraic_loop.toml", "sphere"),
+        ),
+    ])
+    .collect()
+}
+
+/// Samples of the units a structure's sections are written as.
+fn section_samples() -> Vec<(&'static str, ExportConfig)> {
+    vec![
+        (
+            "static_section",
+            inline(
+                "static_section",
+                "stiffness = [[-2.7e7, 100.0, -30.0], [3.0, -2.0e6, 2.7e6], [-30.0, 2.5e6, -7.8e6]]\nforce = [-8.2e4, 5.8, -14.7]\nstart_stiffness = [[2.7e7, -115.0, 29.0], [-2.2e3, 0.01, 0.0]]\nstart_force = [8.2e4, -1.0e3]",
+            ),
+        ),
+        (
+            // Taking force at its end and holding the section above, with its
+            // static touchdown estimate.
+            "static_section",
+            inline(
+                "static_section",
+                "stiffness = [[-2.7e7, 100.0, -30.0], [3.0, -2.0e6, 2.7e6], [-30.0, 2.5e6, -7.8e6]]\nforce = [-8.2e4, 5.8, -14.7]\nforce_input = true\nquantities = [{ name = \"touchdown\", unit = \"m\", value = 126.0, gradient = [1.0e2, -20.0, 3.0] }]",
+            ),
+        ),
+        (
+            // The S-lay's suspended span as a beam about its chord.
+            "chord",
+            from_scene("examples/structure_slay_fidelity.toml", "pipe_suspended"),
+        ),
+        (
+            // Loaded at its cut, with attachment vectors and end forces.
+            "reduced",
+            from_scene("examples/structure_frame_reduced.toml", "frame_corner"),
         ),
     ]
 }

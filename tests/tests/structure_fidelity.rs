@@ -184,6 +184,7 @@ fn plan(sections: &[&str], design: Design, jobs: usize) -> FidelityPlan {
         duration: Some(10.0),
         jobs,
         tolerance: 1e-3,
+        judged: vec![],
     }
 }
 
@@ -269,9 +270,12 @@ fn a_fidelity_study_refuses_a_section_that_is_not_there() {
     let path = root().join("examples/structure_mooring.toml");
     let e = run_fidelity(&path, &plan(&["middle=cable"], Design::Grid, 1), |_| {}).unwrap_err();
     assert!(e.contains("middle") && e.contains("lower, upper"), "{e}");
-    let e = "lower=beam".parse::<SectionChoices>().unwrap_err();
+    let e = "lower=shell".parse::<SectionChoices>().unwrap_err();
     assert!(e.contains("static"), "{e}");
-    assert!(e.contains("beam") && e.contains("cable"), "{e}");
+    assert!(
+        e.contains("beam") && e.contains("span") && e.contains("cable"),
+        "{e}"
+    );
     let e = "lower=nonlinear:0".parse::<SectionChoices>().unwrap_err();
     assert!(e.contains("whole number"), "{e}");
     // A cable section needs the static start and the water depth.

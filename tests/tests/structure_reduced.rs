@@ -240,6 +240,7 @@ fn a_fidelity_study_compares_reduced_corners_by_their_modes() {
         duration: Some(3.0),
         jobs: 2,
         tolerance: 1e-2,
+        judged: vec![],
     };
     let report = run_fidelity(&path, &plan, |_| {}).unwrap();
     let worst = |label: &str| {

@@ -6,12 +6,14 @@
 //! physics and the numerics they share:
 //! - [`contract`]: unit, ports, holds, state, time, the driver;
 //! - [`integrators`], [`numerics`]: time integration and linear algebra shared by units;
-//! - physics: [`cable`], [`beam`], [`nonlinear`], [`contact`], [`span`], [`signal`];
+//! - physics: [`cable`], [`beam`], [`nonlinear`], [`contact`], [`span`], [`signal`],
+//!   [`chord`] (a small-deflection section in its chord frame);
 //! - [`benchmark`]: the coupling benchmark units (oscillator, algebraic loops).
 
 pub mod beam;
 pub mod benchmark;
 pub mod cable;
+pub mod chord;
 pub mod contact;
 pub mod contract;
 pub mod integrators;

@@ -8,7 +8,9 @@
 //! section keeps its contact state and its motion stays small.
 //!
 //! Inputs: the end's velocity (x, z, angular), integrated by the trapezoidal
-//! rule. Outputs: the force and moment the end exerts on what holds it, the
+//! rule; or, with `force_input`, the force and moment applied on the end, which
+//! it follows through the inverse of its stiffness (the section then holds its
+//! neighbour rather than following it). Outputs: the force and moment the end exerts on what holds it, the
 //! reaction at the start, and the end's displacement from the equilibrium.
 
 use crate::contract::{
@@ -31,6 +33,30 @@ pub struct StaticSectionParams {
     /// Start reaction x, z (N) in the equilibrium.
     #[serde(default)]
     pub start_force: [f64; 2],
+    /// The end takes the force x, z (N) and moment (N m) applied on it as
+    /// inputs and moves by the compliance (the stiffness's inverse) instead of
+    /// following velocity inputs.
+    #[serde(default)]
+    pub force_input: bool,
+    /// Further outputs linear in the end's displacement (e.g. the touchdown
+    /// point and the sag-bend moment of the section's static solves).
+    #[serde(default)]
+    pub quantities: Vec<Linearised>,
+}
+
+/// An output linear in the end's displacement u: value + gradient . u.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Linearised {
+    /// The output's name.
+    pub name: String,
+    /// Its unit of measure ("m", "N.m", ...).
+    #[serde(default)]
+    pub unit: String,
+    /// Its value in the equilibrium.
+    pub value: f64,
+    /// d(value) / d(end x, z, rotation).
+    pub gradient: [f64; 3],
 }
 
 impl StaticSectionParams {
@@ -41,7 +67,12 @@ impl StaticSectionParams {
             .flatten()
             .chain(&self.force)
             .chain(self.start_stiffness.iter().flatten())
-            .chain(&self.start_force);
+            .chain(&self.start_force)
+            .chain(
+                self.quantities
+                    .iter()
+                    .flat_map(|q| q.gradient.iter().chain([&q.value])),
+            );
         for &v in values {
             require_finite("stiffness, force, start_stiffness, start_force", v)?;
         }
@@ -62,6 +93,8 @@ pub struct StaticSection {
     params: StaticSectionParams,
     description: UnitDescription,
     state: StaticSectionState,
+    /// The stiffness's inverse (m/N, rad/(N m), ...) when the end takes forces.
+    compliance: Option<[[f64; 3]; 3]>,
 }
 
 const OUTPUTS: [(&str, PortKind); 8] = [
@@ -79,15 +112,36 @@ impl StaticSection {
     /// Builds the unit; fails on a non-finite parameter.
     pub fn new(params: StaticSectionParams) -> Result<StaticSection, UnitError> {
         params.validate()?;
-        let inputs = vec![
-            Port::input("end_velocity_x", PortKind::Velocity),
-            Port::input("end_velocity_z", PortKind::Velocity),
-            Port::input("end_angular_velocity", PortKind::Generic).with_unit("rad/s"),
-        ];
-        let outputs = OUTPUTS
+        let compliance = params
+            .force_input
+            .then(|| inverse(&params.stiffness))
+            .transpose()?;
+        let (inputs, feedthrough) = if params.force_input {
+            let ports = vec![
+                Port::input("end_force_x", PortKind::Force),
+                Port::input("end_force_z", PortKind::Force),
+                Port::input("end_moment", PortKind::Moment),
+            ];
+            (ports, vec![0, 1, 2])
+        } else {
+            let ports = vec![
+                Port::input("end_velocity_x", PortKind::Velocity),
+                Port::input("end_velocity_z", PortKind::Velocity),
+                Port::input("end_angular_velocity", PortKind::Generic).with_unit("rad/s"),
+            ];
+            (ports, vec![])
+        };
+        let mut outputs: Vec<Port> = OUTPUTS
             .iter()
-            .map(|(name, kind)| Port::output(name, *kind))
+            .map(|(name, kind)| Port::output(name, *kind).with_feedthrough(&feedthrough))
             .collect();
+        for q in &params.quantities {
+            outputs.push(
+                Port::output(&q.name, PortKind::Generic)
+                    .with_unit(&q.unit)
+                    .with_feedthrough(&feedthrough),
+            );
+        }
         Ok(StaticSection {
             params,
             description: UnitDescription {
@@ -99,8 +153,41 @@ impl StaticSection {
             state: StaticSectionState {
                 displacement: [0.0; 3],
             },
+            compliance,
         })
     }
+
+    /// The end's displacement from the equilibrium under the force inputs (the
+    /// end exerts what is applied on it, reversed), when it takes forces.
+    fn yielded(&self, inputs: Inputs<'_>) -> Option<[f64; 3]> {
+        let c = self.compliance.as_ref()?;
+        let f = inputs.end();
+        let excess: [f64; 3] = std::array::from_fn(|k| -f[k] - self.params.force[k]);
+        Some(std::array::from_fn(|i| {
+            (0..3).map(|j| c[i][j] * excess[j]).sum::<f64>()
+        }))
+    }
+}
+
+/// The inverse of a 3x3 matrix by cofactors; an error when it is singular.
+fn inverse(k: &[[f64; 3]; 3]) -> Result<[[f64; 3]; 3], UnitError> {
+    let cof = |i: usize, j: usize| {
+        let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
+        let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
+        k[r0][c0] * k[r1][c1] - k[r0][c1] * k[r1][c0]
+    };
+    let det: f64 = (0..3).map(|j| k[0][j] * cof(0, j)).sum();
+    let scale = k.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    if det.abs() <= 1e-12 * scale.powi(3) || !det.is_finite() {
+        return Err(UnitError::parameter(
+            "stiffness",
+            det,
+            "a nonsingular stiffness when the end takes forces (force_input)",
+        ));
+    }
+    Ok(std::array::from_fn(|i| {
+        std::array::from_fn(|j| cof(j, i) / det)
+    }))
 }
 
 impl Unit for StaticSection {
@@ -108,12 +195,16 @@ impl Unit for StaticSection {
         &self.description
     }
 
-    fn initialize(&mut self, _t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
-        self.state.displacement = [0.0; 3];
+    fn initialize(&mut self, _t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        self.state.displacement = self.yielded(inputs).unwrap_or([0.0; 3]);
         Ok(())
     }
 
     fn do_step(&mut self, _t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        if let Some(d) = self.yielded(inputs) {
+            self.state.displacement = d;
+            return Ok(StepReport::default());
+        }
         let h = h.as_secs();
         for (k, u) in self.state.displacement.iter_mut().enumerate() {
             *u += 0.5 * h * (inputs.at(k, 0.0) + inputs.at(k, 1.0));
@@ -121,8 +212,9 @@ impl Unit for StaticSection {
         Ok(StepReport::default())
     }
 
-    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
-        let u = &self.state.displacement;
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+        let yielded = self.yielded(inputs);
+        let u = yielded.as_ref().unwrap_or(&self.state.displacement);
         let dot = |row: &[f64; 3]| row.iter().zip(u).map(|(k, u)| k * u).sum::<f64>();
         let p = &self.params;
         let rows = p.stiffness.iter().chain(&p.start_stiffness);
@@ -131,6 +223,9 @@ impl Unit for StaticSection {
             *o = f0 + dot(row);
         }
         out[5..8].copy_from_slice(u);
+        for (o, q) in out[8..].iter_mut().zip(&p.quantities) {
+            *o = q.value + dot(&q.gradient);
+        }
     }
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
@@ -156,6 +251,8 @@ mod tests {
             force: [10.0, 20.0, 30.0],
             start_stiffness: [[-2.0, 0.0, 0.0], [0.0, -3.0, 0.0]],
             start_force: [-10.0, 5.0],
+            force_input: false,
+            quantities: vec![],
         };
         let mut unit = Driver::new(StaticSection::new(params).unwrap());
         // 0.5 m/s in x and 0.1 rad/s from the start, for 2 s.
@@ -174,5 +271,52 @@ mod tests {
         for (o, e) in out.iter().zip(expect) {
             assert!((o - e).abs() < 1e-12, "{out:?}");
         }
+    }
+}
+
+#[cfg(test)]
+mod force_tests {
+    use super::*;
+    use crate::contract::Driver;
+
+    #[test]
+    fn a_loaded_end_moves_by_the_compliance_and_exerts_what_it_carries() {
+        let params = StaticSectionParams {
+            stiffness: [[2.0, 0.5, 0.0], [0.5, 3.0, 1.0], [0.0, 1.0, 5.0]],
+            force: [10.0, 20.0, 30.0],
+            start_stiffness: [[-2.0, 0.0, 0.0], [0.0, -3.0, 0.0]],
+            start_force: [-10.0, 5.0],
+            force_input: true,
+            quantities: vec![],
+        };
+        let mut unit = Driver::new(StaticSection::new(params).unwrap());
+        // Applied: the equilibrium's force reversed, plus (1, -2, 0.5).
+        let applied = [-10.0 + 1.0, -20.0 - 2.0, -30.0 + 0.5];
+        unit.set_inputs(&applied).unwrap();
+        unit.initialize(Time::ZERO).unwrap();
+        let mut out = [0.0; 8];
+        unit.outputs(&mut out).unwrap();
+        for k in 0..3 {
+            assert!((out[k] + applied[k]).abs() < 1e-12, "{out:?}");
+        }
+        // K u = -(1, -2, 0.5).
+        let u = &out[5..8];
+        let k = [[2.0, 0.5, 0.0], [0.5, 3.0, 1.0], [0.0, 1.0, 5.0]];
+        let target = [-1.0, 2.0, -0.5];
+        for i in 0..3 {
+            let ku: f64 = (0..3).map(|j| k[i][j] * u[j]).sum();
+            assert!((ku - target[i]).abs() < 1e-12, "{u:?}");
+        }
+        assert!((out[3] - (-10.0 - 2.0 * u[0])).abs() < 1e-12);
+        let singular = StaticSectionParams {
+            stiffness: [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]],
+            force: [0.0; 3],
+            start_stiffness: [[0.0; 3]; 2],
+            start_force: [0.0; 2],
+            force_input: true,
+            quantities: vec![],
+        };
+        let e = StaticSection::new(singular).err().unwrap().to_string();
+        assert!(e.contains("force_input"), "{e}");
     }
 }

@@ -196,8 +196,9 @@ pub enum Command {
     Fidelity {
         scene: PathBuf,
         /// NAME=CHOICE,CHOICE,...: a section and its fidelities (nonlinear,
-        /// cable, static, reduced), each optionally with an element count (for
-        /// reduced: its modes), e.g. lower=nonlinear,cable,nonlinear:16,reduced:4.
+        /// cable, static, reduced, beam, span), each optionally with an element
+        /// count (for reduced: its modes; for span: the order of its fit), e.g.
+        /// lower=nonlinear,cable,nonlinear:16,reduced:4 or middle=beam:10,span:24.
         /// Repeat for several sections.
         #[arg(long = "section", required = true)]
         sections: Vec<slender_app::fidelity::SectionChoices>,
@@ -205,10 +206,15 @@ pub enum Command {
         /// section at a time.
         #[arg(long)]
         grid: bool,
-        /// Largest epsilon of every quantity for a combination to count as good
-        /// enough (default 0.01).
+        /// Largest epsilon of every judged quantity for a combination to count
+        /// as good enough (default 0.01).
         #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
         tolerance: f64,
+        /// The quantities that judge a combination (its worst epsilon, the
+        /// Pareto front, the tolerance), comma-separated, e.g.
+        /// top_force,touchdown,sagbend_moment; default: all of them.
+        #[arg(long, value_delimiter = ',')]
+        quantities: Vec<String>,
         /// Runs at once (default: the machine's cores); results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,

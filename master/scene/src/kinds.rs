@@ -10,6 +10,7 @@ use slender_units::benchmark::algebraic_loop::{
 };
 use slender_units::benchmark::oscillator::{Oscillator, OscillatorParams};
 use slender_units::cable::{Cable, CableParams, Effects};
+use slender_units::chord::{Chord, ChordParams};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::reduced::unit::{ReducedParams, ReducedUnit};
 use slender_units::signal::artefact::{Artefact, ArtefactParams};
@@ -112,6 +113,13 @@ pub const KINDS: &[Kind] = &[
         summary: "seed 004 sec. 6.6: touchdown point x_C = -3 y(0) / y'(0) from a section's end values (valid for y > 0, y' < 0)",
         effects: &[],
         build: |p, _| Ok(Box::new(TouchdownEstimate::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "chord",
+        parameters: field_names::<ChordParams>,
+        summary: "a section as a small-deflection model (`beam` or the span's transfer matrix) about its chord in the equilibrium, with the frame changes at its cuts (the `beam` and `span` fidelities of a structure's section)",
+        effects: &[],
+        build: |p, _| Ok(Box::new(Chord::new(parameters(p)?)?)),
     },
     Kind {
         name: "static_section",

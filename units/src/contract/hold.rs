@@ -99,6 +99,13 @@ pub struct Inputs<'a> {
 }
 
 impl<'a> Inputs<'a> {
+    /// A view of given holds and start and end values (equal lengths): for a
+    /// unit that drives another inside itself.
+    pub fn new(holds: &'a [Hold], start: &'a [f64], end: &'a [f64]) -> Inputs<'a> {
+        debug_assert!(holds.len() == start.len() && start.len() == end.len());
+        Inputs { holds, start, end }
+    }
+
     /// Number of inputs.
     pub fn len(&self) -> usize {
         self.end.len()

@@ -313,6 +313,30 @@ impl NodalContacts {
         }
     }
 
+    /// The arc length (m) where the seabed's gap crosses zero above the highest
+    /// node in contact, linear in the gaps of that node and the next one up: a
+    /// touchdown point that moves continuously with `q` (the `touchdown` output
+    /// is the node's). None without seabed contact.
+    pub fn seabed_crossing(&self, model: &Model, (q, t): (&[f64], f64)) -> Option<f64> {
+        let seabed = self.list.first().filter(|_| self.has_seabed)?;
+        let mut above: Option<(f64, f64)> = None;
+        let mut crossing = None;
+        for_each_point(seabed, model, &self.tributary, (q, t), |p| {
+            if crossing.is_some() {
+                return;
+            }
+            if p.gap <= 0.0 {
+                crossing = Some(match above {
+                    Some((gap, arc)) => p.arc + (arc - p.arc) * (-p.gap) / (gap - p.gap),
+                    None => p.arc,
+                });
+            } else {
+                above = Some((p.gap, p.arc));
+            }
+        });
+        crossing
+    }
+
     /// Touchdown point, seabed contact length, penetration and energy at `q`.
     pub fn summary(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> ContactSummary {
         let mut s = ContactSummary {

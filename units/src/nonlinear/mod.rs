@@ -310,6 +310,15 @@ impl NonlinearSection {
         [local.axial, moment, moment / self.model.elements[e].ei]
     }
 
+    /// The touchdown point (m of arc) as a continuous function of the state:
+    /// where the seabed gap crosses zero, linear between the nodes; None
+    /// without seabed contact.
+    pub fn seabed_crossing(&self) -> Option<f64> {
+        self.environment
+            .contacts
+            .seabed_crossing(&self.model, (&self.state.q, self.state.t))
+    }
+
     /// Position (m) at arc length `s`, linear between the nodes.
     pub fn position_at(&self, s: f64) -> [f64; 2] {
         let (e, xi) = self.model.locate(s);

@@ -77,6 +77,7 @@ fn studies(command: Command) -> Result<(), CliError> {
             sections,
             grid,
             tolerance,
+            quantities,
             jobs,
             duration,
             out,
@@ -87,6 +88,7 @@ fn studies(command: Command) -> Result<(), CliError> {
                 duration,
                 jobs: jobs_or_cores(jobs),
                 tolerance,
+                judged: quantities,
             };
             analysis::fidelity(&scene, &plan, out)
         }

@@ -9,8 +9,9 @@
 
 pub mod quantities;
 pub mod report;
+mod rows;
+mod written;
 
-use crate::indicators::{indicator, interpolate, normalized_error};
 use crate::run::{RunOptions, run_scene};
 use crate::study::Design;
 use quantities::{Features, SectionUnit};
@@ -20,8 +21,9 @@ use std::str::FromStr;
 use toml::{Table, Value};
 
 /// One way to model a section: a fidelity and, optionally, its element count
-/// (`nonlinear:16`; for `reduced` the number of modes, `reduced:4`); without a
-/// count, the model's own mesh over the section (6 modes).
+/// (`nonlinear:16`; for `reduced` the number of modes, `reduced:4`; for `span`
+/// the order of its fit, `span:24`); without a count, the model's own mesh over
+/// the section (6 modes, order 24).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Choice {
     pub fidelity: String,
@@ -98,9 +100,12 @@ pub struct FidelityPlan {
     pub duration: Option<f64>,
     /// Runs at once.
     pub jobs: usize,
-    /// The largest epsilon of every quantity a combination may have to count as
-    /// good enough.
+    /// The largest epsilon of every judged quantity a combination may have to
+    /// count as good enough.
     pub tolerance: f64,
+    /// The quantities whose worst epsilon judges a combination (its `worst`,
+    /// the Pareto front, the tolerance); empty: all of them.
+    pub judged: Vec<String>,
 }
 
 /// One run: a combination (or the reference) and what it measured.
@@ -111,7 +116,7 @@ pub struct FidelityRow {
     pub reference: bool,
     /// epsilon of each quantity against the reference.
     pub errors: Vec<(String, f64)>,
-    /// The largest of `errors`.
+    /// The largest of `errors` over the judged quantities.
     pub worst_error: f64,
     pub cost_per_simulated_second: f64,
     /// The reference's cost over this run's.
@@ -130,6 +135,8 @@ pub struct FidelityReport {
     pub scene: String,
     pub tolerance: f64,
     pub quantities: Vec<String>,
+    /// The quantities `worst` is taken over.
+    pub judged: Vec<String>,
     /// The reference first, then the combinations.
     pub rows: Vec<FidelityRow>,
     /// Index in `rows` of the cheapest combination within the tolerance.
@@ -191,13 +198,13 @@ pub fn run_fidelity(
         progress(&describe(task.as_deref(), &outcome));
         outcome
     });
-    let rows = rows_of(
+    let judged = judged_of(plan, &names)?;
+    let rows = rows::rows_of(
         &structure,
         &table,
-        &tasks,
-        &outcomes,
+        (&tasks, &outcomes),
         &names,
-        plan.tolerance,
+        (plan.tolerance, &judged),
     );
     let cheapest = rows
         .iter()
@@ -212,6 +219,7 @@ pub fn run_fidelity(
         scene: path.display().to_string(),
         tolerance: plan.tolerance,
         quantities: names.iter().map(|n| (*n).to_owned()).collect(),
+        judged,
         rows,
         cheapest,
     })
@@ -336,10 +344,12 @@ fn run_table(
             .ok_or(format!("no section `{name}`"))?;
         section.insert("fidelity".into(), Value::String(choice.fidelity.clone()));
         match (choice.fidelity.as_str(), choice.elements) {
-            ("reduced", Some(n)) => {
+            // Their number is the basis's modes or the fit's order.
+            (kind @ ("reduced" | "span"), Some(n)) => {
                 let mut fidelity = Table::new();
-                fidelity.insert("kind".into(), Value::String("reduced".into()));
-                fidelity.insert("modes".into(), Value::Integer(n as i64));
+                fidelity.insert("kind".into(), Value::String(kind.into()));
+                let key = if kind == "reduced" { "modes" } else { "order" };
+                fidelity.insert(key.into(), Value::Integer(n as i64));
                 section.insert("fidelity".into(), Value::Table(fidelity));
                 section.remove("elements")
             }
@@ -354,7 +364,7 @@ fn run_table(
         .map(|(t, (name, from))| SectionUnit {
             unit: format!("{}_{name}", structure.name),
             // An FMU section has the ports of the fidelity it names.
-            kind: match written_kind(t) {
+            kind: match written::written_kind(t) {
                 "fmu" => t
                     .get("fidelity")
                     .and_then(|f| f.get("ports"))
@@ -451,149 +461,17 @@ fn describe(combination: Option<&[(String, Choice)]>, o: &Outcome) -> String {
     }
 }
 
-/// The report's rows: errors against the reference (task 0), speed-ups, the
-/// Pareto front and the tolerance.
-fn rows_of(
-    structure: &Structure,
-    table: &Table,
-    tasks: &[Option<Vec<(String, Choice)>>],
-    outcomes: &[Outcome],
-    names: &[&str],
-    tolerance: f64,
-) -> Vec<FidelityRow> {
-    let reference = &outcomes[0];
-    let mut rows: Vec<FidelityRow> = tasks
-        .iter()
-        .zip(outcomes)
-        .map(|(task, o)| {
-            let errors: Vec<(String, f64)> = names
-                .iter()
-                .enumerate()
-                .map(|(i, n)| {
-                    let e = if task.is_none() {
-                        0.0
-                    } else {
-                        epsilon(o, reference, i)
-                    };
-                    ((*n).to_owned(), e)
-                })
-                .collect();
-            let worst = errors.iter().map(|e| e.1).fold(0.0f64, |a, e| {
-                if e.is_nan() || a.is_nan() {
-                    f64::NAN
-                } else {
-                    a.max(e)
-                }
-            });
-            FidelityRow {
-                combination: combination_of(structure, table, task.as_deref()),
-                reference: task.is_none(),
-                worst_error: worst,
-                errors,
-                cost_per_simulated_second: o.cost,
-                speed_up: reference.cost / o.cost,
-                iterations_per_step: o.iterations_per_step,
-                non_converged_steps: o.non_converged_steps,
-                pareto: false,
-                within_tolerance: false,
-                error: o.error.clone(),
-            }
-        })
-        .collect();
-    let usable = |r: &FidelityRow| {
-        !r.reference
-            && r.error.is_none()
-            && r.worst_error.is_finite()
-            && r.cost_per_simulated_second.is_finite()
-    };
-    for k in 0..rows.len() {
-        let r = &rows[k];
-        let ok = usable(r);
-        let beaten = rows.iter().any(|o| {
-            usable(o)
-                && o.worst_error <= r.worst_error
-                && o.cost_per_simulated_second <= r.cost_per_simulated_second
-                && (o.worst_error < r.worst_error
-                    || o.cost_per_simulated_second < r.cost_per_simulated_second)
-        });
-        rows[k].pareto = ok && !beaten;
-        rows[k].within_tolerance = ok && rows[k].worst_error <= tolerance;
+/// The judged quantities: the plan's, each one the structure has, or all.
+fn judged_of(plan: &FidelityPlan, names: &[&str]) -> Result<Vec<String>, String> {
+    if let Some(unknown) = plan.judged.iter().find(|q| !names.contains(&q.as_str())) {
+        return Err(format!(
+            "--quantities: `{unknown}` is not a quantity of this structure; it has {}",
+            names.join(", ")
+        ));
     }
-    rows
-}
-
-/// epsilon of quantity `i` of run `o` against the reference, at the run's times.
-fn epsilon(o: &Outcome, reference: &Outcome, i: usize) -> f64 {
-    let (Some(x), Some(r)) = (o.series.get(i), reference.series.get(i)) else {
-        return f64::NAN;
-    };
-    if o.time.is_empty() || reference.time.is_empty() {
-        return f64::NAN;
-    }
-    let resampled: Vec<f64> = o
-        .time
-        .iter()
-        .map(|&t| interpolate(&reference.time, r, t))
-        .collect();
-    indicator("", normalized_error(&o.time, &[x], &[&resampled])).relative_error
-}
-
-/// Every section's choice in a run: the combination's, else the scene's.
-fn combination_of(
-    structure: &Structure,
-    table: &Table,
-    combination: Option<&[(String, Choice)]>,
-) -> Vec<(String, String)> {
-    let Some(combination) = combination else {
-        return vec![("monolithic".into(), "nonlinear".into())];
-    };
-    let written: Vec<&Table> = table
-        .get("structure")
-        .and_then(|s| s.get("sections"))
-        .and_then(Value::as_array)
-        .into_iter()
-        .flatten()
-        .filter_map(Value::as_table)
-        .collect();
-    structure
-        .sections
-        .iter()
-        .zip(written)
-        .map(|((name, _), t)| {
-            let chosen = combination
-                .iter()
-                .find(|(s, _)| s == name)
-                .map(|(_, c)| c.label());
-            let label = chosen.unwrap_or_else(|| scene_choice(t));
-            (name.clone(), label)
-        })
-        .collect()
-}
-
-/// A section's fidelity as the scene writes it, in the command line's form.
-fn scene_choice(t: &Table) -> String {
-    let kind = written_kind(t);
-    let count = if kind == "reduced" {
-        "modes"
+    Ok(if plan.judged.is_empty() {
+        names.iter().map(|n| (*n).to_owned()).collect()
     } else {
-        "elements"
-    };
-    let elements = t
-        .get("fidelity")
-        .and_then(|f| f.get(count))
-        .or(t.get(count));
-    match elements.and_then(Value::as_integer) {
-        Some(n) => format!("{kind}:{n}"),
-        None => kind.to_owned(),
-    }
-}
-
-/// A section's fidelity as written: a name, or a table's `kind` (default
-/// nonlinear).
-fn written_kind(t: &Table) -> &str {
-    match t.get("fidelity") {
-        Some(Value::String(w)) => w,
-        Some(Value::Table(f)) => f.get("kind").and_then(Value::as_str).unwrap_or("nonlinear"),
-        _ => "nonlinear",
-    }
+        plan.judged.clone()
+    })
 }

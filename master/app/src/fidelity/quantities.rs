@@ -2,8 +2,9 @@
 //! are: the force at its top end and at its start (the anchor or the laid pipe's
 //! end), and, where the model has them, the touchdown point, the largest sag-bend
 //! and overbend moments. Each is a time series built from the recorded outputs
-//! of the sections' units (`nonlinear` or `cable`), so every combination of
-//! fidelities and the monolithic reference are measured the same way.
+//! of the sections' units (`nonlinear`, `cable`, or a `static` section's static
+//! touchdown estimate), so every combination of fidelities and the monolithic
+//! reference are measured the same way.
 
 use crate::record::Recorder;
 
@@ -44,16 +45,22 @@ pub fn signals(sections: &[SectionUnit], features: Features) -> Vec<String> {
     if let Some(first) = sections.first() {
         signals.extend(end_force(first, false).map(|(_, p)| p));
     }
-    for s in sections.iter().filter(|s| s.kind == "nonlinear") {
+    for s in sections.iter().filter(|s| touches(s)) {
         if features.seabed {
             signals.push(format!("{}.touchdown", s.unit));
             signals.push(format!("{}.sagbend_moment", s.unit));
         }
-        if features.stinger {
+        if features.stinger && s.kind == "nonlinear" {
             signals.push(format!("{}.overbend_moment", s.unit));
         }
     }
     signals
+}
+
+/// Whether a section reports the touchdown point and the sag-bend moment: a
+/// `nonlinear` one, and a `static` one through its static touchdown estimate.
+fn touches(section: &SectionUnit) -> bool {
+    matches!(section.kind.as_str(), "nonlinear" | "static")
 }
 
 /// The two force components at a section's end (`top`) or start, by kind.
@@ -90,10 +97,14 @@ pub fn series(
         let (x, z) = (column(&x)?, column(&z)?);
         Ok(x.iter().zip(z).map(|(x, z)| x.hypot(*z)).collect())
     };
-    let bending: Vec<&SectionUnit> = sections.iter().filter(|s| s.kind == "nonlinear").collect();
+    let bending: Vec<&SectionUnit> = sections.iter().filter(|s| touches(s)).collect();
     let largest = |output: &str| -> Result<Vec<f64>, String> {
         let mut out = vec![0.0f64; recorder.time.len()];
-        for s in &bending {
+        let overbend = output == "overbend_moment";
+        for s in bending
+            .iter()
+            .filter(|s| !overbend || s.kind == "nonlinear")
+        {
             for (o, v) in out.iter_mut().zip(column(&format!("{}.{output}", s.unit))?) {
                 *o = o.max(v.abs());
             }

@@ -51,8 +51,9 @@ pub fn to_csv(report: &FidelityReport) -> String {
 /// tolerance.
 pub fn to_markdown(report: &FidelityReport) -> String {
     let mut out = format!(
-        "Fidelity study of `{}`: epsilon of each quantity against the monolithic reference; Pareto: not beaten in both worst error and cost.\n\n| combination | {} | worst | s per sim. s | speed-up | it/step | non-conv. | Pareto |\n|---|{}---|---|---|---|---|---|\n",
+        "Fidelity study of `{}`: epsilon of each quantity against the monolithic reference; worst: the largest over {}; Pareto: not beaten in both worst error and cost.\n\n| combination | {} | worst | s per sim. s | speed-up | it/step | non-conv. | Pareto |\n|---|{}---|---|---|---|---|---|\n",
         report.scene,
+        judged(report),
         report.quantities.join(" | "),
         "---|".repeat(report.quantities.len())
     );
@@ -85,17 +86,28 @@ pub fn to_markdown(report: &FidelityReport) -> String {
 pub fn conclusion(report: &FidelityReport) -> String {
     match report.cheapest.map(|k| &report.rows[k]) {
         Some(r) => format!(
-            "Cheapest within epsilon <= {}: {} ({:.3e} s per simulated s, {:.2}x the reference's speed, worst epsilon {:.2e}).",
+            "Cheapest within epsilon <= {} on {}: {} ({:.3e} s per simulated s, {:.2}x the reference's speed, worst epsilon {:.2e}).",
             report.tolerance,
+            judged(report),
             label(r),
             r.cost_per_simulated_second,
             r.speed_up,
             r.worst_error
         ),
         None => format!(
-            "No combination is within epsilon <= {} of the reference on every quantity.",
-            report.tolerance
+            "No combination is within epsilon <= {} of the reference on {}.",
+            report.tolerance,
+            judged(report)
         ),
+    }
+}
+
+/// The judged quantities in words: "every quantity" or their names.
+fn judged(report: &FidelityReport) -> String {
+    if report.judged.len() == report.quantities.len() {
+        "every quantity".into()
+    } else {
+        report.judged.join(", ")
     }
 }
 

@@ -16,6 +16,9 @@ pub struct End {
     pub moving: bool,
     /// Rotation and moment do not cross the cut (one side does not bend).
     pub pinned: bool,
+    /// A moving end follows the other side's displacement rather than its
+    /// velocity (the other side is a chord section).
+    pub by_displacement: bool,
 }
 
 /// A section as its cut sees it: unit name, fidelity, and the artefacts of a
@@ -49,6 +52,18 @@ pub fn coupled_load(pinned: bool) -> Value {
     Value::Table(t)
 }
 
+/// The moving side of a cut next to a chord section: the displacement it
+/// hands over (x, z from the stress-free position and rotation).
+pub fn coupled_displacement() -> Value {
+    let mut t = Table::new();
+    for dof in ["x", "z", "rotation"] {
+        let mut condition = Table::new();
+        condition.insert("displacement".into(), Value::String("input".into()));
+        t.insert(dof.into(), Value::Table(condition));
+    }
+    Value::Table(t)
+}
+
 /// The moving side of a cut: the other side's velocity (a pinned cut's rotation
 /// is free).
 pub fn coupled_motion(pinned: bool) -> Value {
@@ -69,10 +84,10 @@ pub fn coupled_motion(pinned: bool) -> Value {
 /// is its top).
 pub fn port(unit: &str, fidelity: Fidelity, at_end: bool, quantity: &str) -> String {
     let side = match (fidelity, at_end) {
-        (Fidelity::Nonlinear | Fidelity::Static | Fidelity::Reduced, true) => "end",
-        (Fidelity::Nonlinear | Fidelity::Static | Fidelity::Reduced, false) => "start",
         (Fidelity::Cable, true) => "top",
         (Fidelity::Cable, false) => "bottom",
+        (_, true) => "end",
+        (_, false) => "start",
     };
     format!("{unit}.{side}_{quantity}")
 }

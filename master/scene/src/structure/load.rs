@@ -104,8 +104,8 @@ impl TopLoad {
     /// The force at rest as the first guess of the unit's top-force inputs.
     pub fn first_guess(&self, unit: &mut Table, fidelity: Fidelity) {
         let side = match fidelity {
-            Fidelity::Nonlinear | Fidelity::Static | Fidelity::Reduced => "end",
             Fidelity::Cable => "top",
+            _ => "end",
         };
         super::statics::first_guess_force(unit, side, self.at_rest);
     }

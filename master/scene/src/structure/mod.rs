@@ -19,6 +19,7 @@
 //! master's initial iterations find the same state.
 
 mod cable;
+mod chord;
 mod cuts;
 mod load;
 mod nonlinear;
@@ -43,12 +44,12 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
         .ok_or("`structure`: expected a table")?
         .clone();
     let (built, cuts, length) = Built::new(&structure)?;
-    let force_on_upper = orientation(&cuts, built.statics.is_some())?;
+    let force_on_upper = orientation(&cuts, built.statics.is_some(), built.holding_static)?;
     let mut units = Vec::new();
     let mut connections = Vec::new();
     for k in 0..cuts.len() {
         units.push(Value::Table(built.section(&cuts, k, &force_on_upper)?));
-        if k + 1 < cuts.len() {
+        if cut_is_plain(&cuts, k, built.holding_static) {
             let (links, artefacts) = cuts::cut_connections(
                 &built.side(&cuts[k]),
                 &built.side(&cuts[k + 1]),
@@ -56,6 +57,22 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
             )?;
             connections.extend(links);
             units.extend(artefacts);
+        }
+    }
+    if built.holding_static {
+        connections.extend(built.holding_links(&cuts)?);
+    }
+    for (k, cut) in cuts
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.fidelity.is_chord())
+    {
+        if k > 0 && k + 1 < cuts.len() {
+            let unit = |c: &Cut| built.side(c).unit;
+            if !(k == 1 && built.holding_static) {
+                connections.extend(chord::mover_links(&unit(cut), &unit(&cuts[k - 1])));
+            }
+            connections.extend(chord::loaded_links(&unit(cut), &unit(&cuts[k + 1])));
         }
     }
     if let (Some(load), Some(last)) = (&built.top_load, cuts.last()) {
@@ -86,15 +103,24 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
 /// the master's first initial iterate every section hangs from what holds it
 /// and its own static solve is well posed. Some fidelities fix the way round: a
 /// cable's top takes force and its bottom velocity; a reduced section takes
-/// force at both its cuts; a static first section has no motion of its own, so
-/// every section above is held at its end (all cuts the first way round).
-fn orientation(cuts: &[Cut], static_start: bool) -> Result<Vec<bool>, String> {
+/// force at both its cuts; a static first section either follows the section
+/// above and every section above is held at its end (all cuts the first way
+/// round), or, when the structure's end carries a force (`holding_static`),
+/// takes force and holds the section above; a chord section moves at its start
+/// and is loaded at its end.
+fn orientation(
+    cuts: &[Cut],
+    static_start: bool,
+    holding_static: bool,
+) -> Result<Vec<bool>, String> {
     let mut fixed: Vec<Option<(bool, &Cut)>> = vec![None; cuts.len().saturating_sub(1)];
     let last = cuts.len() - 1;
     for (k, cut) in cuts.iter().enumerate() {
         let (below, above) = match cut.fidelity {
             Fidelity::Cable => (Some(true), Some(true)),
             Fidelity::Reduced => (Some(false), Some(true)),
+            Fidelity::Beam | Fidelity::Span => (Some(true), Some(true)),
+            Fidelity::Static if k == 0 && holding_static => (None, Some(true)),
             Fidelity::Static if k == 0 => {
                 for c in 0..last {
                     require(&mut fixed, c, false, cut)?;
@@ -175,6 +201,8 @@ struct Built {
     statics: Option<statics::Equilibrium>,
     water: Option<cable::Water>,
     top_load: Option<load::TopLoad>,
+    /// The first section is static and takes force (`statics::static_takes_force`).
+    holding_static: bool,
 }
 
 impl Built {
@@ -207,7 +235,10 @@ impl Built {
         } else {
             None
         };
+        let holding_static = cuts[0].fidelity == Fidelity::Static
+            && statics::static_takes_force(&statics_model, top_load.is_some());
         let built = Built {
+            holding_static,
             water: cable::Water::of(structure)?,
             name,
             model,
@@ -226,10 +257,12 @@ impl Built {
         let start = (k > 0).then(|| End {
             moving: force_on_upper[k - 1],
             pinned: !cuts[k - 1].fidelity.bends() || !cut.fidelity.bends(),
+            by_displacement: cuts[k - 1].fidelity.is_chord() || (k == 1 && self.holding_static),
         });
         let end = (k + 1 < cuts.len()).then(|| End {
             moving: !force_on_upper[k],
             pinned: !cuts[k + 1].fidelity.bends() || !cut.fidelity.bends(),
+            by_displacement: cuts[k + 1].fidelity.is_chord(),
         });
         let mut unit = match cut.fidelity {
             Fidelity::Nonlinear => {
@@ -245,21 +278,15 @@ impl Built {
                 }
                 unit
             }
-            Fidelity::Static => {
-                let key = format!("structure.sections.{}.fidelity", cut.name);
-                let equilibrium = match (&self.statics, k, cuts.len()) {
-                    (Some(e), 0, 2..) => e,
-                    _ => {
-                        return Err(format!(
-                            "`{key}` = \"static\": a static section is the structure's first section (a laid pipe from its held start), one of several, and is found from the equilibrium of `structure.model.static_start = true`"
-                        ));
-                    }
-                };
-                let mut section =
-                    section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
-                equilibrium.start_section(&mut section, (cut.from, cut.to))?;
-                equilibrium.static_section(&key, &section, (cut.from, cut.to))?
-            }
+            Fidelity::Static => self.static_unit(cuts, k, (start, end))?,
+            Fidelity::Beam | Fidelity::Span => chord::chord_unit(
+                &self.name,
+                &self.model,
+                &self.segments,
+                cuts,
+                k,
+                self.statics.as_ref(),
+            )?,
             Fidelity::Reduced => {
                 let section =
                     section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
@@ -299,6 +326,76 @@ impl Built {
         Ok(unit)
     }
 
+    /// The `static` fidelity's unit of the first section: its static response
+    /// from the equilibrium, taking force where it holds the sections above.
+    fn static_unit(
+        &self,
+        cuts: &[Cut],
+        k: usize,
+        (start, end): (Option<End>, Option<End>),
+    ) -> Result<Table, String> {
+        let cut = &cuts[k];
+        let key = format!("structure.sections.{}.fidelity", cut.name);
+        let equilibrium = match (&self.statics, k, cuts.len()) {
+            (Some(e), 0, 2..) => e,
+            _ => {
+                return Err(format!(
+                    "`{key}` = \"static\": a static section is the structure's first section (a laid pipe from its held start), one of several, and is found from the equilibrium of `structure.model.static_start = true`"
+                ));
+            }
+        };
+        let mut section = section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
+        equilibrium.start_section(&mut section, (cut.from, cut.to))?;
+        let mut unit = equilibrium.static_section(&key, &section, (cut.from, cut.to))?;
+        if self.holding_static
+            && let Some(p) = unit.get_mut("parameters").and_then(Value::as_table_mut)
+        {
+            p.insert("force_input".into(), Value::Boolean(true));
+        }
+        Ok(unit)
+    }
+
+    /// The links between a static first section that takes force and the
+    /// section above, which follows its displacement: a `nonlinear` section
+    /// by the displacement of its start's DOFs, a chord section by position.
+    fn holding_links(&self, cuts: &[Cut]) -> Result<Vec<Value>, String> {
+        let above = cuts.get(1).filter(|c| {
+            c.physical.is_none()
+                && c.fmu.is_none()
+                && (c.fidelity == Fidelity::Nonlinear || c.fidelity.is_chord())
+        });
+        let (Some(above), Some(equilibrium)) = (above, &self.statics) else {
+            return Err(format!(
+                "`structure.sections.{}.fidelity` = \"static\": the structure's end carries a force, so the static first section holds the section above by its displacement; that section must be numerical and `nonlinear`, `beam` or `span`",
+                cuts[0].name
+            ));
+        };
+        let at = cuts[0].to;
+        let rest = equilibrium.displacement_at(at);
+        let (ports, offsets) = if above.fidelity.is_chord() {
+            let p = equilibrium.position_at(at);
+            (
+                ["start_position_x", "start_position_z", "start_rotation"],
+                [p[0], p[1], rest[2]],
+            )
+        } else {
+            (
+                [
+                    "start_displacement_x",
+                    "start_displacement_z",
+                    "start_rotation",
+                ],
+                rest,
+            )
+        };
+        Ok(statics::holding_links(
+            &self.side(&cuts[0]).unit,
+            &self.side(above).unit,
+            ports,
+            offsets,
+        ))
+    }
+
     /// How a cut sees a section.
     fn side<'a>(&self, cut: &'a Cut) -> Side<'a> {
         Side {
@@ -328,7 +425,7 @@ impl Built {
             }
         };
         let mut unit = match fidelity {
-            Fidelity::Static | Fidelity::Reduced => {
+            Fidelity::Static | Fidelity::Reduced | Fidelity::Beam | Fidelity::Span => {
                 return Err(format!(
                     "`structure.reference` = \"{}\": the reference is the whole structure at full fidelity; expected true, \"nonlinear\" or \"cable\"",
                     fidelity.name()
@@ -353,7 +450,7 @@ impl Built {
                     elements: None,
                     physical: None,
                     fmu: None,
-                    reduced: None,
+                    options: None,
                 }];
                 cable_fits(&self.model, &whole, 0, self.top_load.is_some())?;
                 let start = start_of(&self.model);
@@ -399,6 +496,16 @@ fn cable_fits(model: &Table, cuts: &[Cut], k: usize, top_load: bool) -> Result<(
         }
     }
     Ok(())
+}
+
+/// Whether cut `k` (between sections k and k + 1) takes the plain velocity and
+/// force links: there is a section above it and neither side is a chord
+/// section (whose links `chord::chord_links` writes).
+fn cut_is_plain(cuts: &[Cut], k: usize, holding_static: bool) -> bool {
+    let beside_chord =
+        k + 1 < cuts.len() && (cuts[k].fidelity.is_chord() || cuts[k + 1].fidelity.is_chord());
+    let held_below = k == 0 && holding_static;
+    k + 1 < cuts.len() && !beside_chord && !held_below
 }
 
 fn append(scene: &mut Table, key: &str, items: Vec<Value>) -> Result<(), String> {

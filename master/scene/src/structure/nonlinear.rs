@@ -1,7 +1,7 @@
 //! The `nonlinear` fidelity of a section: the model's own unit over the
 //! section's arc-length range, coupled at its cuts.
 
-use super::cuts::{End, coupled_load, coupled_motion};
+use super::cuts::{End, coupled_displacement, coupled_load, coupled_motion};
 use super::sections::{Cut, Segment};
 use toml::{Table, Value};
 
@@ -60,6 +60,18 @@ pub(super) fn section_unit(
             false => parameters.insert(key.into(), Value::Array(list)),
         };
     }
+    let ends = coupled_ends(model, coupling);
+    parameters.insert("ends".into(), Value::Table(ends));
+    let mut unit = Table::new();
+    unit.insert("name".into(), Value::String(format!("{name}_{}", cut.name)));
+    unit.insert("kind".into(), Value::String("nonlinear".into()));
+    unit.insert("parameters".into(), Value::Table(parameters));
+    Ok(unit)
+}
+
+/// The model's ends with the section's cuts in their place: a moving end (by
+/// velocity, or by displacement next to a chord section) or a loaded one.
+fn coupled_ends(model: &Table, coupling: (Option<End>, Option<End>)) -> Table {
     let mut ends = model
         .get("ends")
         .and_then(Value::as_table)
@@ -69,21 +81,23 @@ pub(super) fn section_unit(
         match coupled {
             Some(End {
                 moving: true,
+                by_displacement: true,
+                ..
+            }) => ends.insert(key.into(), coupled_displacement()),
+            Some(End {
+                moving: true,
                 pinned,
+                ..
             }) => ends.insert(key.into(), coupled_motion(pinned)),
             Some(End {
                 moving: false,
                 pinned,
+                ..
             }) => ends.insert(key.into(), coupled_load(pinned)),
             None => None,
         };
     }
-    parameters.insert("ends".into(), Value::Table(ends));
-    let mut unit = Table::new();
-    unit.insert("name".into(), Value::String(format!("{name}_{}", cut.name)));
-    unit.insert("kind".into(), Value::String("nonlinear".into()));
-    unit.insert("parameters".into(), Value::Table(parameters));
-    Ok(unit)
+    ends
 }
 
 /// The model's `supports`, `loads` and `stations` that fall inside the section,

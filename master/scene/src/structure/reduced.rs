@@ -26,7 +26,7 @@ pub(super) fn reduced_unit(
     let parameters = section
         .remove("parameters")
         .ok_or(format!("`{key}`: the section has no parameters"))?;
-    let mut reduced = cut.reduced.clone().unwrap_or_default();
+    let mut reduced = cut.options.clone().unwrap_or_default();
     reduced
         .entry("modes")
         .or_insert(Value::Integer(DEFAULT_MODES));

@@ -68,12 +68,13 @@ pub(crate) struct Cut {
     pub physical: Option<Table>,
     /// The `fmu` parameters of an external FMU in place of the section's unit.
     pub fmu: Option<Table>,
-    /// A reduced section's `modes` and `derivatives` (kind `reduced`).
-    pub reduced: Option<Table>,
+    /// The fidelity's own keys: a reduced section's basis (`modes`,
+    /// `derivatives`, ...), a chord section's model settings (`alpha`, ...).
+    pub options: Option<Table>,
 }
 
 /// The fidelities a section can take, as written in scenes.
-pub const FIDELITIES: [&str; 4] = Fidelity::NAMES;
+pub const FIDELITIES: [&str; 6] = Fidelity::NAMES;
 
 /// Which model a section is.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -88,11 +89,17 @@ pub(crate) enum Fidelity {
     /// The section reduced about its stress-free state (`reduced` unit, seed
     /// 002): loaded at its cuts.
     Reduced,
+    /// Seed 004's FE beam with tension about the section's chord in the
+    /// equilibrium (`chord` unit).
+    Beam,
+    /// The span's transfer matrix with tension about the chord (`chord` unit).
+    Span,
 }
 
 impl Fidelity {
     /// The fidelities' names as written in scenes.
-    pub const NAMES: [&'static str; 4] = ["nonlinear", "cable", "static", "reduced"];
+    pub const NAMES: [&'static str; 6] =
+        ["nonlinear", "cable", "static", "reduced", "beam", "span"];
 
     pub fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
         match word {
@@ -100,8 +107,10 @@ impl Fidelity {
             "cable" => Ok(Fidelity::Cable),
             "static" => Ok(Fidelity::Static),
             "reduced" => Ok(Fidelity::Reduced),
+            "beam" => Ok(Fidelity::Beam),
+            "span" => Ok(Fidelity::Span),
             other => Err(format!(
-                "`{key}` = \"{other}\": expected one of {} (the other fidelities are not built yet)",
+                "`{key}` = \"{other}\": expected one of {}",
                 Fidelity::NAMES.join(", ")
             )),
         }
@@ -114,12 +123,19 @@ impl Fidelity {
             Fidelity::Cable => "cable",
             Fidelity::Static => "static",
             Fidelity::Reduced => "reduced",
+            Fidelity::Beam => "beam",
+            Fidelity::Span => "span",
         }
     }
 
     /// Whether the model carries bending (rotation and moment at its cuts).
     pub fn bends(self) -> bool {
         self != Fidelity::Cable
+    }
+
+    /// Whether the section is a small-deflection model about its chord.
+    pub fn is_chord(self) -> bool {
+        matches!(self, Fidelity::Beam | Fidelity::Span)
     }
 }
 
@@ -180,7 +196,7 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
             elements,
             physical,
             fmu: model.fmu,
-            reduced: model.reduced,
+            options: model.options,
         });
         from = to;
     }
@@ -188,7 +204,7 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
 }
 
 /// A section's `fidelity`: a name, or a table `{ kind = NAME, elements = N }`
-/// (default: nonlinear; `reduced` also takes `modes` and `derivatives`), or
+/// (default: nonlinear; `reduced`, `beam` and `span` also take their own keys), or
 /// `{ kind = "fmu", file, ports, ... }`: an external FMU in place of the unit,
 /// with the ports of the `ports` fidelity (default nonlinear) and the `fmu`
 /// kind's parameters.
@@ -198,13 +214,19 @@ fn fidelity_of(key: &str, value: Option<&Value>) -> Result<SectionModel, String>
         fidelity,
         elements,
         fmu: None,
-        reduced: (fidelity == Fidelity::Reduced).then(Table::new),
+        options: None,
     };
     match value {
         None => Ok(native(Fidelity::Nonlinear, None)),
         Some(Value::String(word)) => Ok(native(Fidelity::parse(&key, word)?, None)),
         Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("reduced") => {
-            reduced_of(&key, t)
+            options_of(&key, t, Fidelity::Reduced, &REDUCED_KEYS)
+        }
+        Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("beam") => {
+            options_of(&key, t, Fidelity::Beam, &BEAM_KEYS)
+        }
+        Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("span") => {
+            options_of(&key, t, Fidelity::Span, &SPAN_KEYS)
         }
         Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("fmu") => {
             fmu_of(&key, t)
@@ -236,23 +258,48 @@ fn fidelity_of(key: &str, value: Option<&Value>) -> Result<SectionModel, String>
 }
 
 /// A section's model: the fidelity its ports follow, its element count, the
-/// `fmu` parameters of an external FMU in its place, and a reduced section's
-/// basis.
+/// `fmu` parameters of an external FMU in its place, and the fidelity's own
+/// keys.
 struct SectionModel {
     fidelity: Fidelity,
     elements: Option<usize>,
     fmu: Option<Table>,
-    reduced: Option<Table>,
+    options: Option<Table>,
 }
 
-/// `{ kind = "reduced", modes, derivatives, elements }`: the basis's keys are
-/// the `reduced` unit's, checked when it is built.
-fn reduced_of(key: &str, t: &Table) -> Result<SectionModel, String> {
-    const KEYS: [&str; 5] = ["kind", "elements", "modes", "derivatives", "attachments"];
-    if let Some(unknown) = t.keys().find(|k| !KEYS.contains(&k.as_str())) {
+/// The keys of `{ kind = "reduced", ... }`: the `reduced` unit's basis.
+const REDUCED_KEYS: [&str; 5] = ["kind", "elements", "modes", "derivatives", "attachments"];
+/// The keys of `{ kind = "beam", ... }`: the `chord` unit's beam settings.
+const BEAM_KEYS: [&str; 5] = [
+    "kind",
+    "elements",
+    "alpha",
+    "damping_per_length",
+    "drag_velocity",
+];
+/// The keys of `{ kind = "span", ... }`: the `chord` unit's span settings.
+const SPAN_KEYS: [&str; 6] = [
+    "kind",
+    "order",
+    "band",
+    "alpha",
+    "damping_per_length",
+    "drag_velocity",
+];
+
+/// `{ kind, elements, ... }` of a fidelity with keys of its own (`keys`): those
+/// besides `kind` and `elements` go to the unit, checked when it is built.
+fn options_of(
+    key: &str,
+    t: &Table,
+    fidelity: Fidelity,
+    keys: &[&str],
+) -> Result<SectionModel, String> {
+    if let Some(unknown) = t.keys().find(|k| !keys.contains(&k.as_str())) {
         return Err(format!(
-            "`{key}.{unknown}`: unknown key; a reduced section takes {}",
-            KEYS.join(", ")
+            "`{key}.{unknown}`: unknown key; a {} section takes {}",
+            fidelity.name(),
+            keys.join(", ")
         ));
     }
     let elements = t
@@ -263,10 +310,10 @@ fn reduced_of(key: &str, t: &Table) -> Result<SectionModel, String> {
     basis.remove("kind");
     basis.remove("elements");
     Ok(SectionModel {
-        fidelity: Fidelity::Reduced,
+        fidelity,
         elements,
         fmu: None,
-        reduced: Some(basis),
+        options: Some(basis),
     })
 }
 
@@ -299,7 +346,7 @@ fn fmu_of(key: &str, t: &Table) -> Result<SectionModel, String> {
         fidelity,
         elements: None,
         fmu: Some(fmu),
-        reduced: None,
+        options: None,
     })
 }
 

@@ -116,7 +116,10 @@ impl Equilibrium {
     /// of the section's own static solve with its end held where the equilibrium
     /// puts it, and their derivatives with the end's position by central
     /// differences (steps of 1e-5 of the section's length and 1e-5 rad); six
-    /// more static solves. The error names `key`.
+    /// more static solves. Where the section touches the seabed, also its
+    /// touchdown point (where the gap crosses zero, continuous in the state)
+    /// and its largest sag-bend moment: the static touchdown estimate. The
+    /// error names `key`.
     pub fn static_section(
         &self,
         key: &str,
@@ -130,13 +133,13 @@ impl Equilibrium {
             end_held_response(section, d).map_err(|e| format!("`{key}` = \"static\": {e}"))
         };
         let base = response(at_rest)?;
-        let mut columns = [[0.0; 5]; 3];
+        let mut columns = [[0.0; RESPONSES]; 3];
         for (j, column) in columns.iter_mut().enumerate() {
             let (mut plus, mut minus) = (at_rest, at_rest);
             plus[j] += steps[j];
             minus[j] -= steps[j];
             let (p, m) = (response(plus)?, response(minus)?);
-            for i in 0..5 {
+            for i in 0..RESPONSES {
                 column[i] = (p[i] - m[i]) / (2.0 * steps[j]);
             }
         }
@@ -149,7 +152,24 @@ impl Equilibrium {
             "start_stiffness".into(),
             Value::Array((3..5).map(row).collect()),
         );
-        parameters.insert("start_force".into(), numbers(&base[3..]));
+        parameters.insert("start_force".into(), numbers(&base[3..5]));
+        if base[5].is_finite() && columns.iter().all(|c| c[5].is_finite()) {
+            let quantity = |name: &str, unit: &str, i: usize| {
+                let mut q = Table::new();
+                q.insert("name".into(), Value::String(name.into()));
+                q.insert("unit".into(), Value::String(unit.into()));
+                q.insert("value".into(), Value::Float(base[i]));
+                q.insert("gradient".into(), row(i));
+                Value::Table(q)
+            };
+            parameters.insert(
+                "quantities".into(),
+                Value::Array(vec![
+                    quantity("touchdown", "m", 5),
+                    quantity("sagbend_moment", "N.m", 6),
+                ]),
+            );
+        }
         let mut unit = Table::new();
         if let Some(name) = section.get("name") {
             unit.insert("name".into(), name.clone());
@@ -159,15 +179,68 @@ impl Equilibrium {
         Ok(unit)
     }
 
+    /// The axial force (N, tension positive) at arc length `s`.
+    pub fn tension_at(&self, s: f64) -> f64 {
+        self.section.unit().section_forces(s)[0]
+    }
+
     /// Displacement (x, z from the stress-free position, m; rotation, rad) at arc
     /// length `s`, linear between the nodes.
-    fn displacement_at(&self, s: f64) -> [f64; 3] {
+    pub fn displacement_at(&self, s: f64) -> [f64; 3] {
         let section = self.section.unit();
         let model = section.model();
         let (e, xi) = model.locate(s);
         let q = section.displacements();
         std::array::from_fn(|k| (1.0 - xi) * q[3 * e + k] + xi * q[3 * e + 3 + k])
     }
+}
+
+/// Whether a static first section takes the force at its end and holds the
+/// section above where its compliance puts it (rather than following that
+/// section's velocity and returning force): when the structure's end carries
+/// a force in x or z (a tensioner, a top load), the sections above cannot all
+/// be held at their ends, so the static section holds them.
+pub fn static_takes_force(model: &Table, top_load: bool) -> bool {
+    let end = model
+        .get("ends")
+        .and_then(|e| e.get("end"))
+        .and_then(Value::as_table);
+    let forced = |dof: &str| {
+        end.and_then(|e| e.get(dof))
+            .and_then(Value::as_table)
+            .is_some_and(|c| c.contains_key("force"))
+    };
+    top_load || forced("x") || forced("z")
+}
+
+/// The links of the cut above a static first section that takes force
+/// (`static_unit`): the force and moment of the section above's start in, its
+/// displacement out (`offsets`: the equilibrium's values the neighbour's ports
+/// count from; `ports`: the neighbour's x, z and rotation port names).
+pub fn holding_links(
+    static_unit: &str,
+    above: &str,
+    ports: [&str; 3],
+    offsets: [f64; 3],
+) -> Vec<Value> {
+    let mut links = Vec::new();
+    let outputs = ["end_displacement_x", "end_displacement_z", "end_rotation"];
+    let loads = ["force_x", "force_z", "moment"];
+    for k in 0..3 {
+        let mut l = super::cuts::link(
+            format!("{static_unit}.{}", outputs[k]),
+            format!("{above}.{}", ports[k]),
+        );
+        if let Some(t) = l.as_table_mut() {
+            t.insert("offset".into(), Value::Float(offsets[k]));
+        }
+        links.push(l);
+        links.push(super::cuts::link(
+            format!("{above}.start_{}", loads[k]),
+            format!("{static_unit}.end_{}", loads[k]),
+        ));
+    }
+    links
 }
 
 /// Sets `<side>_force_x` and `<side>_force_z` (N) in the unit's `inputs`: the
@@ -183,10 +256,14 @@ pub fn first_guess_force(unit: &mut Table, side: &str, force: [f64; 2]) {
     }
 }
 
-/// End force x, z, end moment and start reaction x, z of a `nonlinear`
-/// section's static solve with its end displaced by `d` (x, z, rotation) from
-/// the stress-free position.
-fn end_held_response(section: &Table, d: [f64; 3]) -> Result<[f64; 5], String> {
+/// What `end_held_response` returns.
+const RESPONSES: usize = 7;
+
+/// End force x, z, end moment, start reaction x, z, the touchdown point (where
+/// the seabed gap crosses zero; NaN without contact) and the largest sag-bend
+/// moment of a `nonlinear` section's static solve with its end displaced by `d`
+/// (x, z, rotation) from the stress-free position.
+fn end_held_response(section: &Table, d: [f64; 3]) -> Result<[f64; RESPONSES], String> {
     let mut parameters = section
         .get("parameters")
         .and_then(Value::as_table)
@@ -231,5 +308,7 @@ fn end_held_response(section: &Table, d: [f64; 3]) -> Result<[f64; 5], String> {
         pick("end_moment")?,
         pick("start_force_x")?,
         pick("start_force_z")?,
+        section.unit().seabed_crossing().unwrap_or(f64::NAN),
+        pick("sagbend_moment")?,
     ])
 }

@@ -1,0 +1,126 @@
+//! A fidelity study's rows: each run's epsilon per quantity against the
+//! reference, the worst over the judged quantities, the speed-up, the Pareto
+//! front and the tolerance; and each row's combination as labels.
+
+use super::{Choice, FidelityRow, Outcome, Structure, written};
+use crate::indicators::{indicator, interpolate, normalized_error};
+use toml::{Table, Value};
+
+/// The report's rows: errors against the reference (task 0), speed-ups, the
+/// Pareto front and the tolerance.
+pub(super) fn rows_of(
+    structure: &Structure,
+    table: &Table,
+    (tasks, outcomes): (&[Option<Vec<(String, Choice)>>], &[Outcome]),
+    names: &[&str],
+    (tolerance, judged): (f64, &[String]),
+) -> Vec<FidelityRow> {
+    let reference = &outcomes[0];
+    let mut rows: Vec<FidelityRow> = tasks
+        .iter()
+        .zip(outcomes)
+        .map(|(task, o)| {
+            let errors: Vec<(String, f64)> = names
+                .iter()
+                .enumerate()
+                .map(|(i, n)| {
+                    let e = if task.is_none() {
+                        0.0
+                    } else {
+                        epsilon(o, reference, i)
+                    };
+                    ((*n).to_owned(), e)
+                })
+                .collect();
+            let judged_errors = errors.iter().filter(|(n, _)| judged.contains(n));
+            let worst = judged_errors.map(|e| e.1).fold(0.0f64, |a, e| {
+                if e.is_nan() || a.is_nan() {
+                    f64::NAN
+                } else {
+                    a.max(e)
+                }
+            });
+            FidelityRow {
+                combination: combination_of(structure, table, task.as_deref()),
+                reference: task.is_none(),
+                worst_error: worst,
+                errors,
+                cost_per_simulated_second: o.cost,
+                speed_up: reference.cost / o.cost,
+                iterations_per_step: o.iterations_per_step,
+                non_converged_steps: o.non_converged_steps,
+                pareto: false,
+                within_tolerance: false,
+                error: o.error.clone(),
+            }
+        })
+        .collect();
+    let usable = |r: &FidelityRow| {
+        !r.reference
+            && r.error.is_none()
+            && r.worst_error.is_finite()
+            && r.cost_per_simulated_second.is_finite()
+    };
+    for k in 0..rows.len() {
+        let r = &rows[k];
+        let ok = usable(r);
+        let beaten = rows.iter().any(|o| {
+            usable(o)
+                && o.worst_error <= r.worst_error
+                && o.cost_per_simulated_second <= r.cost_per_simulated_second
+                && (o.worst_error < r.worst_error
+                    || o.cost_per_simulated_second < r.cost_per_simulated_second)
+        });
+        rows[k].pareto = ok && !beaten;
+        rows[k].within_tolerance = ok && rows[k].worst_error <= tolerance;
+    }
+    rows
+}
+
+/// epsilon of quantity `i` of run `o` against the reference, at the run's times.
+fn epsilon(o: &Outcome, reference: &Outcome, i: usize) -> f64 {
+    let (Some(x), Some(r)) = (o.series.get(i), reference.series.get(i)) else {
+        return f64::NAN;
+    };
+    if o.time.is_empty() || reference.time.is_empty() {
+        return f64::NAN;
+    }
+    let resampled: Vec<f64> = o
+        .time
+        .iter()
+        .map(|&t| interpolate(&reference.time, r, t))
+        .collect();
+    indicator("", normalized_error(&o.time, &[x], &[&resampled])).relative_error
+}
+
+/// Every section's choice in a run: the combination's, else the scene's.
+fn combination_of(
+    structure: &Structure,
+    table: &Table,
+    combination: Option<&[(String, Choice)]>,
+) -> Vec<(String, String)> {
+    let Some(combination) = combination else {
+        return vec![("monolithic".into(), "nonlinear".into())];
+    };
+    let written: Vec<&Table> = table
+        .get("structure")
+        .and_then(|s| s.get("sections"))
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(Value::as_table)
+        .collect();
+    structure
+        .sections
+        .iter()
+        .zip(written)
+        .map(|((name, _), t)| {
+            let chosen = combination
+                .iter()
+                .find(|(s, _)| s == name)
+                .map(|(_, c)| c.label());
+            let label = chosen.unwrap_or_else(|| written::scene_choice(t));
+            (name.clone(), label)
+        })
+        .collect()
+}

@@ -1,0 +1,259 @@
+//! The `beam` and `span` fidelities of a section: a `chord` unit, seed 004's
+//! small-deflection FE beam or the span's transfer matrix, both with the
+//! equilibrium's tension, about the straight line between the section's ends
+//! in the structure's equilibrium. Its cuts are not the velocity and force of
+//! the other fidelities: at its moving end it reads the neighbour's position
+//! and rotation and returns force and moment; at its loaded end it reads the
+//! neighbour's force and moment and hands back a displacement, which that
+//! neighbour follows (`displacement` conditions on a `nonlinear` start). The
+//! moving end is the section's start, the loaded end its end
+//! (`mod.rs::orientation`); below it may be a static first section that takes
+//! force (`statics::static_takes_force`).
+
+use super::cuts::link;
+use super::sections::{Cut, Fidelity, Segment};
+use super::statics::Equilibrium;
+use toml::{Table, Value};
+
+/// Beam elements of a chord section when the scene gives none.
+const DEFAULT_ELEMENTS: i64 = 20;
+/// Points per section for the centre of its weight.
+const WEIGHT_POINTS: usize = 200;
+/// The transverse velocity amplitude (m/s) the section's drag is linearised at
+/// when the scene gives neither `damping_per_length` nor `drag_velocity`.
+const DEFAULT_DRAG_VELOCITY: f64 = 0.5;
+
+/// The `chord` unit of section `k`, its start moving with the section below.
+pub(super) fn chord_unit(
+    structure: &str,
+    model: &Table,
+    segments: &[Segment],
+    cuts: &[Cut],
+    k: usize,
+    equilibrium: Option<&Equilibrium>,
+) -> Result<Table, String> {
+    let cut = &cuts[k];
+    let key = format!("structure.sections.{}.fidelity", cut.name);
+    let word = cut.fidelity.name();
+    let equilibrium = equilibrium.ok_or(format!(
+        "`{key}` = \"{word}\": a {word} section moves about its chord in the structure's equilibrium, so the structure needs `structure.model.static_start = true`"
+    ))?;
+    neighbours_fit(cuts, k, &key)?;
+    let mut p = cut.options.clone().unwrap_or_default();
+    let drag_velocity = match p.remove("drag_velocity") {
+        None => DEFAULT_DRAG_VELOCITY,
+        Some(v) => v
+            .as_float()
+            .or_else(|| v.as_integer().map(|i| i as f64))
+            .filter(|v| *v >= 0.0 && v.is_finite())
+            .ok_or(format!(
+                "`{key}.drag_velocity` = {v}: expected a velocity amplitude >= 0 (m/s)"
+            ))?,
+    };
+    let properties = properties(model, segments, cut, &key)?;
+    p.insert("model".into(), Value::String(word.into()));
+    p.entry("damping_per_length")
+        .or_insert(Value::Float(properties[2] * drag_velocity));
+    p.insert("moving".into(), Value::String("start".into()));
+    p.insert("start".into(), pair(equilibrium.position_at(cut.from)));
+    p.insert("end".into(), pair(equilibrium.position_at(cut.to)));
+    let (weight, centre) = weight_of(segments, cut, equilibrium);
+    p.insert("weight".into(), Value::Float(weight));
+    p.insert("weight_at".into(), pair(centre));
+    p.insert(
+        "loaded_end_displacement".into(),
+        Value::Array(
+            equilibrium
+                .displacement_at(cut.to)
+                .into_iter()
+                .map(Value::Float)
+                .collect(),
+        ),
+    );
+    p.insert("flexural_rigidity".into(), Value::Float(properties[0]));
+    p.insert("mass_per_length".into(), Value::Float(properties[1]));
+    let middle = 0.5 * (cut.from + cut.to);
+    p.insert(
+        "tension".into(),
+        Value::Float(equilibrium.tension_at(middle)),
+    );
+    if cut.fidelity == Fidelity::Beam {
+        let elements = cut.elements.map_or(DEFAULT_ELEMENTS, |n| n as i64);
+        p.insert("elements".into(), Value::Integer(elements));
+    }
+    // First guesses: the equilibrium's force at the loaded end and position at
+    // the moving one, so the neighbours' first static solves hang as the whole.
+    let force = equilibrium.force_at(cut.to);
+    let position = equilibrium.position_at(cut.from);
+    let mut inputs = Table::new();
+    for (axis, i) in [("x", 0), ("z", 1)] {
+        inputs.insert(format!("end_force_{axis}"), Value::Float(force[i]));
+        inputs.insert(format!("start_position_{axis}"), Value::Float(position[i]));
+    }
+    let mut unit = Table::new();
+    unit.insert(
+        "name".into(),
+        Value::String(format!("{structure}_{}", cut.name)),
+    );
+    unit.insert("kind".into(), Value::String("chord".into()));
+    unit.insert("parameters".into(), Value::Table(p));
+    unit.insert("inputs".into(), Value::Table(inputs));
+    Ok(unit)
+}
+
+/// A chord section lies between two numerical sections that follow its
+/// displacement or carry its force: `nonlinear` ones, or a static first section
+/// below it.
+fn neighbours_fit(cuts: &[Cut], k: usize, key: &str) -> Result<(), String> {
+    let word = cuts[k].fidelity.name();
+    if k == 0 || k + 1 == cuts.len() {
+        return Err(format!(
+            "`{key}` = \"{word}\": a {word} section moves about its chord between two neighbours, so it cannot be the structure's first or last section"
+        ));
+    }
+    for (n, neighbour) in [(k - 1, &cuts[k - 1]), (k + 1, &cuts[k + 1])] {
+        let fits = neighbour.physical.is_none()
+            && neighbour.fmu.is_none()
+            && (neighbour.fidelity == Fidelity::Nonlinear
+                || (n == 0 && neighbour.fidelity == Fidelity::Static));
+        if !fits {
+            return Err(format!(
+                "`{key}` = \"{word}\": its neighbour `{}` is {}; a {word} section couples by position and force to numerical `nonlinear` sections (or a static first section below it)",
+                neighbour.name,
+                if neighbour.physical.is_some() {
+                    "physical"
+                } else if neighbour.fmu.is_some() {
+                    "an FMU"
+                } else {
+                    neighbour.fidelity.name()
+                }
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// EI (N m^2), the transversely moving mass per length (kg/m, with the added
+/// mass Ca rho pi D^2 / 4) and the normal drag's linear damping per unit of
+/// velocity amplitude (8 / (3 pi) rho / 2 Cd D, N s/m^2 per m/s: the harmonic
+/// equivalent linearisation) of the segments the section spans; one value
+/// each, or an error.
+fn properties(
+    model: &Table,
+    segments: &[Segment],
+    cut: &Cut,
+    key: &str,
+) -> Result<[f64; 3], String> {
+    let number = |t: &Table, k: &str| {
+        t.get(k)
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+    };
+    let density = number(model, "water_density").unwrap_or(1025.0);
+    let mut found: Option<[f64; 3]> = None;
+    for s in segments
+        .iter()
+        .filter(|s| s.overlap(cut.from, cut.to) > 0.0)
+    {
+        let t = &s.table;
+        let ei = number(t, "bending_stiffness").unwrap_or(0.0);
+        let diameter = number(t, "diameter").unwrap_or(0.0);
+        let added = number(t, "added_mass_normal").unwrap_or(0.0)
+            * density
+            * std::f64::consts::PI
+            * diameter.powi(2)
+            / 4.0;
+        let mass = number(t, "mass_per_length").unwrap_or(0.0) + added;
+        let drag = 8.0 / (3.0 * std::f64::consts::PI)
+            * 0.5
+            * density
+            * number(t, "drag_normal").unwrap_or(0.0)
+            * diameter;
+        match found {
+            Some(f)
+                if (f[0] - ei).abs() > 1e-9 * f[0].abs() || (f[1] - mass).abs() > 1e-9 * f[1] =>
+            {
+                return Err(format!(
+                    "`{key}`: the section spans segments of different bending stiffness or mass; a chord section takes one of each, so cut at the segments' joint"
+                ));
+            }
+            _ => found = Some([ei, mass, drag]),
+        }
+    }
+    found.ok_or(format!("`{key}`: the section is empty"))
+}
+
+/// The section's submerged weight (N) and where it acts in the equilibrium (m).
+fn weight_of(segments: &[Segment], cut: &Cut, equilibrium: &Equilibrium) -> (f64, [f64; 2]) {
+    let per_length = |s: f64| {
+        segments
+            .iter()
+            .find(|g| s >= g.from && s <= g.from + g.length)
+            .and_then(|g| g.table.get("submerged_weight"))
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+            .unwrap_or(0.0)
+    };
+    let ds = (cut.to - cut.from) / WEIGHT_POINTS as f64;
+    let (mut weight, mut moment) = (0.0, [0.0; 2]);
+    for i in 0..WEIGHT_POINTS {
+        let s = cut.from + (i as f64 + 0.5) * ds;
+        let w = per_length(s) * ds;
+        let p = equilibrium.position_at(s);
+        weight += w;
+        moment = [moment[0] + w * p[0], moment[1] + w * p[1]];
+    }
+    if weight.abs() > 0.0 {
+        (weight, [moment[0] / weight, moment[1] / weight])
+    } else {
+        let (a, b) = (
+            equilibrium.position_at(cut.from),
+            equilibrium.position_at(cut.to),
+        );
+        (0.0, [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])])
+    }
+}
+
+fn pair(p: [f64; 2]) -> Value {
+    Value::Array(vec![Value::Float(p[0]), Value::Float(p[1])])
+}
+
+/// The links at a chord section's moving start: the position and rotation of
+/// `below`'s end in, the force and moment on it out.
+pub(super) fn mover_links(chord: &str, below: &str) -> Vec<Value> {
+    let mut links = Vec::new();
+    for (q, r) in [
+        ("position_x", "force_x"),
+        ("position_z", "force_z"),
+        ("rotation", "moment"),
+    ] {
+        links.push(link(
+            format!("{below}.end_{q}"),
+            format!("{chord}.start_{q}"),
+        ));
+        links.push(link(
+            format!("{chord}.start_{r}"),
+            format!("{below}.end_{r}"),
+        ));
+    }
+    links
+}
+
+/// The links at a chord section's loaded end: the force and moment of
+/// `above`'s start in, the displacement it follows out.
+pub(super) fn loaded_links(chord: &str, above: &str) -> Vec<Value> {
+    let mut links = Vec::new();
+    for (q, r) in [
+        ("force_x", "displacement_x"),
+        ("force_z", "displacement_z"),
+        ("moment", "rotation"),
+    ] {
+        links.push(link(
+            format!("{above}.start_{q}"),
+            format!("{chord}.end_{q}"),
+        ));
+        links.push(link(
+            format!("{chord}.end_{r}"),
+            format!("{above}.start_{r}"),
+        ));
+    }
+    links
+}

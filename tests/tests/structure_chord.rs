@@ -1,0 +1,325 @@
+//! The `beam` and `span` fidelities (issue 13): a section as seed 004's
+//! small-deflection beam or the span's transfer matrix, with the equilibrium's
+//! tension, about its chord, the frames changed at its cuts. On the S-lay's
+//! suspended span (inclined chord) and a hanging pipe's middle (vertical chord)
+//! they follow the monolithic twin to the small-deflection model's accuracy;
+//! the two linear models agree with each other; a static touchdown section that
+//! holds the sections above under the tensioner runs through; swapping a
+//! section to `beam` changes its unit, its cuts and its upper neighbour's end
+//! condition only; what cannot couple is refused with the key.
+
+use slender_app::fidelity::{FidelityPlan, SectionChoices, run_fidelity};
+use slender_app::study::Design;
+use slender_scene::Scene;
+use slender_tests::{root, run};
+use toml::{Table, Value};
+
+const SLAY: &str = "examples/structure_slay_fidelity.toml";
+
+fn slay() -> String {
+    std::fs::read_to_string(root().join(SLAY)).unwrap()
+}
+
+fn parse(text: &str) -> Result<Scene, String> {
+    Scene::parse(&root().join(SLAY), text.to_owned()).map_err(|e| e.to_string())
+}
+
+fn plan(sections: &[&str], duration: f64) -> FidelityPlan {
+    FidelityPlan {
+        sections: sections
+            .iter()
+            .map(|s| s.parse::<SectionChoices>().unwrap())
+            .collect(),
+        design: Design::Grid,
+        duration: Some(duration),
+        jobs: 2,
+        tolerance: 1e-2,
+        judged: vec![],
+    }
+}
+
+#[test]
+fn a_beam_or_span_suspended_span_follows_the_slay_twin() {
+    let report = run_fidelity(
+        &root().join(SLAY),
+        &plan(&["suspended=nonlinear,beam,span"], 30.0),
+        |_| {},
+    )
+    .unwrap();
+    let row = |choice: &str| {
+        report
+            .rows
+            .iter()
+            .find(|r| !r.reference && r.combination.iter().any(|(_, c)| c == choice))
+            .unwrap_or_else(|| panic!("no row {choice}"))
+    };
+    let error = |choice: &str, quantity: &str| {
+        let errors = &row(choice).errors;
+        errors.iter().find(|(q, _)| q == quantity).unwrap().1
+    };
+    for choice in ["nonlinear", "beam", "span"] {
+        let r = row(choice);
+        assert!(r.error.is_none(), "{choice}: {:?}", r.error);
+        assert_eq!(r.non_converged_steps, 0);
+        println!(
+            "suspended = {choice}: top force {:.2e}, sag bend {:.2e}, touchdown {:.2e}, start force {:.2e}, {:.3e} s per s, {:.2} it/step",
+            error(choice, "top_force"),
+            error(choice, "sagbend_moment"),
+            error(choice, "touchdown"),
+            error(choice, "start_force"),
+            r.cost_per_simulated_second,
+            r.iterations_per_step
+        );
+    }
+    // Measured 1.3e-3 (top force), 2.8e-2 (sag bend), 1.0e-2 (touchdown) for
+    // both: the small-deflection model about a straight chord, with the drag
+    // linearised, against the nonlinear section; 1.8e-6 and 2.7e-4 for the
+    // nonlinear section itself (the coupling tolerance).
+    for choice in ["beam", "span"] {
+        assert!(error(choice, "top_force") < 3e-3);
+        assert!(error(choice, "sagbend_moment") < 5e-2);
+        assert!(error(choice, "touchdown") < 2e-2);
+        assert!(error(choice, "top_force") > 10.0 * error("nonlinear", "top_force"));
+    }
+    // Judged on every quantity none is within 1 % (the start force is the
+    // worst, 0.1); judged on the top force alone both chord models are.
+    assert!(!row("beam").within_tolerance && !row("span").within_tolerance);
+    let mut top_only = plan(&["suspended=beam"], 5.0);
+    top_only.judged = vec!["top_force".into()];
+    let top = run_fidelity(&root().join(SLAY), &top_only, |_| {}).unwrap();
+    assert_eq!(top.judged, ["top_force"]);
+    assert!(top.rows[1].within_tolerance, "{:?}", top.rows[1]);
+    assert_eq!(top.rows[1].worst_error, top.rows[1].errors[0].1);
+    top_only.judged = vec!["tension".into()];
+    let e = run_fidelity(&root().join(SLAY), &top_only, |_| {}).unwrap_err();
+    assert!(e.contains("--quantities") && e.contains("top_force"), "{e}");
+    // The FE beam and the span's fitted transfer matrix are two models of one
+    // equation: they agree far better than either with the nonlinear section.
+    for q in ["top_force", "sagbend_moment", "touchdown"] {
+        let (b, s) = (error("beam", q), error("span", q));
+        assert!((b - s).abs() < 0.1 * b, "{q}: beam {b:.3e}, span {s:.3e}");
+    }
+}
+
+/// The hanging pipe example, started in its static shape, its middle as `middle`.
+fn hanging(middle: &str) -> String {
+    let text =
+        std::fs::read_to_string(root().join("examples/structure_hanging_pipe.toml")).unwrap();
+    text.replace(
+        "integrator = { kind = \"hht\", alpha = 0.0 }",
+        "integrator = { kind = \"hht\", alpha = 0.0 }\nstatic_start = true",
+    )
+    .replace(
+        "name = \"middle\"",
+        &format!("name = \"middle\"\nfidelity = \"{middle}\""),
+    )
+}
+
+/// epsilon of the hanging pipe's bottom sway against its twin, the middle as
+/// `middle`.
+fn bottom_sway(middle: &str) -> f64 {
+    let path = root().join("examples/structure_hanging_pipe.toml");
+    let scene = Scene::parse(&path, hanging(middle)).unwrap();
+    let s = run(&scene);
+    assert!(s.error.is_none(), "{middle}: {:?}", s.error);
+    s.indicators
+        .iter()
+        .find(|i| i.name == "bottom")
+        .unwrap()
+        .relative_error
+}
+
+#[test]
+fn a_vertical_chord_follows_the_hanging_pipe_twin() {
+    let (nonlinear, beam) = (bottom_sway("nonlinear"), bottom_sway("beam"));
+    println!("bottom sway: nonlinear middle {nonlinear:.2e}, beam {beam:.2e}");
+    // Measured 4.9e-12 and 2.5e-2 (2.5e-2 too at steps of 10, 20 and 50 ms):
+    // the tension varies by a factor of 2 over the middle section (its
+    // weight); the chord's model takes the mean.
+    assert!(nonlinear < 1e-9);
+    assert!(beam < 5e-2);
+}
+
+#[test]
+#[ignore = "known gap: on the hanging pipe (10 m chord, EI 1e5 N m^2, T 4.35 kN, no drag) the span's fit couples unstably with its nonlinear neighbours at every step tried (5 to 50 ms; also with alpha = 0.1, a band of pi / h, order 40 or linear damping), though alone it settles on the tensioned cantilever like the beam (units/src/chord.rs) and on the S-lay it matches the beam"]
+fn a_span_middle_follows_the_hanging_pipe_twin() {
+    let span = bottom_sway("span");
+    println!("bottom sway: span middle {span:.2e}");
+    assert!(span < 5e-2);
+}
+
+#[test]
+fn a_static_touchdown_section_holds_the_slay_under_its_tensioner() {
+    let text = slay()
+        .replace(
+            "name = \"touchdown\"\nto = 175.0",
+            "name = \"touchdown\"\nto = 175.0\nfidelity = \"static\"",
+        )
+        .replace("fidelity = \"beam\"", "fidelity = \"nonlinear\"");
+    let t: Table = toml::from_str(parse(&text).unwrap().source()).unwrap();
+    let unit = |name: &str| {
+        t["units"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|u| u["name"].as_str() == Some(name))
+            .unwrap()
+            .clone()
+    };
+    // Under a tensioner the static section takes force and holds the section
+    // above, which follows its displacement; it carries the touchdown estimate.
+    let laid = unit("pipe_touchdown");
+    assert_eq!(laid["parameters"]["force_input"].as_bool(), Some(true));
+    let quantities = laid["parameters"]["quantities"].as_array().unwrap();
+    assert_eq!(quantities[0]["name"].as_str(), Some("touchdown"));
+    let touchdown = quantities[0]["value"].as_float().unwrap();
+    assert!((120.0..135.0).contains(&touchdown), "{touchdown}");
+    let above = unit("pipe_suspended");
+    let start = &above["parameters"]["ends"]["start"];
+    assert_eq!(start["x"]["displacement"].as_str(), Some("input"));
+    let report = run_fidelity(
+        &root().join(SLAY),
+        &plan(&["touchdown=static", "suspended=nonlinear"], 30.0),
+        |_| {},
+    )
+    .unwrap();
+    let r = &report.rows[1];
+    assert!(r.error.is_none(), "{:?}", r.error);
+    let error = |quantity: &str| r.errors.iter().find(|(q, _)| q == quantity).unwrap().1;
+    println!(
+        "static touchdown section: top force {:.2e}, touchdown {:.2e}, sag bend {:.2e}, start force {:.2e}, {:.3e} s per s (reference {:.3e})",
+        error("top_force"),
+        error("touchdown"),
+        error("sagbend_moment"),
+        error("start_force"),
+        r.cost_per_simulated_second,
+        report.rows[0].cost_per_simulated_second
+    );
+    // Measured 9.2e-4, 9.2e-2, 1.5e-1, 9.6e-2: the vessel's motion moves the
+    // touchdown point by up to 10 m and the pipe near it is not quasi-static.
+    assert!(error("top_force") < 3e-3);
+    assert!(error("touchdown") < 0.2 && error("sagbend_moment") < 0.3);
+}
+
+/// The expanded scene's units (by name) and connections.
+fn expanded(text: &str) -> (Vec<(String, Value)>, Vec<Value>) {
+    let t: Table = toml::from_str(parse(text).unwrap().source()).unwrap();
+    let units = t["units"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|u| (u["name"].as_str().unwrap().to_owned(), u.clone()))
+        .collect();
+    (units, t["connections"].as_array().unwrap().clone())
+}
+
+#[test]
+fn swapping_a_section_to_beam_changes_its_unit_its_cuts_and_the_end_above_only() {
+    let (a_units, a_links) = expanded(&slay().replace("fidelity = \"beam\"", ""));
+    let (b_units, b_links) = expanded(&slay());
+    assert_eq!(a_units.len(), b_units.len());
+    for ((name, a), (_, b)) in a_units.iter().zip(&b_units) {
+        match name.as_str() {
+            "pipe_suspended" => {
+                assert_eq!(b["kind"].as_str(), Some("chord"));
+                assert_eq!(b["parameters"]["model"].as_str(), Some("beam"));
+            }
+            "pipe_stinger" => {
+                // Its start follows the chord's displacement, not a velocity.
+                let (mut a, mut b) = (a.clone(), b.clone());
+                let start = |u: &mut Value| {
+                    u["parameters"]["ends"]
+                        .as_table_mut()
+                        .unwrap()
+                        .remove("start")
+                        .unwrap()
+                };
+                assert_eq!(start(&mut b)["z"]["displacement"].as_str(), Some("input"));
+                assert!(start(&mut a)["z"].get("velocity_from").is_some());
+                assert_eq!(a, b, "{name} changed beyond its start");
+            }
+            _ => assert_eq!(a, b, "{name} changed"),
+        }
+    }
+    let away = |links: &[Value]| -> Vec<Value> {
+        links
+            .iter()
+            .filter(|l| {
+                !l["from"].as_str().unwrap().starts_with("pipe_suspended.")
+                    && !l["to"].as_str().unwrap().starts_with("pipe_suspended.")
+            })
+            .cloned()
+            .collect()
+    };
+    assert_eq!(away(&a_links), away(&b_links));
+    assert_eq!(a_links.len(), b_links.len());
+}
+
+#[test]
+fn chord_sections_are_refused_where_they_cannot_couple() {
+    let text = slay();
+    let refused = |text: &str, expect: &[&str]| {
+        let e = parse(text).unwrap_err();
+        for word in expect {
+            assert!(e.contains(word), "`{word}` not in: {e}");
+        }
+    };
+    // First or last section.
+    refused(
+        &text.replace("fidelity = \"beam\"", "").replace(
+            "name = \"stinger\"",
+            "name = \"stinger\"\nfidelity = \"span\"",
+        ),
+        &["structure.sections.stinger.fidelity", "first or last"],
+    );
+    // Without the static start there is no chord to move about.
+    refused(
+        &text.replace("static_start = true", ""),
+        &["suspended", "static_start"],
+    );
+    // Keys of another fidelity, and a negative drag velocity.
+    refused(
+        &text.replace(
+            "fidelity = \"beam\"",
+            "fidelity = { kind = \"beam\", modes = 4 }",
+        ),
+        &["sections[1].fidelity.modes", "drag_velocity"],
+    );
+    refused(
+        &text.replace(
+            "fidelity = \"beam\"",
+            "fidelity = { kind = \"span\", elements = 4 }",
+        ),
+        &["sections[1].fidelity.elements", "order"],
+    );
+    refused(
+        &text.replace(
+            "fidelity = \"beam\"",
+            "fidelity = { kind = \"beam\", drag_velocity = -1.0 }",
+        ),
+        &["drag_velocity", ">= 0"],
+    );
+    // Two chord sections side by side, and a chord as the reference.
+    refused(
+        &text.replace("fidelity = \"beam\"", "").replace(
+            "name = \"touchdown\"\nto = 175.0",
+            "name = \"touchdown\"\nto = 175.0\nfidelity = \"beam\"",
+        ),
+        &["touchdown", "first or last"],
+    );
+    let four = text.replace(
+        "name = \"suspended\"\nto = 231.04875",
+        "name = \"lower\"\nto = 200.0\nfidelity = \"span\"\n[[structure.sections]]\nname = \"suspended\"\nto = 231.04875",
+    );
+    refused(&four, &["neighbour `suspended` is beam"]);
+    refused(
+        &text.replace("reference = true", "reference = \"beam\""),
+        &["structure.reference", "full fidelity"],
+    );
+    // A section over segments of different stiffness.
+    let two_segments = text.replace(
+        "segments = [{ length = 308.065, elements = 132,",
+        "segments = [{ length = 200.0, elements = 86, axial_stiffness = 3.0e9, bending_stiffness = 20000000, mass_per_length = 100.0, submerged_weight = 400, diameter = 0.32, drag_normal = 1.0, added_mass_normal = 1.0 }, { length = 108.065, elements = 46,",
+    );
+    refused(&two_segments, &["suspended", "different bending stiffness"]);
+}

@@ -1,0 +1,576 @@
+//! A section in its chord frame (scene kind `chord`): a small-deflection model
+//! of a section between two neighbours, seed 004's FE `beam` or the span's
+//! transfer matrix (`span_coupling`), about the straight line (the chord)
+//! between its ends in the structure's equilibrium. The unit changes frames at
+//! its two cuts so that its neighbours see global positions and forces.
+//!
+//! One end (`moving`) follows its neighbour's position and rotation and returns
+//! the force and moment it exerts there; the other (loaded) end takes its
+//! neighbour's force and moment and returns the displacement that neighbour
+//! follows. Everything is a deviation from the state at initialisation (the
+//! equilibrium): transverse to the chord the inner model answers, along the
+//! chord the section is a rigid link (the moving end's axial motion carries
+//! the loaded end, the loaded end's axial force passes through; the section's
+//! axial inertia is left out). The static part of the forces is the section's
+//! own balance: the loaded end's force and moment at initialisation plus the
+//! section's submerged weight, exact for any shape.
+
+use crate::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
+use crate::beam::{Beam, BeamParams};
+use crate::contract::{
+    Capabilities, Hold, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
+    UnitError, require_finite, require_positive,
+};
+use crate::span::coupling::{Orientation, SpanCoupling, SpanCouplingParams};
+use serde::Deserialize;
+
+/// The small-deflection model in the chord frame.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ChordModel {
+    /// Seed 004's Hermite FE beam with tension (kind `beam`).
+    Beam,
+    /// The span's exact transfer matrix as a rational fit (kind `span_coupling`).
+    Span,
+}
+
+/// The end that follows its neighbour's motion.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MovingEnd {
+    Start,
+    End,
+}
+
+/// Parameters (SI units; positions in the structure's x, z plane).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChordParams {
+    pub model: ChordModel,
+    pub moving: MovingEnd,
+    /// The section's start and end in the equilibrium (m): the chord.
+    pub start: [f64; 2],
+    pub end: [f64; 2],
+    /// The section's submerged weight (N, downwards) and where it acts (m).
+    pub weight: f64,
+    pub weight_at: [f64; 2],
+    /// The loaded end's neighbour's displacement in the equilibrium (x, z from
+    /// its stress-free position, m; rotation, rad): what it is handed at rest.
+    pub loaded_end_displacement: [f64; 3],
+    /// EI (N m^2).
+    pub flexural_rigidity: f64,
+    /// Mass per length moving transversely, added mass included (kg/m).
+    pub mass_per_length: f64,
+    /// Viscous damping of the transverse motion c_d (N s/m^2), default 0.
+    #[serde(default)]
+    pub damping_per_length: f64,
+    /// The constant axial tension T of the inner model (N).
+    #[serde(default)]
+    pub tension: f64,
+    /// Beam elements, default 20.
+    #[serde(default = "twenty")]
+    pub elements: usize,
+    /// Numerical damping: HHT-alpha of the beam, theta = 1/2 + alpha of the span.
+    #[serde(default)]
+    pub alpha: f64,
+    /// Span: poles of the fit (even), default 24.
+    #[serde(default = "twenty_four")]
+    pub order: usize,
+    /// Span: band of the fit (rad/s), default 2 pi 10.
+    #[serde(default = "ten_hz")]
+    pub band: f64,
+}
+
+fn twenty() -> usize {
+    20
+}
+
+fn twenty_four() -> usize {
+    24
+}
+
+fn ten_hz() -> f64 {
+    2.0 * std::f64::consts::PI * 10.0
+}
+
+/// The chord's frame: origin at the start, `e` along it, `n` turned +90 deg.
+#[derive(Copy, Clone, Debug)]
+struct Frame {
+    e: [f64; 2],
+    n: [f64; 2],
+    length: f64,
+}
+
+impl Frame {
+    fn along(&self, v: [f64; 2]) -> f64 {
+        v[0] * self.e[0] + v[1] * self.e[1]
+    }
+
+    fn across(&self, v: [f64; 2]) -> f64 {
+        v[0] * self.n[0] + v[1] * self.n[1]
+    }
+
+    /// Global components of `a` along the chord and `b` across it.
+    fn global(&self, a: f64, b: f64) -> [f64; 2] {
+        [a * self.e[0] + b * self.n[0], a * self.e[1] + b * self.n[1]]
+    }
+}
+
+/// z-component of the planar cross product r x f (N m).
+fn cross(r: [f64; 2], f: [f64; 2]) -> f64 {
+    r[0] * f[1] - r[1] * f[0]
+}
+
+/// What the unit holds from its initialisation: the inputs it deviates from and
+/// the static force and moment its moving end exerts.
+#[derive(Copy, Clone, Debug, Default)]
+struct Reference {
+    inputs: [f64; 6],
+    static_force_across: f64,
+    static_moment: f64,
+}
+
+/// Inner port indices: inputs (moving deflection, rotation; loaded moment,
+/// shear) and outputs (moving moment, shear; loaded deflection, rotation).
+#[derive(Copy, Clone, Debug)]
+struct InnerPorts {
+    inputs: [usize; 4],
+    outputs: [usize; 4],
+    output_count: usize,
+}
+
+/// Outputs of the inner model the unit reads at most (a beam without stations).
+const MAX_INNER_OUTPUTS: usize = 16;
+
+/// The unit.
+pub struct Chord {
+    params: ChordParams,
+    description: UnitDescription,
+    frame: Frame,
+    inner: Box<dyn Unit>,
+    ports: InnerPorts,
+    reference: Reference,
+}
+
+impl Chord {
+    /// Builds the unit and its inner model; fails on a degenerate chord or a
+    /// parameter the inner model refuses.
+    pub fn new(params: ChordParams) -> Result<Chord, UnitError> {
+        let values = params
+            .start
+            .iter()
+            .chain(&params.end)
+            .chain(&params.weight_at)
+            .chain(&params.loaded_end_displacement)
+            .chain([&params.weight, &params.tension]);
+        for &v in values {
+            require_finite(
+                "start, end, weight, weight_at, loaded_end_displacement, tension",
+                v,
+            )?;
+        }
+        let d = [
+            params.end[0] - params.start[0],
+            params.end[1] - params.start[1],
+        ];
+        let length = d[0].hypot(d[1]);
+        require_positive("the chord's length |end - start|", length)?;
+        let e = [d[0] / length, d[1] / length];
+        let frame = Frame {
+            e,
+            n: [-e[1], e[0]],
+            length,
+        };
+        let inner = inner_model(&params, length)?;
+        let ports = inner_ports(&params, inner.description())?;
+        let description = describe(params.moving);
+        Ok(Chord {
+            params,
+            description,
+            frame,
+            inner,
+            ports,
+            reference: Reference::default(),
+        })
+    }
+
+    /// The chord's length (m).
+    pub fn chord_length(&self) -> f64 {
+        self.frame.length
+    }
+
+    /// The loaded end sits at x = L of the inner model (else at x = 0).
+    fn loaded_at_end(&self) -> bool {
+        self.params.moving == MovingEnd::Start
+    }
+
+    /// The inner model's four inputs from six outer input values, in the inner
+    /// port order.
+    fn local(&self, outer: &[f64]) -> [f64; 4] {
+        let r = &self.reference.inputs;
+        let dp = [outer[0] - r[0], outer[1] - r[1]];
+        let df = [outer[3] - r[3], outer[4] - r[4]];
+        let dm = outer[5] - r[5];
+        // Moment EI y'' and shear EI y''' - T y' of the inner model at the loaded
+        // end from the transverse force and moment applied there.
+        let applied = self.frame.across(df);
+        let (moment, shear) = if self.loaded_at_end() {
+            (dm, -applied)
+        } else {
+            (-dm, applied)
+        };
+        let values = [self.frame.across(dp), outer[2] - r[2], moment, shear];
+        let mut local = [0.0; 4];
+        for (k, &port) in self.ports.inputs.iter().enumerate() {
+            local[port] = values[k];
+        }
+        local
+    }
+}
+
+/// The inner model over the chord, at rest, its ends coupled.
+fn inner_model(params: &ChordParams, length: f64) -> Result<Box<dyn Unit>, UnitError> {
+    let input = || TimeFunction::Input(InputMarker::Input);
+    let kinematic = [
+        Condition {
+            quantity: Quantity::Deflection,
+            value: input(),
+        },
+        Condition {
+            quantity: Quantity::Rotation,
+            value: input(),
+        },
+    ];
+    let loads = [
+        Condition {
+            quantity: Quantity::Moment,
+            value: input(),
+        },
+        Condition {
+            quantity: Quantity::Shear,
+            value: input(),
+        },
+    ];
+    Ok(match params.model {
+        ChordModel::Beam => {
+            let boundary = match params.moving {
+                MovingEnd::Start => Boundary {
+                    left: kinematic,
+                    right: loads,
+                },
+                MovingEnd::End => Boundary {
+                    left: loads,
+                    right: kinematic,
+                },
+            };
+            let mut beam = BeamParams::new(
+                length,
+                params.elements,
+                params.flexural_rigidity,
+                params.mass_per_length,
+                boundary,
+            );
+            beam.tension = params.tension;
+            beam.damping_per_length = params.damping_per_length;
+            beam.alpha = params.alpha;
+            Box::new(Beam::new(beam)?)
+        }
+        ChordModel::Span => Box::new(SpanCoupling::new(SpanCouplingParams {
+            flexural_rigidity: params.flexural_rigidity,
+            mass_per_length: params.mass_per_length,
+            damping_per_length: params.damping_per_length,
+            length,
+            tension: params.tension,
+            orientation: match params.moving {
+                MovingEnd::Start => Orientation::UpperMotion,
+                MovingEnd::End => Orientation::LowerMotion,
+            },
+            order: params.order,
+            band: params.band,
+            discretization: Default::default(),
+            alpha: params.alpha,
+        })?),
+    })
+}
+
+/// The inner model's ports by name (the beam's ends are `left` and `right`, the
+/// span's `upper` at x = 0 and `lower`).
+fn inner_ports(params: &ChordParams, inner: &UnitDescription) -> Result<InnerPorts, UnitError> {
+    let (start, end) = match params.model {
+        ChordModel::Beam => ("left", "right"),
+        ChordModel::Span => ("upper", "lower"),
+    };
+    let (moving, loaded) = match params.moving {
+        MovingEnd::Start => (start, end),
+        MovingEnd::End => (end, start),
+    };
+    let find = |ports: &[Port], name: String| {
+        ports.iter().position(|p| p.name == name).ok_or_else(|| {
+            UnitError::State(format!("the chord's inner model has no port `{name}`"))
+        })
+    };
+    let inputs = [
+        find(&inner.inputs, format!("{moving}_deflection"))?,
+        find(&inner.inputs, format!("{moving}_rotation"))?,
+        find(&inner.inputs, format!("{loaded}_moment"))?,
+        find(&inner.inputs, format!("{loaded}_shear"))?,
+    ];
+    let outputs = [
+        find(&inner.outputs, format!("{moving}_moment"))?,
+        find(&inner.outputs, format!("{moving}_shear"))?,
+        find(&inner.outputs, format!("{loaded}_deflection"))?,
+        find(&inner.outputs, format!("{loaded}_rotation"))?,
+    ];
+    let output_count = inner.outputs.len();
+    if output_count > MAX_INNER_OUTPUTS || inner.inputs.len() != 4 {
+        return Err(UnitError::State(format!(
+            "the chord's inner model has {} inputs and {output_count} outputs: expected 4 and at most {MAX_INNER_OUTPUTS}",
+            inner.inputs.len()
+        )));
+    }
+    Ok(InnerPorts {
+        inputs,
+        outputs,
+        output_count,
+    })
+}
+
+/// Ports: the moving end's position and rotation and the loaded end's force
+/// and moment in; the force and moment the moving end exerts, the loaded
+/// end's neighbour's displacement and the axial force out.
+fn describe(moving: MovingEnd) -> UnitDescription {
+    let (m, l) = match moving {
+        MovingEnd::Start => ("start", "end"),
+        MovingEnd::End => ("end", "start"),
+    };
+    let inputs = vec![
+        Port::input(&format!("{m}_position_x"), PortKind::Displacement),
+        Port::input(&format!("{m}_position_z"), PortKind::Displacement),
+        Port::input(&format!("{m}_rotation"), PortKind::Rotation),
+        Port::input(&format!("{l}_force_x"), PortKind::Force),
+        Port::input(&format!("{l}_force_z"), PortKind::Force),
+        Port::input(&format!("{l}_moment"), PortKind::Moment),
+    ];
+    let all: Vec<usize> = (0..6).collect();
+    let outputs = vec![
+        Port::output(&format!("{m}_force_x"), PortKind::Force).with_feedthrough(&all),
+        Port::output(&format!("{m}_force_z"), PortKind::Force).with_feedthrough(&all),
+        Port::output(&format!("{m}_moment"), PortKind::Moment).with_feedthrough(&all),
+        Port::output(&format!("{l}_displacement_x"), PortKind::Displacement).with_feedthrough(&all),
+        Port::output(&format!("{l}_displacement_z"), PortKind::Displacement).with_feedthrough(&all),
+        Port::output(&format!("{l}_rotation"), PortKind::Rotation).with_feedthrough(&all),
+        Port::output("axial_force", PortKind::Force).with_feedthrough(&[3, 4]),
+    ];
+    UnitDescription {
+        kind: "chord".into(),
+        inputs,
+        outputs,
+        capabilities: Capabilities::default(),
+    }
+}
+
+impl Unit for Chord {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let mut r = [0.0; 6];
+        r.copy_from_slice(inputs.end());
+        let p = &self.params;
+        let (mover, loaded) = match p.moving {
+            MovingEnd::Start => (p.start, p.end),
+            MovingEnd::End => (p.end, p.start),
+        };
+        // The section's balance: the moving end's neighbour carries the loaded
+        // end's force and the weight, and their moments about the moving end.
+        let force = [r[3], r[4] - p.weight];
+        let arm = |q: [f64; 2]| [q[0] - mover[0], q[1] - mover[1]];
+        let moment =
+            r[5] + cross(arm(loaded), [r[3], r[4]]) + cross(arm(p.weight_at), [0.0, -p.weight]);
+        self.reference = Reference {
+            inputs: r,
+            static_force_across: self.frame.across(force),
+            static_moment: moment,
+        };
+        let holds = [Hold::Ramp; 4];
+        let zero = [0.0; 4];
+        self.inner.initialize(t0, Inputs::new(&holds, &zero, &zero))
+    }
+
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        let (start, end) = (self.local(inputs.start()), self.local(inputs.end()));
+        let holds = self.inner_holds(inputs);
+        self.inner.do_step(t, h, Inputs::new(&holds, &start, &end))
+    }
+
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+        let (start, end) = (self.local(inputs.start()), self.local(inputs.end()));
+        let holds = self.inner_holds(inputs);
+        let mut inner = [0.0; MAX_INNER_OUTPUTS];
+        let inner = &mut inner[..self.ports.output_count];
+        self.inner.outputs(Inputs::new(&holds, &start, &end), inner);
+        let [moment, shear, deflection, rotation] = self.ports.outputs.map(|k| inner[k]);
+        // The transverse force and moment applied on the section at its moving
+        // end; it exerts the opposite on the neighbour.
+        let (applied_force, applied_moment) = if self.loaded_at_end() {
+            (shear, -moment)
+        } else {
+            (-shear, moment)
+        };
+        let now = inputs.end();
+        let r = &self.reference;
+        let axial = self.frame.along([now[3], now[4] - self.params.weight]);
+        let across = r.static_force_across - applied_force;
+        let force = self.frame.global(axial, across);
+        out[0] = force[0];
+        out[1] = force[1];
+        out[2] = r.static_moment - applied_moment;
+        let slide = self
+            .frame
+            .along([now[0] - r.inputs[0], now[1] - r.inputs[1]]);
+        let moved = self.frame.global(slide, deflection);
+        let d = &self.params.loaded_end_displacement;
+        out[3] = d[0] + moved[0];
+        out[4] = d[1] + moved[1];
+        out[5] = d[2] + rotation;
+        // Tension: the loaded end's neighbour pulls away from the section.
+        let outward = if self.loaded_at_end() { 1.0 } else { -1.0 };
+        out[6] = outward * self.frame.along([now[3], now[4]]);
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        self.inner.save_state(slot)
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.inner.restore_state(slot)
+    }
+}
+
+impl Chord {
+    /// Each inner input ramps as its outer source does (the loads follow the
+    /// loaded end's force inputs, the motions the moving end's position).
+    fn inner_holds(&self, inputs: Inputs<'_>) -> [Hold; 4] {
+        let mut holds = [Hold::Ramp; 4];
+        for (k, &port) in self.ports.inputs.iter().enumerate() {
+            holds[port] = inputs.hold(if k < 2 { 0 } else { 3 });
+        }
+        holds
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contract::Driver;
+
+    fn chord(model: ChordModel, moving: MovingEnd, tension: f64) -> Driver<Chord> {
+        let params = ChordParams {
+            model,
+            moving,
+            start: [0.0, 0.0],
+            end: [6.0, 8.0],
+            weight: 0.0,
+            weight_at: [3.0, 4.0],
+            loaded_end_displacement: [0.0; 3],
+            flexural_rigidity: 1e4,
+            mass_per_length: 10.0,
+            damping_per_length: 40.0,
+            tension,
+            elements: 20,
+            alpha: 0.0,
+            order: 16,
+            band: ten_hz(),
+        };
+        Driver::new(Chord::new(params).unwrap())
+    }
+
+    /// Tip deflection (m) of a cantilever of length 10 m, EI 1e4 N m^2 under
+    /// axial tension `t` and a transverse tip force `p`: p / T (L - tanh(kL) / k),
+    /// k = sqrt(T / EI); p L^3 / (3 EI) without tension.
+    fn cantilever(p: f64, t: f64) -> f64 {
+        let (l, ei) = (10.0f64, 1e4);
+        if t == 0.0 {
+            return p * l.powi(3) / (3.0 * ei);
+        }
+        let k = (t / ei).sqrt();
+        p / t * (l - (k * l).tanh() / k)
+    }
+
+    /// Ramps a transverse force on the loaded end up over 5 s and holds it, the
+    /// moving end held where it started; the end displacement after 40 s.
+    fn settled(unit: &mut Driver<Chord>, force: [f64; 2], tension: f64) -> [f64; 7] {
+        // The loaded end carries the tension along the chord (outwards).
+        let e = [0.6, 0.8];
+        let outward = if unit.unit().loaded_at_end() {
+            1.0
+        } else {
+            -1.0
+        };
+        let pull = [outward * tension * e[0], outward * tension * e[1]];
+        let mover = if outward > 0.0 {
+            [0.0, 0.0]
+        } else {
+            [6.0, 8.0]
+        };
+        let at = |s: f64| {
+            [
+                mover[0],
+                mover[1],
+                0.0,
+                pull[0] + s * force[0],
+                pull[1] + s * force[1],
+                0.0,
+            ]
+        };
+        unit.set_inputs(&at(0.0)).unwrap();
+        unit.initialize(Time::ZERO).unwrap();
+        let h = Time::from_secs(0.01).unwrap();
+        for k in 0..4000 {
+            let t = 0.01 * f64::from(k + 1);
+            unit.set_inputs(&at((t / 5.0).min(1.0))).unwrap();
+            unit.do_step(Time::from_secs(0.01 * f64::from(k)).unwrap(), h)
+                .unwrap();
+        }
+        let mut out = [0.0; 7];
+        unit.outputs(&mut out).unwrap();
+        out
+    }
+
+    #[test]
+    fn a_loaded_end_deflects_as_a_cantilever_with_tension_in_both_models_and_orientations() {
+        // A force across the chord, n = (-0.8, 0.6), of 100 N.
+        let p = 100.0;
+        let force = [-0.8 * p, 0.6 * p];
+        for model in [ChordModel::Beam, ChordModel::Span] {
+            for moving in [MovingEnd::Start, MovingEnd::End] {
+                for tension in [0.0, 2e3] {
+                    let mut unit = chord(model, moving, tension);
+                    let out = settled(&mut unit, force, tension);
+                    let across = -0.8 * out[3] + 0.6 * out[4];
+                    let along = 0.6 * out[3] + 0.8 * out[4];
+                    let expect = cantilever(p, tension);
+                    assert!(
+                        (across - expect).abs() < 1e-3 * expect,
+                        "{model:?} {moving:?} T = {tension}: {across} against {expect}"
+                    );
+                    assert!(along.abs() < 1e-12, "the chord is rigid: {along}");
+                    // The moving end carries the force and its moment p L less
+                    // the tension's at the deflected end, T y(L).
+                    let lever = p * 10.0 - tension * expect;
+                    let moment = if moving == MovingEnd::Start {
+                        lever
+                    } else {
+                        -lever
+                    };
+                    assert!(
+                        (out[2] - moment).abs() < 1e-3 * p * 10.0,
+                        "{model:?} {moving:?} T = {tension}: moment {} against {moment}",
+                        out[2]
+                    );
+                }
+            }
+        }
+    }
+}
