@@ -301,3 +301,36 @@ current = {{ z = [0.0, 1200.0], velocity = [0.0, 0.5] }}
         truncation.0
     );
 }
+
+#[test]
+fn the_internal_force_at_a_node_is_the_weight_hanging_below_it() {
+    // 30 m hanging from a pin, 300 N/m in water, 30 elements: at a node the mean
+    // of its two elements' forces is what a cut there transmits, the weight of
+    // the 30 - s metres below; inside an element, the element's own force.
+    let section = solved(
+        r#"
+static_start = true
+start = [0.0, 0.0]
+segments = [{ length = 30.0, angle = -90.0, elements = 30, axial_stiffness = 1e10, bending_stiffness = 1e3, mass_per_length = 50.0, submerged_weight = 300.0 }]
+ends.start = { kind = "pinned" }
+stations = [10.0, 20.0, 10.5]
+"#,
+    );
+    let names: Vec<String> = section
+        .description()
+        .outputs
+        .iter()
+        .map(|p| p.name.clone())
+        .collect();
+    let mut out = vec![0.0; names.len()];
+    section.outputs(&mut out).unwrap();
+    let at = |name: &str| out[names.iter().position(|n| n == name).unwrap()];
+    for (i, s) in [(1, 10.0), (2, 20.0)] {
+        let force = at(&format!("force_{i}"));
+        assert!((force - 300.0 * (30.0 - s)).abs() < 1e-6 * force, "{force}");
+        // The element's tension differs by half an element's weight.
+        assert!((at(&format!("tension_{i}")) - force).abs() > 100.0);
+    }
+    // Inside element 10 (10-11 m): its own force, 300 (30 - 10.5) N.
+    assert!((at("force_3") - 300.0 * 19.5).abs() < 1e-6 * 5850.0);
+}

@@ -174,8 +174,8 @@ pub const EXTRA_OUTPUTS: [(&str, &str); 11] = [
 
 /// Per end: position x, z, rotation, velocity x, z, angular velocity, and the force
 /// x, z and moment the end exerts on what holds it (feeding through from that
-/// end's force inputs); then the extras; then tension, moment, curvature and
-/// position x, z per station.
+/// end's force inputs); then the extras; then tension, moment, curvature,
+/// position x, z and the magnitude of the internal force per station.
 pub fn output_ports(resolved: &[Resolved], stations: usize) -> Vec<Port> {
     let mut out = Vec::new();
     for (end, side) in SIDES.iter().enumerate() {
@@ -226,6 +226,7 @@ pub fn output_ports(resolved: &[Resolved], stations: usize) -> Vec<Port> {
         out.push(Port::output(&format!("curvature_{i}"), PortKind::Generic).with_unit("1/m"));
         out.push(Port::output(&format!("x_{i}"), PortKind::Displacement));
         out.push(Port::output(&format!("z_{i}"), PortKind::Displacement));
+        out.push(Port::output(&format!("force_{i}"), PortKind::Force));
     }
     out
 }

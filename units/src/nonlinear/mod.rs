@@ -30,6 +30,9 @@ use ends::Resolved;
 use environment::Environment;
 use model::{BAND, Model};
 use params::Integrator;
+
+/// Outputs per station: tension, moment, curvature, x, z, internal force.
+const STATION_OUTPUTS: usize = 6;
 pub use params::NonlinearParams;
 
 crate::state_struct! {
@@ -310,6 +313,28 @@ impl NonlinearSection {
         [local.axial, moment, moment / self.model.elements[e].ei]
     }
 
+    /// The magnitude (N) of the internal force at arc length `s`: the element's
+    /// axial force and its shear (m0 + m1) / l, frame-free, so any section's end
+    /// force can be compared with it. At a node between two elements, the mean
+    /// of theirs: what a cut at that node transmits, each side carrying half of
+    /// its element's weight and inertia there.
+    pub fn internal_force(&self, s: f64) -> f64 {
+        let magnitude = |e: usize| {
+            let local = self.model.local_forces(&self.state.q, e);
+            let shear = (local.moments[0] + local.moments[1]) / local.chord;
+            local.axial.hypot(shear)
+        };
+        let (e, xi) = self.model.locate(s);
+        // At a node to round-off of the arc lengths.
+        if xi < 1e-9 && e > 0 {
+            0.5 * (magnitude(e - 1) + magnitude(e))
+        } else if xi > 1.0 - 1e-9 && e + 1 < self.model.elements.len() {
+            0.5 * (magnitude(e) + magnitude(e + 1))
+        } else {
+            magnitude(e)
+        }
+    }
+
     /// The touchdown point (m of arc) as a continuous function of the state:
     /// where the seabed gap crosses zero, linear between the nodes; None
     /// without seabed contact.
@@ -434,9 +459,10 @@ impl Unit for NonlinearSection {
         let stations = 18 + extra.len();
         out[18..stations].copy_from_slice(&extra);
         for (i, &s) in self.params.stations.iter().enumerate() {
-            let base = stations + 5 * i;
+            let base = stations + STATION_OUTPUTS * i;
             out[base..base + 3].copy_from_slice(&self.section_forces(s));
             out[base + 3..base + 5].copy_from_slice(&self.position_at(s));
+            out[base + 5] = self.internal_force(s);
         }
     }
 

@@ -143,6 +143,10 @@ pub struct FidelityReport {
     pub cheapest: Option<usize>,
 }
 
+/// One run: a combination of the sections' choices, or `None` for the
+/// reference.
+type Task = Option<Vec<(String, Choice)>>;
+
 /// The structure as the study sees it.
 struct Structure {
     name: String,
@@ -189,10 +193,11 @@ pub fn run_fidelity(
         s.remove("reference");
     }
     table.remove("output");
-    let mut tasks: Vec<Option<Vec<(String, Choice)>>> = vec![None];
+    let mut tasks: Vec<Task> = vec![None];
     tasks.extend(combinations(plan).into_iter().map(Some));
     let order = order_of(&tasks);
-    let names = quantities::names(structure.features);
+    let names = quantities::names(&structure.features);
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
     let outcomes = crate::parallel::run_all(&tasks, &order, plan.jobs, |task| {
         let outcome = run_one(path, &table, &structure, task.as_deref(), plan.duration);
         progress(&describe(task.as_deref(), &outcome));
@@ -237,9 +242,10 @@ fn structure_of(table: &Table) -> Result<Structure, String> {
         .ok_or("`structure.name`: expected a name")?
         .to_owned();
     let model = s.get("model").and_then(Value::as_table);
-    let features = Features {
+    let mut features = Features {
         seabed: model.is_some_and(|m| m.contains_key("contact")),
         stinger: model.is_some_and(|m| m.contains_key("stinger")),
+        cuts: Vec::new(),
     };
     let mut sections = Vec::new();
     let mut from = 0.0;
@@ -257,6 +263,10 @@ fn structure_of(table: &Table) -> Result<Structure, String> {
             .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
             .unwrap_or(f64::NAN);
     }
+    features.cuts = sections
+        .windows(2)
+        .map(|w| format!("cut_{}_{}", w[0].0, w[1].0))
+        .collect();
     Ok(Structure {
         name,
         sections,
@@ -292,8 +302,8 @@ fn combinations(plan: &FidelityPlan) -> Vec<Vec<(String, Choice)>> {
 
 /// Start order: the reference first, then the combinations with the most
 /// nonlinear elements asked for (the likely costliest).
-fn order_of(tasks: &[Option<Vec<(String, Choice)>>]) -> Vec<usize> {
-    let weight = |t: &Option<Vec<(String, Choice)>>| match t {
+fn order_of(tasks: &[Task]) -> Vec<usize> {
+    let weight = |t: &Task| match t {
         None => f64::INFINITY,
         Some(c) => c
             .iter()
@@ -329,12 +339,14 @@ fn run_table(
         let mut whole = Table::new();
         whole.insert("name".into(), Value::String("monolithic".into()));
         *sections = vec![Value::Table(whole)];
+        let first = add_cut_stations(s, structure)?;
         let units = vec![SectionUnit {
             unit: format!("{}_monolithic", structure.name),
             kind: "nonlinear".into(),
             from: 0.0,
+            cut_stations: Some(first),
         }];
-        return finish(table, units, structure.features);
+        return finish(table, units, &structure.features);
     };
     for (name, choice) in combination {
         let section = sections
@@ -374,16 +386,40 @@ fn run_table(
             }
             .to_owned(),
             from: *from,
+            cut_stations: None,
         })
         .collect();
-    finish(table, units, structure.features)
+    finish(table, units, &structure.features)
+}
+
+/// Puts a station at each cut on the whole structure's model (the reference),
+/// after the model's own; returns the number of the first.
+fn add_cut_stations(structure_table: &mut Table, structure: &Structure) -> Result<usize, String> {
+    let model = structure_table
+        .get_mut("model")
+        .and_then(Value::as_table_mut)
+        .ok_or("`structure.model`: expected a table")?;
+    let stations = model
+        .entry("stations")
+        .or_insert_with(|| Value::Array(Vec::new()))
+        .as_array_mut()
+        .ok_or("`structure.model.stations`: expected a list")?;
+    let first = stations.len() + 1;
+    stations.extend(
+        structure
+            .sections
+            .iter()
+            .skip(1)
+            .map(|(_, from)| Value::Float(*from)),
+    );
+    Ok(first)
 }
 
 /// Adds the `[output]` that records the quantities' signals.
 fn finish(
     mut table: Table,
     units: Vec<SectionUnit>,
-    features: Features,
+    features: &Features,
 ) -> Result<(Table, Vec<SectionUnit>), String> {
     let signals = quantities::signals(&units, features);
     let mut output = Table::new();
@@ -427,9 +463,9 @@ fn run_one(
         Ok(r) => r,
         Err(e) => return failed(e.to_string()),
     };
-    let series: Result<Vec<Vec<f64>>, String> = quantities::names(structure.features)
+    let series: Result<Vec<Vec<f64>>, String> = quantities::names(&structure.features)
         .iter()
-        .map(|n| quantities::series(n, &units, &result.recorder))
+        .map(|n| quantities::series(n, &units, &structure.features, &result.recorder))
         .collect();
     let counters = &result.summary.counters;
     match series {

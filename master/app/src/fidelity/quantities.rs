@@ -1,7 +1,9 @@
 //! A structure's quantities of interest, read from whatever units its sections
 //! are: the force at its top end and at its start (the anchor or the laid pipe's
 //! end), and, where the model has them, the touchdown point, the largest sag-bend
-//! and overbend moments. Each is a time series built from the recorded outputs
+//! and overbend moments; and the force each cut transmits (its magnitude, N:
+//! `cut_<lower>_<upper>`, from a section's end force, in the reference from a
+//! station at the cut). Each is a time series built from the recorded outputs
 //! of the sections' units (`nonlinear`, `cable`, or a `static` section's static
 //! touchdown estimate), so every combination of fidelities and the monolithic
 //! reference are measured the same way.
@@ -14,18 +16,22 @@ pub struct SectionUnit {
     pub unit: String,
     pub kind: String,
     pub from: f64,
+    /// The whole structure as one unit (the reference): the number of its
+    /// first station at a cut (the cuts' stations follow in order).
+    pub cut_stations: Option<usize>,
 }
 
-/// What the structure's model has: seabed contact (touchdown, sag bend) and a
-/// stinger (overbend).
-#[derive(Copy, Clone, Debug, Default)]
+/// What the structure's model has: seabed contact (touchdown, sag bend), a
+/// stinger (overbend), and its cuts (their quantities' names).
+#[derive(Clone, Debug, Default)]
 pub struct Features {
     pub seabed: bool,
     pub stinger: bool,
+    pub cuts: Vec<String>,
 }
 
-/// The quantities' names (with their units) for a model with `features`.
-pub fn names(features: Features) -> Vec<&'static str> {
+/// The quantities' names for a model with `features`.
+pub fn names(features: &Features) -> Vec<String> {
     let mut names = vec!["top_force", "start_force"];
     if features.seabed {
         names.extend(["touchdown", "sagbend_moment"]);
@@ -33,11 +39,30 @@ pub fn names(features: Features) -> Vec<&'static str> {
     if features.stinger {
         names.push("overbend_moment");
     }
+    let mut names: Vec<String> = names.into_iter().map(str::to_owned).collect();
+    names.extend(features.cuts.iter().cloned());
     names
 }
 
+/// The signals of the force at cut `k` (between sections k and k + 1): the
+/// reference's station there, or the lower section's end force (the upper
+/// section's start force where the lower one is a cable or a chord section,
+/// whose end takes its force as an input).
+fn cut_signals(sections: &[SectionUnit], k: usize) -> Vec<String> {
+    if let [whole] = sections
+        && let Some(first) = whole.cut_stations
+    {
+        return vec![format!("{}.force_{}", whole.unit, first + k)];
+    }
+    let (section, top) = match sections[k].kind.as_str() {
+        "beam" | "span" | "cable" => (&sections[k + 1], false),
+        _ => (&sections[k], true),
+    };
+    end_force(section, top).map(|(_, p)| p).to_vec()
+}
+
 /// The outputs to record for the quantities of `sections`.
-pub fn signals(sections: &[SectionUnit], features: Features) -> Vec<String> {
+pub fn signals(sections: &[SectionUnit], features: &Features) -> Vec<String> {
     let mut signals = Vec::new();
     if let Some(last) = sections.last() {
         signals.extend(end_force(last, true).map(|(_, p)| p));
@@ -53,6 +78,9 @@ pub fn signals(sections: &[SectionUnit], features: Features) -> Vec<String> {
         if features.stinger && s.kind == "nonlinear" {
             signals.push(format!("{}.overbend_moment", s.unit));
         }
+    }
+    for k in 0..features.cuts.len() {
+        signals.extend(cut_signals(sections, k));
     }
     signals
 }
@@ -84,6 +112,7 @@ fn end_force(section: &SectionUnit, top: bool) -> [(usize, String); 2] {
 pub fn series(
     name: &str,
     sections: &[SectionUnit],
+    features: &Features,
     recorder: &Recorder,
 ) -> Result<Vec<f64>, String> {
     let column = |signal: &str| {
@@ -132,6 +161,19 @@ pub fn series(
                 })
                 .collect())
         }
-        other => Err(format!("no quantity `{other}`")),
+        cut => {
+            let k = features
+                .cuts
+                .iter()
+                .position(|c| c == cut)
+                .ok_or(format!("no quantity `{cut}`"))?;
+            let columns: Vec<&[f64]> = cut_signals(sections, k)
+                .iter()
+                .map(|s| column(s))
+                .collect::<Result<_, String>>()?;
+            Ok((0..recorder.time.len())
+                .map(|i| columns.iter().map(|c| c[i] * c[i]).sum::<f64>().sqrt())
+                .collect())
+        }
     }
 }

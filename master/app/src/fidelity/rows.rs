@@ -2,7 +2,7 @@
 //! reference, the worst over the judged quantities, the speed-up, the Pareto
 //! front and the tolerance; and each row's combination as labels.
 
-use super::{Choice, FidelityRow, Outcome, Structure, written};
+use super::{Choice, FidelityRow, Outcome, Structure, Task, written};
 use crate::indicators::{indicator, interpolate, normalized_error};
 use toml::{Table, Value};
 
@@ -11,7 +11,7 @@ use toml::{Table, Value};
 pub(super) fn rows_of(
     structure: &Structure,
     table: &Table,
-    (tasks, outcomes): (&[Option<Vec<(String, Choice)>>], &[Outcome]),
+    (tasks, outcomes): (&[Task], &[Outcome]),
     names: &[&str],
     (tolerance, judged): (f64, &[String]),
 ) -> Vec<FidelityRow> {
