@@ -13,6 +13,22 @@ pub fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
+/// A scene's units after `[structure]` is written out (by name, in order) and
+/// its connections.
+pub fn units_and_links(scene: &Scene) -> (Vec<(String, toml::Value)>, Vec<toml::Value>) {
+    let t: toml::Table = toml::from_str(scene.source()).expect("the expanded scene");
+    let units = t["units"]
+        .as_array()
+        .expect("units")
+        .iter()
+        .map(|u| (u["name"].as_str().expect("a name").to_owned(), u.clone()))
+        .collect();
+    (
+        units,
+        t["connections"].as_array().expect("connections").clone(),
+    )
+}
+
 /// Loads a scene by path relative to the workspace root.
 pub fn load(relative: &str) -> Scene {
     let path = root().join(relative);

@@ -11,7 +11,7 @@
 use slender_app::fidelity::{FidelityPlan, SectionChoices, run_fidelity};
 use slender_app::study::Design;
 use slender_scene::Scene;
-use slender_tests::{root, run};
+use slender_tests::{root, run, units_and_links};
 use toml::{Table, Value};
 
 const SLAY: &str = "examples/structure_slay_fidelity.toml";
@@ -203,14 +203,7 @@ fn a_static_touchdown_section_holds_the_slay_under_its_tensioner() {
 
 /// The expanded scene's units (by name) and connections.
 fn expanded(text: &str) -> (Vec<(String, Value)>, Vec<Value>) {
-    let t: Table = toml::from_str(parse(text).unwrap().source()).unwrap();
-    let units = t["units"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|u| (u["name"].as_str().unwrap().to_owned(), u.clone()))
-        .collect();
-    (units, t["connections"].as_array().unwrap().clone())
+    units_and_links(&parse(text).expect("scene"))
 }
 
 #[test]

@@ -10,8 +10,8 @@
 use slender_app::fidelity::{FidelityPlan, SectionChoices, run_fidelity};
 use slender_app::study::Design;
 use slender_scene::Scene;
-use slender_tests::{root, run};
-use toml::{Table, Value};
+use slender_tests::{root, run, units_and_links};
+use toml::Value;
 
 /// The mooring example, `duration` s long, with its sections replaced by
 /// `sections` (TOML of `[[structure.sections]]`).
@@ -109,15 +109,7 @@ fn a_static_lower_section_is_the_line_s_stiffness_at_the_cut() {
 
 /// The expanded scene's units (by name) and connections.
 fn expanded(text: &str) -> (Vec<(String, Value)>, Vec<Value>) {
-    let scene = parse(text).expect("scene");
-    let t: Table = toml::from_str(scene.source()).unwrap();
-    let units = t["units"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|u| (u["name"].as_str().unwrap().to_owned(), u.clone()))
-        .collect();
-    (units, t["connections"].as_array().unwrap().clone())
+    units_and_links(&parse(text).expect("scene"))
 }
 
 #[test]

@@ -182,13 +182,19 @@ fn fidelity_runs_a_structures_sections_and_names_the_cheapest() {
         "lower=cable,nonlinear:16",
         "--tolerance",
         "0.001",
+        "--quantities",
+        "top_force,start_force",
         "--jobs",
         "2",
         "--out",
         d,
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    assert!(text(&out.stdout).contains("Cheapest within epsilon <= 0.001"));
+    assert!(
+        text(&out.stdout).contains("Cheapest within epsilon <= 0.001 on top_force, start_force"),
+        "{}",
+        text(&out.stdout)
+    );
     for file in [
         "fidelity.csv",
         "fidelity.json",
