@@ -70,7 +70,7 @@ fn an_fmu_section_needs_its_file_and_known_keys() {
             "fidelity.elements",
         ),
         (
-            "{ kind = \"fmu\", file = \"x.fmu\", ports = \"beam\" }",
+            "{ kind = \"fmu\", file = \"x.fmu\", ports = \"shell\" }",
             "fidelity.ports",
         ),
     ] {
