@@ -219,10 +219,11 @@ fn a_fidelity_study_measures_every_combination_against_the_monolithic_line() {
         same.worst_error, cable.worst_error, coarse.worst_error
     );
     assert!(same.worst_error < 1e-5, "{}", same.worst_error);
-    // The cut's force in the reference is the mean of the internal forces of
-    // the two elements at the node, exact at rest; in motion the partition's
-    // end force also carries the cut node's inertia and drag, so even the same
-    // mesh differs by 3.9e-3 (measured): the floor of this quantity.
+    // The force at the cut: the mean of the two elements' internal forces there,
+    // in the reference and, where both sides are nonlinear, in the partition
+    // (measured 1.9e-6 at the same mesh, 5.3e-4 with 16 elements below); next
+    // to the cable, the upper section's start force, which also carries the
+    // cut node's inertia and drag (3.9e-3).
     let cut = |r: &slender_app::fidelity::FidelityRow| r.errors[2].1;
     println!(
         "force at the cut: same mesh {:.2e}, cable {:.2e}, 16 elements {:.2e}",
@@ -230,9 +231,9 @@ fn a_fidelity_study_measures_every_combination_against_the_monolithic_line() {
         cut(cable),
         cut(coarse)
     );
-    for r in [same, cable, coarse] {
-        assert!(cut(r) > 1e-3 && cut(r) < 6e-3, "{}", cut(r));
-    }
+    assert!(cut(same) < 1e-5);
+    assert!(cut(coarse) > cut(same) && cut(coarse) < 1e-3);
+    assert!(cut(cable) < 6e-3);
     assert!(cable.worst_error < 1e-3 && cable.worst_error > same.worst_error);
     assert!(coarse.worst_error < 1e-3 && coarse.worst_error > same.worst_error);
     for r in [same, cable, coarse] {

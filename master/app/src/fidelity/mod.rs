@@ -345,6 +345,7 @@ fn run_table(
             kind: "nonlinear".into(),
             from: 0.0,
             cut_stations: Some(first),
+            end_stations: [None, None],
         }];
         return finish(table, units, &structure.features);
     };
@@ -369,27 +370,88 @@ fn run_table(
             (_, None) => section.remove("elements"),
         };
     }
+    let kinds: Vec<String> = sections
+        .iter()
+        .filter_map(Value::as_table)
+        .map(|t| written::written_kind(t).to_owned())
+        .collect();
+    let end_stations = add_end_stations(s, structure, &kinds)?;
+    let sections = s
+        .get("sections")
+        .and_then(Value::as_array)
+        .ok_or("`structure.sections`: expected a list")?;
     let units = sections
         .iter()
         .filter_map(Value::as_table)
         .zip(&structure.sections)
-        .map(|(t, (name, from))| SectionUnit {
+        .zip(end_stations)
+        .map(|((t, (name, from)), end_stations)| SectionUnit {
             unit: format!("{}_{name}", structure.name),
-            // An FMU section has the ports of the fidelity it names.
-            kind: match written::written_kind(t) {
-                "fmu" => t
-                    .get("fidelity")
-                    .and_then(|f| f.get("ports"))
-                    .and_then(Value::as_str)
-                    .unwrap_or("nonlinear"),
-                kind => kind,
-            }
-            .to_owned(),
+            kind: section_kind(t).to_owned(),
             from: *from,
             cut_stations: None,
+            end_stations,
         })
         .collect();
     finish(table, units, &structure.features)
+}
+
+/// A section's kind as the study reads its outputs: an FMU section has the
+/// ports of the fidelity it names.
+fn section_kind(t: &Table) -> &str {
+    match written::written_kind(t) {
+        "fmu" => t
+            .get("fidelity")
+            .and_then(|f| f.get("ports"))
+            .and_then(Value::as_str)
+            .unwrap_or("nonlinear"),
+        kind => kind,
+    }
+}
+
+/// Puts stations in the elements on both sides of every cut between two
+/// `nonlinear` sections (not FMUs: their outputs are fixed), just below the
+/// cut in the lower section and at the cut in the upper one (a section holds
+/// the model's stations in [from, to), numbered from 1 in the model's order);
+/// returns each section's numbers of its first- and last-element stations.
+fn add_end_stations(
+    structure_table: &mut Table,
+    structure: &Structure,
+    kinds: &[String],
+) -> Result<Vec<[Option<usize>; 2]>, String> {
+    let n = structure.sections.len();
+    let mut ends = vec![[None, None]; n];
+    let model = structure_table
+        .get_mut("model")
+        .and_then(Value::as_table_mut)
+        .ok_or("`structure.model`: expected a table")?;
+    let stations = model
+        .entry("stations")
+        .or_insert_with(|| Value::Array(Vec::new()))
+        .as_array_mut()
+        .ok_or("`structure.model.stations`: expected a list")?;
+    let arc = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+    let mut count = vec![0usize; n];
+    let section_of = |s: f64| structure.sections.iter().rposition(|(_, from)| *from <= s);
+    for s in stations.iter().filter_map(arc) {
+        if let Some(k) = section_of(s) {
+            count[k] += 1;
+        }
+    }
+    for k in 0..n.saturating_sub(1) {
+        if kinds[k] != "nonlinear" || kinds[k + 1] != "nonlinear" {
+            continue;
+        }
+        let cut = structure.sections[k + 1].1;
+        // Inside the lower section's last element, clear of round-off.
+        stations.push(Value::Float(cut - 1e-6 * cut.abs().max(1.0)));
+        count[k] += 1;
+        ends[k][1] = Some(count[k]);
+        stations.push(Value::Float(cut));
+        count[k + 1] += 1;
+        ends[k + 1][0] = Some(count[k + 1]);
+    }
+    Ok(ends)
 }
 
 /// Puts a station at each cut on the whole structure's model (the reference),

@@ -2,8 +2,9 @@
 //! are: the force at its top end and at its start (the anchor or the laid pipe's
 //! end), and, where the model has them, the touchdown point, the largest sag-bend
 //! and overbend moments; and the force each cut transmits (its magnitude, N:
-//! `cut_<lower>_<upper>`, from a section's end force, in the reference from a
-//! station at the cut). Each is a time series built from the recorded outputs
+//! `cut_<lower>_<upper>`: the mean of the internal forces of the elements on
+//! both sides, from stations; a section's end force where a side has no
+//! elements). Each is a time series built from the recorded outputs
 //! of the sections' units (`nonlinear`, `cable`, or a `static` section's static
 //! touchdown estimate), so every combination of fidelities and the monolithic
 //! reference are measured the same way.
@@ -19,6 +20,9 @@ pub struct SectionUnit {
     /// The whole structure as one unit (the reference): the number of its
     /// first station at a cut (the cuts' stations follow in order).
     pub cut_stations: Option<usize>,
+    /// A `nonlinear` section: the numbers of its stations in its first and in
+    /// its last element, at its cuts.
+    pub end_stations: [Option<usize>; 2],
 }
 
 /// What the structure's model has: seabed contact (touchdown, sag bend), a
@@ -44,21 +48,46 @@ pub fn names(features: &Features) -> Vec<String> {
     names
 }
 
-/// The signals of the force at cut `k` (between sections k and k + 1): the
-/// reference's station there, or the lower section's end force (the upper
-/// section's start force where the lower one is a cable or a chord section,
-/// whose end takes its force as an input).
-fn cut_signals(sections: &[SectionUnit], k: usize) -> Vec<String> {
+/// How a run gives the force at a cut.
+enum CutReading {
+    /// The mean of these internal-force magnitudes (N).
+    Mean(Vec<String>),
+    /// The magnitude of a force's x and z components (N).
+    Components(Vec<String>),
+}
+
+impl CutReading {
+    fn signals(&self) -> &[String] {
+        match self {
+            CutReading::Mean(s) | CutReading::Components(s) => s,
+        }
+    }
+}
+
+/// The force at cut `k` (between sections k and k + 1): in the reference its
+/// station there (the mean of the two elements at the node); where both sides
+/// are `nonlinear`, the mean of their elements' forces at the cut, the same
+/// measure; else the lower section's end force (the upper section's start
+/// force where the lower one is a cable or a chord section, whose end takes its
+/// force as an input).
+fn cut_reading(sections: &[SectionUnit], k: usize) -> CutReading {
     if let [whole] = sections
         && let Some(first) = whole.cut_stations
     {
-        return vec![format!("{}.force_{}", whole.unit, first + k)];
+        return CutReading::Mean(vec![format!("{}.force_{}", whole.unit, first + k)]);
     }
-    let (section, top) = match sections[k].kind.as_str() {
-        "beam" | "span" | "cable" => (&sections[k + 1], false),
-        _ => (&sections[k], true),
+    let (lower, upper) = (&sections[k], &sections[k + 1]);
+    if let (Some(a), Some(b)) = (lower.end_stations[1], upper.end_stations[0]) {
+        return CutReading::Mean(vec![
+            format!("{}.force_{a}", lower.unit),
+            format!("{}.force_{b}", upper.unit),
+        ]);
+    }
+    let (section, top) = match lower.kind.as_str() {
+        "beam" | "span" | "cable" => (upper, false),
+        _ => (lower, true),
     };
-    end_force(section, top).map(|(_, p)| p).to_vec()
+    CutReading::Components(end_force(section, top).map(|(_, p)| p).to_vec())
 }
 
 /// The outputs to record for the quantities of `sections`.
@@ -80,7 +109,7 @@ pub fn signals(sections: &[SectionUnit], features: &Features) -> Vec<String> {
         }
     }
     for k in 0..features.cuts.len() {
-        signals.extend(cut_signals(sections, k));
+        signals.extend(cut_reading(sections, k).signals().iter().cloned());
     }
     signals
 }
@@ -167,12 +196,20 @@ pub fn series(
                 .iter()
                 .position(|c| c == cut)
                 .ok_or(format!("no quantity `{cut}`"))?;
-            let columns: Vec<&[f64]> = cut_signals(sections, k)
+            let reading = cut_reading(sections, k);
+            let columns: Vec<&[f64]> = reading
+                .signals()
                 .iter()
                 .map(|s| column(s))
                 .collect::<Result<_, String>>()?;
+            let n = columns.len() as f64;
             Ok((0..recorder.time.len())
-                .map(|i| columns.iter().map(|c| c[i] * c[i]).sum::<f64>().sqrt())
+                .map(|i| match reading {
+                    CutReading::Mean(_) => columns.iter().map(|c| c[i]).sum::<f64>() / n,
+                    CutReading::Components(_) => {
+                        columns.iter().map(|c| c[i] * c[i]).sum::<f64>().sqrt()
+                    }
+                })
                 .collect())
         }
     }
