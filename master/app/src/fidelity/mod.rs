@@ -409,6 +409,18 @@ fn section_kind(t: &Table) -> &str {
     }
 }
 
+/// The structure model's `stations` list (made empty when there is none).
+fn model_stations(structure_table: &mut Table) -> Result<&mut Vec<Value>, String> {
+    structure_table
+        .get_mut("model")
+        .and_then(Value::as_table_mut)
+        .ok_or("`structure.model`: expected a table")?
+        .entry("stations")
+        .or_insert_with(|| Value::Array(Vec::new()))
+        .as_array_mut()
+        .ok_or_else(|| "`structure.model.stations`: expected a list".to_owned())
+}
+
 /// Puts stations in the elements on both sides of every cut between two
 /// `nonlinear` sections (not FMUs: their outputs are fixed), just below the
 /// cut in the lower section and at the cut in the upper one (a section holds
@@ -421,15 +433,7 @@ fn add_end_stations(
 ) -> Result<Vec<[Option<usize>; 2]>, String> {
     let n = structure.sections.len();
     let mut ends = vec![[None, None]; n];
-    let model = structure_table
-        .get_mut("model")
-        .and_then(Value::as_table_mut)
-        .ok_or("`structure.model`: expected a table")?;
-    let stations = model
-        .entry("stations")
-        .or_insert_with(|| Value::Array(Vec::new()))
-        .as_array_mut()
-        .ok_or("`structure.model.stations`: expected a list")?;
+    let stations = model_stations(structure_table)?;
     let arc = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
     let mut count = vec![0usize; n];
     let section_of = |s: f64| structure.sections.iter().rposition(|(_, from)| *from <= s);
@@ -457,15 +461,7 @@ fn add_end_stations(
 /// Puts a station at each cut on the whole structure's model (the reference),
 /// after the model's own; returns the number of the first.
 fn add_cut_stations(structure_table: &mut Table, structure: &Structure) -> Result<usize, String> {
-    let model = structure_table
-        .get_mut("model")
-        .and_then(Value::as_table_mut)
-        .ok_or("`structure.model`: expected a table")?;
-    let stations = model
-        .entry("stations")
-        .or_insert_with(|| Value::Array(Vec::new()))
-        .as_array_mut()
-        .ok_or("`structure.model.stations`: expected a list")?;
+    let stations = model_stations(structure_table)?;
     let first = stations.len() + 1;
     stations.extend(
         structure
