@@ -1,7 +1,8 @@
 //! A section as an external FMU (issue 13): `fidelity = { kind = "fmu", file,
 //! ports }` puts an FMU in place of a section's unit, wired by the ports of the
 //! fidelity it names. The mooring line's lower section exported by slender and
-//! coupled back as an FMU gives the native run's results bit for bit.
+//! coupled back as an FMU gives the native run's results bit for bit, and so
+//! does the S-lay's suspended span as a `beam` about its chord (kind `chord`).
 
 use slender_fmi::export::ExportConfig;
 use slender_scene::Scene;
@@ -56,6 +57,46 @@ fn a_section_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
     assert_eq!(
         a.columns, b.columns,
         "the FMU section differs from the native one"
+    );
+    assert_eq!(a.counters.iterations, b.counters.iterations);
+}
+
+/// The S-lay fidelity example over 5 s, its suspended span's `fidelity` being
+/// `suspended`.
+fn slay(suspended: &str) -> String {
+    let text =
+        std::fs::read_to_string(root().join("examples/structure_slay_fidelity.toml")).unwrap();
+    text.replace("duration = 30.0", "duration = 5.0")
+        .replace("fidelity = \"beam\"", &format!("fidelity = {suspended}"))
+}
+
+#[test]
+fn a_chord_section_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let native_path = dir.path().join("native.toml");
+    std::fs::write(&native_path, slay("\"beam\"")).unwrap();
+    let native = Scene::load(&native_path).unwrap_or_else(|e| panic!("{e}"));
+    let config =
+        ExportConfig::from_scene(&native, "pipe_suspended").unwrap_or_else(|e| panic!("{e}"));
+    package(&config, &library(), &dir.path().join("span.fmu")).unwrap_or_else(|e| panic!("{e}"));
+    let fmu_path = dir.path().join("fmu.toml");
+    std::fs::write(
+        &fmu_path,
+        slay("{ kind = \"fmu\", file = \"span.fmu\", ports = \"beam\" }"),
+    )
+    .unwrap();
+    let with_fmu = Scene::load(&fmu_path).unwrap_or_else(|e| panic!("{e}"));
+    let (a, b) = (run(&native), run(&with_fmu));
+    assert!(
+        a.error.is_none() && b.error.is_none(),
+        "{:?} {:?}",
+        a.error,
+        b.error
+    );
+    assert_eq!(a.names, b.names);
+    assert_eq!(
+        a.columns, b.columns,
+        "the FMU chord differs from the native one"
     );
     assert_eq!(a.counters.iterations, b.counters.iterations);
 }
