@@ -18,22 +18,47 @@ fn mooring(lower: &str) -> String {
         .replace("fidelity = \"cable\"", &format!("fidelity = {lower}"))
 }
 
+/// Exports unit `unit` of the scene `native` (TOML) as `file` in `dir`, and
+/// loads it and the scene `with_fmu` (TOML naming that file in the unit's place).
+fn exported_in_place(
+    dir: &std::path::Path,
+    (native, unit, file): (&str, &str, &str),
+    with_fmu: &str,
+) -> (Scene, Scene) {
+    let native_path = dir.join("native.toml");
+    std::fs::write(&native_path, native).unwrap();
+    let native = Scene::load(&native_path).unwrap_or_else(|e| panic!("{e}"));
+    let config = ExportConfig::from_scene(&native, unit).unwrap_or_else(|e| panic!("{e}"));
+    package(&config, &library(), &dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
+    let fmu_path = dir.join("fmu.toml");
+    std::fs::write(&fmu_path, with_fmu).unwrap();
+    let with_fmu = Scene::load(&fmu_path).unwrap_or_else(|e| panic!("{e}"));
+    (native, with_fmu)
+}
+
+/// Runs both scenes and asserts the same outputs bit for bit and the same
+/// coupling iterations (`what` names the FMU's part in the message).
+fn assert_bit_identical(native: &Scene, with_fmu: &Scene, what: &str) {
+    let (a, b) = (run(native), run(with_fmu));
+    assert!(
+        a.error.is_none() && b.error.is_none(),
+        "{:?} {:?}",
+        a.error,
+        b.error
+    );
+    assert_eq!(a.names, b.names);
+    assert_eq!(a.columns, b.columns, "{what} differs from the native one");
+    assert_eq!(a.counters.iterations, b.counters.iterations);
+}
+
 #[test]
 fn a_section_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
     let dir = tempfile::tempdir().unwrap();
-    let native_path = dir.path().join("native.toml");
-    std::fs::write(&native_path, mooring("\"nonlinear\"")).unwrap();
-    let native = Scene::load(&native_path).unwrap_or_else(|e| panic!("{e}"));
-    let config = ExportConfig::from_scene(&native, "line_lower").unwrap_or_else(|e| panic!("{e}"));
-    package(&config, &library(), &dir.path().join("lower.fmu")).unwrap_or_else(|e| panic!("{e}"));
-
-    let fmu_path = dir.path().join("fmu.toml");
-    std::fs::write(
-        &fmu_path,
-        mooring("{ kind = \"fmu\", file = \"lower.fmu\", ports = \"nonlinear\" }"),
-    )
-    .unwrap();
-    let with_fmu = Scene::load(&fmu_path).unwrap_or_else(|e| panic!("{e}"));
+    let (native, with_fmu) = exported_in_place(
+        dir.path(),
+        (&mooring("\"nonlinear\""), "line_lower", "lower.fmu"),
+        &mooring("{ kind = \"fmu\", file = \"lower.fmu\", ports = \"nonlinear\" }"),
+    );
     let t: toml::Table = toml::from_str(with_fmu.source()).unwrap();
     let lower = t["units"]
         .as_array()
@@ -45,20 +70,7 @@ fn a_section_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
     assert_eq!(lower["kind"].as_str(), Some("fmu"));
     // The first guesses of its force inputs stay with it.
     assert!(lower["inputs"]["end_force_x_in"].as_float().is_some());
-
-    let (a, b) = (run(&native), run(&with_fmu));
-    assert!(
-        a.error.is_none() && b.error.is_none(),
-        "{:?} {:?}",
-        a.error,
-        b.error
-    );
-    assert_eq!(a.names, b.names);
-    assert_eq!(
-        a.columns, b.columns,
-        "the FMU section differs from the native one"
-    );
-    assert_eq!(a.counters.iterations, b.counters.iterations);
+    assert_bit_identical(&native, &with_fmu, "the FMU section");
 }
 
 /// The S-lay fidelity example over 5 s, its suspended span's `fidelity` being
@@ -73,32 +85,12 @@ fn slay(suspended: &str) -> String {
 #[test]
 fn a_chord_section_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
     let dir = tempfile::tempdir().unwrap();
-    let native_path = dir.path().join("native.toml");
-    std::fs::write(&native_path, slay("\"beam\"")).unwrap();
-    let native = Scene::load(&native_path).unwrap_or_else(|e| panic!("{e}"));
-    let config =
-        ExportConfig::from_scene(&native, "pipe_suspended").unwrap_or_else(|e| panic!("{e}"));
-    package(&config, &library(), &dir.path().join("span.fmu")).unwrap_or_else(|e| panic!("{e}"));
-    let fmu_path = dir.path().join("fmu.toml");
-    std::fs::write(
-        &fmu_path,
-        slay("{ kind = \"fmu\", file = \"span.fmu\", ports = \"beam\" }"),
-    )
-    .unwrap();
-    let with_fmu = Scene::load(&fmu_path).unwrap_or_else(|e| panic!("{e}"));
-    let (a, b) = (run(&native), run(&with_fmu));
-    assert!(
-        a.error.is_none() && b.error.is_none(),
-        "{:?} {:?}",
-        a.error,
-        b.error
+    let (native, with_fmu) = exported_in_place(
+        dir.path(),
+        (&slay("\"beam\""), "pipe_suspended", "span.fmu"),
+        &slay("{ kind = \"fmu\", file = \"span.fmu\", ports = \"beam\" }"),
     );
-    assert_eq!(a.names, b.names);
-    assert_eq!(
-        a.columns, b.columns,
-        "the FMU chord differs from the native one"
-    );
-    assert_eq!(a.counters.iterations, b.counters.iterations);
+    assert_bit_identical(&native, &with_fmu, "the FMU chord");
 }
 
 #[test]

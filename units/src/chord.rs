@@ -98,7 +98,6 @@ fn ten_hz() -> f64 {
 struct Frame {
     e: [f64; 2],
     n: [f64; 2],
-    length: f64,
 }
 
 impl Frame {
@@ -179,7 +178,6 @@ impl Chord {
         let frame = Frame {
             e,
             n: [-e[1], e[0]],
-            length,
         };
         let inner = inner_model(&params, length)?;
         let ports = inner_ports(&params, inner.description())?;
@@ -194,9 +192,14 @@ impl Chord {
         })
     }
 
-    /// The chord's length (m).
-    pub fn chord_length(&self) -> f64 {
-        self.frame.length
+    /// Each inner input ramps as its outer source does (the loads follow the
+    /// loaded end's force inputs, the motions the moving end's position).
+    fn inner_holds(&self, inputs: Inputs<'_>) -> [Hold; 4] {
+        let mut holds = [Hold::Ramp; 4];
+        for (k, &port) in self.ports.inputs.iter().enumerate() {
+            holds[port] = inputs.hold(if k < 2 { 0 } else { 3 });
+        }
+        holds
     }
 
     /// The loaded end sits at x = L of the inner model (else at x = 0).
@@ -445,18 +448,6 @@ impl Unit for Chord {
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
         self.inner.restore_state(slot)
-    }
-}
-
-impl Chord {
-    /// Each inner input ramps as its outer source does (the loads follow the
-    /// loaded end's force inputs, the motions the moving end's position).
-    fn inner_holds(&self, inputs: Inputs<'_>) -> [Hold; 4] {
-        let mut holds = [Hold::Ramp; 4];
-        for (k, &port) in self.ports.inputs.iter().enumerate() {
-            holds[port] = inputs.hold(if k < 2 { 0 } else { 3 });
-        }
-        holds
     }
 }
 

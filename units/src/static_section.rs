@@ -272,12 +272,6 @@ mod tests {
             assert!((o - e).abs() < 1e-12, "{out:?}");
         }
     }
-}
-
-#[cfg(test)]
-mod force_tests {
-    use super::*;
-    use crate::contract::Driver;
 
     #[test]
     fn a_loaded_end_moves_by_the_compliance_and_exerts_what_it_carries() {

@@ -117,9 +117,8 @@ fn orientation(
     let last = cuts.len() - 1;
     for (k, cut) in cuts.iter().enumerate() {
         let (below, above) = match cut.fidelity {
-            Fidelity::Cable => (Some(true), Some(true)),
+            Fidelity::Cable | Fidelity::Beam | Fidelity::Span => (Some(true), Some(true)),
             Fidelity::Reduced => (Some(false), Some(true)),
-            Fidelity::Beam | Fidelity::Span => (Some(true), Some(true)),
             Fidelity::Static if k == 0 && holding_static => (None, Some(true)),
             Fidelity::Static if k == 0 => {
                 for c in 0..last {
