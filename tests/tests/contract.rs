@@ -118,6 +118,13 @@ fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/truncation_substructured.toml", "load"),
         ),
         (
+            "signal",
+            inline(
+                "signal",
+                "quantity = \"rotation\"\noffset = 0.1\nsines = [{ amplitude = 0.01, angular_frequency = 2.0 }]\nfade_in = { shape = \"smoothstep\", time = 1.0 }\nsteps = [{ time = 0.5, size = 0.02 }]",
+            ),
+        ),
+        (
             "artefact",
             from_scene("examples/truncation_table2.toml", "sensor"),
         ),

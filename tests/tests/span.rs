@@ -494,6 +494,42 @@ fn order_14_function_pade_repaired_by_relocation_follows_the_exact_span() {
     assert!(high_order_pade_error(14) < 1e-2);
 }
 
+/// Through the study engine (signal units, the master's ramped inputs and substeps,
+/// the peak norm, an external reference run) the span study gives the errors the
+/// direct implementation gave before it (units stepped by hand,
+/// `tests/reference/span_study_direct.json`): to 2e-9 of the peak. (Inputs differ
+/// by rounding, t from integer nanoseconds; the FE's Newton tolerance then moves
+/// errors by about 1e-10 of the peak.)
+fn same_as_the_direct_implementation(report: &slender_app::span_study::StudyReport) {
+    let text = std::fs::read_to_string(
+        slender_tests::root().join("tests/reference/span_study_direct.json"),
+    )
+    .unwrap();
+    let direct: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let close = |a: f64, b: f64, what: &str| {
+        assert!((a - b).abs() <= 2e-9, "{what}: {a:.6e} now, {b:.6e} before");
+    };
+    let rows = direct["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), report.rows.len());
+    for d in rows {
+        let (model, size, substeps) = (
+            d["model"].as_str().unwrap(),
+            d["size"].as_u64().unwrap() as usize,
+            d["substeps"].as_u64().unwrap() as usize,
+        );
+        let r = report
+            .rows
+            .iter()
+            .find(|r| r.model == model && r.size == size && r.substeps == substeps)
+            .unwrap();
+        let what = format!("{model} {size} x {substeps}");
+        close(r.error_sines, d["error_sines"].as_f64().unwrap(), &what);
+        close(r.error_step, d["error_step"].as_f64().unwrap(), &what);
+    }
+    let halving = direct["halving_change_sines"].as_f64().unwrap();
+    close(report.reference.halving_change_sines, halving, "halving");
+}
+
 /// The accuracy half of `slender span study` (its cost half is in BENCHMARKS.md):
 /// against the continuum's response (FE 128 elements, 64 substeps), the function
 /// Pade span unit of order 12 is more accurate than every FE span that steps with
@@ -511,8 +547,13 @@ fn span_unit_beats_fe_spans_stepping_with_the_master_against_the_continuum() {
         duration: 30.0,
         step: 0.01,
     };
-    let report = study(&bode_span(5.0), &plan).unwrap();
+    let scenes = std::env::temp_dir().join(format!("slender-span-study-{}", std::process::id()));
+    let report = study(&bode_span(5.0), &plan, &scenes).unwrap();
     eprint!("{}", slender_app::span_study::to_markdown(&report));
+    same_as_the_direct_implementation(&report);
+    // The study's scenes are plain scenes, written where it was told.
+    assert!(scenes.join("span_sines.toml").exists() && scenes.join("reference_step.toml").exists());
+    std::fs::remove_dir_all(&scenes).ok();
     let row = |model: &str, size: usize, substeps: usize| {
         report
             .rows

@@ -463,7 +463,10 @@ fn exact_span_coupling_beats_fe_spans_stepping_with_the_master_against_the_conti
         duration: 4.0,
         step: 0.001,
     };
-    let report = coupling_study(&SPAN, &plan).unwrap();
+    let scenes =
+        std::env::temp_dir().join(format!("slender-coupling-study-{}", std::process::id()));
+    let report = coupling_study(&SPAN, &plan, &scenes).unwrap();
+    std::fs::remove_dir_all(&scenes).ok();
     eprint!("{}", to_markdown(&report));
     let row = |model: &str, size: usize| {
         report

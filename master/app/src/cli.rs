@@ -183,6 +183,15 @@ pub enum Command {
         /// Simulated time of each run (s); default: the scene's duration.
         #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,
+        /// A scene whose run is every run's reference (its indicators matched by
+        /// name), e.g. a fine FE model of what the studied scene approximates;
+        /// a sweep may then have one value.
+        #[arg(long)]
+        reference: Option<PathBuf>,
+        /// Units whose own stepping time is the cost (default: the whole run),
+        /// e.g. the model under study, not its driver or an in-run reference.
+        #[arg(long = "cost", value_delimiter = ',')]
+        cost_units: Vec<String>,
         /// Results folder (default: results/<scene name>-study).
         #[arg(long)]
         out: Option<PathBuf>,

@@ -8,15 +8,16 @@
 //! deflection has a kink at every sample, and the continuum answers a kink with an
 //! impulsive shear at the driven end.)
 
-use crate::span_study::{StudyError, cheapest_as_accurate, relative_error, respond};
+use crate::span_study::{
+    Drive, StudyError, StudyScene, UnitText, cheapest_as_accurate, number, sweep,
+};
+use crate::study::{self, Sweep};
 use serde::Serialize;
 use slender_units::UnitError;
 use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
 use slender_units::beam::{Beam, BeamParams};
-use slender_units::span::coupling::{
-    Discretization, Orientation, SpanCoupling, SpanCouplingParams,
-};
 use slender_units::span::transfer::Span;
+use std::path::{Path, PathBuf};
 
 /// The outputs compared, in the span unit's order for `upper_motion`.
 pub const OUTPUTS: [&str; 4] = [
@@ -52,8 +53,6 @@ pub fn fe_span(span: &Span, elements: usize, alpha: f64) -> Result<Beam, UnitErr
     Beam::new(p)
 }
 
-const FE_OUTPUTS: [usize; 4] = [2, 3, 4, 5];
-
 /// End history: a static part plus four sines (1.3 to 29 rad/s, inside the band)
 /// on every input, faded in smoothly over 2 s, at sizes typical of a pipe span end
 /// (1 cm, 1 mrad, 100 N m, 20 N).
@@ -62,7 +61,7 @@ pub fn motion(t: f64) -> [f64; 4] {
     let fade = x * x * x * (10.0 - 15.0 * x + 6.0 * x * x);
     let sines = |a: f64, phase: f64| {
         a * fade
-            * [(1.3, 0.0), (7.1, 1.0), (19.0, 2.0), (29.0, 0.5)]
+            * COMPONENTS
                 .iter()
                 .map(|(w, p)| (w * t + p + phase).sin())
                 .sum::<f64>()
@@ -74,6 +73,9 @@ pub fn motion(t: f64) -> [f64; 4] {
         -10.0 + sines(20.0, 1.1),
     ]
 }
+
+/// The end history's sines: angular frequency (rad/s) and phase (rad).
+const COMPONENTS: [(f64, f64); 4] = [(1.3, 0.0), (7.1, 1.0), (19.0, 2.0), (29.0, 0.5)];
 
 /// One model of the study.
 #[derive(Clone, Debug, Serialize)]
@@ -111,81 +113,262 @@ pub struct CouplingReport {
     pub rows: Vec<CouplingRow>,
 }
 
-fn errors(y: &[Vec<f64>], r: &[Vec<f64>]) -> [f64; 4] {
-    std::array::from_fn(|j| {
-        let column = |v: &[Vec<f64>]| v.iter().map(|x| x[j]).collect::<Vec<f64>>();
-        relative_error(&column(y), &column(r))
-    })
-}
-
 /// Runs the span unit (each order, exact and trapezoidal stepping) and the FE spans
-/// (each element count and substep count) and measures them against the reference.
-pub fn coupling_study(span: &Span, plan: &CouplingPlan) -> Result<CouplingReport, StudyError> {
+/// (each element count and substep count) and measures them against the reference,
+/// through the general study engine: the scenes go into `scenes`
+/// (`coupling_reference.toml`, stepped at a fraction of the step so the end history
+/// is evaluated at every substep; `coupling_span.toml`, `coupling_fe.toml`).
+pub fn coupling_study(
+    span: &Span,
+    plan: &CouplingPlan,
+    scenes: &Path,
+) -> Result<CouplingReport, StudyError> {
     span.validate()?;
-    let h = plan.step;
-    let steps = (plan.duration / h).round() as usize;
-    let sampled = |dt: f64, n: usize| -> Vec<Vec<f64>> {
-        (0..=n).map(|k| motion(k as f64 * dt).to_vec()).collect()
+    let [reference, span_scene, fe_scene] = write_scenes(span, plan, scenes)?;
+    let against = study::run_reference(&reference, None).map_err(StudyError::Plan)?;
+    let engine = |path: &Path, sweeps: Vec<Sweep>, cost: &str| {
+        let engine_plan = study::StudyPlan {
+            sweeps,
+            design: study::Design::Grid,
+            duration: None,
+            jobs: 1,
+            cost_units: if cost.is_empty() {
+                Vec::new()
+            } else {
+                vec![cost.into()]
+            },
+            reference: None,
+        };
+        study::run_study_against(path, &engine_plan, Some(&against), |_| {})
+            .map_err(StudyError::Plan)
     };
-    let samples = sampled(h, steps);
-    // The reference: the smooth history at every substep, read at every step.
-    let reference = |substeps: usize| -> Result<Vec<Vec<f64>>, StudyError> {
-        let dt = h / substeps as f64;
-        let mut fe = fe_span(span, plan.reference_elements, 0.0)?;
-        let (y, _) = respond(&mut fe, &FE_OUTPUTS, &sampled(dt, steps * substeps), dt, 1)?;
-        Ok(y.into_iter().skip(substeps - 1).step_by(substeps).collect())
-    };
-    let fine = reference(plan.reference_substeps)?;
-    let coarse = reference((plan.reference_substeps / 2).max(1))?;
-    let mut rows = Vec::new();
-    for (discretization, name) in [
-        (Discretization::Exact, "exact"),
-        (Discretization::Trapezoidal, "trapezoidal"),
-    ] {
-        for &order in &plan.orders {
-            let mut unit = SpanCoupling::new(SpanCouplingParams {
-                flexural_rigidity: span.flexural_rigidity,
-                mass_per_length: span.mass_per_length,
-                damping_per_length: span.damping_per_length,
-                length: span.length,
-                tension: span.tension,
-                orientation: Orientation::UpperMotion,
-                order,
-                band: 2.0 * std::f64::consts::PI * 10.0,
-                discretization,
-                alpha: 0.0,
-            })?;
-            let (y, wall) = respond(&mut unit, &[0, 1, 2, 3], &samples, h, 1)?;
-            rows.push(CouplingRow {
-                model: name.into(),
-                size: order,
-                substeps: 1,
-                errors: errors(&y, &fine),
-                cost_per_simulated_second: wall / plan.duration,
-            });
-        }
-    }
-    for &substeps in &plan.fe_substeps {
-        for &n in &plan.elements {
-            let mut fe = fe_span(span, n, 0.0)?;
-            let (y, wall) = respond(&mut fe, &FE_OUTPUTS, &samples, h, substeps)?;
-            rows.push(CouplingRow {
-                model: "fe".into(),
-                size: n,
-                substeps,
-                errors: errors(&y, &fine),
-                cost_per_simulated_second: wall / plan.duration,
-            });
-        }
-    }
+    let counts = |v: &[usize]| v.iter().map(|&n| n as i64).collect::<Vec<i64>>();
+    let span_rows = engine(
+        &span_scene,
+        vec![
+            sweep(
+                "units.span.parameters.discretization",
+                &["exact", "trapezoidal"],
+            )?,
+            sweep("units.span.parameters.order", &counts(&plan.orders))?,
+        ],
+        "span",
+    )?;
+    let fe_rows = engine(
+        &fe_scene,
+        vec![
+            sweep("units.fe.substeps", &counts(&plan.fe_substeps))?,
+            sweep("units.fe.parameters.elements", &counts(&plan.elements))?,
+        ],
+        "fe",
+    )?;
+    let coarse = plan.step / (plan.reference_substeps / 2).max(1) as f64;
+    let halving = engine(&reference, vec![sweep("simulation.step", &[coarse])?], "")?;
+    let mut rows = span_rows
+        .iter()
+        .chain(&fe_rows)
+        .map(coupling_row)
+        .collect::<Result<Vec<_>, _>>()?;
+    rows.sort_by_key(|r| {
+        let fe = r.model == "fe";
+        (fe, r.substeps, if fe { r.size } else { 0 })
+    });
     Ok(CouplingReport {
-        step: h,
+        step: plan.step,
         duration: plan.duration,
         reference_elements: plan.reference_elements,
         reference_substeps: plan.reference_substeps,
-        reference_halving_change: errors(&coarse, &fine),
+        reference_halving_change: halving.first().map_or([f64::NAN; 4], errors_of),
         rows,
     })
+}
+
+/// A report row from the engine's row of a span unit (its discretisation and
+/// order varied) or of an FE span (substeps and elements); a failed run fails
+/// the study, as a unit error did before.
+fn coupling_row(r: &study::StudyRow) -> Result<CouplingRow, StudyError> {
+    if let Some(e) = &r.error {
+        return Err(StudyError::Plan(format!("{:?}: {e}", r.settings)));
+    }
+    let value = |i: usize| {
+        r.settings
+            .get(i)
+            .map(|(_, v)| v.clone())
+            .unwrap_or_default()
+    };
+    let count = |i| value(i).parse::<usize>().unwrap_or(0);
+    let is_fe = r
+        .settings
+        .first()
+        .is_some_and(|(k, _)| k.ends_with("substeps"));
+    let (model, substeps) = if is_fe {
+        ("fe".into(), count(0))
+    } else {
+        (value(0), 1)
+    };
+    Ok(CouplingRow {
+        model,
+        size: count(1),
+        substeps,
+        errors: errors_of(r),
+        cost_per_simulated_second: r.cost_per_simulated_second,
+    })
+}
+
+/// Writes the study's three scenes into `scenes`: reference, span unit, FE span.
+fn write_scenes(
+    span: &Span,
+    plan: &CouplingPlan,
+    scenes: &Path,
+) -> Result<[PathBuf; 3], StudyError> {
+    span.validate()?;
+    std::fs::create_dir_all(scenes)
+        .map_err(|e| StudyError::Plan(format!("{}: {e}", scenes.display())))?;
+    let write = |stem: &str, step: f64, model: UnitText, ports: &[&'static str; 8]| {
+        let drives = drives(ports);
+        let indicators: Vec<(&'static str, &'static str)> = INDICATORS
+            .iter()
+            .copied()
+            .zip(ports[4..].iter().copied())
+            .collect();
+        let path = scenes.join(format!("coupling_{stem}.toml"));
+        let text = StudyScene {
+            title: format!("Span coupling study: {stem}"),
+            duration: plan.duration,
+            step,
+            drives: &drives,
+            model,
+            indicators: &indicators,
+        }
+        .text();
+        std::fs::write(&path, text)
+            .map_err(|e| StudyError::Plan(format!("{}: {e}", path.display())))?;
+        Ok::<_, StudyError>(path)
+    };
+    let fine = plan.step / plan.reference_substeps as f64;
+    let reference = write(
+        "reference",
+        fine,
+        fe_unit(span, "reference", plan.reference_elements, 1),
+        &FE_PORTS,
+    )?;
+    let span_scene = write("span", plan.step, span_unit(span), &SPAN_PORTS)?;
+    let fe_scene = write("fe", plan.step, fe_unit(span, "fe", 8, 1), &FE_PORTS)?;
+    Ok([reference, span_scene, fe_scene])
+}
+
+/// The four compared outputs' names as indicators, in [`OUTPUTS`]' order.
+const INDICATORS: [&str; 4] = [
+    "upper_moment",
+    "upper_shear",
+    "lower_deflection",
+    "lower_rotation",
+];
+
+/// The span unit's four driven inputs and four compared outputs.
+const SPAN_PORTS: [&str; 8] = [
+    "upper_deflection",
+    "upper_rotation",
+    "lower_moment",
+    "lower_shear",
+    "upper_moment",
+    "upper_shear",
+    "lower_deflection",
+    "lower_rotation",
+];
+
+/// The FE span's, in the same order.
+const FE_PORTS: [&str; 8] = [
+    "left_deflection",
+    "left_rotation",
+    "right_moment",
+    "right_shear",
+    "left_moment",
+    "left_shear",
+    "right_deflection",
+    "right_rotation",
+];
+
+/// A row's four errors, in [`OUTPUTS`]' order.
+fn errors_of(row: &study::StudyRow) -> [f64; 4] {
+    std::array::from_fn(|j| row.errors.get(j).map_or(f64::NAN, |e| e.1))
+}
+
+/// The end history of [`motion`] as four `signal` units driving `ports[..4]`.
+fn drives(ports: &[&'static str; 8]) -> Vec<Drive> {
+    let channels = [
+        ("upper_deflection", "displacement", 0.01, 0.01, 0.0),
+        ("upper_rotation", "rotation", 0.002, 0.001, 0.3),
+        ("lower_moment", "moment", 50.0, 100.0, 0.7),
+        ("lower_shear", "force", -10.0, 20.0, 1.1),
+    ];
+    channels
+        .iter()
+        .zip(ports)
+        .map(|(&(name, quantity, offset, amplitude, phase), &to)| {
+            let sines: Vec<String> = COMPONENTS
+                .iter()
+                .map(|(w, p)| {
+                    format!(
+                        "{{ amplitude = {}, angular_frequency = {}, phase = {} }}",
+                        number(amplitude),
+                        number(*w),
+                        number(p + phase)
+                    )
+                })
+                .collect();
+            Drive {
+                name,
+                quantity,
+                parameters: format!(
+                    "offset = {}\nsines = [{}]\nfade_in = {{ shape = \"smoothstep\", time = 2.0 }}\n",
+                    number(offset),
+                    sines.join(", ")
+                ),
+                to,
+            }
+        })
+        .collect()
+}
+
+/// The span unit as a scene writes it (discretisation and order are varied).
+fn span_unit(span: &Span) -> UnitText {
+    UnitText {
+        name: "span",
+        kind: "span_coupling",
+        substeps: 1,
+        parameters: format!(
+            "flexural_rigidity = {}\nmass_per_length = {}\ndamping_per_length = {}\nlength = {}\ntension = {}\norientation = \"upper_motion\"\nband = {}\nalpha = 0.0\n",
+            number(span.flexural_rigidity),
+            number(span.mass_per_length),
+            number(span.damping_per_length),
+            number(span.length),
+            number(span.tension),
+            number(2.0 * std::f64::consts::PI * 10.0)
+        ),
+    }
+}
+
+/// The FE span of [`fe_span`] (trapezoidal rule) as a scene writes it.
+fn fe_unit(span: &Span, name: &'static str, elements: usize, substeps: usize) -> UnitText {
+    let input = |q: &str| format!("{{ quantity = \"{q}\", value = \"input\" }}");
+    UnitText {
+        name,
+        kind: "beam",
+        substeps,
+        parameters: format!(
+            "length = {}\nelements = {elements}\nflexural_rigidity = {}\nmass_per_length = {}\ndamping_per_length = {}\ntension = {}\nstatic_start = true\nalpha = 0.0\nboundary.left = [{}, {}]\nboundary.right = [{}, {}]\n",
+            number(span.length),
+            number(span.flexural_rigidity),
+            number(span.mass_per_length),
+            number(span.damping_per_length),
+            number(span.tension),
+            input("deflection"),
+            input("rotation"),
+            input("moment"),
+            input("shear")
+        ),
+    }
 }
 
 /// For a span-unit row: the cheapest FE span at least as accurate on the outputs

@@ -4,8 +4,11 @@
 //! Both come from `S = sum_i int (x_i - r_i)^2 dt / int r_i^2 dt` over the
 //! components i: `phi = -1/2 log10 S` (infinite when identical) and
 //! `epsilon = sqrt(S)`. Integrals use the trapezoidal rule on the recorded times.
+//! Under the `peak` norm epsilon is instead the largest difference relative to the
+//! reference's peak (the worst component), and phi = -log10 epsilon alike.
 
 use serde::Serialize;
+use slender_scene::spec::Norm;
 
 /// One indicator's value.
 #[derive(Clone, Debug, Serialize)]
@@ -45,6 +48,35 @@ pub fn indicator(name: &str, s: f64) -> Indicator {
     }
 }
 
+/// The indicator called `name` of signals `x` against references `r` (same times,
+/// one column each) under `norm`.
+pub fn measure(name: &str, norm: Norm, time: &[f64], x: &[&[f64]], r: &[&[f64]]) -> Indicator {
+    match norm {
+        Norm::Rms => indicator(name, normalized_error(time, x, r)),
+        Norm::Peak => {
+            let e = x
+                .iter()
+                .zip(r)
+                .map(|(x, r)| peak_error(x, r))
+                .fold(0.0f64, f64::max);
+            Indicator {
+                name: name.to_owned(),
+                fidelity: -e.log10(),
+                relative_error: e,
+            }
+        }
+    }
+}
+
+/// Largest |x - r| relative to the largest |r|.
+pub fn peak_error(x: &[f64], r: &[f64]) -> f64 {
+    let peak = r.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
+    x.iter()
+        .zip(r)
+        .fold(0.0f64, |a, (x, r)| a.max((x - r).abs()))
+        / peak
+}
+
 /// Linear interpolation of (time, values) at `t` (clamped at the ends).
 pub fn interpolate(time: &[f64], values: &[f64], t: f64) -> f64 {
     let i = time.partition_point(|&s| s <= t);
@@ -72,5 +104,16 @@ mod tests {
         assert!((i.relative_error - 0.1).abs() < 1e-12);
         assert!((i.fidelity - 1.0).abs() < 1e-12);
         assert_eq!(interpolate(&t, &r, 0.005), 0.5 * (r[0] + r[1]));
+    }
+
+    #[test]
+    fn the_peak_norm_takes_the_worst_component_relative_to_its_peak() {
+        let t = [0.0, 1.0, 2.0];
+        let (r1, x1) = ([1.0, -4.0, 2.0], [1.0, -3.0, 2.0]);
+        // 1 of 4 in the first component; 0.15 of 0.5 in the second, the worst.
+        let (r2, x2) = ([0.5, 0.5, 0.5], [0.5, 0.65, 0.5]);
+        let i = measure("p", Norm::Peak, &t, &[&x1, &x2], &[&r1, &r2]);
+        assert!((i.relative_error - 0.3).abs() < 1e-15);
+        assert!((i.fidelity + 0.3f64.log10()).abs() < 1e-15);
     }
 }

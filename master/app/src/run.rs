@@ -155,8 +155,13 @@ fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indi
                     .collect::<Option<Vec<_>>>()
             };
             let (x, r) = (cols(&spec.signals)?, cols(&spec.reference)?);
-            let s = crate::indicators::normalized_error(&recorder.time, &x, &r);
-            Some(crate::indicators::indicator(&spec.name, s))
+            Some(crate::indicators::measure(
+                &spec.name,
+                spec.norm,
+                &recorder.time,
+                &x,
+                &r,
+            ))
         })
         .collect()
 }

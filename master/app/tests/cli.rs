@@ -297,36 +297,6 @@ fn uq_shards_merged_give_the_local_files_byte_for_byte() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
-#[test]
-fn span_bode_and_study_write_their_figures() {
-    let dir = std::env::temp_dir().join(format!("slender-cli-span-{}", std::process::id()));
-    let d = dir.to_str().unwrap();
-    let out = slender(&["span", "bode", "--out", d]);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    assert!(dir.join("bode.svg").exists());
-    let out = slender(&[
-        "span",
-        "study",
-        "--duration",
-        "10",
-        "--reference-elements",
-        "32",
-        "--out",
-        d,
-    ]);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let table = text(&out.stdout);
-    assert!(
-        table.contains("| function_pade | 8 |") && table.contains("| fe | 64 |"),
-        "{table}"
-    );
-    assert!(dir.join("accuracy_cost.svg").exists() && dir.join("span_study.json").exists());
-    let out = slender(&["span", "bode", "--flexural-rigidity=-1", "--out", d]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("flexural_rigidity"));
-    std::fs::remove_dir_all(dir).unwrap();
-}
-
 // `slender study` as the one study engine (issue 13): any scene key by its path,
 // one at a time or as a grid, in parallel with results independent of the job
 // count, the observed order of convergence for steps and element counts.

@@ -16,6 +16,7 @@ use slender_units::reduced::unit::{ReducedParams, ReducedUnit};
 use slender_units::signal::artefact::{Artefact, ArtefactParams};
 use slender_units::signal::characteristic_load::{CharacteristicLoad, CharacteristicLoadParams};
 use slender_units::signal::compensation::{Compensation, CompensationParams};
+use slender_units::signal::source::{Signal, SignalParams};
 use slender_units::span::coupling::{SpanCoupling, SpanCouplingParams};
 use slender_units::span::unit::{SpanParams, SpanUnit};
 use slender_units::static_section::{StaticSection, StaticSectionParams};
@@ -134,6 +135,13 @@ pub const KINDS: &[Kind] = &[
         summary: "seed 000 top load: static tension + low- and wave-frequency sweeps (source, outputs force_x, force_z)",
         effects: &[],
         build: |p, _| Ok(Box::new(CharacteristicLoad::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "signal",
+        parameters: field_names::<SignalParams>,
+        summary: "a prescribed signal (source, output value of a chosen quantity): offset, sines faded in, steps; drives the unit a study measures",
+        effects: &[],
+        build: |p, _| Ok(Box::new(Signal::new(parameters(p)?)?)),
     },
     Kind {
         name: "artefact",

@@ -178,6 +178,21 @@ pub struct IndicatorSpec {
     /// Recorded reference signals, one per signal (or none).
     #[serde(default)]
     pub reference: Vec<String>,
+    /// How a signal's difference from its reference is measured (default `rms`).
+    #[serde(default)]
+    pub norm: Norm,
+}
+
+/// The measure of an indicator's error.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Norm {
+    /// Seed 000's epsilon: sqrt(sum_i int (x_i - r_i)^2 dt / int r_i^2 dt).
+    #[default]
+    Rms,
+    /// The largest |x_i - r_i| relative to the largest |r_i|, the worst component
+    /// (seed 004 ch. 5's span studies).
+    Peak,
 }
 
 fn every_step() -> u32 {

@@ -1,9 +1,10 @@
-//! Signal units: sources of prescribed loads, the artefacts a control system
+//! Signal units: sources of prescribed loads and motions, the artefacts a control system
 //! puts on coupled signals, and the compensation of an actuator's delay.
 
 pub mod artefact;
 pub mod characteristic_load;
 pub mod compensation;
+pub mod source;
 
 use crate::contract::{Port, PortKind, UnitError};
 

@@ -62,6 +62,8 @@ fn studies(command: Command) -> Result<(), CliError> {
             grid,
             jobs,
             duration,
+            reference,
+            cost_units,
             out,
         } => {
             let plan = slender_app::study::StudyPlan {
@@ -69,6 +71,8 @@ fn studies(command: Command) -> Result<(), CliError> {
                 design: design(grid),
                 duration,
                 jobs: jobs_or_cores(jobs),
+                cost_units,
+                reference,
             };
             analysis::study(&scene, &plan, out)
         }

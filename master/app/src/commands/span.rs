@@ -111,7 +111,7 @@ fn bode(span: &Span, order: usize, elements: usize, out: &Path) -> Result<Vec<Pa
 }
 
 fn siso_study(span: &Span, plan: &StudyPlan, out: &Path) -> Result<Vec<PathBuf>, String> {
-    let report = span_study::study(span, plan).map_err(|e| e.to_string())?;
+    let report = span_study::study(span, plan, &out.join("scenes")).map_err(|e| e.to_string())?;
     let points: Vec<(String, f64, f64)> = report
         .rows
         .iter()
@@ -127,7 +127,8 @@ fn siso_study(span: &Span, plan: &StudyPlan, out: &Path) -> Result<Vec<PathBuf>,
 }
 
 fn coupling(span: &Span, plan: &StudyPlan, out: &Path) -> Result<Vec<PathBuf>, String> {
-    let report = coupling_study::coupling_study(span, plan).map_err(|e| e.to_string())?;
+    let report = coupling_study::coupling_study(span, plan, &out.join("scenes"))
+        .map_err(|e| e.to_string())?;
     let points: Vec<(String, f64, f64)> = report
         .rows
         .iter()

@@ -2,19 +2,22 @@
 //! Appendix B's short names), one key at a time around the scene or as a grid of
 //! every combination, run the runs in parallel, and report the relative error of
 //! the indicator signals against the reference run (eqs. 10-11: the finest value
-//! of a step, tolerance or element count, else the first value given), the
-//! observed order of convergence where the key is a step or an element count,
-//! iterations per step and cost per simulated second.
+//! of a step, tolerance or element count, else the first value given; or the run
+//! of another scene, its indicators matched by name), the observed order of
+//! convergence where the key is a step or an element count, iterations per step
+//! and cost per simulated second (of the whole run, or of chosen units). An
+//! indicator with reference signals of its own is measured inside each run.
 
 pub mod report;
 pub mod setting;
 
-use crate::indicators::{indicator, interpolate};
+use crate::indicators::interpolate;
 use crate::run::{RunOptions, run_scene};
 use serde::Serialize;
 use setting::{Refinement, Setting, label, numeric, parse_value};
 use slender_scene::Scene;
-use std::path::Path;
+use slender_scene::spec::Norm;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 pub use report::{to_csv, to_markdown};
@@ -38,9 +41,6 @@ impl FromStr for Sweep {
         })?;
         let setting: Setting = name.parse()?;
         let values: Vec<toml::Value> = list.split(',').map(parse_value).collect();
-        if values.len() < 2 {
-            return Err(format!("`{s}`: a sweep needs at least two values"));
-        }
         if let Some(twice) = values
             .iter()
             .enumerate()
@@ -109,6 +109,12 @@ pub struct StudyPlan {
     pub duration: Option<f64>,
     /// Runs at once (1: one after the other).
     pub jobs: usize,
+    /// Units whose own stepping time is the cost (their `do_step`, inputs and
+    /// outputs); empty: the whole run's wall time.
+    pub cost_units: Vec<String>,
+    /// Another scene whose run is the reference of every run (its indicators
+    /// matched by name, run for `duration` too); none: each group's reference run.
+    pub reference: Option<PathBuf>,
 }
 
 /// One run of a study.
@@ -136,19 +142,77 @@ pub struct StudyRow {
 struct Outcome {
     time: Vec<f64>,
     columns: Vec<IndicatorColumns>,
+    /// The indicators measured inside the run (against reference signals of its own).
+    own: Vec<crate::indicators::Indicator>,
     iterations_per_step: f64,
     cost: f64,
     error: Option<String>,
 }
 
+/// An indicator as a study judges it.
+struct Judged {
+    name: String,
+    norm: Norm,
+    /// Against reference signals inside the run.
+    in_run: bool,
+}
+
 /// Runs the plan on the scene at `path` and reports one row per run, grouped and
 /// sorted by value. A run that cannot be set up or fails is a row with its error
 /// and the study goes on; `Err` when the study cannot start (the scene does not
-/// load, has no indicators, a key does not apply to it, or `duration` does not
-/// fit its step). Rows do not depend on `jobs`.
+/// load, has no indicators, a key or cost unit does not apply to it, `duration`
+/// does not fit its step, or the reference scene lacks an indicator or fails).
+/// Rows do not depend on `jobs`.
 pub fn run_study(
     path: &Path,
     plan: &StudyPlan,
+    progress: impl Fn(&StudyRow) + Sync,
+) -> Result<Vec<StudyRow>, String> {
+    let reference = match &plan.reference {
+        Some(r) => Some(run_reference(r, plan.duration)?),
+        None => None,
+    };
+    run_study_against(path, plan, reference.as_ref(), progress)
+}
+
+/// The run of a reference scene, to measure several studies against (see
+/// [`StudyPlan::reference`]).
+pub struct ReferenceRun {
+    path: PathBuf,
+    indicators: Vec<String>,
+    outcome: Outcome,
+}
+
+/// Runs the reference scene at `path` (for `duration` when given); `Err` when it
+/// does not load or its run fails.
+pub fn run_reference(path: &Path, duration: Option<f64>) -> Result<ReferenceRun, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let table: toml::Table =
+        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let scene = scene_with(path, &table, duration)?;
+    let outcome = outcome_of(&scene, &[]);
+    if let Some(e) = &outcome.error {
+        return Err(format!("reference {}: {e}", path.display()));
+    }
+    Ok(ReferenceRun {
+        path: path.to_owned(),
+        indicators: scene
+            .spec
+            .output
+            .indicators
+            .iter()
+            .map(|i| i.name.clone())
+            .collect(),
+        outcome,
+    })
+}
+
+/// [`run_study`] with its reference run given (`plan.reference` is then not
+/// read): every run against `reference`, or against its group's reference run.
+pub fn run_study_against(
+    path: &Path,
+    plan: &StudyPlan,
+    reference: Option<&ReferenceRun>,
     progress: impl Fn(&StudyRow) + Sync,
 ) -> Result<Vec<StudyRow>, String> {
     let base = Scene::load(path).map_err(|e| e.to_string())?;
@@ -161,33 +225,41 @@ pub fn run_study(
     // The scene as written (a `[structure]` still a structure, so its keys vary).
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let table: toml::Table = toml::from_str(&text).map_err(|e| e.to_string())?;
-    let indicators: Vec<String> = base
+    let judged: Vec<Judged> = base
         .spec
         .output
         .indicators
         .iter()
-        .map(|i| i.name.clone())
+        .map(|i| Judged {
+            name: i.name.clone(),
+            norm: i.norm,
+            in_run: !i.reference.is_empty(),
+        })
         .collect();
-    // A key that does not apply (a typo, a unit that is not there) is bad input.
-    for sweep in &plan.sweeps {
-        let mut probe = table.clone();
-        sweep
-            .setting
-            .apply(&mut probe, sweep.reference())
-            .map_err(|e| format!("{}: {e}", sweep.setting))?;
-        scene_with(path, &probe, plan.duration)
-            .map_err(|e| format!("{} = {}: {e}", sweep.setting, label(sweep.reference())))?;
+    check_plan(path, &base, &table, plan, reference.is_some())?;
+    if let Some(r) = reference {
+        if let Some(j) = judged
+            .iter()
+            .find(|j| !j.in_run && !r.indicators.contains(&j.name))
+        {
+            return Err(format!(
+                "reference {}: no indicator `{}` to compare the study's with",
+                r.path.display(),
+                j.name
+            ));
+        }
     }
+    let external = reference.map(|r| &r.outcome);
     let groups = groups(plan);
     let all: Vec<&Vec<Assignment>> = groups.iter().flat_map(|(_, runs)| runs).collect();
     let order = costliest_first(&all);
     let mut outcomes = crate::parallel::run_all(&all, &order, plan.jobs, |assignments| {
-        run_one(path, &table, assignments, plan.duration, &indicators)
+        run_one(path, &table, assignments, plan, &judged)
     });
     let mut rows = Vec::new();
     for (group, runs) in &groups {
         let rest = outcomes.split_off(runs.len());
-        let mut group_rows = rows_of(group, runs, &outcomes, &indicators);
+        let mut group_rows = rows_of(group, runs, &outcomes, external, &judged);
         outcomes = rest;
         for r in &group_rows {
             progress(r);
@@ -196,6 +268,42 @@ pub fn run_study(
         rows.extend(group_rows);
     }
     Ok(rows)
+}
+
+/// Refuses what does not apply to the scene: a key (a typo, a unit that is not
+/// there), a cost unit it does not have, a sweep of one value with no reference
+/// scene to compare it with.
+fn check_plan(
+    path: &Path,
+    base: &Scene,
+    table: &toml::Table,
+    plan: &StudyPlan,
+    has_reference: bool,
+) -> Result<(), String> {
+    for name in &plan.cost_units {
+        if !base.spec.units.iter().any(|u| u.name.get_ref() == name) {
+            return Err(format!(
+                "cost unit `{name}`: {} has no unit of that name",
+                path.display()
+            ));
+        }
+    }
+    for sweep in &plan.sweeps {
+        if sweep.values.len() < 2 && !has_reference {
+            return Err(format!(
+                "{}: a sweep needs at least two values (or a reference scene)",
+                sweep.setting
+            ));
+        }
+        let mut probe = table.clone();
+        sweep
+            .setting
+            .apply(&mut probe, sweep.reference())
+            .map_err(|e| format!("{}: {e}", sweep.setting))?;
+        scene_with(path, &probe, plan.duration)
+            .map_err(|e| format!("{} = {}: {e}", sweep.setting, label(sweep.reference())))?;
+    }
+    Ok(())
 }
 
 /// A varied key with its value.
@@ -274,70 +382,116 @@ fn run_one(
     path: &Path,
     table: &toml::Table,
     assignments: &[Assignment],
-    duration: Option<f64>,
-    indicators: &[String],
+    plan: &StudyPlan,
+    judged: &[Judged],
 ) -> Outcome {
-    let failed = |error: String| Outcome {
-        time: Vec::new(),
-        columns: indicators.iter().map(|n| (n.clone(), Vec::new())).collect(),
-        iterations_per_step: f64::NAN,
-        cost: f64::NAN,
-        error: Some(error),
-    };
     let mut table = table.clone();
     for (setting, value) in assignments {
         if let Err(e) = setting.apply(&mut table, value) {
-            return failed(e);
+            return failed(judged, e);
         }
     }
-    let scene = match scene_with(path, &table, duration) {
-        Ok(s) => s,
+    match scene_with(path, &table, plan.duration) {
+        Ok(scene) => outcome_of(&scene, &plan.cost_units),
         Err(e) => {
             let with: Vec<String> = assignments
                 .iter()
                 .map(|(s, v)| format!("{s} = {}", label(v)))
                 .collect();
             // Line numbers refer to the scene as the study rewrote it.
-            return failed(format!("with {}: {e}", with.join(", ")));
+            failed(judged, format!("with {}: {e}", with.join(", ")))
         }
-    };
+    }
+}
+
+/// The outcome of a run that could not be set up.
+fn failed(judged: &[Judged], error: String) -> Outcome {
+    Outcome {
+        time: Vec::new(),
+        columns: judged
+            .iter()
+            .map(|j| (j.name.clone(), Vec::new()))
+            .collect(),
+        own: Vec::new(),
+        iterations_per_step: f64::NAN,
+        cost: f64::NAN,
+        error: Some(error),
+    }
+}
+
+/// Runs `scene`; its cost is that of `cost_units` when given, else the run's.
+fn outcome_of(scene: &Scene, cost_units: &[String]) -> Outcome {
     let options = RunOptions {
         output_dir: None,
         progress: false,
         realtime: false,
     };
-    match run_scene(&scene, &options) {
-        Ok(result) => Outcome {
-            columns: indicator_columns(&scene, &result.recorder),
-            time: result.recorder.time.clone(),
-            iterations_per_step: result.summary.counters.mean_iterations(),
-            cost: result.summary.cost_per_simulated_second,
-            error: result.summary.error.clone(),
+    match run_scene(scene, &options) {
+        Ok(result) => {
+            let s = &result.summary;
+            let cost = if cost_units.is_empty() {
+                s.cost_per_simulated_second
+            } else {
+                let time: f64 = s
+                    .counters
+                    .units
+                    .iter()
+                    .filter(|u| cost_units.contains(&u.name))
+                    .map(|u| u.step_time_s)
+                    .sum();
+                time / s.simulated_s
+            };
+            Outcome {
+                columns: indicator_columns(scene, &result.recorder),
+                time: result.recorder.time.clone(),
+                own: s.indicators.clone(),
+                iterations_per_step: s.counters.mean_iterations(),
+                cost,
+                error: s.error.clone(),
+            }
+        }
+        Err(e) => Outcome {
+            error: Some(e.to_string()),
+            ..failed(&[], String::new())
         },
-        Err(e) => failed(e.to_string()),
     }
 }
 
-/// Rows of a group: errors against its first run (the reference) and orders.
+/// Rows of a group: errors against the reference scene's run, else against the
+/// group's first run (its reference); indicators with reference signals of their
+/// own as the run measured them; and orders.
 fn rows_of(
     group: &str,
     runs: &[Vec<Assignment>],
     outcomes: &[Outcome],
-    indicators: &[String],
+    external: Option<&Outcome>,
+    judged: &[Judged],
 ) -> Vec<StudyRow> {
-    let reference = &outcomes[0];
+    let reference = external.unwrap_or(&outcomes[0]);
     let mut rows: Vec<StudyRow> = runs
         .iter()
         .zip(outcomes)
         .enumerate()
         .map(|(k, (assignments, o))| {
-            let errors = if o.error.is_some() && o.time.is_empty() {
-                indicators.iter().map(|n| (n.clone(), f64::NAN)).collect()
-            } else if k == 0 {
-                indicators.iter().map(|n| (n.clone(), 0.0)).collect()
-            } else {
-                relative_errors(&o.time, &o.columns, &reference.time, &reference.columns)
-            };
+            let is_reference = k == 0 && external.is_none();
+            let errors = judged
+                .iter()
+                .map(|j| {
+                    let e = if o.error.is_some() && o.time.is_empty() {
+                        f64::NAN
+                    } else if j.in_run {
+                        o.own
+                            .iter()
+                            .find(|i| i.name == j.name)
+                            .map_or(f64::NAN, |i| i.relative_error)
+                    } else if is_reference {
+                        0.0
+                    } else {
+                        relative_error(j, o, reference)
+                    };
+                    (j.name.clone(), e)
+                })
+                .collect();
             StudyRow {
                 group: group.to_owned(),
                 settings: assignments
@@ -345,9 +499,9 @@ fn rows_of(
                     .map(|(s, v)| (s.to_string(), label(v)))
                     .collect(),
                 value: numeric(&assignments[0].1).unwrap_or(f64::NAN),
-                reference: k == 0,
+                reference: is_reference,
                 errors,
-                orders: indicators.iter().map(|n| (n.clone(), f64::NAN)).collect(),
+                orders: judged.iter().map(|j| (j.name.clone(), f64::NAN)).collect(),
                 iterations_per_step: o.iterations_per_step,
                 cost_per_simulated_second: o.cost,
                 error: o.error.clone(),
@@ -401,29 +555,32 @@ fn indicator_columns(scene: &Scene, rec: &crate::record::Recorder) -> Vec<Indica
         .collect()
 }
 
-/// epsilon of each indicator: the run's signals against the reference run's,
-/// interpolated at the run's recorded times.
-fn relative_errors(
-    time: &[f64],
-    columns: &[IndicatorColumns],
-    ref_time: &[f64],
-    reference: &[IndicatorColumns],
-) -> Vec<(String, f64)> {
-    columns
+/// epsilon of indicator `j` under its norm: the run's signals against the
+/// reference run's of the same indicator name, interpolated at the run's
+/// recorded times (NaN when the reference recorded nothing).
+fn relative_error(j: &Judged, run: &Outcome, reference: &Outcome) -> f64 {
+    let columns = |o: &Outcome| {
+        o.columns
+            .iter()
+            .find(|(name, _)| *name == j.name)
+            .map(|(_, cols)| cols.clone())
+    };
+    let (Some(cols), Some(ref_cols)) = (columns(run), columns(reference)) else {
+        return f64::NAN;
+    };
+    if reference.time.is_empty() || cols.len() != ref_cols.len() {
+        return f64::NAN;
+    }
+    let time = &run.time;
+    let resampled: Vec<Vec<f64>> = ref_cols
         .iter()
-        .zip(reference)
-        .map(|((name, cols), (_, ref_cols))| {
-            if ref_time.is_empty() {
-                return (name.clone(), f64::NAN);
-            }
-            let resampled: Vec<Vec<f64>> = ref_cols
-                .iter()
-                .map(|r| time.iter().map(|&t| interpolate(ref_time, r, t)).collect())
-                .collect();
-            let x: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
-            let r: Vec<&[f64]> = resampled.iter().map(Vec::as_slice).collect();
-            let s = crate::indicators::normalized_error(time, &x, &r);
-            (name.clone(), indicator(name, s).relative_error)
+        .map(|r| {
+            time.iter()
+                .map(|&t| interpolate(&reference.time, r, t))
+                .collect()
         })
-        .collect()
+        .collect();
+    let x: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+    let r: Vec<&[f64]> = resampled.iter().map(Vec::as_slice).collect();
+    crate::indicators::measure(&j.name, j.norm, time, &x, &r).relative_error
 }

@@ -1,0 +1,228 @@
+//! A prescribed signal as a source unit (kind `signal`): an offset, a sum of
+//! sines faded in, and steps, evaluated at the end of every step. Studies drive
+//! the unit they measure with it (the span studies' end motions), so the motion
+//! is part of the scene, not of the study's code.
+
+use crate::contract::{
+    Capabilities, StepReport, Unit, UnitDescription, UnitError, require_finite,
+    require_non_negative, require_positive,
+};
+use crate::contract::{Inputs, Port, PortKind, StateSlot, Time};
+use serde::Deserialize;
+
+/// One sine: `amplitude sin(angular_frequency t + phase)`.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Sine {
+    /// In the output's unit of measure.
+    pub amplitude: f64,
+    /// rad/s
+    pub angular_frequency: f64,
+    /// rad
+    pub phase: f64,
+}
+
+/// How the sines start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FadeShape {
+    /// `1 - exp(-t / time)`.
+    Exponential,
+    /// `x^3 (10 - 15 x + 6 x^2)`, x = min(t / time, 1): smooth to the second
+    /// derivative, complete at `time`.
+    Smoothstep,
+}
+
+/// The factor the sines are multiplied by.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FadeIn {
+    pub shape: FadeShape,
+    /// Time constant or duration (s).
+    pub time: f64,
+}
+
+impl FadeIn {
+    fn factor(&self, t: f64) -> f64 {
+        match self.shape {
+            FadeShape::Exponential => 1.0 - (-t / self.time).exp(),
+            FadeShape::Smoothstep => {
+                let x = (t / self.time).min(1.0);
+                x * x * x * (10.0 - 15.0 * x + 6.0 * x * x)
+            }
+        }
+    }
+}
+
+/// A step of `size` from `time` on.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Step {
+    /// s
+    pub time: f64,
+    /// In the output's unit of measure.
+    pub size: f64,
+}
+
+/// Parameters (scene kind `signal`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SignalParams {
+    /// The output's physical kind (its unit of measure), e.g. "rotation".
+    pub quantity: PortKind,
+    #[serde(default)]
+    pub offset: f64,
+    #[serde(default)]
+    pub sines: Vec<Sine>,
+    /// Applied to the sines only; none: the sines start at full size.
+    #[serde(default)]
+    pub fade_in: Option<FadeIn>,
+    #[serde(default)]
+    pub steps: Vec<Step>,
+}
+
+impl SignalParams {
+    fn validate(&self) -> Result<(), UnitError> {
+        require_finite("offset", self.offset)?;
+        for (i, s) in self.sines.iter().enumerate() {
+            require_finite(&format!("sines.{i}.amplitude"), s.amplitude)?;
+            require_non_negative(&format!("sines.{i}.angular_frequency"), s.angular_frequency)?;
+            require_finite(&format!("sines.{i}.phase"), s.phase)?;
+        }
+        if let Some(fade) = &self.fade_in {
+            require_positive("fade_in.time", fade.time)?;
+        }
+        for (i, s) in self.steps.iter().enumerate() {
+            require_finite(&format!("steps.{i}.time"), s.time)?;
+            require_finite(&format!("steps.{i}.size"), s.size)?;
+        }
+        Ok(())
+    }
+
+    /// The signal at time t (s).
+    pub fn value(&self, t: f64) -> f64 {
+        let sines: f64 = self
+            .sines
+            .iter()
+            .map(|s| s.amplitude * (s.angular_frequency * t + s.phase).sin())
+            .sum();
+        let fade = self.fade_in.as_ref().map_or(1.0, |f| f.factor(t));
+        let steps: f64 = self
+            .steps
+            .iter()
+            .filter(|s| t >= s.time)
+            .map(|s| s.size)
+            .sum();
+        self.offset + fade * sines + steps
+    }
+}
+
+/// The source: no inputs, one output `value`.
+pub struct Signal {
+    params: SignalParams,
+    description: UnitDescription,
+    time: f64,
+}
+
+impl Signal {
+    /// Builds the source; refuses non-finite values and a fade of no duration.
+    pub fn new(params: SignalParams) -> Result<Signal, UnitError> {
+        params.validate()?;
+        Ok(Signal {
+            description: UnitDescription {
+                kind: "signal".into(),
+                inputs: Vec::new(),
+                outputs: vec![Port::output("value", params.quantity)],
+                capabilities: Capabilities::default(),
+            },
+            params,
+            time: 0.0,
+        })
+    }
+}
+
+impl Unit for Signal {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn initialize(&mut self, t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
+        self.time = t0.as_secs();
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: Time, h: Time, _inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        self.time = (t + h).as_secs();
+        Ok(StepReport::default())
+    }
+
+    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
+        out[0] = self.params.value(self.time);
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.time);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.time = *slot.load::<f64>()?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn params(fade_in: Option<FadeIn>) -> SignalParams {
+        SignalParams {
+            quantity: PortKind::Rotation,
+            offset: 0.5,
+            sines: vec![Sine {
+                amplitude: 2.0,
+                angular_frequency: 3.0,
+                phase: 0.25,
+            }],
+            fade_in,
+            steps: vec![Step {
+                time: 1.0,
+                size: -1.0,
+            }],
+        }
+    }
+
+    #[test]
+    fn offset_faded_sines_and_steps_add_up() {
+        let p = params(None);
+        let sine = |t: f64| 2.0 * (3.0 * t + 0.25).sin();
+        assert_eq!(p.value(0.5), 0.5 + sine(0.5));
+        assert_eq!(p.value(1.0), 0.5 + sine(1.0) - 1.0);
+        let smooth = params(Some(FadeIn {
+            shape: FadeShape::Smoothstep,
+            time: 2.0,
+        }));
+        assert_eq!(smooth.value(0.0), 0.5);
+        assert!((smooth.value(1.0) - (0.5 + 0.5 * sine(1.0) - 1.0)).abs() < 1e-15);
+        assert_eq!(smooth.value(3.0), p.value(3.0));
+        let exponential = params(Some(FadeIn {
+            shape: FadeShape::Exponential,
+            time: 2.0,
+        }));
+        let factor = 1.0 - (-0.5f64).exp();
+        assert!((exponential.value(1.0) - (0.5 + factor * sine(1.0) - 1.0)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_fade_of_no_duration_is_refused_by_name() {
+        let p = params(Some(FadeIn {
+            shape: FadeShape::Exponential,
+            time: 0.0,
+        }));
+        let err = Signal::new(p)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(err.contains("fade_in.time"), "{err}");
+    }
+}
