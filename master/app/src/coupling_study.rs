@@ -9,9 +9,10 @@
 //! impulsive shear at the driven end.)
 
 use crate::span_study::{
-    Drive, StudyError, StudyScene, UnitText, cheapest_as_accurate, number, sweep,
+    Drive, StudyError, StudyScene, UnitText, cheapest_as_accurate, engine_rows, number,
+    report_order, span_properties, sweep,
 };
-use crate::study::{self, Sweep};
+use crate::study::{self, Design};
 use serde::Serialize;
 use slender_units::UnitError;
 use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
@@ -126,22 +127,8 @@ pub fn coupling_study(
     span.validate()?;
     let [reference, span_scene, fe_scene] = write_scenes(span, plan, scenes)?;
     let against = study::run_reference(&reference, None).map_err(StudyError::Plan)?;
-    let engine = |path: &Path, sweeps: Vec<Sweep>, cost: &str| {
-        let engine_plan = study::StudyPlan {
-            sweeps,
-            design: study::Design::Grid,
-            duration: None,
-            jobs: 1,
-            cost_units: if cost.is_empty() {
-                Vec::new()
-            } else {
-                vec![cost.into()]
-            },
-            reference: None,
-        };
-        study::run_study_against(path, &engine_plan, Some(&against), |_| {})
-            .map_err(StudyError::Plan)
-    };
+    let engine =
+        |path: &Path, sweeps, cost: &str| engine_rows(path, sweeps, Design::Grid, cost, &against);
     let counts = |v: &[usize]| v.iter().map(|&n| n as i64).collect::<Vec<i64>>();
     let span_rows = engine(
         &span_scene,
@@ -169,10 +156,7 @@ pub fn coupling_study(
         .chain(&fe_rows)
         .map(coupling_row)
         .collect::<Result<Vec<_>, _>>()?;
-    rows.sort_by_key(|r| {
-        let fe = r.model == "fe";
-        (fe, r.substeps, if fe { r.size } else { 0 })
-    });
+    rows.sort_by_key(|r| report_order(&r.model, r.substeps, r.size));
     Ok(CouplingReport {
         step: plan.step,
         duration: plan.duration,
@@ -338,12 +322,8 @@ fn span_unit(span: &Span) -> UnitText {
         kind: "span_coupling",
         substeps: 1,
         parameters: format!(
-            "flexural_rigidity = {}\nmass_per_length = {}\ndamping_per_length = {}\nlength = {}\ntension = {}\norientation = \"upper_motion\"\nband = {}\nalpha = 0.0\n",
-            number(span.flexural_rigidity),
-            number(span.mass_per_length),
-            number(span.damping_per_length),
-            number(span.length),
-            number(span.tension),
+            "{}orientation = \"upper_motion\"\nband = {}\nalpha = 0.0\n",
+            span_properties(span),
             number(2.0 * std::f64::consts::PI * 10.0)
         ),
     }
@@ -357,12 +337,8 @@ fn fe_unit(span: &Span, name: &'static str, elements: usize, substeps: usize) ->
         kind: "beam",
         substeps,
         parameters: format!(
-            "length = {}\nelements = {elements}\nflexural_rigidity = {}\nmass_per_length = {}\ndamping_per_length = {}\ntension = {}\nstatic_start = true\nalpha = 0.0\nboundary.left = [{}, {}]\nboundary.right = [{}, {}]\n",
-            number(span.length),
-            number(span.flexural_rigidity),
-            number(span.mass_per_length),
-            number(span.damping_per_length),
-            number(span.tension),
+            "elements = {elements}\n{}static_start = true\nalpha = 0.0\nboundary.left = [{}, {}]\nboundary.right = [{}, {}]\n",
+            span_properties(span),
             input("deflection"),
             input("rotation"),
             input("moment"),

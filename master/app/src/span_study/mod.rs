@@ -12,7 +12,9 @@ use std::path::Path;
 
 mod scenes;
 use crate::study::{self, Design, Sweep};
-pub(crate) use scenes::{Drive, StudyScene, UnitText, number};
+pub(crate) use scenes::{
+    Drive, StudyScene, UnitText, engine_rows, number, report_order, span_properties,
+};
 
 /// An FE span with the same boundary conditions as the span unit: y(0) = 0, the
 /// rotation at x = 0 as input, a free lower end.
@@ -185,10 +187,7 @@ pub fn study(span: &Span, plan: &StudyPlan, scenes: &Path) -> Result<StudyReport
         .map_err(|_| StudyError::Plan("two motions expected".into()))?;
     let (mut rows, failed) = combined_rows(span, &sines, &step);
     // Span units in the plan's order, then FE spans by substeps and elements.
-    rows.sort_by_key(|r| {
-        let fe = r.model == "fe";
-        (fe, r.substeps, if fe { r.size } else { 0 })
-    });
+    rows.sort_by_key(|r| report_order(&r.model, r.substeps, r.size));
     Ok(StudyReport {
         step: plan.step,
         duration: plan.duration,
@@ -233,22 +232,8 @@ fn motion_runs(
     fe_scene: &Path,
 ) -> Result<MotionRuns, StudyError> {
     let against = study::run_reference(reference, None).map_err(StudyError::Plan)?;
-    let engine = |path: &Path, sweeps, design, cost: &str| {
-        let engine_plan = study::StudyPlan {
-            sweeps,
-            design,
-            duration: None,
-            jobs: 1,
-            cost_units: if cost.is_empty() {
-                Vec::new()
-            } else {
-                vec![cost.into()]
-            },
-            reference: None,
-        };
-        study::run_study_against(path, &engine_plan, Some(&against), |_| {})
-            .map_err(StudyError::Plan)
-    };
+    let engine =
+        |path: &Path, sweeps, design, cost: &str| engine_rows(path, sweeps, design, cost, &against);
     let orders: Vec<i64> = plan.orders.iter().map(|&n| n as i64).collect();
     let elements: Vec<i64> = plan.elements.iter().map(|&n| n as i64).collect();
     let substeps: Vec<i64> = plan.fe_substeps.iter().map(|&n| n as i64).collect();
@@ -364,12 +349,8 @@ fn span_unit(span: &Span) -> UnitText {
         kind: "span",
         substeps: 1,
         parameters: format!(
-            "flexural_rigidity = {}\nmass_per_length = {}\ndamping_per_length = {}\nlength = {}\ntension = {}\nband = {}\n",
-            number(span.flexural_rigidity),
-            number(span.mass_per_length),
-            number(span.damping_per_length),
-            number(span.length),
-            number(span.tension),
+            "{}band = {}\n",
+            span_properties(span),
             number(2.0 * std::f64::consts::PI * 10.0)
         ),
     }
@@ -382,14 +363,10 @@ fn fe_unit(span: &Span, name: &'static str, elements: usize, substeps: usize) ->
         kind: "beam",
         substeps,
         parameters: format!(
-            "length = {}\nelements = {elements}\nflexural_rigidity = {}\nmass_per_length = {}\ndamping_per_length = {}\ntension = {}\nnewton_max_iterations = 5\n\
+            "elements = {elements}\n{}newton_max_iterations = 5\n\
              boundary.left = [{{ quantity = \"deflection\", value = 0.0 }}, {{ quantity = \"rotation\", value = \"input\" }}]\n\
              boundary.right = [{{ quantity = \"moment\", value = 0.0 }}, {{ quantity = \"shear\", value = 0.0 }}]\n",
-            number(span.length),
-            number(span.flexural_rigidity),
-            number(span.mass_per_length),
-            number(span.damping_per_length),
-            number(span.tension)
+            span_properties(span)
         ),
     }
 }

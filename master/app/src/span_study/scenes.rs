@@ -4,7 +4,11 @@
 //! results folder and run them through the general study engine, so each row can
 //! be run again with `slender run` or `slender study`.
 
+use super::StudyError;
+use crate::study::{self, Design, ReferenceRun, StudyRow, Sweep};
+use slender_units::span::transfer::Span;
 use std::fmt::Write;
+use std::path::Path;
 
 /// A unit of a generated scene: name, kind, substeps, parameters as TOML lines.
 pub(crate) struct UnitText {
@@ -85,4 +89,49 @@ impl StudyScene<'_> {
         }
         t
     }
+}
+
+/// The span's properties as parameter lines (EI, mu, c_d, L, T), shared by the
+/// span units and the FE spans of a study.
+pub(crate) fn span_properties(span: &Span) -> String {
+    format!(
+        "flexural_rigidity = {}\nmass_per_length = {}\ndamping_per_length = {}\nlength = {}\ntension = {}\n",
+        number(span.flexural_rigidity),
+        number(span.mass_per_length),
+        number(span.damping_per_length),
+        number(span.length),
+        number(span.tension)
+    )
+}
+
+/// Runs the scene at `path` through the study engine against `reference`, one
+/// run at a time (so costs do not share the cores), the cost that of unit
+/// `cost` alone (the whole run when empty).
+pub(crate) fn engine_rows(
+    path: &Path,
+    sweeps: Vec<Sweep>,
+    design: Design,
+    cost: &str,
+    reference: &ReferenceRun,
+) -> Result<Vec<StudyRow>, StudyError> {
+    let plan = study::StudyPlan {
+        sweeps,
+        design,
+        duration: None,
+        jobs: 1,
+        cost_units: if cost.is_empty() {
+            Vec::new()
+        } else {
+            vec![cost.into()]
+        },
+        reference: None,
+    };
+    study::run_study_against(path, &plan, Some(reference), |_| {}).map_err(StudyError::Plan)
+}
+
+/// The order rows of a span study are reported in: span units as the plan
+/// gives them, then FE spans by substeps and elements.
+pub(crate) fn report_order(model: &str, substeps: usize, size: usize) -> (bool, usize, usize) {
+    let fe = model == "fe";
+    (fe, substeps, if fe { size } else { 0 })
 }
