@@ -31,8 +31,9 @@ pub enum SpanAction {
     /// Time-domain error against cost per simulated second of span units (orders
     /// 2-16) and FE spans (4-64 elements, stepping with the master or with substeps)
     /// under a sum of sines and a step, against the continuum's response (a fine FE
-    /// span with fine substeps). Writes span_study.md, span_study.json,
-    /// accuracy_cost.svg.
+    /// span with fine substeps), through the study engine. Writes span_study.md,
+    /// span_study.json, accuracy_cost.svg and the scenes it ran (scenes/*.toml,
+    /// for `slender study --reference`).
     Study {
         /// Simulated time of each run (s).
         #[arg(long, default_value_t = 100.0, allow_negative_numbers = true)]
@@ -52,8 +53,9 @@ pub enum SpanAction {
     },
     /// The same for the span between two sections (kind `span_coupling`, the 4x4
     /// matrix, exact and trapezoidal stepping, orders 16-32) against FE spans with
-    /// the same four end conditions, all four ends driven. Writes
-    /// coupling_study.md, coupling_study.json, coupling_accuracy_cost.svg.
+    /// the same four end conditions, all four ends driven, through the study
+    /// engine. Writes coupling_study.md, coupling_study.json,
+    /// coupling_accuracy_cost.svg and the scenes it ran (scenes/coupling_*.toml).
     Coupling {
         /// Simulated time of each run (s).
         #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]

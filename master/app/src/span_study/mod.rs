@@ -42,8 +42,9 @@ pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, UnitError> {
     Beam::new(p)
 }
 
-/// Why a span study could not run: a unit refused its parameters or inputs, or
-/// the plan does not fit (a step or substeps that are no whole nanoseconds).
+/// Why a span study could not run: the span's properties are refused, or the
+/// plan does not fit or the study engine stopped (a scene not written, a step or
+/// substeps that are no whole nanoseconds, a reference run that failed).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum StudyError {
