@@ -149,7 +149,7 @@ fn a_span_middle_follows_the_hanging_pipe_twin() {
 }
 
 #[test]
-fn a_static_touchdown_section_holds_the_slay_under_its_tensioner() {
+fn a_static_touchdown_section_holds_the_slay_under_its_tensioner_also_under_a_span() {
     let text = slay()
         .replace(
             "name = \"touchdown\"\nto = 175.03693181818184",
@@ -179,26 +179,30 @@ fn a_static_touchdown_section_holds_the_slay_under_its_tensioner() {
     assert_eq!(start["x"]["displacement"].as_str(), Some("input"));
     let report = run_fidelity(
         &root().join(SLAY),
-        &plan(&["touchdown=static", "suspended=nonlinear"], 30.0),
+        &plan(&["touchdown=static", "suspended=nonlinear,span"], 30.0),
         |_| {},
     )
     .unwrap();
-    let r = &report.rows[1];
-    assert!(r.error.is_none(), "{:?}", r.error);
-    let error = |quantity: &str| r.errors.iter().find(|(q, _)| q == quantity).unwrap().1;
-    println!(
-        "static touchdown section: top force {:.2e}, touchdown {:.2e}, sag bend {:.2e}, start force {:.2e}, {:.3e} s per s (reference {:.3e})",
-        error("top_force"),
-        error("touchdown"),
-        error("sagbend_moment"),
-        error("start_force"),
-        r.cost_per_simulated_second,
-        report.rows[0].cost_per_simulated_second
-    );
-    // Measured 9.5e-4, 1.1e-1, 1.5e-1, 9.6e-2: the vessel's motion moves the
-    // touchdown point by up to 10 m and the pipe near it is not quasi-static.
-    assert!(error("top_force") < 3e-3);
-    assert!(error("touchdown") < 0.2 && error("sagbend_moment") < 0.3);
+    for (r, suspended) in report.rows[1..].iter().zip(["nonlinear", "span"]) {
+        // Under the span the whole 30 s run through since its default numerical
+        // damping (alpha = 0.02); at alpha = 0 the stinger's Newton failed at 15.5 s.
+        assert!(r.error.is_none(), "{suspended}: {:?}", r.error);
+        let error = |quantity: &str| r.errors.iter().find(|(q, _)| q == quantity).unwrap().1;
+        println!(
+            "static touchdown section, suspended = {suspended}: top force {:.2e}, touchdown {:.2e}, sag bend {:.2e}, start force {:.2e}, {:.3e} s per s (reference {:.3e})",
+            error("top_force"),
+            error("touchdown"),
+            error("sagbend_moment"),
+            error("start_force"),
+            r.cost_per_simulated_second,
+            report.rows[0].cost_per_simulated_second
+        );
+        // Measured 9.5e-4 / 2.8e-3, 1.1e-1 / 1.2e-1, 1.5e-1 / 3.0e-1, 9.6e-2 /
+        // 9.5e-2: the vessel's motion moves the touchdown point by up to 10 m
+        // and the pipe near it is not quasi-static.
+        assert!(error("top_force") < 5e-3);
+        assert!(error("touchdown") < 0.2 && error("sagbend_moment") < 0.4);
+    }
 }
 
 /// The expanded scene's units (by name) and connections.
