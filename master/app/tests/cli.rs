@@ -1,19 +1,9 @@
 //! The `slender` command line: help, check, run, bench, study, and bad input.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn slender(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_slender"))
-        .args(args)
-        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.."))
-        .output()
-        .expect("the slender binary runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
+mod common;
+use common::{slender, text};
 
 #[test]
 fn help_lists_every_command() {

@@ -2,19 +2,9 @@
 //! `slender study` itself with the same errors.
 
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn slender(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_slender"))
-        .args(args)
-        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.."))
-        .output()
-        .expect("the slender binary runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
+mod common;
+use common::{slender, text};
 
 #[test]
 fn span_bode_and_study_write_their_figures() {
