@@ -8,11 +8,10 @@
 //! `A sin(pi f_max t^2 / T)` for t <= T. Starting at zero frequency, the load
 //! starts smoothly from its static value.
 
+use super::prescribed::{Prescribed, Source};
 use crate::contract::{
-    Capabilities, StepReport, Unit, UnitDescription, UnitError, require_finite,
-    require_non_negative, require_positive,
+    Port, PortKind, UnitError, require_finite, require_non_negative, require_positive,
 };
-use crate::contract::{Inputs, Port, PortKind, StateSlot, Time};
 use serde::Deserialize;
 
 /// Parameters (scene kind `characteristic_load`); defaults are seed 000's values.
@@ -102,61 +101,26 @@ impl CharacteristicLoadParams {
 }
 
 /// The load source: no inputs, outputs `force_x`, `force_z` (N).
-pub struct CharacteristicLoad {
-    params: CharacteristicLoadParams,
-    description: UnitDescription,
-    time: f64,
-}
+pub type CharacteristicLoad = Source<CharacteristicLoadParams>;
 
-impl CharacteristicLoad {
-    /// Builds the source.
-    pub fn new(params: CharacteristicLoadParams) -> Result<CharacteristicLoad, UnitError> {
-        params.validate()?;
-        Ok(CharacteristicLoad {
-            params,
-            description: UnitDescription {
-                kind: "characteristic_load".into(),
-                inputs: Vec::new(),
-                outputs: vec![
-                    Port::output("force_x", PortKind::Force),
-                    Port::output("force_z", PortKind::Force),
-                ],
-                capabilities: Capabilities::default(),
-            },
-            time: 0.0,
-        })
-    }
-}
+impl Prescribed for CharacteristicLoadParams {
+    const KIND: &'static str = "characteristic_load";
 
-impl Unit for CharacteristicLoad {
-    fn description(&self) -> &UnitDescription {
-        &self.description
+    fn validate(&self) -> Result<(), UnitError> {
+        CharacteristicLoadParams::validate(self)
     }
 
-    fn initialize(&mut self, t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
-        self.time = t0.as_secs();
-        Ok(())
+    fn outputs(&self) -> Vec<Port> {
+        vec![
+            Port::output("force_x", PortKind::Force),
+            Port::output("force_z", PortKind::Force),
+        ]
     }
 
-    fn do_step(&mut self, t: Time, h: Time, _inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
-        self.time = (t + h).as_secs();
-        Ok(StepReport::default())
-    }
-
-    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
-        let f = self.params.force(self.time);
+    fn write(&self, t: f64, out: &mut [f64]) {
+        let f = self.force(t);
         out[0] = f[0];
         out[1] = f[1];
-    }
-
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.time);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.time = *slot.load::<f64>()?;
-        Ok(())
     }
 }
 

@@ -4,6 +4,7 @@
 pub mod artefact;
 pub mod characteristic_load;
 pub mod compensation;
+pub mod prescribed;
 pub mod source;
 
 use crate::contract::{Port, PortKind, UnitError};

@@ -3,11 +3,10 @@
 //! the unit they measure with it (the span studies' end motions), so the motion
 //! is part of the scene, not of the study's code.
 
+use super::prescribed::{Prescribed, Source};
 use crate::contract::{
-    Capabilities, StepReport, Unit, UnitDescription, UnitError, require_finite,
-    require_non_negative, require_positive,
+    Port, PortKind, UnitError, require_finite, require_non_negative, require_positive,
 };
-use crate::contract::{Inputs, Port, PortKind, StateSlot, Time};
 use serde::Deserialize;
 
 /// One sine: `amplitude sin(angular_frequency t + phase)`.
@@ -117,57 +116,23 @@ impl SignalParams {
     }
 }
 
-/// The source: no inputs, one output `value`.
-pub struct Signal {
-    params: SignalParams,
-    description: UnitDescription,
-    time: f64,
-}
+/// The source: no inputs, one output `value`; non-finite values and a fade of no
+/// duration are refused.
+pub type Signal = Source<SignalParams>;
 
-impl Signal {
-    /// Builds the source; refuses non-finite values and a fade of no duration.
-    pub fn new(params: SignalParams) -> Result<Signal, UnitError> {
-        params.validate()?;
-        Ok(Signal {
-            description: UnitDescription {
-                kind: "signal".into(),
-                inputs: Vec::new(),
-                outputs: vec![Port::output("value", params.quantity)],
-                capabilities: Capabilities::default(),
-            },
-            params,
-            time: 0.0,
-        })
-    }
-}
+impl Prescribed for SignalParams {
+    const KIND: &'static str = "signal";
 
-impl Unit for Signal {
-    fn description(&self) -> &UnitDescription {
-        &self.description
+    fn validate(&self) -> Result<(), UnitError> {
+        SignalParams::validate(self)
     }
 
-    fn initialize(&mut self, t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
-        self.time = t0.as_secs();
-        Ok(())
+    fn outputs(&self) -> Vec<Port> {
+        vec![Port::output("value", self.quantity)]
     }
 
-    fn do_step(&mut self, t: Time, h: Time, _inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
-        self.time = (t + h).as_secs();
-        Ok(StepReport::default())
-    }
-
-    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
-        out[0] = self.params.value(self.time);
-    }
-
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.time);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.time = *slot.load::<f64>()?;
-        Ok(())
+    fn write(&self, t: f64, out: &mut [f64]) {
+        out[0] = self.value(t);
     }
 }
 
