@@ -13,6 +13,19 @@ pub fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
+/// The connections that neither start nor end at a port of `unit`.
+pub fn links_away_from(links: &[toml::Value], unit: &str) -> Vec<toml::Value> {
+    let prefix = format!("{unit}.");
+    links
+        .iter()
+        .filter(|l| {
+            let at = |end: &str| l[end].as_str().is_some_and(|p| p.starts_with(&prefix));
+            !at("from") && !at("to")
+        })
+        .cloned()
+        .collect()
+}
+
 /// A scene's units after `[structure]` is written out (by name, in order) and
 /// its connections.
 pub fn units_and_links(scene: &Scene) -> (Vec<(String, toml::Value)>, Vec<toml::Value>) {

@@ -10,7 +10,7 @@
 use slender_app::fidelity::{FidelityPlan, SectionChoices, run_fidelity};
 use slender_app::study::Design;
 use slender_scene::Scene;
-use slender_tests::{root, run, units_and_links};
+use slender_tests::{links_away_from, root, run, units_and_links};
 use toml::Value;
 
 /// The mooring example, `duration` s long, with its sections replaced by
@@ -150,16 +150,7 @@ fn swapping_a_section_to_cable_changes_its_unit_and_its_cuts_only() {
         }
         assert_eq!(a, b, "{name} changed beyond its cut's rotation");
     }
-    let away = |links: &[Value]| -> Vec<Value> {
-        links
-            .iter()
-            .filter(|l| {
-                !l["from"].as_str().unwrap().starts_with("line_lower.")
-                    && !l["to"].as_str().unwrap().starts_with("line_lower.")
-            })
-            .cloned()
-            .collect()
-    };
+    let away = |links: &[Value]| links_away_from(links, "line_lower");
     assert_eq!(away(&a_links), away(&b_links));
     // Force and velocity cross a pinned cut; rotation and moment do not.
     assert_eq!(a_links.len(), 12);

@@ -172,8 +172,7 @@ pub fn run_fidelity(
     plan: &FidelityPlan,
     progress: impl Fn(&str) + Sync,
 ) -> Result<FidelityReport, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut table: Table = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut table = crate::study::scene_table(path)?;
     // The scene must load as written.
     crate::study::scene_with(path, &table, plan.duration)?;
     let structure = structure_of(&table)?;

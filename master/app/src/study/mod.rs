@@ -186,10 +186,7 @@ pub struct ReferenceRun {
 /// Runs the reference scene at `path` (for `duration` when given); `Err` when it
 /// does not load or its run fails.
 pub fn run_reference(path: &Path, duration: Option<f64>) -> Result<ReferenceRun, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let table: toml::Table =
-        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let scene = scene_with(path, &table, duration)?;
+    let scene = scene_with(path, &scene_table(path)?, duration)?;
     let outcome = outcome_of(&scene, &[]);
     if let Some(e) = &outcome.error {
         return Err(format!("reference {}: {e}", path.display()));
@@ -223,8 +220,7 @@ pub fn run_study_against(
         ));
     }
     // The scene as written (a `[structure]` still a structure, so its keys vary).
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let table: toml::Table = toml::from_str(&text).map_err(|e| e.to_string())?;
+    let table = scene_table(path)?;
     let judged: Vec<Judged> = base
         .spec
         .output
@@ -360,6 +356,13 @@ fn groups(plan: &StudyPlan) -> Vec<(String, Vec<Vec<Assignment>>)> {
             vec![("grid".into(), runs)]
         }
     }
+}
+
+/// The scene file at `path` as written (a `[structure]` still a structure), as
+/// the TOML table the studies vary.
+pub(crate) fn scene_table(path: &Path) -> Result<toml::Table, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// The scene of `table`, with `duration` when given.

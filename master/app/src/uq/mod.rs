@@ -80,9 +80,7 @@ pub fn run_uq(
     earlier: &[Run],
     done: impl Fn(usize, &Run) + Sync,
 ) -> Result<(Option<UqReport>, Vec<Run>), String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let table: toml::Table =
-        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let table = crate::study::scene_table(path)?;
     let scene = crate::study::scene_with(path, &table, plan.duration)?;
     let spec = scene
         .spec
