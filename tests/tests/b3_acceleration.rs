@@ -75,6 +75,7 @@ fn accelerations() -> Vec<(&'static str, Solver)> {
             Solver::Newton(NewtonSettings {
                 perturbation: 1e-7,
                 jacobian: JacobianUpdate::EveryIteration,
+                ..NewtonSettings::default()
             }),
         ),
     ]

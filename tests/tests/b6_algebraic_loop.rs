@@ -15,6 +15,7 @@ fn newton() -> NewtonSettings {
     NewtonSettings {
         perturbation: 1e-7,
         jacobian: JacobianUpdate::EveryIteration,
+        ..NewtonSettings::default()
     }
 }
 

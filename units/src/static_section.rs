@@ -95,6 +95,8 @@ pub struct StaticSection {
     state: StaticSectionState,
     /// The stiffness's inverse (m/N, rad/(N m), ...) when the end takes forces.
     compliance: Option<[[f64; 3]; 3]>,
+    /// The length of the last step (s), for its Jacobian.
+    last_step: f64,
 }
 
 const OUTPUTS: [(&str, PortKind); 8] = [
@@ -148,12 +150,16 @@ impl StaticSection {
                 kind: "static_section".into(),
                 inputs,
                 outputs,
-                capabilities: Capabilities::default(),
+                capabilities: Capabilities {
+                    step_jacobian: true,
+                    ..Capabilities::default()
+                },
             },
             state: StaticSectionState {
                 displacement: [0.0; 3],
             },
             compliance,
+            last_step: 0.0,
         })
     }
 
@@ -206,6 +212,7 @@ impl Unit for StaticSection {
             return Ok(StepReport::default());
         }
         let h = h.as_secs();
+        self.last_step = h;
         for (k, u) in self.state.displacement.iter_mut().enumerate() {
             *u += 0.5 * h * (inputs.at(k, 0.0) + inputs.at(k, 1.0));
         }
@@ -235,6 +242,38 @@ impl Unit for StaticSection {
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
         self.state.clone_from(&*slot.load::<StaticSectionState>()?);
+        Ok(())
+    }
+
+    /// Exact: the displacement is linear in the end inputs (the compliance, or
+    /// the trapezoidal rule over the last step), every output linear in it.
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        // d displacement_i / d end input j.
+        let mut du = [[0.0; 3]; 3];
+        match &self.compliance {
+            Some(c) => du = c.map(|row| row.map(|v| -v)),
+            None => {
+                for (k, row) in du.iter_mut().enumerate() {
+                    let start = match inputs.hold(k) {
+                        crate::contract::Hold::ZeroOrder => 1.0,
+                        crate::contract::Hold::Ramp => 0.0,
+                    };
+                    row[k] = 0.5 * self.last_step * (start + 1.0);
+                }
+            }
+        }
+        let p = &self.params;
+        let gradients = p
+            .stiffness
+            .iter()
+            .chain(&p.start_stiffness)
+            .chain([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].iter())
+            .chain(p.quantities.iter().map(|q| &q.gradient));
+        for (row, g) in jacobian.chunks_exact_mut(3).zip(gradients) {
+            for (j, d) in row.iter_mut().enumerate() {
+                *d = (0..3).map(|i| g[i] * du[i][j]).sum();
+            }
+        }
         Ok(())
     }
 }

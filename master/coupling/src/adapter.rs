@@ -9,7 +9,7 @@
 use crate::counters::UnitCounters;
 use crate::error::MasterError;
 use slender_units::{Driver, DriverSlot, Hold, Time, Unit, UnitError};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// A unit as the master holds it.
 pub struct UnitAdapter {
@@ -23,13 +23,19 @@ pub struct UnitAdapter {
     pub start_inputs: Vec<f64>,
     saved: DriverSlot,
     pub counters: UnitCounters,
-    /// Wall time charged to this unit by the master's sweeps.
+    /// Wall time charged to this unit by the master's sweeps and Jacobians.
     pub step_time: Duration,
+    /// The unit's interface Jacobian of its last step, row-major `outputs x
+    /// inputs` (filled by [`UnitAdapter::step_jacobian`]).
+    pub jacobian: Vec<f64>,
+    /// Scratch of finite differences: the perturbed step's outputs.
+    probe: Vec<f64>,
 }
 
 impl UnitAdapter {
     pub fn new(name: String, unit: Box<dyn Unit>, start_inputs: Vec<f64>) -> UnitAdapter {
         let n_out = unit.description().outputs.len();
+        let n_in = unit.description().inputs.len();
         UnitAdapter {
             counters: UnitCounters {
                 name: name.clone(),
@@ -42,6 +48,8 @@ impl UnitAdapter {
             start_inputs,
             saved: DriverSlot::new(),
             step_time: Duration::ZERO,
+            jacobian: vec![0.0; n_out * n_in],
+            probe: vec![0.0; n_out],
         }
     }
 
@@ -154,6 +162,49 @@ impl UnitAdapter {
         self.driver
             .modes(count)
             .map_err(|e| self.fail("modes", Time::ZERO, 0, e))
+    }
+
+    /// Fills `self.jacobian` for the step from `t` over `h` just taken with
+    /// `self.inputs`: the unit's own (`Unit::step_jacobian`) when it gives
+    /// every row in `needed` (outputs feeding connections) finite, or forward
+    /// differences of its step from the state saved at the step's start, each
+    /// input moved by `delta`; then the unit is left after a perturbed step and
+    /// must be restored before it steps again. Returns whether it was the
+    /// unit's own. The time is charged to the unit.
+    pub fn step_jacobian(
+        &mut self,
+        (t, h): (Time, Time),
+        delta: &[f64],
+        needed: impl Iterator<Item = usize>,
+        iteration: u32,
+    ) -> Result<bool, MasterError> {
+        let started = Instant::now();
+        let n_in = self.inputs.len();
+        let own = self.driver.step_jacobian(&mut self.jacobian).is_ok() && {
+            let rows = &self.jacobian;
+            let mut needed = needed;
+            needed.all(|o| rows[o * n_in..(o + 1) * n_in].iter().all(|v| v.is_finite()))
+        };
+        if !own {
+            if self.saved.is_empty() {
+                return Err(MasterError::Invalid(format!(
+                    "unit `{}`: a Jacobian by finite differences needs a saved step start",
+                    self.name
+                )));
+            }
+            self.driver
+                .finite_difference_jacobian(
+                    &self.saved,
+                    (t, h),
+                    (&self.inputs, delta),
+                    &self.outputs,
+                    (&mut self.jacobian, &mut self.probe),
+                )
+                .map_err(|e| self.fail("do_step (Jacobian probe)", t + h, iteration, e))?;
+            self.counters.do_step_calls += self.inputs.len() as u64;
+        }
+        self.step_time += started.elapsed();
+        Ok(own)
     }
 
     /// Saves the unit's state for a later `restore`.

@@ -35,12 +35,12 @@ pub struct Master {
     pub(crate) settings: MasterSettings,
     pub(crate) order: Vec<usize>,
     /// Per unit and input: the connection driving it.
-    input_connection: Vec<Vec<Option<usize>>>,
+    pub(crate) input_connection: Vec<Vec<Option<usize>>>,
     /// Per unit: connections leaving it.
-    outgoing: Vec<Vec<usize>>,
+    pub(crate) outgoing: Vec<Vec<usize>>,
     /// Per unit: whether a torn value reaches it, so it must be repeated in every
     /// iteration; the others are stepped once per step and never rolled back.
-    iterated: Vec<bool>,
+    pub(crate) iterated: Vec<bool>,
     /// Whether the current step (or initialisation) has had its first sweep.
     first_sweep_done: bool,
     /// Per connection: its tolerance.
@@ -71,7 +71,7 @@ pub struct Master {
     pub(crate) counters: Counters,
     initialized: bool,
     /// True while `initialize` runs: sweeps call `initialize` instead of `do_step`.
-    initializing: bool,
+    pub(crate) initializing: bool,
 }
 
 impl Master {
@@ -112,7 +112,7 @@ impl Master {
         let counters = Counters::new(system.unit_names());
         let newton = settings
             .newton
-            .map(|_| crate::newton::NewtonWork::new(n_torn));
+            .map(|_| crate::newton::NewtonWork::new(n_torn, n_conn));
         let accelerator = accelerator(&settings.acceleration, n_torn);
         let units = system
             .units

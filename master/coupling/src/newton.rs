@@ -1,11 +1,17 @@
-//! Newton's method on the interface residual `R(x) = G(x) - x`, with the Jacobian
-//! `dG/dx - I` from finite differences: each column costs one extra sweep from the
-//! rolled-back start of the step. For loops that fixed-point iteration cannot solve
-//! (benchmark B6).
+//! Newton's method on the interface residual `R(x) = G(x) - x` of the torn
+//! values. Its Jacobian `dG/dx - I` comes either from whole sweeps (finite
+//! differences: one extra sweep per torn value from the rolled-back step start;
+//! for loops that fixed-point iteration cannot solve, benchmark B6) or from the
+//! units (the interface-Jacobian method of Kübler and Schiehlen 2000 and
+//! Sicklinger et al. 2014): each unit's derivative of its outputs after the step
+//! with respect to its inputs, chained through the connections in the sweep
+//! order. A Jacobian may be kept across steps and evaluated anew when an
+//! iteration converges slowly, since the interface of one structure changes
+//! little from one step to the next.
 
 use crate::coupler::Master;
 use crate::error::MasterError;
-use crate::settings::{JacobianUpdate, NewtonSettings};
+use crate::settings::{Derivatives, JacobianUpdate, NewtonSettings};
 use nalgebra::{DMatrix, DVector, Dyn, linalg::LU};
 
 /// Buffers of the Newton scheme, sized once for the torn values.
@@ -14,27 +20,40 @@ pub(crate) struct NewtonWork {
     factorised: Option<LU<f64, Dyn, Dyn>>,
     correction: DVector<f64>,
     base_gx: Vec<f64>,
+    /// Steps the current Jacobian has served (`jacobian = "reuse"`).
+    age: u32,
+    /// The scaled torn residual of the step's previous iteration.
+    last_residual: f64,
+    /// Per connection, the derivative of its value with respect to the torn
+    /// values (row-major, `connections x torn`).
+    dv: Vec<f64>,
+    /// The same for the inputs of the unit being chained (`inputs x torn`).
+    du: Vec<f64>,
+    /// Finite-difference steps of that unit's inputs.
+    delta: Vec<f64>,
 }
 
 impl NewtonWork {
-    pub(crate) fn new(n: usize) -> NewtonWork {
+    pub(crate) fn new(n_torn: usize, n_connections: usize) -> NewtonWork {
         NewtonWork {
-            jacobian: DMatrix::zeros(n, n),
+            jacobian: DMatrix::zeros(n_torn, n_torn),
             factorised: None,
-            correction: DVector::zeros(n),
-            base_gx: vec![0.0; n],
+            correction: DVector::zeros(n_torn),
+            base_gx: vec![0.0; n_torn],
+            age: 0,
+            last_residual: f64::INFINITY,
+            dv: vec![0.0; n_connections * n_torn],
+            du: Vec::new(),
+            delta: Vec::new(),
         }
     }
 }
 
 impl Master {
-    /// One synchronisation step solved by Newton on the torn values.
+    /// One synchronisation step (or the initialisation) solved by Newton on the
+    /// torn values.
     pub(crate) fn step_newton(&mut self) -> Result<(u32, f64, bool), MasterError> {
-        let Some(NewtonSettings {
-            perturbation,
-            jacobian: update,
-        }) = self.settings.newton
-        else {
+        let Some(settings) = self.settings.newton else {
             return Err(MasterError::Invalid(
                 "step_newton without Newton settings".into(),
             ));
@@ -43,8 +62,16 @@ impl Master {
             .newton
             .take()
             .ok_or_else(|| MasterError::Invalid("Newton buffers missing".into()))?;
-        work.factorised = None;
-        let result = self.newton_iterations(&mut work, perturbation, update);
+        let keep = settings.jacobian == JacobianUpdate::Reuse
+            && !self.initializing
+            && work.age < settings.refresh_steps;
+        if !keep {
+            // The initialisation's Jacobian (a zero-length step) serves no step.
+            work.factorised = None;
+        }
+        work.age += 1;
+        work.last_residual = f64::INFINITY;
+        let result = self.newton_iterations(&mut work, settings);
         self.newton = Some(work);
         result
     }
@@ -52,13 +79,21 @@ impl Master {
     fn newton_iterations(
         &mut self,
         work: &mut NewtonWork,
-        perturbation: f64,
-        update: JacobianUpdate,
+        settings: NewtonSettings,
     ) -> Result<(u32, f64, bool), MasterError> {
         self.iterate(&mut |m, k| {
             work.base_gx.copy_from_slice(&m.gx);
-            if work.factorised.is_none() || update == JacobianUpdate::EveryIteration {
-                m.probe_jacobian(work, perturbation, k)?;
+            let residual = m.torn_residual();
+            let slow = residual > settings.refresh_rate * work.last_residual;
+            work.last_residual = residual;
+            let stale = match settings.jacobian {
+                JacobianUpdate::EveryIteration => true,
+                JacobianUpdate::OncePerStep => work.factorised.is_none(),
+                JacobianUpdate::Reuse => work.factorised.is_none() || slow,
+            };
+            if stale {
+                m.evaluate_jacobian(work, settings, k)?;
+                work.age = 1;
             }
             // Scaled residual r = (G(x) - x) / tol; solve J dz = -r.
             for (i, &c) in m.torn.iter().enumerate() {
@@ -79,7 +114,42 @@ impl Master {
         })
     }
 
-    /// Fills the scaled Jacobian of the residual, column by column, and factorises it.
+    /// The largest |G(x) - x| / tolerance over the torn values.
+    fn torn_residual(&self) -> f64 {
+        self.torn
+            .iter()
+            .enumerate()
+            .map(|(k, &c)| (self.gx[k] - self.x[k]).abs() / self.tolerance[c])
+            .fold(0.0, f64::max)
+    }
+
+    /// Fills the scaled Jacobian of the residual at the current iterate (the
+    /// units stepped with it) and factorises it. The initialisation, a
+    /// zero-length step with no rollback, always takes it from sweeps.
+    fn evaluate_jacobian(
+        &mut self,
+        work: &mut NewtonWork,
+        settings: NewtonSettings,
+        iteration: u32,
+    ) -> Result<(), MasterError> {
+        if settings.derivatives == Derivatives::Units && !self.initializing {
+            self.chain_unit_jacobians(work, settings.perturbation, iteration)?;
+        } else {
+            self.probe_jacobian(work, settings.perturbation, iteration)?;
+        }
+        self.counters.jacobian_evaluations += 1;
+        let lu = work.jacobian.clone().lu();
+        if !lu.is_invertible() {
+            return Err(MasterError::SingularJacobian {
+                time: self.target_time(),
+                iteration,
+            });
+        }
+        work.factorised = Some(lu);
+        Ok(())
+    }
+
+    /// The Jacobian column by column, one sweep per torn value.
     fn probe_jacobian(
         &mut self,
         work: &mut NewtonWork,
@@ -101,15 +171,85 @@ impl Master {
                 work.jacobian[(i, j)] = dg / (delta / tol_j) - identity;
             }
         }
-        self.counters.jacobian_evaluations += 1;
-        let lu = work.jacobian.clone().lu();
-        if !lu.is_invertible() {
-            return Err(MasterError::SingularJacobian {
-                time: self.target_time(),
-                iteration,
-            });
+        Ok(())
+    }
+
+    /// The Jacobian from the units' interface Jacobians, chained in the sweep
+    /// order: a unit's inputs depend on the torn values directly (torn
+    /// connections) or through the units upstream of it, and its outgoing
+    /// connections by its Jacobian times those dependencies.
+    fn chain_unit_jacobians(
+        &mut self,
+        work: &mut NewtonWork,
+        perturbation: f64,
+        iteration: u32,
+    ) -> Result<(), MasterError> {
+        let n = self.torn.len();
+        work.dv.fill(0.0);
+        for i in 0..self.order.len() {
+            let u = self.order[i];
+            // Units no torn value reaches have no derivative with respect to x.
+            if !self.iterated[u] {
+                continue;
+            }
+            self.unit_jacobian(u, work, perturbation, iteration)?;
+            let n_in = self.units[u].inputs.len();
+            work.du.resize(n_in * n, 0.0);
+            for (p, row) in work.du.chunks_exact_mut(n.max(1)).enumerate() {
+                row.fill(0.0);
+                if let Some(c) = self.input_connection[u][p] {
+                    match self.tear_index[c] {
+                        Some(k) => row[k] = 1.0,
+                        None => row.copy_from_slice(&work.dv[c * n..(c + 1) * n]),
+                    }
+                }
+            }
+            let jacobian = &self.units[u].jacobian;
+            for &c in &self.outgoing[u] {
+                let conn = &self.connections[c];
+                let row = &mut work.dv[c * n..(c + 1) * n];
+                for p in 0..n_in {
+                    let d = conn.link.gain * jacobian[conn.from.port * n_in + p];
+                    if d != 0.0 {
+                        for (r, du) in row.iter_mut().zip(&work.du[p * n..(p + 1) * n]) {
+                            *r += d * du;
+                        }
+                    }
+                }
+            }
         }
-        work.factorised = Some(lu);
+        for (i, &ci) in self.torn.iter().enumerate() {
+            for (j, &cj) in self.torn.iter().enumerate() {
+                let identity = if i == j { 1.0 } else { 0.0 };
+                work.jacobian[(i, j)] =
+                    work.dv[ci * n + j] * self.tolerance[cj] / self.tolerance[ci] - identity;
+            }
+        }
+        Ok(())
+    }
+
+    /// Unit `u`'s interface Jacobian of the step it just took, its inputs moved
+    /// by max(perturbation |u|, 10 x the feeding connection's tolerance) where
+    /// it is taken by finite differences.
+    fn unit_jacobian(
+        &mut self,
+        u: usize,
+        work: &mut NewtonWork,
+        perturbation: f64,
+        iteration: u32,
+    ) -> Result<(), MasterError> {
+        let unit = &self.units[u];
+        work.delta.clear();
+        for (p, &value) in unit.inputs.iter().enumerate() {
+            let tolerance = self.input_connection[u][p]
+                .map_or(self.settings.tolerances.generic, |c| self.tolerance[c]);
+            work.delta
+                .push((perturbation * value.abs()).max(10.0 * tolerance));
+        }
+        let (t, h) = (self.time, self.step_size);
+        let connections = &self.connections;
+        let needed = self.outgoing[u].iter().map(|&c| connections[c].from.port);
+        self.units[u].step_jacobian((t, h), &work.delta, needed, iteration)?;
         Ok(())
     }
 }

@@ -82,18 +82,31 @@ pub enum Acceleration {
     },
 }
 
-/// Newton on the interface residual `G(x) - x` with a finite-difference Jacobian
-/// obtained by rolling the units back (one extra sweep per coupled variable): not
-/// a fixed-point update, so it is its own `[master] newton` key.
+/// Newton on the interface residual `G(x) - x`: not a fixed-point update, so it
+/// is its own `[master] newton` key. Its Jacobian comes from whole sweeps
+/// (finite differences, one extra sweep per coupled variable) or is assembled
+/// from each unit's interface Jacobian through the connection graph.
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NewtonSettings {
-    /// Relative perturbation: delta = perturbation * max(|x|, 1) in SI units.
+    /// Relative perturbation of finite differences: delta = perturbation *
+    /// max(|x|, 1) in SI units for a sweep; for a unit's input, delta =
+    /// max(perturbation * |u|, 10 x the tolerance of the connection feeding it).
     #[serde(default = "default_perturbation")]
     pub perturbation: f64,
-    /// `every_iteration` (default) or `once_per_step`.
+    /// `every_iteration` (default), `once_per_step` or `reuse`.
     #[serde(default)]
     pub jacobian: JacobianUpdate,
+    /// Where the Jacobian comes from: `sweeps` (default) or `units`.
+    #[serde(default)]
+    pub derivatives: Derivatives,
+    /// With `jacobian = "reuse"`: the most steps one Jacobian serves (default 100).
+    #[serde(default = "default_refresh_steps")]
+    pub refresh_steps: u32,
+    /// With `jacobian = "reuse"`: an iteration that shrinks the residual by less
+    /// than this factor evaluates the Jacobian anew (default 0.1).
+    #[serde(default = "default_refresh_rate")]
+    pub refresh_rate: f64,
 }
 
 impl Default for NewtonSettings {
@@ -101,8 +114,25 @@ impl Default for NewtonSettings {
         NewtonSettings {
             perturbation: default_perturbation(),
             jacobian: JacobianUpdate::default(),
+            derivatives: Derivatives::default(),
+            refresh_steps: default_refresh_steps(),
+            refresh_rate: default_refresh_rate(),
         }
     }
+}
+
+/// Where Newton's interface Jacobian comes from.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Derivatives {
+    /// Finite differences of whole sweeps from the rolled-back step start: one
+    /// sweep per torn value.
+    #[default]
+    Sweeps,
+    /// Each unit's interface Jacobian (`Unit::step_jacobian`, or finite
+    /// differences of that unit alone from its rolled-back start: one step per
+    /// coupled input), chained through the connections in the sweep order.
+    Units,
 }
 
 /// How the coupled values of an iterative step are solved: a fixed-point
@@ -129,9 +159,15 @@ impl From<NewtonSettings> for Solver {
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum JacobianUpdate {
+    /// A new Jacobian at every iteration (Newton's method proper).
     #[default]
     EveryIteration,
+    /// One Jacobian per step, at its first iterate.
     OncePerStep,
+    /// One Jacobian kept across steps, evaluated anew when an iteration
+    /// converges slowly (`refresh_rate`) or after `refresh_steps` steps: the
+    /// interface of a structure changes little from step to step.
+    Reuse,
 }
 
 fn half() -> f64 {
@@ -140,6 +176,14 @@ fn half() -> f64 {
 
 fn default_perturbation() -> f64 {
     1e-7
+}
+
+fn default_refresh_steps() -> u32 {
+    100
+}
+
+fn default_refresh_rate() -> f64 {
+    0.1
 }
 
 impl Acceleration {
@@ -317,6 +361,17 @@ impl MasterSettings {
             if !(p.is_finite() && p > 0.0 && p < 1.0) {
                 return Err(invalid(format!(
                     "newton.perturbation {p}: expected a value in (0, 1)"
+                )));
+            }
+            if newton.refresh_steps == 0 {
+                return Err(invalid(
+                    "newton.refresh_steps 0: expected at least 1".into(),
+                ));
+            }
+            let r = newton.refresh_rate;
+            if !(r.is_finite() && r > 0.0 && r < 1.0) {
+                return Err(invalid(format!(
+                    "newton.refresh_rate {r}: expected a value in (0, 1)"
                 )));
             }
         }

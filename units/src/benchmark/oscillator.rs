@@ -13,7 +13,7 @@ use crate::contract::{
     Capabilities, StepReport, Unit, UnitDescription, UnitError, require_finite,
     require_non_negative, require_positive,
 };
-use crate::contract::{Inputs, Port, PortKind, StateVector};
+use crate::contract::{Hold, Inputs, Port, PortKind, StateVector};
 use crate::integrators::newmark::{LinearNewmark, NewmarkState};
 use nalgebra::{DMatrix, DVector};
 use serde::Deserialize;
@@ -108,6 +108,8 @@ pub struct Oscillator {
     integrator: LinearNewmark,
     state: OscillatorState,
     load: DVector<f64>,
+    /// Scratch: the motion's derivative with respect to one end input.
+    tangent: NewmarkState,
 }
 
 impl Oscillator {
@@ -157,8 +159,12 @@ impl Oscillator {
                 kind: "oscillator".into(),
                 inputs,
                 outputs,
-                capabilities: Capabilities::default(),
+                capabilities: Capabilities {
+                    step_jacobian: true,
+                    ..Capabilities::default()
+                },
             },
+            tangent: state.motion.clone(),
             params,
             integrator,
             state,
@@ -175,6 +181,20 @@ impl Oscillator {
             }
             Coupling::Force => inputs.at(0, s),
         }
+    }
+
+    /// d load / d (end value of input `port`) at fraction `s` of the step.
+    fn load_derivative(&self, inputs: Inputs<'_>, port: usize, s: f64) -> f64 {
+        let weight = match inputs.hold(port) {
+            Hold::ZeroOrder => 1.0,
+            Hold::Ramp => s,
+        };
+        weight
+            * match (self.params.coupling, port) {
+                (Coupling::Spring, 0) => self.params.coupling_stiffness,
+                (Coupling::Spring, _) => self.params.coupling_damping,
+                (Coupling::Force, _) => 1.0,
+            }
     }
 }
 
@@ -216,6 +236,36 @@ impl Unit for Oscillator {
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
         slot.store(&self.state);
+        Ok(())
+    }
+
+    /// Exact: the Newmark step is linear in the state and the load, so the
+    /// derivative of the motion follows the same sub-steps from zero with the
+    /// load's derivative.
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        let n = self.params.substeps;
+        let n_in = inputs.len();
+        for j in 0..n_in {
+            for x in [
+                &mut self.tangent.u,
+                &mut self.tangent.v,
+                &mut self.tangent.a,
+            ] {
+                x.fill(0.0);
+            }
+            for i in 1..=n {
+                self.load[0] = self.load_derivative(inputs, j, f64::from(i) / f64::from(n));
+                self.integrator.step(&mut self.tangent, &self.load);
+            }
+            let (du, dv) = (self.tangent.u[0], self.tangent.v[0]);
+            jacobian[j] = du;
+            jacobian[n_in + j] = dv;
+            if self.params.coupling == Coupling::Spring {
+                let (kc, dc) = (self.params.coupling_stiffness, self.params.coupling_damping);
+                let direct = if j == 0 { kc } else { dc };
+                jacobian[2 * n_in + j] = kc * du + dc * dv - direct;
+            }
+        }
         Ok(())
     }
 

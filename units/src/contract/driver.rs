@@ -264,6 +264,62 @@ impl<U: Unit> Driver<U> {
         Ok(())
     }
 
+    /// The unit's interface Jacobian of the last step (see
+    /// [`Unit::step_jacobian`]), row-major `outputs x inputs`. Refused when the
+    /// unit does not declare it, or steps in sub-steps (its Jacobian would be the
+    /// last sub-step's, not the coupling step's).
+    pub fn step_jacobian(&mut self, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        let d = self.unit.description();
+        if !d.capabilities.step_jacobian || self.substeps > 1 {
+            return Err(UnitError::Unsupported(format!(
+                "the step Jacobian of a `{}` unit{}",
+                d.kind,
+                if self.substeps > 1 {
+                    " in sub-steps"
+                } else {
+                    ""
+                }
+            )));
+        }
+        let expected = d.outputs.len() * d.inputs.len();
+        if jacobian.len() != expected {
+            return Err(UnitError::State(format!(
+                "step_jacobian: {expected} values expected, a buffer of {} given",
+                jacobian.len()
+            )));
+        }
+        self.unit.step_jacobian(self.held.view(), jacobian)
+    }
+
+    /// The same derivative by forward differences of the unit's own step: for
+    /// each input `j`, the step from `start` (a state saved at the step's start)
+    /// is repeated with end inputs `end` but `end[j] + delta[j]`, and the
+    /// outputs' change over `delta[j]` is column `j`; `base` holds the outputs of
+    /// the step with `end`. Leaves the unit after the last perturbed step (the
+    /// caller restores it). `scratch` takes the perturbed outputs.
+    pub fn finite_difference_jacobian(
+        &mut self,
+        start: &DriverSlot,
+        (t, h): (Time, Time),
+        (end, delta): (&[f64], &[f64]),
+        base: &[f64],
+        (jacobian, scratch): (&mut [f64], &mut Vec<f64>),
+    ) -> Result<(), UnitError> {
+        let n_in = end.len();
+        scratch.resize(base.len(), 0.0);
+        for j in 0..n_in {
+            self.restore(start)?;
+            self.set_inputs(end)?;
+            self.held.nudge_end(j, delta[j]);
+            self.do_step(t, h)?;
+            self.outputs(scratch)?;
+            for (i, (&y, &y0)) in scratch.iter().zip(base).enumerate() {
+                jacobian[i * n_in + j] = (y - y0) / delta[j];
+            }
+        }
+        Ok(())
+    }
+
     /// The first `count` modes about the initial state (after `initialize`).
     pub fn modes(&self, count: usize) -> Result<ModalAnalysis, UnitError> {
         if !self.initialized {

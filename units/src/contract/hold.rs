@@ -52,6 +52,11 @@ impl HeldInputs {
         self.end.copy_from_slice(values);
     }
 
+    /// Moves the end value of input `port` by `delta` (finite differences).
+    pub fn nudge_end(&mut self, port: usize, delta: f64) {
+        self.end[port] += delta;
+    }
+
     /// Makes the end values the start values too: used at initialisation, where the
     /// inputs are constant.
     pub fn settle(&mut self) {

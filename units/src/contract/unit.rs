@@ -32,6 +32,10 @@ pub struct Capabilities {
     pub output_derivative_order: u32,
     /// Which input holds the unit honours.
     pub hold: HoldSupport,
+    /// `step_jacobian` gives the derivative of the outputs after a step with
+    /// respect to that step's end inputs; without it a master that needs the
+    /// derivative takes it by finite differences from a rolled-back state.
+    pub step_jacobian: bool,
 }
 
 /// Which input holds a unit honours (the driver applies a scene's `hold` by it).
@@ -54,6 +58,7 @@ impl Default for Capabilities {
             variable_step: true,
             output_derivative_order: 0,
             hold: HoldSupport::Any,
+            step_jacobian: false,
         }
     }
 }
@@ -197,6 +202,21 @@ pub trait Unit: Send {
             self.description().kind
         )))
     }
+
+    /// The interface Jacobian of the last `do_step` (units that declare
+    /// `Capabilities::step_jacobian`): the derivative of every output after the
+    /// step with respect to every input's value at the step's END (its start
+    /// value fixed), row-major, `outputs x inputs`, into `jacobian`. Called
+    /// after `do_step` (and `outputs`), before any restore; computed from what
+    /// the step already has (its factorised matrix: one back-substitution per
+    /// input), so it costs a fraction of a step. Others return `Unsupported`.
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        let _ = (inputs, jacobian);
+        Err(UnitError::Unsupported(format!(
+            "the step Jacobian of a `{}` unit",
+            self.description().kind
+        )))
+    }
 }
 
 /// Checks that a parameter is finite and strictly positive.
@@ -309,6 +329,14 @@ macro_rules! forward_unit {
 
             fn modes(&self, count: usize) -> Result<ModalAnalysis, UnitError> {
                 (**self).modes(count)
+            }
+
+            fn step_jacobian(
+                &mut self,
+                inputs: Inputs<'_>,
+                jacobian: &mut [f64],
+            ) -> Result<(), UnitError> {
+                (**self).step_jacobian(inputs, jacobian)
             }
         }
     )*};

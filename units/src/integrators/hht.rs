@@ -162,6 +162,13 @@ impl HhtAlpha {
         (alpha, 0.25 * (1.0 + alpha).powi(2), 0.5 + alpha)
     }
 
+    /// The factorised Newton matrix of the last iteration of a nonlinear step
+    /// (held DOFs as identity rows): what an interface Jacobian back-substitutes
+    /// with.
+    pub fn newton_factor(&self) -> Option<&BandLdlt> {
+        self.factor.as_ref()
+    }
+
     /// The Newton matrix with the tangent of the last iteration.
     pub fn newton_matrix(&self) -> &SymmetricBand {
         &self.jacobian

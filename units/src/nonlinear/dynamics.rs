@@ -164,6 +164,7 @@ impl NonlinearSection {
         h: f64,
     ) -> Result<u32, UnitError> {
         let mut w = std::mem::take(&mut self.work);
+        self.jacobian_work.ready = false;
         // A whole step leaves the state at its start when Newton fails, so the
         // copy for sub-stepping is only taken then (nothing per ordinary step).
         let mut pieces = 1;
@@ -195,6 +196,9 @@ impl NonlinearSection {
             }
         };
         self.work = w;
+        // The integrator's factor is this step's only when it was taken whole.
+        self.jacobian_work.ready = pieces == 1 && result.is_ok() && self.offers_jacobian();
+        self.jacobian_work.h = h;
         result
     }
 

@@ -17,6 +17,7 @@ pub mod model;
 pub mod params;
 
 mod dynamics;
+mod jacobian;
 mod statics;
 
 use crate::contract::{
@@ -86,6 +87,7 @@ pub struct NonlinearSection {
     hht: HhtAlpha,
     explicit: CentralDifference,
     work: dynamics::StepWork,
+    jacobian_work: jacobian::JacobianWork,
 }
 
 impl NonlinearSection {
@@ -120,7 +122,7 @@ impl NonlinearSection {
         let environment = Environment::new(&params, &model);
         // Formed about the start state by `initialize`.
         let m = SymmetricBand::zeros(n, BAND);
-        Ok(NonlinearSection {
+        let mut section = NonlinearSection {
             description: UnitDescription {
                 kind: "nonlinear".into(),
                 inputs,
@@ -150,6 +152,7 @@ impl NonlinearSection {
             hht: HhtAlpha::new(alpha, n, BAND),
             explicit: CentralDifference::new(),
             work: dynamics::StepWork::default(),
+            jacobian_work: jacobian::JacobianWork::default(),
             c: None,
             m,
             critical_step: f64::NAN,
@@ -158,7 +161,9 @@ impl NonlinearSection {
             ends,
             model,
             params,
-        })
+        };
+        section.description.capabilities.step_jacobian = section.offers_jacobian();
+        Ok(section)
     }
 
     /// The mesh.
@@ -391,6 +396,7 @@ impl Unit for NonlinearSection {
     }
 
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        self.jacobian_work.ready = false;
         self.state.t = t0.as_secs();
         self.state.q.fill(0.0);
         self.state.v.fill(0.0);
@@ -472,8 +478,13 @@ impl Unit for NonlinearSection {
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.jacobian_work.ready = false;
         self.state.clone_from(&*slot.load::<SectionState>()?);
         Ok(())
+    }
+
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        self.interface_jacobian(inputs, jacobian)
     }
 
     fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {

@@ -60,6 +60,9 @@ pub(super) fn describe(
             } else {
                 HoldSupport::ZeroOrderOnly
             },
+            // Directional derivatives are not used yet: the master takes the
+            // derivative by finite differences from a rolled-back state.
+            step_jacobian: false,
         },
     })
 }

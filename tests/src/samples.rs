@@ -1,0 +1,188 @@
+//! One sample unit per registry kind (and per kind a structure's sections
+//! become), configured as an example scene's master settles it or from an
+//! inline parameter table: what the contract tests drive.
+
+use crate::{fmu, load};
+use slender_fmi::export::ExportConfig;
+use slender_scene::export::SceneExport;
+use slender_units::{Driver, Time};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// A unit of an example scene, configured as the scene's master settles it.
+pub fn from_scene(scene: &str, unit: &str) -> ExportConfig {
+    ExportConfig::from_scene(&load(scene), unit).unwrap_or_else(|e| panic!("{scene}: {e}"))
+}
+
+/// A unit from an inline parameter table, started with zero inputs.
+pub fn inline(kind: &str, parameters: &str) -> ExportConfig {
+    ExportConfig {
+        name: kind.into(),
+        kind: kind.into(),
+        effects: Vec::new(),
+        hold: None,
+        inputs: BTreeMap::new(),
+        parameters: parameters.parse().expect("parameter table"),
+        start_time: 0.0,
+        stop_time: 1.0,
+        step: 0.01,
+        guid: String::new(),
+    }
+}
+
+/// A hanging line with every effect on: weight, drag in a current, added mass,
+/// Rayleigh damping, contact, a coupled velocity and a coupled force.
+pub const NONLINEAR_SAMPLE: &str = r#"
+segments = [{ length = 10.0, angle = -60.0, elements = 8, axial_stiffness = 1e7, bending_stiffness = 1e3, mass_per_length = 10.0, submerged_weight = 50.0, diameter = 0.1, drag_normal = 1.0, drag_tangential = 0.1, added_mass_normal = 1.0 }]
+ends.start = { kind = "pinned", x = "velocity" }
+ends.end = { z = { force = "input" } }
+current = { z = [-20.0, 0.0], velocity = [0.0, 0.5] }
+contact = { method = { kind = "penalty", penalty = 1e5 }, surface = { shape = { kind = "flat", height = -8.5 } } }
+stinger = { method = { kind = "augmented_lagrangian", penalty = 1e5 }, surface = { shape = { kind = "rollers", positions = [2.0], tops = [-3.44], radius = 0.3 } } }
+rayleigh_stiffness = 0.001
+stations = [5.0]
+"#;
+
+/// One sample per registry kind (an FMU sample needs a folder to export into).
+pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
+    let exported = fmu::export("examples/b3_force_displacement.toml", "b", dir);
+    let fmu_table = format!("file = {:?}", exported.display().to_string());
+    vec![
+        (
+            "cable",
+            from_scene("examples/truncation_substructured.toml", "n"),
+        ),
+        (
+            "beam",
+            from_scene("examples/pipe_span_coupling.toml", "upper"),
+        ),
+        ("nonlinear", inline("nonlinear", NONLINEAR_SAMPLE)),
+        (
+            "span",
+            inline(
+                "span",
+                "flexural_rigidity = 1e4\nmass_per_length = 1e2\ndamping_per_length = 5.0\nlength = 10.0\norder = 8",
+            ),
+        ),
+        (
+            "span_coupling",
+            from_scene("examples/pipe_span_coupling.toml", "span"),
+        ),
+        (
+            "touchdown_estimate",
+            from_scene("examples/pipe_static_contact.toml", "estimate"),
+        ),
+        (
+            "characteristic_load",
+            from_scene("examples/truncation_substructured.toml", "load"),
+        ),
+        (
+            "signal",
+            inline(
+                "signal",
+                "quantity = \"rotation\"\noffset = 0.1\nsines = [{ amplitude = 0.01, angular_frequency = 2.0 }]\nfade_in = { shape = \"smoothstep\", time = 1.0 }\nsteps = [{ time = 0.5, size = 0.02 }]",
+            ),
+        ),
+        (
+            "artefact",
+            from_scene("examples/truncation_table2.toml", "sensor"),
+        ),
+        (
+            "oscillator",
+            from_scene("examples/b1_two_masses.toml", "left"),
+        ),
+        (
+            "reduced",
+            from_scene("examples/seed002_frame_reduced.toml", "reduced"),
+        ),
+        (
+            "delay_compensation",
+            from_scene("examples/hybrid_oscillator.toml", "compensation_x"),
+        ),
+        ("fmu", inline("fmu", &fmu_table)),
+        // The units a structure's sections become.
+    ]
+    .into_iter()
+    .chain(section_samples())
+    .chain([
+        (
+            "loop_linear_pair",
+            from_scene("examples/b6_algebraic_loop.toml", "pair"),
+        ),
+        (
+            "loop_sphere",
+            from_scene("examples/b6_algebraic_loop.toml", "sphere"),
+        ),
+    ])
+    .collect()
+}
+
+/// Samples of the units a structure's sections are written as.
+pub fn section_samples() -> Vec<(&'static str, ExportConfig)> {
+    vec![
+        (
+            "static_section",
+            inline(
+                "static_section",
+                "stiffness = [[-2.7e7, 100.0, -30.0], [3.0, -2.0e6, 2.7e6], [-30.0, 2.5e6, -7.8e6]]\nforce = [-8.2e4, 5.8, -14.7]\nstart_stiffness = [[2.7e7, -115.0, 29.0], [-2.2e3, 0.01, 0.0]]\nstart_force = [8.2e4, -1.0e3]",
+            ),
+        ),
+        (
+            // Taking force at its end and holding the section above, with its
+            // static touchdown estimate.
+            "static_section",
+            inline(
+                "static_section",
+                "stiffness = [[-2.7e7, 100.0, -30.0], [3.0, -2.0e6, 2.7e6], [-30.0, 2.5e6, -7.8e6]]\nforce = [-8.2e4, 5.8, -14.7]\nforce_input = true\nquantities = [{ name = \"touchdown\", unit = \"m\", value = 126.0, gradient = [1.0e2, -20.0, 3.0] }]",
+            ),
+        ),
+        (
+            // The S-lay's suspended span as a beam about its chord.
+            "chord",
+            from_scene("examples/structure_slay_fidelity.toml", "pipe_suspended"),
+        ),
+        (
+            // Loaded at its cut, with attachment vectors and end forces.
+            "reduced",
+            from_scene("examples/structure_frame_reduced.toml", "frame_corner"),
+        ),
+    ]
+}
+
+/// The start inputs of a sample, in port order.
+pub fn start_inputs(config: &ExportConfig, driver: &Driver) -> Vec<f64> {
+    driver
+        .description()
+        .inputs
+        .iter()
+        .map(|p| config.inputs.get(&p.name).copied().unwrap_or(0.0))
+        .collect()
+}
+
+/// Inputs for step `k`: the start inputs, nudged a little.
+pub fn inputs_at(start: &[f64], k: i64) -> Vec<f64> {
+    start
+        .iter()
+        .map(|u| u + 1e-3 * k as f64 * u.abs().max(1.0))
+        .collect()
+}
+
+/// A driver of the sample, initialised and stepped `steps` times.
+pub fn started(config: &ExportConfig, steps: i64) -> (Driver, Vec<f64>, Time) {
+    let mut driver = config
+        .driver()
+        .unwrap_or_else(|e| panic!("{}: {e}", config.kind));
+    let start = start_inputs(config, &driver);
+    let h = Time::from_secs(config.step).expect("step");
+    driver.set_inputs(&start).unwrap();
+    driver
+        .initialize(Time::ZERO)
+        .unwrap_or_else(|e| panic!("{}: initialize: {e}", config.kind));
+    for k in 0..steps {
+        driver.set_inputs(&inputs_at(&start, k + 1)).unwrap();
+        driver
+            .do_step(h * k, h)
+            .unwrap_or_else(|e| panic!("{}: step {k}: {e}", config.kind));
+    }
+    (driver, start, h)
+}

@@ -1,0 +1,205 @@
+//! The interface Jacobian of the unit contract (`Unit::step_jacobian`, issue
+//! 25): for every sample kind that declares it, the derivative of its outputs
+//! after a step with respect to the step's end inputs equals central finite
+//! differences of the unit's own `do_step` from the rolled-back state, for every
+//! input, at a state a few nudged steps away from the start; and the driver's
+//! forward-difference fallback (what the master uses for units without one)
+//! agrees with it. Entries a unit leaves NaN (outputs it does not derive) are
+//! skipped, but every end output of a nonlinear section is given.
+
+use slender_scene::export::SceneExport;
+use slender_tests::samples::{inputs_at, samples, started};
+use slender_units::{Driver, DriverSlot, Time};
+
+/// Outputs after one step from `slot` with end inputs `inputs`.
+fn outputs_after(
+    driver: &mut Driver,
+    slot: &DriverSlot,
+    (t, h): (Time, Time),
+    inputs: &[f64],
+) -> Vec<f64> {
+    driver.restore(slot).unwrap();
+    driver.set_inputs(inputs).unwrap();
+    driver.do_step(t, h).unwrap();
+    let mut out = vec![0.0; driver.description().outputs.len()];
+    driver.outputs(&mut out).unwrap();
+    out
+}
+
+/// Central differences of the step, column by column (row-major outputs x
+/// inputs), each input moved by `relative` of its size (at least `relative`).
+fn central_differences(
+    driver: &mut Driver,
+    slot: &DriverSlot,
+    th: (Time, Time),
+    inputs: &[f64],
+    relative: f64,
+) -> Vec<f64> {
+    let n_in = inputs.len();
+    let n_out = driver.description().outputs.len();
+    let mut jacobian = vec![0.0; n_out * n_in];
+    for j in 0..n_in {
+        let delta = relative * inputs[j].abs().max(1.0);
+        let mut moved = inputs.to_vec();
+        moved[j] = inputs[j] + delta;
+        let up = outputs_after(driver, slot, th, &moved);
+        moved[j] = inputs[j] - delta;
+        let down = outputs_after(driver, slot, th, &moved);
+        for i in 0..n_out {
+            jacobian[i * n_in + j] = (up[i] - down[i]) / (2.0 * delta);
+        }
+    }
+    jacobian
+}
+
+/// The largest difference between a unit's Jacobian `a` and central
+/// differences `b`, each row relative to the row's largest entry (rows are in
+/// different units), over the rows `a` gives and where the differences resolve
+/// the row: rows whose differences at two step sizes (`b`, `b_coarse`) disagree
+/// by more than a tenth of the row (outputs at the unit's Newton noise, such as
+/// the residual force at a free end) are counted apart. Returns (largest
+/// difference, rows compared, rows at the noise floor); each entry is judged
+/// against the closer of the two, less `floor` (per row: the round-off of the
+/// coarse differences, a few ulps of the output over the step).
+fn row_relative_difference(
+    a: &[f64],
+    (b, b_coarse): (&[f64], &[f64]),
+    floor: &[f64],
+    n_in: usize,
+) -> (f64, usize, usize) {
+    let (mut worst, mut compared, mut noisy) = (0.0f64, 0, 0);
+    let rows = a
+        .chunks(n_in)
+        .zip(b.chunks(n_in))
+        .zip(b_coarse.chunks(n_in));
+    for (((ra, rb), rc), &floor) in rows.zip(floor) {
+        if ra.iter().any(|v| v.is_nan()) {
+            continue;
+        }
+        let scale = ra.iter().chain(rb).fold(0.0f64, |m, v| m.max(v.abs()));
+        if scale == 0.0 {
+            compared += 1;
+            continue;
+        }
+        let spread = rb
+            .iter()
+            .zip(rc)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        if spread > 0.1 * scale {
+            noisy += 1;
+            continue;
+        }
+        compared += 1;
+        // The closer of the two: the coarse step has less round-off, the fine
+        // one less truncation.
+        for ((x, y), z) in ra.iter().zip(rb).zip(rc) {
+            let difference = (x - y).abs().min((x - z).abs());
+            worst = worst.max((difference - floor).max(0.0) / scale);
+        }
+    }
+    (worst, compared, noisy)
+}
+
+#[test]
+fn every_declared_step_jacobian_equals_finite_differences_of_the_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut checked = Vec::new();
+    for (kind, config) in samples(dir.path()) {
+        let (mut driver, start, h) = started(&config, 3);
+        if !driver.description().capabilities.step_jacobian {
+            continue;
+        }
+        let t = h * 3;
+        let inputs = inputs_at(&start, 4);
+        let mut slot = DriverSlot::new();
+        driver.save(&mut slot).unwrap();
+        let base = outputs_after(&mut driver, &slot, (t, h), &inputs);
+        let (n_in, n_out) = (inputs.len(), base.len());
+        let mut own = vec![0.0; n_out * n_in];
+        driver
+            .step_jacobian(&mut own)
+            .unwrap_or_else(|e| panic!("{kind}: {e}"));
+        let reference = central_differences(&mut driver, &slot, (t, h), &inputs, 1e-6);
+        let coarse = central_differences(&mut driver, &slot, (t, h), &inputs, 1e-4);
+        let smallest_step = inputs
+            .iter()
+            .map(|u| 1e-4 * u.abs().max(1.0))
+            .fold(f64::INFINITY, f64::min);
+        let floor: Vec<f64> = base
+            .iter()
+            .map(|y| 8.0 * f64::EPSILON * y.abs() / smallest_step)
+            .collect();
+        let (worst, rows, noisy) =
+            row_relative_difference(&own, (&reference, &coarse), &floor, n_in);
+        eprintln!(
+            "{kind}: {rows} of {n_out} output rows compared ({noisy} at the noise floor), largest difference {worst:.2e} of the row"
+        );
+        // Linear units are exact (to the round-off of the differences). The
+        // nonlinear section back-substitutes with its Newton matrix, whose drag
+        // tangent leaves out the elements' turning (a few 1e-4 of a row here).
+        let tolerance = if kind == "nonlinear" { 1e-3 } else { 1e-6 };
+        assert!(worst < tolerance, "{kind}: {worst:e}");
+        if kind == "nonlinear" {
+            assert!(
+                rows + noisy >= 18,
+                "{kind}: the end outputs must all be given"
+            );
+            assert!(rows >= 15, "{kind}: {rows} rows resolved");
+        }
+        // The master's fallback for units without a Jacobian: forward
+        // differences of the step, inputs moved by 1e-6 of their size.
+        let delta: Vec<f64> = inputs.iter().map(|u| 1e-6 * u.abs().max(1.0)).collect();
+        let mut forward = vec![0.0; n_out * n_in];
+        let mut scratch = Vec::new();
+        driver
+            .finite_difference_jacobian(
+                &slot,
+                (t, h),
+                (&inputs, &delta),
+                &base,
+                (&mut forward, &mut scratch),
+            )
+            .unwrap();
+        let (fd_worst, _, _) =
+            row_relative_difference(&forward, (&reference, &coarse), &floor, n_in);
+        assert!(fd_worst < 1e-3, "{kind}: forward differences {fd_worst:e}");
+        checked.push(kind);
+    }
+    for kind in ["oscillator", "static_section", "nonlinear"] {
+        assert!(
+            checked.contains(&kind),
+            "no `{kind}` sample checked: {checked:?}"
+        );
+    }
+}
+
+#[test]
+fn a_step_jacobian_is_refused_after_a_rollback_and_in_sub_steps() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, config) = samples(dir.path())
+        .into_iter()
+        .find(|(k, _)| *k == "nonlinear")
+        .unwrap();
+    let (mut driver, start, h) = started(&config, 2);
+    let n = driver.description().outputs.len() * start.len();
+    let mut jacobian = vec![0.0; n];
+    assert!(driver.step_jacobian(&mut jacobian).is_ok());
+    let mut slot = DriverSlot::new();
+    driver.save(&mut slot).unwrap();
+    driver.restore(&slot).unwrap();
+    // Restored: the factor is not of a step from this state.
+    assert!(driver.step_jacobian(&mut jacobian).is_err());
+    driver.set_inputs(&inputs_at(&start, 3)).unwrap();
+    driver.do_step(h * 2, h).unwrap();
+    assert!(driver.step_jacobian(&mut jacobian).is_ok());
+    assert!(
+        driver.step_jacobian(&mut vec![0.0; n + 1]).is_err(),
+        "a wrong buffer size"
+    );
+    let mut multirate = config.driver().unwrap();
+    multirate.set_substeps(2).unwrap();
+    multirate.set_inputs(&start).unwrap();
+    multirate.initialize(Time::ZERO).unwrap();
+    multirate.do_step(Time::ZERO, h).unwrap();
+    assert!(multirate.step_jacobian(&mut jacobian).is_err(), "sub-steps");
+}
