@@ -132,6 +132,20 @@ pub struct Chain {
     pub v0: [f64; 2],
 }
 
+/// Benchmark B3's two masses (force/displacement coupling, stiff coupling
+/// spring kc = 3e4 N/m), as `examples/b3_force_displacement.toml` has them.
+pub fn b3_chain() -> Chain {
+    Chain {
+        m: [1.0, 1.0],
+        k: [100.0, 100.0],
+        c: [1.0, 1.0],
+        kc: 3.0e4,
+        dc: 10.0,
+        u0: [0.01, 0.0],
+        v0: [0.0, 0.0],
+    }
+}
+
 impl Chain {
     /// Displacements and velocities `[u1, u2, v1, v2]` after each of `steps` steps of
     /// the monolithic system, integrated with the same Newmark scheme as the units.

@@ -3,26 +3,14 @@
 //! iterations needed for a tolerance with and without acceleration.
 
 use slender_coupling::settings::{Acceleration, JacobianUpdate, NewtonSettings, Scheme, Solver};
-use slender_tests::{Chain, load, run_with};
+use slender_tests::{b3_chain, load, run_with};
 
 const SCENE: &str = "examples/b3_force_displacement.toml";
-
-fn chain() -> Chain {
-    Chain {
-        m: [1.0, 1.0],
-        k: [100.0, 100.0],
-        c: [1.0, 1.0],
-        kc: 3.0e4,
-        dc: 10.0,
-        u0: [0.01, 0.0],
-        v0: [0.0, 0.0],
-    }
-}
 
 /// Largest difference of both displacements to the monolithic solution (m).
 fn difference(s: &slender_tests::Series, h: f64) -> f64 {
     let steps = s.time.len() - 1;
-    let reference = chain().monolithic(h, steps);
+    let reference = b3_chain().monolithic(h, steps);
     let (u1, u2) = (s.get("a.displacement"), s.get("b.displacement"));
     (0..steps)
         .map(|i| {
