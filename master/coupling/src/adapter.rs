@@ -30,6 +30,15 @@ pub struct UnitAdapter {
     pub jacobian: Vec<f64>,
     /// Scratch of finite differences: the perturbed step's outputs.
     probe: Vec<f64>,
+    /// A failure of this unit in a parallel sweep, until the master reads it.
+    pub failure: Option<MasterError>,
+    /// Per input: the tolerance of the connection feeding it (a finite
+    /// difference moves the input by at least ten of them).
+    pub input_tolerance: Vec<f64>,
+    /// The outputs that feed connections: the rows a Jacobian must give.
+    pub coupled_outputs: Vec<usize>,
+    /// Scratch: the finite-difference steps of the inputs.
+    delta: Vec<f64>,
 }
 
 impl UnitAdapter {
@@ -50,6 +59,10 @@ impl UnitAdapter {
             step_time: Duration::ZERO,
             jacobian: vec![0.0; n_out * n_in],
             probe: vec![0.0; n_out],
+            failure: None,
+            input_tolerance: vec![0.0; n_in],
+            coupled_outputs: Vec::new(),
+            delta: vec![0.0; n_in],
         }
     }
 
@@ -166,25 +179,25 @@ impl UnitAdapter {
 
     /// Fills `self.jacobian` for the step from `t` over `h` just taken with
     /// `self.inputs`: the unit's own (`Unit::step_jacobian`) when it gives
-    /// every row in `needed` (outputs feeding connections) finite, or forward
-    /// differences of its step from the state saved at the step's start, each
-    /// input moved by `delta`; then the unit is left after a perturbed step and
-    /// must be restored before it steps again. Returns whether it was the
-    /// unit's own. The time is charged to the unit.
+    /// every coupled output's row finite, or forward differences of its step
+    /// from the state saved at the step's start, each input moved by
+    /// max(perturbation |u|, 10 x its connection's tolerance); then the unit is
+    /// left after a perturbed step and must be restored before it steps again.
+    /// Returns whether it was the unit's own. The time is charged to the unit.
     pub fn step_jacobian(
         &mut self,
         (t, h): (Time, Time),
-        delta: &[f64],
-        needed: impl Iterator<Item = usize>,
+        perturbation: f64,
         iteration: u32,
     ) -> Result<bool, MasterError> {
         let started = Instant::now();
         let n_in = self.inputs.len();
-        let own = self.driver.step_jacobian(&mut self.jacobian).is_ok() && {
-            let rows = &self.jacobian;
-            let mut needed = needed;
-            needed.all(|o| rows[o * n_in..(o + 1) * n_in].iter().all(|v| v.is_finite()))
-        };
+        let own = self.driver.step_jacobian(&mut self.jacobian).is_ok()
+            && self.coupled_outputs.iter().all(|&o| {
+                self.jacobian[o * n_in..(o + 1) * n_in]
+                    .iter()
+                    .all(|v| v.is_finite())
+            });
         if !own {
             if self.saved.is_empty() {
                 return Err(MasterError::Invalid(format!(
@@ -192,16 +205,24 @@ impl UnitAdapter {
                     self.name
                 )));
             }
+            for ((d, u), tol) in self
+                .delta
+                .iter_mut()
+                .zip(&self.inputs)
+                .zip(&self.input_tolerance)
+            {
+                *d = (perturbation * u.abs()).max(10.0 * tol);
+            }
             self.driver
                 .finite_difference_jacobian(
                     &self.saved,
                     (t, h),
-                    (&self.inputs, delta),
+                    (&self.inputs, &self.delta),
                     &self.outputs,
                     (&mut self.jacobian, &mut self.probe),
                 )
                 .map_err(|e| self.fail("do_step (Jacobian probe)", t + h, iteration, e))?;
-            self.counters.do_step_calls += self.inputs.len() as u64;
+            self.counters.do_step_calls += n_in as u64;
         }
         self.step_time += started.elapsed();
         Ok(own)

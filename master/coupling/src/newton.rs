@@ -13,6 +13,7 @@ use crate::coupler::Master;
 use crate::error::MasterError;
 use crate::settings::{Derivatives, JacobianUpdate, NewtonSettings};
 use nalgebra::{DMatrix, DVector, Dyn, linalg::LU};
+use rayon::prelude::*;
 
 /// Buffers of the Newton scheme, sized once for the torn values.
 pub(crate) struct NewtonWork {
@@ -29,8 +30,6 @@ pub(crate) struct NewtonWork {
     dv: Vec<f64>,
     /// The same for the inputs of the unit being chained (`inputs x torn`).
     du: Vec<f64>,
-    /// Finite-difference steps of that unit's inputs.
-    delta: Vec<f64>,
 }
 
 impl NewtonWork {
@@ -44,7 +43,6 @@ impl NewtonWork {
             last_residual: f64::INFINITY,
             dv: vec![0.0; n_connections * n_torn],
             du: Vec::new(),
-            delta: Vec::new(),
         }
     }
 }
@@ -185,6 +183,7 @@ impl Master {
         iteration: u32,
     ) -> Result<(), MasterError> {
         let n = self.torn.len();
+        self.unit_jacobians(perturbation, iteration)?;
         work.dv.fill(0.0);
         for i in 0..self.order.len() {
             let u = self.order[i];
@@ -192,7 +191,6 @@ impl Master {
             if !self.iterated[u] {
                 continue;
             }
-            self.unit_jacobian(u, work, perturbation, iteration)?;
             let n_in = self.units[u].inputs.len();
             work.du.resize(n_in * n, 0.0);
             for (p, row) in work.du.chunks_exact_mut(n.max(1)).enumerate() {
@@ -227,29 +225,38 @@ impl Master {
         }
         Ok(())
     }
+}
 
-    /// Unit `u`'s interface Jacobian of the step it just took, its inputs moved
-    /// by max(perturbation |u|, 10 x the feeding connection's tolerance) where
-    /// it is taken by finite differences.
-    fn unit_jacobian(
-        &mut self,
-        u: usize,
-        work: &mut NewtonWork,
-        perturbation: f64,
-        iteration: u32,
-    ) -> Result<(), MasterError> {
-        let unit = &self.units[u];
-        work.delta.clear();
-        for (p, &value) in unit.inputs.iter().enumerate() {
-            let tolerance = self.input_connection[u][p]
-                .map_or(self.settings.tolerances.generic, |c| self.tolerance[c]);
-            work.delta
-                .push((perturbation * value.abs()).max(10.0 * tolerance));
-        }
+impl Master {
+    /// Every iterated unit's interface Jacobian of the step it just took (on
+    /// the sweep threads when there are several: each unit alone, so the result
+    /// is the same).
+    fn unit_jacobians(&mut self, perturbation: f64, iteration: u32) -> Result<(), MasterError> {
         let (t, h) = (self.time, self.step_size);
-        let connections = &self.connections;
-        let needed = self.outgoing[u].iter().map(|&c| connections[c].from.port);
-        self.units[u].step_jacobian((t, h), &work.delta, needed, iteration)?;
+        let evaluate = |unit: &mut crate::adapter::UnitAdapter| {
+            unit.failure = unit.step_jacobian((t, h), perturbation, iteration).err();
+        };
+        let iterated = &self.iterated;
+        match &self.pool {
+            Some(pool) => pool.install(|| {
+                self.units
+                    .par_iter_mut()
+                    .enumerate()
+                    .filter(|(u, _)| iterated[*u])
+                    .for_each(|(_, unit)| evaluate(unit));
+            }),
+            None => self
+                .units
+                .iter_mut()
+                .enumerate()
+                .filter(|(u, _)| iterated[*u])
+                .for_each(|(_, unit)| evaluate(unit)),
+        }
+        for &u in &self.order {
+            if let Some(failure) = self.units[u].failure.take() {
+                return Err(failure);
+            }
+        }
         Ok(())
     }
 }

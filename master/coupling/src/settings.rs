@@ -286,10 +286,19 @@ pub struct MasterSettings {
     pub tolerances: Tolerances,
     #[serde(default)]
     pub extrapolation: Extrapolation,
+    /// Threads that step the units of a Jacobi sweep side by side (default 1:
+    /// one after another). Results are bit-identical for any count: each unit
+    /// steps as it would alone.
+    #[serde(default = "one_thread")]
+    pub threads: u32,
 }
 
 fn default_max_iterations() -> u32 {
     50
+}
+
+fn one_thread() -> u32 {
+    1
 }
 
 impl MasterSettings {
@@ -304,6 +313,7 @@ impl MasterSettings {
             newton: None,
             tolerances: Tolerances::default(),
             extrapolation: Extrapolation::default(),
+            threads: one_thread(),
         }
     }
 
@@ -327,6 +337,12 @@ impl MasterSettings {
         let invalid = |m: String| SettingsError(m);
         if self.max_iterations == 0 {
             return Err(invalid("max_iterations: expected at least 1".into()));
+        }
+        if !(1..=256).contains(&self.threads) {
+            return Err(invalid(format!(
+                "threads {}: expected 1 to 256",
+                self.threads
+            )));
         }
         for kind in PortKind::ALL {
             let tol = self.tolerances.of(kind);
