@@ -59,6 +59,8 @@ def structures(duration):
     yield "mooring line (80 elements, cut at node 65)", mooring, m_tol, whole, sec(1571.375)
     yield "mooring line (80 elements, cut at node 40)", mooring, m_tol, whole, sec(967.0)
     yield "S-lay (3 sections)", slay, s_tol, whole, sec(*slay_cuts)
+    fine = mooring.replace("elements = 80", "elements = 640")
+    yield "mooring line (640 elements, cut at node 320)", fine, m_tol, whole, sec(967.0)
 
 
 def bench(path, repeats):
@@ -72,9 +74,12 @@ def main():
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--duration", type=float, default=20.0)
+    p.add_argument("--only", default="", help="only the structures whose title contains this")
     a = p.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
     for k, (title, text, tol, whole, cut) in enumerate(structures(a.duration)):
+        if a.only and a.only not in title:
+            continue
         runs = {
             "monolithic": variant(text, IQN.format(tol=tol), whole, a.duration),
             "IQN-ILS, Gauss-Seidel (before)": variant(text, IQN.format(tol=tol), cut, a.duration),

@@ -20,6 +20,9 @@ use std::time::Instant;
 
 mod initial;
 mod parallel;
+mod setup;
+
+use setup::{adapters, check_rollback, explicit_order};
 
 /// Convergence of one sweep: the largest change relative to its tolerance, and where.
 #[derive(Copy, Clone, Debug)]
@@ -118,18 +121,7 @@ impl Master {
             .map(|_| crate::newton::NewtonWork::new(n_torn, n_conn));
         let accelerator = accelerator(&settings.acceleration, n_torn);
         let pool = Master::thread_pool(settings.threads, settings.scheme.is_sequential())?;
-        let mut units: Vec<UnitAdapter> = system
-            .units
-            .into_iter()
-            .map(|u| UnitAdapter::new(u.name, u.unit, u.start_inputs))
-            .collect();
-        for unit in &mut units {
-            unit.input_tolerance.fill(settings.tolerances.generic);
-        }
-        for (c, conn) in system.connections.iter().enumerate() {
-            units[conn.to.unit].input_tolerance[conn.to.port] = tolerance[c];
-            units[conn.from.unit].coupled_outputs.push(conn.from.port);
-        }
+        let units = adapters(system.units, &system.connections, &tolerance, &settings);
         Ok(Master {
             units,
             connections: system.connections,
@@ -545,56 +537,7 @@ impl Master {
     }
 }
 
-/// Iterative schemes repeat steps: every unit must roll back.
-fn check_rollback(system: &System, settings: &MasterSettings) -> Result<(), MasterError> {
-    if !settings.scheme.is_iterative() {
-        return Ok(());
-    }
-    match system
-        .units
-        .iter()
-        .find(|u| !u.unit.description().capabilities.rollback)
-    {
-        Some(u) => Err(MasterError::RollbackUnsupported {
-            unit: u.name.clone(),
-            scheme: settings.scheme.name().into(),
-        }),
-        None => Ok(()),
-    }
-}
-
 /// The value a connection passes on, from its source unit's outputs.
 fn link_value(c: &Connection, outputs: &[f64]) -> f64 {
     c.link.gain * outputs[c.from.port] + c.link.offset
-}
-
-fn explicit_order(system: &System, names: &[String]) -> Result<Vec<usize>, MasterError> {
-    let mut order = Vec::with_capacity(names.len());
-    for name in names {
-        let u = system.unit_index(name).ok_or_else(|| {
-            MasterError::Invalid(format!(
-                "order: no unit named `{name}`{}",
-                crate::error::did_you_mean(name, system.unit_names())
-            ))
-        })?;
-        if order.contains(&u) {
-            return Err(MasterError::Invalid(format!(
-                "order: unit `{name}` is listed twice"
-            )));
-        }
-        order.push(u);
-    }
-    if order.len() != system.units.len() {
-        let missing: Vec<&str> = system
-            .unit_names()
-            .enumerate()
-            .filter(|(i, _)| !order.contains(i))
-            .map(|(_, n)| n)
-            .collect();
-        return Err(MasterError::Invalid(format!(
-            "order: every unit must be listed once; missing: {}",
-            missing.join(", ")
-        )));
-    }
-    Ok(order)
 }
