@@ -10,6 +10,7 @@ use std::ffi::{CString, c_void};
 use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
 
+mod derivative;
 mod state;
 use state::SavedInstance;
 
@@ -49,6 +50,12 @@ pub struct Instance {
     inputs_changed: bool,
     parameters: Vec<Value>,
     strings: Vec<CString>,
+    /// The unit's step Jacobian, kept for the step it was taken after
+    /// (`fmi2GetDirectionalDerivative` may ask one output at a time).
+    jacobian: Vec<f64>,
+    /// Counts steps and state changes; the Jacobian's is `jacobian_of`.
+    generation: u64,
+    jacobian_of: Option<u64>,
 }
 
 /// Sends a message to the environment's logger, whatever the instance state.
@@ -200,6 +207,9 @@ impl Instance {
             inputs_changed: false,
             parameters,
             strings: Vec::new(),
+            jacobian: Vec::new(),
+            generation: 0,
+            jacobian_of: None,
         })
     }
 
@@ -282,6 +292,7 @@ impl Instance {
     }
 
     pub fn reset(&mut self) -> Result<fmi2Status, String> {
+        self.generation += 1;
         self.config = self.exported.clone();
         self.parameters = self
             .layout
@@ -485,6 +496,7 @@ impl Instance {
     }
 
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<fmi2Status, String> {
+        self.generation += 1;
         if self.phase != Phase::Stepping {
             return Err("only allowed after fmi2ExitInitializationMode".into());
         }

@@ -420,20 +420,29 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     })
 }
 
-/// `fmi2GetDirectionalDerivative`: not provided (`providesDirectionalDerivative`
-/// is false).
+/// `fmi2GetDirectionalDerivative`: the unit's step Jacobian times the seed
+/// (`providesDirectionalDerivative` where the unit gives one).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     c: fmi2Component,
-    _unknown: *const fmi2ValueReference,
-    _n_unknown: usize,
-    _known: *const fmi2ValueReference,
-    _n_known: usize,
-    _dv_known: *const fmi2Real,
-    _dv_unknown: *mut fmi2Real,
+    unknown: *const fmi2ValueReference,
+    n_unknown: usize,
+    known: *const fmi2ValueReference,
+    n_known: usize,
+    dv_known: *const fmi2Real,
+    dv_unknown: *mut fmi2Real,
 ) -> fmi2Status {
-    guarded(c, "fmi2GetDirectionalDerivative", |_| {
-        Err("directional derivatives are not provided".into())
+    guarded(c, "fmi2GetDirectionalDerivative", |i| {
+        // SAFETY: FMI array arguments of the lengths given.
+        let (unknown, known, dv_known, dv_unknown) = unsafe {
+            (
+                refs(unknown, n_unknown)?,
+                refs(known, n_known)?,
+                values(dv_known, n_known)?,
+                values_mut(dv_unknown, n_unknown)?,
+            )
+        };
+        i.directional_derivative((unknown, known), dv_known, dv_unknown)
     })
 }
 

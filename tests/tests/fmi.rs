@@ -113,6 +113,85 @@ fn an_exported_unit_through_the_importer_matches_the_native_unit() {
     assert!(worst <= 1e-13 * scale, "{worst:e}");
 }
 
+/// A unit's step Jacobian after `steps` steps with zero-order held inputs
+/// nudged from `start` (a driver that steps its unit once per call).
+fn jacobian_after<U: Unit>(unit: &mut Driver<U>, start: &[f64], steps: i64) -> Vec<f64> {
+    let h = Time::from_secs(0.01).unwrap();
+    for p in 0..start.len() {
+        unit.set_hold(p, Hold::ZeroOrder).unwrap();
+    }
+    unit.set_inputs(start).unwrap();
+    unit.initialize(Time::ZERO).unwrap();
+    for k in 0..steps {
+        let nudged: Vec<f64> = start
+            .iter()
+            .map(|u| u + 1e-3 * (k + 1) as f64 * u.abs().max(1.0))
+            .collect();
+        unit.set_inputs(&nudged).unwrap();
+        unit.do_step(h * k, h).unwrap();
+    }
+    let d = unit.description();
+    let mut jacobian = vec![0.0; d.outputs.len() * d.inputs.len()];
+    unit.step_jacobian(&mut jacobian).unwrap();
+    jacobian
+}
+
+#[test]
+fn an_imported_fmu_gives_the_native_step_jacobian_through_directional_derivatives() {
+    let dir = temp();
+    for (scene, unit) in [
+        ("examples/b1_two_masses.toml", "left"),
+        ("examples/structure_mooring.toml", "line_upper"),
+    ] {
+        let config = ExportConfig::from_scene(&load(scene), unit).unwrap();
+        let file = fmu::export(scene, unit, dir.path());
+        let md = slender_fmi::import::FmuUnit::load(
+            &slender_fmi::import::FmuParams {
+                file: file.clone(),
+                start: Default::default(),
+                preload: Vec::new(),
+                logging: false,
+            },
+            std::path::Path::new("."),
+        )
+        .unwrap();
+        let cs = md.model_description().co_simulation.clone().unwrap();
+        assert!(cs.provides_directional_derivative, "{unit}");
+        let mut native = config.driver().unwrap();
+        let start: Vec<f64> = native
+            .description()
+            .inputs
+            .iter()
+            .map(|p| config.inputs.get(&p.name).copied().unwrap_or(0.0))
+            .collect();
+        let own = jacobian_after(&mut native, &start, 5);
+        let through_fmi = jacobian_after(&mut Driver::new(md), &start, 5);
+        let given = own.iter().filter(|v| v.is_finite()).count();
+        println!("{unit}: {given} of {} entries given", own.len());
+        assert!(given > 0);
+        for (a, b) in own.iter().zip(&through_fmi) {
+            // Entries the unit gives cross the interface bit for bit; the
+            // others (a section's stations) are refused, NaN on both sides.
+            assert!(
+                a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                "{unit}: {a} against {b}"
+            );
+        }
+    }
+    // A unit without a Jacobian (the cable) does not declare one.
+    let file = fmu::export("examples/truncation_substructured.toml", "n", dir.path());
+    let cable = import(&file).unwrap();
+    assert!(
+        !cable
+            .model_description()
+            .co_simulation
+            .as_ref()
+            .unwrap()
+            .provides_directional_derivative
+    );
+    assert!(!cable.description().capabilities.step_jacobian);
+}
+
 /// Largest difference between two runs' recorded signals, relative to each
 /// signal's largest magnitude.
 fn worst_relative_difference(a: &slender_tests::Series, b: &slender_tests::Series) -> f64 {

@@ -186,6 +186,32 @@ fn fmu_state_save_restore_serialise_round_trip_through_fmpy() {
     }
 }
 
+#[test]
+#[ignore = "needs FMPy and pythonfmu in .venv: ./scripts/test.sh runs it"]
+fn fmpy_directional_derivatives_match_differences_of_the_step() {
+    let dir = tempfile::tempdir().unwrap();
+    for (scene, unit, rows) in [
+        (
+            "examples/b1_two_masses.toml",
+            "left",
+            "displacement,velocity,coupling_force",
+        ),
+        (
+            "examples/structure_mooring.toml",
+            "line_upper",
+            "start_force_x,start_force_z,start_position_x,start_velocity_z",
+        ),
+    ] {
+        let folder = dir.path().join(unit);
+        std::fs::create_dir_all(&folder).unwrap();
+        let file = fmu::export(scene, unit, &folder);
+        let out = python_script(&["derivatives", &file.display().to_string(), rows]);
+        assert!(out.status.success(), "{scene} {unit}: derivatives differ");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("directional derivatives of"), "{text}");
+    }
+}
+
 /// The directory holding libpython, and the virtual environment's packages.
 fn python_paths() -> (PathBuf, String) {
     let query = |code: &str| {

@@ -229,6 +229,7 @@ impl Layout {
                 max_output_derivative_order: 0,
                 can_get_and_set_fmu_state: caps.rollback,
                 can_serialize_fmu_state: caps.rollback,
+                provides_directional_derivative: caps.step_jacobian,
             }),
             units,
             variables,

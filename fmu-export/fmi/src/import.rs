@@ -112,6 +112,9 @@ pub struct FmuUnit {
     slopes: Vec<f64>,
     orders: Vec<fmi2Integer>,
     outputs: Vec<f64>,
+    /// A seed of the directional derivative and its answer (scratch).
+    seed: Vec<f64>,
+    column: Vec<f64>,
     /// Every FMU state handle handed out, freed with the instance.
     states: Mutex<Vec<usize>>,
     log: Box<LogBook>,
@@ -139,11 +142,14 @@ impl FmuUnit {
         let (folder, model, cs) = unpack(&path, &label)?;
         let binary = binary_for_this_platform(folder.path(), &cs.model_identifier, &label)?;
         let library = open_binary(&binary, &params.preload, &label)?;
-        let api = Api::bind(&library, cs.can_get_and_set_fmu_state).map_err(|message| {
-            LoadError::Library {
-                fmu: label.clone(),
-                message,
-            }
+        let api = Api::bind(
+            &library,
+            cs.can_get_and_set_fmu_state,
+            cs.provides_directional_derivative,
+        )
+        .map_err(|message| LoadError::Library {
+            fmu: label.clone(),
+            message,
         })?;
         let description = describe(&model, &label)?;
         let starts = start_values(&model, &params.start, &label)?;
@@ -166,6 +172,8 @@ impl FmuUnit {
             slopes: vec![0.0; n_in],
             orders: vec![1; n_in],
             outputs: vec![0.0; output_refs.len()],
+            seed: vec![0.0; n_in],
+            column: vec![0.0; output_refs.len()],
             output_refs,
             states: Mutex::new(Vec::new()),
             log,
@@ -182,6 +190,30 @@ impl FmuUnit {
             p.hold = hold;
         }
         Ok(unit)
+    }
+
+    /// `fmi2GetDirectionalDerivative` of the outputs `rows` for the seed, into
+    /// the same rows of `column`; the status.
+    fn derivative(
+        &mut self,
+        get: library::GetDirectionalDerivative,
+        rows: std::ops::Range<usize>,
+    ) -> fmi2Status {
+        let n_in = self.input_refs.len();
+        let (refs, column) = (&self.output_refs[rows.clone()], &mut self.column[rows]);
+        // SAFETY: FMI 2.0 call on a live instance; the arrays have the lengths
+        // passed.
+        unsafe {
+            get(
+                self.component,
+                refs.as_ptr(),
+                refs.len(),
+                self.input_refs.as_ptr(),
+                n_in,
+                self.seed.as_ptr(),
+                column.as_mut_ptr(),
+            )
+        }
     }
 
     /// The parsed model description.
@@ -374,6 +406,39 @@ impl Unit for FmuUnit {
 
     fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
         out.copy_from_slice(&self.outputs);
+    }
+
+    /// One `fmi2GetDirectionalDerivative` per input (seed: that input), every
+    /// output unknown; where the FMU refuses that, one output at a time, NaN
+    /// for the outputs it refuses (a master then differences the FMU).
+    fn step_jacobian(
+        &mut self,
+        _inputs: Inputs<'_>,
+        jacobian: &mut [f64],
+    ) -> Result<(), UnitError> {
+        let get = self.api.get_directional_derivative.ok_or_else(|| {
+            UnitError::Unsupported(format!(
+                "FMU {}: no directional derivatives (providesDirectionalDerivative is false)",
+                self.label
+            ))
+        })?;
+        let (n_in, n_out) = (self.input_refs.len(), self.output_refs.len());
+        for j in 0..n_in {
+            self.seed.fill(0.0);
+            self.seed[j] = 1.0;
+            let all = self.derivative(get, 0..n_out);
+            if all != FMI2_OK {
+                for i in 0..n_out {
+                    if self.derivative(get, i..i + 1) != FMI2_OK {
+                        self.column[i] = f64::NAN;
+                    }
+                }
+            }
+            for (i, d) in self.column.iter().enumerate() {
+                jacobian[i * n_in + j] = *d;
+            }
+        }
+        Ok(())
     }
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {

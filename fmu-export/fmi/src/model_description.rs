@@ -126,6 +126,9 @@ pub struct CoSimulation {
     pub max_output_derivative_order: u32,
     pub can_get_and_set_fmu_state: bool,
     pub can_serialize_fmu_state: bool,
+    /// `fmi2GetDirectionalDerivative` answers (for slender's FMUs: the step
+    /// Jacobian of the last `fmi2DoStep`).
+    pub provides_directional_derivative: bool,
 }
 
 /// One `Unknown` of the ModelStructure: a variable (1-based index into the
@@ -197,13 +200,14 @@ impl ModelDescription {
         if let Some(cs) = &self.co_simulation {
             let _ = writeln!(
                 x,
-                r#"  <CoSimulation modelIdentifier="{}" canHandleVariableCommunicationStepSize="{}" canInterpolateInputs="{}" maxOutputDerivativeOrder="{}" canGetAndSetFMUstate="{}" canSerializeFMUstate="{}" canNotUseMemoryManagementFunctions="true" canBeInstantiatedOnlyOncePerProcess="false" needsExecutionTool="false"/>"#,
+                r#"  <CoSimulation modelIdentifier="{}" canHandleVariableCommunicationStepSize="{}" canInterpolateInputs="{}" maxOutputDerivativeOrder="{}" canGetAndSetFMUstate="{}" canSerializeFMUstate="{}" providesDirectionalDerivative="{}" canNotUseMemoryManagementFunctions="true" canBeInstantiatedOnlyOncePerProcess="false" needsExecutionTool="false"/>"#,
                 e(&cs.model_identifier),
                 cs.can_handle_variable_communication_step_size,
                 cs.can_interpolate_inputs,
                 cs.max_output_derivative_order,
                 cs.can_get_and_set_fmu_state,
-                cs.can_serialize_fmu_state
+                cs.can_serialize_fmu_state,
+                cs.provides_directional_derivative
             );
         }
         self.write_units(&mut x);
@@ -337,6 +341,7 @@ mod tests {
                 max_output_derivative_order: 0,
                 can_get_and_set_fmu_state: true,
                 can_serialize_fmu_state: true,
+                provides_directional_derivative: true,
             }),
             units: vec![UnitDefinition {
                 name: "N".into(),

@@ -59,6 +59,7 @@ impl Instance {
     }
 
     pub fn set_state(&mut self, handle: fmi2FMUstate) -> Result<fmi2Status, String> {
+        self.generation += 1;
         if handle.is_null() {
             return Err("null state".into());
         }

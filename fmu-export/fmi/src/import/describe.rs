@@ -60,9 +60,9 @@ pub(super) fn describe(
             } else {
                 HoldSupport::ZeroOrderOnly
             },
-            // Directional derivatives are not used yet: the master takes the
-            // derivative by finite differences from a rolled-back state.
-            step_jacobian: false,
+            // The step Jacobian through fmi2GetDirectionalDerivative, taken
+            // as with respect to the inputs at the end of the last step.
+            step_jacobian: cs.provides_directional_derivative,
         },
     })
 }

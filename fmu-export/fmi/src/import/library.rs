@@ -106,6 +106,15 @@ pub(super) type SetDerivatives = unsafe extern "C" fn(
     *const f64,
 ) -> fmi2Status;
 pub(super) type DoStep = unsafe extern "C" fn(fmi2Component, f64, f64, fmi2Boolean) -> fmi2Status;
+pub(super) type GetDirectionalDerivative = unsafe extern "C" fn(
+    fmi2Component,
+    *const fmi2ValueReference,
+    usize,
+    *const fmi2ValueReference,
+    usize,
+    *const f64,
+    *mut f64,
+) -> fmi2Status;
 
 /// The FMU's entry points, bound once.
 pub(super) struct Api {
@@ -126,6 +135,7 @@ pub(super) struct Api {
     pub(super) get_fmu_state: Option<StateCall>,
     pub(super) set_fmu_state: Option<SetState>,
     pub(super) free_fmu_state: Option<StateCall>,
+    pub(super) get_directional_derivative: Option<GetDirectionalDerivative>,
 }
 
 pub(super) fn symbol<T: Copy>(library: &libloading::Library, name: &str) -> Result<T, String> {
@@ -139,7 +149,13 @@ pub(super) fn symbol<T: Copy>(library: &libloading::Library, name: &str) -> Resu
 }
 
 impl Api {
-    pub(super) fn bind(library: &libloading::Library, states: bool) -> Result<Api, String> {
+    /// Binds the entry points; the state calls when `states`, the directional
+    /// derivative when `derivatives` (as the model description declares them).
+    pub(super) fn bind(
+        library: &libloading::Library,
+        states: bool,
+        derivatives: bool,
+    ) -> Result<Api, String> {
         Ok(Api {
             instantiate: symbol(library, "fmi2Instantiate")?,
             free_instance: symbol(library, "fmi2FreeInstance")?,
@@ -167,6 +183,11 @@ impl Api {
             },
             free_fmu_state: if states {
                 Some(symbol(library, "fmi2FreeFMUstate")?)
+            } else {
+                None
+            },
+            get_directional_derivative: if derivatives {
+                Some(symbol(library, "fmi2GetDirectionalDerivative")?)
             } else {
                 None
             },

@@ -254,6 +254,7 @@ impl<'a> Parser<'a> {
                 .unwrap_or(0),
             can_get_and_set_fmu_state: attrs.flag("canGetAndSetFMUstate")?,
             can_serialize_fmu_state: attrs.flag("canSerializeFMUstate")?,
+            provides_directional_derivative: attrs.flag("providesDirectionalDerivative")?,
         })
     }
 
