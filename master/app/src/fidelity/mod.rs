@@ -7,87 +7,20 @@
 //! and the cheapest combination within a tolerance. A combination that cannot
 //! be set up or fails is reported with its reason and the study goes on.
 
+mod choice;
 pub mod quantities;
 pub mod report;
 mod rows;
 mod written;
+
+pub use choice::{Choice, SectionChoices};
 
 use crate::run::{RunOptions, run_scene};
 use crate::study::Design;
 use quantities::{Features, SectionUnit};
 use serde::Serialize;
 use std::path::Path;
-use std::str::FromStr;
 use toml::{Table, Value};
-
-/// One way to model a section: a fidelity and, optionally, its element count
-/// (`nonlinear:16`; for `reduced` the number of modes, `reduced:4`; for `span`
-/// the order of its fit, `span:24`); without a count, the model's own mesh over
-/// the section (6 modes, order 24).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Choice {
-    pub fidelity: String,
-    pub elements: Option<usize>,
-}
-
-impl Choice {
-    /// As written on the command line.
-    pub fn label(&self) -> String {
-        match self.elements {
-            Some(n) => format!("{}:{n}", self.fidelity),
-            None => self.fidelity.clone(),
-        }
-    }
-}
-
-/// A section's choices: `NAME=CHOICE,CHOICE,...`.
-#[derive(Clone, Debug)]
-pub struct SectionChoices {
-    pub section: String,
-    pub choices: Vec<Choice>,
-}
-
-impl FromStr for SectionChoices {
-    type Err = String;
-    fn from_str(s: &str) -> Result<SectionChoices, String> {
-        let (section, list) = s.split_once('=').ok_or(format!(
-            "`{s}`: expected NAME=CHOICE,CHOICE,..., e.g. lower=nonlinear,cable,nonlinear:16"
-        ))?;
-        let choices = list
-            .split(',')
-            .map(|c| {
-                let (fidelity, elements) = match c.split_once(':') {
-                    Some((f, n)) => (
-                        f,
-                        Some(n.parse::<usize>().ok().filter(|&n| n >= 1).ok_or(format!(
-                            "`{s}`: `{c}`: the element count after `:` must be a whole number >= 1"
-                        ))?),
-                    ),
-                    None => (c, None),
-                };
-                if !slender_scene::structure::FIDELITIES.contains(&fidelity) {
-                    return Err(format!(
-                        "`{s}`: `{fidelity}` is not a fidelity; expected one of {}",
-                        slender_scene::structure::FIDELITIES.join(", ")
-                    ));
-                }
-                Ok(Choice {
-                    fidelity: fidelity.to_owned(),
-                    elements,
-                })
-            })
-            .collect::<Result<Vec<_>, String>>()?;
-        if choices.is_empty() || section.is_empty() {
-            return Err(format!(
-                "`{s}`: expected a section name and at least one choice"
-            ));
-        }
-        Ok(SectionChoices {
-            section: section.to_owned(),
-            choices,
-        })
-    }
-}
 
 /// What a fidelity study runs.
 #[derive(Clone, Debug)]
@@ -367,6 +300,10 @@ fn run_table(
             }
             (_, Some(n)) => section.insert("elements".into(), Value::Integer(n as i64)),
             (_, None) => section.remove("elements"),
+        };
+        match choice.substeps {
+            Some(n) => section.insert("substeps".into(), Value::Integer(i64::from(n))),
+            None => section.remove("substeps"),
         };
     }
     let kinds: Vec<String> = sections

@@ -15,9 +15,13 @@ pub(super) fn scene_choice(t: &Table) -> String {
         .get("fidelity")
         .and_then(|f| f.get(count))
         .or(t.get(count));
-    match elements.and_then(Value::as_integer) {
+    let model = match elements.and_then(Value::as_integer) {
         Some(n) => format!("{kind}:{n}"),
         None => kind.to_owned(),
+    };
+    match t.get("substeps").and_then(Value::as_integer) {
+        Some(n) => format!("{model}/{n}"),
+        None => model,
     }
 }
 

@@ -322,6 +322,9 @@ impl Built {
             unit.insert("parameters".into(), Value::Table(fmu.clone()));
             unit.remove("effects");
         }
+        if let Some(n) = cut.substeps {
+            unit.insert("substeps".into(), Value::Integer(n as i64));
+        }
         Ok(unit)
     }
 
@@ -447,6 +450,7 @@ impl Built {
                     to: length,
                     fidelity,
                     elements: None,
+                    substeps: None,
                     physical: None,
                     fmu: None,
                     options: None,

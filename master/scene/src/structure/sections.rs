@@ -64,6 +64,8 @@ pub(crate) struct Cut {
     pub to: f64,
     pub fidelity: Fidelity,
     pub elements: Option<usize>,
+    /// Sub-steps of the section's unit per coupling step (multi-rate).
+    pub substeps: Option<usize>,
     /// A physical section's artefacts (`sensor`, `actuator`).
     pub physical: Option<Table>,
     /// The `fmu` parameters of an external FMU in place of the section's unit.
@@ -179,6 +181,10 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
                 ));
             }
         };
+        let substeps = t
+            .get("substeps")
+            .map(|v| whole(&format!("{key}.substeps"), v))
+            .transpose()?;
         let physical = match t.get("physical") {
             None => None,
             Some(Value::Table(p)) => Some(p.clone()),
@@ -194,6 +200,7 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
             to,
             fidelity,
             elements,
+            substeps,
             physical,
             fmu: model.fmu,
             options: model.options,

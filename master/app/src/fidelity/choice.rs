@@ -1,0 +1,106 @@
+//! What `slender fidelity` is asked to try per section: `NAME=CHOICE,...`,
+//! each choice a fidelity with an optional count and sub-steps.
+
+use serde::Serialize;
+use std::str::FromStr;
+
+/// One way to model a section: a fidelity and, optionally, its element count
+/// (`nonlinear:16`; for `reduced` the number of modes, `reduced:4`; for `span`
+/// the order of its fit, `span:24`); without a count, the model's own mesh over
+/// the section (6 modes, order 24); and, optionally, its sub-steps per
+/// coupling step after a slash (`nonlinear:16/4`, `cable/2`: multi-rate).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Choice {
+    pub fidelity: String,
+    pub elements: Option<usize>,
+    pub substeps: Option<u32>,
+}
+
+impl Choice {
+    /// As written on the command line.
+    pub fn label(&self) -> String {
+        let mut label = match self.elements {
+            Some(n) => format!("{}:{n}", self.fidelity),
+            None => self.fidelity.clone(),
+        };
+        if let Some(s) = self.substeps {
+            label += &format!("/{s}");
+        }
+        label
+    }
+}
+
+/// A section's choices: `NAME=CHOICE,CHOICE,...`.
+#[derive(Clone, Debug)]
+pub struct SectionChoices {
+    pub section: String,
+    pub choices: Vec<Choice>,
+}
+
+impl FromStr for SectionChoices {
+    type Err = String;
+    fn from_str(s: &str) -> Result<SectionChoices, String> {
+        let (section, list) = s.split_once('=').ok_or(format!(
+            "`{s}`: expected NAME=CHOICE,CHOICE,..., e.g. lower=nonlinear,cable,nonlinear:16,nonlinear/4"
+        ))?;
+        let choices = list
+            .split(',')
+            .map(|c| {
+                let (c, substeps) = match c.split_once('/') {
+                    Some((model, n)) => (
+                        model,
+                        Some(n.parse::<u32>().ok().filter(|&n| n >= 1).ok_or(format!(
+                            "`{s}`: `{c}/{n}`: the sub-steps after `/` must be a whole number >= 1"
+                        ))?),
+                    ),
+                    None => (c, None),
+                };
+                let (fidelity, elements) = match c.split_once(':') {
+                    Some((f, n)) => (
+                        f,
+                        Some(n.parse::<usize>().ok().filter(|&n| n >= 1).ok_or(format!(
+                            "`{s}`: `{c}`: the element count after `:` must be a whole number >= 1"
+                        ))?),
+                    ),
+                    None => (c, None),
+                };
+                if !slender_scene::structure::FIDELITIES.contains(&fidelity) {
+                    return Err(format!(
+                        "`{s}`: `{fidelity}` is not a fidelity; expected one of {}",
+                        slender_scene::structure::FIDELITIES.join(", ")
+                    ));
+                }
+                Ok(Choice {
+                    fidelity: fidelity.to_owned(),
+                    elements,
+                    substeps,
+                })
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        if choices.is_empty() || section.is_empty() {
+            return Err(format!(
+                "`{s}`: expected a section name and at least one choice"
+            ));
+        }
+        Ok(SectionChoices {
+            section: section.to_owned(),
+            choices,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_choice_takes_a_count_and_sub_steps() {
+        let c: SectionChoices = "lower=nonlinear:16/4,cable/2,reduced:6".parse().unwrap();
+        let labels: Vec<String> = c.choices.iter().map(Choice::label).collect();
+        assert_eq!(labels, ["nonlinear:16/4", "cable/2", "reduced:6"]);
+        assert_eq!(c.choices[0].substeps, Some(4));
+        assert_eq!(c.choices[2].substeps, None);
+        let e = "lower=nonlinear/0".parse::<SectionChoices>().unwrap_err();
+        assert!(e.contains("sub-steps"), "{e}");
+    }
+}
