@@ -235,6 +235,28 @@ impl UnitAdapter {
             .map_err(|e| self.fail("save_state", t, 0, e))
     }
 
+    /// Restores the state saved by the last `save`; with `warm`, hints the unit
+    /// that it repeats the step it last took ([`slender_units::Unit::warm_repeat`]).
+    pub fn restore_hinted(
+        &mut self,
+        t: Time,
+        iteration: u32,
+        warm: bool,
+    ) -> Result<(), MasterError> {
+        if !warm {
+            return self.restore(t, iteration);
+        }
+        if self.saved.is_empty() {
+            return Err(MasterError::Invalid(format!(
+                "unit `{}`: restore_state called before save_state",
+                self.name
+            )));
+        }
+        self.driver
+            .restore_warm(&self.saved)
+            .map_err(|e| self.fail("restore_state", t, iteration, e))
+    }
+
     /// Restores the state saved by the last `save`.
     pub fn restore(&mut self, t: Time, iteration: u32) -> Result<(), MasterError> {
         if self.saved.is_empty() {

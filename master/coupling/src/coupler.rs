@@ -69,6 +69,9 @@ pub struct Master {
     /// The step's first iterate, for a restart.
     x_start: Vec<f64>,
     accelerator: Box<dyn Accelerator>,
+    /// Whether a rollback hints the units that they repeat their last step
+    /// (Newton on the units' Jacobians with `warm_start`).
+    pub(crate) warm_repeats: bool,
     /// The threads of parallel Jacobi sweeps (`threads` > 1).
     pub(crate) pool: Option<rayon::ThreadPool>,
     pub(crate) newton: Option<crate::newton::NewtonWork>,
@@ -145,6 +148,7 @@ impl Master {
             scaled_next: vec![0.0; n_torn],
             x_start: vec![0.0; n_torn],
             accelerator,
+            warm_repeats: false,
             pool,
             newton,
             time: Time::ZERO,
@@ -309,7 +313,7 @@ impl Master {
         }
         for (u, unit) in self.units.iter_mut().enumerate() {
             if self.iterated[u] {
-                unit.restore(self.time, iteration)?;
+                unit.restore_hinted(self.time, iteration, self.warm_repeats)?;
                 self.counters.rollbacks += 1;
             }
         }

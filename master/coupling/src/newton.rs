@@ -69,7 +69,10 @@ impl Master {
         }
         work.age += 1;
         work.last_residual = f64::INFINITY;
+        self.warm_repeats =
+            settings.warm_start && settings.derivatives == Derivatives::Units && !self.initializing;
         let result = self.newton_iterations(&mut work, settings);
+        self.warm_repeats = false;
         self.newton = Some(work);
         result
     }

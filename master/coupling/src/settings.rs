@@ -107,6 +107,11 @@ pub struct NewtonSettings {
     /// than this factor evaluates the Jacobian anew (default 0.1).
     #[serde(default = "default_refresh_rate")]
     pub refresh_rate: f64,
+    /// With `derivatives = "units"`: a unit repeating a step starts its own
+    /// solve from its last attempt, moved by its Jacobian (default true): the
+    /// repeated sweep costs a Newton iteration or two instead of a whole solve.
+    #[serde(default = "yes")]
+    pub warm_start: bool,
 }
 
 impl Default for NewtonSettings {
@@ -117,6 +122,7 @@ impl Default for NewtonSettings {
             derivatives: Derivatives::default(),
             refresh_steps: default_refresh_steps(),
             refresh_rate: default_refresh_rate(),
+            warm_start: true,
         }
     }
 }
@@ -176,6 +182,10 @@ fn half() -> f64 {
 
 fn default_perturbation() -> f64 {
     1e-7
+}
+
+fn yes() -> bool {
+    true
 }
 
 fn default_refresh_steps() -> u32 {

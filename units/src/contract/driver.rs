@@ -264,6 +264,17 @@ impl<U: Unit> Driver<U> {
         Ok(())
     }
 
+    /// Restores `slot` and hints the unit that its next step repeats the last
+    /// one ([`Unit::warm_repeat`]); a unit in sub-steps gets no hint (its last
+    /// sub-step is not the step repeated).
+    pub fn restore_warm(&mut self, slot: &DriverSlot) -> Result<(), UnitError> {
+        self.restore(slot)?;
+        if self.substeps == 1 {
+            self.unit.warm_repeat();
+        }
+        Ok(())
+    }
+
     /// The unit's interface Jacobian of the last step (see
     /// [`Unit::step_jacobian`]), row-major `outputs x inputs`. Refused when the
     /// unit does not declare it, or steps in sub-steps (its Jacobian would be the

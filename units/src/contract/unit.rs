@@ -203,6 +203,12 @@ pub trait Unit: Send {
         )))
     }
 
+    /// A hint from a master: the next `do_step` repeats the step last taken,
+    /// from the same start (restored), with inputs that changed little; the
+    /// unit may start its solve from that attempt's solution (the result is
+    /// the same to its own solver's tolerance, not to the bit). Default: none.
+    fn warm_repeat(&mut self) {}
+
     /// The interface Jacobian of the last `do_step` (units that declare
     /// `Capabilities::step_jacobian`): the derivative of every output after the
     /// step with respect to every input's value at the step's END (its start
@@ -337,6 +343,10 @@ macro_rules! forward_unit {
                 jacobian: &mut [f64],
             ) -> Result<(), UnitError> {
                 (**self).step_jacobian(inputs, jacobian)
+            }
+
+            fn warm_repeat(&mut self) {
+                (**self).warm_repeat()
             }
         }
     )*};

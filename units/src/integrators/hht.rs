@@ -123,6 +123,11 @@ pub struct HhtAlpha {
     residual: Vec<f64>,
     force: Vec<f64>,
     history: Vec<f64>,
+    /// A first iterate for the next step only (`guess_next`).
+    guess: Vec<f64>,
+    /// The last Newton matrix before the held DOFs' identity rows, kept on
+    /// request (`keep_newton_matrix`) for an interface Jacobian.
+    kept: Option<SymmetricBand>,
 }
 
 impl Default for HhtAlpha {
@@ -153,6 +158,8 @@ impl HhtAlpha {
             residual: Vec::new(),
             force: Vec::new(),
             history: Vec::new(),
+            guess: Vec::new(),
+            kept: None,
         }
     }
 
@@ -160,6 +167,31 @@ impl HhtAlpha {
     pub fn parameters(&self) -> (f64, f64, f64) {
         let alpha = self.alpha;
         (alpha, 0.25 * (1.0 + alpha).powi(2), 0.5 + alpha)
+    }
+
+    /// Keeps a copy of every Newton matrix before the held DOFs become identity
+    /// rows (one copy of the band per iteration), for an interface Jacobian.
+    pub fn keep_newton_matrix(&mut self) {
+        if self.kept.is_none() {
+            self.kept = Some(SymmetricBand::zeros(
+                self.jacobian.size(),
+                self.jacobian.half_bandwidth(),
+            ));
+        }
+    }
+
+    /// The last Newton matrix of a nonlinear step with the held DOFs' rows and
+    /// columns in place (`keep_newton_matrix`).
+    pub fn kept_newton_matrix(&self) -> Option<&SymmetricBand> {
+        self.kept.as_ref()
+    }
+
+    /// Starts the next step's Newton from `y` instead of the start state (the
+    /// held DOFs still take their prescribed values): a step repeated with
+    /// slightly changed inputs starts near its solution. Used once.
+    pub fn guess_next(&mut self, y: &[f64]) {
+        self.guess.clear();
+        self.guess.extend_from_slice(y);
     }
 
     /// The factorised Newton matrix of the last iteration of a nonlinear step
@@ -256,7 +288,12 @@ impl HhtAlpha {
         self.v0.copy_from_slice(v);
         self.a0.copy_from_slice(a);
         self.constant_part(&system.matrices(), loads);
-        self.y.copy_from_slice(&self.q0);
+        if self.guess.len() == self.q0.len() {
+            self.y.copy_from_slice(&self.guess);
+        } else {
+            self.y.copy_from_slice(&self.q0);
+        }
+        self.guess.clear();
         for &(d, [q, _, _]) in loads.held {
             self.y[d] = q;
         }
@@ -347,6 +384,9 @@ impl HhtAlpha {
             Some((&mut self.jacobian, scales)),
             &mut self.force,
         );
+        if let Some(kept) = self.kept.as_mut() {
+            kept.copy_from(&self.jacobian);
+        }
         for (d, _) in loads.held {
             self.jacobian.set_identity_row(*d);
         }

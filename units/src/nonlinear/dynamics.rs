@@ -165,6 +165,10 @@ impl NonlinearSection {
     ) -> Result<u32, UnitError> {
         let mut w = std::mem::take(&mut self.work);
         self.jacobian_work.ready = false;
+        let offers = self.offers_jacobian();
+        if let (Some(guess), true) = (self.jacobian_work.warm_guess(t0, inputs.end()), offers) {
+            self.hht.guess_next(guess);
+        }
         // A whole step leaves the state at its start when Newton fails, so the
         // copy for sub-stepping is only taken then (nothing per ordinary step).
         let mut pieces = 1;
@@ -199,6 +203,10 @@ impl NonlinearSection {
         // The integrator's factor is this step's only when it was taken whole.
         self.jacobian_work.ready = pieces == 1 && result.is_ok() && self.offers_jacobian();
         self.jacobian_work.h = h;
+        if self.jacobian_work.ready {
+            self.jacobian_work
+                .record_step(t0, inputs.end(), &self.state.q);
+        }
         result
     }
 

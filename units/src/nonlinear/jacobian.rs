@@ -10,12 +10,15 @@
 //! and a1, v1 from q1 by Newmark. An input moves a held DOF (its q, v and a as
 //! the end condition prescribes them) or loads one; then
 //! `S dq_free = -dR/du`, S the Newton matrix, and the outputs follow from dq.
+//! The Newton matrix `S = M / (beta h^2) + (1 - alpha) (gamma / (beta h) (C +
+//! C_t) + K_t)` is the integrator's last, kept before its held rows became
+//! identity rows; only the drag's tangent damping C_t is assembled anew, to
+//! tell K_t from C_t where a held DOF's kinematics are not Newmark's.
 
 use super::NonlinearSection;
 use super::params::{DofCondition, Integrator};
 use crate::beam::boundary::TimeFunction;
 use crate::contract::{Hold, Inputs, UnitError};
-use crate::integrators::hht::{SecondOrderSystem, TangentScales};
 use crate::numerics::banded::SymmetricBand;
 
 /// Buffers of the Jacobian, kept between calls; `ready` while the section's
@@ -25,10 +28,19 @@ pub(super) struct JacobianWork {
     pub ready: bool,
     /// The last step's length (s).
     pub h: f64,
-    stiffness: Option<SymmetricBand>,
+    /// The last whole step: its start time (s), end inputs and end
+    /// displacements, and (`columns_valid`) d q / d input per input
+    /// (`n_in x dofs`): the warm start of a repeated step.
+    last_t0: f64,
+    last_inputs: Vec<f64>,
+    last_end: Vec<f64>,
+    columns: Vec<f64>,
+    columns_valid: bool,
+    /// The next step repeats the last one (`Unit::warm_repeat`).
+    pub warm: bool,
+    guess: Vec<f64>,
+    /// The drag's tangent damping C_t at the step's end.
     damping: Option<SymmetricBand>,
-    q: Vec<f64>,
-    v: Vec<f64>,
     force: Vec<f64>,
     dq: Vec<f64>,
     dv: Vec<f64>,
@@ -65,7 +77,10 @@ impl NonlinearSection {
         let mut w = std::mem::take(&mut self.jacobian_work);
         self.tangents(&mut w);
         let n_in = inputs.len();
+        let n = self.model.dofs();
         jacobian.fill(f64::NAN);
+        w.columns.resize(n_in * n, 0.0);
+        w.columns_valid = false;
         let mut result = Ok(());
         for j in 0..n_in {
             if let Err(e) = self.input_column(inputs, &mut w, j) {
@@ -73,27 +88,41 @@ impl NonlinearSection {
                 break;
             }
             self.write_column(&w, j, n_in, jacobian);
+            w.columns[j * n..(j + 1) * n].copy_from_slice(&w.dq);
         }
+        w.columns_valid = result.is_ok();
         self.jacobian_work = w;
         result
     }
 
-    /// The tangent stiffness and damping of the restoring force at the step's
-    /// end state.
+    /// The drag's tangent damping at the step's end state (zero without drag).
     fn tangents(&mut self, w: &mut JacobianWork) {
         let n = self.model.dofs();
-        w.q.clone_from(&self.state.q);
-        w.v.clone_from(&self.state.v);
-        let t = self.state.t;
-        for (band, scales) in [(&mut w.stiffness, (1.0, 0.0)), (&mut w.damping, (0.0, 1.0))] {
-            let b = band.get_or_insert_with(|| SymmetricBand::zeros(n, super::model::BAND));
-            b.fill_zero();
-            let scales = TangentScales {
-                stiffness: scales.0,
-                damping: scales.1,
-            };
-            self.nonlinear_force(&w.q, &w.v, t, Some((b, scales)), &mut w.force);
+        let b = w
+            .damping
+            .get_or_insert_with(|| SymmetricBand::zeros(n, super::model::BAND));
+        b.fill_zero();
+        if self.environment.is_empty() {
+            return;
         }
+        w.force.clear();
+        w.force.resize(n, 0.0);
+        let s = &self.state;
+        self.environment.add_force(
+            &self.model,
+            (&s.q, &s.v, s.t),
+            &s.lambda,
+            1.0,
+            true,
+            Some((b, 0.0, 1.0)),
+            &mut w.force,
+        );
+    }
+
+    /// The damping of the step's end, C + C_t, at (i, k).
+    fn damping_at(&self, w: &JacobianWork, i: usize, k: usize) -> f64 {
+        self.c.as_ref().map_or(0.0, |c| c.get(i, k))
+            + w.damping.as_ref().map_or(0.0, |c| c.get(i, k))
     }
 
     /// dq, dv, da of every DOF for a unit change of input `j`.
@@ -133,18 +162,19 @@ impl NonlinearSection {
         match effect {
             Effect::Load(weight) => w.dq[d] = weight,
             Effect::Motion([dq, dv, da]) => {
-                let (Some(kt), Some(ct)) = (&w.stiffness, &w.damping) else {
-                    return Err(UnitError::Numerical(
-                        "nonlinear section: the tangents of the Jacobian are missing".into(),
-                    ));
-                };
-                let c = self.c.as_ref();
+                let s = self.hht.kept_newton_matrix().ok_or_else(|| {
+                    UnitError::Numerical("nonlinear section: no Newton matrix kept".into())
+                })?;
+                // dR_f = S dq + M (da - dq / (beta h^2))
+                //        + (1 - alpha) (C + C_t) (dv - gamma / (beta h) dq).
                 let lo = d.saturating_sub(super::model::BAND);
                 let hi = (d + super::model::BAND + 1).min(n);
                 for f in lo..hi {
-                    let damping = c.map_or(0.0, |c| c.get(f, d)) + ct.get(f, d);
-                    w.dq[f] = -(self.m.get(f, d) * da
-                        + (1.0 - alpha) * (damping * dv + kt.get(f, d) * dq));
+                    w.dq[f] = -(s.get(f, d) * dq
+                        + self.m.get(f, d) * (da - dq / (beta * h * h))
+                        + (1.0 - alpha)
+                            * self.damping_at(w, f, d)
+                            * (dv - gamma / (beta * h) * dq));
                 }
                 for held in self.held() {
                     w.dq[held.dof] = 0.0;
@@ -202,21 +232,65 @@ impl NonlinearSection {
         }
     }
 
-    /// d(M a + (C + C_t) v + g) at DOF `i`.
+    /// d(M a + (C + C_t) v + g) at DOF `i`, with K_t from the kept Newton
+    /// matrix: (1 - alpha) K_t = S - M / (beta h^2) - (1 - alpha) gamma /
+    /// (beta h) (C + C_t).
     fn reaction_change(&self, w: &JacobianWork, i: usize) -> f64 {
+        let Some(s) = self.hht.kept_newton_matrix() else {
+            return f64::NAN;
+        };
+        let (alpha, beta, gamma) = self.hht.parameters();
+        let h = w.h;
         let n = self.model.dofs();
         let lo = i.saturating_sub(super::model::BAND);
         let hi = (i + super::model::BAND + 1).min(n);
-        let (Some(kt), Some(ct)) = (&w.stiffness, &w.damping) else {
-            return f64::NAN;
-        };
-        let c = self.c.as_ref();
         (lo..hi)
             .map(|k| {
-                self.m.get(i, k) * w.da[k]
-                    + (c.map_or(0.0, |c| c.get(i, k)) + ct.get(i, k)) * w.dv[k]
-                    + kt.get(i, k) * w.dq[k]
+                let (m, c) = (self.m.get(i, k), self.damping_at(w, i, k));
+                let kt =
+                    (s.get(i, k) - m / (beta * h * h)) / (1.0 - alpha) - gamma / (beta * h) * c;
+                m * w.da[k] + c * w.dv[k] + kt * w.dq[k]
             })
             .sum()
+    }
+}
+
+impl JacobianWork {
+    /// Records a whole step from `t0` that ended at `q` with end `inputs`.
+    pub fn record_step(&mut self, t0: f64, inputs: &[f64], q: &[f64]) {
+        self.last_t0 = t0;
+        self.last_inputs.clear();
+        self.last_inputs.extend_from_slice(inputs);
+        self.last_end.clear();
+        self.last_end.extend_from_slice(q);
+        self.columns_valid = false;
+    }
+
+    /// The first iterate of a step from `t0` with end `inputs` that repeats
+    /// the last one (after `Unit::warm_repeat`): its end displacements moved
+    /// by the Jacobian's columns where they are of that step; None when the
+    /// step is another one. Clears the hint.
+    pub fn warm_guess(&mut self, t0: f64, inputs: &[f64]) -> Option<&[f64]> {
+        let warm = std::mem::take(&mut self.warm);
+        if !warm
+            || t0 != self.last_t0
+            || inputs.len() != self.last_inputs.len()
+            || self.last_end.is_empty()
+        {
+            return None;
+        }
+        let n = self.last_end.len();
+        self.guess.clone_from(&self.last_end);
+        if self.columns_valid && self.columns.len() == n * inputs.len() {
+            for (j, (u, u0)) in inputs.iter().zip(&self.last_inputs).enumerate() {
+                let du = u - u0;
+                if du != 0.0 {
+                    for (g, c) in self.guess.iter_mut().zip(&self.columns[j * n..(j + 1) * n]) {
+                        *g += c * du;
+                    }
+                }
+            }
+        }
+        Some(&self.guess)
     }
 }

@@ -163,6 +163,9 @@ impl NonlinearSection {
             params,
         };
         section.description.capabilities.step_jacobian = section.offers_jacobian();
+        if section.offers_jacobian() {
+            section.hht.keep_newton_matrix();
+        }
         Ok(section)
     }
 
@@ -485,6 +488,10 @@ impl Unit for NonlinearSection {
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
         self.interface_jacobian(inputs, jacobian)
+    }
+
+    fn warm_repeat(&mut self) {
+        self.jacobian_work.warm = true;
     }
 
     fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {
