@@ -288,15 +288,7 @@ impl HhtAlpha {
         self.v0.copy_from_slice(v);
         self.a0.copy_from_slice(a);
         self.constant_part(&system.matrices(), loads);
-        if self.guess.len() == self.q0.len() {
-            self.y.copy_from_slice(&self.guess);
-        } else {
-            self.y.copy_from_slice(&self.q0);
-        }
-        self.guess.clear();
-        for &(d, [q, _, _]) in loads.held {
-            self.y[d] = q;
-        }
+        self.first_iterate(loads.held);
         self.history.clear();
         let linear = system.is_linear();
         let scales = TangentScales {
@@ -354,6 +346,20 @@ impl HhtAlpha {
         self.kinematics(h, loads.held);
         system.set_motion(&self.y, &self.v1, &self.a1);
         Ok(iterations)
+    }
+
+    /// Newton's first iterate: the guess if one was given, else the start
+    /// state; the held DOFs at their prescribed values.
+    fn first_iterate(&mut self, held: &[(usize, [f64; 3])]) {
+        if self.guess.len() == self.q0.len() {
+            self.y.copy_from_slice(&self.guess);
+        } else {
+            self.y.copy_from_slice(&self.q0);
+        }
+        self.guess.clear();
+        for &(d, [q, _, _]) in held {
+            self.y[d] = q;
+        }
     }
 
     /// Newton's failure, with the corrections it made.
