@@ -25,6 +25,20 @@ fn with_master(scene: &str, edit: fn(String) -> String, master: &str, duration: 
     Scene::parse(&path, toml::to_string(&table).unwrap()).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The mooring line's same-mesh partition (both sections nonlinear) under
+/// `master` for `duration` s; the run must complete.
+fn mooring_same_mesh(master: &str, duration: f64) -> Series {
+    let nonlinear = |text: String| text.replace("fidelity = \"cable\"", "fidelity = \"nonlinear\"");
+    let s = run(&with_master(
+        "examples/structure_mooring.toml",
+        nonlinear,
+        master,
+        duration,
+    ));
+    assert!(s.error.is_none(), "{:?}", s.error);
+    s
+}
+
 /// Iterative Jacobi with Newton on the units' Jacobians, every iteration.
 fn newton_master(tolerances: &str) -> String {
     format!(
@@ -53,15 +67,7 @@ fn indicator(s: &Series, name: &str) -> f64 {
 #[test]
 fn the_mooring_line_partition_matches_its_twin_in_two_iterations_per_step() {
     let tolerances = "{ velocity = 1e-6, force = 1.0, generic = 1e-6 }";
-    let nonlinear = |text: String| text.replace("fidelity = \"cable\"", "fidelity = \"nonlinear\"");
-    let same_mesh = |master: String| {
-        run(&with_master(
-            "examples/structure_mooring.toml",
-            nonlinear,
-            &master,
-            10.0,
-        ))
-    };
+    let same_mesh = |master: String| mooring_same_mesh(&master, 10.0);
     let newton = same_mesh(newton_master(tolerances));
     let iqn = same_mesh(iqn_master(tolerances));
     let (e_newton, e_iqn) = (
@@ -203,17 +209,11 @@ fn the_hanging_pipe_partition_matches_its_twin_with_newton_at_the_cuts() {
 #[test]
 fn parallel_sweeps_are_bit_identical_to_sequential_ones() {
     let tolerances = "{ velocity = 1e-6, force = 1.0, generic = 1e-6 }";
-    let nonlinear = |text: String| text.replace("fidelity = \"cable\"", "fidelity = \"nonlinear\"");
     let run_on = |threads: u32| {
-        let master = newton_master(tolerances) + &format!("\nthreads = {threads}");
-        let s = run(&with_master(
-            "examples/structure_mooring.toml",
-            nonlinear,
-            &master,
+        mooring_same_mesh(
+            &(newton_master(tolerances) + &format!("\nthreads = {threads}")),
             3.0,
-        ));
-        assert!(s.error.is_none(), "{:?}", s.error);
-        s
+        )
     };
     let one = run_on(1);
     for threads in [2, 3] {
@@ -233,20 +233,12 @@ fn parallel_sweeps_are_bit_identical_to_sequential_ones() {
 #[test]
 fn warm_started_repeats_save_section_newton_iterations() {
     let tolerances = "{ velocity = 1e-6, force = 1.0, generic = 1e-6 }";
-    let nonlinear = |text: String| text.replace("fidelity = \"cable\"", "fidelity = \"nonlinear\"");
     let run_with_warm = |warm: bool| {
         let master = newton_master(tolerances).replace(
             "derivatives = \"units\"",
             &format!("derivatives = \"units\", warm_start = {warm}"),
         );
-        let s = run(&with_master(
-            "examples/structure_mooring.toml",
-            nonlinear,
-            &master,
-            10.0,
-        ));
-        assert!(s.error.is_none(), "{:?}", s.error);
-        s
+        mooring_same_mesh(&master, 10.0)
     };
     let (warm, cold) = (run_with_warm(true), run_with_warm(false));
     let newton_iterations = |s: &Series| {

@@ -243,30 +243,22 @@ impl UnitAdapter {
         iteration: u32,
         warm: bool,
     ) -> Result<(), MasterError> {
-        if !warm {
-            return self.restore(t, iteration);
-        }
         if self.saved.is_empty() {
             return Err(MasterError::Invalid(format!(
                 "unit `{}`: restore_state called before save_state",
                 self.name
             )));
         }
-        self.driver
-            .restore_warm(&self.saved)
-            .map_err(|e| self.fail("restore_state", t, iteration, e))
+        let restored = if warm {
+            self.driver.restore_warm(&self.saved)
+        } else {
+            self.driver.restore(&self.saved)
+        };
+        restored.map_err(|e| self.fail("restore_state", t, iteration, e))
     }
 
     /// Restores the state saved by the last `save`.
     pub fn restore(&mut self, t: Time, iteration: u32) -> Result<(), MasterError> {
-        if self.saved.is_empty() {
-            return Err(MasterError::Invalid(format!(
-                "unit `{}`: restore_state called before save_state",
-                self.name
-            )));
-        }
-        self.driver
-            .restore(&self.saved)
-            .map_err(|e| self.fail("restore_state", t, iteration, e))
+        self.restore_hinted(t, iteration, false)
     }
 }
