@@ -165,7 +165,13 @@ fn every_declared_step_jacobian_equals_finite_differences_of_the_step() {
         assert!(fd_worst < 1e-3, "{kind}: forward differences {fd_worst:e}");
         checked.push(kind);
     }
-    for kind in ["oscillator", "static_section", "nonlinear"] {
+    for kind in [
+        "oscillator",
+        "static_section",
+        "nonlinear",
+        "span_coupling",
+        "fmu",
+    ] {
         assert!(
             checked.contains(&kind),
             "no `{kind}` sample checked: {checked:?}"

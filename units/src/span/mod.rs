@@ -9,6 +9,7 @@
 
 pub mod coupling;
 pub mod fit;
+mod matrix_fit;
 pub mod rational;
 pub mod realization;
 pub mod transfer;
