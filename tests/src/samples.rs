@@ -142,6 +142,15 @@ pub fn section_samples() -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/structure_slay_fidelity.toml", "pipe_suspended"),
         ),
         (
+            // A span about its chord (the transfer matrix inside): its step
+            // Jacobian comes through the inner model's.
+            "chord",
+            inline(
+                "chord",
+                "model = \"span\"\nmoving = \"start\"\nstart = [0.0, 0.0]\nend = [48.0, 14.0]\nweight = 9.0e3\nweight_at = [24.0, 7.0]\nloaded_end_displacement = [0.0, 0.0, 0.0]\nflexural_rigidity = 1.0e7\nmass_per_length = 150.0\ndamping_per_length = 20.0\ntension = 1.0e5\norder = 16",
+            ),
+        ),
+        (
             // Loaded at its cut, with attachment vectors and end forces.
             "reduced",
             from_scene("examples/structure_frame_reduced.toml", "frame_corner"),

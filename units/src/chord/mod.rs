@@ -181,7 +181,8 @@ impl Chord {
         };
         let inner = inner_model(&params, length)?;
         let ports = inner_ports(&params, inner.description())?;
-        let description = describe(params.moving);
+        let mut description = describe(params.moving);
+        description.capabilities.step_jacobian = inner.description().capabilities.step_jacobian;
         Ok(Chord {
             params,
             description,
@@ -408,12 +409,72 @@ impl Unit for Chord {
     }
 
     fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+        self.assemble(self.inner_outputs(inputs), inputs.end(), out);
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        self.inner.save_state(slot)
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.inner.restore_state(slot)
+    }
+
+    /// Through the inner model's (where it gives one: `span`): the outer inputs
+    /// reach the inner ones and the inner outputs the outer ones by affine maps,
+    /// so each column is the change of the outputs under a unit change of one
+    /// input, the inner outputs moved by the inner Jacobian.
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        let (start, end) = (self.local(inputs.start()), self.local(inputs.end()));
+        let holds = self.inner_holds(inputs);
+        let n = self.ports.output_count;
+        let mut inner_jacobian = [0.0; MAX_INNER_OUTPUTS * 4];
+        let inner_jacobian = &mut inner_jacobian[..4 * n];
+        self.inner
+            .step_jacobian(Inputs::new(&holds, &start, &end), inner_jacobian)?;
+        let now = inputs.end();
+        let base_inner = self.inner_outputs(inputs);
+        let mut base = [0.0; 7];
+        self.assemble(base_inner, now, &mut base);
+        for j in 0..6 {
+            let mut moved = [0.0; 6];
+            moved.copy_from_slice(now);
+            moved[j] += 1.0;
+            let local = self.local(&moved);
+            let d_local: [f64; 4] = std::array::from_fn(|p| local[p] - end[p]);
+            let inner = std::array::from_fn(|k| {
+                let row = self.ports.outputs[k];
+                base_inner[k]
+                    + (0..4)
+                        .map(|p| inner_jacobian[row * 4 + p] * d_local[p])
+                        .sum::<f64>()
+            });
+            let mut out = [0.0; 7];
+            self.assemble(inner, &moved, &mut out);
+            for (i, (o, b)) in out.iter().zip(&base).enumerate() {
+                jacobian[i * 6 + j] = o - b;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Chord {
+    /// The inner model's moment and shear at the moving end and deflection
+    /// and rotation at the loaded end, with the outer inputs `inputs`.
+    fn inner_outputs(&self, inputs: Inputs<'_>) -> [f64; 4] {
         let (start, end) = (self.local(inputs.start()), self.local(inputs.end()));
         let holds = self.inner_holds(inputs);
         let mut inner = [0.0; MAX_INNER_OUTPUTS];
         let inner = &mut inner[..self.ports.output_count];
         self.inner.outputs(Inputs::new(&holds, &start, &end), inner);
-        let [moment, shear, deflection, rotation] = self.ports.outputs.map(|k| inner[k]);
+        self.ports.outputs.map(|k| inner[k])
+    }
+
+    /// The unit's outputs from the inner model's four and the outer end
+    /// inputs `now`.
+    fn assemble(&self, inner: [f64; 4], now: &[f64], out: &mut [f64]) {
+        let [moment, shear, deflection, rotation] = inner;
         // The transverse force and moment applied on the section at its moving
         // end; it exerts the opposite on the neighbour.
         let (applied_force, applied_moment) = if self.loaded_at_end() {
@@ -421,7 +482,6 @@ impl Unit for Chord {
         } else {
             (-shear, moment)
         };
-        let now = inputs.end();
         let r = &self.reference;
         let axial = self.frame.along([now[3], now[4] - self.params.weight]);
         let across = r.static_force_across - applied_force;
@@ -441,127 +501,7 @@ impl Unit for Chord {
         let outward = if self.loaded_at_end() { 1.0 } else { -1.0 };
         out[6] = outward * self.frame.along([now[3], now[4]]);
     }
-
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        self.inner.save_state(slot)
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.inner.restore_state(slot)
-    }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::contract::Driver;
-
-    fn chord(model: ChordModel, moving: MovingEnd, tension: f64) -> Driver<Chord> {
-        let params = ChordParams {
-            model,
-            moving,
-            start: [0.0, 0.0],
-            end: [6.0, 8.0],
-            weight: 0.0,
-            weight_at: [3.0, 4.0],
-            loaded_end_displacement: [0.0; 3],
-            flexural_rigidity: 1e4,
-            mass_per_length: 10.0,
-            damping_per_length: 40.0,
-            tension,
-            elements: 20,
-            alpha: 0.0,
-            order: 16,
-            band: ten_hz(),
-        };
-        Driver::new(Chord::new(params).unwrap())
-    }
-
-    /// Tip deflection (m) of a cantilever of length 10 m, EI 1e4 N m^2 under
-    /// axial tension `t` and a transverse tip force `p`: p / T (L - tanh(kL) / k),
-    /// k = sqrt(T / EI); p L^3 / (3 EI) without tension.
-    fn cantilever(p: f64, t: f64) -> f64 {
-        let (l, ei) = (10.0f64, 1e4);
-        if t == 0.0 {
-            return p * l.powi(3) / (3.0 * ei);
-        }
-        let k = (t / ei).sqrt();
-        p / t * (l - (k * l).tanh() / k)
-    }
-
-    /// Ramps a transverse force on the loaded end up over 5 s and holds it, the
-    /// moving end held where it started; the end displacement after 40 s.
-    fn settled(unit: &mut Driver<Chord>, force: [f64; 2], tension: f64) -> [f64; 7] {
-        // The loaded end carries the tension along the chord (outwards).
-        let e = [0.6, 0.8];
-        let outward = if unit.unit().loaded_at_end() {
-            1.0
-        } else {
-            -1.0
-        };
-        let pull = [outward * tension * e[0], outward * tension * e[1]];
-        let mover = if outward > 0.0 {
-            [0.0, 0.0]
-        } else {
-            [6.0, 8.0]
-        };
-        let at = |s: f64| {
-            [
-                mover[0],
-                mover[1],
-                0.0,
-                pull[0] + s * force[0],
-                pull[1] + s * force[1],
-                0.0,
-            ]
-        };
-        unit.set_inputs(&at(0.0)).unwrap();
-        unit.initialize(Time::ZERO).unwrap();
-        let h = Time::from_secs(0.01).unwrap();
-        for k in 0..4000 {
-            let t = 0.01 * f64::from(k + 1);
-            unit.set_inputs(&at((t / 5.0).min(1.0))).unwrap();
-            unit.do_step(Time::from_secs(0.01 * f64::from(k)).unwrap(), h)
-                .unwrap();
-        }
-        let mut out = [0.0; 7];
-        unit.outputs(&mut out).unwrap();
-        out
-    }
-
-    #[test]
-    fn a_loaded_end_deflects_as_a_cantilever_with_tension_in_both_models_and_orientations() {
-        // A force across the chord, n = (-0.8, 0.6), of 100 N.
-        let p = 100.0;
-        let force = [-0.8 * p, 0.6 * p];
-        for model in [ChordModel::Beam, ChordModel::Span] {
-            for moving in [MovingEnd::Start, MovingEnd::End] {
-                for tension in [0.0, 2e3] {
-                    let mut unit = chord(model, moving, tension);
-                    let out = settled(&mut unit, force, tension);
-                    let across = -0.8 * out[3] + 0.6 * out[4];
-                    let along = 0.6 * out[3] + 0.8 * out[4];
-                    let expect = cantilever(p, tension);
-                    assert!(
-                        (across - expect).abs() < 1e-3 * expect,
-                        "{model:?} {moving:?} T = {tension}: {across} against {expect}"
-                    );
-                    assert!(along.abs() < 1e-12, "the chord is rigid: {along}");
-                    // The moving end carries the force and its moment p L less
-                    // the tension's at the deflected end, T y(L).
-                    let lever = p * 10.0 - tension * expect;
-                    let moment = if moving == MovingEnd::Start {
-                        lever
-                    } else {
-                        -lever
-                    };
-                    assert!(
-                        (out[2] - moment).abs() < 1e-3 * p * 10.0,
-                        "{model:?} {moving:?} T = {tension}: moment {} against {moment}",
-                        out[2]
-                    );
-                }
-            }
-        }
-    }
-}
+mod tests;

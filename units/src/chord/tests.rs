@@ -1,0 +1,114 @@
+//! The chord unit against the cantilever with tension, in both models and
+//! orientations.
+
+use super::*;
+use crate::contract::Driver;
+
+fn chord(model: ChordModel, moving: MovingEnd, tension: f64) -> Driver<Chord> {
+    let params = ChordParams {
+        model,
+        moving,
+        start: [0.0, 0.0],
+        end: [6.0, 8.0],
+        weight: 0.0,
+        weight_at: [3.0, 4.0],
+        loaded_end_displacement: [0.0; 3],
+        flexural_rigidity: 1e4,
+        mass_per_length: 10.0,
+        damping_per_length: 40.0,
+        tension,
+        elements: 20,
+        alpha: 0.0,
+        order: 16,
+        band: ten_hz(),
+    };
+    Driver::new(Chord::new(params).unwrap())
+}
+
+/// Tip deflection (m) of a cantilever of length 10 m, EI 1e4 N m^2 under
+/// axial tension `t` and a transverse tip force `p`: p / T (L - tanh(kL) / k),
+/// k = sqrt(T / EI); p L^3 / (3 EI) without tension.
+fn cantilever(p: f64, t: f64) -> f64 {
+    let (l, ei) = (10.0f64, 1e4);
+    if t == 0.0 {
+        return p * l.powi(3) / (3.0 * ei);
+    }
+    let k = (t / ei).sqrt();
+    p / t * (l - (k * l).tanh() / k)
+}
+
+/// Ramps a transverse force on the loaded end up over 5 s and holds it, the
+/// moving end held where it started; the end displacement after 40 s.
+fn settled(unit: &mut Driver<Chord>, force: [f64; 2], tension: f64) -> [f64; 7] {
+    // The loaded end carries the tension along the chord (outwards).
+    let e = [0.6, 0.8];
+    let outward = if unit.unit().loaded_at_end() {
+        1.0
+    } else {
+        -1.0
+    };
+    let pull = [outward * tension * e[0], outward * tension * e[1]];
+    let mover = if outward > 0.0 {
+        [0.0, 0.0]
+    } else {
+        [6.0, 8.0]
+    };
+    let at = |s: f64| {
+        [
+            mover[0],
+            mover[1],
+            0.0,
+            pull[0] + s * force[0],
+            pull[1] + s * force[1],
+            0.0,
+        ]
+    };
+    unit.set_inputs(&at(0.0)).unwrap();
+    unit.initialize(Time::ZERO).unwrap();
+    let h = Time::from_secs(0.01).unwrap();
+    for k in 0..4000 {
+        let t = 0.01 * f64::from(k + 1);
+        unit.set_inputs(&at((t / 5.0).min(1.0))).unwrap();
+        unit.do_step(Time::from_secs(0.01 * f64::from(k)).unwrap(), h)
+            .unwrap();
+    }
+    let mut out = [0.0; 7];
+    unit.outputs(&mut out).unwrap();
+    out
+}
+
+#[test]
+fn a_loaded_end_deflects_as_a_cantilever_with_tension_in_both_models_and_orientations() {
+    // A force across the chord, n = (-0.8, 0.6), of 100 N.
+    let p = 100.0;
+    let force = [-0.8 * p, 0.6 * p];
+    for model in [ChordModel::Beam, ChordModel::Span] {
+        for moving in [MovingEnd::Start, MovingEnd::End] {
+            for tension in [0.0, 2e3] {
+                let mut unit = chord(model, moving, tension);
+                let out = settled(&mut unit, force, tension);
+                let across = -0.8 * out[3] + 0.6 * out[4];
+                let along = 0.6 * out[3] + 0.8 * out[4];
+                let expect = cantilever(p, tension);
+                assert!(
+                    (across - expect).abs() < 1e-3 * expect,
+                    "{model:?} {moving:?} T = {tension}: {across} against {expect}"
+                );
+                assert!(along.abs() < 1e-12, "the chord is rigid: {along}");
+                // The moving end carries the force and its moment p L less
+                // the tension's at the deflected end, T y(L).
+                let lever = p * 10.0 - tension * expect;
+                let moment = if moving == MovingEnd::Start {
+                    lever
+                } else {
+                    -lever
+                };
+                assert!(
+                    (out[2] - moment).abs() < 1e-3 * p * 10.0,
+                    "{model:?} {moving:?} T = {tension}: moment {} against {moment}",
+                    out[2]
+                );
+            }
+        }
+    }
+}
