@@ -142,6 +142,7 @@ fn an_imported_fmu_gives_the_native_step_jacobian_through_directional_derivative
     for (scene, unit) in [
         ("examples/b1_two_masses.toml", "left"),
         ("examples/structure_mooring.toml", "line_upper"),
+        ("examples/structure_slay_fidelity.toml", "pipe_suspended"),
     ] {
         let config = ExportConfig::from_scene(&load(scene), unit).unwrap();
         let file = fmu::export(scene, unit, dir.path());

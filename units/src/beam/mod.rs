@@ -108,6 +108,8 @@ pub struct Beam {
     work: dynamics::StepWork,
     /// Contact evaluated in the step.
     step_contact: ContactValues,
+    /// The step Jacobian's buffers.
+    jacobian: jacobian::JacobianWork,
 }
 
 fn port_kind(q: Quantity) -> PortKind {
@@ -151,12 +153,21 @@ impl Beam {
         let points = contact_points(&params, &lengths);
         let lambda0 = params.contact.as_ref().map_or(0.0, |c| c.method.lambda0());
         let n_points = points.len();
+        // The energy-conserving contact law steps a discrete gradient: no step
+        // Jacobian from the Newton matrix then.
+        let step_jacobian = !matches!(
+            params.contact.as_ref().map(|c| &c.method),
+            Some(crate::contact::Law::EnergyConserving { .. })
+        );
         Ok(Beam {
             description: UnitDescription {
                 kind: "beam".into(),
                 inputs,
                 outputs,
-                capabilities: Capabilities::default(),
+                capabilities: Capabilities {
+                    step_jacobian,
+                    ..Capabilities::default()
+                },
             },
             state: BeamState {
                 t: 0.0,
@@ -173,6 +184,7 @@ impl Beam {
             hht: HhtAlpha::new(params.alpha, n, elements::BAND),
             work: dynamics::StepWork::default(),
             step_contact: ContactValues::default(),
+            jacobian: jacobian::JacobianWork::default(),
             params,
             lengths,
             m,
@@ -308,6 +320,7 @@ impl Beam {
 
 mod contact;
 mod dynamics;
+mod jacobian;
 mod statics;
 
 impl Unit for Beam {
@@ -316,6 +329,7 @@ impl Unit for Beam {
     }
 
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        self.jacobian.ready = false;
         self.state.t = t0.as_secs();
         let x = self.node_positions();
         for (j, &xj) in x.iter().enumerate() {
@@ -351,7 +365,10 @@ impl Unit for Beam {
     }
 
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        self.jacobian.ready = false;
         let iterations = self.hht_step(inputs, t.as_secs(), (t + h).as_secs(), h.as_secs())?;
+        self.jacobian.ready = self.description.capabilities.step_jacobian;
+        self.jacobian.h = h.as_secs();
         Ok(StepReport {
             solver_iterations: iterations,
         })
@@ -401,7 +418,12 @@ impl Unit for Beam {
         Ok(())
     }
 
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        self.interface_jacobian(inputs, jacobian)
+    }
+
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.jacobian.ready = false;
         self.state.clone_from(&*slot.load::<BeamState>()?);
         Ok(())
     }

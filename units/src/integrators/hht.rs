@@ -128,6 +128,9 @@ pub struct HhtAlpha {
     /// The last Newton matrix before the held DOFs' identity rows, kept on
     /// request (`keep_newton_matrix`) for an interface Jacobian.
     kept: Option<SymmetricBand>,
+    /// Whether the last step was linear (its matrix `linear`, its factor
+    /// `linear_factor`).
+    last_linear: bool,
 }
 
 impl Default for HhtAlpha {
@@ -160,6 +163,7 @@ impl HhtAlpha {
             history: Vec::new(),
             guess: Vec::new(),
             kept: None,
+            last_linear: false,
         }
     }
 
@@ -184,6 +188,17 @@ impl HhtAlpha {
     /// columns in place (`keep_newton_matrix`).
     pub fn kept_newton_matrix(&self) -> Option<&SymmetricBand> {
         self.kept.as_ref()
+    }
+
+    /// The last step's Newton matrix with its held rows in place and its
+    /// factor (held DOFs as identity rows): the linear ones after a linear
+    /// step, the kept and last ones after a nonlinear step.
+    pub fn last_newton(&self) -> Option<(&SymmetricBand, &BandLdlt)> {
+        if self.last_linear {
+            Some((&self.linear, self.linear_factor.as_ref()?))
+        } else {
+            Some((self.kept.as_ref()?, self.factor.as_ref()?))
+        }
     }
 
     /// Starts the next step's Newton from `y` instead of the start state (the
@@ -291,6 +306,7 @@ impl HhtAlpha {
         self.first_iterate(loads.held);
         self.history.clear();
         let linear = system.is_linear();
+        self.last_linear = linear;
         let scales = TangentScales {
             stiffness: 1.0 - alpha,
             damping: (1.0 - alpha) * gamma / (beta * h),
