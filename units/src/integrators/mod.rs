@@ -7,9 +7,12 @@
 //!   (the cable);
 //! - [`central_difference`]: explicit central differences (velocity Verlet) with
 //!   the critical step reported;
-//! - [`newmark`]: linear Newmark average acceleration on small dense systems.
+//! - [`newmark`]: linear Newmark average acceleration on small dense systems;
+//! - [`hht_sensitivity`]: a converged HHT-alpha step's sensitivity to its
+//!   coupled end values (the step Jacobians of the units it steps).
 
 pub mod central_difference;
 pub mod hht;
+pub mod hht_sensitivity;
 pub mod newmark;
 pub mod newmark_iterated;

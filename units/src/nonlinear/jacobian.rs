@@ -5,20 +5,15 @@
 //! other outputs (energies, stations, extremes) are left NaN: a master that
 //! needs one takes it by finite differences.
 //!
-//! At the converged step the free DOFs satisfy `R(q1; u) = 0` with
-//! `R = M a1 + (1 - alpha) (C v1 + g(q1, v1)) + ... - (1 - alpha) f1 - alpha f0`
-//! and a1, v1 from q1 by Newmark. An input moves a held DOF (its q, v and a as
-//! the end condition prescribes them) or loads one; then
-//! `S dq_free = -dR/du`, S the Newton matrix, and the outputs follow from dq.
-//! The Newton matrix `S = M / (beta h^2) + (1 - alpha) (gamma / (beta h) (C +
-//! C_t) + K_t)` is the integrator's last, kept before its held rows became
-//! identity rows; only the drag's tangent damping C_t is assembled anew, to
-//! tell K_t from C_t where a held DOF's kinematics are not Newmark's.
+//! The section's Newton matrix is the integrator's last, kept before its held
+//! rows became identity rows; only the drag's tangent damping C_t is assembled
+//! anew (`integrators::hht_sensitivity` tells K_t from it).
 
 use super::NonlinearSection;
 use super::params::{DofCondition, Integrator};
 use crate::beam::boundary::TimeFunction;
 use crate::contract::{Hold, Inputs, UnitError};
+use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
 use crate::numerics::banded::SymmetricBand;
 
 /// Buffers of the Jacobian, kept between calls; `ready` while the section's
@@ -42,16 +37,8 @@ pub(super) struct JacobianWork {
     /// The drag's tangent damping C_t at the step's end.
     damping: Option<SymmetricBand>,
     force: Vec<f64>,
-    dq: Vec<f64>,
-    dv: Vec<f64>,
-    da: Vec<f64>,
-}
-
-/// How a unit change of an input moves its DOF: (dq, dv, da) of a held DOF, or
-/// the weight of a load in the residual.
-enum Effect {
-    Motion([f64; 3]),
-    Load(f64),
+    held: Vec<usize>,
+    change: Change,
 }
 
 impl NonlinearSection {
@@ -76,6 +63,8 @@ impl NonlinearSection {
         }
         let mut w = std::mem::take(&mut self.jacobian_work);
         self.tangents(&mut w);
+        w.held.clear();
+        w.held.extend(self.held().map(|r| r.dof));
         let n_in = inputs.len();
         let n = self.model.dofs();
         jacobian.fill(f64::NAN);
@@ -83,12 +72,11 @@ impl NonlinearSection {
         w.columns_valid = false;
         let mut result = Ok(());
         for j in 0..n_in {
-            if let Err(e) = self.input_column(inputs, &mut w, j) {
+            if let Err(e) = self.input_column(inputs, &mut w, j, jacobian) {
                 result = Err(e);
                 break;
             }
-            self.write_column(&w, j, n_in, jacobian);
-            w.columns[j * n..(j + 1) * n].copy_from_slice(&w.dq);
+            w.columns[j * n..(j + 1) * n].copy_from_slice(&w.change.dq);
         }
         w.columns_valid = result.is_ok();
         self.jacobian_work = w;
@@ -119,139 +107,90 @@ impl NonlinearSection {
         );
     }
 
-    /// The damping of the step's end, C + C_t, at (i, k).
-    fn damping_at(&self, w: &JacobianWork, i: usize, k: usize) -> f64 {
-        self.c.as_ref().map_or(0.0, |c| c.get(i, k))
-            + w.damping.as_ref().map_or(0.0, |c| c.get(i, k))
+    /// How a unit change of input `j` drives the step, if it does.
+    fn drive_of(&self, inputs: Inputs<'_>, j: usize, h: f64) -> Option<Drive> {
+        let r = self.ends.iter().find(|r| r.input == Some(j))?;
+        let ramp = inputs.hold(j) == Hold::Ramp;
+        let (alpha, _, _) = self.hht.parameters();
+        let (dof, motion) = (r.dof, |change| Drive::Motion { dof: r.dof, change });
+        Some(match r.condition {
+            DofCondition::Velocity | DofCondition::VelocityFrom(_) => {
+                motion([0.5 * h, 1.0, 2.0 / h])
+            }
+            DofCondition::Displacement(TimeFunction::Input(_)) if ramp => {
+                motion([1.0, 1.0 / h, 1.0 / (h * h)])
+            }
+            DofCondition::Displacement(TimeFunction::Input(_)) => motion([1.0, 0.0, 0.0]),
+            DofCondition::Force(TimeFunction::Input(_)) => Drive::Load {
+                dof,
+                weight: 1.0 - alpha + if ramp { 0.0 } else { alpha },
+            },
+            _ => return None,
+        })
     }
 
-    /// dq, dv, da of every DOF for a unit change of input `j`.
+    /// Column `j`: the motion's change for input `j` into `w.change`, then
+    /// the end outputs' rows: positions and velocities directly, a force as
+    /// minus the change of the support reaction, or of the applied load where
+    /// the end is loaded.
     fn input_column(
         &self,
         inputs: Inputs<'_>,
         w: &mut JacobianWork,
         j: usize,
+        jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
-        let n = self.model.dofs();
-        let (alpha, beta, gamma) = self.hht.parameters();
-        let h = w.h;
-        for v in [&mut w.dq, &mut w.dv, &mut w.da] {
-            v.clear();
-            v.resize(n, 0.0);
-        }
-        let Some(r) = self.ends.iter().find(|r| r.input == Some(j)) else {
-            return Ok(());
+        let n_in = inputs.len();
+        let JacobianWork {
+            damping,
+            held,
+            change,
+            h,
+            ..
+        } = w;
+        let (newton, factor) = self
+            .hht
+            .kept_newton_matrix()
+            .zip(self.hht.newton_factor())
+            .ok_or_else(|| {
+                UnitError::Numerical("nonlinear section: no Newton matrix kept".into())
+            })?;
+        let c = self.c.as_ref();
+        let damping_at = |i: usize, k: usize| {
+            c.map_or(0.0, |c| c.get(i, k)) + damping.as_ref().map_or(0.0, |c| c.get(i, k))
         };
-        let ramp = inputs.hold(j) == Hold::Ramp;
-        let effect = match r.condition {
-            DofCondition::Velocity | DofCondition::VelocityFrom(_) => {
-                Effect::Motion([0.5 * h, 1.0, 2.0 / h])
-            }
-            DofCondition::Displacement(TimeFunction::Input(_)) if ramp => {
-                Effect::Motion([1.0, 1.0 / h, 1.0 / (h * h)])
-            }
-            DofCondition::Displacement(TimeFunction::Input(_)) => Effect::Motion([1.0, 0.0, 0.0]),
-            DofCondition::Force(TimeFunction::Input(_)) => {
-                Effect::Load(1.0 - alpha + if ramp { 0.0 } else { alpha })
-            }
-            _ => return Ok(()),
+        let sensitivity = StepSensitivity {
+            newton,
+            factor,
+            mass: &self.m,
+            damping: &damping_at,
+            parameters: self.hht.parameters(),
+            h: *h,
         };
-        let d = r.dof;
-        // The right-hand side -dR/du on the free DOFs (in dq), the held DOFs'
-        // prescribed change on their identity rows.
-        match effect {
-            Effect::Load(weight) => w.dq[d] = weight,
-            Effect::Motion([dq, dv, da]) => {
-                let s = self.hht.kept_newton_matrix().ok_or_else(|| {
-                    UnitError::Numerical("nonlinear section: no Newton matrix kept".into())
-                })?;
-                // dR_f = S dq + M (da - dq / (beta h^2))
-                //        + (1 - alpha) (C + C_t) (dv - gamma / (beta h) dq).
-                let lo = d.saturating_sub(super::model::BAND);
-                let hi = (d + super::model::BAND + 1).min(n);
-                for f in lo..hi {
-                    w.dq[f] = -(s.get(f, d) * dq
-                        + self.m.get(f, d) * (da - dq / (beta * h * h))
-                        + (1.0 - alpha)
-                            * self.damping_at(w, f, d)
-                            * (dv - gamma / (beta * h) * dq));
-                }
-                for held in self.held() {
-                    w.dq[held.dof] = 0.0;
-                }
-                w.dq[d] = dq;
-            }
+        match self.drive_of(inputs, j, *h) {
+            Some(drive) => sensitivity.solve(drive, held, change),
+            None => change.clear(self.model.dofs()),
         }
-        let factor = self.hht.newton_factor().ok_or_else(|| {
-            UnitError::Numerical("nonlinear section: no factorised Newton matrix".into())
-        })?;
-        factor.solve_in_place(&mut w.dq);
-        for i in 0..n {
-            w.da[i] = w.dq[i] / (beta * h * h);
-            w.dv[i] = gamma / (beta * h) * w.dq[i];
-        }
-        for held in self.held() {
-            w.dv[held.dof] = 0.0;
-            w.da[held.dof] = 0.0;
-        }
-        if let Effect::Motion([_, dv, da]) = effect {
-            w.dv[d] = dv;
-            w.da[d] = da;
-        }
-        Ok(())
-    }
-
-    /// Column `j` of the end outputs' rows from dq, dv, da: positions and
-    /// velocities directly, a force as minus the change of the support
-    /// reaction `M a + C v + g - f`, or of the applied load where the end is
-    /// loaded.
-    fn write_column(&self, w: &JacobianWork, j: usize, n_in: usize, jacobian: &mut [f64]) {
         let nodes = self.model.reference.len();
         for end in 0..2 {
             let node = if end == 0 { 0 } else { nodes - 1 };
             let base = 9 * end;
             for k in 0..3 {
                 let dof = 3 * node + k;
-                jacobian[(base + k) * n_in + j] = w.dq[dof];
-                jacobian[(base + 3 + k) * n_in + j] = w.dv[dof];
+                jacobian[(base + k) * n_in + j] = change.dq[dof];
+                jacobian[(base + 3 + k) * n_in + j] = change.dv[dof];
                 let loaded = self
                     .ends
                     .iter()
                     .find(|c| c.end == end && c.component == k && !c.is_kinematic());
                 jacobian[(base + 6 + k) * n_in + j] = match loaded {
-                    Some(c) => {
-                        if c.input == Some(j) {
-                            -1.0
-                        } else {
-                            0.0
-                        }
-                    }
-                    None => -self.reaction_change(w, dof),
+                    Some(c) if c.input == Some(j) => -1.0,
+                    Some(_) => 0.0,
+                    None => -sensitivity.reaction_change(change, dof),
                 };
             }
         }
-    }
-
-    /// d(M a + (C + C_t) v + g) at DOF `i`, with K_t from the kept Newton
-    /// matrix: (1 - alpha) K_t = S - M / (beta h^2) - (1 - alpha) gamma /
-    /// (beta h) (C + C_t).
-    fn reaction_change(&self, w: &JacobianWork, i: usize) -> f64 {
-        let Some(s) = self.hht.kept_newton_matrix() else {
-            return f64::NAN;
-        };
-        let (alpha, beta, gamma) = self.hht.parameters();
-        let h = w.h;
-        let n = self.model.dofs();
-        let lo = i.saturating_sub(super::model::BAND);
-        let hi = (i + super::model::BAND + 1).min(n);
-        (lo..hi)
-            .map(|k| {
-                let (m, c) = (self.m.get(i, k), self.damping_at(w, i, k));
-                let kt =
-                    (s.get(i, k) - m / (beta * h * h)) / (1.0 - alpha) - gamma / (beta * h) * c;
-                m * w.da[k] + c * w.dv[k] + kt * w.dq[k]
-            })
-            .sum()
+        Ok(())
     }
 }
 

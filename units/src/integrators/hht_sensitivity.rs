@@ -1,0 +1,119 @@
+//! The sensitivity of a converged HHT-alpha step to its coupled end values: what
+//! a unit's step Jacobian (`Unit::step_jacobian`) needs, by back-substitutions
+//! with the step's own factorised Newton matrix.
+//!
+//! At the converged step the free DOFs satisfy `R(q1; u) = 0`, with a1 and v1
+//! from q1 by Newmark. A unit change of an input either moves a held DOF (its q,
+//! v and a as the unit's end condition prescribes them, not necessarily
+//! Newmark's) or loads a DOF; then `S dq_free = -dR/du`. The Newton matrix `S =
+//! M / (beta h^2) + (1 - alpha) (gamma / (beta h) (C + C_t) + K_t)`, kept with
+//! its held rows in place, gives K_t where the unit knows M and C + C_t:
+//! `dR_f = S dq + M (da - dq / (beta h^2)) + (1 - alpha) (C + C_t) (dv - gamma /
+//! (beta h) dq)` for a held DOF's column, and the change of the reaction `M a +
+//! (C + C_t) v + K_t q` at any DOF.
+
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
+
+/// One input's effect on the step: a held DOF moved by (dq, dv, da), or a DOF
+/// loaded with the weight the load has in the residual.
+#[derive(Copy, Clone, Debug)]
+pub enum Drive {
+    Motion { dof: usize, change: [f64; 3] },
+    Load { dof: usize, weight: f64 },
+}
+
+/// A converged step as its sensitivity needs it.
+pub struct StepSensitivity<'a> {
+    /// The Newton matrix with the held rows in place, and its factor with the
+    /// held DOFs as identity rows.
+    pub newton: &'a SymmetricBand,
+    pub factor: &'a BandLdlt,
+    pub mass: &'a SymmetricBand,
+    /// The damping of the step's end, C + C_t, at (i, k).
+    pub damping: &'a dyn Fn(usize, usize) -> f64,
+    /// (alpha, beta, gamma) and the step (s).
+    pub parameters: (f64, f64, f64),
+    pub h: f64,
+}
+
+/// The motion's change per unit input: dq, dv, da of every DOF.
+#[derive(Default)]
+pub struct Change {
+    pub dq: Vec<f64>,
+    pub dv: Vec<f64>,
+    pub da: Vec<f64>,
+}
+
+impl Change {
+    /// No change of any of `n` DOFs.
+    pub fn clear(&mut self, n: usize) {
+        for v in [&mut self.dq, &mut self.dv, &mut self.da] {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+    }
+}
+
+impl StepSensitivity<'_> {
+    fn rows(&self, d: usize) -> std::ops::Range<usize> {
+        let (n, w) = (self.newton.size(), self.newton.half_bandwidth());
+        d.saturating_sub(w)..(d + w + 1).min(n)
+    }
+
+    /// The change of every DOF's motion under `drive`; `held` lists the DOFs
+    /// the step held.
+    pub fn solve(&self, drive: Drive, held: &[usize], out: &mut Change) {
+        let n = self.newton.size();
+        let (alpha, beta, gamma) = self.parameters;
+        let h = self.h;
+        out.clear(n);
+        match drive {
+            Drive::Load { dof, weight } => out.dq[dof] = weight,
+            Drive::Motion {
+                dof: d,
+                change: [dq, dv, da],
+            } => {
+                for f in self.rows(d) {
+                    out.dq[f] = -(self.newton.get(f, d) * dq
+                        + self.mass.get(f, d) * (da - dq / (beta * h * h))
+                        + (1.0 - alpha) * (self.damping)(f, d) * (dv - gamma / (beta * h) * dq));
+                }
+                for &k in held {
+                    out.dq[k] = 0.0;
+                }
+                out.dq[d] = dq;
+            }
+        }
+        self.factor.solve_in_place(&mut out.dq);
+        for i in 0..n {
+            out.da[i] = out.dq[i] / (beta * h * h);
+            out.dv[i] = gamma / (beta * h) * out.dq[i];
+        }
+        for &k in held {
+            out.dv[k] = 0.0;
+            out.da[k] = 0.0;
+        }
+        if let Drive::Motion {
+            dof,
+            change: [_, dv, da],
+        } = drive
+        {
+            out.dv[dof] = dv;
+            out.da[dof] = da;
+        }
+    }
+
+    /// The change of the reaction `M a + (C + C_t) v + K_t q` at DOF `i`.
+    pub fn reaction_change(&self, change: &Change, i: usize) -> f64 {
+        let (alpha, beta, gamma) = self.parameters;
+        let h = self.h;
+        self.rows(i)
+            .map(|k| {
+                let (m, c) = (self.mass.get(i, k), (self.damping)(i, k));
+                let kt = (self.newton.get(i, k) - m / (beta * h * h)) / (1.0 - alpha)
+                    - gamma / (beta * h) * c;
+                m * change.da[k] + c * change.dv[k] + kt * change.dq[k]
+            })
+            .sum()
+    }
+}
