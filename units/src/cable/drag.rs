@@ -80,6 +80,26 @@ impl Drag {
         ]
     }
 
+    /// d r_e / d v_e of element `e`'s remainder at its mean velocity `v`:
+    /// `B_e - D(v)`, D the drag's own derivative with respect to the relative
+    /// velocity (2 c |s| n n^T along each of the normal and tangential
+    /// directions).
+    pub fn remainder_tangent(&self, e: usize, v: [f64; 2]) -> [[f64; 2]; 2] {
+        let dir = self.directions[e];
+        let nrm = [-dir[1], dir[0]];
+        let u = [self.current[e] - v[0], -v[1]];
+        let s = (u[0] * nrm[0] + u[1] * nrm[1]).abs();
+        let t = (u[0] * dir[0] + u[1] * dir[1]).abs();
+        let b = &self.linear[e];
+        std::array::from_fn(|r| {
+            std::array::from_fn(|c| {
+                b[r][c]
+                    - 2.0 * self.normal * s * nrm[r] * nrm[c]
+                    - 2.0 * self.tangential * t * dir[r] * dir[c]
+            })
+        })
+    }
+
     /// The linearised drag as a nodal damping matrix (N s/m) for a chain of nodes:
     /// each element's `B` acts on its mean velocity and splits half to each node.
     #[allow(clippy::needless_range_loop)] // (r, c) index the block and the DOFs alike

@@ -20,6 +20,7 @@ pub mod params;
 pub mod statics;
 
 mod dynamics;
+mod jacobian;
 use crate::integrators::newmark_iterated::LoadIteration;
 use dynamics::{CableStep, Dynamics, mat2};
 
@@ -79,6 +80,8 @@ pub struct Cable {
     guess: Vec<[f64; 2]>,
     dynamics: Option<Dynamics>,
     state: CableState,
+    /// The step Jacobian's buffers.
+    jacobian: jacobian::JacobianWork,
 }
 
 impl Cable {
@@ -120,6 +123,7 @@ impl Cable {
         let nodes = guess.len();
         let free = 2 * (nodes - 1);
         Ok(Cable {
+            jacobian: jacobian::JacobianWork::default(),
             description: describe(),
             state: CableState {
                 q: vec![0.0; free],
@@ -327,7 +331,10 @@ fn describe() -> UnitDescription {
         kind: "cable".into(),
         inputs,
         outputs,
-        capabilities: Capabilities::default(),
+        capabilities: Capabilities {
+            step_jacobian: true,
+            ..Capabilities::default()
+        },
     }
 }
 
@@ -337,6 +344,7 @@ impl Unit for Cable {
     }
 
     fn initialize(&mut self, _t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        self.jacobian.ready = false;
         let top = [inputs.at(TOP_FX, 1.0), inputs.at(TOP_FZ, 1.0)];
         let guess = match self.params.section {
             Section::Full if self.params.static_top_force.is_none() => {
@@ -405,6 +413,7 @@ impl Unit for Cable {
         };
         let outcome = newmark.step(&mut step, t1, h, end_load, iteration);
         d.newmark = newmark;
+        self.jacobian.ready = false;
         let iterations = outcome?;
         s.qb = qb;
         s.vb = vb;
@@ -415,6 +424,8 @@ impl Unit for Cable {
             d.drag_change(&s.v, vb);
         }
         s.bottom_force = support_force(d, s);
+        self.jacobian.ready = true;
+        self.jacobian.h = h;
         Ok(StepReport {
             solver_iterations: iterations,
         })
@@ -460,8 +471,13 @@ impl Unit for Cable {
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.jacobian.ready = false;
         self.state.clone_from(&*slot.load::<CableState>()?);
         Ok(())
+    }
+
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        self.interface_jacobian(inputs, jacobian)
     }
 
     fn modes(&self, count: usize) -> Result<ModalAnalysis, UnitError> {

@@ -58,6 +58,11 @@ impl IteratedNewmark {
         }
     }
 
+    /// The factorised effective stiffness of the last step size.
+    pub fn factor(&self) -> Option<&BandLdlt> {
+        self.factor.as_ref()
+    }
+
     /// Forms and factorises `K + 2/h C + 4/h^2 M` when `h` (s) changed.
     fn prepare(&mut self, m: &Matrices<'_>, h: f64) -> Result<(), UnitError> {
         if self.factor.is_some() && self.h == h {
