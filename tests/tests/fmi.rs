@@ -179,18 +179,18 @@ fn an_imported_fmu_gives_the_native_step_jacobian_through_directional_derivative
             );
         }
     }
-    // A unit without a Jacobian (the cable) does not declare one.
-    let file = fmu::export("examples/truncation_substructured.toml", "n", dir.path());
-    let cable = import(&file).unwrap();
+    // A unit without a Jacobian (the sensor artefact) does not declare one.
+    let file = fmu::export("examples/truncation_table2.toml", "sensor", dir.path());
+    let sensor = import(&file).unwrap();
     assert!(
-        !cable
+        !sensor
             .model_description()
             .co_simulation
             .as_ref()
             .unwrap()
             .provides_directional_derivative
     );
-    assert!(!cable.description().capabilities.step_jacobian);
+    assert!(!sensor.description().capabilities.step_jacobian);
 }
 
 /// Largest difference between two runs' recorded signals, relative to each
