@@ -184,12 +184,6 @@ impl HhtAlpha {
         }
     }
 
-    /// The last Newton matrix of a nonlinear step with the held DOFs' rows and
-    /// columns in place (`keep_newton_matrix`).
-    pub fn kept_newton_matrix(&self) -> Option<&SymmetricBand> {
-        self.kept.as_ref()
-    }
-
     /// The last step's Newton matrix with its held rows in place and its
     /// factor (held DOFs as identity rows): the linear ones after a linear
     /// step, the kept and last ones after a nonlinear step.
@@ -207,13 +201,6 @@ impl HhtAlpha {
     pub fn guess_next(&mut self, y: &[f64]) {
         self.guess.clear();
         self.guess.extend_from_slice(y);
-    }
-
-    /// The factorised Newton matrix of the last iteration of a nonlinear step
-    /// (held DOFs as identity rows): what an interface Jacobian back-substitutes
-    /// with.
-    pub fn newton_factor(&self) -> Option<&BandLdlt> {
-        self.factor.as_ref()
     }
 
     /// The Newton matrix with the tangent of the last iteration.

@@ -148,13 +148,9 @@ impl NonlinearSection {
             h,
             ..
         } = w;
-        let (newton, factor) = self
-            .hht
-            .kept_newton_matrix()
-            .zip(self.hht.newton_factor())
-            .ok_or_else(|| {
-                UnitError::Numerical("nonlinear section: no Newton matrix kept".into())
-            })?;
+        let (newton, factor) = self.hht.last_newton().ok_or_else(|| {
+            UnitError::Numerical("nonlinear section: no Newton matrix kept".into())
+        })?;
         let c = self.c.as_ref();
         let damping_at = |i: usize, k: usize| {
             c.map_or(0.0, |c| c.get(i, k)) + damping.as_ref().map_or(0.0, |c| c.get(i, k))
