@@ -155,7 +155,29 @@ pub fn section_samples() -> Vec<(&'static str, ExportConfig)> {
             "reduced",
             from_scene("examples/structure_frame_reduced.toml", "frame_corner"),
         ),
+        (
+            // The same on a linear basis (its step Jacobian by the
+            // tangent-linear central-difference sub-steps)...
+            "reduced",
+            reduced_corner("central_difference"),
+        ),
+        (
+            // ... and by the trapezoidal rule's Newton matrix.
+            "reduced",
+            reduced_corner("trapezoidal"),
+        ),
     ]
+}
+
+/// The reduced corner of the frame structure on a linear basis (3 modes and
+/// their derivatives), stepped by `integrator`.
+fn reduced_corner(integrator: &str) -> ExportConfig {
+    let mut config = from_scene("examples/structure_frame_reduced.toml", "frame_corner");
+    let p = &mut config.parameters;
+    p.insert("modes".into(), toml::Value::Integer(3));
+    p.insert("derivatives".into(), toml::Value::String("linear".into()));
+    p.insert("integrator".into(), toml::Value::String(integrator.into()));
+    config
 }
 
 /// The start inputs of a sample, in port order.

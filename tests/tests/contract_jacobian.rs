@@ -101,7 +101,7 @@ fn row_relative_difference(
 }
 
 /// The kinds whose samples must give their own step Jacobian.
-const DECLARING_KINDS: [&str; 8] = [
+const DECLARING_KINDS: [&str; 9] = [
     "oscillator",
     "static_section",
     "nonlinear",
@@ -110,6 +110,7 @@ const DECLARING_KINDS: [&str; 8] = [
     "beam",
     "chord",
     "fmu",
+    "reduced",
 ];
 
 #[test]

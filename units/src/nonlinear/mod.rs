@@ -218,6 +218,15 @@ impl NonlinearSection {
         loaded
     }
 
+    /// The DOF each coupled end load's input adds to, one-for-one (N or N m
+    /// per unit input): (input port, model DOF).
+    pub fn input_load_dofs(&self) -> Vec<(usize, usize)> {
+        (self.ends.iter())
+            .filter(|r| matches!(r.condition, params::DofCondition::Force(_)))
+            .filter_map(|r| Some((r.input?, r.dof)))
+            .collect()
+    }
+
     /// The DOFs held by kinematic end and support conditions (prescribed or
     /// coupled motion), in increasing order.
     pub fn held_dofs(&self) -> Vec<usize> {

@@ -139,7 +139,9 @@ pub(super) fn build_model(
                 }
                 Stepping::Trapezoidal => {
                     let n = system.size();
-                    let hht = HhtAlpha::new(0.0, n, n.saturating_sub(1));
+                    let mut hht = HhtAlpha::new(0.0, n, n.saturating_sub(1));
+                    // Its Newton matrix gives the step Jacobian.
+                    hht.keep_newton_matrix();
                     let stepper = Stepper::Implicit(Box::new(Implicit {
                         hht,
                         f0: DVector::zeros(n),

@@ -17,11 +17,13 @@
 //!   integrators step;
 //! - [`taylor`]: the Taylor basis with N unknowns (the derivatives follow the
 //!   modal coordinates), stepped by central differences up to 2 / omega_N;
-//! - [`unit`]: kind `reduced`, a reduced section as a unit for scenes.
+//! - [`unit`]: kind `reduced`, a reduced section as a unit for scenes, and
+//!   `jacobian`, its step Jacobian (tangent-linear step, linear bases).
 
 pub mod basis;
 mod build;
 pub mod ecsw;
+mod jacobian;
 pub mod lrbf;
 pub mod polynomial;
 pub mod system;

@@ -86,6 +86,11 @@ impl ReducedSection {
         self.q.len()
     }
 
+    /// The basis Phi (free DOFs x N).
+    pub fn basis(&self) -> &DMatrix<f64> {
+        &self.basis
+    }
+
     /// Phi^T f: a load on the free DOFs as the reduced load.
     pub fn project(&self, f: &DVector<f64>) -> DVector<f64> {
         self.basis.tr_mul(f)

@@ -17,6 +17,7 @@
 //! coordinates exactly; a step allocates nothing.
 
 use super::build::{Implicit, Model, Stepper, build_model, refuse_what_is_not_reduced};
+use super::jacobian::JacobianWork;
 use super::polynomial::CubicSection;
 use crate::contract::{
     Capabilities, HeldInputs, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
@@ -81,8 +82,8 @@ pub enum Stepping {
 
 /// Outputs per end (position, rotation, velocities, force and moment), and
 /// where the critical step sits: after both ends, before the stations.
-const PER_END: usize = 9;
-const CRITICAL_STEP: usize = 2 * PER_END;
+pub(super) const PER_END: usize = 9;
+pub(super) const CRITICAL_STEP: usize = 2 * PER_END;
 
 /// Newton's tolerance and bound for the trapezoidal rule (relative
 /// correction of the coordinates; the reduced tensors carry EA, so round-off
@@ -102,9 +103,9 @@ crate::state_struct! {
 
 /// The reduced unit.
 pub struct ReducedUnit {
-    section: NonlinearSection,
-    cubic: CubicSection,
-    model: Model,
+    pub(super) section: NonlinearSection,
+    pub(super) cubic: CubicSection,
+    pub(super) model: Model,
     critical: f64,
     description: UnitDescription,
     state: ReducedState,
@@ -114,7 +115,7 @@ pub struct ReducedUnit {
     projected: DVector<f64>,
     /// Displacements, velocities and accelerations (free DOFs), the
     /// accelerations on all DOFs, and the outputs they give.
-    displacement: DVector<f64>,
+    pub(super) displacement: DVector<f64>,
     velocity: DVector<f64>,
     acceleration: DVector<f64>,
     full: Vec<f64>,
@@ -123,9 +124,12 @@ pub struct ReducedUnit {
     start: Vec<f64>,
     values: Vec<f64>,
     /// The end DOFs loaded by a force or moment (model DOFs).
-    loaded: Vec<usize>,
+    pub(super) loaded: Vec<usize>,
     /// Whether a single DOF holds x (z): its reaction is the balance sum.
-    held_once: [bool; 2],
+    pub(super) held_once: [bool; 2],
+    /// (input port, model DOF) of each coupled end load.
+    pub(super) input_dofs: Vec<(usize, usize)>,
+    pub(super) jacobian: JacobianWork,
 }
 
 impl ReducedUnit {
@@ -162,7 +166,10 @@ impl ReducedUnit {
             kind: "reduced".into(),
             inputs: section.description().inputs.clone(),
             outputs,
-            capabilities: Capabilities::default(),
+            capabilities: Capabilities {
+                step_jacobian: ReducedUnit::offers_jacobian(&model),
+                ..Capabilities::default()
+            },
         };
         let columns = match &model {
             Model::Linear(system, _) => system.size(),
@@ -194,6 +201,8 @@ impl ReducedUnit {
                     == 1
             }),
             state: ReducedState { motion: Vec::new() },
+            input_dofs: section.input_load_dofs(),
+            jacobian: JacobianWork::default(),
             section,
             cubic,
             model,
@@ -268,30 +277,56 @@ impl ReducedUnit {
                 taylor.accelerations_into(a);
             }
         }
+        let mut values = std::mem::take(&mut self.values);
+        let mut put = |row: usize, value: f64| values[row] = value;
+        self.kinematic_rows(&self.displacement, &self.velocity, true, &mut put);
+        self.values = values;
+        self.end_forces();
+    }
+
+    /// Each end's position, rotation and velocities and each station's
+    /// position from displacements `d` and velocities `v` on the free DOFs,
+    /// as `put(output row, value)`; the positions from the reference
+    /// (stress-free) shape with `reference`, their changes without.
+    pub(super) fn kinematic_rows(
+        &self,
+        d: &DVector<f64>,
+        v: &DVector<f64>,
+        reference: bool,
+        put: &mut impl FnMut(usize, f64),
+    ) {
         let free = self.cubic.free_dofs();
         let at = |x: &DVector<f64>, dof: usize| free.binary_search(&dof).map_or(0.0, |k| x[k]);
         let model = self.section.model();
+        let origin = |node: usize, c: usize| match reference {
+            true => model.reference[node][c],
+            false => 0.0,
+        };
         let last = model.reference.len() - 1;
-        let out = &mut self.values;
         for (k, node) in [0, last].into_iter().enumerate() {
-            let [x, z] = model.reference[node];
             let base = PER_END * k;
-            out[base] = x + at(d, 3 * node);
-            out[base + 1] = z + at(d, 3 * node + 1);
-            out[base + 2] = at(d, 3 * node + 2);
-            out[base + 3] = at(v, 3 * node);
-            out[base + 4] = at(v, 3 * node + 1);
-            out[base + 5] = at(v, 3 * node + 2);
+            for c in 0..3 {
+                let position = if c < 2 { origin(node, c) } else { 0.0 };
+                put(base + c, position + at(d, 3 * node + c));
+                put(base + 3 + c, at(v, 3 * node + c));
+            }
         }
         for (i, &s) in self.section.stations().iter().enumerate() {
             let (e, xi) = model.locate(s);
             for c in 0..2 {
                 let (a, b) = (at(d, 3 * e + c), at(d, 3 * (e + 1) + c));
-                let reference = (1.0 - xi) * model.reference[e][c] + xi * model.reference[e + 1][c];
-                out[CRITICAL_STEP + 1 + 2 * i + c] = reference + (1.0 - xi) * a + xi * b;
+                let position = (1.0 - xi) * origin(e, c) + xi * origin(e + 1, c);
+                put(
+                    CRITICAL_STEP + 1 + 2 * i + c,
+                    position + (1.0 - xi) * a + xi * b,
+                );
             }
         }
-        self.end_forces();
+    }
+
+    /// The central-difference sub-steps of a coupling step of `h` seconds.
+    pub(super) fn substeps(&self, h: f64) -> usize {
+        (h / (0.9 * self.critical)).ceil().max(1.0) as usize
     }
 
     /// Each end's force on what holds or loads it (N, N m), as the full
@@ -437,20 +472,25 @@ impl Unit for ReducedUnit {
         }
         self.store_motion();
         self.refresh_outputs();
+        self.jacobian.ready = false;
         Ok(())
     }
 
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let (t0, h) = (t.as_secs(), h.as_secs());
+        let w = &mut self.jacobian;
+        w.ready = false;
+        (w.t0, w.h) = (t0, h);
         if let Model::Linear(_, Stepper::Implicit(_)) = self.model {
             let iterations = self.implicit_step(t0, h, inputs)?;
             self.store_motion();
             self.refresh_outputs();
+            self.jacobian.ready = true;
             return Ok(StepReport {
                 solver_iterations: iterations,
             });
         }
-        let substeps = (h / (0.9 * self.critical)).ceil().max(1.0) as usize;
+        let substeps = self.substeps(h);
         let hk = h / substeps as f64;
         for k in 1..=substeps {
             let s = k as f64 / substeps as f64;
@@ -470,6 +510,7 @@ impl Unit for ReducedUnit {
         }
         self.store_motion();
         self.refresh_outputs();
+        self.jacobian.ready = true;
         Ok(StepReport::default())
     }
 
@@ -491,6 +532,11 @@ impl Unit for ReducedUnit {
             Model::Taylor(taylor) => taylor.set_motion(&m[..n], &m[n..2 * n], &m[2 * n..]),
         }
         self.refresh_outputs();
+        self.jacobian.ready = false;
         Ok(())
+    }
+
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        self.interface_jacobian(inputs, jacobian)
     }
 }

@@ -275,7 +275,14 @@ struct SectionModel {
 }
 
 /// The keys of `{ kind = "reduced", ... }`: the `reduced` unit's basis.
-const REDUCED_KEYS: [&str; 5] = ["kind", "elements", "modes", "derivatives", "attachments"];
+const REDUCED_KEYS: [&str; 6] = [
+    "kind",
+    "elements",
+    "modes",
+    "derivatives",
+    "attachments",
+    "integrator",
+];
 /// The keys of `{ kind = "beam", ... }`: the `chord` unit's beam settings.
 const BEAM_KEYS: [&str; 5] = [
     "kind",
