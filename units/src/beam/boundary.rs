@@ -84,6 +84,26 @@ pub struct Expression {
     pub decay_rate: f64,
     /// More sines added to it (a vessel's motion as a sum of wave components).
     pub sines: Vec<Sine>,
+    /// Duration (s) over which the sines fade in from t = 0 by the quintic
+    /// smoothstep `r = x^3 (10 - 15 x + 6 x^2)`, x = t / fade_in (continuous
+    /// in value, velocity and acceleration, so a motion started this way
+    /// launches no wave); 0 (default) starts them at full amplitude. The
+    /// offset and the decay are not faded.
+    pub fade_in: f64,
+}
+
+/// The quintic smoothstep over `duration` (s) at t and its first two time
+/// derivatives; 1 from `duration` on (and for a zero duration).
+fn smoothstep(t: f64, duration: f64) -> [f64; 3] {
+    if duration <= 0.0 || t >= duration {
+        return [1.0, 0.0, 0.0];
+    }
+    let x = t.max(0.0) / duration;
+    [
+        x * x * x * (10.0 - 15.0 * x + 6.0 * x * x),
+        30.0 * x * x * (1.0 - x) * (1.0 - x) / duration,
+        60.0 * x * (1.0 - x) * (1.0 - 2.0 * x) / (duration * duration),
+    ]
 }
 
 /// One sine `amplitude sin(angular_frequency t + phase)`.
@@ -119,17 +139,20 @@ impl TimeFunction {
                     phase: e.phase,
                 };
                 let ex = e.decay_amplitude * (-e.decay_rate * t).exp();
-                let mut v = [
-                    e.offset + ex,
-                    -e.decay_rate * ex,
-                    e.decay_rate * e.decay_rate * ex,
-                ];
+                let mut sines = [0.0; 3];
                 for sine in std::iter::once(&first).chain(&e.sines) {
-                    for (v, s) in v.iter_mut().zip(sine.eval(t)) {
+                    for (v, s) in sines.iter_mut().zip(sine.eval(t)) {
                         *v += s;
                     }
                 }
-                Some(v)
+                // (r S)' = r' S + r S', (r S)'' = r'' S + 2 r' S' + r S''.
+                let [r, dr, ddr] = smoothstep(t, e.fade_in);
+                let [s, ds, dds] = sines;
+                Some([
+                    e.offset + ex + r * s,
+                    -e.decay_rate * ex + dr * s + r * ds,
+                    e.decay_rate * e.decay_rate * ex + ddr * s + 2.0 * dr * ds + r * dds,
+                ])
             }
         }
     }
@@ -145,6 +168,7 @@ impl TimeFunction {
                 e.phase,
                 e.decay_amplitude,
                 e.decay_rate,
+                e.fade_in,
             ]
             .into_iter()
             .chain(
@@ -152,7 +176,8 @@ impl TimeFunction {
                     .iter()
                     .flat_map(|s| [s.amplitude, s.angular_frequency, s.phase]),
             )
-            .all(f64::is_finite),
+            .all(f64::is_finite)
+                && e.fade_in >= 0.0,
         };
         if ok {
             Ok(())
@@ -160,7 +185,7 @@ impl TimeFunction {
             Err(UnitError::parameter(
                 key,
                 format!("{self:?}"),
-                "expected finite values",
+                "expected finite values and fade_in >= 0 (s)",
             ))
         }
     }
@@ -216,6 +241,35 @@ impl Boundary {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_faded_sine_starts_at_rest_and_keeps_its_derivatives() {
+        let f: TimeFunction = toml::from_str::<toml::Table>(
+            "f = { offset = 1.0, amplitude = 2.0, angular_frequency = 0.628, phase = 0.4, fade_in = 20.0 }",
+        )
+        .unwrap()["f"]
+            .clone()
+            .try_into()
+            .unwrap();
+        // At rest at the offset at t = 0: value, velocity and acceleration.
+        assert_eq!(f.eval(0.0).unwrap(), [1.0, 0.0, 0.0]);
+        let at = |t: f64| f.eval(t).unwrap();
+        let h = 1e-4;
+        for t in [0.5, 7.0, 13.3, 19.99, 20.0, 31.0] {
+            let [_, dv, ddv] = at(t);
+            assert!((dv - (at(t + h)[0] - at(t - h)[0]) / (2.0 * h)).abs() < 1e-7, "{t}");
+            assert!((ddv - (at(t + h)[1] - at(t - h)[1]) / (2.0 * h)).abs() < 1e-6, "{t}");
+        }
+        // Full amplitude from the fade's end on.
+        let t = 25.0;
+        assert!((at(t)[0] - (1.0 + 2.0 * (0.628 * t + 0.4).sin())).abs() < 1e-14);
+        let negative: TimeFunction = toml::from_str::<toml::Table>("f = { fade_in = -1.0 }")
+            .unwrap()["f"]
+            .clone()
+            .try_into()
+            .unwrap();
+        assert!(negative.validate("f").is_err());
+    }
 
     #[test]
     fn a_sum_of_sines_has_the_derivatives_of_its_values() {
