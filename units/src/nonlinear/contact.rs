@@ -30,6 +30,11 @@ pub struct ContactSummary {
     pub relative_penetration: f64,
     /// Sum of the contact energies w Xi(d) (J).
     pub energy: f64,
+    /// The touchdown point as users define it: where the seabed gap crosses
+    /// zero, interpolated between the nodes (`NodalContacts::seabed_crossing`),
+    /// as arc length from the start (m) and as its x position (m); NaN
+    /// without seabed contact.
+    pub crossing: [f64; 2],
 }
 
 /// The contact surfaces of a section.
@@ -339,8 +344,17 @@ impl NodalContacts {
 
     /// Touchdown point, seabed contact length, penetration and energy at `q`.
     pub fn summary(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> ContactSummary {
+        let crossing = self
+            .seabed_crossing(model, (q, t))
+            .map_or([f64::NAN; 2], |arc| {
+                let (e, xi) = model.locate(arc);
+                let (r0, r1) = (model.reference[e][0], model.reference[e + 1][0]);
+                let x = (1.0 - xi) * (r0 + q[3 * e]) + xi * (r1 + q[3 * e + 3]);
+                [arc, x]
+            });
         let mut s = ContactSummary {
             touchdown: f64::NAN,
+            crossing,
             ..ContactSummary::default()
         };
         for (c, contact) in self.list.iter().enumerate() {

@@ -158,7 +158,7 @@ pub fn resolve(params: &NonlinearParams, nodes: usize) -> (Vec<Resolved>, Vec<Po
 }
 
 /// Names of the outputs after the end quantities.
-pub const EXTRA_OUTPUTS: [(&str, &str); 11] = [
+pub const EXTRA_OUTPUTS: [(&str, &str); 13] = [
     ("kinetic_energy", "J"),
     ("strain_energy", "J"),
     ("potential_energy", "J"),
@@ -170,6 +170,8 @@ pub const EXTRA_OUTPUTS: [(&str, &str); 11] = [
     ("max_tension", "N"),
     ("sagbend_moment", "N.m"),
     ("overbend_moment", "N.m"),
+    ("touchdown_arc", "m"),
+    ("touchdown_x", "m"),
 ];
 
 /// Per end: position x, z, rotation, velocity x, z, angular velocity, and the force

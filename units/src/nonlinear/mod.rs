@@ -18,6 +18,7 @@ pub mod params;
 
 mod dynamics;
 mod jacobian;
+mod start_shape;
 mod statics;
 
 use crate::contract::{
@@ -141,6 +142,7 @@ impl NonlinearSection {
                 lambda: environment.contacts.initial_lambda(),
                 contact: ContactSummary {
                     touchdown: f64::NAN,
+                    crossing: [f64::NAN; 2],
                     ..ContactSummary::default()
                 },
                 bend_now: [0.0; 2],
@@ -370,6 +372,15 @@ impl NonlinearSection {
         [at(0), at(1)]
     }
 
+    /// The tangent's angle (rad, from +x, along increasing arc length) at
+    /// node `node`: its element's stress-free angle turned by the node's
+    /// rotation.
+    pub fn tangent_angle_at_node(&self, node: usize) -> f64 {
+        let e = node.min(self.model.elements.len() - 1);
+        let element = &self.model.elements[e];
+        element.sin0.atan2(element.cos0) + self.state.q[3 * node + 2]
+    }
+
     /// In one pass over the element ends: the largest |moment| (N m), the largest
     /// tension (N), and the largest sag-bend and overbend moments (N m): the
     /// bending moment where the section is concave upwards (d2z/dx2 > 0, the sag
@@ -463,16 +474,14 @@ impl Unit for NonlinearSection {
             } else {
                 0.0
             },
-            if self.state.contact.touchdown.is_finite() {
-                self.state.contact.touchdown
-            } else {
-                0.0
-            },
+            finite_or_zero(self.state.contact.touchdown),
             self.state.contact.length,
             max_moment,
             max_tension,
             self.state.bend_step[0],
             self.state.bend_step[1],
+            finite_or_zero(self.state.contact.crossing[0]),
+            finite_or_zero(self.state.contact.crossing[1]),
         ];
         let stations = 18 + extra.len();
         out[18..stations].copy_from_slice(&extra);
@@ -506,6 +515,11 @@ impl Unit for NonlinearSection {
     fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {
         dynamics::modes(self, count)
     }
+}
+
+/// Outputs stay finite: 0 stands for "nothing in contact".
+fn finite_or_zero(x: f64) -> f64 {
+    if x.is_finite() { x } else { 0.0 }
 }
 
 #[cfg(test)]

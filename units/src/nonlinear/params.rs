@@ -251,6 +251,17 @@ pub enum StartShape {
     Points,
 }
 
+impl StartShape {
+    /// The scene's word for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            StartShape::Reference => "reference",
+            StartShape::Catenary => "catenary",
+            StartShape::Points => "points",
+        }
+    }
+}
+
 /// Contact with a surface z >= f(x, t), at the nodes.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -6,6 +6,7 @@
 use super::NonlinearSection;
 use super::element::Formulation;
 use super::params::StartShape;
+use super::start_shape::{Catenary, GroundedCatenary, Shape};
 use crate::contract::{Inputs, UnitError};
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
@@ -13,12 +14,19 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 const MAX_ITERATIONS: u32 = 60;
 /// Halvings of the load increment before giving up.
 const MAX_HALVINGS: u32 = 12;
+/// Load levels of one continuation, at most.
+const MAX_LEVELS: u32 = 20_000;
 /// Correction relative to max(1, |q|) at which Newton has converged.
 const TOLERANCE: f64 = 1e-10;
 
 impl NonlinearSection {
     /// The equilibrium under the loads and end positions at the current time,
-    /// at rest; the error names the load level reached.
+    /// at rest. From the chosen start shape first; where that fails, from the
+    /// other kind of start (the stress-free shape's continuation fails where
+    /// the ends move far, e.g. a laid pipe lifted to its hang-off; a shape's
+    /// full-load Newton where the shape is far off), so a structure starts
+    /// from the defaults; not from a catenary on a stinger, which it would
+    /// hang through. The error names the load level each reached.
     pub(super) fn solve_static(&mut self, inputs: Inputs<'_>) -> Result<(), UnitError> {
         let n = self.model.dofs();
         let t = self.state.t;
@@ -28,53 +36,94 @@ impl NonlinearSection {
             .held()
             .map(|r| (r.dof, r.motion(inputs, (t, 0.0), (0.0, 1.0), [0.0; 3])[0]))
             .collect();
+        let chosen = self.params.start_shape;
+        // A catenary hangs below a stinger's rollers: no fallback to it there
+        // (it would find the pipe under them).
+        let fallback = match chosen {
+            StartShape::Reference if self.params.stinger.is_some() => None,
+            StartShape::Reference => Some(StartShape::Catenary),
+            StartShape::Catenary | StartShape::Points => Some(StartShape::Reference),
+        };
         let mut q = vec![0.0; n];
-        let direct = self.params.start_shape != StartShape::Reference;
-        match self.params.start_shape {
-            StartShape::Reference => {}
-            StartShape::Catenary => self.catenary_guess(&targets, &mut q),
-            StartShape::Points => self.points_guess(&mut q),
+        let mut failures = Vec::new();
+        for shape in std::iter::once(chosen).chain(fallback) {
+            match self.solve_from(shape, &load, &targets, &mut q) {
+                Ok(total) => {
+                    self.state.q.copy_from_slice(&q);
+                    self.state.v.fill(0.0);
+                    self.state.newton_iterations = total;
+                    return Ok(());
+                }
+                Err(reason) => failures.push(format!("from the {} shape, {reason}", shape.name())),
+            }
         }
+        Err(UnitError::Numerical(format!(
+            "nonlinear section: the static solve failed at t = {t} s {}",
+            failures.join("; then ")
+        )))
+    }
+
+    /// The equilibrium from `shape` into `q`: a shape guess at full load, or
+    /// the stress-free shape with the loads and end displacements ramped
+    /// (`load_steps` increments, halved on failure up to 12 times in a row
+    /// and doubled back after each success, at most `MAX_LEVELS` levels).
+    /// Returns the Newton iterations; the error names the level reached.
+    fn solve_from(
+        &self,
+        shape: StartShape,
+        load: &[f64],
+        targets: &[(usize, f64)],
+        q: &mut [f64],
+    ) -> Result<u32, String> {
+        let n = self.model.dofs();
+        q.fill(0.0);
+        match shape {
+            StartShape::Reference => {}
+            StartShape::Catenary => self.catenary_guess(targets, q),
+            StartShape::Points => self.points_guess(q),
+        }
+        let direct = shape != StartShape::Reference;
         let start: Vec<f64> = targets.iter().map(|&(d, _)| q[d]).collect();
-        let mut level = 0.0;
-        let mut increment = 1.0 / f64::from(self.params.load_steps);
-        let mut halvings = 0;
-        let mut trial = q.clone();
+        let initial = 1.0 / f64::from(self.params.load_steps);
+        let (mut level, mut increment, mut halvings) = (0.0, initial, 0);
+        let mut trial = q.to_vec();
         let mut work = NewtonWork::new(n);
         let mut total = 0;
-        let mut done = false;
-        while !done {
+        for _ in 0..MAX_LEVELS {
             let next = if direct {
                 1.0
             } else {
                 (level + increment).min(1.0)
             };
-            trial.copy_from_slice(&q);
+            trial.copy_from_slice(q);
             for (k, &(d, target)) in targets.iter().enumerate() {
                 trial[d] = start[k] + next * (target - start[k]);
             }
-            match self.newton(&mut trial, next, &load, &targets, &mut work) {
+            match self.newton(&mut trial, next, load, targets, &mut work) {
                 Ok(iterations) => {
                     total += iterations;
                     q.copy_from_slice(&trial);
                     level = next;
-                    done = level >= 1.0;
+                    if level >= 1.0 {
+                        return Ok(total);
+                    }
+                    halvings = 0;
+                    increment = (2.0 * increment).min(initial);
                 }
                 Err(_) if halvings < MAX_HALVINGS && !direct => {
                     halvings += 1;
                     increment *= 0.5;
                 }
                 Err(reason) => {
-                    return Err(UnitError::Numerical(format!(
-                        "nonlinear section: the static solve failed at t = {t} s after reaching load level {level:.4} of 1 (trying {next:.4}): {reason}"
-                    )));
+                    return Err(format!(
+                        "after reaching load level {level:.4} of 1 (trying {next:.4}): {reason}"
+                    ));
                 }
             }
         }
-        self.state.q.copy_from_slice(&q);
-        self.state.v.fill(0.0);
-        self.state.newton_iterations = total;
-        Ok(())
+        Err(format!(
+            "reached load level {level:.4} of 1 in {MAX_LEVELS} load levels"
+        ))
     }
 
     /// Newton at load level `level`; held DOFs stay at their values in `q`.
@@ -126,11 +175,6 @@ impl NonlinearSection {
                 *qi += limit * dq;
             }
             let size = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-            if std::env::var("DBG").is_ok() {
-                eprintln!(
-                    "level {level} it {iteration} step {step:.3e} limit {limit:.3} shifted {shifted}"
-                );
-            }
             // A shifted step is a damped one: only a plain Newton step may converge.
             if !shifted && limit == 1.0 && step < TOLERANCE * size {
                 return Ok(iteration);
@@ -142,7 +186,9 @@ impl NonlinearSection {
     }
 
     /// The inextensible catenary through the ends at their target positions (a
-    /// straight line when the chord is as long as the section), as displacements.
+    /// straight line when the chord is as long as the section), as
+    /// displacements; where it would hang below a flat seabed and one end
+    /// lies on it, the catenary laid on the seabed from that end.
     fn catenary_guess(&self, targets: &[(usize, f64)], q: &mut [f64]) {
         let nodes = self.model.reference.len();
         let at = |node: usize| {
@@ -162,7 +208,21 @@ impl NonlinearSection {
         let stretch = self.params.segments.iter().fold(1e-4f64, |m, s| {
             m.max(s.submerged_weight.abs() * length / s.axial_stiffness)
         });
-        let shape = Catenary::through(a, b, length * (1.0 + stretch));
+        let stretched = length * (1.0 + stretch);
+        let free = Catenary::through(a, b, stretched);
+        // A catenary that would hang below a flat seabed lies on it from its
+        // lower end instead and touches down tangentially.
+        let grounded = self.flat_seabed().and_then(|height| {
+            let tolerance = 1e-2 * (a[1].max(b[1]) - height).abs();
+            let below = free.lowest() < height - tolerance;
+            below
+                .then(|| GroundedCatenary::through(a, b, stretched, (height, tolerance)))
+                .flatten()
+        });
+        let shape: &dyn Shape = match &grounded {
+            Some(g) => g,
+            None => &free,
+        };
         for j in 0..nodes {
             let (p, angle) = shape.at(self.model.arc[j] * (1.0 + stretch));
             let r = self.model.reference[j];
@@ -175,6 +235,16 @@ impl NonlinearSection {
                 Formulation::Corotational => rotation,
                 Formulation::Seed002 => rotation.sin().atan2(rotation.cos()),
             };
+        }
+    }
+}
+
+impl NonlinearSection {
+    /// The height (m) of a flat seabed, if the section has one.
+    fn flat_seabed(&self) -> Option<f64> {
+        match self.params.contact.as_ref()?.surface.shape {
+            crate::contact::surface::Shape::Flat { height } => Some(height),
+            _ => None,
         }
     }
 }
@@ -271,80 +341,5 @@ impl NewtonWork {
                 self.factor.is_some()
             }
         }
-    }
-}
-
-/// An inextensible catenary of a given length between two points, or the straight
-/// line when the chord is at least that long.
-#[derive(Copy, Clone, Debug)]
-pub(super) struct Catenary {
-    start: [f64; 2],
-    end: [f64; 2],
-    length: f64,
-    /// Catenary parameter a = H / w (m); infinite for the straight line.
-    a: f64,
-    /// Horizontal position of the vertex relative to the start, in the frame where
-    /// x increases from start to end (m).
-    x0: f64,
-}
-
-impl Catenary {
-    /// The catenary through `start` and `end` of arc length `length` (m).
-    pub fn through(start: [f64; 2], end: [f64; 2], length: f64) -> Catenary {
-        let (dx, dz) = ((end[0] - start[0]).abs(), end[1] - start[1]);
-        let span = (length * length - dz * dz).max(0.0).sqrt();
-        if dx < 1e-9 || span <= dx * (1.0 + 1e-12) {
-            return Catenary {
-                start,
-                end,
-                length,
-                a: f64::INFINITY,
-                x0: 0.0,
-            };
-        }
-        // 2 a sinh(dx / 2a) = span is decreasing in a: bisection on ln a (bounded).
-        let f = |a: f64| 2.0 * a * (dx / (2.0 * a)).sinh() - span;
-        let (mut lo, mut hi) = ((dx * 1e-6).ln(), (dx * 1e9).ln());
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            let v = f(mid.exp());
-            if !v.is_finite() || v > 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        let a = (0.5 * (lo + hi)).exp();
-        let x0 = 0.5 * dx - a * (dz / (2.0 * a * (dx / (2.0 * a)).sinh())).asinh();
-        Catenary {
-            start,
-            end,
-            length,
-            a,
-            x0,
-        }
-    }
-
-    /// Position (m) and tangent angle (rad, from +x) at arc length `s` from the start.
-    pub fn at(&self, s: f64) -> ([f64; 2], f64) {
-        let sign = if self.end[0] >= self.start[0] {
-            1.0
-        } else {
-            -1.0
-        };
-        if !self.a.is_finite() {
-            let (dx, dz) = (self.end[0] - self.start[0], self.end[1] - self.start[1]);
-            let f = s / self.length;
-            return (
-                [self.start[0] + f * dx, self.start[1] + f * dz],
-                dz.atan2(dx),
-            );
-        }
-        let (a, x0) = (self.a, self.x0);
-        let u = (s / a + (-x0 / a).sinh()).asinh();
-        let x = x0 + a * u;
-        let z = a * (u.cosh() - (-x0 / a).cosh());
-        let angle = u.tanh().atan2(sign / u.cosh());
-        ([self.start[0] + sign * x, self.start[1] + z], angle)
     }
 }
