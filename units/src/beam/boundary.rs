@@ -139,15 +139,26 @@ impl TimeFunction {
                     phase: e.phase,
                 };
                 let ex = e.decay_amplitude * (-e.decay_rate * t).exp();
-                let mut sines = [0.0; 3];
+                let [r, dr, ddr] = smoothstep(t, e.fade_in);
+                let faded = r < 1.0;
+                let mut v = match faded {
+                    true => [0.0; 3],
+                    false => [
+                        e.offset + ex,
+                        -e.decay_rate * ex,
+                        e.decay_rate * e.decay_rate * ex,
+                    ],
+                };
                 for sine in std::iter::once(&first).chain(&e.sines) {
-                    for (v, s) in sines.iter_mut().zip(sine.eval(t)) {
+                    for (v, s) in v.iter_mut().zip(sine.eval(t)) {
                         *v += s;
                     }
                 }
+                if !faded {
+                    return Some(v);
+                }
                 // (r S)' = r' S + r S', (r S)'' = r'' S + 2 r' S' + r S''.
-                let [r, dr, ddr] = smoothstep(t, e.fade_in);
-                let [s, ds, dds] = sines;
+                let [s, ds, dds] = v;
                 Some([
                     e.offset + ex + r * s,
                     -e.decay_rate * ex + dr * s + r * ds,
@@ -161,23 +172,25 @@ impl TimeFunction {
         let ok = match self {
             TimeFunction::Constant(c) => c.is_finite(),
             TimeFunction::Input(_) => true,
-            TimeFunction::Expression(e) => [
-                e.offset,
-                e.amplitude,
-                e.angular_frequency,
-                e.phase,
-                e.decay_amplitude,
-                e.decay_rate,
-                e.fade_in,
-            ]
-            .into_iter()
-            .chain(
-                e.sines
-                    .iter()
-                    .flat_map(|s| [s.amplitude, s.angular_frequency, s.phase]),
-            )
-            .all(f64::is_finite)
-                && e.fade_in >= 0.0,
+            TimeFunction::Expression(e) => {
+                [
+                    e.offset,
+                    e.amplitude,
+                    e.angular_frequency,
+                    e.phase,
+                    e.decay_amplitude,
+                    e.decay_rate,
+                    e.fade_in,
+                ]
+                .into_iter()
+                .chain(
+                    e.sines
+                        .iter()
+                        .flat_map(|s| [s.amplitude, s.angular_frequency, s.phase]),
+                )
+                .all(f64::is_finite)
+                    && e.fade_in >= 0.0
+            }
         };
         if ok {
             Ok(())
@@ -257,8 +270,14 @@ mod tests {
         let h = 1e-4;
         for t in [0.5, 7.0, 13.3, 19.99, 20.0, 31.0] {
             let [_, dv, ddv] = at(t);
-            assert!((dv - (at(t + h)[0] - at(t - h)[0]) / (2.0 * h)).abs() < 1e-7, "{t}");
-            assert!((ddv - (at(t + h)[1] - at(t - h)[1]) / (2.0 * h)).abs() < 1e-6, "{t}");
+            assert!(
+                (dv - (at(t + h)[0] - at(t - h)[0]) / (2.0 * h)).abs() < 1e-7,
+                "{t}"
+            );
+            assert!(
+                (ddv - (at(t + h)[1] - at(t - h)[1]) / (2.0 * h)).abs() < 1e-6,
+                "{t}"
+            );
         }
         // Full amplitude from the fade's end on.
         let t = 25.0;
