@@ -21,6 +21,7 @@
 mod cable;
 mod chord;
 mod cuts;
+mod hang_off;
 mod load;
 mod nonlinear;
 mod reduced;
@@ -31,7 +32,34 @@ use cuts::{End, Side};
 use nonlinear::{section_unit, start_of};
 pub use sections::FIDELITIES;
 use sections::{Cut, Fidelity, Segment, cuts_of, segments_of};
+use slender_units::Time;
 use toml::{Table, Value};
+
+/// The simulation's start (`[simulation] start`, default 0): when a static
+/// start's equilibrium holds.
+fn start_time(scene: &Table) -> Result<Time, String> {
+    let start = scene
+        .get("simulation")
+        .and_then(|s| s.get("start"))
+        .map_or(Some(0.0), |v| {
+            v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+        });
+    start
+        .and_then(Time::from_secs)
+        .ok_or("`simulation.start`: expected a time in seconds".into())
+}
+
+/// The keys of `[structure]`.
+const STRUCTURE_KEYS: [&str; 8] = [
+    "name",
+    "model",
+    "sections",
+    "reference",
+    "water_depth",
+    "seabed",
+    "top_load",
+    "hang_off",
+];
 
 /// Expands `[structure]` in `scene` into units and connections; false when the
 /// scene has none. The error names the key.
@@ -43,7 +71,17 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
         .as_table()
         .ok_or("`structure`: expected a table")?
         .clone();
-    let (built, cuts, length) = Built::new(&structure)?;
+    if let Some(key) = structure
+        .keys()
+        .find(|k| !STRUCTURE_KEYS.contains(&k.as_str()))
+    {
+        return Err(format!(
+            "`structure.{key}`: unknown key; a structure takes {}",
+            STRUCTURE_KEYS.join(", ")
+        ));
+    }
+    let t0 = start_time(scene)?;
+    let (built, cuts, length) = Built::new(&structure, t0)?;
     let force_on_upper = orientation(&cuts, built.statics.is_some(), built.holding_static)?;
     let mut units = Vec::new();
     let mut connections = Vec::new();
@@ -207,7 +245,7 @@ struct Built {
 impl Built {
     /// The model as the units take it, its segments and cuts, the
     /// equilibrium of a static start; and the structure's length (m).
-    fn new(structure: &Table) -> Result<(Built, Vec<Cut>, f64), String> {
+    fn new(structure: &Table, t0: Time) -> Result<(Built, Vec<Cut>, f64), String> {
         let name = structure
             .get("name")
             .and_then(Value::as_str)
@@ -219,6 +257,16 @@ impl Built {
             .ok_or("`structure.model`: expected the parameters of a `nonlinear` unit")?
             .clone();
         let top_load = load::TopLoad::of(structure, &model)?;
+        let static_start = model.get("static_start").and_then(Value::as_bool) == Some(true);
+        let hang_off = hang_off::angle_of(structure)?;
+        let mut placed = None;
+        if let Some(angle) = hang_off {
+            if !static_start || top_load.is_some() {
+                return Err("`structure.hang_off`: the top is placed in the static equilibrium, so the structure needs `structure.model.static_start = true` and its end held (not a `top_load`)".into());
+            }
+            let (_, equilibrium) = hang_off::place(&mut model, angle, t0)?;
+            placed = Some(equilibrium);
+        }
         let statics_model = match &top_load {
             Some(load) => load.held_at_rest(&model),
             None => model.clone(),
@@ -229,10 +277,10 @@ impl Built {
         let segments = segments_of(&model)?;
         let length: f64 = segments.iter().map(|s| s.length).sum();
         let cuts = cuts_of(structure, length)?;
-        let statics = if model.get("static_start").and_then(Value::as_bool) == Some(true) {
-            Some(statics::Equilibrium::solve(&statics_model)?)
-        } else {
-            None
+        let statics = match (static_start, placed) {
+            (_, Some(equilibrium)) => Some(equilibrium),
+            (true, None) => Some(statics::Equilibrium::solve(&statics_model, t0)?),
+            (false, None) => None,
         };
         let holding_static = cuts[0].fidelity == Fidelity::Static
             && statics::static_takes_force(&statics_model, top_load.is_some());
@@ -248,9 +296,35 @@ impl Built {
         Ok((built, cuts, length))
     }
 
+    /// Refuses a model without seabed contact (`Fidelity::lacks_seabed`) on
+    /// a section that lies on a flat seabed in the equilibrium, rather than
+    /// letting it fail at the start.
+    fn refuse_without_seabed(&self, cut: &Cut) -> Result<(), String> {
+        let height = (self.model.get("contact"))
+            .and_then(|c| c.get("surface")?.get("shape"))
+            .filter(|shape| shape.get("kind").and_then(Value::as_str) == Some("flat"))
+            .and_then(|shape| shape.get("height")?.as_float());
+        let (Some(equilibrium), Some(height)) = (&self.statics, height) else {
+            return Ok(());
+        };
+        if !cut.fidelity.lacks_seabed() {
+            return Ok(());
+        }
+        match equilibrium.on_seabed((cut.from, cut.to), height) {
+            Some((first, last)) => Err(format!(
+                "`structure.sections.{}.fidelity` = \"{}\": the section lies on the seabed from {first:.2} to {last:.2} m of arc in the static equilibrium, and a {} model has no seabed contact; choose \"nonlinear\" (or \"static\" for a first, laid section), or cut it above the touchdown point",
+                cut.name,
+                cut.fidelity.name(),
+                cut.fidelity.name()
+            )),
+            None => Ok(()),
+        }
+    }
+
     /// Section `k`'s unit.
     fn section(&self, cuts: &[Cut], k: usize, force_on_upper: &[bool]) -> Result<Table, String> {
         let cut = &cuts[k];
+        self.refuse_without_seabed(cut)?;
         // Per end at a cut: whether this section is the moving (velocity) side,
         // and whether the cut is pinned (a side without bending).
         let start = (k > 0).then(|| End {

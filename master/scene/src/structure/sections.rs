@@ -139,6 +139,12 @@ impl Fidelity {
     pub fn is_chord(self) -> bool {
         matches!(self, Fidelity::Beam | Fidelity::Span)
     }
+
+    /// Whether the model has no seabed contact (a section lying on the
+    /// seabed in the equilibrium cannot be it).
+    pub fn lacks_seabed(self) -> bool {
+        matches!(self, Fidelity::Cable | Fidelity::Beam | Fidelity::Span)
+    }
 }
 
 pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {

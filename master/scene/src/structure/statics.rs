@@ -10,14 +10,17 @@ use toml::{Table, Value};
 /// The whole structure at rest in equilibrium.
 pub struct Equilibrium {
     section: Driver<NonlinearSection>,
+    /// When it holds: the simulation's start.
+    t0: Time,
 }
 
 /// Points per metre of the start shape handed to each section (at least 20).
 const POINTS_PER_METRE: f64 = 2.0;
 
 impl Equilibrium {
-    /// Solves the model's statics; the error says why it cannot.
-    pub fn solve(model: &Table) -> Result<Equilibrium, String> {
+    /// Solves the model's statics at `t0` (the simulation's start: the ends'
+    /// positions and the loads there); the error says why it cannot.
+    pub fn solve(model: &Table, t0: Time) -> Result<Equilibrium, String> {
         let params: NonlinearParams = Value::Table(model.clone())
             .try_into()
             .map_err(|e| format!("`structure.model`: {e}"))?;
@@ -26,10 +29,10 @@ impl Equilibrium {
             return Err("`structure.model.static_start`: the structure's statics are solved on their own, so its ends cannot take coupled inputs".into());
         }
         let mut section = Driver::new(unit);
-        section.initialize(Time::ZERO).map_err(|e| {
+        section.initialize(t0).map_err(|e| {
             format!("`structure.model.static_start`: the whole structure's statics: {e}")
         })?;
-        Ok(Equilibrium { section })
+        Ok(Equilibrium { section, t0 })
     }
 
     /// Sets a section's static start: the equilibrium shape over [from, to] as its
@@ -106,6 +109,27 @@ impl Equilibrium {
         }
     }
 
+    /// The angle (deg) between the vertical and the pipe's tangent line at
+    /// the structure's end (0 hanging straight down or standing straight up).
+    pub fn end_angle_from_vertical(&self) -> f64 {
+        let section = self.section.unit();
+        let angle = section.tangent_angle_at_node(section.model().reference.len() - 1);
+        angle.cos().abs().atan2(angle.sin().abs()).to_degrees()
+    }
+
+    /// The first and last arc lengths (m) in [from, to] where a node of the
+    /// equilibrium lies on a flat seabed at `height` (m; pressed into it, as
+    /// contact presses), None where none does.
+    pub fn on_seabed(&self, (from, to): (f64, f64), height: f64) -> Option<(f64, f64)> {
+        let section = self.section.unit();
+        let arcs = section.model().arc.iter().copied();
+        let lying: Vec<f64> = arcs
+            .filter(|&s| s >= from - 1e-9 && s <= to + 1e-9)
+            .filter(|&s| section.position_at(s)[1] < height)
+            .collect();
+        Some((*lying.first()?, *lying.last()?))
+    }
+
     /// Position (m) at arc length `s` in the equilibrium.
     pub fn position_at(&self, s: f64) -> [f64; 2] {
         self.section.unit().position_at(s)
@@ -130,7 +154,7 @@ impl Equilibrium {
         let length = to - from;
         let steps = [1e-5 * length, 1e-5 * length, 1e-5];
         let response = |d: [f64; 3]| {
-            end_held_response(section, d).map_err(|e| format!("`{key}` = \"static\": {e}"))
+            end_held_response(section, d, self.t0).map_err(|e| format!("`{key}` = \"static\": {e}"))
         };
         let base = response(at_rest)?;
         let mut columns = [[0.0; RESPONSES]; 3];
@@ -263,7 +287,7 @@ const RESPONSES: usize = 7;
 /// the seabed gap crosses zero; NaN without contact) and the largest sag-bend
 /// moment of a `nonlinear` section's static solve with its end displaced by `d`
 /// (x, z, rotation) from the stress-free position.
-fn end_held_response(section: &Table, d: [f64; 3]) -> Result<[f64; RESPONSES], String> {
+fn end_held_response(section: &Table, d: [f64; 3], t0: Time) -> Result<[f64; RESPONSES], String> {
     let mut parameters = section
         .get("parameters")
         .and_then(Value::as_table)
@@ -291,7 +315,7 @@ fn end_held_response(section: &Table, d: [f64; 3]) -> Result<[f64; RESPONSES], S
         .collect();
     let mut section = Driver::new(unit);
     section
-        .initialize(Time::ZERO)
+        .initialize(t0)
         .map_err(|e| format!("the section's static solve with its end held: {e}"))?;
     let mut out = vec![0.0; names.len()];
     section.outputs(&mut out).map_err(|e| e.to_string())?;

@@ -1,0 +1,134 @@
+//! The hang-off of a structure's top given by its angle: `[structure] hang_off
+//! = { angle = 12.0 }` places the structure's end (its top) horizontally so
+//! that, in the static equilibrium, the pipe's tangent there is `angle`
+//! degrees from the vertical (a riser's hang-off angle), at the height the
+//! scene gives it. The end's x displacement offset is found by the secant
+//! method on the equilibrium's angle (at most `MAX_SOLVES` static solves, to
+//! `TOLERANCE_DEG`) and written into the model, so every section, the twin
+//! and the dynamics start from that top.
+
+use super::statics::Equilibrium;
+use slender_units::Time;
+use toml::{Table, Value};
+
+/// Static solves of the search, at most.
+const MAX_SOLVES: usize = 40;
+/// The angle's tolerance (deg).
+const TOLERANCE_DEG: f64 = 1e-6;
+
+/// The requested hang-off angle (deg from the vertical), if any.
+pub(super) fn angle_of(structure: &Table) -> Result<Option<f64>, String> {
+    let Some(value) = structure.get("hang_off") else {
+        return Ok(None);
+    };
+    let table = value
+        .as_table()
+        .ok_or("`structure.hang_off`: expected a table `{ angle = DEG }`")?;
+    if let Some(key) = table.keys().find(|k| *k != "angle") {
+        return Err(format!(
+            "`structure.hang_off.{key}`: unknown key; the hang-off takes `angle` (deg from the vertical)"
+        ));
+    }
+    let angle = match table.get("angle") {
+        Some(Value::Float(a)) => *a,
+        Some(Value::Integer(a)) => *a as f64,
+        _ => return Err("`structure.hang_off.angle`: expected the pipe tangent's angle from the vertical at the top, in degrees".into()),
+    };
+    if !(angle > 0.0 && angle < 90.0) {
+        return Err(format!(
+            "`structure.hang_off.angle` = {angle}: expected an angle between 0 and 90 deg from the vertical"
+        ));
+    }
+    Ok(Some(angle))
+}
+
+/// Moves the end of `model` (the structure's `model` table, solved for its
+/// statics) horizontally until its equilibrium at `t0` has its tangent
+/// `angle` (deg) from the vertical; returns the shift (m) and that equilibrium.
+pub(super) fn place(model: &mut Table, angle: f64, t0: Time) -> Result<(f64, Equilibrium), String> {
+    let length = end_offset(model, 0.0)?;
+    let solve = |shift: f64, model: &Table| -> Result<(f64, Equilibrium), String> {
+        let mut trial = model.clone();
+        end_offset(&mut trial, shift)?;
+        let equilibrium = Equilibrium::solve(&trial, t0).map_err(|e| {
+            format!("`structure.hang_off`: with the top moved by {shift:.4} m in x: {e}")
+        })?;
+        Ok((equilibrium.end_angle_from_vertical() - angle, equilibrium))
+    };
+    // Secant on the shift, each step at most a tenth of the structure's length.
+    let step_limit = 0.1 * length;
+    let (mut x0, (mut f0, mut best)) = (0.0, solve(0.0, model)?);
+    let mut x1 = 1e-3 * length;
+    for _ in 1..MAX_SOLVES {
+        let (f1, equilibrium) = solve(x1, model)?;
+        if f1.abs() < TOLERANCE_DEG {
+            end_offset(model, x1)?;
+            return Ok((x1, equilibrium));
+        }
+        best = equilibrium;
+        let slope = (f1 - f0) / (x1 - x0);
+        if slope == 0.0 || !slope.is_finite() {
+            break;
+        }
+        let step = (-f1 / slope).clamp(-step_limit, step_limit);
+        (x0, f0) = (x1, f1);
+        x1 += step;
+    }
+    let reached = best.end_angle_from_vertical();
+    Err(format!(
+        "`structure.hang_off.angle` = {angle}: the top's position was not found in {MAX_SOLVES} static solves (the tangent reached {reached:.4} deg); is the angle reachable with this length and depth?"
+    ))
+}
+
+/// Adds `shift` (m) to the x displacement of the model's end (held, or given
+/// as a constant or a time function's offset); returns the structure's
+/// length (m) for the caller's step sizes.
+fn end_offset(model: &mut Table, shift: f64) -> Result<f64, String> {
+    let length: f64 = (model.get("segments").and_then(Value::as_array))
+        .map(|segments| {
+            (segments.iter())
+                .filter_map(|s| s.get("length").and_then(Value::as_float))
+                .sum()
+        })
+        .unwrap_or(0.0);
+    let refuse = |what: &str| {
+        Err(format!(
+            "`structure.hang_off`: the top is placed by moving the end's x, which {what}; expected `ends.end` pinned or fixed, or its `x` a displacement"
+        ))
+    };
+    let Some(end) = (model.get_mut("ends").and_then(Value::as_table_mut))
+        .and_then(|ends| ends.get_mut("end"))
+        .and_then(Value::as_table_mut)
+    else {
+        return refuse("is free");
+    };
+    let held = matches!(
+        end.get("kind").and_then(Value::as_str),
+        Some("pinned" | "fixed")
+    );
+    match end.get_mut("x") {
+        None if held => {
+            let mut x = Table::new();
+            x.insert("displacement".into(), Value::Float(shift));
+            end.insert("x".into(), Value::Table(x));
+        }
+        Some(Value::Table(x)) => match x.get_mut("displacement") {
+            Some(Value::Float(d)) => *d += shift,
+            Some(Value::Integer(d)) => {
+                let d = *d as f64 + shift;
+                x.insert("displacement".into(), Value::Float(d));
+            }
+            Some(Value::Table(f)) => {
+                let offset = match f.get("offset") {
+                    Some(Value::Float(o)) => *o,
+                    Some(Value::Integer(o)) => *o as f64,
+                    _ => 0.0,
+                };
+                f.insert("offset".into(), Value::Float(offset + shift));
+            }
+            _ => return refuse("is not given as a displacement"),
+        },
+        _ => return refuse("is free or not a displacement"),
+    }
+    Ok(length)
+}

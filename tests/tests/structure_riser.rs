@@ -1,0 +1,158 @@
+//! The steel catenary riser of issue 26 (`examples/structure_riser.toml`): its
+//! static start from the defaults at any mesh, its top placed by the hang-off
+//! angle, a start time other than zero, and a structure's keys checked.
+
+use slender_scene::Scene;
+use slender_tests::{root, run, units_and_links};
+use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
+use slender_units::{Driver, Time};
+
+/// The example's text with `elements` elements, run for `duration` s.
+fn riser(elements: usize, duration: f64) -> String {
+    let text = std::fs::read_to_string(root().join("examples/structure_riser.toml")).unwrap();
+    assert!(text.contains("elements = 200,") && text.contains("duration = 200.0"));
+    text.replace("elements = 200,", &format!("elements = {elements},"))
+        .replace("duration = 200.0", &format!("duration = {duration:?}"))
+}
+
+fn parse(text: &str) -> Result<Scene, String> {
+    Scene::parse(
+        &root().join("examples/structure_riser.toml"),
+        text.to_owned(),
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// The twin's parameters after expansion, solved for its statics.
+fn twin_at_rest(scene: &Scene) -> (Driver<NonlinearSection>, NonlinearParams) {
+    let (units, _) = units_and_links(scene);
+    let (_, twin) = units
+        .iter()
+        .find(|(name, _)| name == "riser_reference")
+        .expect("the twin");
+    let params: NonlinearParams = twin["parameters"].clone().try_into().unwrap();
+    let mut driver = Driver::new(NonlinearSection::new(params.clone()).unwrap());
+    driver.initialize(Time::ZERO).unwrap();
+    (driver, params)
+}
+
+#[test]
+fn the_riser_starts_from_the_defaults_at_any_mesh_with_its_hang_off_angle() {
+    // The inextensible catenary on a rigid seabed (EI and stretch left out):
+    // the top 1356.43 m from the anchor, the touchdown 765.10 m of arc from it.
+    for elements in [100, 400, 2000] {
+        let scene = parse(&riser(elements, 0.1)).unwrap_or_else(|e| panic!("{elements}: {e}"));
+        let (driver, params) = twin_at_rest(&scene);
+        let section = driver.unit();
+        let last = section.model().reference.len() - 1;
+        let angle = section.tangent_angle_at_node(last);
+        let from_vertical = angle.cos().abs().atan2(angle.sin().abs()).to_degrees();
+        assert!(
+            (from_vertical - 12.0).abs() < 1e-5,
+            "{elements}: {from_vertical} deg"
+        );
+        let top = section.position_at(2000.0);
+        assert!(top[1].abs() < 1e-9, "{elements}: the top at {top:?}");
+        assert!(
+            (top[0] - 1356.43).abs() < 0.01 * 1356.43,
+            "{elements}: {top:?}"
+        );
+        let touchdown = section.seabed_crossing().expect("on the seabed");
+        assert!(
+            (touchdown - 765.10).abs() < 0.03 * 765.10,
+            "{elements}: touchdown at {touchdown} m"
+        );
+        eprintln!(
+            "{elements} elements: top x {:.3} m, touchdown {touchdown:.2} m of arc, {} Newton iterations",
+            top[0],
+            section.last_newton_iterations()
+        );
+        assert_eq!(params.segments[0].elements, elements);
+    }
+}
+
+#[test]
+fn a_riser_started_at_10_s_equals_one_started_at_0_shifted_in_time() {
+    // Without the fade (which counts from t = 0), the vessel's motion at t in
+    // the later run is the earlier one's at t - 10 s.
+    let base = riser(100, 3.0).replace(", fade_in = 20.0", "");
+    let heave = "amplitude = 2.0, angular_frequency = 0.6283185307179586";
+    let surge = "amplitude = 5.0, angular_frequency = 0.06283185307179587";
+    assert!(base.contains(heave) && base.contains(surge));
+    let shifted = base
+        .replace("duration = 3.0", "start = 10.0\nduration = 3.0")
+        .replace(
+            heave,
+            &format!("{heave}, phase = {}", -0.6283185307179586 * 10.0),
+        )
+        .replace(
+            surge,
+            &format!("{surge}, phase = {}", -0.06283185307179587 * 10.0),
+        );
+    let (a, b) = (run(&parse(&base).unwrap()), run(&parse(&shifted).unwrap()));
+    assert!(
+        a.error.is_none() && b.error.is_none(),
+        "{:?} {:?}",
+        a.error,
+        b.error
+    );
+    assert_eq!(a.time.len(), b.time.len());
+    assert!(
+        (b.time[0] - a.time[0] - 10.0).abs() < 1e-12,
+        "{} {}",
+        a.time[0],
+        b.time[0]
+    );
+    for name in [
+        "riser_top.end_force_z",
+        "riser_reference.end_force_z",
+        "riser_sagbend.sagbend_moment",
+    ] {
+        let (x, y) = (a.get(name), b.get(name));
+        let peak = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let worst = x
+            .iter()
+            .zip(y)
+            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
+        // The coupling's own tolerance: 1 N on the forces.
+        assert!(worst < 1e-6 * peak + 1.0, "{name}: {worst} of {peak}");
+    }
+}
+
+#[test]
+fn a_structure_refuses_unknown_keys_and_an_unreachable_hang_off() {
+    let text = riser(100, 0.1);
+    let e =
+        parse(&text.replace("reference = true", "reference = true\nhangoff = 12.0")).unwrap_err();
+    assert!(
+        e.contains("`structure.hangoff`: unknown key") && e.contains("hang_off"),
+        "{e}"
+    );
+    let e = parse(&text.replace("angle = 12.0 }", "angle = 95.0 }")).unwrap_err();
+    assert!(e.contains("between 0 and 90"), "{e}");
+    let e = parse(&text.replace("static_start = true\n", "")).unwrap_err();
+    assert!(e.contains("static_start = true"), "{e}");
+    // Models without seabed contact on a section that lies on it are refused
+    // at expansion (so at `slender check`), with where it lies.
+    let with = |section: &str, fidelity: &str| {
+        text.replace(
+            &format!("name = \"{section}\"\n"),
+            &format!("name = \"{section}\"\nfidelity = \"{fidelity}\"\n"),
+        )
+        .replace(
+            "hang_off = { angle = 12.0 }",
+            "hang_off = { angle = 12.0 }\nwater_depth = 1000.0\nseabed = -1000.0",
+        )
+    };
+    for (section, fidelity) in [("laid", "cable"), ("sagbend", "beam"), ("sagbend", "span")] {
+        let e = parse(&with(section, fidelity)).unwrap_err();
+        assert!(
+            e.contains(&format!("`structure.sections.{section}.fidelity` = \"{fidelity}\": the section lies on the seabed from")),
+            "{e}"
+        );
+    }
+    // 2000 m of pipe cannot hang at 89 deg from 1000 m: the line would have to
+    // lie flat at the top.
+    let e = parse(&text.replace("angle = 12.0 }", "angle = 89.0 }")).unwrap_err();
+    assert!(e.contains("`structure.hang_off"), "{e}");
+}
