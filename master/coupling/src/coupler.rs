@@ -123,7 +123,10 @@ impl Master {
             .newton
             .map(|_| crate::newton::NewtonWork::new(n_torn, n_conn));
         let accelerator = accelerator(&settings.acceleration, n_torn);
-        let pool = Master::thread_pool(settings.threads, settings.scheme.is_sequential())?;
+        // One unit has nothing to step beside it: no pool (its hand-over to a
+        // pool thread cost the monolithic riser a third of its step).
+        let sequential = settings.scheme.is_sequential() || n_units < 2;
+        let pool = Master::thread_pool(settings.threads, sequential)?;
         let units = adapters(system.units, &system.connections, &tolerance, &settings);
         Ok(Master {
             units,

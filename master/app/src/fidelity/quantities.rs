@@ -101,7 +101,7 @@ pub fn signals(sections: &[SectionUnit], features: &Features) -> Vec<String> {
     }
     for s in sections.iter().filter(|s| touches(s)) {
         if features.seabed {
-            signals.push(format!("{}.touchdown", s.unit));
+            signals.push(touchdown_signal(s));
             signals.push(format!("{}.sagbend_moment", s.unit));
         }
         if features.stinger && s.kind == "nonlinear" {
@@ -112,6 +112,17 @@ pub fn signals(sections: &[SectionUnit], features: &Features) -> Vec<String> {
         signals.extend(cut_reading(sections, k).signals().iter().cloned());
     }
     signals
+}
+
+/// A section's touchdown point (m of arc from its start): where the seabed
+/// gap crosses zero, interpolated between the nodes (a `nonlinear` section's
+/// `touchdown_arc`, a `static` one's estimate `touchdown`), not the first
+/// node on the seabed, which jumps by whole elements.
+fn touchdown_signal(section: &SectionUnit) -> String {
+    match section.kind.as_str() {
+        "nonlinear" => format!("{}.touchdown_arc", section.unit),
+        _ => format!("{}.touchdown", section.unit),
+    }
 }
 
 /// Whether a section reports the touchdown point and the sag-bend moment: a
@@ -179,7 +190,7 @@ pub fn series(
             let columns: Vec<(f64, &[f64])> = bending
                 .iter()
                 .rev()
-                .map(|s| Ok((s.from, column(&format!("{}.touchdown", s.unit))?)))
+                .map(|s| Ok((s.from, column(&touchdown_signal(s))?)))
                 .collect::<Result<_, String>>()?;
             Ok((0..recorder.time.len())
                 .map(|k| {

@@ -10,7 +10,8 @@ use rayon::prelude::*;
 use std::time::Instant;
 
 impl Master {
-    /// The thread pool of a Jacobi scheme with more than one thread.
+    /// The thread pool of a Jacobi scheme with more than one thread (none
+    /// where the units step one after another: `sequential`).
     pub(super) fn thread_pool(
         threads: u32,
         sequential: bool,
