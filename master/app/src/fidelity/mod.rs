@@ -126,7 +126,11 @@ pub fn run_fidelity(
     }
     table.remove("output");
     let mut tasks: Vec<Task> = vec![None];
-    tasks.extend(combinations(plan).into_iter().map(Some));
+    tasks.extend(
+        combinations(plan, &own_choices(&table))
+            .into_iter()
+            .map(Some),
+    );
     let order = order_of(&tasks);
     let names = quantities::names(&structure.features);
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
@@ -206,18 +210,54 @@ fn structure_of(table: &Table) -> Result<Structure, String> {
     })
 }
 
-/// The combinations the plan asks for.
-fn combinations(plan: &FidelityPlan) -> Vec<Vec<(String, Choice)>> {
+/// Each section's choice as the scene writes it, where it is a plain one (a
+/// fidelity word, no `elements` or `substeps`): (section, choice).
+fn own_choices(table: &Table) -> Vec<(String, Choice)> {
+    let sections = (table.get("structure"))
+        .and_then(|s| s.get("sections"))
+        .and_then(Value::as_array);
+    (sections.into_iter().flatten())
+        .filter_map(Value::as_table)
+        .filter(|t| !t.contains_key("elements") && !t.contains_key("substeps"))
+        .filter_map(|t| {
+            let name = t.get("name")?.as_str()?.to_owned();
+            let fidelity = match t.get("fidelity") {
+                None => "nonlinear",
+                Some(v) => v.as_str()?,
+            };
+            let choice = Choice {
+                fidelity: fidelity.to_owned(),
+                elements: None,
+                substeps: None,
+            };
+            Some((name, choice))
+        })
+        .collect()
+}
+
+/// The combinations the plan asks for. One section at a time, a choice that
+/// is the section's own (`own`) leaves the scene as it is: that run (the
+/// scene's own combination) is made once, under the first section that asks
+/// for it, not once per section.
+fn combinations(plan: &FidelityPlan, own: &[(String, Choice)]) -> Vec<Vec<(String, Choice)>> {
+    let is_own = |section: &str, c: &Choice| own.iter().any(|(s, o)| s == section && o == c);
     match plan.design {
-        Design::OneAtATime => plan
-            .sections
-            .iter()
-            .flat_map(|s| {
-                s.choices
-                    .iter()
-                    .map(|c| vec![(s.section.clone(), c.clone())])
-            })
-            .collect(),
+        Design::OneAtATime => {
+            let mut scene_as_written = false;
+            let mut runs = Vec::new();
+            for s in &plan.sections {
+                for c in &s.choices {
+                    if is_own(&s.section, c) {
+                        if scene_as_written {
+                            continue;
+                        }
+                        scene_as_written = true;
+                    }
+                    runs.push(vec![(s.section.clone(), c.clone())]);
+                }
+            }
+            runs
+        }
         Design::Grid => plan.sections.iter().fold(vec![Vec::new()], |runs, s| {
             runs.into_iter()
                 .flat_map(|run| {
@@ -504,4 +544,59 @@ fn judged_of(plan: &FidelityPlan, names: &[&str]) -> Result<Vec<String>, String>
     } else {
         plan.judged.clone()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_section_at_a_time_runs_the_scene_as_written_once() {
+        let table: Table = r#"
+[structure]
+name = "line"
+[[structure.sections]]
+name = "lower"
+to = 10.0
+fidelity = "cable"
+[[structure.sections]]
+name = "middle"
+to = 20.0
+elements = 4
+[[structure.sections]]
+name = "upper"
+"#
+        .parse()
+        .unwrap();
+        let plan = FidelityPlan {
+            sections: [
+                "lower=cable,static",
+                "middle=nonlinear",
+                "upper=nonlinear,nonlinear:8",
+            ]
+            .iter()
+            .map(|s| s.parse().unwrap())
+            .collect(),
+            design: Design::OneAtATime,
+            duration: None,
+            jobs: 1,
+            tolerance: 0.01,
+            judged: Vec::new(),
+        };
+        let labels: Vec<String> = combinations(&plan, &own_choices(&table))
+            .iter()
+            .map(|run| format!("{}={}", run[0].0, run[0].1.label()))
+            .collect();
+        // `lower=cable` is the scene as written; `upper=nonlinear` is it again
+        // (dropped); `middle=nonlinear` is not (the scene gives 4 elements).
+        assert_eq!(
+            labels,
+            [
+                "lower=cable",
+                "lower=static",
+                "middle=nonlinear",
+                "upper=nonlinear:8"
+            ]
+        );
+    }
 }
