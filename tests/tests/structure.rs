@@ -175,6 +175,35 @@ fn changing_one_section_changes_only_its_unit() {
     assert_eq!(segments[0]["elements"].as_integer(), Some(4));
 }
 
+/// A section's `elements` keep the model's grading: spread in proportion to
+/// the model's own counts on its segments (not their lengths), summing to the
+/// count asked for.
+#[test]
+fn a_sections_element_count_keeps_a_graded_mesh_graded() {
+    let graded = scene(-90.0, &[], "elements = 10").replace(
+        "segments = [{ length = 30.0, angle = -90, elements = 30,",
+        "segments = [{ length = 10.0, angle = -90, elements = 20, axial_stiffness = 1e8, bending_stiffness = 1e5, mass_per_length = 50.0, submerged_weight = 300.0 }, { length = 20.0, angle = -90, elements = 10,",
+    );
+    assert!(graded.contains("elements = 20"), "the model is graded");
+    let scene = parse(&graded).expect("scene");
+    let t: toml::Table = toml::from_str(scene.source()).unwrap();
+    let unit = t["units"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|u| u["name"].as_str() == Some("pipe_s0"))
+        .unwrap()
+        .clone();
+    let counts: Vec<i64> = unit["parameters"]["segments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["elements"].as_integer().unwrap())
+        .collect();
+    // 20 and 10 of the model's own: two thirds and one third of 10.
+    assert_eq!(counts, [7, 3]);
+}
+
 /// A section may step in sub-steps of its own (multi-rate, `substeps`): its
 /// unit carries them, and the run stays on the twin to the sub-step's
 /// interpolation of the cut values.

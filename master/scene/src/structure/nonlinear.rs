@@ -19,6 +19,8 @@ pub(super) fn section_unit(
     let mut parameters = model.clone();
     let (mut position, mut arc) = (start_of(model), 0.0f64);
     let mut clipped = Vec::new();
+    // The model's own (unrounded) element count on each clipped segment.
+    let mut density = Vec::new();
     let mut start = None;
     for s in segments {
         let (a, b) = (arc.max(cut.from), (arc + s.length).min(cut.to));
@@ -37,12 +39,13 @@ pub(super) fn section_unit(
             let elements = (s.elements * share).round().max(1.0);
             t.insert("elements".into(), Value::Integer(elements as i64));
             clipped.push(t);
+            density.push(s.elements * share);
         }
         position = [position[0] + s.length * c, position[1] + s.length * sn];
         arc += s.length;
     }
     if let Some(n) = cut.elements {
-        distribute(&mut clipped, n);
+        distribute(&mut clipped, &density, n);
     }
     let start = start.ok_or(format!("section `{}` is empty", cut.name))?;
     parameters.insert(
@@ -180,16 +183,29 @@ pub(super) fn start_of(model: &Table) -> [f64; 2] {
     [at(0), at(1)]
 }
 
-/// Spreads `n` elements over the clipped segments in proportion to their lengths
-/// (at least one each).
-fn distribute(segments: &mut [Table], n: usize) {
-    let lengths: Vec<f64> = segments
-        .iter()
-        .map(|t| t["length"].as_float().unwrap_or(0.0))
-        .collect();
-    let total: f64 = lengths.iter().sum();
-    for (t, l) in segments.iter_mut().zip(&lengths) {
-        let e = ((n as f64) * l / total).round().max(1.0);
+/// Spreads `n` elements over the clipped segments in proportion to the
+/// model's own counts there (`weights`), so a graded mesh stays graded (a
+/// uniform one: in proportion to the lengths); at least one each, the
+/// remainders to the largest fractions, so they sum to `n` where `n` is at
+/// least the number of segments.
+fn distribute(segments: &mut [Table], weights: &[f64], n: usize) {
+    let total: f64 = weights.iter().sum();
+    let shares: Vec<f64> = weights.iter().map(|w| n as f64 * w / total).collect();
+    let mut counts: Vec<usize> = shares.iter().map(|s| (s.floor() as usize).max(1)).collect();
+    let mut order: Vec<usize> = (0..shares.len()).collect();
+    order.sort_by(|&a, &b| {
+        (shares[b] - shares[b].floor()).total_cmp(&(shares[a] - shares[a].floor()))
+    });
+    let mut left = n.saturating_sub(counts.iter().sum());
+    // The fractions sum to less than the number of segments: one pass.
+    for &k in &order {
+        if left == 0 {
+            break;
+        }
+        counts[k] += 1;
+        left -= 1;
+    }
+    for (t, e) in segments.iter_mut().zip(counts) {
         t.insert("elements".into(), Value::Integer(e as i64));
     }
 }
