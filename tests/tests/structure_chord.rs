@@ -140,12 +140,24 @@ fn a_vertical_chord_follows_the_hanging_pipe_twin() {
     assert!(beam < 5e-2);
 }
 
+/// The span on the hanging pipe's middle coupled unstably with its nonlinear
+/// neighbours at every step tried (5 to 50 ms; also with alpha = 0.1, a band
+/// of pi / h, order 40 or linear damping), though alone it settles on the
+/// tensioned cantilever like the beam (units/src/chord.rs) and on the S-lay it
+/// matches the beam. Its tension varies by a factor of 2 along that section
+/// and the span's model takes one: refused at expansion with the range.
 #[test]
-#[ignore = "known gap: on the hanging pipe (10 m chord, EI 1e5 N m^2, T 4.35 kN, no drag) the span's fit couples unstably with its nonlinear neighbours at every step tried (5 to 50 ms; also with alpha = 0.1, a band of pi / h, order 40 or linear damping), though alone it settles on the tensioned cantilever like the beam (units/src/chord.rs) and on the S-lay it matches the beam"]
-fn a_span_middle_follows_the_hanging_pipe_twin() {
-    let span = bottom_sway("span");
-    println!("bottom sway: span middle {span:.2e}");
-    assert!(span < 5e-2);
+fn a_span_middle_is_refused_on_the_hanging_pipe_with_its_tension_range() {
+    let path = root().join("examples/structure_hanging_pipe.toml");
+    let e = Scene::parse(&path, hanging("span"))
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(
+        e.contains("`structure.sections.middle.fidelity` = \"span\": the span's transfer matrix takes one tension")
+            && e.contains("choose \"beam\""),
+        "{e}"
+    );
 }
 
 #[test]

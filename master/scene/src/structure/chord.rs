@@ -30,6 +30,33 @@ const DEFAULT_DRAG_VELOCITY: f64 = 0.5;
 /// nonlinear-touchdown combination by less than 1 % of themselves.
 const DEFAULT_SPAN_ALPHA: f64 = 0.02;
 
+/// How far (max - min over the mean) the equilibrium's tension may vary along
+/// a `span` section: the span's transfer matrix takes one tension. On the
+/// hanging pipe's middle (a factor of 2, 0.67) the span coupled unstably at
+/// every step tried; the S-lay's suspended span varies by a few per cent.
+const SPAN_TENSION_VARIATION: f64 = 0.5;
+
+/// Refuses a `span` on a section whose equilibrium tension varies more than
+/// `SPAN_TENSION_VARIATION` (its ends and middle), naming the range.
+fn uniform_enough(equilibrium: &Equilibrium, cut: &Cut, key: &str) -> Result<(), String> {
+    let at = [cut.from, 0.5 * (cut.from + cut.to), cut.to].map(|s| equilibrium.tension_at(s));
+    let (low, high) = at
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &t| {
+            (l.min(t), h.max(t))
+        });
+    let mean = at.iter().sum::<f64>() / 3.0;
+    let variation = (high - low) / mean.abs();
+    if variation > SPAN_TENSION_VARIATION || !variation.is_finite() {
+        return Err(format!(
+            "`{key}` = \"span\": the span's transfer matrix takes one tension, and this section's equilibrium tension runs from {low:.4e} to {high:.4e} N ({:.0} % of its mean; at most {:.0} %), where the span couples unstably with its neighbours (a hanging pipe's middle); choose \"beam\" (the tension at its middle) or \"nonlinear\"",
+            100.0 * variation,
+            100.0 * SPAN_TENSION_VARIATION
+        ));
+    }
+    Ok(())
+}
+
 /// The `chord` unit of section `k`, its start moving with the section below.
 pub(super) fn chord_unit(
     structure: &str,
@@ -46,6 +73,9 @@ pub(super) fn chord_unit(
         "`{key}` = \"{word}\": a {word} section moves about its chord in the structure's equilibrium, so the structure needs `structure.model.static_start = true`"
     ))?;
     neighbours_fit(cuts, k, &key)?;
+    if cut.fidelity == Fidelity::Span {
+        uniform_enough(equilibrium, cut, &key)?;
+    }
     let mut p = cut.options.clone().unwrap_or_default();
     let drag_velocity = match p.remove("drag_velocity") {
         None => DEFAULT_DRAG_VELOCITY,
