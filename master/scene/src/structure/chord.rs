@@ -39,6 +39,9 @@ const SPAN_TENSION_VARIATION: f64 = 0.5;
 /// Refuses a `span` on a section whose equilibrium tension varies more than
 /// `SPAN_TENSION_VARIATION` (its ends and middle), naming the range.
 fn uniform_enough(equilibrium: &Equilibrium, cut: &Cut, key: &str) -> Result<(), String> {
+    if cut.fidelity != Fidelity::Span {
+        return Ok(());
+    }
     let at = [cut.from, 0.5 * (cut.from + cut.to), cut.to].map(|s| equilibrium.tension_at(s));
     let (low, high) = at
         .iter()
@@ -73,9 +76,7 @@ pub(super) fn chord_unit(
         "`{key}` = \"{word}\": a {word} section moves about its chord in the structure's equilibrium, so the structure needs `structure.model.static_start = true`"
     ))?;
     neighbours_fit(cuts, k, &key)?;
-    if cut.fidelity == Fidelity::Span {
-        uniform_enough(equilibrium, cut, &key)?;
-    }
+    uniform_enough(equilibrium, cut, &key)?;
     let mut p = cut.options.clone().unwrap_or_default();
     let drag_velocity = match p.remove("drag_velocity") {
         None => DEFAULT_DRAG_VELOCITY,

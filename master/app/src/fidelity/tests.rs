@@ -1,0 +1,53 @@
+//! `slender fidelity`'s plan: which runs it makes.
+
+use super::*;
+
+#[test]
+fn one_section_at_a_time_runs_the_scene_as_written_once() {
+    let table: Table = r#"
+[structure]
+name = "line"
+[[structure.sections]]
+name = "lower"
+to = 10.0
+fidelity = "cable"
+[[structure.sections]]
+name = "middle"
+to = 20.0
+elements = 4
+[[structure.sections]]
+name = "upper"
+"#
+    .parse()
+    .unwrap();
+    let plan = FidelityPlan {
+        sections: [
+            "lower=cable,static",
+            "middle=nonlinear",
+            "upper=nonlinear,nonlinear:8",
+        ]
+        .iter()
+        .map(|s| s.parse().unwrap())
+        .collect(),
+        design: Design::OneAtATime,
+        duration: None,
+        jobs: 1,
+        tolerance: 0.01,
+        judged: Vec::new(),
+    };
+    let labels: Vec<String> = combinations(&plan, &own_choices(&table))
+        .iter()
+        .map(|run| format!("{}={}", run[0].0, run[0].1.label()))
+        .collect();
+    // `lower=cable` is the scene as written; `upper=nonlinear` is it again
+    // (dropped); `middle=nonlinear` is not (the scene gives 4 elements).
+    assert_eq!(
+        labels,
+        [
+            "lower=cable",
+            "lower=static",
+            "middle=nonlinear",
+            "upper=nonlinear:8"
+        ]
+    );
+}
