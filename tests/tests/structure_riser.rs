@@ -119,6 +119,51 @@ fn a_riser_started_at_10_s_equals_one_started_at_0_shifted_in_time() {
     }
 }
 
+/// The line of the first line of `text` that starts with `start` (1-based).
+fn line_of(text: &str, start: &str) -> usize {
+    text.lines()
+        .position(|l| l.starts_with(start))
+        .expect(start)
+        + 1
+}
+
+#[test]
+fn errors_in_a_structure_name_the_users_line() {
+    // An unknown key: its own line.
+    let text = riser(100, 0.1).replace("reference = true", "reference = true\nhangoff = 12.0");
+    let e = parse(&text).unwrap_err();
+    let line = line_of(&text, "hangoff");
+    assert!(
+        e.contains(&format!(
+            "structure_riser.toml:{line}: structure: `structure.hangoff`"
+        )),
+        "{e}"
+    );
+    // A bad fidelity: the section's table.
+    let text = riser(100, 0.1).replace(
+        "name = \"laid\"\n",
+        "name = \"laid\"\nfidelity = \"cabel\"\n",
+    );
+    let e = parse(&text).unwrap_err();
+    let line = line_of(&text, "fidelity = \"cabel\"");
+    assert!(e.contains(&format!("structure_riser.toml:{line}:")), "{e}");
+    // A model parameter found bad only in the units the structure writes
+    // out: the model's line, not a line of the expanded text.
+    let text = riser(100, 0.1)
+        .replace("static_start = true\n", "")
+        .replace("hang_off = { angle = 12.0 }\n", "")
+        .replace(
+            "integrator = {",
+            "rayleigh_stiffness = -1.0\nintegrator = {",
+        );
+    let e = parse(&text).unwrap_err();
+    let line = line_of(&text, "rayleigh_stiffness");
+    assert!(
+        e.contains(&format!("structure_riser.toml:{line}:")) && e.contains("rayleigh_stiffness"),
+        "{e}"
+    );
+}
+
 #[test]
 fn a_structure_refuses_unknown_keys_and_an_unreachable_hang_off() {
     let text = riser(100, 0.1);

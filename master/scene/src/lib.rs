@@ -8,6 +8,7 @@ pub mod fields;
 pub mod kinds;
 pub mod spec;
 pub mod structure;
+mod structure_lines;
 
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;
@@ -70,16 +71,27 @@ impl Scene {
     /// Checks a scene given as text; `path` names it in messages and anchors
     /// relative output folders.
     pub fn parse(path: &Path, source: String) -> Result<Scene, SceneError> {
-        let source = expand_structure(path, source)?;
-        let spec: SceneSpec = toml::from_str(&source).map_err(|e| SceneError {
-            file: path.to_owned(),
-            line: e.span().map(|s| line_of(&source, s.start)),
-            key: e
-                .span()
-                .map(|s| key_at(&source, s.start))
-                .unwrap_or_default(),
-            message: migration_hint(e.message().trim()),
-        })?;
+        let (expanded, structure) = expand_structure(path, &source)?;
+        // An error in the units a structure writes out names a line of the
+        // user's file, not of the expanded text.
+        let located = |mut e: SceneError| {
+            if let (Some(name), Some(_)) = (&structure, e.line) {
+                e.line = structure_lines::generated_unit_line(&source, name, &e.key, &e.message);
+            }
+            e
+        };
+        let source = expanded;
+        let spec: SceneSpec = toml::from_str(&source)
+            .map_err(|e| SceneError {
+                file: path.to_owned(),
+                line: e.span().map(|s| line_of(&source, s.start)),
+                key: e
+                    .span()
+                    .map(|s| key_at(&source, s.start))
+                    .unwrap_or_default(),
+                message: migration_hint(e.message().trim()),
+            })
+            .map_err(located)?;
         let mut scene = Scene {
             path: path.to_owned(),
             spec,
@@ -88,8 +100,8 @@ impl Scene {
             step: Time::ZERO,
             steps: 0,
         };
-        scene.check_time()?;
-        scene.build()?;
+        scene.check_time().map_err(located)?;
+        scene.build().map_err(located)?;
         Ok(scene)
     }
 
@@ -450,23 +462,32 @@ fn line_of(source: &str, offset: usize) -> usize {
 }
 
 /// The scene text with its `[structure]` (if any) written out as plain units and
-/// connections; unchanged without one.
-fn expand_structure(path: &Path, source: String) -> Result<String, SceneError> {
+/// connections, and the structure's name; unchanged (and none) without one. An
+/// error names the line of the key it is about in `source`.
+fn expand_structure(path: &Path, source: &str) -> Result<(String, Option<String>), SceneError> {
+    let unchanged = || Ok((source.to_owned(), None));
     if !source.contains("structure") {
-        return Ok(source);
+        return unchanged();
     }
     let error = |message: String| SceneError {
         file: path.to_owned(),
-        line: None,
+        line: structure_lines::structure_key(&message)
+            .and_then(|key| structure_lines::key_line(source, key))
+            .or_else(|| structure_lines::key_line(source, "structure")),
         key: "structure".into(),
         message,
     };
-    let Ok(mut table) = toml::from_str::<toml::Table>(&source) else {
+    let Ok(mut table) = toml::from_str::<toml::Table>(source) else {
         // Let the spec parser report the syntax error with its line.
-        return Ok(source);
+        return unchanged();
     };
+    let name = (table.get("structure"))
+        .and_then(|s| s.get("name"))
+        .and_then(toml::Value::as_str)
+        .map(str::to_owned);
     if !structure::expand(&mut table).map_err(error)? {
-        return Ok(source);
+        return unchanged();
     }
-    toml::to_string(&table).map_err(|e| error(e.to_string()))
+    let text = toml::to_string(&table).map_err(|e| error(e.to_string()))?;
+    Ok((text, name))
 }

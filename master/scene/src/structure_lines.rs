@@ -1,0 +1,152 @@
+//! Lines of the user's file for errors about a `[structure]`: the structure
+//! is written out as units before the scene is checked, so an error found in
+//! the generated units would otherwise name a line of the expanded text (line
+//! 90 of a 69-line file). Errors name the key they are about; this finds it in
+//! the file as written.
+
+use toml::Spanned;
+use toml::de::{DeTable, DeValue};
+
+/// The line (1-based) of the dotted key `path` in `source` (e.g.
+/// `structure.sections.laid.fidelity`, `structure.sections[0].to`,
+/// `structure.model.rayleigh_stiffness`): of the deepest part of it the file
+/// writes (a section's own line where its `fidelity` is left to the default).
+/// A name after an array picks the element whose `name` it is.
+pub fn key_line(source: &str, path: &str) -> Option<usize> {
+    let document = DeTable::parse(source).ok()?;
+    let mut table = document.get_ref();
+    let mut array: Option<&[Spanned<DeValue>]> = None;
+    let mut found = None;
+    for part in split(path) {
+        let value = match (array, part.strip_prefix('[')) {
+            (Some(items), Some(index)) => {
+                items.get(index.trim_end_matches(']').parse::<usize>().ok()?)
+            }
+            (Some(items), None) => items.iter().find(|item| named(item, part)),
+            (None, _) => table
+                .iter()
+                .find(|(k, _)| k.get_ref() == part)
+                .map(|(k, v)| {
+                    found = Some(k.span().start);
+                    v
+                }),
+        };
+        let Some(value) = value else { break };
+        if array.is_some() {
+            found = Some(value.span().start);
+        }
+        array = None;
+        match value.get_ref() {
+            DeValue::Table(t) => table = t,
+            DeValue::Array(items) => array = Some(&items[..]),
+            _ => break,
+        }
+    }
+    found.map(|offset| source[..offset.min(source.len())].matches('\n').count() + 1)
+}
+
+/// The parts of a dotted key, an index `[i]` its own part.
+fn split(path: &str) -> Vec<&str> {
+    let mut parts = Vec::new();
+    for piece in path.split('.') {
+        match piece.find('[') {
+            Some(i) if i > 0 => {
+                parts.push(&piece[..i]);
+                parts.push(&piece[i..]);
+            }
+            _ => parts.push(piece),
+        }
+    }
+    parts
+}
+
+/// Whether an array element is a table whose `name` is `name`.
+fn named(item: &Spanned<DeValue>, name: &str) -> bool {
+    let DeValue::Table(t) = item.get_ref() else {
+        return false;
+    };
+    t.iter().any(|(k, v)| {
+        k.get_ref() == "name" && matches!(v.get_ref(), DeValue::String(s) if s == name)
+    })
+}
+
+/// The first `structure...` key a message names in backticks.
+pub fn structure_key(message: &str) -> Option<&str> {
+    message
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .find(|k| k.starts_with("structure"))
+        .map(|k| k.split(" = ").next().unwrap_or(k))
+}
+
+/// Where in the user's file an error found in the units a `[structure]`
+/// writes out is about: a model parameter it names (`parameter `x``) in
+/// `structure.model`, else the section whose unit (`<name>_<section>`) it
+/// names, else the `[structure]` table.
+pub fn generated_unit_line(
+    source: &str,
+    structure: &str,
+    key: &str,
+    message: &str,
+) -> Option<usize> {
+    let parameter = message
+        .split("parameter `")
+        .nth(1)
+        .and_then(|rest| rest.split('`').next())
+        .map(|p| p.split('.').next().unwrap_or(p));
+    if let Some(line) = parameter.and_then(|p| key_line(source, &format!("structure.model.{p}"))) {
+        return Some(line);
+    }
+    let unit = key.split('"').nth(1).unwrap_or_default();
+    if let Some(section) = unit.strip_prefix(&format!("{structure}_"))
+        && let Some(line) = key_line(source, &format!("structure.sections.{section}"))
+    {
+        return Some(line);
+    }
+    key_line(source, "structure")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SCENE: &str = "[simulation]\nduration = 1.0\n\n[structure]\nname = \"pipe\"\n[structure.model]\nrayleigh_stiffness = -1.0\nsegments = [{ length = 30.0 }]\n\n[[structure.sections]]\nname = \"lower\"\nto = 10.0\n[[structure.sections]]\nname = \"upper\"\nfidelity = \"beam\"\n";
+
+    #[test]
+    fn a_key_is_found_on_its_line_also_through_named_sections() {
+        assert_eq!(key_line(SCENE, "structure"), Some(4));
+        assert_eq!(
+            key_line(SCENE, "structure.model.rayleigh_stiffness"),
+            Some(7)
+        );
+        assert_eq!(
+            key_line(SCENE, "structure.sections.upper.fidelity"),
+            Some(15)
+        );
+        assert_eq!(key_line(SCENE, "structure.sections[0].to"), Some(12));
+        // Left to its default: the section's own table.
+        assert_eq!(
+            key_line(SCENE, "structure.sections.lower.fidelity"),
+            Some(10)
+        );
+        assert_eq!(
+            structure_key("`structure.sections.upper.fidelity` = \"beam\": no"),
+            Some("structure.sections.upper.fidelity")
+        );
+        let message = "parameter `rayleigh_stiffness` = -1: expected a finite value >= 0";
+        assert_eq!(
+            generated_unit_line(
+                SCENE,
+                "pipe",
+                "units[0] (\"pipe_lower\").parameters",
+                message
+            ),
+            Some(7)
+        );
+        assert_eq!(
+            generated_unit_line(SCENE, "pipe", "units[1] (\"pipe_upper\")", "bad"),
+            Some(13)
+        );
+    }
+}
