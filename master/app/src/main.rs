@@ -9,6 +9,7 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    end_quietly_on_a_closed_pipe();
     match commands::dispatch(cli::Cli::parse().command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -17,3 +18,18 @@ fn main() -> ExitCode {
         }
     }
 }
+
+/// A reader that closes the pipe (`slender check big.toml | head -1`) ends the
+/// command quietly, as any Unix tool does: Rust ignores SIGPIPE, so the next
+/// print would panic on the broken pipe instead (exit 101 and a backtrace).
+#[cfg(unix)]
+fn end_quietly_on_a_closed_pipe() {
+    // SAFETY: called first in `main`, before any thread starts; restoring a
+    // signal's default disposition touches no Rust state.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
+#[cfg(not(unix))]
+fn end_quietly_on_a_closed_pipe() {}

@@ -39,6 +39,33 @@ fn check_accepts_an_example_and_rejects_a_bad_scene_with_exit_code_2() {
     assert!(text(&out.stderr).contains("cannot read the file"));
 }
 
+/// A reader that closes the pipe early (`slender expand ... | head -1`) ends
+/// the command quietly: no panic, no backtrace (exit 101 before). The
+/// riser's expanded scene (170 kB) is more than a pipe holds.
+#[test]
+#[cfg(unix)]
+fn a_closed_pipe_ends_a_command_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .args(["expand", "examples/structure_riser.toml"])
+        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.."))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    // The reader is dropped here: the pipe closes with most of the output unread.
+    let out = child.wait_with_output().unwrap();
+    assert!(!first.is_empty());
+    let err = text(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_ne!(out.status.code(), Some(101));
+}
+
 #[test]
 fn run_writes_results_and_prints_a_summary() {
     let dir: PathBuf = std::env::temp_dir().join(format!("slender-cli-run-{}", std::process::id()));
