@@ -82,6 +82,14 @@ impl FromStr for SectionChoices {
                 "`{s}`: expected a section name and at least one choice"
             ));
         }
+        if let Some((k, c)) = (choices.iter().enumerate()).find(|(k, c)| choices[..*k].contains(c))
+        {
+            return Err(format!(
+                "`{s}`: `{}` is listed twice (choice {}); each choice runs once",
+                c.label(),
+                k + 1
+            ));
+        }
         Ok(SectionChoices {
             section: section.to_owned(),
             choices,
@@ -102,5 +110,10 @@ mod tests {
         assert_eq!(c.choices[2].substeps, None);
         let e = "lower=nonlinear/0".parse::<SectionChoices>().unwrap_err();
         assert!(e.contains("sub-steps"), "{e}");
+        // A choice twice would run twice (issue 27).
+        let e = "lower=cable,nonlinear:16,cable"
+            .parse::<SectionChoices>()
+            .unwrap_err();
+        assert!(e.contains("`cable` is listed twice (choice 3)"), "{e}");
     }
 }

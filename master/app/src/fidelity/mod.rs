@@ -109,7 +109,16 @@ pub fn run_fidelity(
     // The scene must load as written.
     crate::study::scene_with(path, &table, plan.duration)?;
     let structure = structure_of(&table)?;
-    for s in &plan.sections {
+    for (k, s) in plan.sections.iter().enumerate() {
+        if plan.sections[..k]
+            .iter()
+            .any(|earlier| earlier.section == s.section)
+        {
+            return Err(format!(
+                "--section {}: the section is given twice; list its choices once, separated by commas",
+                s.section
+            ));
+        }
         if !structure.sections.iter().any(|(n, _)| *n == s.section) {
             let names: Vec<&str> = structure.sections.iter().map(|(n, _)| n.as_str()).collect();
             return Err(format!(

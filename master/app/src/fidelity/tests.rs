@@ -51,3 +51,25 @@ name = "upper"
         ]
     );
 }
+
+#[test]
+fn a_section_given_twice_is_refused() {
+    let plan = FidelityPlan {
+        sections: ["lower=cable", "lower=static"]
+            .iter()
+            .map(|s| s.parse().unwrap())
+            .collect(),
+        design: Design::OneAtATime,
+        duration: None,
+        jobs: 1,
+        tolerance: 0.01,
+        judged: Vec::new(),
+    };
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/structure_mooring.toml");
+    let e = run_fidelity(&path, &plan, |_| {}).expect_err("refused");
+    assert!(
+        e.contains("--section lower: the section is given twice"),
+        "{e}"
+    );
+}
