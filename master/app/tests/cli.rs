@@ -186,6 +186,34 @@ fn study_sweeps_a_setting_and_writes_a_table() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+/// A study whose runs fail writes every row and exits 1 (issue 27: it exited
+/// 0, and a script took it for complete).
+#[test]
+fn a_fidelity_study_with_failed_runs_writes_its_rows_and_exits_1() {
+    let dir =
+        std::env::temp_dir().join(format!("slender-cli-fidelity-fail-{}", std::process::id()));
+    let out = slender(&[
+        "fidelity",
+        "examples/structure_mooring.toml",
+        "--duration",
+        "0.2",
+        // A reduced section cannot start from the static equilibrium.
+        "--section",
+        "lower=cable,reduced",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("1 of 3 runs failed (marked FAILED in fidelity.md and fidelity.csv; every row is written)"),
+        "{}",
+        text(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("fidelity.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 4, "{csv}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
 #[test]
 fn fidelity_runs_a_structures_sections_and_names_the_cheapest() {
     let dir = std::env::temp_dir().join(format!("slender-cli-fidelity-{}", std::process::id()));

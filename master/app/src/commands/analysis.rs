@@ -62,7 +62,7 @@ pub fn modes(
 }
 
 /// A convergence and cost study; the rows are written even when some runs fail
-/// (those are marked FAILED with their reason).
+/// (those are marked FAILED with their reason), and the command then exits 1.
 pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), CliError> {
     let (dir, _) = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
     println!(
@@ -85,14 +85,19 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
     )
     .map_err(CliError::failure)?;
     report_written(&[csv, md, svg]);
-    if failed > 0 {
-        // Failing settings are a finding of the study, not a failure of it.
-        eprintln!(
-            "note: {failed} of {} runs failed (marked FAILED above and in study.csv)",
-            rows.len()
-        );
+    runs_failed(failed, rows.len(), "marked FAILED above and in study.csv")
+}
+
+/// Every row is written; where runs failed the command still exits with code 1
+/// (a script must not take a study with failed runs for a complete one), and
+/// says which and where they are marked.
+fn runs_failed(failed: usize, runs: usize, marked: &str) -> Result<(), CliError> {
+    match failed {
+        0 => Ok(()),
+        _ => Err(CliError::failure(format!(
+            "{failed} of {runs} runs failed ({marked}; every row is written)"
+        ))),
     }
-    Ok(())
 }
 
 /// A study's results folder: `out`, else the scene's with `suffix`; the scene
@@ -118,7 +123,8 @@ pub(super) fn study_folder(
 }
 
 /// A fidelity study of a structure's sections; the rows are written even when
-/// some combinations fail (those are marked FAILED with their reason).
+/// some combinations fail (those are marked FAILED with their reason), and the
+/// command then exits 1.
 pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Result<(), CliError> {
     positive("--tolerance", plan.tolerance)?;
     let (dir, _) = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
@@ -141,13 +147,11 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
     println!("{}", fidelity::report::conclusion(&report));
     report_written(&[files, vec![svg]].concat());
     let failed = report.rows.iter().filter(|r| r.error.is_some()).count();
-    if failed > 0 {
-        eprintln!(
-            "note: {failed} of {} runs failed (marked FAILED in fidelity.md and fidelity.csv)",
-            report.rows.len()
-        );
-    }
-    Ok(())
+    runs_failed(
+        failed,
+        report.rows.len(),
+        "marked FAILED in fidelity.md and fidelity.csv",
+    )
 }
 
 /// One finished run (groups print when all their runs are done).
