@@ -308,7 +308,14 @@ fn a_study_with_a_failing_run_writes_every_row() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(result.status.success(), "{}", stderr(&result));
+    // Every row written, and the command says runs failed with exit code 1
+    // (issue 27: it exited 0).
+    assert_eq!(result.status.code(), Some(1), "{}", stderr(&result));
+    assert!(
+        stderr(&result).contains("1 of 2 runs failed"),
+        "{}",
+        stderr(&result)
+    );
     let csv = std::fs::read_to_string(out.join("study.csv")).expect("study.csv written");
     assert_eq!(csv.lines().count(), 3, "{csv}");
     assert!(csv.contains("whole number of steps"), "{csv}");
