@@ -289,3 +289,27 @@ fn a_fidelity_study_refuses_a_section_that_is_not_there() {
     let e = parse(&text.replace("water_depth = 1200.0", "")).unwrap_err();
     assert!(e.contains("water_depth"), "{e}");
 }
+
+/// A quantity whose reference is zero to round-off (the hanging pipe's free
+/// bottom end carries 1e-8 N) is judged against its kind's scale, and the
+/// report says so: the exact partition is not called 88 % off (issue 27).
+#[test]
+fn a_quantity_at_round_off_is_judged_against_its_kinds_scale() {
+    let mut plan = plan(&["middle=nonlinear"], Design::OneAtATime, 1);
+    plan.duration = Some(2.0);
+    let path = root().join("examples/structure_hanging_pipe.toml");
+    let report = run_fidelity(&path, &plan, |_| {}).unwrap();
+    let floors: Vec<&str> = report.floors.iter().map(|f| f.quantity.as_str()).collect();
+    assert_eq!(floors, ["top_force"], "{:?}", report.floors);
+    let floor = &report.floors[0];
+    assert!(floor.reference_rms < 1e-9 * floor.scale && floor.unit == "N");
+    let partition = &report.rows[1];
+    assert!(partition.error.is_none(), "{:?}", partition.error);
+    // The same-mesh partition: at the coupling tolerance on every quantity.
+    assert!(partition.worst_error < 1e-6, "{:?}", partition.errors);
+    assert!(
+        slender_app::fidelity::report::conclusion(&report).contains("top_force (reference RMS"),
+        "{}",
+        slender_app::fidelity::report::conclusion(&report)
+    );
+}

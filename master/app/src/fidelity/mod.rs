@@ -8,6 +8,7 @@
 //! be set up or fails is reported with its reason and the study goes on.
 
 mod choice;
+pub mod floors;
 pub mod quantities;
 pub mod report;
 mod rows;
@@ -74,6 +75,9 @@ pub struct FidelityReport {
     pub rows: Vec<FidelityRow>,
     /// Index in `rows` of the cheapest combination within the tolerance.
     pub cheapest: Option<usize>,
+    /// Quantities whose reference is zero to round-off, judged against
+    /// their kind's scale.
+    pub floors: Vec<floors::Floor>,
 }
 
 /// One run: a combination of the sections' choices, or `None` for the
@@ -149,11 +153,12 @@ pub fn run_fidelity(
         outcome
     });
     let judged = judged_of(plan, &names)?;
+    let (scales, floors) = floors::floors(&names, &outcomes[0]);
     let rows = rows::rows_of(
         &structure,
         &table,
         (&tasks, &outcomes),
-        &names,
+        (&names, &scales),
         (plan.tolerance, &judged),
     );
     let cheapest = rows
@@ -172,6 +177,7 @@ pub fn run_fidelity(
         judged,
         rows,
         cheapest,
+        floors,
     })
 }
 

@@ -84,6 +84,15 @@ pub fn to_markdown(report: &FidelityReport) -> String {
 
 /// The sentence naming the cheapest combination within the tolerance.
 pub fn conclusion(report: &FidelityReport) -> String {
+    let verdict = verdict(report);
+    match super::floors::note(&report.floors) {
+        Some(note) => format!("{verdict}\n{note}"),
+        None => verdict,
+    }
+}
+
+/// The cheapest combination within the tolerance, or that there is none.
+fn verdict(report: &FidelityReport) -> String {
     match report.cheapest.map(|k| &report.rows[k]) {
         Some(r) => format!(
             "Cheapest within epsilon <= {} on {}: {} ({:.3e} s per simulated s, {:.2}x the reference's speed, worst epsilon {:.2e}).",

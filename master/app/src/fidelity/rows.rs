@@ -12,7 +12,7 @@ pub(super) fn rows_of(
     structure: &Structure,
     table: &Table,
     (tasks, outcomes): (&[Task], &[Outcome]),
-    names: &[&str],
+    (names, scales): (&[&str], &[Option<f64>]),
     (tolerance, judged): (f64, &[String]),
 ) -> Vec<FidelityRow> {
     let reference = &outcomes[0];
@@ -27,7 +27,7 @@ pub(super) fn rows_of(
                     let e = if task.is_none() {
                         0.0
                     } else {
-                        epsilon(o, reference, i)
+                        epsilon(o, reference, i, scales.get(i).copied().flatten())
                     };
                     ((*n).to_owned(), e)
                 })
@@ -77,8 +77,10 @@ pub(super) fn rows_of(
     rows
 }
 
-/// epsilon of quantity `i` of run `o` against the reference, at the run's times.
-fn epsilon(o: &Outcome, reference: &Outcome, i: usize) -> f64 {
+/// epsilon of quantity `i` of run `o` against the reference, at the run's
+/// times: relative to the reference itself, or to `scale` where the
+/// reference is zero to round-off (`floors`).
+fn epsilon(o: &Outcome, reference: &Outcome, i: usize, scale: Option<f64>) -> f64 {
     let (Some(x), Some(r)) = (o.series.get(i), reference.series.get(i)) else {
         return f64::NAN;
     };
@@ -90,7 +92,10 @@ fn epsilon(o: &Outcome, reference: &Outcome, i: usize) -> f64 {
         .iter()
         .map(|&t| interpolate(&reference.time, r, t))
         .collect();
-    indicator("", normalized_error(&o.time, &[x], &[&resampled])).relative_error
+    match scale {
+        Some(scale) => super::floors::against_scale(&o.time, x, &resampled, scale),
+        None => indicator("", normalized_error(&o.time, &[x], &[&resampled])).relative_error,
+    }
 }
 
 /// Every section's choice in a run: the combination's, else the scene's.
