@@ -5,25 +5,32 @@ use crate::system::{Connection, System};
 
 /// Units ordered upstream first: a unit comes after every unit that feeds it, except
 /// where loops make that impossible; there the unit with the fewest inputs still
-/// waiting goes first. Ties keep the order in which units were added.
+/// waiting goes first. Ties keep the order in which units were added. Each
+/// unit's count of inputs still waiting is kept up to date as units are
+/// placed, and the next is the least in an ordered set: O((n + m) log n) for n
+/// units and m connections (the scan it replaces was cubic: 13 s to check 2000
+/// connected units, issue 27), the same order.
 pub fn derive_order(n_units: usize, connections: &[Connection]) -> Vec<usize> {
+    let mut waiting = vec![0usize; n_units];
+    let mut feeds: Vec<Vec<usize>> = vec![Vec::new(); n_units];
+    for c in connections.iter().filter(|c| c.from.unit != c.to.unit) {
+        waiting[c.to.unit] += 1;
+        feeds[c.from.unit].push(c.to.unit);
+    }
+    let mut next: std::collections::BTreeSet<(usize, usize)> =
+        (0..n_units).map(|u| (waiting[u], u)).collect();
     let mut placed = vec![false; n_units];
     let mut order = Vec::with_capacity(n_units);
-    let waiting = |u: usize, placed: &[bool]| {
-        connections
-            .iter()
-            .filter(|c| c.to.unit == u && c.from.unit != u && !placed[c.from.unit])
-            .count()
-    };
-    while order.len() < n_units {
-        let Some(next) = (0..n_units)
-            .filter(|&u| !placed[u])
-            .min_by_key(|&u| (waiting(u, &placed), u))
-        else {
-            break;
-        };
-        placed[next] = true;
-        order.push(next);
+    while let Some((_, u)) = next.pop_first() {
+        placed[u] = true;
+        order.push(u);
+        for &v in &feeds[u] {
+            if !placed[v] {
+                next.remove(&(waiting[v], v));
+                waiting[v] -= 1;
+                next.insert((waiting[v], v));
+            }
+        }
     }
     order
 }
@@ -126,6 +133,52 @@ mod tests {
         let c = [edge(2, 0), edge(0, 1)];
         assert_eq!(derive_order(3, &c), vec![2, 0, 1]);
         assert_eq!(tears(&[2, 0, 1], &c, true), vec![false, false]);
+    }
+
+    /// The cubic scan `derive_order` replaced: the unplaced unit with the
+    /// fewest inputs from unplaced units, the first of equals.
+    fn scanned_order(n_units: usize, connections: &[Connection]) -> Vec<usize> {
+        let mut placed = vec![false; n_units];
+        let mut order = Vec::with_capacity(n_units);
+        let waiting = |u: usize, placed: &[bool]| {
+            (connections.iter())
+                .filter(|c| c.to.unit == u && c.from.unit != u && !placed[c.from.unit])
+                .count()
+        };
+        while let Some(next) = (0..n_units)
+            .filter(|&u| !placed[u])
+            .min_by_key(|&u| (waiting(u, &placed), u))
+        {
+            placed[next] = true;
+            order.push(next);
+        }
+        order
+    }
+
+    #[test]
+    fn the_order_is_the_scans_on_random_graphs_and_a_long_chain_is_quick() {
+        // A small linear congruential generator: reproducible graphs with
+        // loops, self-connections and repeated connections.
+        let mut state = 12345u64;
+        let mut draw = |n: usize| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 33) % n as u64) as usize
+        };
+        for _ in 0..300 {
+            let n = 1 + draw(12);
+            let m = draw(3 * n + 1);
+            let c: Vec<Connection> = (0..m).map(|_| edge(draw(n), draw(n))).collect();
+            assert_eq!(derive_order(n, &c), scanned_order(n, &c), "{n} units");
+        }
+        // 100 000 units in a chain given downstream first: the scan would
+        // take hours.
+        let n = 100_000;
+        let c: Vec<Connection> = (1..n).map(|u| edge(u, u - 1)).collect();
+        let order = derive_order(n, &c);
+        assert_eq!(order[0], n - 1);
+        assert_eq!(order[n - 1], 0);
     }
 
     #[test]
