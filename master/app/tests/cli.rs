@@ -66,6 +66,33 @@ fn a_closed_pipe_ends_a_command_quietly() {
     assert_ne!(out.status.code(), Some(101));
 }
 
+/// A symbolic link planted in the results folder is refused, not written
+/// through (issue 27: `ln -s ../victim.txt o/summary.json` overwrote it).
+#[test]
+#[cfg(unix)]
+fn a_symbolic_link_in_the_results_folder_is_refused_and_not_followed() {
+    let base = std::env::temp_dir().join(format!("slender-cli-link-{}", std::process::id()));
+    let out = base.join("o");
+    std::fs::create_dir_all(&out).unwrap();
+    let victim = base.join("victim.txt");
+    std::fs::write(&victim, "keep").unwrap();
+    std::os::unix::fs::symlink(&victim, out.join("summary.json")).unwrap();
+    let result = slender(&[
+        "run",
+        "examples/b1_two_masses.toml",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(result.status.code(), Some(2), "{}", text(&result.stderr));
+    assert!(
+        text(&result.stderr).contains("a symbolic link"),
+        "{}",
+        text(&result.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
+    std::fs::remove_dir_all(base).unwrap();
+}
+
 #[test]
 fn run_writes_results_and_prints_a_summary() {
     let dir: PathBuf = std::env::temp_dir().join(format!("slender-cli-run-{}", std::process::id()));

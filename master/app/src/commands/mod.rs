@@ -192,7 +192,37 @@ fn results_folder(dir: &Path) -> Result<(), CliError> {
     }
     std::fs::create_dir_all(dir).map_err(|e| {
         CliError::failure(format!("{}: cannot create the folder ({e})", dir.display()))
-    })
+    })?;
+    refuse_links(dir, 0)
+}
+
+/// Refuses a results folder holding a symbolic link (at any depth, up to
+/// `MAX_DEPTH`): slender writes only regular files there, and a planted link
+/// (`ln -s ../victim.txt out/summary.json`) would have it overwrite the file
+/// the link points to (issue 27).
+fn refuse_links(dir: &Path, depth: usize) -> Result<(), CliError> {
+    const MAX_DEPTH: usize = 4;
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        let Ok(meta) = std::fs::symlink_metadata(&path) else {
+            continue;
+        };
+        if meta.file_type().is_symlink() {
+            let target = std::fs::read_link(&path).unwrap_or_default();
+            return Err(CliError::input(format!(
+                "{}: a symbolic link (to {}) in the results folder; slender writes only regular files there, so remove it or choose another --out",
+                path.display(),
+                target.display()
+            )));
+        }
+        if meta.is_dir() && depth < MAX_DEPTH {
+            refuse_links(&path, depth + 1)?;
+        }
+    }
+    Ok(())
 }
 
 /// A finite, positive value given on the command line, or bad input naming it.
