@@ -93,6 +93,40 @@ fn a_symbolic_link_in_the_results_folder_is_refused_and_not_followed() {
     std::fs::remove_dir_all(base).unwrap();
 }
 
+/// One writer per results folder: a folder another running slender holds is
+/// refused with its process id; a lock left by a process that is gone is taken
+/// over, and released when the command ends (issue 27: two runs into one
+/// folder spliced their rows).
+#[test]
+#[cfg(target_os = "linux")]
+fn a_results_folder_has_one_writer_at_a_time() {
+    let out = std::env::temp_dir().join(format!("slender-cli-lock-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let lock = out.join(".slender.lock");
+    // This test's own process stands for a running slender.
+    std::fs::write(&lock, std::process::id().to_string()).unwrap();
+    let args = [
+        "run",
+        "examples/b1_two_masses.toml",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let held = slender(&args);
+    assert_eq!(held.status.code(), Some(2), "{}", text(&held.stderr));
+    assert!(
+        text(&held.stderr).contains(&format!("another slender (process {})", std::process::id())),
+        "{}",
+        text(&held.stderr)
+    );
+    assert!(!out.join("summary.json").exists());
+    // A process id that does not run: the stale lock is taken over.
+    std::fs::write(&lock, "999999999").unwrap();
+    let stale = slender(&args);
+    assert!(stale.status.success(), "{}", text(&stale.stderr));
+    assert!(out.join("summary.json").exists() && !lock.exists());
+    std::fs::remove_dir_all(out).unwrap();
+}
+
 #[test]
 fn run_writes_results_and_prints_a_summary() {
     let dir: PathBuf = std::env::temp_dir().join(format!("slender-cli-run-{}", std::process::id()));

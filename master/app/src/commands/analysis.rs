@@ -1,6 +1,6 @@
 //! `slender modes` and `slender study`.
 
-use super::{CliError, count_in, load, positive, report_written, results_folder};
+use super::{CliError, count_in, load, made_folder, positive, report_written, results_folder};
 use slender_app::fidelity::{self, FidelityPlan};
 use slender_app::study::{self, StudyPlan};
 use std::path::{Path, PathBuf};
@@ -17,7 +17,7 @@ pub fn modes(
     let count = count_in("--count", count, 1, 10_000)?;
     let scene = load(path)?;
     let dir = out.unwrap_or_else(|| scene.default_output_dir());
-    results_folder(&dir)?;
+    let _lock = results_folder(&dir)?;
     let mut master = scene.build().map_err(|e| CliError::input(e.to_string()))?;
     master
         .initialize(scene.start)
@@ -65,6 +65,7 @@ pub fn modes(
 /// (those are marked FAILED with their reason), and the command then exits 1.
 pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), CliError> {
     let (dir, _) = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
+    let _lock = super::lock::lock(&dir)?;
     println!(
         "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"
@@ -100,8 +101,9 @@ fn runs_failed(failed: usize, runs: usize, marked: &str) -> Result<(), CliError>
     }
 }
 
-/// A study's results folder: `out`, else the scene's with `suffix`; the scene
-/// must load (returned with it), `--duration` be positive and `--jobs` sensible.
+/// A study's results folder: `out`, else the scene's with `suffix`, made but
+/// not held (the caller holds it, or each shard its own); the scene must load
+/// (returned with it), `--duration` be positive and `--jobs` sensible.
 pub(super) fn study_folder(
     path: &Path,
     out: Option<PathBuf>,
@@ -118,7 +120,7 @@ pub(super) fn study_folder(
         d.push(suffix);
         PathBuf::from(d)
     });
-    results_folder(&dir)?;
+    made_folder(&dir)?;
     Ok((dir, scene))
 }
 
@@ -128,6 +130,7 @@ pub(super) fn study_folder(
 pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Result<(), CliError> {
     positive("--tolerance", plan.tolerance)?;
     let (dir, _) = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
+    let _lock = super::lock::lock(&dir)?;
     let report =
         fidelity::run_fidelity(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
     let write = |name: &str, text: String| super::write_in(&dir, name, text);

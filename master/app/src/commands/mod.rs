@@ -4,6 +4,7 @@
 
 mod analysis;
 mod fmu;
+mod lock;
 mod scene;
 mod span;
 mod uq;
@@ -182,8 +183,17 @@ fn load(path: &Path) -> Result<Scene, CliError> {
     Scene::load(path).map_err(|e| CliError::input(e.to_string()))
 }
 
-/// Makes the results folder `dir`; naming an existing file is bad input.
-fn results_folder(dir: &Path) -> Result<(), CliError> {
+/// Makes the results folder `dir` and holds it (one writer at a time,
+/// `lock`) while the returned lock lives; naming an existing file, or a folder
+/// with a symbolic link or another writer, is bad input.
+fn results_folder(dir: &Path) -> Result<lock::FolderLock, CliError> {
+    made_folder(dir)?;
+    lock::lock(dir)
+}
+
+/// Makes the results folder `dir` without holding it (a study's folder whose
+/// shards each hold their own); naming an existing file is bad input.
+fn made_folder(dir: &Path) -> Result<(), CliError> {
     if dir.exists() && !dir.is_dir() {
         return Err(CliError::input(format!(
             "{}: is a file; expected a folder for the results",

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 pub fn run(path: &Path, out: Option<PathBuf>, quiet: bool, realtime: bool) -> Result<(), CliError> {
     let scene = load(path)?;
     let dir = out.unwrap_or_else(|| scene.default_output_dir());
-    results_folder(&dir)?;
+    let _lock = results_folder(&dir)?;
     let options = RunOptions {
         output_dir: Some(dir),
         progress: !quiet,

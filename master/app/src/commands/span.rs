@@ -31,7 +31,7 @@ pub fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), CliError>
                     fe_substeps,
                 )?
             };
-            results_folder(out)?;
+            let _lock = results_folder(out)?;
             siso_study(span, &plan, out).map_err(CliError::failure)?
         }
         SpanAction::Coupling {
@@ -52,7 +52,7 @@ pub fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), CliError>
                     fe_substeps,
                 )?
             };
-            results_folder(out)?;
+            let _lock = results_folder(out)?;
             coupling(span, &plan, out).map_err(CliError::failure)?
         }
     };
@@ -95,7 +95,7 @@ fn bode(span: &Span, order: usize, elements: usize, out: &Path) -> Result<Vec<Pa
         )));
     }
     let elements = count_in("--elements", elements, 1, 1024)?;
-    results_folder(out)?;
+    let _lock = results_folder(out)?;
     let omegas: Vec<f64> = (0..600)
         .map(|k| 10f64.powf(-2.0 + 4.398 * k as f64 / 599.0))
         .collect();

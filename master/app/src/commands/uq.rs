@@ -39,7 +39,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
         Mode::Slurm(n) => slurm_scripts(path, plan, &dir, n),
         Mode::Shard(k, n) => {
             let shard_dir = dir.join(format!("shard-{k}-of-{n}"));
-            super::results_folder(&shard_dir)?;
+            let _lock = super::results_folder(&shard_dir)?;
             let csv = shard_dir.join("runs.csv");
             let earlier = read(&csv);
             let plan = UqPlan {
@@ -54,6 +54,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
             Ok(())
         }
         Mode::Whole { merge } => {
+            let _lock = super::lock::lock(&dir)?;
             let csv = dir.join("runs.csv");
             let mut earlier = read(&csv);
             if merge {
