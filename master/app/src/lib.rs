@@ -10,6 +10,7 @@
 pub mod coupling_study;
 pub mod fidelity;
 pub mod indicators;
+pub mod interrupt;
 pub mod parallel;
 pub mod plot;
 pub mod realtime;

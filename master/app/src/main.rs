@@ -10,6 +10,7 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     end_quietly_on_a_closed_pipe();
+    slender_app::interrupt::install();
     match commands::dispatch(cli::Cli::parse().command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -29,7 +29,7 @@ pub struct RunOptions {
 pub struct Summary {
     pub scene: String,
     pub title: String,
-    /// "completed" or "failed".
+    /// "completed", "failed" or "interrupted" (Ctrl-C, at a step boundary).
     pub status: String,
     pub error: Option<String>,
     pub start_s: f64,
@@ -102,10 +102,10 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
     let summary = Summary {
         scene: scene.path.display().to_string(),
         title: scene.spec.title.clone(),
-        status: if outcome.is_ok() {
-            "completed"
-        } else {
-            "failed"
+        status: match &outcome {
+            Ok(()) => "completed",
+            Err(_) if crate::interrupt::requested() => "interrupted",
+            Err(_) => "failed",
         }
         .into(),
         error: outcome.err(),
@@ -184,6 +184,9 @@ pub enum RunError {
     Plot(#[from] PlotError),
     #[error("summary.json: {0}")]
     Summary(#[from] serde_json::Error),
+    /// Ctrl-C (`interrupt`): the run stopped at a step boundary.
+    #[error("interrupted (Ctrl-C) at t = {0} s")]
+    Interrupted(f64),
 }
 
 impl RunError {
@@ -251,6 +254,9 @@ fn step_all(
     for i in 0..scene.steps {
         if let Some(p) = pacer.as_deref_mut() {
             p.begin();
+        }
+        if crate::interrupt::requested() {
+            return Err(RunError::Interrupted(master.time().as_secs()));
         }
         master.step()?;
         recorder.observe(master)?;

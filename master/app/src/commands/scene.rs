@@ -21,10 +21,14 @@ pub fn run(path: &Path, out: Option<PathBuf>, quiet: bool, realtime: bool) -> Re
     let s = &result.summary;
     match &s.error {
         None => Ok(()),
-        Some(e) => Err(CliError::failure(format!(
-            "the run stopped at t = {} s: {e}\n(results up to that time are in the files above)",
-            s.start_s + s.simulated_s
-        ))),
+        Some(e) => Err(CliError {
+            // 130: the shell's code for a command ended by Ctrl-C.
+            code: if s.status == "interrupted" { 130 } else { 1 },
+            message: format!(
+                "the run stopped at t = {} s: {e}\n(results up to that time are in the files above)",
+                s.start_s + s.simulated_s
+            ),
+        }),
     }
 }
 

@@ -1,0 +1,166 @@
+//! The `slender` command line and its results folders (issue 27): nothing
+//! half-done looks done and nothing is written where it should not be.
+
+use std::path::Path;
+
+mod common;
+use common::{slender, text};
+
+/// A reader that closes the pipe early (`slender expand ... | head -1`) ends
+/// the command quietly: no panic, no backtrace (exit 101 before). The
+/// riser's expanded scene (170 kB) is more than a pipe holds.
+#[test]
+#[cfg(unix)]
+fn a_closed_pipe_ends_a_command_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .args(["expand", "examples/structure_riser.toml"])
+        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.."))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    // The reader is dropped here: the pipe closes with most of the output unread.
+    let out = child.wait_with_output().unwrap();
+    assert!(!first.is_empty());
+    let err = text(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_ne!(out.status.code(), Some(101));
+}
+
+/// A symbolic link planted in the results folder is refused, not written
+/// through (issue 27: `ln -s ../victim.txt o/summary.json` overwrote it).
+#[test]
+#[cfg(unix)]
+fn a_symbolic_link_in_the_results_folder_is_refused_and_not_followed() {
+    let base = std::env::temp_dir().join(format!("slender-cli-link-{}", std::process::id()));
+    let out = base.join("o");
+    std::fs::create_dir_all(&out).unwrap();
+    let victim = base.join("victim.txt");
+    std::fs::write(&victim, "keep").unwrap();
+    std::os::unix::fs::symlink(&victim, out.join("summary.json")).unwrap();
+    let result = slender(&[
+        "run",
+        "examples/b1_two_masses.toml",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(result.status.code(), Some(2), "{}", text(&result.stderr));
+    assert!(
+        text(&result.stderr).contains("a symbolic link"),
+        "{}",
+        text(&result.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
+    std::fs::remove_dir_all(base).unwrap();
+}
+
+/// One writer per results folder: a folder another running slender holds is
+/// refused with its process id; a lock left by a process that is gone is taken
+/// over, and released when the command ends (issue 27: two runs into one
+/// folder spliced their rows).
+#[test]
+#[cfg(target_os = "linux")]
+fn a_results_folder_has_one_writer_at_a_time() {
+    let out = std::env::temp_dir().join(format!("slender-cli-lock-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let lock = out.join(".slender.lock");
+    // This test's own process stands for a running slender.
+    std::fs::write(&lock, std::process::id().to_string()).unwrap();
+    let args = [
+        "run",
+        "examples/b1_two_masses.toml",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let held = slender(&args);
+    assert_eq!(held.status.code(), Some(2), "{}", text(&held.stderr));
+    assert!(
+        text(&held.stderr).contains(&format!("another slender (process {})", std::process::id())),
+        "{}",
+        text(&held.stderr)
+    );
+    assert!(!out.join("summary.json").exists());
+    // A process id that does not run: the stale lock is taken over.
+    std::fs::write(&lock, "999999999").unwrap();
+    let stale = slender(&args);
+    assert!(stale.status.success(), "{}", text(&stale.stderr));
+    assert!(out.join("summary.json").exists() && !lock.exists());
+    std::fs::remove_dir_all(out).unwrap();
+}
+
+/// Ctrl-C stops a run at a step boundary: every CSV row whole, a summary with
+/// status "interrupted" and the time reached, exit 130 (issue 27: a torn last
+/// row and no summary).
+#[test]
+#[cfg(unix)]
+fn ctrl_c_stops_a_run_at_a_step_with_whole_rows_and_a_summary() {
+    use std::process::{Command, Stdio};
+    let out = std::env::temp_dir().join(format!("slender-cli-int-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let child = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .args([
+            "run",
+            "examples/structure_riser.toml",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.."))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Interrupted once it has recorded a few steps (polled, no clock limit).
+    let csv = out.join("timeseries.csv");
+    while std::fs::read_to_string(&csv).map_or(0, |t| t.lines().count()) < 3 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    // SAFETY: a signal to the child this test started.
+    unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
+    let result = child.wait_with_output().unwrap();
+    assert_eq!(result.status.code(), Some(130), "{}", text(&result.stderr));
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"status\": \"interrupted\""), "{summary}");
+    let rows = std::fs::read_to_string(&csv).unwrap();
+    let fields: Vec<usize> = rows.lines().map(|l| l.split(',').count()).collect();
+    assert!(
+        fields.iter().all(|&f| f == fields[0]),
+        "a torn row: {fields:?}"
+    );
+    assert!(!out.join(".slender.lock").exists());
+    std::fs::remove_dir_all(out).unwrap();
+}
+
+/// A study whose runs fail writes every row and exits 1 (issue 27: it exited
+/// 0, and a script took it for complete).
+#[test]
+fn a_fidelity_study_with_failed_runs_writes_its_rows_and_exits_1() {
+    let dir =
+        std::env::temp_dir().join(format!("slender-cli-fidelity-fail-{}", std::process::id()));
+    let out = slender(&[
+        "fidelity",
+        "examples/structure_mooring.toml",
+        "--duration",
+        "0.2",
+        // A reduced section cannot start from the static equilibrium.
+        "--section",
+        "lower=cable,reduced",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("1 of 3 runs failed (marked FAILED in fidelity.md and fidelity.csv; every row is written)"),
+        "{}",
+        text(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("fidelity.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 4, "{csv}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
