@@ -9,9 +9,10 @@
 //! neighbour's force and moment and returns the displacement that neighbour
 //! follows. Everything is a deviation from the state at initialisation (the
 //! equilibrium): transverse to the chord the inner model answers, along the
-//! chord the section is a rigid link (the moving end's axial motion carries
-//! the loaded end, the loaded end's axial force passes through; the section's
-//! axial inertia is left out). The static part of the forces is the section's
+//! chord the section is a spring (`axial_stiffness`: the moving end's axial
+//! motion carries the loaded end, which moves further by the change of its
+//! axial force over the stiffness; the force passes through) or, without one, a
+//! rigid link; the section's axial inertia is left out. The static part of the forces is the section's
 //! own balance: the loaded end's force and moment at initialisation plus the
 //! section's submerged weight, exact for any shape.
 
@@ -67,6 +68,11 @@ pub struct ChordParams {
     /// The constant axial tension T of the inner model (N).
     #[serde(default)]
     pub tension: f64,
+    /// The section's axial stiffness along its chord, EA over its arc length
+    /// (N/m): the loaded end moves along the chord by the change of its axial
+    /// force over it (the section stretches); none: a rigid link.
+    #[serde(default)]
+    pub axial_stiffness: Option<f64>,
     /// Beam elements, default 20.
     #[serde(default = "twenty")]
     pub elements: usize,
@@ -174,6 +180,9 @@ impl Chord {
         ];
         let length = d[0].hypot(d[1]);
         require_positive("the chord's length |end - start|", length)?;
+        if let Some(k) = params.axial_stiffness {
+            require_positive("axial_stiffness", k)?;
+        }
         let e = [d[0] / length, d[1] / length];
         let frame = Frame {
             e,
@@ -489,9 +498,18 @@ impl Chord {
         out[0] = force[0];
         out[1] = force[1];
         out[2] = r.static_moment - applied_moment;
+        // The moving end's slide along the chord, and the section's stretch
+        // under the change of the loaded end's axial force (in the force's
+        // direction: outward under more tension at either end).
+        let stretch = self.params.axial_stiffness.map_or(0.0, |k| {
+            self.frame
+                .along([now[3] - r.inputs[3], now[4] - r.inputs[4]])
+                / k
+        });
         let slide = self
             .frame
-            .along([now[0] - r.inputs[0], now[1] - r.inputs[1]]);
+            .along([now[0] - r.inputs[0], now[1] - r.inputs[1]])
+            + stretch;
         let moved = self.frame.global(slide, deflection);
         let d = &self.params.loaded_end_displacement;
         out[3] = d[0] + moved[0];

@@ -17,6 +17,7 @@ fn chord(model: ChordModel, moving: MovingEnd, tension: f64) -> Driver<Chord> {
         mass_per_length: 10.0,
         damping_per_length: 40.0,
         tension,
+        axial_stiffness: None,
         elements: 20,
         alpha: 0.0,
         order: 16,
@@ -110,5 +111,32 @@ fn a_loaded_end_deflects_as_a_cantilever_with_tension_in_both_models_and_orienta
                 );
             }
         }
+    }
+}
+
+#[test]
+fn with_an_axial_stiffness_the_loaded_end_moves_along_the_chord_by_the_force_over_it() {
+    // The same cantilever, pulled 500 N further along its chord at the
+    // loaded end, with EA / L = 1e5 N/m: 5 mm along the chord, outward from
+    // the moving end, and the transverse answer unchanged.
+    for moving in [MovingEnd::Start, MovingEnd::End] {
+        let mut params = chord(ChordModel::Beam, moving, 0.0).unit().params.clone();
+        params.axial_stiffness = Some(1e5);
+        let mut unit = Driver::new(Chord::new(params).unwrap());
+        // The chord's direction e = (0.6, 0.8), pointing away from the moving end.
+        let outward = if moving == MovingEnd::Start {
+            1.0
+        } else {
+            -1.0
+        };
+        let pull = [0.6 * 500.0 * outward, 0.8 * 500.0 * outward];
+        let out = settled(&mut unit, pull, 0.0);
+        let along = 0.6 * out[3] + 0.8 * out[4];
+        assert!(
+            (along - outward * 5e-3).abs() < 1e-12,
+            "{moving:?}: {along}"
+        );
+        let across = -0.8 * out[3] + 0.6 * out[4];
+        assert!(across.abs() < 1e-9, "{moving:?}: {across}");
     }
 }

@@ -110,6 +110,12 @@ pub(super) fn chord_unit(
     );
     p.insert("flexural_rigidity".into(), Value::Float(properties[0]));
     p.insert("mass_per_length".into(), Value::Float(properties[1]));
+    if properties[3] > 0.0 {
+        p.insert(
+            "axial_stiffness".into(),
+            Value::Float(properties[3] / (cut.to - cut.from)),
+        );
+    }
     let middle = 0.5 * (cut.from + cut.to);
     p.insert(
         "tension".into(),
@@ -177,20 +183,20 @@ fn neighbours_fit(cuts: &[Cut], k: usize, key: &str) -> Result<(), String> {
 /// EI (N m^2), the transversely moving mass per length (kg/m, with the added
 /// mass Ca rho pi D^2 / 4) and the normal drag's linear damping per unit of
 /// velocity amplitude (8 / (3 pi) rho / 2 Cd D, N s/m^2 per m/s: the harmonic
-/// equivalent linearisation) of the segments the section spans; one value
-/// each, or an error.
+/// equivalent linearisation) and EA (N; 0 where the model gives none) of the
+/// segments the section spans; one value each, or an error.
 fn properties(
     model: &Table,
     segments: &[Segment],
     cut: &Cut,
     key: &str,
-) -> Result<[f64; 3], String> {
+) -> Result<[f64; 4], String> {
     let number = |t: &Table, k: &str| {
         t.get(k)
             .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
     };
     let density = number(model, "water_density").unwrap_or(1025.0);
-    let mut found: Option<[f64; 3]> = None;
+    let mut found: Option<[f64; 4]> = None;
     for s in segments
         .iter()
         .filter(|s| s.overlap(cut.from, cut.to) > 0.0)
@@ -217,7 +223,7 @@ fn properties(
                     "`{key}`: the section spans segments of different bending stiffness or mass; a chord section takes one of each, so cut at the segments' joint"
                 ));
             }
-            _ => found = Some([ei, mass, drag]),
+            _ => found = Some([ei, mass, drag, number(t, "axial_stiffness").unwrap_or(0.0)]),
         }
     }
     found.ok_or(format!("`{key}`: the section is empty"))
