@@ -78,20 +78,14 @@ pub(super) fn chord_unit(
     neighbours_fit(cuts, k, &key)?;
     uniform_enough(equilibrium, cut, &key)?;
     let mut p = cut.options.clone().unwrap_or_default();
-    let drag_velocity = match p.remove("drag_velocity") {
-        None => DEFAULT_DRAG_VELOCITY,
-        Some(v) => v
-            .as_float()
-            .or_else(|| v.as_integer().map(|i| i as f64))
-            .filter(|v| *v >= 0.0 && v.is_finite())
-            .ok_or(format!(
-                "`{key}.drag_velocity` = {v}: expected a velocity amplitude >= 0 (m/s)"
-            ))?,
-    };
-    let properties = properties(model, segments, cut, &key)?;
+    let drag_velocity = drag_velocity_of(&mut p, &key)?;
+    section_properties(
+        &mut p,
+        properties(model, segments, cut, &key)?,
+        cut,
+        drag_velocity,
+    );
     p.insert("model".into(), Value::String(word.into()));
-    p.entry("damping_per_length")
-        .or_insert(Value::Float(properties[2] * drag_velocity));
     p.insert("moving".into(), Value::String("start".into()));
     p.insert("start".into(), pair(equilibrium.position_at(cut.from)));
     p.insert("end".into(), pair(equilibrium.position_at(cut.to)));
@@ -108,14 +102,6 @@ pub(super) fn chord_unit(
                 .collect(),
         ),
     );
-    p.insert("flexural_rigidity".into(), Value::Float(properties[0]));
-    p.insert("mass_per_length".into(), Value::Float(properties[1]));
-    if properties[3] > 0.0 {
-        p.insert(
-            "axial_stiffness".into(),
-            Value::Float(properties[3] / (cut.to - cut.from)),
-        );
-    }
     let middle = 0.5 * (cut.from + cut.to);
     p.insert(
         "tension".into(),
@@ -146,6 +132,41 @@ pub(super) fn chord_unit(
     unit.insert("parameters".into(), Value::Table(p));
     unit.insert("inputs".into(), Value::Table(inputs));
     Ok(unit)
+}
+
+/// The fidelity's `drag_velocity` (m/s; taken out of `p`), or the default.
+fn drag_velocity_of(p: &mut Table, key: &str) -> Result<f64, String> {
+    match p.remove("drag_velocity") {
+        None => Ok(DEFAULT_DRAG_VELOCITY),
+        Some(v) => v
+            .as_float()
+            .or_else(|| v.as_integer().map(|i| i as f64))
+            .filter(|v| *v >= 0.0 && v.is_finite())
+            .ok_or(format!(
+                "`{key}.drag_velocity` = {v}: expected a velocity amplitude >= 0 (m/s)"
+            )),
+    }
+}
+
+/// The section's EI, mass, drag damping (at `drag_velocity`, unless the
+/// scene gives `damping_per_length`) and axial stiffness (EA over its arc
+/// length, where the model gives EA) into the chord's parameters `p`.
+fn section_properties(
+    p: &mut Table,
+    [ei, mass, drag, ea]: [f64; 4],
+    cut: &Cut,
+    drag_velocity: f64,
+) {
+    p.entry("damping_per_length")
+        .or_insert(Value::Float(drag * drag_velocity));
+    p.insert("flexural_rigidity".into(), Value::Float(ei));
+    p.insert("mass_per_length".into(), Value::Float(mass));
+    if ea > 0.0 {
+        p.insert(
+            "axial_stiffness".into(),
+            Value::Float(ea / (cut.to - cut.from)),
+        );
+    }
 }
 
 /// A chord section lies between two numerical sections that follow its
