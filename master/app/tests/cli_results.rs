@@ -164,3 +164,32 @@ fn a_fidelity_study_with_failed_runs_writes_its_rows_and_exits_1() {
     assert_eq!(csv.lines().count(), 4, "{csv}");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// Work is bounded before it starts: a scene of 1e11 steps is refused by
+/// `check` with the bound and how to go past it (issue 27: it passed, and
+/// `run` wrote CSV until the disk was full); `simulation.max_steps` lifts it.
+#[test]
+fn a_run_of_more_steps_than_the_bound_is_refused_unless_the_scene_lifts_it() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-bound-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/b1_two_masses.toml"),
+    )
+    .unwrap()
+    .replace("duration = 1.0", "duration = 1.0e9");
+    let scene = dir.join("long.toml");
+    std::fs::write(&scene, &base).unwrap();
+    let out = slender(&["check", scene.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("100000000000 steps, more than the bound of 100000000")
+            && err.contains("simulation.max_steps"),
+        "{err}"
+    );
+    let lifted = base.replace("step = 0.01", "step = 0.01\nmax_steps = 2000000000000");
+    std::fs::write(&scene, lifted).unwrap();
+    let out = slender(&["check", scene.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    std::fs::remove_dir_all(dir).unwrap();
+}

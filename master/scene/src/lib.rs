@@ -188,9 +188,21 @@ impl Scene {
                 ),
             ));
         }
+        let steps = duration.as_nanos() / step.as_nanos();
+        let bound = sim.max_steps.unwrap_or(spec::DEFAULT_MAX_STEPS);
+        if steps as u64 > bound {
+            return Err(self.error(
+                None,
+                "simulation.duration",
+                format!(
+                    "{} s in steps of {} s is {steps} steps, more than the bound of {bound}; give `simulation.max_steps` to go past it",
+                    sim.duration, sim.step
+                ),
+            ));
+        }
         self.start = start;
         self.step = step;
-        self.steps = duration.as_nanos() / step.as_nanos();
+        self.steps = steps;
         Ok(())
     }
 

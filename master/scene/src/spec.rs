@@ -91,7 +91,14 @@ pub struct SimulationSpec {
     /// Start time (s), default 0.
     #[serde(default)]
     pub start: f64,
+    /// The most steps a run may take (default 1e8, `DEFAULT_MAX_STEPS`): a
+    /// bound stated and checked before anything runs; give it to go past.
+    #[serde(default)]
+    pub max_steps: Option<u64>,
 }
+
+/// The default bound on a run's steps: 1e8 (a day of a 1 ms step).
+pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
 
 /// `[[units]]`: one unit.
 #[derive(Debug, Deserialize)]
