@@ -84,8 +84,8 @@ pub enum FmuAction {
         /// The unit to export (its name in the scene).
         #[arg(long)]
         unit: String,
-        /// The .fmu to write (default: <unit>.fmu).
-        #[arg(short, long)]
+        /// The .fmu to write (default: <unit>.fmu); `--out` as elsewhere.
+        #[arg(short, long, visible_alias = "out")]
         output: Option<PathBuf>,
         /// The slender-fmu shared library (default: libslender_fmu.so next to this
         /// executable; build it with `cargo build --release -p slender-fmu`).
@@ -129,6 +129,10 @@ pub enum Command {
         /// overrun (summary.json, overruns.csv).
         #[arg(long)]
         realtime: bool,
+        /// Simulated time (s) instead of the scene's `simulation.duration`; a
+        /// whole number of its steps.
+        #[arg(long)]
+        duration: Option<f64>,
     },
     /// Check a scene without running it: parse, build every unit, resolve connections.
     Check { scene: PathBuf },

@@ -492,3 +492,44 @@ fn realtime_runs_keep_the_clock_and_report_every_overrun() {
     assert!(summary(&plain).get("realtime").is_none());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// `run --duration` looks at part of a scene (a whole number of its steps,
+/// else bad input), and `fmu export` takes `--out` as the other commands do
+/// (issue 28).
+#[test]
+fn run_takes_a_duration_and_fmu_export_takes_out() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-duration-{}", std::process::id()));
+    let d = dir.to_str().unwrap();
+    let out = slender(&[
+        "run",
+        "examples/b1_two_masses.toml",
+        "--duration",
+        "0.5",
+        "--out",
+        d,
+        "--quiet",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("simulated    0.5 s in 50 steps"),
+        "{}",
+        text(&out.stdout)
+    );
+    let bad = slender(&[
+        "run",
+        "examples/b1_two_masses.toml",
+        "--duration",
+        "0.505",
+        "--out",
+        d,
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        text(&bad.stderr).contains("--duration 0.505: 0.505 s is not a whole number of steps"),
+        "{}",
+        text(&bad.stderr)
+    );
+    let help = text(&slender(&["fmu", "export", "--help"]).stdout);
+    assert!(help.contains("--out"), "{help}");
+    std::fs::remove_dir_all(dir).unwrap();
+}

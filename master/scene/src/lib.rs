@@ -213,6 +213,13 @@ impl Scene {
         self.check_time()
     }
 
+    /// Changes the simulated time (s), e.g. a shorter look at a long scene; it
+    /// must stay a whole number of steps.
+    pub fn set_duration(&mut self, duration: f64) -> Result<(), SceneError> {
+        self.spec.simulation.duration = duration;
+        self.check_time()
+    }
+
     /// Start time plus duration.
     pub fn end(&self) -> Time {
         self.start + self.step * self.steps

@@ -135,7 +135,8 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
             out,
             quiet,
             realtime,
-        } => scene::run(&scene, out, quiet, realtime),
+            duration,
+        } => scene::run(&scene, out, (quiet, realtime), duration),
         Command::Check { scene } => scene::check(&scene),
         Command::Expand { scene } => scene::expand(&scene),
         Command::Bench {

@@ -7,8 +7,19 @@ use std::path::{Path, PathBuf};
 
 /// Runs a scene and prints its summary; a run that stops early is a failure
 /// (exit 1) with its results up to then on disk.
-pub fn run(path: &Path, out: Option<PathBuf>, quiet: bool, realtime: bool) -> Result<(), CliError> {
-    let scene = load(path)?;
+pub fn run(
+    path: &Path,
+    out: Option<PathBuf>,
+    (quiet, realtime): (bool, bool),
+    duration: Option<f64>,
+) -> Result<(), CliError> {
+    let mut scene = load(path)?;
+    if let Some(d) = duration {
+        super::positive("--duration", d)?;
+        scene
+            .set_duration(d)
+            .map_err(|e| CliError::input(format!("--duration {d}: {}", e.message)))?;
+    }
     let dir = out.unwrap_or_else(|| scene.default_output_dir());
     let _lock = results_folder(&dir)?;
     let options = RunOptions {
