@@ -147,9 +147,16 @@ pub fn run_fidelity(
     let order = order_of(&tasks);
     let names = quantities::names(&structure.features);
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    // Each finished run says which of how many it is.
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let outcomes = crate::parallel::run_all(&tasks, &order, plan.jobs, |task| {
         let outcome = run_one(path, &table, &structure, task.as_deref(), plan.duration);
-        progress(&describe(task.as_deref(), &outcome));
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        progress(&format!(
+            "[{k}/{}] {}",
+            tasks.len(),
+            describe(task.as_deref(), &outcome)
+        ));
         outcome
     });
     let judged = judged_of(plan, &names)?;
