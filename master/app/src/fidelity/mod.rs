@@ -113,26 +113,7 @@ pub fn run_fidelity(
     // The scene must load as written.
     crate::study::scene_with(path, &table, plan.duration)?;
     let structure = structure_of(&table)?;
-    for (k, s) in plan.sections.iter().enumerate() {
-        if plan.sections[..k]
-            .iter()
-            .any(|earlier| earlier.section == s.section)
-        {
-            return Err(format!(
-                "--section {}: the section is given twice; list its choices once, separated by commas",
-                s.section
-            ));
-        }
-        if !structure.sections.iter().any(|(n, _)| *n == s.section) {
-            let names: Vec<&str> = structure.sections.iter().map(|(n, _)| n.as_str()).collect();
-            return Err(format!(
-                "--section {}: the structure has no section `{}`; its sections are {}",
-                s.section,
-                s.section,
-                names.join(", ")
-            ));
-        }
-    }
+    sections_asked(plan, &structure)?;
     // Runs record only what the study reads, and carry no twin.
     if let Some(s) = table.get_mut("structure").and_then(Value::as_table_mut) {
         s.remove("reference");
@@ -186,6 +167,31 @@ pub fn run_fidelity(
         cheapest,
         floors,
     })
+}
+
+/// Refuses a section given twice or not in the structure, naming them.
+fn sections_asked(plan: &FidelityPlan, structure: &Structure) -> Result<(), String> {
+    for (k, s) in plan.sections.iter().enumerate() {
+        if plan.sections[..k]
+            .iter()
+            .any(|earlier| earlier.section == s.section)
+        {
+            return Err(format!(
+                "--section {}: the section is given twice; list its choices once, separated by commas",
+                s.section
+            ));
+        }
+        if !structure.sections.iter().any(|(n, _)| *n == s.section) {
+            let names: Vec<&str> = structure.sections.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(format!(
+                "--section {}: the structure has no section `{}`; its sections are {}",
+                s.section,
+                s.section,
+                names.join(", ")
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The scene's `[structure]`: name, sections and what its model has.
