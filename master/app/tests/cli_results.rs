@@ -193,3 +193,51 @@ fn a_run_of_more_steps_than_the_bound_is_refused_unless_the_scene_lifts_it() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// `check` refuses what `uq` and the plots cannot use, naming the key: a NaN
+/// bound, a key varied twice, an empty figure (issue 27: they passed).
+#[test]
+fn check_refuses_a_bad_uncertainty_table_and_an_empty_figure() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-uq-check-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let read = |name: &str| {
+        std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../../examples")
+                .join(name),
+        )
+        .unwrap()
+    };
+    let uq = read("truncation_uq.toml");
+    let first = "distribution = { kind = \"normal\", mean = 1.0, sd = 0.015 } },";
+    assert!(uq.contains(first));
+    let cases = [
+        (
+            uq.replacen(first, "distribution = { kind = \"normal\", mean = nan, sd = 0.015 } },", 1),
+            "uncertainty.inputs[0].distribution",
+        ),
+        (
+            uq.replace("key = \"units.sensor.parameters.scale.1\"", "key = \"units.sensor.parameters.scale.0\""),
+            "uncertainty.inputs[1].key",
+        ),
+        (
+            read("b1_two_masses.toml").replace(
+                "panels = [[\"left.displacement\", \"right.displacement\"], [\"left.velocity\", \"right.velocity\"]]",
+                "panels = []",
+            ),
+            "output.plots[0].panels",
+        ),
+    ];
+    for (k, (scene_text, key)) in cases.iter().enumerate() {
+        let scene = dir.join(format!("bad{k}.toml"));
+        std::fs::write(&scene, scene_text).unwrap();
+        let out = slender(&["check", scene.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{key}: {}", text(&out.stderr));
+        assert!(
+            text(&out.stderr).contains(key),
+            "{key}: {}",
+            text(&out.stderr)
+        );
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -9,6 +9,7 @@ pub mod kinds;
 pub mod spec;
 pub mod structure;
 mod structure_lines;
+mod uncertainty_check;
 
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;
@@ -393,8 +394,18 @@ impl Scene {
                 Err(format!("`{s}` is not among output.signals"))
             }
         };
+        if let Some((key, message)) = uncertainty_check::problem(&self.spec) {
+            return Err(self.error(None, &key, message));
+        }
         for (i, p) in out.plots.iter().enumerate() {
             let key = format!("output.plots[{i}]");
+            if p.panels.is_empty() || p.panels.iter().any(Vec::is_empty) {
+                return Err(self.error(
+                    None,
+                    &format!("{key}.panels"),
+                    "expected at least one panel, each with at least one signal (an empty one draws a blank figure)".to_owned(),
+                ));
+            }
             check_name("plot name", &p.name)
                 .map_err(|m| self.error(None, &format!("{key}.name"), m))?;
             if out.plots[..i].iter().any(|q| q.name == p.name) {
