@@ -21,7 +21,7 @@ pub struct Indicator {
 }
 
 /// Trapezoidal integral of f(t)^2 ... over samples, for `f` given per sample.
-fn integral(time: &[f64], f: impl Fn(usize) -> f64) -> f64 {
+pub(crate) fn integral(time: &[f64], f: impl Fn(usize) -> f64) -> f64 {
     (1..time.len())
         .map(|k| 0.5 * (time[k] - time[k - 1]) * (f(k - 1) + f(k)))
         .sum()

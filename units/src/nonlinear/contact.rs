@@ -324,39 +324,21 @@ impl NodalContacts {
     /// is the node's). None without seabed contact.
     pub fn seabed_crossing(&self, model: &Model, (q, t): (&[f64], f64)) -> Option<f64> {
         let seabed = self.list.first().filter(|_| self.has_seabed)?;
-        let mut above: Option<(f64, f64)> = None;
-        let mut crossing = None;
+        let mut crossing = Crossing::default();
         for_each_point(seabed, model, &self.tributary, (q, t), |p| {
-            if crossing.is_some() {
-                return;
-            }
-            if p.gap <= 0.0 {
-                crossing = Some(match above {
-                    Some((gap, arc)) => p.arc + (arc - p.arc) * (-p.gap) / (gap - p.gap),
-                    None => p.arc,
-                });
-            } else {
-                above = Some((p.gap, p.arc));
-            }
+            crossing.see(p.gap, p.arc)
         });
-        crossing
+        crossing.arc
     }
 
     /// Touchdown point, seabed contact length, penetration and energy at `q`.
     pub fn summary(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> ContactSummary {
-        let crossing = self
-            .seabed_crossing(model, (q, t))
-            .map_or([f64::NAN; 2], |arc| {
-                let (e, xi) = model.locate(arc);
-                let (r0, r1) = (model.reference[e][0], model.reference[e + 1][0]);
-                let x = (1.0 - xi) * (r0 + q[3 * e]) + xi * (r1 + q[3 * e + 3]);
-                [arc, x]
-            });
         let mut s = ContactSummary {
             touchdown: f64::NAN,
-            crossing,
+            crossing: [f64::NAN; 2],
             ..ContactSummary::default()
         };
+        let mut crossing = Crossing::default();
         for (c, contact) in self.list.iter().enumerate() {
             let seabed = c == 0 && self.has_seabed;
             let lambda = &lambda[self.offsets[c]..];
@@ -366,6 +348,9 @@ impl NodalContacts {
             };
             for_each_point(contact, model, &self.tributary, (q, t), |p| {
                 s.energy += p.weight * contact.method.evaluate(p.gap, lambda[p.index]).0;
+                if seabed {
+                    crossing.see(p.gap, p.arc);
+                }
                 if p.gap > 0.0 {
                     return;
                 }
@@ -380,7 +365,35 @@ impl NodalContacts {
                 s.relative_penetration = s.relative_penetration.max(-p.gap / limit);
             });
         }
+        if let Some(arc) = crossing.arc {
+            s.crossing = [arc, model.position_at(q, arc)[0]];
+        }
         s
+    }
+}
+
+/// Where the seabed's gap first crosses zero along its points in their order:
+/// linear between the last point above the seabed and the first on it.
+#[derive(Default)]
+struct Crossing {
+    above: Option<(f64, f64)>,
+    arc: Option<f64>,
+}
+
+impl Crossing {
+    /// Takes the next point's gap (m) and arc length (m).
+    fn see(&mut self, gap: f64, arc: f64) {
+        if self.arc.is_some() {
+            return;
+        }
+        if gap <= 0.0 {
+            self.arc = Some(match self.above {
+                Some((g, a)) => arc + (a - arc) * (-gap) / (g - gap),
+                None => arc,
+            });
+        } else {
+            self.above = Some((gap, arc));
+        }
     }
 }
 

@@ -365,11 +365,7 @@ impl NonlinearSection {
 
     /// Position (m) at arc length `s`, linear between the nodes.
     pub fn position_at(&self, s: f64) -> [f64; 2] {
-        let (e, xi) = self.model.locate(s);
-        let (r0, r1) = (self.model.reference[e], self.model.reference[e + 1]);
-        let q = &self.state.q;
-        let at = |k: usize| (1.0 - xi) * (r0[k] + q[3 * e + k]) + xi * (r1[k] + q[3 * e + 3 + k]);
-        [at(0), at(1)]
+        self.model.position_at(&self.state.q, s)
     }
 
     /// The tangent's angle (rad, from +x, along increasing arc length) at

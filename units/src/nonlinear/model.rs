@@ -219,6 +219,15 @@ impl Model {
             .collect()
     }
 
+    /// Position (m) at arc length `s` under displacements `q`, linear between
+    /// the nodes.
+    pub fn position_at(&self, q: &[f64], s: f64) -> [f64; 2] {
+        let (e, xi) = self.locate(s);
+        let (r0, r1) = (self.reference[e], self.reference[e + 1]);
+        let at = |k: usize| (1.0 - xi) * (r0[k] + q[3 * e + k]) + xi * (r1[k] + q[3 * e + 3 + k]);
+        [at(0), at(1)]
+    }
+
     /// The element holding arc length `s` and the coordinate in it, in [0, 1].
     pub fn locate(&self, s: f64) -> (usize, f64) {
         let last = self.elements.len() - 1;

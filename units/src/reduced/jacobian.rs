@@ -15,7 +15,7 @@
 //! zero.
 
 use super::build::{Model, Stepper};
-use super::unit::{CRITICAL_STEP, PER_END, ReducedUnit};
+use super::unit::{CRITICAL_STEP, EndForce, PER_END, ReducedUnit};
 use crate::contract::{Hold, Inputs, UnitError};
 use crate::integrators::hht::{SecondOrderSystem, TangentScales};
 use crate::nonlinear::model::element_dofs;
@@ -36,6 +36,8 @@ pub(super) struct JacobianWork {
     da: Vec<f64>,
     half: Vec<f64>,
     rhs: Vec<f64>,
+    /// Each input's projected unit load `Phi^T e_dof`, one column of N each.
+    loads: Vec<f64>,
     /// The replayed motion and its nonlinear force and tangent.
     q: Vec<f64>,
     v: Vec<f64>,
@@ -123,6 +125,13 @@ impl ReducedUnit {
         result
     }
 
+    /// The model DOF input `j` loads, if it is an end load.
+    fn input_dof(&self, j: usize) -> Option<usize> {
+        (self.input_dofs.iter())
+            .find(|(i, _)| *i == j)
+            .map(|&(_, dof)| dof)
+    }
+
     /// The input's projected unit load `Phi^T e_dof` into `out` (zero where
     /// the input loads a held DOF or is no load).
     fn unit_load(&self, j: usize, out: &mut [f64]) {
@@ -131,8 +140,7 @@ impl ReducedUnit {
             return;
         };
         let free = self.cubic.free_dofs();
-        let dof = self.input_dofs.iter().find(|(i, _)| *i == j).map(|p| p.1);
-        if let Some(k) = dof.and_then(|d| free.binary_search(&d).ok()) {
+        if let Some(k) = self.input_dof(j).and_then(|d| free.binary_search(&d).ok()) {
             for (c, o) in out.iter_mut().enumerate() {
                 *o = system.basis()[(k, c)];
             }
@@ -197,10 +205,15 @@ impl ReducedUnit {
         let h = w.h;
         let substeps = self.substeps(h);
         let hk = h / substeps as f64;
+        // Each input's projected unit load, weighted per sub-step below.
+        let n = w.half.len();
+        w.loads.resize(n * inputs.len(), 0.0);
+        for j in 0..inputs.len() {
+            self.unit_load(j, &mut w.loads[j * n..(j + 1) * n]);
+        }
         let Model::Linear(system, Stepper::Explicit(_)) = &mut self.model else {
             return Ok(());
         };
-        let n = system.size();
         if w.mass.is_none() {
             w.mass = Some(BandLdlt::new(system.matrices().mass).ok_or_else(|| {
                 UnitError::Numerical(
@@ -221,11 +234,8 @@ impl ReducedUnit {
         };
         let t1 = w.t0 + h;
         system.nonlinear_force(&w.q, &w.v, t1, Some((tangent, scales)), &mut w.force);
-        let system = &*system;
         let stiffness = [system.matrices().stiffness, Some(&*tangent)];
         for j in 0..inputs.len() {
-            let dof = self.input_dofs.iter().find(|(i, _)| *i == j).map(|p| p.1);
-            let free = dof.and_then(|d| self.cubic.free_dofs().binary_search(&d).ok());
             let column = j * n..(j + 1) * n;
             let change = TangentLinear {
                 hk,
@@ -235,8 +245,8 @@ impl ReducedUnit {
             for k in 1..=substeps {
                 // The unit load of input j, weighted at fraction s.
                 let scale = weight(inputs, j, k as f64 / substeps as f64);
-                for (c, r) in w.rhs.iter_mut().enumerate() {
-                    *r = free.map_or(0.0, |f| scale * system.basis()[(f, c)]);
+                for (r, l) in w.rhs.iter_mut().zip(&w.loads[column.clone()]) {
+                    *r = scale * l;
                 }
                 change.advance(
                     [
@@ -301,7 +311,7 @@ impl ReducedUnit {
         let residual = &mut w.residual;
         residual.clear();
         residual.resize(model.dofs(), 0.0);
-        let loaded = self.input_dofs.iter().find(|(i, _)| *i == j).map(|p| p.1);
+        let loaded = self.input_dof(j);
         if let Some(dof) = loaded {
             residual[dof] = 1.0;
         }
@@ -312,18 +322,16 @@ impl ReducedUnit {
             let p = element_dofs(full_d, e);
             for c in 0..3 {
                 let dof = 3 * node + c;
-                let value = if free.binary_search(&dof).is_err() {
-                    if c < 2 && self.held_once[c] {
-                        residual.iter().skip(c).step_by(3).sum()
-                    } else {
-                        let local = if side == 0 { c } else { 3 + c };
+                let value = match self.end_force_rule(side, c, dof) {
+                    EndForce::BalanceSum => residual.iter().skip(c).step_by(3).sum(),
+                    EndForce::Element(local) => {
                         let k = &w.element_tangent[side][local];
                         residual[dof] - (0..6).map(|i| k[i] * p[i]).sum::<f64>()
                     }
-                } else if self.loaded.binary_search(&dof).is_ok() {
-                    if loaded == Some(dof) { -1.0 } else { 0.0 }
-                } else {
-                    0.0
+                    // Minus the load: -1 per unit of this input's own load.
+                    EndForce::Load if loaded == Some(dof) => -1.0,
+                    EndForce::Load => 0.0,
+                    EndForce::Zero => 0.0,
                 };
                 put(PER_END * side + 6 + c, value);
             }

@@ -362,22 +362,45 @@ impl ReducedUnit {
         for (side, node) in [0, last].into_iter().enumerate() {
             for c in 0..3 {
                 let dof = 3 * node + c;
-                let value = if free.binary_search(&dof).is_err() {
-                    if c < 2 && self.held_once[c] {
-                        residual.iter().skip(c).step_by(3).sum()
-                    } else {
-                        let local = if side == 0 { c } else { 3 + c };
-                        residual[dof] - element_force[side][local]
-                    }
-                } else if self.loaded.binary_search(&dof).is_ok() {
-                    -self.load[dof]
-                } else {
-                    0.0
+                let residual = &self.residual;
+                let value = match self.end_force_rule(side, c, dof) {
+                    EndForce::BalanceSum => residual.iter().skip(c).step_by(3).sum(),
+                    EndForce::Element(local) => residual[dof] - element_force[side][local],
+                    EndForce::Load => -self.load[dof],
+                    EndForce::Zero => 0.0,
                 };
                 self.values[PER_END * side + 6 + c] = value;
             }
         }
     }
+
+    /// How end DOF `dof` (component `c` at end `side`) reports its force;
+    /// the step Jacobian differentiates the same rule.
+    pub(super) fn end_force_rule(&self, side: usize, c: usize, dof: usize) -> EndForce {
+        if self.cubic.free_dofs().binary_search(&dof).is_err() {
+            match c < 2 && self.held_once[c] {
+                true => EndForce::BalanceSum,
+                false => EndForce::Element(if side == 0 { c } else { 3 + c }),
+            }
+        } else if self.loaded.binary_search(&dof).is_ok() {
+            EndForce::Load
+        } else {
+            EndForce::Zero
+        }
+    }
+}
+
+/// How an end's reported force is formed (`ReducedUnit::end_forces`).
+pub(super) enum EndForce {
+    /// A direction one held DOF holds: the section's balance sum f - M a.
+    BalanceSum,
+    /// Another held DOF: the residual less the end element's force (its
+    /// local index).
+    Element(usize),
+    /// A loaded DOF: minus the load.
+    Load,
+    /// A free DOF: nothing holds it.
+    Zero,
 }
 
 /// The entries of `full` (all DOFs) at the `free` DOFs into `out`.

@@ -39,10 +39,7 @@ fn rms(time: &[f64], x: &[f64]) -> f64 {
     if time.len() < 2 || span <= 0.0 {
         return 0.0;
     }
-    let sum: f64 = (1..time.len())
-        .map(|k| 0.5 * (time[k] - time[k - 1]) * (x[k - 1].powi(2) + x[k].powi(2)))
-        .sum();
-    (sum / span).sqrt()
+    (crate::indicators::integral(time, |k| x[k].powi(2)) / span).sqrt()
 }
 
 /// Per quantity (in `names` order), the scale to judge it against where the

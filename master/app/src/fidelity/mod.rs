@@ -247,14 +247,11 @@ fn own_choices(table: &Table) -> Vec<(String, Choice)> {
     (sections.into_iter().flatten())
         .filter_map(Value::as_table)
         .filter(|t| !t.contains_key("elements") && !t.contains_key("substeps"))
+        .filter(|t| !matches!(t.get("fidelity"), Some(Value::Table(_))))
         .filter_map(|t| {
             let name = t.get("name")?.as_str()?.to_owned();
-            let fidelity = match t.get("fidelity") {
-                None => "nonlinear",
-                Some(v) => v.as_str()?,
-            };
             let choice = Choice {
-                fidelity: fidelity.to_owned(),
+                fidelity: written::written_kind(t).to_owned(),
                 elements: None,
                 substeps: None,
             };

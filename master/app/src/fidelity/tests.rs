@@ -2,6 +2,18 @@
 
 use super::*;
 
+/// A one-section-at-a-time plan of `sections` (`NAME=CHOICE,...`).
+fn one_at_a_time(sections: &[&str]) -> FidelityPlan {
+    FidelityPlan {
+        sections: sections.iter().map(|s| s.parse().unwrap()).collect(),
+        design: Design::OneAtATime,
+        duration: None,
+        jobs: 1,
+        tolerance: 0.01,
+        judged: Vec::new(),
+    }
+}
+
 #[test]
 fn one_section_at_a_time_runs_the_scene_as_written_once() {
     let table: Table = r#"
@@ -20,21 +32,11 @@ name = "upper"
 "#
     .parse()
     .unwrap();
-    let plan = FidelityPlan {
-        sections: [
-            "lower=cable,static",
-            "middle=nonlinear",
-            "upper=nonlinear,nonlinear:8",
-        ]
-        .iter()
-        .map(|s| s.parse().unwrap())
-        .collect(),
-        design: Design::OneAtATime,
-        duration: None,
-        jobs: 1,
-        tolerance: 0.01,
-        judged: Vec::new(),
-    };
+    let plan = one_at_a_time(&[
+        "lower=cable,static",
+        "middle=nonlinear",
+        "upper=nonlinear,nonlinear:8",
+    ]);
     let labels: Vec<String> = combinations(&plan, &own_choices(&table))
         .iter()
         .map(|run| format!("{}={}", run[0].0, run[0].1.label()))
@@ -54,17 +56,7 @@ name = "upper"
 
 #[test]
 fn a_section_given_twice_is_refused() {
-    let plan = FidelityPlan {
-        sections: ["lower=cable", "lower=static"]
-            .iter()
-            .map(|s| s.parse().unwrap())
-            .collect(),
-        design: Design::OneAtATime,
-        duration: None,
-        jobs: 1,
-        tolerance: 0.01,
-        judged: Vec::new(),
-    };
+    let plan = one_at_a_time(&["lower=cable", "lower=static"]);
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/structure_mooring.toml");
     let e = run_fidelity(&path, &plan, |_| {}).expect_err("refused");

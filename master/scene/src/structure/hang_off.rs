@@ -46,7 +46,7 @@ pub(super) fn angle_of(structure: &Table) -> Result<Option<f64>, String> {
 /// statics) horizontally until its equilibrium at `t0` has its tangent
 /// `angle` (deg) from the vertical; returns the shift (m) and that equilibrium.
 pub(super) fn place(model: &mut Table, angle: f64, t0: Time) -> Result<(f64, Equilibrium), String> {
-    let length = end_offset(model, 0.0)?;
+    let length = length_of(model);
     let solve = |shift: f64, model: &Table| -> Result<(f64, Equilibrium), String> {
         let mut trial = model.clone();
         end_offset(&mut trial, shift)?;
@@ -80,17 +80,20 @@ pub(super) fn place(model: &mut Table, angle: f64, t0: Time) -> Result<(f64, Equ
     ))
 }
 
-/// Adds `shift` (m) to the x displacement of the model's end (held, or given
-/// as a constant or a time function's offset); returns the structure's
-/// length (m) for the caller's step sizes.
-fn end_offset(model: &mut Table, shift: f64) -> Result<f64, String> {
-    let length: f64 = (model.get("segments").and_then(Value::as_array))
+/// The structure's length (m): its segments' lengths summed.
+fn length_of(model: &Table) -> f64 {
+    (model.get("segments").and_then(Value::as_array))
         .map(|segments| {
             (segments.iter())
                 .filter_map(|s| s.get("length").and_then(Value::as_float))
                 .sum()
         })
-        .unwrap_or(0.0);
+        .unwrap_or(0.0)
+}
+
+/// Adds `shift` (m) to the x displacement of the model's end (held, or given
+/// as a constant or a time function's offset).
+fn end_offset(model: &mut Table, shift: f64) -> Result<(), String> {
     let refuse = |what: &str| {
         Err(format!(
             "`structure.hang_off`: the top is placed by moving the end's x, which {what}; expected `ends.end` pinned or fixed, or its `x` a displacement"
@@ -130,5 +133,5 @@ fn end_offset(model: &mut Table, shift: f64) -> Result<f64, String> {
         },
         _ => return refuse("is free or not a displacement"),
     }
-    Ok(length)
+    Ok(())
 }
