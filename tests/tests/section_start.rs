@@ -52,8 +52,20 @@ fn a_cable_under_a_short_nonlinear_top_starts_on_the_equilibrium_and_keeps_its_m
             ks.iter().map(|&k| magnitude(&s, unit, k)).sum::<f64>() / ks.len() as f64
         };
         let (sections, twin) = (mean("line_upper"), mean("line_reference"));
+        // The master's start check saw the cable's top load and let it pass.
+        let change = s
+            .counters
+            .start_load
+            .as_ref()
+            .expect("the cable is checked");
+        assert!(
+            change.connection.contains("line_lower.top_force"),
+            "{change:?}"
+        );
+        assert!(change.relative_change < 0.2, "{change:?}");
         eprintln!(
-            "{top} elements: start {start:.1} N (twin {twin_start:.1}), mean 100-600 s {sections:.1} N (twin {twin:.1})"
+            "{top} elements: start {start:.1} N (twin {twin_start:.1}), mean 100-600 s {sections:.1} N (twin {twin:.1}), start change {:.2} %",
+            100.0 * change.relative_change
         );
         assert!(
             (sections - twin).abs() < 5e-3 * twin,
@@ -109,4 +121,27 @@ fn the_line_alone_reports_its_equilibrium_at_the_start_and_a_faded_motion_no_spi
     for w in forces.windows(2) {
         assert!((w[1] - w[0]).abs() < 1e-2 * w[0], "{forces:?}");
     }
+}
+
+#[test]
+fn a_start_change_beyond_the_scene_tolerance_stops_the_run_naming_both_sections() {
+    // The fairlead's motion starts at full speed: the top load changes by
+    // 11.7 % over the first step, within the default 0.2 but not 0.05.
+    let scene = mooring_with(1, 1.0, |t| {
+        t.replacen("[master]", "[master]\nstart_tolerance = 0.05", 1)
+    });
+    let s = run(&scene);
+    let error = s.error.expect("stopped by the start check");
+    for expected in [
+        "`line_lower.top_force_",
+        "`line_upper.start_force_",
+        "start_tolerance 0.05",
+    ] {
+        assert!(error.contains(expected), "`{expected}` not in: {error}");
+    }
+    assert_eq!(
+        s.time,
+        [0.0],
+        "stopped in the first step, its start recorded"
+    );
 }

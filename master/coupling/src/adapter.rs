@@ -71,6 +71,11 @@ impl UnitAdapter {
         self.driver.description()
     }
 
+    /// The inputs whose values at `initialize` set the unit's static state.
+    pub fn static_inputs(&self) -> Vec<usize> {
+        self.driver.unit().static_inputs()
+    }
+
     /// The hold in force for each input.
     pub fn holds(&self) -> &[Hold] {
         self.driver.holds()

@@ -46,6 +46,11 @@ pub struct Counters {
     pub last_residual: f64,
     /// Largest residual at exit over all steps.
     pub max_residual: f64,
+    /// The coupled load a unit's statics were solved under that changed most
+    /// over the first step (see the master's start check); absent when no
+    /// unit solves its statics under a coupled load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub start_load: Option<crate::coupler::StartLoad>,
     pub units: Vec<UnitCounters>,
 }
 

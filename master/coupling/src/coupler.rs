@@ -21,6 +21,9 @@ use std::time::Instant;
 mod initial;
 mod parallel;
 mod setup;
+mod start_check;
+
+pub use start_check::StartLoad;
 
 use setup::{adapters, check_rollback, explicit_order};
 
@@ -81,6 +84,9 @@ pub struct Master {
     initialized: bool,
     /// True while `initialize` runs: sweeps call `initialize` instead of `do_step`.
     pub(crate) initializing: bool,
+    /// The connections into units' static inputs, with the value each was
+    /// initialised under (see `start_check`).
+    static_loads: Vec<(usize, f64)>,
 }
 
 impl Master {
@@ -159,6 +165,7 @@ impl Master {
             counters,
             initialized: false,
             initializing: false,
+            static_loads: Vec::new(),
         })
     }
 
@@ -194,6 +201,9 @@ impl Master {
         self.accepted_before.copy_from_slice(&self.accepted);
         self.accepted.copy_from_slice(&self.value);
         self.time += self.step_size;
+        if self.counters.steps == 1 {
+            self.check_start()?;
+        }
         Ok(())
     }
 

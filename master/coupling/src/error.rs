@@ -49,6 +49,19 @@ pub enum MasterError {
         change: f64,
         tolerance: f64,
     },
+    /// A unit solved its statics under a coupled load that the other side
+    /// left in the first step by more than `start_tolerance`.
+    #[error(
+        "the start is off equilibrium: `{to}` solved its statics under {used:.6e} from `{from}`, which reported {after:.6e} after the first step ({percent:.1} % change, start_tolerance {tolerance}); fade the end motion in (`fade_in`), start from a consistent state, or raise [master] start_tolerance"
+    )]
+    StartOffEquilibrium {
+        from: String,
+        to: String,
+        used: f64,
+        after: f64,
+        percent: f64,
+        tolerance: f64,
+    },
     /// Newton's interface Jacobian could not be inverted.
     #[error("newton: the interface Jacobian is singular at t = {time} s (iteration {iteration})")]
     SingularJacobian { time: f64, iteration: u32 },

@@ -301,6 +301,15 @@ pub struct MasterSettings {
     /// steps as it would alone.
     #[serde(default = "one_thread")]
     pub threads: u32,
+    /// The largest relative change over the first step of a load a unit's
+    /// statics were solved under (default 0.2); beyond it the run stops as
+    /// started off its equilibrium (see the master's start check).
+    #[serde(default = "default_start_tolerance")]
+    pub start_tolerance: f64,
+}
+
+fn default_start_tolerance() -> f64 {
+    0.2
 }
 
 fn default_max_iterations() -> u32 {
@@ -324,6 +333,7 @@ impl MasterSettings {
             tolerances: Tolerances::default(),
             extrapolation: Extrapolation::default(),
             threads: one_thread(),
+            start_tolerance: default_start_tolerance(),
         }
     }
 
@@ -341,6 +351,26 @@ impl MasterSettings {
         }
     }
 
+    /// Tolerances: each port kind's finite and > 0, the start check's > 0.
+    fn check_tolerances(&self) -> Result<(), SettingsError> {
+        let start = self.start_tolerance;
+        if start.is_nan() || start <= 0.0 {
+            return Err(SettingsError(format!(
+                "start_tolerance {start}: expected a value > 0 (inf turns the start check off)"
+            )));
+        }
+        for kind in PortKind::ALL {
+            let tol = self.tolerances.of(kind);
+            if !(tol.is_finite() && tol > 0.0) {
+                return Err(SettingsError(format!(
+                    "tolerances.{}: {tol} is not a finite value > 0",
+                    kind.name()
+                )));
+            }
+        }
+        Ok(())
+    }
+
     /// Checks values that serde cannot: positive tolerances, an iteration cap of at
     /// least 1, sensible acceleration factors, acceleration only with iteration.
     pub fn validate(&self) -> Result<(), SettingsError> {
@@ -354,15 +384,7 @@ impl MasterSettings {
                 self.threads
             )));
         }
-        for kind in PortKind::ALL {
-            let tol = self.tolerances.of(kind);
-            if !(tol.is_finite() && tol > 0.0) {
-                return Err(invalid(format!(
-                    "tolerances.{}: {tol} is not a finite value > 0",
-                    kind.name()
-                )));
-            }
-        }
+        self.check_tolerances()?;
         if !self.scheme.is_iterative() && self.acceleration != Acceleration::None {
             return Err(invalid(format!(
                 "acceleration `{}` needs an iterative scheme, but scheme is `{}`",

@@ -328,6 +328,15 @@ impl Unit for Beam {
         &self.description
     }
 
+    /// With a static start, the end loads its statics are solved under.
+    fn static_inputs(&self) -> Vec<usize> {
+        if self.params.static_start {
+            self.description.load_inputs()
+        } else {
+            Vec::new()
+        }
+    }
+
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         self.jacobian.ready = false;
         self.state.t = t0.as_secs();

@@ -343,6 +343,11 @@ impl Unit for Cable {
         &self.description
     }
 
+    /// The top force: the statics are solved under it.
+    fn static_inputs(&self) -> Vec<usize> {
+        vec![TOP_FX, TOP_FZ]
+    }
+
     fn initialize(&mut self, _t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         self.jacobian.ready = false;
         let top = [inputs.at(TOP_FX, 1.0), inputs.at(TOP_FZ, 1.0)];

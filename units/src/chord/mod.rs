@@ -387,6 +387,11 @@ impl Unit for Chord {
         &self.description
     }
 
+    /// The loaded end's force and moment: the section's balance at rest.
+    fn static_inputs(&self) -> Vec<usize> {
+        self.description.load_inputs()
+    }
+
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         let mut r = [0.0; 6];
         r.copy_from_slice(inputs.end());

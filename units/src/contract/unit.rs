@@ -18,7 +18,7 @@
 
 use crate::contract::StateSlot;
 use crate::contract::Time;
-use crate::contract::{Causality, Inputs, Port};
+use crate::contract::{Causality, Inputs, Port, PortKind};
 use thiserror::Error;
 
 /// What a unit can do, declared rather than assumed.
@@ -79,6 +79,14 @@ impl UnitDescription {
     /// Index of the input called `name`.
     pub fn input_index(&self, name: &str) -> Option<usize> {
         self.inputs.iter().position(|p| p.name == name)
+    }
+
+    /// The inputs that are loads (forces and moments), in port order.
+    pub fn load_inputs(&self) -> Vec<usize> {
+        let is_load = |p: &Port| matches!(p.kind, PortKind::Force | PortKind::Moment);
+        (0..self.inputs.len())
+            .filter(|&i| is_load(&self.inputs[i]))
+            .collect()
     }
 
     /// Index of the output called `name`.
@@ -208,6 +216,16 @@ pub trait Unit: Send {
     /// unit may start its solve from that attempt's solution (the result is
     /// the same to its own solver's tolerance, not to the bit). Default: none.
     fn warm_repeat(&mut self) {}
+
+    /// The inputs whose values at `initialize` set the unit's static state:
+    /// the end loads (forces and moments) a static start is solved under (a
+    /// cable's top force, a chord's loaded end). The master checks after the first step that the
+    /// other side still reports them (issue 30: a section that solved its
+    /// statics under a load the other side then leaves has started off its
+    /// equilibrium). Default: none.
+    fn static_inputs(&self) -> Vec<usize> {
+        Vec::new()
+    }
 
     /// The interface Jacobian of the last `do_step` (units that declare
     /// `Capabilities::step_jacobian`): the derivative of every output after the
@@ -347,6 +365,10 @@ macro_rules! forward_unit {
 
             fn warm_repeat(&mut self) {
                 (**self).warm_repeat()
+            }
+
+            fn static_inputs(&self) -> Vec<usize> {
+                (**self).static_inputs()
             }
         }
     )*};

@@ -57,6 +57,9 @@ pub struct FidelityRow {
     pub speed_up: f64,
     pub iterations_per_step: f64,
     pub non_converged_steps: u64,
+    /// The master's start check: the largest relative change over the first
+    /// step of a load a section's statics were solved under.
+    pub start_change: Option<f64>,
     /// Not beaten in both worst error and cost by another combination.
     pub pareto: bool,
     pub within_tolerance: bool,
@@ -98,6 +101,7 @@ struct Outcome {
     series: Vec<Vec<f64>>,
     iterations_per_step: f64,
     non_converged_steps: u64,
+    start_change: Option<f64>,
     cost: f64,
     error: Option<String>,
 }
@@ -502,6 +506,7 @@ fn run_one(
         series: Vec::new(),
         iterations_per_step: f64::NAN,
         non_converged_steps: 0,
+        start_change: None,
         cost: f64::NAN,
         error: Some(error),
     };
@@ -533,6 +538,7 @@ fn run_one(
             series,
             iterations_per_step: counters.mean_iterations(),
             non_converged_steps: counters.non_converged_steps,
+            start_change: counters.start_load.as_ref().map(|l| l.relative_change),
             cost: result.summary.cost_per_simulated_second,
             error: result.summary.error.clone(),
         },

@@ -16,7 +16,8 @@ fn label(r: &FidelityRow) -> String {
 }
 
 /// The rows as CSV: combination, epsilon per quantity, worst, cost, speed-up,
-/// iterations per step, non-converged steps, Pareto, within tolerance, error.
+/// iterations per step, non-converged steps, the start check's change,
+/// Pareto, within tolerance, error.
 pub fn to_csv(report: &FidelityReport) -> String {
     let eps: Vec<String> = report
         .quantities
@@ -24,13 +25,13 @@ pub fn to_csv(report: &FidelityReport) -> String {
         .map(|n| format!("epsilon_{n}"))
         .collect();
     let mut out = format!(
-        "combination,reference,{},worst_epsilon,cost_per_simulated_second,speed_up,iterations_per_step,non_converged_steps,pareto,within_tolerance,error\n",
+        "combination,reference,{},worst_epsilon,cost_per_simulated_second,speed_up,iterations_per_step,non_converged_steps,start_change,pareto,within_tolerance,error\n",
         eps.join(",")
     );
     for r in &report.rows {
         let eps: Vec<String> = r.errors.iter().map(|(_, e)| format!("{e:e}")).collect();
         out += &format!(
-            "{},{},{},{:e},{:e},{},{},{},{},{},{}\n",
+            "{},{},{},{:e},{:e},{},{},{},{},{},{},{}\n",
             label(r),
             r.reference,
             eps.join(","),
@@ -39,6 +40,7 @@ pub fn to_csv(report: &FidelityReport) -> String {
             r.speed_up,
             r.iterations_per_step,
             r.non_converged_steps,
+            r.start_change.map(|c| format!("{c:e}")).unwrap_or_default(),
             r.pareto,
             r.within_tolerance,
             r.error.as_deref().unwrap_or("").replace([',', '\n'], ";")
@@ -51,7 +53,7 @@ pub fn to_csv(report: &FidelityReport) -> String {
 /// tolerance.
 pub fn to_markdown(report: &FidelityReport) -> String {
     let mut out = format!(
-        "Fidelity study of `{}`: epsilon of each quantity against the monolithic reference; worst: the largest over {}; Pareto: not beaten in both worst error and cost.\n\n| combination | {} | worst | s per sim. s | speed-up | it/step | non-conv. | Pareto |\n|---|{}---|---|---|---|---|---|\n",
+        "Fidelity study of `{}`: epsilon of each quantity against the monolithic reference; worst: the largest over {}; Pareto: not beaten in both worst error and cost.\n\n| combination | {} | worst | s per sim. s | speed-up | it/step | non-conv. | start change | Pareto |\n|---|{}---|---|---|---|---|---|---|\n",
         report.scene,
         judged(report),
         report.quantities.join(" | "),
@@ -69,13 +71,14 @@ pub fn to_markdown(report: &FidelityReport) -> String {
             None => format!(" {} |", if r.pareto { "yes" } else { "" }),
         };
         out += &format!(
-            "| {name} | {} | {:.2e} | {:.3e} | {:.2} | {:.2} | {} |{tail}\n",
+            "| {name} | {} | {:.2e} | {:.3e} | {:.2} | {:.2} | {} | {} |{tail}\n",
             eps.join(" | "),
             r.worst_error,
             r.cost_per_simulated_second,
             r.speed_up,
             r.iterations_per_step,
             r.non_converged_steps,
+            crate::study::report::start_change(r.start_change),
         );
     }
     out += &format!("\n{}\n", conclusion(report));

@@ -49,6 +49,7 @@ pub(super) fn rows_of(
                 speed_up: reference.cost / o.cost,
                 iterations_per_step: o.iterations_per_step,
                 non_converged_steps: o.non_converged_steps,
+                start_change: o.start_change,
                 pareto: false,
                 within_tolerance: false,
                 error: o.error.clone(),

@@ -134,6 +134,9 @@ pub struct StudyRow {
     /// next finer one (NaN where it does not apply).
     pub orders: Vec<(String, f64)>,
     pub iterations_per_step: f64,
+    /// The master's start check: the largest relative change over the first
+    /// step of a load a section's statics were solved under.
+    pub start_change: Option<f64>,
     pub cost_per_simulated_second: f64,
     pub error: Option<String>,
 }
@@ -145,6 +148,7 @@ struct Outcome {
     /// The indicators measured inside the run (against reference signals of its own).
     own: Vec<crate::indicators::Indicator>,
     iterations_per_step: f64,
+    start_change: Option<f64>,
     cost: f64,
     error: Option<String>,
 }
@@ -417,6 +421,7 @@ fn failed(judged: &[Judged], error: String) -> Outcome {
             .collect(),
         own: Vec::new(),
         iterations_per_step: f64::NAN,
+        start_change: None,
         cost: f64::NAN,
         error: Some(error),
     }
@@ -449,6 +454,7 @@ fn outcome_of(scene: &Scene, cost_units: &[String]) -> Outcome {
                 time: result.recorder.time.clone(),
                 own: s.indicators.clone(),
                 iterations_per_step: s.counters.mean_iterations(),
+                start_change: s.counters.start_load.as_ref().map(|l| l.relative_change),
                 cost,
                 error: s.error.clone(),
             }
@@ -506,6 +512,7 @@ fn rows_of(
                 errors,
                 orders: judged.iter().map(|j| (j.name.clone(), f64::NAN)).collect(),
                 iterations_per_step: o.iterations_per_step,
+                start_change: o.start_change,
                 cost_per_simulated_second: o.cost,
                 error: o.error.clone(),
             }

@@ -30,13 +30,13 @@ fn names(rows: &[StudyRow]) -> Vec<&str> {
 }
 
 /// The rows as CSV: setting, value, epsilon and observed order per indicator,
-/// iterations per step, cost, error.
+/// iterations per step, the start check's change, cost, error.
 pub fn to_csv(rows: &[StudyRow]) -> String {
     let names = names(rows);
     let eps: Vec<String> = names.iter().map(|n| format!("epsilon_{n}")).collect();
     let orders: Vec<String> = names.iter().map(|n| format!("order_{n}")).collect();
     let mut out = format!(
-        "setting,value,{},{},iterations_per_step,cost_per_simulated_second,error\n",
+        "setting,value,{},{},iterations_per_step,start_change,cost_per_simulated_second,error\n",
         eps.join(","),
         orders.join(",")
     );
@@ -44,12 +44,13 @@ pub fn to_csv(rows: &[StudyRow]) -> String {
         let eps: Vec<String> = r.errors.iter().map(|(_, e)| format!("{e:e}")).collect();
         let orders: Vec<String> = r.orders.iter().map(|(_, p)| format!("{p}")).collect();
         out += &format!(
-            "{},{},{},{},{},{:e},{}\n",
+            "{},{},{},{},{},{},{:e},{}\n",
             setting_of(r).replace(',', ";"),
             value_of(r).replace(',', ";"),
             eps.join(","),
             orders.join(","),
             r.iterations_per_step,
+            r.start_change.map(|c| format!("{c:e}")).unwrap_or_default(),
             r.cost_per_simulated_second,
             r.error.as_deref().unwrap_or("").replace(',', ";")
         );
@@ -61,7 +62,7 @@ pub fn to_csv(rows: &[StudyRow]) -> String {
 pub fn to_markdown(rows: &[StudyRow]) -> String {
     let names = names(rows);
     let mut out = format!(
-        "| setting | value | {} | {} | iterations/step | cost (s per simulated s) |\n|---|---|{}{}---|---|\n",
+        "| setting | value | {} | {} | iterations/step | start change | cost (s per simulated s) |\n|---|---|{}{}---|---|---|\n",
         names
             .iter()
             .map(|n| format!("epsilon {n}"))
@@ -99,12 +100,13 @@ pub fn to_markdown(rows: &[StudyRow]) -> String {
             })
             .collect();
         out += &format!(
-            "| {} | {} | {} | {} | {:.2} | {:.2e} |{}\n",
+            "| {} | {} | {} | {} | {:.2} | {} | {:.2e} |{}\n",
             setting_of(r),
             value_of(r),
             eps.join(" | "),
             orders.join(" | "),
             r.iterations_per_step,
+            start_change(r.start_change),
             r.cost_per_simulated_second,
             r.error
                 .as_ref()
@@ -113,4 +115,10 @@ pub fn to_markdown(rows: &[StudyRow]) -> String {
         );
     }
     out
+}
+
+/// The start check's change as a percentage, "-" where no section's statics
+/// were solved under a coupled load.
+pub fn start_change(change: Option<f64>) -> String {
+    change.map_or("-".into(), |c| format!("{:.2} %", 100.0 * c))
 }
