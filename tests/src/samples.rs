@@ -43,6 +43,16 @@ rayleigh_stiffness = 0.001
 stations = [5.0]
 "#;
 
+/// The nonlinear sample linearised about its start (`linear = true`; no
+/// stinger, which a linear section refuses).
+pub fn linear_sample() -> String {
+    let without_stinger: Vec<&str> = NONLINEAR_SAMPLE
+        .lines()
+        .filter(|l| !l.starts_with("stinger"))
+        .collect();
+    format!("{}\nlinear = true\n", without_stinger.join("\n"))
+}
+
 /// One sample per registry kind (an FMU sample needs a folder to export into).
 pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
     let exported = fmu::export("examples/b3_force_displacement.toml", "b", dir);
@@ -57,6 +67,7 @@ pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/pipe_span_coupling.toml", "upper"),
         ),
         ("nonlinear", inline("nonlinear", NONLINEAR_SAMPLE)),
+        ("nonlinear linear", inline("nonlinear", &linear_sample())),
         (
             "span",
             inline(

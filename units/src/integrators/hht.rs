@@ -208,6 +208,12 @@ impl HhtAlpha {
         &self.jacobian
     }
 
+    /// Forgets the linear Newton matrix: the system's M, C or K changed (a
+    /// unit initialised again), so the next step forms it anew.
+    pub fn forget_matrices(&mut self) {
+        self.linear_h = f64::NAN;
+    }
+
     /// Forms and factorises the linear Newton matrix when `h` changed.
     fn prepare_linear(&mut self, m: &Matrices<'_>, h: f64, held: &[(usize, [f64; 3])]) {
         if self.linear_h == h {

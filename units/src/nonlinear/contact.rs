@@ -332,6 +332,20 @@ impl NodalContacts {
     }
 
     /// Touchdown point, seabed contact length, penetration and energy at `q`.
+    /// Whether any point rests on a surface other than the seabed (a
+    /// stinger's rollers) at (q, t).
+    pub fn on_stinger(&self, model: &Model, (q, t): (&[f64], f64)) -> bool {
+        let mut touched = false;
+        for (c, contact) in self.list.iter().enumerate() {
+            if !(c == 0 && self.has_seabed) {
+                for_each_point(contact, model, &self.tributary, (q, t), |p| {
+                    touched |= p.gap <= 0.0;
+                });
+            }
+        }
+        touched
+    }
+
     pub fn summary(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> ContactSummary {
         let mut s = ContactSummary {
             touchdown: f64::NAN,

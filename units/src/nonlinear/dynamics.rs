@@ -15,20 +15,24 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 /// The buffers of one step, kept between steps.
 #[derive(Default)]
 pub(super) struct StepWork {
-    f0: Vec<f64>,
-    f1: Vec<f64>,
+    pub(super) f0: Vec<f64>,
+    pub(super) f1: Vec<f64>,
     g0: Vec<f64>,
     /// Displacements at the step's start.
     q0: Vec<f64>,
     /// The state at the step's start, restored before sub-stepping.
     backup: Option<super::SectionState>,
     held: Vec<(usize, [f64; 3])>,
+    /// A linear section's drag at the step's start, and its step's loads.
+    pub(super) drag: Vec<f64>,
+    pub(super) linear_f0: Vec<f64>,
+    pub(super) linear_f1: Vec<f64>,
 }
 
 impl NonlinearSection {
     /// The tangent stiffness (elements and environment, without velocity terms)
     /// at the current state.
-    fn tangent_stiffness(&self) -> SymmetricBand {
+    pub(super) fn tangent_stiffness(&self) -> SymmetricBand {
         let n = self.model.dofs();
         let mut k = SymmetricBand::zeros(n, super::model::BAND);
         let mut scratch = vec![0.0; n];
@@ -50,6 +54,7 @@ impl NonlinearSection {
     /// Mass in the element frames of the current state, Rayleigh damping on the
     /// tangent there, and (for central differences) the critical step.
     pub(super) fn prepare_dynamics(&mut self) -> Result<(), UnitError> {
+        self.hht.forget_matrices();
         let p = &self.params;
         self.m = self
             .model
@@ -98,7 +103,7 @@ impl NonlinearSection {
         }
         let mut load = vec![0.0; n];
         self.external_load(inputs, (t, 1.0), &mut load);
-        self.refresh_forces(None);
+        self.restoring_forces(None, None);
         let mut rhs: Vec<f64> = load
             .iter()
             .zip(&self.state.force)
@@ -267,6 +272,8 @@ impl NonlinearSection {
         w.f1.resize(n, 0.0);
         self.external_load(inputs, (t0, s0), &mut w.f0);
         self.external_load(inputs, (t1, s1), &mut w.f1);
+        self.linear_loads(w);
+        let linear = self.linear.is_some();
         w.held.clear();
         for r in self.ends.iter().filter(|r| r.is_kinematic()) {
             let d = r.dof;
@@ -293,9 +300,9 @@ impl NonlinearSection {
                     t0,
                     t1,
                     h,
-                    f0: &w.f0,
-                    f1: &w.f1,
-                    g0: (!self.energy_conserving()).then_some(w.g0.as_slice()),
+                    f0: if linear { &w.linear_f0 } else { &w.f0 },
+                    f1: if linear { &w.linear_f1 } else { &w.f1 },
+                    g0: (!self.energy_conserving() && !linear).then_some(w.g0.as_slice()),
                     held: &w.held,
                 };
                 let mut hht = std::mem::take(&mut self.hht);
@@ -323,7 +330,7 @@ impl NonlinearSection {
         };
         self.state.t = t1;
         let q0 = self.energy_conserving().then_some(w.q0.as_slice());
-        self.refresh_forces(q0);
+        self.restoring_forces(q0, Some(&w.drag));
         self.finish(&w.f1, true).map_err(Failure::Other)?;
         Ok(iterations)
     }
@@ -338,6 +345,17 @@ pub(super) enum Failure {
 impl NonlinearSection {
     fn energy_conserving(&self) -> bool {
         matches!(self.params.integrator, Integrator::EnergyConserving { .. })
+    }
+
+    /// The restoring force at the current state: the linear model's (with
+    /// the drag its step used) where the section is linear, else
+    /// [`Self::refresh_forces`].
+    fn restoring_forces(&mut self, step_start: Option<&[f64]>, step_drag: Option<&[f64]>) {
+        if self.linear.is_some() {
+            self.linear_forces(step_drag);
+        } else {
+            self.refresh_forces(step_start);
+        }
     }
 
     /// The elastic force at the current state as the integrator used it (the
@@ -425,7 +443,7 @@ impl SecondOrderSystem for NonlinearSection {
         Matrices {
             mass: &self.m,
             damping: self.c.as_ref(),
-            stiffness: None,
+            stiffness: self.linear.as_ref().map(|l| &l.stiffness),
         }
     }
 
@@ -440,7 +458,7 @@ impl SecondOrderSystem for NonlinearSection {
     }
 
     fn is_linear(&self) -> bool {
-        false
+        self.linear.is_some()
     }
 
     /// A correction moving a node by more than the shortest element or turning
@@ -448,6 +466,10 @@ impl SecondOrderSystem for NonlinearSection {
     /// tangent nearly singular, an undamped step can turn a node by whole turns,
     /// which the wrapped local rotations accept as an equilibrium.
     fn limit_correction(&self, dq: &mut [f64]) -> f64 {
+        if self.linear.is_some() {
+            // One exact solve: nothing to damp.
+            return 1.0;
+        }
         let factor = self.model.correction_limit(dq);
         if factor < 1.0 {
             dq.iter_mut().for_each(|d| *d *= factor);

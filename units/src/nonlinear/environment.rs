@@ -92,6 +92,13 @@ impl Environment {
         }
     }
 
+    /// Adds the drag force alone (as it enters the left-hand side) at (q, v).
+    pub fn add_drag_force(&self, model: &Model, q: &[f64], v: &[f64], out: &mut [f64]) {
+        if !self.drag.is_empty() {
+            self.add_drag(model, q, v, 1.0, None, out);
+        }
+    }
+
     /// Drag per element on the midpoint's relative velocity, half to each node;
     /// the damping tangent (velocity derivative) only.
     fn add_drag(

@@ -90,7 +90,8 @@ impl NonlinearSection {
             .damping
             .get_or_insert_with(|| SymmetricBand::zeros(n, super::model::BAND));
         b.fill_zero();
-        if self.environment.is_empty() {
+        // A linear section's drag is explicit: no tangent damping.
+        if self.environment.is_empty() || self.linear.is_some() {
             return;
         }
         w.force.clear();

@@ -18,6 +18,7 @@ pub mod params;
 
 mod dynamics;
 mod jacobian;
+mod linear;
 mod start_shape;
 mod statics;
 
@@ -89,12 +90,15 @@ pub struct NonlinearSection {
     explicit: CentralDifference,
     work: dynamics::StepWork,
     jacobian_work: jacobian::JacobianWork,
+    /// The linear model about the start (`linear = true`), after `initialize`.
+    linear: Option<linear::Linearised>,
 }
 
 impl NonlinearSection {
     /// Builds the unit; fails with the first bad parameter.
     pub fn new(params: NonlinearParams) -> Result<NonlinearSection, UnitError> {
         params.validate()?;
+        linear::validate(&params)?;
         let model = Model::new(&params);
         let n = model.dofs();
         let (ends, inputs) = ends::resolve(&params, model.reference.len());
@@ -155,6 +159,7 @@ impl NonlinearSection {
             explicit: CentralDifference::new(),
             work: dynamics::StepWork::default(),
             jacobian_work: jacobian::JacobianWork::default(),
+            linear: None,
             c: None,
             m,
             critical_step: f64::NAN,
@@ -433,6 +438,7 @@ impl Unit for NonlinearSection {
             self.solve_static(inputs)?;
         }
         self.prepare_dynamics()?;
+        self.linearise()?;
         self.initial_acceleration(inputs)
     }
 

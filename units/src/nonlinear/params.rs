@@ -319,6 +319,9 @@ pub struct NonlinearParams {
     /// Start from the static equilibrium under the loads at t = 0.
     #[serde(default)]
     pub static_start: bool,
+    /// Step the section linearised about its start state (see `linear`).
+    #[serde(default)]
+    pub linear: bool,
     #[serde(default)]
     pub start_shape: StartShape,
     /// The polyline (x, z in m) of `start_shape = "points"`.

@@ -182,7 +182,7 @@ fn neighbours_fit(cuts: &[Cut], k: usize, key: &str) -> Result<(), String> {
     for (n, neighbour) in [(k - 1, &cuts[k - 1]), (k + 1, &cuts[k + 1])] {
         let fits = neighbour.physical.is_none()
             && neighbour.fmu.is_none()
-            && (neighbour.fidelity == Fidelity::Nonlinear
+            && (neighbour.fidelity.is_section_unit()
                 || (n == 0 && neighbour.fidelity == Fidelity::Static));
         if !fits {
             return Err(format!(

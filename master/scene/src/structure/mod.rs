@@ -25,6 +25,7 @@ mod hang_off;
 mod load;
 mod nonlinear;
 mod reduced;
+mod refusals;
 mod sections;
 mod statics;
 
@@ -124,7 +125,7 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
     }
     for cut in cuts
         .iter()
-        .filter(|c| c.fmu.is_some() && c.fidelity == Fidelity::Nonlinear)
+        .filter(|c| c.fmu.is_some() && c.fidelity.is_section_unit())
     {
         fmu_input_names(&built.side(cut).unit, &mut units, &mut connections);
     }
@@ -296,35 +297,11 @@ impl Built {
         Ok((built, cuts, length))
     }
 
-    /// Refuses a model without seabed contact (`Fidelity::lacks_seabed`) on
-    /// a section that lies on a flat seabed in the equilibrium, rather than
-    /// letting it fail at the start.
-    fn refuse_without_seabed(&self, cut: &Cut) -> Result<(), String> {
-        let height = (self.model.get("contact"))
-            .and_then(|c| c.get("surface")?.get("shape"))
-            .filter(|shape| shape.get("kind").and_then(Value::as_str) == Some("flat"))
-            .and_then(|shape| shape.get("height")?.as_float());
-        let (Some(equilibrium), Some(height)) = (&self.statics, height) else {
-            return Ok(());
-        };
-        if !cut.fidelity.lacks_seabed() {
-            return Ok(());
-        }
-        match equilibrium.on_seabed((cut.from, cut.to), height) {
-            Some((first, last)) => Err(format!(
-                "`structure.sections.{}.fidelity` = \"{}\": the section lies on the seabed from {first:.2} to {last:.2} m of arc in the static equilibrium, and a {} model has no seabed contact; choose \"nonlinear\" (or \"static\" for a first, laid section), or cut it above the touchdown point",
-                cut.name,
-                cut.fidelity.name(),
-                cut.fidelity.name()
-            )),
-            None => Ok(()),
-        }
-    }
-
     /// Section `k`'s unit.
     fn section(&self, cuts: &[Cut], k: usize, force_on_upper: &[bool]) -> Result<Table, String> {
         let cut = &cuts[k];
         self.refuse_without_seabed(cut)?;
+        self.refuse_linear_on_stinger(cut)?;
         // Per end at a cut: whether this section is the moving (velocity) side,
         // and whether the cut is pinned (a side without bending).
         let start = (k > 0).then(|| End {
@@ -338,19 +315,7 @@ impl Built {
             by_displacement: cuts[k + 1].fidelity.is_chord(),
         });
         let mut unit = match cut.fidelity {
-            Fidelity::Nonlinear => {
-                let mut unit =
-                    section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
-                if let Some(equilibrium) = &self.statics {
-                    equilibrium.start_section(&mut unit, (cut.from, cut.to))?;
-                    let loaded = (
-                        start.is_some_and(|e| !e.moving),
-                        end.is_some_and(|e| !e.moving),
-                    );
-                    equilibrium.first_guess_loads(&mut unit, (cut.from, cut.to), loaded);
-                }
-                unit
-            }
+            Fidelity::Nonlinear | Fidelity::Linear => self.section_unit(cut, (start, end))?,
             Fidelity::Static => self.static_unit(cuts, k, (start, end))?,
             Fidelity::Beam | Fidelity::Span => chord::chord_unit(
                 &self.name,
@@ -438,7 +403,7 @@ impl Built {
         let above = cuts.get(1).filter(|c| {
             c.physical.is_none()
                 && c.fmu.is_none()
-                && (c.fidelity == Fidelity::Nonlinear || c.fidelity.is_chord())
+                && (c.fidelity.is_section_unit() || c.fidelity.is_chord())
         });
         let (Some(above), Some(equilibrium)) = (above, &self.statics) else {
             return Err(format!(
@@ -501,7 +466,11 @@ impl Built {
             }
         };
         let mut unit = match fidelity {
-            Fidelity::Static | Fidelity::Reduced | Fidelity::Beam | Fidelity::Span => {
+            Fidelity::Linear
+            | Fidelity::Static
+            | Fidelity::Reduced
+            | Fidelity::Beam
+            | Fidelity::Span => {
                 return Err(format!(
                     "`structure.reference` = \"{}\": the reference is the whole structure at full fidelity; expected true, \"nonlinear\" or \"cable\"",
                     fidelity.name()

@@ -1,8 +1,9 @@
-//! The `nonlinear` fidelity of a section: the model's own unit over the
-//! section's arc-length range, coupled at its cuts.
+//! The `nonlinear` and `linear` fidelities of a section: the model's own
+//! unit over the section's arc-length range, coupled at its cuts (`linear`:
+//! stepped linearised about its start, `linear = true`).
 
 use super::cuts::{End, coupled_displacement, coupled_load, coupled_motion};
-use super::sections::{Cut, Segment};
+use super::sections::{Cut, Fidelity, Segment};
 use toml::{Table, Value};
 
 /// The `nonlinear` unit of one section: the model's segments clipped to its range,
@@ -207,5 +208,31 @@ fn distribute(segments: &mut [Table], weights: &[f64], n: usize) {
     }
     for (t, e) in segments.iter_mut().zip(counts) {
         t.insert("elements".into(), Value::Integer(e as i64));
+    }
+}
+
+impl super::Built {
+    /// A `nonlinear` or `linear` section's unit, started from the
+    /// equilibrium where there is one.
+    pub(super) fn section_unit(
+        &self,
+        cut: &Cut,
+        (start, end): (Option<End>, Option<End>),
+    ) -> Result<Table, String> {
+        let mut unit = section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
+        if cut.fidelity == Fidelity::Linear {
+            if let Some(Value::Table(parameters)) = unit.get_mut("parameters") {
+                parameters.insert("linear".into(), Value::Boolean(true));
+            }
+        }
+        if let Some(equilibrium) = &self.statics {
+            equilibrium.start_section(&mut unit, (cut.from, cut.to))?;
+            let loaded = (
+                start.is_some_and(|e| !e.moving),
+                end.is_some_and(|e| !e.moving),
+            );
+            equilibrium.first_guess_loads(&mut unit, (cut.from, cut.to), loaded);
+        }
+        Ok(unit)
     }
 }

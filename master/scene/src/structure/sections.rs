@@ -76,13 +76,17 @@ pub(crate) struct Cut {
 }
 
 /// The fidelities a section can take, as written in scenes.
-pub const FIDELITIES: [&str; 6] = Fidelity::NAMES;
+pub const FIDELITIES: [&str; 7] = Fidelity::NAMES;
 
 /// Which model a section is.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum Fidelity {
     /// The geometrically nonlinear section (`nonlinear` unit).
     Nonlinear,
+    /// The same section linearised about its start (`nonlinear` unit with
+    /// `linear = true`): the seabed as springs where it lies, one
+    /// back-substitution a step.
+    Linear,
     /// Seed 000's cable, linear about its static state, no bending (`cable` unit).
     Cable,
     /// The section's linearised static response at its end (`static_section`
@@ -100,12 +104,20 @@ pub(crate) enum Fidelity {
 
 impl Fidelity {
     /// The fidelities' names as written in scenes.
-    pub const NAMES: [&'static str; 6] =
-        ["nonlinear", "cable", "static", "reduced", "beam", "span"];
+    pub const NAMES: [&'static str; 7] = [
+        "nonlinear",
+        "linear",
+        "cable",
+        "static",
+        "reduced",
+        "beam",
+        "span",
+    ];
 
     pub fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
         match word {
             "nonlinear" => Ok(Fidelity::Nonlinear),
+            "linear" => Ok(Fidelity::Linear),
             "cable" => Ok(Fidelity::Cable),
             "static" => Ok(Fidelity::Static),
             "reduced" => Ok(Fidelity::Reduced),
@@ -122,12 +134,19 @@ impl Fidelity {
     pub fn name(self) -> &'static str {
         match self {
             Fidelity::Nonlinear => "nonlinear",
+            Fidelity::Linear => "linear",
             Fidelity::Cable => "cable",
             Fidelity::Static => "static",
             Fidelity::Reduced => "reduced",
             Fidelity::Beam => "beam",
             Fidelity::Span => "span",
         }
+    }
+
+    /// Whether the section is a `nonlinear` unit (stepped whole or linear):
+    /// the same ports, stations and outputs.
+    pub fn is_section_unit(self) -> bool {
+        matches!(self, Fidelity::Nonlinear | Fidelity::Linear)
     }
 
     /// Whether the model carries bending (rotation and moment at its cuts).

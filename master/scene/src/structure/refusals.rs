@@ -1,0 +1,71 @@
+//! What a section's fidelity cannot model, refused when the scene is
+//! written out (`slender check`) with the reason, rather than at the start
+//! of a run: a model without seabed contact on a section lying on the
+//! seabed; a `linear` section over a stinger's rollers.
+
+use super::Built;
+use super::sections::{Cut, Fidelity};
+use toml::Value;
+
+impl Built {
+    /// Refuses a model without seabed contact (`Fidelity::lacks_seabed`) on
+    /// a section that lies on a flat seabed in the equilibrium, rather than
+    /// letting it fail at the start.
+    pub(super) fn refuse_without_seabed(&self, cut: &Cut) -> Result<(), String> {
+        let height = (self.model.get("contact"))
+            .and_then(|c| c.get("surface")?.get("shape"))
+            .filter(|shape| shape.get("kind").and_then(Value::as_str) == Some("flat"))
+            .and_then(|shape| shape.get("height")?.as_float());
+        let (Some(equilibrium), Some(height)) = (&self.statics, height) else {
+            return Ok(());
+        };
+        if !cut.fidelity.lacks_seabed() {
+            return Ok(());
+        }
+        match equilibrium.on_seabed((cut.from, cut.to), height) {
+            Some((first, last)) => Err(format!(
+                "`structure.sections.{}.fidelity` = \"{}\": the section lies on the seabed from {first:.2} to {last:.2} m of arc in the static equilibrium, and a {} model has no seabed contact; choose \"nonlinear\" (or \"static\" for a first, laid section), or cut it above the touchdown point",
+                cut.name,
+                cut.fidelity.name(),
+                cut.fidelity.name()
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// Refuses a `linear` section whose equilibrium passes over a stinger's
+    /// rollers (by x): the rollers move and the pipe lifts off them, which a
+    /// linear model cannot follow (the unit refuses it again at its start,
+    /// from its own contact state).
+    pub(super) fn refuse_linear_on_stinger(&self, cut: &Cut) -> Result<(), String> {
+        let rollers = (self.model.get("stinger"))
+            .and_then(|c| c.get("surface")?.get("shape")?.get("positions"))
+            .and_then(Value::as_array);
+        let (Some(rollers), Some(equilibrium)) = (rollers, &self.statics) else {
+            return Ok(());
+        };
+        if cut.fidelity != Fidelity::Linear {
+            return Ok(());
+        }
+        let samples = 200;
+        let xs = (0..=samples).map(|i| {
+            let s = cut.from + (cut.to - cut.from) * f64::from(i) / f64::from(samples);
+            equilibrium.position_at(s)[0]
+        });
+        let (low, high) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+            (l.min(x), h.max(x))
+        });
+        let number = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+        match rollers
+            .iter()
+            .filter_map(number)
+            .find(|x| (low..=high).contains(x))
+        {
+            Some(x) => Err(format!(
+                "`structure.sections.{}.fidelity` = \"linear\": the section passes over the stinger's roller at x = {x} m in the static equilibrium, and a linear section cannot follow rollers that move and that the pipe lifts off; choose \"nonlinear\" there",
+                cut.name
+            )),
+            None => Ok(()),
+        }
+    }
+}
