@@ -92,17 +92,16 @@ pub(crate) fn reached_by_torn(
     connections: &[Connection],
     torn: &[usize],
 ) -> Vec<bool> {
+    let mut downstream = vec![Vec::new(); n_units];
+    for c in connections {
+        downstream[c.from.unit].push(c.to.unit);
+    }
     let mut reached = vec![false; n_units];
     let mut stack: Vec<usize> = torn.iter().map(|&c| connections[c].to.unit).collect();
     while let Some(u) = stack.pop() {
         if !reached[u] {
             reached[u] = true;
-            stack.extend(
-                connections
-                    .iter()
-                    .filter(|c| c.from.unit == u)
-                    .map(|c| c.to.unit),
-            );
+            stack.extend(&downstream[u]);
         }
     }
     reached
