@@ -4,10 +4,22 @@
 //! spinning for the last 0.2 ms) and never waits to catch up when it is behind:
 //! the schedule stays absolute, like a rig's. It reports the computing time per
 //! step (histogram in tenths of the step, median, 99th and 99.9th percentiles,
-//! worst) and every overrun, so a user knows whether the scene can drive a rig.
+//! worst) and its overruns, so a user knows whether the scene can drive a rig.
+//! Its memory is bounded whatever the run's length: quantiles come from a
+//! log-spaced histogram, the overrun log keeps the first `KEPT_OVERRUNS` and
+//! counts the rest, and more than `[simulation] max_overruns` overruns stop
+//! the run.
 
 use serde::Serialize;
 use std::time::{Duration, Instant};
+
+/// Overruns listed one by one; later ones are only counted.
+pub const KEPT_OVERRUNS: usize = 1000;
+
+/// Bins of the computing-time histogram per decade, from 1 ns to 1000 s:
+/// quantiles to within 1.2 % (one bin).
+const BINS_PER_DECADE: f64 = 200.0;
+const DECADES: f64 = 12.0;
 
 /// A step that finished after its deadline.
 #[derive(Clone, Debug, Serialize)]
@@ -36,6 +48,9 @@ pub struct RealtimeReport {
     /// Steps per tenth of the synchronisation step: bin k counts computing
     /// times in [k, k + 1) tenths; the last bin everything from one step on.
     pub histogram: Vec<usize>,
+    /// Steps that finished after their deadline.
+    pub overrun_count: usize,
+    /// The first `KEPT_OVERRUNS` of them.
     pub overruns: Vec<Overrun>,
 }
 
@@ -43,8 +58,14 @@ pub struct RealtimeReport {
 pub struct Pacer {
     start: Instant,
     step: Duration,
-    compute: Vec<f64>,
+    /// Computing times per log-spaced bin (see `BINS_PER_DECADE`).
+    fine: Vec<usize>,
+    histogram: Vec<usize>,
+    steps: usize,
+    worst: (usize, f64),
     overruns: Vec<Overrun>,
+    overrun_count: usize,
+    max_overruns: u64,
     began: Instant,
 }
 
@@ -52,15 +73,34 @@ pub struct Pacer {
 const SPIN: Duration = Duration::from_micros(200);
 
 impl Pacer {
-    /// A schedule of `steps` steps of `step_s` seconds from now.
-    pub fn new(step_s: f64, steps: usize) -> Pacer {
+    /// A schedule of steps of `step_s` seconds from now, stopped after more
+    /// than `max_overruns` overruns.
+    pub fn new(step_s: f64, max_overruns: u64) -> Pacer {
         let now = Instant::now();
         Pacer {
             start: now,
             step: Duration::from_secs_f64(step_s),
-            compute: Vec::with_capacity(steps),
+            fine: vec![0; (BINS_PER_DECADE * DECADES) as usize + 1],
+            histogram: vec![0; 11],
+            steps: 0,
+            worst: (0, 0.0),
             overruns: Vec::new(),
+            overrun_count: 0,
+            max_overruns,
             began: now,
+        }
+    }
+
+    /// Counts a step's computing time `c` (s).
+    fn record(&mut self, index: usize, c: f64) {
+        self.steps += 1;
+        let step = self.step.as_secs_f64();
+        self.histogram[((c / step * 10.0) as usize).min(10)] += 1;
+        let bin = ((c.max(1e-9).log10() + 9.0) * BINS_PER_DECADE).ceil();
+        let last = self.fine.len() - 1;
+        self.fine[(bin.max(0.0) as usize).min(last)] += 1;
+        if c > self.worst.1 {
+            self.worst = (index, c);
         }
     }
 
@@ -70,23 +110,39 @@ impl Pacer {
     }
 
     /// Marks the end of step `index` (simulated time `time_s` at its end), then
-    /// waits for its deadline if it is early.
-    pub fn end(&mut self, index: usize, time_s: f64) {
+    /// waits for its deadline if it is early. An error once more than
+    /// `max_overruns` steps overran: the run cannot keep pace.
+    pub fn end(&mut self, index: usize, time_s: f64) -> Result<(), String> {
         let done = Instant::now();
         let compute = done.duration_since(self.began).as_secs_f64();
-        self.compute.push(compute);
+        self.record(index, compute);
         let deadline = self.start
             + self
                 .step
                 .saturating_mul(u32::try_from(index + 1).unwrap_or(u32::MAX));
         if done > deadline {
-            self.overruns.push(Overrun {
-                step: index,
-                time_s,
-                compute_s: compute,
-                late_s: done.duration_since(deadline).as_secs_f64(),
-            });
-            return;
+            self.overrun_count += 1;
+            if self.overruns.len() < KEPT_OVERRUNS {
+                self.overruns.push(Overrun {
+                    step: index,
+                    time_s,
+                    compute_s: compute,
+                    late_s: done.duration_since(deadline).as_secs_f64(),
+                });
+            }
+            if self.overrun_count as u64 > self.max_overruns {
+                let first = &self.overruns[0];
+                return Err(format!(
+                    "the paced run cannot keep pace: {} of {} steps finished after their deadline (the first at t = {} s, {:.3e} s late; the step is {} s), more than simulation.max_overruns = {}; raise it to go on regardless",
+                    self.overrun_count,
+                    self.steps,
+                    first.time_s,
+                    first.late_s,
+                    self.step.as_secs_f64(),
+                    self.max_overruns
+                ));
+            }
+            return Ok(());
         }
         let left = deadline - done;
         if left > SPIN {
@@ -95,41 +151,35 @@ impl Pacer {
         while Instant::now() < deadline {
             std::hint::spin_loop();
         }
+        Ok(())
     }
 
     /// The figures so far.
     pub fn report(&self) -> RealtimeReport {
-        let mut sorted = self.compute.clone();
-        sorted.sort_by(f64::total_cmp);
+        // The quantile's bin's upper edge: within one bin of the exact value.
         let quantile = |p: f64| {
-            sorted
-                .get(((p * sorted.len() as f64).ceil() as usize).saturating_sub(1))
-                .copied()
-                .unwrap_or(0.0)
+            let rank = (p * self.steps as f64).ceil().max(1.0) as usize;
+            let mut seen = 0;
+            for (bin, &count) in self.fine.iter().enumerate() {
+                seen += count;
+                if seen >= rank {
+                    let edge = 10f64.powf(bin as f64 / BINS_PER_DECADE - 9.0);
+                    return edge.min(self.worst.1);
+                }
+            }
+            self.worst.1
         };
-        let step = self.step.as_secs_f64();
-        let mut histogram = vec![0usize; 11];
-        for &c in &self.compute {
-            histogram[((c / step * 10.0) as usize).min(10)] += 1;
-        }
-        let (worst_step, worst) =
-            self.compute
-                .iter()
-                .copied()
-                .enumerate()
-                .fold(
-                    (0, 0.0),
-                    |(k, w), (i, c)| if c > w { (i, c) } else { (k, w) },
-                );
+        let empty = self.steps == 0;
         RealtimeReport {
-            step_s: step,
-            steps: self.compute.len(),
-            median_s: quantile(0.5),
-            p99_s: quantile(0.99),
-            p999_s: quantile(0.999),
-            worst_s: worst,
-            worst_step,
-            histogram,
+            step_s: self.step.as_secs_f64(),
+            steps: self.steps,
+            median_s: if empty { 0.0 } else { quantile(0.5) },
+            p99_s: if empty { 0.0 } else { quantile(0.99) },
+            p999_s: if empty { 0.0 } else { quantile(0.999) },
+            worst_s: self.worst.1,
+            worst_step: self.worst.0,
+            histogram: self.histogram.clone(),
+            overrun_count: self.overrun_count,
             overruns: self.overruns.clone(),
         }
     }

@@ -187,6 +187,9 @@ pub enum RunError {
     /// Ctrl-C (`interrupt`): the run stopped at a step boundary.
     #[error("interrupted (Ctrl-C) at t = {0} s")]
     Interrupted(f64),
+    /// A paced run overran its deadlines more than `max_overruns` times.
+    #[error("{0}")]
+    Pace(String),
 }
 
 impl RunError {
@@ -205,7 +208,8 @@ impl From<MasterError> for RunError {
     }
 }
 
-/// Every overrun of a paced run as `overruns.csv` in `dir`.
+/// The overruns a paced run kept (the first `KEPT_OVERRUNS`) as
+/// `overruns.csv` in `dir`.
 fn write_overruns(dir: &Path, report: &RealtimeReport) -> Result<PathBuf, RunError> {
     let path = dir.join("overruns.csv");
     let mut text = String::from("step,time_s,compute_s,late_s\n");
@@ -225,10 +229,11 @@ fn simulate(
     options: &RunOptions,
 ) -> (Result<(), RunError>, Option<RealtimeReport>) {
     let mut pacer = options.realtime.then(|| {
-        Pacer::new(
-            scene.step.as_secs(),
-            usize::try_from(scene.steps).unwrap_or(0),
-        )
+        let sim = &scene.spec.simulation;
+        let max_overruns = sim
+            .max_overruns
+            .unwrap_or(slender_scene::spec::DEFAULT_MAX_OVERRUNS);
+        Pacer::new(scene.step.as_secs(), max_overruns)
     });
     let outcome = step_all(
         scene,
@@ -261,10 +266,9 @@ fn step_all(
         master.step()?;
         recorder.observe(master)?;
         if let Some(p) = pacer.as_deref_mut() {
-            p.end(
-                usize::try_from(i).unwrap_or(usize::MAX),
-                (master.time() - scene.start).as_secs(),
-            );
+            let index = usize::try_from(i).unwrap_or(usize::MAX);
+            p.end(index, (master.time() - scene.start).as_secs())
+                .map_err(RunError::Pace)?;
         }
         if progress && i % 64 == 0 {
             update_progress(&mut bar, started.elapsed(), i as u64, scene.steps as u64);

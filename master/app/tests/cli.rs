@@ -453,12 +453,13 @@ fn realtime_runs_keep_the_clock_and_report_every_overrun() {
     assert!(r["p999_s"].as_f64() <= r["worst_s"].as_f64());
     assert!(text(&run.stdout).contains("real time    step 10.000 ms"));
     // Seed 002's frame at 10 us steps: an implicit step of 118 DOFs takes far
-    // longer than 10 us, so (nearly) every step overruns, each one listed.
+    // longer than 10 us, so (nearly) every step overruns, each one listed
+    // (up to 1000) when the scene allows them.
     let scene = variant(
         "examples/seed002_frame.toml",
         &[
             ("duration = 10.0", "duration = 0.002"),
-            ("step = 0.001", "step = 0.00001"),
+            ("step = 0.001", "step = 0.00001\nmax_overruns = 100000"),
         ],
     );
     let out = dir.join("frame");
@@ -479,6 +480,11 @@ fn realtime_runs_keep_the_clock_and_report_every_overrun() {
     let csv = std::fs::read_to_string(out.join("overruns.csv")).unwrap();
     assert_eq!(csv.lines().count(), overruns + 1);
     assert!(text(&run.stdout).contains("overruns in 200 steps"));
+    assert_eq!(
+        summary(&out)["realtime"]["overrun_count"].as_u64(),
+        Some(overruns as u64)
+    );
+    bounded_overruns(&dir, &variant);
     // Without --realtime the summary has no such entry (and outputs are as before).
     let plain = dir.join("plain");
     let run = slender(&[
@@ -532,4 +538,52 @@ fn run_takes_a_duration_and_fmu_export_takes_out() {
     let help = text(&slender(&["fmu", "export", "--help"]).stdout);
     assert!(help.contains("--out"), "{help}");
     std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// A scene file made from an example with its text replaced.
+type Variant<'a> = dyn Fn(&str, &[(&str, &str)]) -> PathBuf + 'a;
+
+/// Issue 27: a paced run that cannot keep pace stops after
+/// `simulation.max_overruns` overruns (100 by default), and its overrun log
+/// keeps the first 1000 and counts the rest.
+fn bounded_overruns(dir: &Path, variant: &Variant<'_>) {
+    let frame = |duration: &str, step: &str| {
+        variant(
+            "examples/seed002_frame.toml",
+            &[("duration = 10.0", duration), ("step = 0.001", step)],
+        )
+    };
+    let run_paced = |scene: &PathBuf, name: &str| {
+        let out = dir.join(name);
+        let run = slender(&[
+            "run",
+            scene.to_str().unwrap(),
+            "--realtime",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        (run, out)
+    };
+    let (run, out) = run_paced(&frame("duration = 0.01", "step = 0.00001"), "stopped");
+    assert_eq!(run.status.code(), Some(1), "{}", text(&run.stdout));
+    let s = summary(&out);
+    assert_eq!(s["status"].as_str(), Some("failed"));
+    let error = s["error"].as_str().unwrap();
+    assert!(
+        error.contains("cannot keep pace") && error.contains("simulation.max_overruns = 100"),
+        "{error}"
+    );
+    assert_eq!(s["realtime"]["overrun_count"].as_u64(), Some(101));
+    let (run, out) = run_paced(
+        &frame("duration = 0.015", "step = 0.00001\nmax_overruns = 100000"),
+        "bounded",
+    );
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let r = &summary(&out)["realtime"];
+    let count = r["overrun_count"].as_u64().unwrap();
+    assert!(count > 1000, "{count} of 1500 steps overran");
+    assert_eq!(r["overruns"].as_array().unwrap().len(), 1000);
+    let csv = std::fs::read_to_string(out.join("overruns.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1001);
 }

@@ -95,7 +95,14 @@ pub struct SimulationSpec {
     /// bound stated and checked before anything runs; give it to go past.
     #[serde(default)]
     pub max_steps: Option<u64>,
+    /// A paced run (`slender run --realtime`) stops when more steps than this
+    /// overran their deadline (default 100, `DEFAULT_MAX_OVERRUNS`).
+    #[serde(default)]
+    pub max_overruns: Option<u64>,
 }
+
+/// The default bound on a paced run's overruns.
+pub const DEFAULT_MAX_OVERRUNS: u64 = 100;
 
 /// The default bound on a run's steps: 1e8 (a day of a 1 ms step).
 pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;

@@ -66,9 +66,10 @@ fn print_realtime(r: &slender_app::realtime::RealtimeReport) {
             r.steps
         ),
         Some(first) => println!(
-            "             {} overruns in {} steps (overruns.csv), the first at t = {} s, {:.3} ms late",
-            r.overruns.len(),
+            "             {} overruns in {} steps (overruns.csv lists the first {}), the first at t = {} s, {:.3} ms late",
+            r.overrun_count,
             r.steps,
+            r.overruns.len(),
             first.time_s,
             ms(first.late_s)
         ),
