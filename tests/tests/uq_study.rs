@@ -24,6 +24,7 @@ fn scene(dir: &std::path::Path, samples: usize, change: Option<(&str, &str)>) ->
 
 fn plan(samples: Option<usize>, jobs: usize) -> UqPlan {
     UqPlan {
+        max_runs: slender_app::DEFAULT_MAX_RUNS,
         samples,
         jobs,
         duration: Some(5.0),
@@ -78,6 +79,7 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     let mut merged: Vec<Run> = vec![(Vec::new(), Vec::new()); 32];
     for k in 1..=3 {
         let shard = UqPlan {
+            max_runs: slender_app::DEFAULT_MAX_RUNS,
             shard: Some((k, 3)),
             ..plan(Some(32), 1)
         };

@@ -186,6 +186,10 @@ pub enum Command {
         /// Runs at once (default: the machine's cores); results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
+        /// The most runs to start (default 10 000): a larger study is
+        /// refused before any run, naming its size.
+        #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
+        max_runs: usize,
         /// Simulated time of each run (s); default: the scene's duration.
         #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,
@@ -234,6 +238,10 @@ pub enum Command {
         /// Runs at once (default: the machine's cores); results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
+        /// The most runs to start (default 10 000): a larger study is
+        /// refused before any run, naming its size.
+        #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
+        max_runs: usize,
         /// Simulated time of each run (s); default: the scene's duration.
         #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,
@@ -254,6 +262,10 @@ pub enum Command {
         /// Runs at once (default: the machine's cores); results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
+        /// The most runs to start (default 10 000): a larger study is
+        /// refused before any run, naming its size.
+        #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
+        max_runs: usize,
         /// Simulated time of each run (s); default: the scene's duration.
         #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,

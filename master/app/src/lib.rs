@@ -19,3 +19,14 @@ pub mod run;
 pub mod span_study;
 pub mod study;
 pub mod uq;
+
+/// The most runs a study (`study`, `fidelity`, `uq`) starts unless its
+/// `--max-runs` says otherwise: a bound stated and checked before any run.
+pub const DEFAULT_MAX_RUNS: usize = 10_000;
+
+/// The refusal of a study larger than its bound.
+pub fn too_many_runs(what: &str, runs: usize, bound: usize) -> String {
+    format!(
+        "{what}: {runs} runs, more than the bound of {bound}; give --max-runs {runs} to go past it"
+    )
+}

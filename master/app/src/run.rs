@@ -62,14 +62,9 @@ pub struct RunResult {
 pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunError> {
     let mut master = scene.build()?;
     let mut files = Vec::new();
-    let csv_path = match &options.output_dir {
-        Some(dir) => {
-            std::fs::create_dir_all(dir).map_err(|e| RunError::file(dir, &e))?;
-            Some(dir.join("timeseries.csv"))
-        }
-        None => None,
-    };
+    let csv_path = csv_in(options.output_dir.as_deref())?;
     let signals = scene.signals(&master);
+    check_output_size(scene, signals.len())?;
     let mut recorder = Recorder::new(
         &master,
         signals,
@@ -190,6 +185,9 @@ pub enum RunError {
     /// A paced run overran its deadlines more than `max_overruns` times.
     #[error("{0}")]
     Pace(String),
+    /// A bound on work stated in the scene would be exceeded.
+    #[error("{0}")]
+    Bound(String),
 }
 
 impl RunError {
@@ -200,6 +198,35 @@ impl RunError {
             reason: reason.to_string(),
         }
     }
+}
+
+/// `timeseries.csv` in the results folder (made if need be), if there is one.
+fn csv_in(dir: Option<&Path>) -> Result<Option<PathBuf>, RunError> {
+    let Some(dir) = dir else {
+        return Ok(None);
+    };
+    std::fs::create_dir_all(dir).map_err(|e| RunError::file(dir, &e))?;
+    Ok(Some(dir.join("timeseries.csv")))
+}
+
+/// Refuses a run whose time series would exceed `output.max_bytes`: its
+/// rows (every `output.every`-th step and the start) times its columns, 24 B
+/// a number as written.
+fn check_output_size(scene: &Scene, signals: usize) -> Result<(), RunError> {
+    let out = &scene.spec.output;
+    let rows = (scene.steps as u64) / u64::from(out.every.max(1)) + 1;
+    let bytes = rows.saturating_mul(signals as u64 + 1).saturating_mul(24);
+    let bound = out
+        .max_bytes
+        .unwrap_or(slender_scene::spec::DEFAULT_MAX_OUTPUT_BYTES);
+    if bytes > bound {
+        return Err(RunError::Bound(format!(
+            "the time series would take about {:.3e} B ({rows} rows of {} columns), more than output.max_bytes = {bound}; record fewer signals, every n-th step (`output.every`), or give `output.max_bytes` to go past it",
+            bytes as f64,
+            signals + 1
+        )));
+    }
+    Ok(())
 }
 
 impl From<MasterError> for RunError {

@@ -191,6 +191,26 @@ fn a_run_of_more_steps_than_the_bound_is_refused_unless_the_scene_lifts_it() {
     std::fs::write(&scene, lifted).unwrap();
     let out = slender(&["check", scene.to_str().unwrap()]);
     assert!(out.status.success(), "{}", text(&out.stderr));
+    // The recorded time series too: 101 rows of 5 columns is about 12 kB,
+    // more than a stated 10 kB; `output.max_bytes` lifts it.
+    let results = dir.join("out");
+    let small = |bytes: u64| {
+        let text = base
+            .replace("duration = 1.0e9", "duration = 1.0")
+            .replace("[output]", &format!("[output]\nmax_bytes = {bytes}"));
+        std::fs::write(&scene, text).unwrap();
+        let args = ["run", scene.to_str().unwrap(), "--quiet", "--out"];
+        slender(&[&args[..], &[results.to_str().unwrap()]].concat())
+    };
+    let out = small(10_000);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stdout));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("101 rows of 5 columns") && err.contains("output.max_bytes = 10000"),
+        "{err}"
+    );
+    assert!(!results.join("timeseries.csv").exists());
+    assert!(small(20_000).status.success());
     std::fs::remove_dir_all(dir).unwrap();
 }
 
@@ -240,4 +260,71 @@ fn check_refuses_a_bad_uncertainty_table_and_an_empty_figure() {
         );
     }
     std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn a_study_larger_than_its_bound_is_refused_before_any_run() {
+    // Issue 27: `uq --samples 4294967296` aborted on a failed 805 MB
+    // allocation; a grid is counted, not built, before it is refused.
+    let dir = tempfile::tempdir().unwrap();
+    let out = |name: &str| dir.path().join(name).to_str().unwrap().to_owned();
+    let cases: [Vec<String>; 3] = [
+        [
+            "uq",
+            "examples/truncation_uq.toml",
+            "--samples",
+            "4294967296",
+        ]
+        .map(String::from)
+        .to_vec(),
+        [
+            "fidelity",
+            "examples/structure_mooring.toml",
+            "--grid",
+            "--section",
+            "lower=nonlinear:4,nonlinear:8,nonlinear:16,cable,static",
+            "--section",
+            "upper=nonlinear:4,nonlinear:8,nonlinear:16,nonlinear",
+            "--max-runs",
+            "20",
+        ]
+        .map(String::from)
+        .to_vec(),
+        [
+            "study",
+            "examples/truncation_study.toml",
+            "--vary",
+            "simulation.step=0.1,0.05,0.025",
+            "--max-runs",
+            "2",
+        ]
+        .map(String::from)
+        .to_vec(),
+    ];
+    for (k, (args, expected)) in cases
+        .iter()
+        .zip([
+            "4294967296 runs, more than the bound of 10000",
+            "21 runs, more than the bound of 20",
+            "3 runs, more than the bound of 2",
+        ])
+        .enumerate()
+    {
+        let folder = out(&format!("study{k}"));
+        let mut args: Vec<&str> = args.iter().map(String::as_str).collect();
+        args.extend(["--out", &folder]);
+        let run = slender(&args);
+        assert_eq!(
+            run.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            text(&run.stderr)
+        );
+        let err = text(&run.stderr);
+        assert!(
+            err.contains(expected) && err.contains("--max-runs"),
+            "{args:?}: {err}"
+        );
+        assert!(!Path::new(&folder).join("runs.csv").exists());
+    }
 }

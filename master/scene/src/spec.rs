@@ -177,7 +177,16 @@ pub struct OutputSpec {
     /// Accuracy indicators computed at the end of the run.
     #[serde(default)]
     pub indicators: Vec<IndicatorSpec>,
+    /// The largest time series a run may record, estimated before it starts
+    /// (B; default `DEFAULT_MAX_OUTPUT_BYTES`): a run of more is refused,
+    /// naming its size; give it to go past.
+    #[serde(default)]
+    pub max_bytes: Option<u64>,
 }
+
+/// The default bound on a run's recorded time series: 2 GB of CSV (about
+/// 0.7 GB held in memory for the figures and indicators).
+pub const DEFAULT_MAX_OUTPUT_BYTES: u64 = 2_000_000_000;
 
 /// `[[output.indicators]]`: phi and epsilon (seed 000 eqs. 7-8, 10-11) of recorded
 /// signals against recorded reference signals, component by component. Without
@@ -221,6 +230,7 @@ impl Default for OutputSpec {
             every: every_step(),
             plots: Vec::new(),
             indicators: Vec::new(),
+            max_bytes: None,
         }
     }
 }

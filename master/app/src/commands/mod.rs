@@ -62,12 +62,14 @@ fn studies(command: Command) -> Result<(), CliError> {
             sweeps,
             grid,
             jobs,
+            max_runs,
             duration,
             reference,
             cost_units,
             out,
         } => {
             let plan = slender_app::study::StudyPlan {
+                max_runs,
                 sweeps,
                 design: design(grid),
                 duration,
@@ -84,10 +86,12 @@ fn studies(command: Command) -> Result<(), CliError> {
             tolerance,
             quantities,
             jobs,
+            max_runs,
             duration,
             out,
         } => {
             let plan = slender_app::fidelity::FidelityPlan {
+                max_runs,
                 sections,
                 design: design(grid),
                 duration,
@@ -101,6 +105,7 @@ fn studies(command: Command) -> Result<(), CliError> {
             scene,
             samples,
             jobs,
+            max_runs,
             duration,
             out,
             shard,
@@ -108,6 +113,7 @@ fn studies(command: Command) -> Result<(), CliError> {
             slurm,
         } => {
             let plan = slender_app::uq::UqPlan {
+                max_runs,
                 samples,
                 jobs: jobs_or_cores(jobs),
                 duration,

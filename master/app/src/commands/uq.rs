@@ -27,6 +27,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
         scene.spec.uncertainty.clone().ok_or_else(|| {
             CliError::input(format!("{}: no `[uncertainty]` table", path.display()))
         })?;
+    check_size(plan, spec.samples)?;
     let names: Vec<String> = spec.inputs.iter().map(|i| i.name.clone()).collect();
     let header = uq::report::header(&names, &spec.outputs);
     let read = |csv: &Path| match std::fs::read_to_string(csv) {
@@ -96,6 +97,17 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
             Ok(())
         }
     }
+}
+
+/// Refuses a design of more runs than `--max-runs` before anything is
+/// written (the scene's `samples` unless `--samples` says otherwise).
+fn check_size(plan: &UqPlan, scene_samples: usize) -> Result<(), CliError> {
+    let samples = plan.samples.unwrap_or(scene_samples);
+    if samples > plan.max_runs {
+        let refusal = slender_app::too_many_runs("the design", samples, plan.max_runs);
+        return Err(CliError::input(refusal));
+    }
+    Ok(())
 }
 
 /// Runs the plan, appending each new run to `csv` as it finishes (a file

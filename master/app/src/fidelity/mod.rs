@@ -40,6 +40,8 @@ pub struct FidelityPlan {
     /// The quantities whose worst epsilon judges a combination (its `worst`,
     /// the Pareto front, the tolerance); empty: all of them.
     pub judged: Vec<String>,
+    /// The most runs the study may start (`--max-runs`).
+    pub max_runs: usize,
 }
 
 /// One run: a combination (or the reference) and what it measured.
@@ -123,6 +125,21 @@ pub fn run_fidelity(
         s.remove("reference");
     }
     table.remove("output");
+    // Counted before they are built: a grid of many sections would not fit.
+    let choices = plan.sections.iter().map(|s| s.choices.len());
+    let runs = match plan.design {
+        Design::OneAtATime => choices.fold(1usize, usize::saturating_add),
+        Design::Grid => choices
+            .fold(1usize, usize::saturating_mul)
+            .saturating_add(1),
+    };
+    if runs > plan.max_runs {
+        return Err(crate::too_many_runs(
+            "the reference and the combinations",
+            runs,
+            plan.max_runs,
+        ));
+    }
     let mut tasks: Vec<Task> = vec![None];
     tasks.extend(
         combinations(plan, &own_choices(&table))

@@ -8,6 +8,7 @@
 //! and cost per simulated second (of the whole run, or of chosen units). An
 //! indicator with reference signals of its own is measured inside each run.
 
+mod check;
 pub mod report;
 pub mod setting;
 
@@ -115,6 +116,8 @@ pub struct StudyPlan {
     /// Another scene whose run is the reference of every run (its indicators
     /// matched by name, run for `duration` too); none: each group's reference run.
     pub reference: Option<PathBuf>,
+    /// The most runs the study may start (`--max-runs`).
+    pub max_runs: usize,
 }
 
 /// One run of a study.
@@ -236,7 +239,7 @@ pub fn run_study_against(
             in_run: !i.reference.is_empty(),
         })
         .collect();
-    check_plan(path, &base, &table, plan, reference.is_some())?;
+    check::check_plan(path, &base, &table, plan, reference.is_some())?;
     if let Some(r) = reference {
         if let Some(j) = judged
             .iter()
@@ -268,42 +271,6 @@ pub fn run_study_against(
         rows.extend(group_rows);
     }
     Ok(rows)
-}
-
-/// Refuses what does not apply to the scene: a key (a typo, a unit that is not
-/// there), a cost unit it does not have, a sweep of one value with no reference
-/// scene to compare it with.
-fn check_plan(
-    path: &Path,
-    base: &Scene,
-    table: &toml::Table,
-    plan: &StudyPlan,
-    has_reference: bool,
-) -> Result<(), String> {
-    for name in &plan.cost_units {
-        if !base.spec.units.iter().any(|u| u.name.get_ref() == name) {
-            return Err(format!(
-                "cost unit `{name}`: {} has no unit of that name",
-                path.display()
-            ));
-        }
-    }
-    for sweep in &plan.sweeps {
-        if sweep.values.len() < 2 && !has_reference {
-            return Err(format!(
-                "{}: a sweep needs at least two values (or a reference scene)",
-                sweep.setting
-            ));
-        }
-        let mut probe = table.clone();
-        sweep
-            .setting
-            .apply(&mut probe, sweep.reference())
-            .map_err(|e| format!("{}: {e}", sweep.setting))?;
-        scene_with(path, &probe, plan.duration)
-            .map_err(|e| format!("{} = {}: {e}", sweep.setting, label(sweep.reference())))?;
-    }
-    Ok(())
 }
 
 /// A varied key with its value.

@@ -33,6 +33,8 @@ pub struct UqPlan {
     /// Run only shard K of N (1-based): the points whose index is K - 1 modulo
     /// N, and no expansion (`merge` makes it from every shard's runs).
     pub shard: Option<(usize, usize)>,
+    /// The most runs the design may have (`--max-runs`).
+    pub max_runs: usize,
 }
 
 /// One output's expansion.
@@ -99,6 +101,9 @@ pub fn run_uq(
             .map_err(|e| format!("`uncertainty.inputs` `{}` ({}): {e}", input.name, input.key))?;
     }
     let samples = plan.samples.unwrap_or(spec.samples);
+    if samples > plan.max_runs {
+        return Err(crate::too_many_runs("the design", samples, plan.max_runs));
+    }
     let design = design_of(&spec, samples)?;
     let points: Vec<Vec<f64>> = design
         .iter()

@@ -1,0 +1,60 @@
+//! What a study checks before its first run: its keys and cost units apply
+//! to the scene, each sweep can be compared, and its size is within its
+//! bound (counted, not built: a grid of many sweeps would not fit in memory).
+
+use super::{Design, StudyPlan, label, scene_with};
+use slender_scene::Scene;
+use std::path::Path;
+
+/// Refuses what does not apply to the scene: a key (a typo, a unit that is not
+/// there), a cost unit it does not have, a sweep of one value with no reference
+/// scene to compare it with.
+pub(super) fn check_plan(
+    path: &Path,
+    base: &Scene,
+    table: &toml::Table,
+    plan: &StudyPlan,
+    has_reference: bool,
+) -> Result<(), String> {
+    for name in &plan.cost_units {
+        if !base.spec.units.iter().any(|u| u.name.get_ref() == name) {
+            return Err(format!(
+                "cost unit `{name}`: {} has no unit of that name",
+                path.display()
+            ));
+        }
+    }
+    let runs = run_count(plan);
+    if runs > plan.max_runs {
+        return Err(crate::too_many_runs("the study", runs, plan.max_runs));
+    }
+    for sweep in &plan.sweeps {
+        if sweep.values.len() < 2 && !has_reference {
+            return Err(format!(
+                "{}: a sweep needs at least two values (or a reference scene)",
+                sweep.setting
+            ));
+        }
+        let mut probe = table.clone();
+        sweep
+            .setting
+            .apply(&mut probe, sweep.reference())
+            .map_err(|e| format!("{}: {e}", sweep.setting))?;
+        scene_with(path, &probe, plan.duration)
+            .map_err(|e| format!("{} = {}: {e}", sweep.setting, label(sweep.reference())))?;
+    }
+    Ok(())
+}
+
+/// The runs the plan makes, saturating: one per value of each sweep
+/// (one-at-a-time), or every combination (grid).
+fn run_count(plan: &StudyPlan) -> usize {
+    let values = plan.sweeps.iter().map(|s| {
+        let reference = s.reference();
+        1 + s.values.iter().filter(|v| *v != reference).count()
+    });
+    match plan.design {
+        Design::OneAtATime => values.fold(0usize, usize::saturating_add),
+        Design::Grid => values.fold(1usize, usize::saturating_mul),
+    }
+}
