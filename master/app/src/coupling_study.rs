@@ -225,7 +225,7 @@ fn write_scenes(
             indicators: &indicators,
         }
         .text();
-        std::fs::write(&path, text)
+        crate::whole::write(&path, text)
             .map_err(|e| StudyError::Plan(format!("{}: {e}", path.display())))?;
         Ok::<_, StudyError>(path)
     };

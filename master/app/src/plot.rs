@@ -12,6 +12,12 @@ pub struct PlotError {
     pub reason: String,
 }
 
+impl From<crate::whole::RenameError> for PlotError {
+    fn from(e: crate::whole::RenameError) -> PlotError {
+        PlotError::new(&e.path, &e.source)
+    }
+}
+
 impl PlotError {
     pub(crate) fn new(path: &Path, reason: &dyn std::fmt::Display) -> PlotError {
         PlotError {

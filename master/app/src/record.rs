@@ -1,6 +1,6 @@
 //! Recording a run: time series at synchronisation points, written as CSV while the
-//! run goes (so a failed run leaves readable partial results) and kept in memory
-//! for plots.
+//! run goes (so a failed run leaves readable partial results, under the
+//! partial name until the run ends) and kept in memory for plots.
 
 use crate::run::RunError;
 use slender_coupling::coupler::Master;
@@ -15,7 +15,8 @@ pub struct Recorder {
     ports: Vec<(usize, usize)>,
     pub time: Vec<f64>,
     pub columns: Vec<Vec<f64>>,
-    csv: Option<BufWriter<File>>,
+    /// The CSV as it is written (its partial name) and its final path.
+    csv: Option<(BufWriter<File>, std::path::PathBuf)>,
     every: u32,
     counter: u32,
 }
@@ -35,12 +36,13 @@ impl Recorder {
             .collect::<Result<Vec<_>, _>>()?;
         let csv = match csv_path {
             Some(p) => {
-                let f = File::create(p).map_err(|e| RunError::file(p, &e))?;
+                let partial = crate::whole::partial(p);
+                let f = File::create(&partial).map_err(|e| RunError::file(&partial, &e))?;
                 let mut w = BufWriter::new(f);
                 let header = std::iter::once("time").chain(signals.iter().map(String::as_str));
                 writeln!(w, "{}", header.collect::<Vec<_>>().join(","))
-                    .map_err(|e| RunError::file(p, &e))?;
-                Some(w)
+                    .map_err(|e| RunError::file(&partial, &e))?;
+                Some((w, p.to_owned()))
             }
             None => None,
         };
@@ -68,7 +70,7 @@ impl Recorder {
         for (col, &(u, p)) in self.columns.iter_mut().zip(&self.ports) {
             col.push(master.outputs(u)[p]);
         }
-        if let Some(w) = &mut self.csv {
+        if let Some((w, _)) = &mut self.csv {
             write!(w, "{t}")?;
             for col in &self.columns {
                 write!(w, ",{:e}", col.last().copied().unwrap_or(f64::NAN))?;
@@ -78,10 +80,17 @@ impl Recorder {
         Ok(())
     }
 
-    /// Flushes the CSV file.
+    /// Flushes the CSV file and gives it its name (`timeseries.csv`): it was
+    /// `timeseries.csv.partial` while the run went, so a run killed outright
+    /// leaves no CSV that looks finished. Called on every end of a run
+    /// (completed, failed, interrupted).
     pub fn finish(&mut self) -> std::io::Result<()> {
-        match &mut self.csv {
-            Some(w) => w.flush(),
+        match self.csv.take() {
+            Some((mut w, path)) => {
+                w.flush()?;
+                drop(w);
+                std::fs::rename(crate::whole::partial(&path), path)
+            }
             None => Ok(()),
         }
     }

@@ -4,6 +4,7 @@
 use crate::plot::{self, PlotError};
 use crate::realtime::{Pacer, RealtimeReport};
 use crate::record::Recorder;
+use crate::whole;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use slender_coupling::counters::Counters;
@@ -125,7 +126,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
     if let Some(dir) = &options.output_dir {
         let path = dir.join("summary.json");
         let text = serde_json::to_string_pretty(&summary)?;
-        std::fs::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
+        whole::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
         files.push(path);
     }
     Ok(RunResult {
@@ -201,11 +202,23 @@ impl RunError {
 }
 
 /// `timeseries.csv` in the results folder (made if need be), if there is one.
+/// An earlier run's `summary.json`, `timeseries.csv` and `overruns.csv` there
+/// are removed first: a run stopped outright must not leave an older run's
+/// complete-looking results beside its own partial ones.
 fn csv_in(dir: Option<&Path>) -> Result<Option<PathBuf>, RunError> {
     let Some(dir) = dir else {
         return Ok(None);
     };
     std::fs::create_dir_all(dir).map_err(|e| RunError::file(dir, &e))?;
+    for name in ["summary.json", "timeseries.csv", "overruns.csv"] {
+        let old = dir.join(name);
+        match std::fs::remove_file(&old) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(RunError::file(&old, &e));
+            }
+            _ => {}
+        }
+    }
     Ok(Some(dir.join("timeseries.csv")))
 }
 
@@ -243,7 +256,7 @@ fn write_overruns(dir: &Path, report: &RealtimeReport) -> Result<PathBuf, RunErr
     for o in &report.overruns {
         text += &format!("{},{},{},{}\n", o.step, o.time_s, o.compute_s, o.late_s);
     }
-    std::fs::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
+    whole::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
     Ok(path)
 }
 
@@ -331,7 +344,9 @@ fn write_plots(scene: &Scene, recorder: &Recorder, dir: &Path) -> Result<Vec<Pat
     if scene.spec.output.plots.is_empty() {
         let path = dir.join("timeseries.svg");
         let panels: Vec<Vec<String>> = recorder.names.iter().map(|n| vec![n.clone()]).collect();
-        plot::time_series(&path, &scene.spec.title, recorder, &panels)?;
+        whole::through(&path, |p| {
+            plot::time_series(p, &scene.spec.title, recorder, &panels)
+        })?;
         files.push(path);
     }
     for p in &scene.spec.output.plots {
@@ -341,7 +356,7 @@ fn write_plots(scene: &Scene, recorder: &Recorder, dir: &Path) -> Result<Vec<Pat
         } else {
             &p.title
         };
-        plot::time_series(&path, title, recorder, &p.panels)?;
+        whole::through(&path, |f| plot::time_series(f, title, recorder, &p.panels))?;
         files.push(path);
     }
     Ok(files)

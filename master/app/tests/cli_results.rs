@@ -100,9 +100,41 @@ fn a_results_folder_has_one_writer_at_a_time() {
 #[test]
 #[cfg(unix)]
 fn ctrl_c_stops_a_run_at_a_step_with_whole_rows_and_a_summary() {
-    use std::process::{Command, Stdio};
     let out = std::env::temp_dir().join(format!("slender-cli-int-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
+    let child = riser_recording(&out);
+    // SAFETY: a signal to the child this test started.
+    unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
+    let csv = out.join("timeseries.csv");
+    let result = child.wait_with_output().unwrap();
+    assert_eq!(result.status.code(), Some(130), "{}", text(&result.stderr));
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"status\": \"interrupted\""), "{summary}");
+    let rows = std::fs::read_to_string(&csv).unwrap();
+    let fields: Vec<usize> = rows.lines().map(|l| l.split(',').count()).collect();
+    assert!(
+        fields.iter().all(|&f| f == fields[0]),
+        "a torn row: {fields:?}"
+    );
+    assert!(!out.join(".slender.lock").exists());
+    // Killed outright, a run leaves its rows under the partial name and no
+    // summary: nothing that looks finished, not even the earlier run's.
+    let child = riser_recording(&out);
+    // SAFETY: as above.
+    unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGKILL) };
+    child.wait_with_output().unwrap();
+    assert!(!out.join("summary.json").exists());
+    assert!(!csv.exists());
+    assert!(out.join("timeseries.csv.partial").exists());
+    std::fs::remove_dir_all(out).unwrap();
+}
+
+/// The riser example running into `out`, once it has recorded a few rows
+/// (polled, no clock limit) into `timeseries.csv.partial`, its name while the
+/// run goes.
+#[cfg(unix)]
+fn riser_recording(out: &Path) -> std::process::Child {
+    use std::process::{Command, Stdio};
     let child = Command::new(env!("CARGO_BIN_EXE_slender"))
         .args([
             "run",
@@ -116,25 +148,11 @@ fn ctrl_c_stops_a_run_at_a_step_with_whole_rows_and_a_summary() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    // Interrupted once it has recorded a few steps (polled, no clock limit).
-    let csv = out.join("timeseries.csv");
-    while std::fs::read_to_string(&csv).map_or(0, |t| t.lines().count()) < 3 {
+    let partial = out.join("timeseries.csv.partial");
+    while std::fs::read_to_string(&partial).map_or(0, |t| t.lines().count()) < 3 {
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    // SAFETY: a signal to the child this test started.
-    unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
-    let result = child.wait_with_output().unwrap();
-    assert_eq!(result.status.code(), Some(130), "{}", text(&result.stderr));
-    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
-    assert!(summary.contains("\"status\": \"interrupted\""), "{summary}");
-    let rows = std::fs::read_to_string(&csv).unwrap();
-    let fields: Vec<usize> = rows.lines().map(|l| l.split(',').count()).collect();
-    assert!(
-        fields.iter().all(|&f| f == fields[0]),
-        "a torn row: {fields:?}"
-    );
-    assert!(!out.join(".slender.lock").exists());
-    std::fs::remove_dir_all(out).unwrap();
+    child
 }
 
 /// A study whose runs fail writes every row and exits 1 (issue 27: it exited

@@ -3,6 +3,7 @@
 use super::{CliError, count_in, load, made_folder, positive, report_written, results_folder};
 use slender_app::fidelity::{self, FidelityPlan};
 use slender_app::study::{self, StudyPlan};
+use slender_app::whole;
 use std::path::{Path, PathBuf};
 
 /// Modes of a unit about its initial state: a table on screen, modes.csv and
@@ -49,13 +50,15 @@ pub fn modes(
             );
         }
     }
-    std::fs::write(&csv, text).map_err(|e| CliError::failure(format!("{}: {e}", csv.display())))?;
+    slender_app::whole::write(&csv, text)
+        .map_err(|e| CliError::failure(format!("{}: {e}", csv.display())))?;
     let svg = dir.join("modes.svg");
     let shown = slender_units::ModalAnalysis {
         positions: analysis.positions.clone(),
         modes: analysis.modes.iter().take(plot).cloned().collect(),
     };
-    slender_app::plot::mode_shapes(&svg, &format!("Mode shapes of `{unit}`"), &shown)
+    let title = format!("Mode shapes of `{unit}`");
+    whole::through(&svg, |f| slender_app::plot::mode_shapes(f, &title, &shown))
         .map_err(CliError::failure)?;
     report_written(&[csv, svg]);
     Ok(())
@@ -73,18 +76,15 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
     let rows = study::run_study(path, plan, print_row).map_err(CliError::input)?;
     let failed = rows.iter().filter(|r| r.error.is_some()).count();
     let csv = dir.join("study.csv");
-    std::fs::write(&csv, study::to_csv(&rows))
+    slender_app::whole::write(&csv, study::to_csv(&rows))
         .map_err(|e| CliError::failure(format!("{}: {e}", csv.display())))?;
     let md = dir.join("study.md");
-    std::fs::write(&md, study::to_markdown(&rows))
+    slender_app::whole::write(&md, study::to_markdown(&rows))
         .map_err(|e| CliError::failure(format!("{}: {e}", md.display())))?;
     let svg = dir.join("study.svg");
-    slender_app::plot::study(
-        &svg,
-        &format!("Convergence and cost: {}", path.display()),
-        &rows,
-    )
-    .map_err(CliError::failure)?;
+    let title = format!("Convergence and cost: {}", path.display());
+    whole::through(&svg, |f| slender_app::plot::study(f, &title, &rows))
+        .map_err(CliError::failure)?;
     report_written(&[csv, md, svg]);
     runs_failed(failed, rows.len(), "marked FAILED above and in study.csv")
 }
@@ -141,12 +141,9 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
         write("fidelity.md", fidelity::report::to_markdown(&report))?,
     ];
     let svg = dir.join("fidelity.svg");
-    fidelity::report::plot(
-        &svg,
-        &format!("Fidelity and cost: {}", path.display()),
-        &report,
-    )
-    .map_err(CliError::failure)?;
+    let title = format!("Fidelity and cost: {}", path.display());
+    whole::through(&svg, |f| fidelity::report::plot(f, &title, &report))
+        .map_err(CliError::failure)?;
     println!("{}", fidelity::report::conclusion(&report));
     report_written(&[files, vec![svg]].concat());
     let failed = report.rows.iter().filter(|r| r.error.is_some()).count();

@@ -267,7 +267,7 @@ fn count_in(argument: &str, value: usize, low: usize, high: usize) -> Result<usi
 /// Writes `text` to the file `name` in `dir`; the error names the file.
 fn write_in(dir: &std::path::Path, name: &str, text: String) -> Result<PathBuf, CliError> {
     let file = dir.join(name);
-    std::fs::write(&file, text)
+    slender_app::whole::write(&file, text)
         .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
     Ok(file)
 }

@@ -106,7 +106,10 @@ fn bode(span: &Span, order: usize, elements: usize, out: &Path) -> Result<Vec<Pa
         "H_U2->U5: EI = {}, mu = {}, c_d = {}, L = {}",
         span.flexural_rigidity, span.mass_per_length, span.damping_per_length, span.length
     );
-    slender_app::plot::bode(&path, &title, &omegas, &series).map_err(CliError::failure)?;
+    slender_app::whole::through(&path, |f| {
+        slender_app::plot::bode(f, &title, &omegas, &series)
+    })
+    .map_err(CliError::failure)?;
     Ok(vec![path])
 }
 
@@ -175,10 +178,12 @@ fn write_study_report(
         out.join(format!("{stem}.json")),
         out.join(format!("{}.svg", figure.stem)),
     );
-    std::fs::write(&md, markdown).map_err(|e| format!("{}: {e}", md.display()))?;
+    slender_app::whole::write(&md, markdown).map_err(|e| format!("{}: {e}", md.display()))?;
     let text = serde_json::to_string_pretty(report).map_err(|e| e.to_string())?;
-    std::fs::write(&json, text).map_err(|e| format!("{}: {e}", json.display()))?;
-    slender_app::plot::accuracy_cost(&svg, figure.title, figure.error_label, points)
-        .map_err(|e| e.to_string())?;
+    slender_app::whole::write(&json, text).map_err(|e| format!("{}: {e}", json.display()))?;
+    slender_app::whole::through(&svg, |f| {
+        slender_app::plot::accuracy_cost(f, figure.title, figure.error_label, points)
+    })
+    .map_err(|e| e.to_string())?;
     Ok(vec![md, json, svg])
 }

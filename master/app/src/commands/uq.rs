@@ -3,6 +3,7 @@
 
 use super::analysis::study_folder;
 use super::{CliError, report_written};
+use slender_app::plot::PlotError;
 use slender_app::uq::{self, Run, UqPlan};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -76,13 +77,15 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                 write("uq.json", json)?,
                 write("uq.md", markdown.clone())?,
             ];
-            let figure = |name: &str| dir.join(name);
-            uq::plot::sobol_bars(&figure("sobol.svg"), &report).map_err(CliError::failure)?;
-            uq::plot::convergence(&figure("convergence.svg"), &report)
-                .map_err(CliError::failure)?;
-            uq::plot::distribution(&figure("distribution.svg"), &report, &runs)
-                .map_err(CliError::failure)?;
-            uq::plot::scatter(&figure("scatter.svg"), &report, &runs).map_err(CliError::failure)?;
+            let figure = |name: &str, draw: &dyn Fn(&Path) -> Result<(), PlotError>| {
+                slender_app::whole::through(&dir.join(name), draw).map_err(CliError::failure)
+            };
+            figure("sobol.svg", &|f| uq::plot::sobol_bars(f, &report))?;
+            figure("convergence.svg", &|f| uq::plot::convergence(f, &report))?;
+            figure("distribution.svg", &|f| {
+                uq::plot::distribution(f, &report, &runs)
+            })?;
+            figure("scatter.svg", &|f| uq::plot::scatter(f, &report, &runs))?;
             files.extend(
                 [
                     "sobol.svg",
@@ -90,7 +93,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                     "distribution.svg",
                     "scatter.svg",
                 ]
-                .map(figure),
+                .map(|name| dir.join(name)),
             );
             print!("{markdown}");
             report_written(&files);
@@ -149,7 +152,7 @@ fn run_appending(
         .filter(|(_, r)| !r.0.is_empty())
         .map(|(k, r)| uq::report::row(k, r))
         .collect();
-    std::fs::write(csv, format!("{header}{rows}")).map_err(fail)?;
+    slender_app::whole::write(csv, format!("{header}{rows}")).map_err(fail)?;
     Ok((report, runs))
 }
 
@@ -215,7 +218,7 @@ fn slurm_scripts(path: &Path, plan: &UqPlan, dir: &Path, n: usize) -> Result<(),
     );
     let write = |name: &str, text: &str| -> Result<PathBuf, CliError> {
         let file = dir.join(name);
-        std::fs::write(&file, text)
+        slender_app::whole::write(&file, text)
             .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
         Ok(file)
     };

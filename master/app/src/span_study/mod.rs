@@ -162,7 +162,7 @@ pub fn study(span: &Span, plan: &StudyPlan, scenes: &Path) -> Result<StudyReport
                 indicators: &[("deflection", port)],
             }
             .text();
-            std::fs::write(&path, text)
+            crate::whole::write(&path, text)
                 .map_err(|e| StudyError::Plan(format!("{}: {e}", path.display())))?;
             Ok::<_, StudyError>(path)
         };
