@@ -539,7 +539,6 @@ fn same_as_the_direct_implementation(report: &slender_app::span_study::StudyRepo
 fn span_unit_beats_fe_spans_stepping_with_the_master_against_the_continuum() {
     use slender_app::span_study::{StudyPlan, study};
     let plan = StudyPlan {
-        max_runs: slender_app::DEFAULT_MAX_RUNS,
         orders: vec![8, 12],
         elements: vec![8, 16, 32],
         fe_substeps: vec![1, 4],
