@@ -133,6 +133,12 @@ pub enum Command {
         /// whole number of its steps.
         #[arg(long)]
         duration: Option<f64>,
+        /// Set a scene key over the file, by its path as `study --vary` takes
+        /// it (repeatable): `--set master.scheme=jacobi --set
+        /// units.line.parameters.elements=40`; the value is TOML (a bare word
+        /// a string). summary.json lists them.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
     },
     /// Check a scene without running it: parse, build every unit, resolve connections.
     Check { scene: PathBuf },

@@ -29,6 +29,9 @@ pub struct RunOptions {
 #[derive(Debug, Serialize)]
 pub struct Summary {
     pub scene: String,
+    /// Keys set over the scene file (`run --set`), as given.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub overrides: Vec<String>,
     pub title: String,
     /// "completed", "failed" or "interrupted" (Ctrl-C, at a step boundary).
     pub status: String,
@@ -97,6 +100,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
     }
     let summary = Summary {
         scene: scene.path.display().to_string(),
+        overrides: scene.overrides.clone(),
         title: scene.spec.title.clone(),
         status: match &outcome {
             Ok(()) => "completed",

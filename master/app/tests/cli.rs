@@ -587,3 +587,50 @@ fn bounded_overruns(dir: &Path, variant: &Variant<'_>) {
     let csv = std::fs::read_to_string(out.join("overruns.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1001);
 }
+
+/// Issue 28: `run --set KEY=VALUE` sets scene keys over the file (a TOML
+/// value, a bare word a string), lists them in summary.json and on screen,
+/// and names a bad one.
+#[test]
+fn run_sets_scene_keys_over_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("set");
+    let run = slender(&[
+        "run",
+        "examples/b1_two_masses.toml",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "simulation.duration=0.5",
+        "--set",
+        "master.acceleration={ kind = \"aitken\" }",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(text(&run.stdout).contains("set          simulation.duration=0.5"));
+    let s = summary(&out);
+    assert_eq!(s["simulated_s"].as_f64(), Some(0.5));
+    assert_eq!(
+        s["settings"]["acceleration"]["kind"].as_str(),
+        Some("aitken")
+    );
+    assert_eq!(s["overrides"].as_array().map(Vec::len), Some(2));
+    for (set, expected) in [
+        ("master.shceme=jacobi", "unknown field `shceme`"),
+        ("simulation.duration", "expected KEY=VALUE"),
+        ("simulation.step=-1", "--set simulation.step=-1"),
+    ] {
+        let run = slender(&[
+            "run",
+            "examples/b1_two_masses.toml",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+            "--set",
+            set,
+        ]);
+        assert_eq!(run.status.code(), Some(2), "{set}");
+        let err = text(&run.stderr);
+        assert!(err.contains(expected), "{set}: {err}");
+    }
+}

@@ -54,6 +54,9 @@ pub struct Scene {
     pub start: Time,
     pub step: Time,
     pub steps: i64,
+    /// Keys set on the command line over the file (`slender run --set
+    /// KEY=VALUE`), as given; empty for a scene as written.
+    pub overrides: Vec<String>,
 }
 
 impl Scene {
@@ -100,6 +103,7 @@ impl Scene {
             start: Time::ZERO,
             step: Time::ZERO,
             steps: 0,
+            overrides: Vec::new(),
         };
         scene.check_time().map_err(located)?;
         scene.build().map_err(located)?;

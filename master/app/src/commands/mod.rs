@@ -142,7 +142,8 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
             quiet,
             realtime,
             duration,
-        } => scene::run(&scene, out, (quiet, realtime), duration),
+            set,
+        } => scene::run(&scene, out, (quiet, realtime), duration, &set),
         Command::Check { scene } => scene::check(&scene),
         Command::Expand { scene } => scene::expand(&scene),
         Command::Bench {

@@ -12,8 +12,13 @@ pub fn run(
     out: Option<PathBuf>,
     (quiet, realtime): (bool, bool),
     duration: Option<f64>,
+    overrides: &[String],
 ) -> Result<(), CliError> {
     let mut scene = load(path)?;
+    if !overrides.is_empty() {
+        scene =
+            slender_app::study::scene_with_overrides(path, overrides).map_err(CliError::input)?;
+    }
     if let Some(d) = duration {
         super::positive("--duration", d)?;
         scene
@@ -83,6 +88,9 @@ fn print_summary(result: &RunResult) {
         println!("{}", s.title);
     }
     println!("scene        {}", s.scene);
+    for o in &s.overrides {
+        println!("set          {o}");
+    }
     println!(
         "scheme       {} ({}), order {}",
         s.settings.scheme.name(),

@@ -336,6 +336,22 @@ pub(crate) fn scene_table(path: &Path) -> Result<toml::Table, String> {
     toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// The scene at `path` with `overrides` (`KEY=VALUE`, `slender run --set`)
+/// set over the file; each error names the override.
+pub fn scene_with_overrides(path: &Path, overrides: &[String]) -> Result<Scene, String> {
+    let mut table = scene_table(path)?;
+    for text in overrides {
+        let (setting, value) = setting::parse_override(text)?;
+        setting
+            .apply(&mut table, &value)
+            .map_err(|e| format!("--set {text}: {e}"))?;
+    }
+    let mut scene = scene_with(path, &table, None)
+        .map_err(|e| format!("--set {}: {e}", overrides.join(" --set ")))?;
+    scene.overrides = overrides.to_vec();
+    Ok(scene)
+}
+
 /// The scene of `table`, with `duration` when given.
 pub(crate) fn scene_with(
     path: &Path,

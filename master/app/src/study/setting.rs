@@ -222,6 +222,22 @@ pub fn parse_value(text: &str) -> toml::Value {
     }
 }
 
+/// `KEY=VALUE` of `slender run --set`: a scene key by its path (as a study
+/// varies it) and a TOML value (`0.5`, `true`, `[1, 2]`, `{ kind = "none" }`;
+/// a bare word is a string).
+pub fn parse_override(text: &str) -> Result<(Setting, toml::Value), String> {
+    let (key, value) = text.split_once('=').ok_or_else(|| {
+        format!("`{text}`: expected KEY=VALUE, e.g. simulation.duration=10 or master.scheme=jacobi")
+    })?;
+    let setting: Setting = key.trim().parse()?;
+    let written = format!("v = {}", value.trim());
+    let value = match toml::from_str::<toml::Table>(&written) {
+        Ok(mut t) => t.remove("v").unwrap_or_else(|| parse_value(value)),
+        Err(_) => parse_value(value),
+    };
+    Ok((setting, value))
+}
+
 /// A value as a number, when it is one.
 pub fn numeric(value: &toml::Value) -> Option<f64> {
     match value {
