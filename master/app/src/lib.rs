@@ -19,6 +19,7 @@ pub mod run;
 pub mod span_study;
 pub mod study;
 pub mod uq;
+pub mod watch;
 pub mod whole;
 
 /// The most runs a study (`study`, `fidelity`, `uq`) starts unless its

@@ -4,6 +4,7 @@
 use crate::plot::{self, PlotError};
 use crate::realtime::{Pacer, RealtimeReport};
 use crate::record::Recorder;
+use crate::watch::Watch;
 use crate::whole;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
@@ -51,6 +52,9 @@ pub struct Summary {
     /// The computing time per step of a paced run (`--realtime`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub realtime: Option<RealtimeReport>,
+    /// The plausibility watch's warnings (`crate::watch`), when any.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// The outcome of a run: the summary, the recording and the files written.
@@ -76,7 +80,8 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         csv_path.as_deref(),
     )?;
     let started = Instant::now();
-    let (outcome, realtime) = simulate(scene, &mut master, &mut recorder, options);
+    let mut warnings = Vec::new();
+    let (outcome, realtime) = simulate(scene, &mut master, &mut recorder, (options, &mut warnings));
     let wall = started.elapsed().as_secs_f64();
     recorder.finish()?;
     if let Some(p) = csv_path {
@@ -123,6 +128,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         counters: master.counters(),
         indicators: indicators(scene, &recorder),
         realtime,
+        warnings,
     };
     if let (Some(dir), Some(report)) = (&options.output_dir, &summary.realtime) {
         files.push(write_overruns(dir, report)?);
@@ -265,12 +271,13 @@ fn write_overruns(dir: &Path, report: &RealtimeReport) -> Result<PathBuf, RunErr
 }
 
 /// Steps the whole scene; with `realtime`, paced against the wall clock, and
-/// the computing times of the steps done.
+/// the computing times of the steps done; the plausibility watch's warnings
+/// into `warnings`.
 fn simulate(
     scene: &Scene,
     master: &mut Master,
     recorder: &mut Recorder,
-    options: &RunOptions,
+    (options, warnings): (&RunOptions, &mut Vec<String>),
 ) -> (Result<(), RunError>, Option<RealtimeReport>) {
     let mut pacer = options.realtime.then(|| {
         let sim = &scene.spec.simulation;
@@ -281,23 +288,24 @@ fn simulate(
     });
     let outcome = step_all(
         scene,
-        master,
-        recorder,
+        (master, recorder),
         options.progress && !options.realtime,
         pacer.as_mut(),
+        warnings,
     );
     (outcome, pacer.map(|p| p.report()))
 }
 
 fn step_all(
     scene: &Scene,
-    master: &mut Master,
-    recorder: &mut Recorder,
+    (master, recorder): (&mut Master, &mut Recorder),
     progress: bool,
     mut pacer: Option<&mut Pacer>,
+    warnings: &mut Vec<String>,
 ) -> Result<(), RunError> {
     master.initialize(scene.start)?;
     recorder.observe(master)?;
+    let mut watch = Watch::new(master, scene.spec.output.watch);
     let started = Instant::now();
     let mut bar: Option<ProgressBar> = None;
     for i in 0..scene.steps {
@@ -309,6 +317,10 @@ fn step_all(
         }
         master.step()?;
         recorder.observe(master)?;
+        let t = master.time().as_secs();
+        watch
+            .observe(master, t, warnings)
+            .map_err(RunError::Bound)?;
         if let Some(p) = pacer.as_deref_mut() {
             let index = usize::try_from(i).unwrap_or(usize::MAX);
             p.end(index, (master.time() - scene.start).as_secs())

@@ -182,6 +182,35 @@ pub struct OutputSpec {
     /// naming its size; give it to go past.
     #[serde(default)]
     pub max_bytes: Option<u64>,
+    /// The plausibility watch on the units' loads (see `slender_app::watch`).
+    #[serde(default)]
+    pub watch: WatchSpec,
+}
+
+/// `[output] watch = { factor, stop }`.
+#[derive(Copy, Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WatchSpec {
+    /// A section's largest tension beyond this multiple of the structure's
+    /// at the start is implausible (default 5).
+    #[serde(default = "default_factor")]
+    pub factor: f64,
+    /// Stop the run at the first implausible load instead of warning.
+    #[serde(default)]
+    pub stop: bool,
+}
+
+fn default_factor() -> f64 {
+    5.0
+}
+
+impl Default for WatchSpec {
+    fn default() -> Self {
+        WatchSpec {
+            factor: default_factor(),
+            stop: false,
+        }
+    }
 }
 
 /// The default bound on a run's recorded time series: 2 GB of CSV (about
@@ -231,6 +260,7 @@ impl Default for OutputSpec {
             plots: Vec::new(),
             indicators: Vec::new(),
             max_bytes: None,
+            watch: WatchSpec::default(),
         }
     }
 }

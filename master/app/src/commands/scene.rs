@@ -91,6 +91,9 @@ fn print_summary(result: &RunResult) {
     for o in &s.overrides {
         println!("set          {o}");
     }
+    for w in &s.warnings {
+        println!("warning      {w}");
+    }
     println!(
         "scheme       {} ({}), order {}",
         s.settings.scheme.name(),

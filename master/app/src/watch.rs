@@ -1,0 +1,99 @@
+//! A watch on physical plausibility (issue 27): a run can end "completed"
+//! with loads no structure of its kind could carry (a riser meshed too
+//! coarsely at its touchdown, stepped without numerical damping, reported
+//! 9.8 MN where the converged tension stays below 1.1 MN). After every step
+//! the largest tension along each section (the `nonlinear` unit's
+//! `max_tension`) is compared with the structure's scale: the largest over
+//! all sections at the start, the static one where the sections start from
+//! their statics (a laid section's own small tension is no scale for the
+//! top's). One beyond `factor` (default 5) times that scale is a warning
+//! with the unit, port, value and time (once per port), kept in
+//! `summary.json`; with `stop` it ends the run instead. Without load at the start (a structure released
+//! from its stress-free shape) there is no scale and nothing is watched.
+
+use slender_coupling::coupler::Master;
+use slender_scene::spec::WatchSpec;
+
+/// The outputs watched: a section's largest tension along it (N). Its bending
+/// moment is not: in a line of little bending stiffness an impulsive start
+/// sends it to ten times its small static value, physically (the polyester
+/// line example), so no multiple of the static one marks a broken run.
+const WATCHED: [&str; 1] = ["max_tension"];
+
+/// One watched port: unit, port, and the bound on its magnitude (N or N m).
+struct Watched {
+    unit: usize,
+    port: usize,
+    bound: f64,
+    warned: bool,
+}
+
+/// The watch over a run.
+pub struct Watch {
+    watched: Vec<Watched>,
+    stop: bool,
+}
+
+impl Watch {
+    /// The watched outputs (after `Master::initialize`), each bounded by
+    /// `spec.factor` times the largest start value of its name over all
+    /// units.
+    pub fn new(master: &Master, spec: WatchSpec) -> Watch {
+        let mut found = Vec::new();
+        let mut scale = [0.0f64; WATCHED.len()];
+        for unit in 0..master.unit_names().count() {
+            let ports = &master.description(unit).outputs;
+            for (port, p) in ports.iter().enumerate() {
+                if let Some(k) = WATCHED.iter().position(|w| *w == p.name) {
+                    let start = master.outputs(unit)[port].abs();
+                    if start.is_finite() {
+                        scale[k] = scale[k].max(start);
+                    }
+                    found.push((unit, port, k));
+                }
+            }
+        }
+        let watched = found
+            .into_iter()
+            .filter(|&(_, _, k)| scale[k] > 0.0)
+            .map(|(unit, port, k)| Watched {
+                unit,
+                port,
+                bound: spec.factor * scale[k],
+                warned: false,
+            })
+            .collect();
+        Watch {
+            watched,
+            stop: spec.stop,
+        }
+    }
+
+    /// Checks the outputs after a step at simulated time `t` (s), adding a
+    /// warning to `warnings` per port the first time it goes beyond its
+    /// bound; `Err` with the warning when the watch stops the run.
+    pub fn observe(
+        &mut self,
+        master: &Master,
+        t: f64,
+        warnings: &mut Vec<String>,
+    ) -> Result<(), String> {
+        for w in self.watched.iter_mut().filter(|w| !w.warned) {
+            let value = master.outputs(w.unit)[w.port];
+            if value.abs() > w.bound {
+                w.warned = true;
+                let port = &master.description(w.unit).outputs[w.port];
+                let name = master.unit_names().nth(w.unit).unwrap_or("?");
+                let warning = format!(
+                    "implausible load: `{name}.{}` = {value:.4e} {} at t = {t} s, beyond {:.4e} (output.watch.factor times the largest at the start)",
+                    port.name, port.unit, w.bound
+                );
+                if self.stop {
+                    return Err(warning);
+                }
+                warnings.push(warning);
+            }
+        }
+        Ok(())
+    }
+}
