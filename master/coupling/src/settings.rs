@@ -63,7 +63,9 @@ pub enum Acceleration {
     None,
     /// Constant under-relaxation `x <- x + factor (G(x) - x)`.
     Constant {
-        /// Relaxation factor in (0, 1] (over-relaxation up to 2 allowed).
+        /// Relaxation factor in (0, 1] (over-relaxation up to 2 allowed);
+        /// 0.5 by default, as the other kinds start.
+        #[serde(default = "half")]
         factor: f64,
     },
     /// Aitken dynamic relaxation; the factor restarts at `initial_factor` each step.

@@ -60,6 +60,7 @@ impl Setting {
         if self.path.is_empty() {
             return set_cable_elements(scene, value);
         }
+        scheme_preset(&self.path, scene, value);
         let (last, parents) = self.path.split_last().ok_or("an empty key")?;
         let mut here: &mut toml::Table = scene;
         let mut walked = String::new();
@@ -91,6 +92,30 @@ impl Setting {
         }
         here.insert(last.clone(), value.clone());
         Ok(())
+    }
+}
+
+/// What a coupling scheme's keys imply for the others, so that a study
+/// comparing schemes runs each at its defaults: a new acceleration kind
+/// starts from its own defaults (an IQN-ILS `reuse_steps` would be refused by
+/// Aitken), and a non-iterative scheme drops the acceleration and Newton it
+/// cannot take.
+fn scheme_preset(path: &[String], scene: &mut toml::Table, value: &toml::Value) {
+    let Some(toml::Value::Table(master)) = scene.get_mut("master") else {
+        return;
+    };
+    match path {
+        [m, a, k] if m == "master" && a == "acceleration" && k == "kind" => {
+            master.remove("acceleration");
+            master.remove("newton");
+        }
+        [m, s] if m == "master" && s == "scheme" => {
+            if matches!(value.as_str(), Some("jacobi" | "gauss_seidel")) {
+                master.remove("acceleration");
+                master.remove("newton");
+            }
+        }
+        _ => {}
     }
 }
 
@@ -339,5 +364,26 @@ segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
             Refinement::Larger
         );
         assert_eq!(r("master.scheme"), Refinement::None);
+    }
+
+    #[test]
+    fn coupling_schemes_compare_at_their_defaults() {
+        let mut t: toml::Table = toml::from_str(
+            "[master]\nscheme = \"iterative_jacobi\"\nacceleration = { kind = \"iqn_ils\", reuse_steps = 8 }",
+        )
+        .unwrap();
+        let set = |t: &mut toml::Table, key: &str, value: &str| {
+            let s: Setting = key.parse().unwrap();
+            s.apply(t, &toml::Value::String(value.into())).unwrap();
+        };
+        set(&mut t, "master.acceleration.kind", "aitken");
+        assert_eq!(
+            t["master"]["acceleration"].to_string(),
+            "{ kind = \"aitken\" }"
+        );
+        set(&mut t, "master.scheme", "iterative_gauss_seidel");
+        assert!(t["master"].get("acceleration").is_some());
+        set(&mut t, "master.scheme", "jacobi");
+        assert!(t["master"].get("acceleration").is_none() && t["master"].get("newton").is_none());
     }
 }
