@@ -542,3 +542,40 @@ supports = [{{ at = 10.0, x = true }}]
         driver
     }
 }
+
+/// 500 m of the steel catenary riser's pipe hanging between a pinned foot at
+/// (0, -300) and a pinned top 50 m back from the stress-free end, started
+/// from its statics: `parameters` adds unit parameters (e.g. `linear = true`),
+/// `heave` is the top's z displacement table, `drag` the normal drag
+/// coefficient, `output` the `[output]` body.
+pub fn hanging_pipe(
+    (duration, parameters): (f64, &str),
+    (heave, drag): (&str, f64),
+    output: &str,
+) -> slender_scene::Scene {
+    let text = format!(
+        r#"
+title = "hanging steel pipe"
+[simulation]
+duration = {duration:?}
+step = 0.05
+[master]
+scheme = "gauss_seidel"
+[[units]]
+name = "pipe"
+kind = "nonlinear"
+[units.parameters]
+static_start = true
+{parameters}
+start_shape = "catenary"
+start = [0.0, -300.0]
+segments = [{{ length = 500.0, angle = 37.0, elements = 50, axial_stiffness = 4.0631e9, bending_stiffness = 4.6937e7, mass_per_length = 154.08, submerged_weight = 683.05, diameter = 0.3239, drag_normal = {drag:?}, added_mass_normal = 1.0 }}]
+ends.start = {{ kind = "pinned" }}
+ends.end = {{ kind = "pinned", x = {{ displacement = -50.0 }}, z = {{ displacement = {heave} }} }}
+integrator = {{ kind = "hht", alpha = 0.1 }}
+[output]
+{output}
+"#
+    );
+    slender_scene::Scene::parse(&root().join("hanging.toml"), text).expect("the hanging pipe")
+}

@@ -5,37 +5,17 @@
 //! and top follow the monolithic twin; what it cannot model is refused.
 
 use slender_scene::Scene;
-use slender_tests::{Series, root, run};
+use slender_tests::{Series, hanging_pipe, root, run};
 
 /// 500 m of the riser's steel pipe hanging between a pinned foot and a
 /// pinned top that heaves `amplitude` m (faded in over 10 s), for 40 s.
 fn hanging(amplitude: f64, linear: bool, drag: bool) -> Series {
-    let text = format!(
-        r#"
-title = "hanging steel pipe"
-[simulation]
-duration = 40.0
-step = 0.05
-[master]
-scheme = "gauss_seidel"
-[[units]]
-name = "pipe"
-kind = "nonlinear"
-[units.parameters]
-static_start = true
-linear = {linear}
-start_shape = "catenary"
-start = [0.0, -300.0]
-segments = [{{ length = 500.0, angle = 37.0, elements = 50, axial_stiffness = 4.0631e9, bending_stiffness = 4.6937e7, mass_per_length = 154.08, submerged_weight = 683.05, diameter = 0.3239, drag_normal = {}, added_mass_normal = 1.0 }}]
-ends.start = {{ kind = "pinned" }}
-ends.end = {{ kind = "pinned", x = {{ displacement = -50.0 }}, z = {{ displacement = {{ amplitude = {amplitude}, angular_frequency = 0.6, fade_in = 10.0 }} }} }}
-integrator = {{ kind = "hht", alpha = 0.1 }}
-[output]
-signals = ["pipe.end_force_z"]
-"#,
-        if drag { 1.0 } else { 0.0 }
+    let heave = format!("{{ amplitude = {amplitude}, angular_frequency = 0.6, fade_in = 10.0 }}");
+    let scene = hanging_pipe(
+        (40.0, &format!("linear = {linear}")),
+        (&heave, if drag { 1.0 } else { 0.0 }),
+        "signals = [\"pipe.end_force_z\"]",
     );
-    let scene = Scene::parse(&root().join("hanging.toml"), text).unwrap();
     let s = run(&scene);
     assert!(s.error.is_none(), "{:?}", s.error);
     s

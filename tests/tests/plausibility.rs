@@ -4,37 +4,14 @@
 //! the run; a run within it has none.
 
 use slender_app::run::{RunOptions, run_scene};
-use slender_scene::Scene;
-use slender_tests::root;
+use slender_tests::hanging_pipe;
 
 /// 500 m of steel pipe hanging from a top heaving 2 m (faded in over `fade`
 /// s), started from its statics, with `watch` as the `[output]` watch table.
 fn hanging(watch: &str, fade: f64) -> slender_app::run::RunResult {
-    let text = format!(
-        r#"
-title = "hanging steel pipe"
-[simulation]
-duration = 20.0
-step = 0.05
-[master]
-scheme = "gauss_seidel"
-[[units]]
-name = "pipe"
-kind = "nonlinear"
-[units.parameters]
-static_start = true
-start_shape = "catenary"
-start = [0.0, -300.0]
-segments = [{{ length = 500.0, angle = 37.0, elements = 50, axial_stiffness = 4.0631e9, bending_stiffness = 4.6937e7, mass_per_length = 154.08, submerged_weight = 683.05, diameter = 0.3239, drag_normal = 1.0, added_mass_normal = 1.0 }}]
-ends.start = {{ kind = "pinned" }}
-ends.end = {{ kind = "pinned", x = {{ displacement = -50.0 }}, z = {{ displacement = {{ amplitude = 2.0, angular_frequency = 0.6, fade_in = {fade} }} }} }}
-integrator = {{ kind = "hht", alpha = 0.1 }}
-[output]
-signals = ["pipe.max_tension"]
-{watch}
-"#
-    );
-    let scene = Scene::parse(&root().join("hanging.toml"), text).unwrap();
+    let heave = format!("{{ amplitude = 2.0, angular_frequency = 0.6, fade_in = {fade:?} }}");
+    let output = format!("signals = [\"pipe.max_tension\"]\n{watch}");
+    let scene = hanging_pipe((20.0, ""), (&heave, 1.0), &output);
     let options = RunOptions {
         output_dir: None,
         progress: false,

@@ -401,6 +401,47 @@ fn a_key_that_does_not_apply_is_refused_before_anything_runs() {
     }
 }
 
+/// `run --duration` looks at part of a scene (a whole number of its steps,
+/// else bad input), and `fmu export` takes `--out` as the other commands do
+/// (issue 28).
+#[test]
+fn run_takes_a_duration_and_fmu_export_takes_out() {
+    let dir = std::env::temp_dir().join(format!("slender-cli-duration-{}", std::process::id()));
+    let d = dir.to_str().unwrap();
+    let out = slender(&[
+        "run",
+        "examples/b1_two_masses.toml",
+        "--duration",
+        "0.5",
+        "--out",
+        d,
+        "--quiet",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("simulated    0.5 s in 50 steps"),
+        "{}",
+        text(&out.stdout)
+    );
+    let bad = slender(&[
+        "run",
+        "examples/b1_two_masses.toml",
+        "--duration",
+        "0.505",
+        "--out",
+        d,
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        text(&bad.stderr).contains("--duration 0.505: 0.505 s is not a whole number of steps"),
+        "{}",
+        text(&bad.stderr)
+    );
+    let help = text(&slender(&["fmu", "export", "--help"]).stdout);
+    assert!(help.contains("--out"), "{help}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
 /// Issue 28: `run --set KEY=VALUE` sets scene keys over the file (a TOML
 /// value, a bare word a string), lists them in summary.json and on screen,
 /// and names a bad one.
@@ -408,15 +449,14 @@ fn a_key_that_does_not_apply_is_refused_before_anything_runs() {
 fn run_sets_scene_keys_over_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("set");
-    let run = slender(&[
-        "run",
-        "examples/b1_two_masses.toml",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
+    let run_b1 = |sets: &[&str]| {
+        let mut args = vec!["run", "examples/b1_two_masses.toml", "--quiet"];
+        args.extend(["--out", out.to_str().unwrap()]);
+        args.extend(sets.iter().flat_map(|s| ["--set", s]));
+        slender(&args)
+    };
+    let run = run_b1(&[
         "simulation.duration=0.5",
-        "--set",
         "master.acceleration={ kind = \"aitken\" }",
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
@@ -433,15 +473,7 @@ fn run_sets_scene_keys_over_the_file() {
         ("simulation.duration", "expected KEY=VALUE"),
         ("simulation.step=-1", "--set simulation.step=-1"),
     ] {
-        let run = slender(&[
-            "run",
-            "examples/b1_two_masses.toml",
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-            "--set",
-            set,
-        ]);
+        let run = run_b1(&[set]);
         assert_eq!(run.status.code(), Some(2), "{set}");
         let err = text(&run.stderr);
         assert!(err.contains(expected), "{set}: {err}");

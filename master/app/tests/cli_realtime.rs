@@ -17,15 +17,7 @@ fn realtime_runs_keep_the_clock_and_report_every_overrun() {
         "examples/b1_two_masses.toml",
         &[("duration = 1.0", "duration = 0.3")],
     );
-    let out = dir.join("b1");
-    let run = slender(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--realtime",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (run, out) = run_paced(&scene, &dir, "b1");
     assert!(run.status.success(), "{}", text(&run.stderr));
     let s = summary(&out);
     assert!(s["wall_time_s"].as_f64().unwrap() >= 0.3 - 1e-3, "{s}");
@@ -50,15 +42,7 @@ fn realtime_runs_keep_the_clock_and_report_every_overrun() {
             ("step = 0.001", "step = 0.00001\nmax_overruns = 100000"),
         ],
     );
-    let out = dir.join("frame");
-    let run = slender(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--realtime",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (run, out) = run_paced(&scene, &dir, "frame");
     assert!(run.status.success(), "{}", text(&run.stderr));
     let overruns = summary(&out)["realtime"]["overruns"]
         .as_array()
@@ -87,45 +71,18 @@ fn realtime_runs_keep_the_clock_and_report_every_overrun() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
-/// `run --duration` looks at part of a scene (a whole number of its steps,
-/// else bad input), and `fmu export` takes `--out` as the other commands do
-/// (issue 28).
-#[test]
-fn run_takes_a_duration_and_fmu_export_takes_out() {
-    let dir = std::env::temp_dir().join(format!("slender-cli-duration-{}", std::process::id()));
-    let d = dir.to_str().unwrap();
-    let out = slender(&[
+/// `slender run SCENE --realtime` into `dir/name`: its output and folder.
+fn run_paced(scene: &Path, dir: &Path, name: &str) -> (std::process::Output, PathBuf) {
+    let out = dir.join(name);
+    let run = slender(&[
         "run",
-        "examples/b1_two_masses.toml",
-        "--duration",
-        "0.5",
-        "--out",
-        d,
+        scene.to_str().unwrap(),
+        "--realtime",
         "--quiet",
-    ]);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    assert!(
-        text(&out.stdout).contains("simulated    0.5 s in 50 steps"),
-        "{}",
-        text(&out.stdout)
-    );
-    let bad = slender(&[
-        "run",
-        "examples/b1_two_masses.toml",
-        "--duration",
-        "0.505",
         "--out",
-        d,
+        out.to_str().unwrap(),
     ]);
-    assert_eq!(bad.status.code(), Some(2));
-    assert!(
-        text(&bad.stderr).contains("--duration 0.505: 0.505 s is not a whole number of steps"),
-        "{}",
-        text(&bad.stderr)
-    );
-    let help = text(&slender(&["fmu", "export", "--help"]).stdout);
-    assert!(help.contains("--out"), "{help}");
-    std::fs::remove_dir_all(dir).unwrap();
+    (run, out)
 }
 
 /// A scene file made from an example with its text replaced.
@@ -141,19 +98,7 @@ fn bounded_overruns(dir: &Path, variant: &Variant<'_>) {
             &[("duration = 10.0", duration), ("step = 0.001", step)],
         )
     };
-    let run_paced = |scene: &PathBuf, name: &str| {
-        let out = dir.join(name);
-        let run = slender(&[
-            "run",
-            scene.to_str().unwrap(),
-            "--realtime",
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        (run, out)
-    };
-    let (run, out) = run_paced(&frame("duration = 0.01", "step = 0.00001"), "stopped");
+    let (run, out) = run_paced(&frame("duration = 0.01", "step = 0.00001"), dir, "stopped");
     assert_eq!(run.status.code(), Some(1), "{}", text(&run.stdout));
     let s = summary(&out);
     assert_eq!(s["status"].as_str(), Some("failed"));
@@ -163,10 +108,8 @@ fn bounded_overruns(dir: &Path, variant: &Variant<'_>) {
         "{error}"
     );
     assert_eq!(s["realtime"]["overrun_count"].as_u64(), Some(101));
-    let (run, out) = run_paced(
-        &frame("duration = 0.015", "step = 0.00001\nmax_overruns = 100000"),
-        "bounded",
-    );
+    let bounded = frame("duration = 0.015", "step = 0.00001\nmax_overruns = 100000");
+    let (run, out) = run_paced(&bounded, dir, "bounded");
     assert!(run.status.success(), "{}", text(&run.stderr));
     let r = &summary(&out)["realtime"];
     let count = r["overrun_count"].as_u64().unwrap();
