@@ -287,9 +287,9 @@ fn input_errors_of_modes_and_study_exit_with_code_2() {
     refused(
         &slender(&[
             "study",
-            "examples/b1_two_masses.toml",
+            "examples/b6_algebraic_loop.toml",
             "--vary",
-            "step=0.01,0.02",
+            "master.max_iterations=30,40",
         ]),
         &["output.indicators"],
     );

@@ -69,11 +69,12 @@ pub fn modes(
 pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), CliError> {
     let (dir, _) = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
     let _lock = super::lock::lock(&dir)?;
+    let rows = study::run_study(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
     println!(
         "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"
     );
-    let rows = study::run_study(path, plan, print_row).map_err(CliError::input)?;
+    rows.iter().for_each(print_row);
     let failed = rows.iter().filter(|r| r.error.is_some()).count();
     let csv = dir.join("study.csv");
     slender_app::whole::write(&csv, study::to_csv(&rows))

@@ -9,6 +9,7 @@
 //! indicator with reference signals of its own is measured inside each run.
 
 mod check;
+mod orders;
 #[cfg(test)]
 mod orders_tests;
 pub mod report;
@@ -175,7 +176,7 @@ struct Judged {
 pub fn run_study(
     path: &Path,
     plan: &StudyPlan,
-    progress: impl Fn(&StudyRow) + Sync,
+    progress: impl Fn(&str) + Sync,
 ) -> Result<Vec<StudyRow>, String> {
     let reference = match &plan.reference {
         Some(r) => Some(run_reference(r, plan.duration)?),
@@ -219,7 +220,7 @@ pub fn run_study_against(
     path: &Path,
     plan: &StudyPlan,
     reference: Option<&ReferenceRun>,
-    progress: impl Fn(&StudyRow) + Sync,
+    progress: impl Fn(&str) + Sync,
 ) -> Result<Vec<StudyRow>, String> {
     let base = Scene::load(path).map_err(|e| e.to_string())?;
     if base.spec.output.indicators.is_empty() {
@@ -258,17 +259,30 @@ pub fn run_study_against(
     let groups = groups(plan);
     let all: Vec<&Vec<Assignment>> = groups.iter().flat_map(|(_, runs)| runs).collect();
     let order = costliest_first(&all);
+    // Each finished run says which of how many it is.
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let mut outcomes = crate::parallel::run_all(&all, &order, plan.jobs, |assignments| {
-        run_one(path, &table, assignments, plan, &judged)
+        let o = run_one(path, &table, assignments, plan, &judged);
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        let what: Vec<String> = assignments
+            .iter()
+            .map(|(s, v)| format!("{s}={}", label(v)))
+            .collect();
+        let how = match &o.error {
+            Some(e) => format!("FAILED: {e}"),
+            None => format!(
+                "{:.2} it/step, {:.3e} s per simulated s",
+                o.iterations_per_step, o.cost
+            ),
+        };
+        progress(&format!("[{k}/{}] {}: {how}", all.len(), what.join(" ")));
+        o
     });
     let mut rows = Vec::new();
     for (group, runs) in &groups {
         let rest = outcomes.split_off(runs.len());
         let mut group_rows = rows_of(group, runs, &outcomes, external, &judged);
         outcomes = rest;
-        for r in &group_rows {
-            progress(r);
-        }
         group_rows.sort_by(|a, b| a.value.total_cmp(&b.value));
         rows.extend(group_rows);
     }
@@ -504,44 +518,9 @@ fn rows_of(
         })
         .collect();
     if runs[0].len() == 1 {
-        observed_orders(runs[0][0].0.refinement(), &mut rows);
+        orders::observed_orders(runs[0][0].0.refinement(), &mut rows);
     }
     rows
-}
-
-/// p = ln(e_i / e_j) / ln(h_i / h_j) between each non-reference run and the next
-/// finer one (h the step, or 1 / elements).
-fn observed_orders(refinement: Refinement, rows: &mut [StudyRow]) {
-    let size = |v: f64| match refinement {
-        Refinement::Smaller => v,
-        Refinement::Larger => 1.0 / v,
-        Refinement::None => f64::NAN,
-    };
-    if refinement == Refinement::None {
-        return;
-    }
-    let by_size = |mut ks: Vec<usize>| {
-        ks.sort_by(|&a, &b| size(rows[b].value).total_cmp(&size(rows[a].value)));
-        ks
-    };
-    let order = by_size((0..rows.len()).filter(|&k| !rows[k].reference).collect());
-    // Every run, the reference too: an indicator against the run's own twin
-    // has an error there as well.
-    let all = by_size((0..rows.len()).collect());
-    for i in 0..rows.first().map_or(0, |r| r.errors.len()) {
-        // An order means something only where the error falls with every
-        // refinement: where it does not, the reference is not finer than
-        // every run (an in-run twin at one of the meshes) and none is given.
-        let falls = all
-            .windows(2)
-            .all(|w| rows[w[1]].errors[i].1 < rows[w[0]].errors[i].1);
-        for pair in order.windows(2).filter(|_| falls) {
-            let (coarse, fine) = (pair[0], pair[1]);
-            let ratio = (size(rows[coarse].value) / size(rows[fine].value)).ln();
-            let p = (rows[coarse].errors[i].1 / rows[fine].errors[i].1).ln() / ratio;
-            rows[coarse].orders[i].1 = if p.is_finite() { p } else { f64::NAN };
-        }
-    }
 }
 
 /// Each indicator's recorded signal columns of a run.

@@ -1,8 +1,9 @@
 //! Observed orders: given where the error falls with every refinement, not
 //! where the reference is not finer than every run.
 
+use super::StudyRow;
+use super::orders::observed_orders;
 use super::setting::Refinement;
-use super::{StudyRow, observed_orders};
 
 fn row(elements: f64, error: f64, reference: bool) -> StudyRow {
     StudyRow {
