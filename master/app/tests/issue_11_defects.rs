@@ -369,7 +369,7 @@ fn type_errors_name_the_key() {
     .unwrap();
     refused(
         &slender(&["check", path.to_str().unwrap()]),
-        &[":3", "`step`", "expected f64"],
+        &[":3", "`step`", "expected a number"],
     );
     std::fs::write(
         &path,

@@ -234,5 +234,5 @@ impl Kind {
 /// Reads a kind's parameter table into its typed parameters.
 fn parameters<T: DeserializeOwned>(table: toml::Table) -> Result<T, BuildError> {
     T::deserialize(toml::Value::Table(table))
-        .map_err(|e| BuildError::Parameters(e.message().trim().to_owned()))
+        .map_err(|e| BuildError::Parameters(crate::words::in_words(e.message().trim())))
 }

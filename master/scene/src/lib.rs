@@ -10,6 +10,7 @@ pub mod spec;
 pub mod structure;
 mod structure_lines;
 mod uncertainty_check;
+mod words;
 
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;
@@ -467,6 +468,7 @@ impl Scene {
 
 /// A message with a hint where a scene uses a form slender no longer reads.
 fn migration_hint(message: &str) -> String {
+    let message = &words::in_words(message);
     if message.contains("unknown variant `newton`") {
         format!(
             "{message}; Newton is not a fixed-point acceleration: write `newton = {{}}` (or `newton = {{ perturbation = 1e-7, jacobian = \"every_iteration\" }}`) in [master] instead"
