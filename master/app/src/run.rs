@@ -235,7 +235,7 @@ fn csv_in(dir: Option<&Path>) -> Result<Option<PathBuf>, RunError> {
 /// Refuses a run whose time series would exceed `output.max_bytes`: its
 /// rows (every `output.every`-th step and the start) times its columns, 24 B
 /// a number as written.
-fn check_output_size(scene: &Scene, signals: usize) -> Result<(), RunError> {
+pub fn check_output_size(scene: &Scene, signals: usize) -> Result<(), RunError> {
     let out = &scene.spec.output;
     let rows = (scene.steps as u64) / u64::from(out.every.max(1)) + 1;
     let bytes = rows.saturating_mul(signals as u64 + 1).saturating_mul(24);

@@ -205,7 +205,12 @@ fn a_run_of_more_steps_than_the_bound_is_refused_unless_the_scene_lifts_it() {
             && err.contains("simulation.max_steps"),
         "{err}"
     );
+    // Past the step bound, its time series is past the output bound.
     let lifted = base.replace("step = 0.01", "step = 0.01\nmax_steps = 2000000000000");
+    std::fs::write(&scene, &lifted).unwrap();
+    let out = slender(&["check", scene.to_str().unwrap()]);
+    assert!(text(&out.stderr).contains("output.max_bytes = 2000000000"));
+    let lifted = lifted.replace("[output]", "[output]\nmax_bytes = 100000000000000");
     std::fs::write(&scene, lifted).unwrap();
     let out = slender(&["check", scene.to_str().unwrap()]);
     assert!(out.status.success(), "{}", text(&out.stderr));
@@ -222,6 +227,10 @@ fn a_run_of_more_steps_than_the_bound_is_refused_unless_the_scene_lifts_it() {
     };
     let out = small(10_000);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out.stdout));
+    // `check` states the same bound.
+    let checked = slender(&["check", scene.to_str().unwrap()]);
+    assert_eq!(checked.status.code(), Some(2));
+    assert!(text(&checked.stderr).contains("output.max_bytes = 10000"));
     let err = text(&out.stderr);
     assert!(
         err.contains("101 rows of 5 columns") && err.contains("output.max_bytes = 10000"),

@@ -160,6 +160,8 @@ pub fn expand(path: &Path) -> Result<(), CliError> {
 pub fn check(path: &Path) -> Result<(), CliError> {
     let scene = load(path)?;
     let master = scene.build().map_err(|e| CliError::input(e.to_string()))?;
+    let signals = scene.signals(&master).len();
+    slender_app::run::check_output_size(&scene, signals).map_err(CliError::input)?;
     println!("{}: ok", path.display());
     for (u, name) in master.unit_names().enumerate() {
         let d = master.description(u);
