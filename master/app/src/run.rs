@@ -70,7 +70,7 @@ pub struct RunResult {
 pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunError> {
     let mut master = scene.build()?;
     let mut files = Vec::new();
-    let csv_path = csv_in(options.output_dir.as_deref())?;
+    let csv_path = fresh_csv_in(options.output_dir.as_deref())?;
     let signals = scene.signals(&master);
     check_output_size(scene, signals.len())?;
     let mut recorder = Recorder::new(
@@ -215,7 +215,7 @@ impl RunError {
 /// An earlier run's `summary.json`, `timeseries.csv` and `overruns.csv` there
 /// are removed first: a run stopped outright must not leave an older run's
 /// complete-looking results beside its own partial ones.
-fn csv_in(dir: Option<&Path>) -> Result<Option<PathBuf>, RunError> {
+fn fresh_csv_in(dir: Option<&Path>) -> Result<Option<PathBuf>, RunError> {
     let Some(dir) = dir else {
         return Ok(None);
     };

@@ -35,12 +35,16 @@ impl Master {
     /// initialised under (after initialisation).
     pub(super) fn record_static_loads(&mut self) {
         self.static_loads.clear();
-        for (c, conn) in self.connections.iter().enumerate() {
-            let unit = &self.units[conn.to.unit];
-            if unit.static_inputs().contains(&conn.to.port) {
-                self.static_loads.push((c, unit.inputs[conn.to.port]));
+        // Each unit asked once; its static inputs found through the wiring.
+        for (u, unit) in self.units.iter().enumerate() {
+            for port in unit.static_inputs() {
+                if let Some(c) = self.input_connection[u].get(port).copied().flatten() {
+                    self.static_loads.push((c, unit.inputs[port]));
+                }
             }
         }
+        // In connection order, so that of equal changes the first is kept.
+        self.static_loads.sort_by_key(|&(c, _)| c);
     }
 
     /// After the first step: the largest relative change of a static load,
