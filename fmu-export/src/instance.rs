@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 use slender_fmi::export::{CONFIG_FILE, ExportConfig, Layout};
 use slender_fmi::ffi::*;
 use slender_fmi::model_description::Value;
-use slender_scene::export::SceneExport;
+use slender_kinds::exported::ExportedUnit;
 use slender_units::{Driver, DriverSlot, Hold, Time};
 use std::ffi::{CString, c_void};
 use std::panic::AssertUnwindSafe;

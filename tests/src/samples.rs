@@ -4,7 +4,7 @@
 
 use crate::{fmu, load};
 use slender_fmi::export::ExportConfig;
-use slender_scene::export::SceneExport;
+use slender_scene::export::{ExportedUnit, SceneExport};
 use slender_units::{Driver, Time};
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -7,7 +7,7 @@
 //! inputs its master settles on) or an inline parameter table. A kind added to the
 //! registry without a sample fails `every_registry_kind_has_a_contract_sample`.
 
-use slender_scene::export::SceneExport;
+use slender_scene::export::ExportedUnit;
 use slender_scene::kinds::KINDS;
 use slender_tests::samples::{inputs_at, samples, start_inputs, started};
 use slender_units::{Driver, DriverSlot, Time, UnitError};

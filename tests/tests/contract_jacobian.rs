@@ -7,7 +7,7 @@
 //! agrees with it. Entries a unit leaves NaN (outputs it does not derive) are
 //! skipped, but every end output of a nonlinear section is given.
 
-use slender_scene::export::SceneExport;
+use slender_scene::export::ExportedUnit;
 use slender_tests::samples::{inputs_at, samples, started};
 use slender_units::{Driver, DriverSlot, Time};
 

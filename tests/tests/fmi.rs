@@ -8,7 +8,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use slender_fmi::export::ExportConfig;
 use slender_fmi::model_description::{ModelDescription, Value, VariableCausality};
-use slender_scene::export::SceneExport;
+use slender_scene::export::{ExportedUnit, SceneExport};
 use slender_tests::fmu::import;
 use slender_tests::{fmu, load, root, run};
 use slender_units::{Driver, Hold, Time, Unit};

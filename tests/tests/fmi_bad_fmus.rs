@@ -4,7 +4,7 @@
 
 use slender_fmi::export::ExportConfig;
 use slender_fmi::import::{FmuParams, FmuUnit, LoadError};
-use slender_scene::export::SceneExport;
+use slender_scene::export::{ExportedUnit, SceneExport};
 use slender_tests::fmu::import;
 use slender_tests::{fmu, load};
 use slender_units::{Driver, Time, Unit};

@@ -7,7 +7,7 @@
 //! and test.sh runs them with `--ignored`.
 
 use slender_fmi::export::ExportConfig;
-use slender_scene::export::SceneExport;
+use slender_scene::export::{ExportedUnit, SceneExport};
 use slender_tests::{fmu, load, root};
 use slender_units::{Hold, Time};
 use std::path::{Path, PathBuf};

@@ -10,7 +10,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use slender_fmi::export::ExportConfig;
 use slender_fmi::import::{FmuParams, FmuUnit};
 use slender_scene::Scene;
-use slender_scene::export::{SceneExport, package};
+use slender_scene::export::{ExportedUnit, SceneExport, package};
 use slender_units::{Driver, DriverSlot, Time, Unit};
 use std::hint::black_box;
 use std::path::{Path, PathBuf};

@@ -4,9 +4,14 @@
 //! are in `slender_fmi::export`.
 
 use crate::kinds::BuildError;
-use crate::{Scene, SceneError, kinds};
+use crate::{Scene, SceneError};
+use slender_coupling::Master;
 use slender_coupling::MasterError;
+use slender_fmi::export::{ExportConfig, Layout, PackageError};
+pub use slender_kinds::exported::ExportedUnit;
 use slender_units::UnitError;
+use std::collections::BTreeMap;
+use std::path::Path;
 
 /// Why a scene's unit could not be exported (or a scene wrapped).
 #[derive(Debug, thiserror::Error)]
@@ -18,8 +23,6 @@ pub enum ExportError {
         unit: String,
         units: String,
     },
-    #[error("unknown unit kind `{0}`")]
-    UnknownKind(String),
     #[error(transparent)]
     Scene(#[from] SceneError),
     #[error("{scene}: initialisation: {source}")]
@@ -38,14 +41,10 @@ pub enum ExportError {
     #[error("{path}: {problem}")]
     SceneFile { path: String, problem: String },
 }
-use slender_coupling::Master;
-use slender_fmi::export::{ExportConfig, KindInfo, Layout, PackageError};
-use slender_units::{Driver, Unit};
-use std::collections::BTreeMap;
-use std::path::Path;
 
-/// Building an exported unit from its configuration, and configurations from
-/// scenes (the registry lives in this crate, the configuration in `slender-fmi`).
+/// An exported unit's configuration from a scene (building the unit from it is
+/// [`ExportedUnit`], in `slender-kinds` with the registry; the configuration is
+/// in `slender-fmi`).
 pub trait SceneExport: Sized {
     /// The section of unit `unit` of a loaded scene.
     fn from_scene(scene: &Scene, unit: &str) -> Result<Self, ExportError>;
@@ -53,16 +52,6 @@ pub trait SceneExport: Sized {
     /// The section of unit `unit`, with the start inputs of `master`, the scene
     /// already initialised (see [`settle`]).
     fn from_settled(scene: &Scene, master: &Master, unit: &str) -> Result<Self, ExportError>;
-
-    /// Builds the unit with the current parameters and effects.
-    fn build_unit(&self) -> Result<Box<dyn Unit>, ExportError>;
-
-    /// The unit in a driver with the configured hold.
-    fn driver(&self) -> Result<Driver, ExportError>;
-
-    /// The FMU layout: builds the unit once to read its ports (with the holds in
-    /// force) and to check its parameters.
-    fn layout(&self) -> Result<Layout, ExportError>;
 }
 
 impl SceneExport for ExportConfig {
@@ -127,41 +116,6 @@ impl SceneExport for ExportConfig {
         };
         config.guid = config.fingerprint();
         Ok(config)
-    }
-
-    fn build_unit(&self) -> Result<Box<dyn Unit>, ExportError> {
-        let kind =
-            kinds::find(&self.kind).ok_or_else(|| ExportError::UnknownKind(self.kind.clone()))?;
-        let context = kinds::BuildContext {
-            effects: &self.effects,
-            base_dir: Path::new("."),
-        };
-        Ok(kind.build(self.parameters.clone(), &context)?)
-    }
-
-    fn driver(&self) -> Result<Driver, ExportError> {
-        let mut unit = Driver::new(self.build_unit()?);
-        if let Some(hold) = self.hold {
-            for port in 0..unit.description().inputs.len() {
-                unit.set_hold(port, hold)?;
-            }
-        }
-        Ok(unit)
-    }
-
-    fn layout(&self) -> Result<Layout, ExportError> {
-        let driver = self.driver()?;
-        let mut unit = driver.description().clone();
-        for (port, hold) in unit.inputs.iter_mut().zip(driver.holds()) {
-            port.hold = *hold;
-        }
-        let kind =
-            kinds::find(&self.kind).ok_or_else(|| ExportError::UnknownKind(self.kind.clone()))?;
-        let info = KindInfo {
-            summary: kind.summary,
-            effects: kind.effects,
-        };
-        Ok(Layout::new(self, unit, &info))
     }
 }
 

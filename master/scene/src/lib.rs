@@ -4,13 +4,15 @@
 //! Errors name the file, the line where known, the key and what was expected.
 
 pub mod export;
-pub mod fields;
-pub mod kinds;
 pub mod spec;
 pub mod structure;
 mod structure_lines;
 mod uncertainty_check;
-mod words;
+
+/// The unit-kind registry (its own crate, `slender-kinds`, so the FMU library
+/// links it without the scene).
+pub use slender_kinds as kinds;
+pub use slender_kinds::{fields, words};
 
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;

@@ -1,4 +1,11 @@
-//! The unit kinds a scene can name, and how each is built from its parameters.
+//! The unit kinds a scene can name, and how each is built from its parameters:
+//! the registry on its own (below the scene crate), so an exported FMU, which
+//! builds its one unit from a kind and a parameter table, links the units and
+//! this registry but no scene, coupling, study or command-line code.
+
+pub mod exported;
+pub mod fields;
+pub mod words;
 
 use crate::fields::field_names;
 use serde::de::DeserializeOwned;
@@ -56,6 +63,9 @@ pub enum BuildError {
     Unit(#[from] UnitError),
     #[error(transparent)]
     Fmu(#[from] LoadError),
+    /// No kind of this name (an FMU's configuration names one).
+    #[error("unknown unit kind `{0}`")]
+    UnknownKind(String),
 }
 
 /// A unit kind: its scene name, what it is, and the effects it can switch.
@@ -234,5 +244,5 @@ impl Kind {
 /// Reads a kind's parameter table into its typed parameters.
 fn parameters<T: DeserializeOwned>(table: toml::Table) -> Result<T, BuildError> {
     T::deserialize(toml::Value::Table(table))
-        .map_err(|e| BuildError::Parameters(crate::words::in_words(e.message().trim())))
+        .map_err(|e| BuildError::Parameters(words::in_words(e.message().trim())))
 }
