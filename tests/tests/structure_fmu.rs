@@ -6,8 +6,8 @@
 
 use slender_fmi::export::ExportConfig;
 use slender_scene::Scene;
-use slender_scene::export::package;
 use slender_scene::export::SceneExport;
+use slender_scene::export::package;
 use slender_tests::{fmu::library, root, run};
 
 /// The mooring example over 10 s with a nonlinear lower section, `lower` being

@@ -22,10 +22,12 @@ mod initial;
 mod parallel;
 mod setup;
 mod start_check;
+mod tolerance;
 
 pub use start_check::StartLoad;
 
 use setup::{adapters, check_rollback, explicit_order};
+use tolerance::ConnectionTolerances;
 
 /// Convergence of one sweep: the largest change relative to its tolerance, and where.
 #[derive(Copy, Clone, Debug)]
@@ -50,8 +52,10 @@ pub struct Master {
     pub(crate) iterated: Vec<bool>,
     /// Whether the current step (or initialisation) has had its first sweep.
     first_sweep_done: bool,
-    /// Per connection: its tolerance.
+    /// Per connection: its tolerance now.
     pub(crate) tolerance: Vec<f64>,
+    /// Where each tolerance comes from; relative ones follow the values.
+    pub(super) tolerances: ConnectionTolerances,
     /// Per connection: index in the torn vector, or `None`.
     pub(crate) tear_index: Vec<Option<usize>>,
     /// The torn connections, in tear order.
@@ -117,11 +121,8 @@ impl Master {
             torn_connections(&order, &system.connections, settings.scheme.is_sequential());
         let (input_connection, outgoing) = wiring(&system);
         let iterated = reached_by_torn(n_units, &system.connections, &torn);
-        let tolerance: Vec<f64> = system
-            .connections
-            .iter()
-            .map(|c| c.link.tolerance.unwrap_or(settings.tolerances.of(c.kind)))
-            .collect();
+        let (tolerances, tolerance) =
+            ConnectionTolerances::new(&system.connections, &settings.tolerances);
         let n_conn = system.connections.len();
         let n_torn = torn.len();
         let counters = Counters::new(system.unit_names());
@@ -144,6 +145,7 @@ impl Master {
             iterated,
             first_sweep_done: false,
             tolerance,
+            tolerances,
             tear_index,
             torn,
             value: vec![0.0; n_conn],
@@ -187,6 +189,12 @@ impl Master {
                 "Master::step called before Master::initialize".into(),
             ));
         }
+        self.tolerances.follow(
+            &self.accepted,
+            &self.connections,
+            &mut self.tolerance,
+            &mut self.units,
+        );
         self.predict();
         self.first_sweep_done = false;
         let (iterations, residual, converged) = if !self.settings.scheme.is_iterative() {
@@ -411,6 +419,9 @@ impl Master {
                     connection: self.connections[residual.connection].label.clone(),
                     change: residual.change,
                     tolerance: self.tolerance[residual.connection],
+                    key: self
+                        .tolerances
+                        .key(residual.connection, &self.connections[residual.connection]),
                 })
             }
         }

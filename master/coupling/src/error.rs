@@ -40,7 +40,7 @@ pub enum MasterError {
     },
     /// An iterative step reached its iteration cap with `on_max_iterations = "error"`.
     #[error(
-        "the coupled values at t = {time} s did not converge in {iterations} iterations: connection `{connection}` still changes by {change:.3e} (tolerance {tolerance:.3e})"
+        "the coupled values at t = {time} s did not converge in {iterations} iterations: connection `{connection}` still changes by {change:.3e} (tolerance {tolerance:.3e}, set by {key})"
     )]
     NotConverged {
         time: f64,
@@ -48,6 +48,8 @@ pub enum MasterError {
         connection: String,
         change: f64,
         tolerance: f64,
+        /// The scene key the tolerance comes from.
+        key: String,
     },
     /// A unit solved its statics under a coupled load that the other side
     /// left in the first step by more than `start_tolerance`.

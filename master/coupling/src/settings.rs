@@ -226,8 +226,13 @@ pub struct Tolerances {
     pub rotation: f64,
     /// N m.
     pub moment: f64,
-    /// Any other quantity.
+    /// Any other quantity (a port without a unit of measure): the floor of
+    /// its relative tolerance, or its tolerance when `generic_relative` is 0.
     pub generic: f64,
+    /// A port without a unit of measure converges within this fraction of the
+    /// largest value its connection has carried (at least `generic`): no
+    /// absolute number suits both a 1.9 MN force and a 1e-3 signal.
+    pub generic_relative: f64,
 }
 
 impl Default for Tolerances {
@@ -239,6 +244,7 @@ impl Default for Tolerances {
             rotation: 1e-9,
             moment: 0.1,
             generic: 1e-9,
+            generic_relative: 1e-9,
         }
     }
 }
@@ -353,7 +359,8 @@ impl MasterSettings {
         }
     }
 
-    /// Tolerances: each port kind's finite and > 0, the start check's > 0.
+    /// Tolerances: each port kind's finite and > 0, the relative one a
+    /// fraction, the start check's > 0.
     fn check_tolerances(&self) -> Result<(), SettingsError> {
         let start = self.start_tolerance;
         if start.is_nan() || start <= 0.0 {
@@ -369,6 +376,12 @@ impl MasterSettings {
                     kind.name()
                 )));
             }
+        }
+        let relative = self.tolerances.generic_relative;
+        if !(0.0..1.0).contains(&relative) {
+            return Err(SettingsError(format!(
+                "tolerances.generic_relative: {relative} is not a fraction in [0, 1) (0: ports without a unit take the absolute tolerances.generic)"
+            )));
         }
         Ok(())
     }

@@ -42,6 +42,16 @@ impl Master {
                 self.units[conn.to.unit].start_inputs[conn.to.port]
             };
         }
+        // Relative tolerances start from the torn inputs' first values.
+        for (k, &c) in self.torn.iter().enumerate() {
+            self.value[c] = self.x[k];
+        }
+        self.tolerances.follow(
+            &self.value,
+            &self.connections,
+            &mut self.tolerance,
+            &mut self.units,
+        );
         if self.torn.is_empty() {
             self.sweep(1)?;
             return Ok((1, 0.0, true));
