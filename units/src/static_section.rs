@@ -118,30 +118,40 @@ impl StaticSection {
             .force_input
             .then(|| inverse(&params.stiffness))
             .transpose()?;
-        let (inputs, feedthrough) = if params.force_input {
-            let ports = vec![
+        let inputs = if params.force_input {
+            vec![
                 Port::input("end_force_x", PortKind::Force),
                 Port::input("end_force_z", PortKind::Force),
                 Port::input("end_moment", PortKind::Moment),
-            ];
-            (ports, vec![0, 1, 2])
+            ]
         } else {
-            let ports = vec![
+            vec![
                 Port::input("end_velocity_x", PortKind::Velocity),
                 Port::input("end_velocity_z", PortKind::Velocity),
                 Port::input("end_angular_velocity", PortKind::Generic).with_unit("rad/s"),
-            ];
-            (ports, vec![])
+            ]
         };
+        // Every output is linear in the end displacement (a row of it).
+        let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let rows = params.stiffness.iter().chain(&params.start_stiffness);
         let mut outputs: Vec<Port> = OUTPUTS
             .iter()
-            .map(|(name, kind)| Port::output(name, *kind).with_feedthrough(&feedthrough))
+            .zip(rows.chain(&identity))
+            .enumerate()
+            .map(|(k, ((name, kind), row))| {
+                let depends_on = match compliance {
+                    // The end force is its input reversed (see `outputs`).
+                    Some(_) if k < 3 => vec![k],
+                    _ => direct(row, compliance.as_ref()),
+                };
+                Port::output(name, *kind).with_feedthrough(&depends_on)
+            })
             .collect();
         for q in &params.quantities {
             outputs.push(
                 Port::output(&q.name, PortKind::Generic)
                     .with_unit(&q.unit)
-                    .with_feedthrough(&feedthrough),
+                    .with_feedthrough(&direct(&q.gradient, compliance.as_ref())),
             );
         }
         Ok(StaticSection {
@@ -173,6 +183,19 @@ impl StaticSection {
             (0..3).map(|j| c[i][j] * excess[j]).sum::<f64>()
         }))
     }
+}
+
+/// The inputs an output `row . u` follows at a communication point: none when
+/// the end moves with velocities (the displacement changes through a step),
+/// else those its row reaches through the compliance (`u = C (-f - f0)`),
+/// round-off (below 1e-9 of the row's largest term) left out.
+fn direct(row: &[f64; 3], compliance: Option<&[[f64; 3]; 3]>) -> Vec<usize> {
+    let Some(c) = compliance else {
+        return Vec::new();
+    };
+    let gain: [f64; 3] = std::array::from_fn(|j| (0..3).map(|i| row[i] * c[i][j]).sum());
+    let largest = gain.iter().fold(0.0f64, |m, g| m.max(g.abs()));
+    (0..3).filter(|&j| gain[j].abs() > 1e-9 * largest).collect()
 }
 
 /// The inverse of a 3x3 matrix by cofactors; an error when it is singular.
@@ -228,6 +251,13 @@ impl Unit for StaticSection {
         let at_rest = p.force.iter().chain(&p.start_force);
         for ((o, row), f0) in out[..5].iter_mut().zip(rows).zip(at_rest) {
             *o = f0 + dot(row);
+        }
+        if yielded.is_some() {
+            // Under force inputs the end exerts what is applied on it, reversed
+            // (f0 + K C (-f - f0) = -f): exactly, not through K C's round-off.
+            for (o, f) in out[..3].iter_mut().zip(inputs.end()) {
+                *o = -f;
+            }
         }
         out[5..8].copy_from_slice(u);
         for (o, q) in out[8..].iter_mut().zip(&p.quantities) {

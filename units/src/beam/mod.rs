@@ -467,29 +467,25 @@ fn resolve_conditions(params: &BeamParams, nodes: usize) -> (Vec<ResolvedConditi
     (conditions, inputs)
 }
 
-/// The four end quantities at both ends (moment and shear depend directly on the
-/// end's coupled inputs), the energies and contact region, and the deflection at
-/// each of `stations`.
+/// The four end quantities at both ends (a moment or shear prescribed by a
+/// coupled input is that input: it depends on it directly), the energies and
+/// contact region, and the deflection at each of `stations`.
 fn output_ports(conditions: &[ResolvedCondition], stations: usize) -> Vec<Port> {
     let mut outputs = Vec::new();
     for (end, side) in ["left", "right"].iter().enumerate() {
-        let held: Vec<usize> = conditions
-            .iter()
-            .filter(|c| c.end == end)
-            .filter_map(|c| c.input)
-            .collect();
         for q in [
             Quantity::Deflection,
             Quantity::Rotation,
             Quantity::Moment,
             Quantity::Shear,
         ] {
+            let held: Vec<usize> = conditions
+                .iter()
+                .filter(|c| c.end == end && c.quantity == q && !q.is_kinematic())
+                .filter_map(|c| c.input)
+                .collect();
             let p = Port::output(&format!("{side}_{}", q.name()), port_kind(q));
-            outputs.push(if q.is_kinematic() {
-                p
-            } else {
-                p.with_feedthrough(&held)
-            });
+            outputs.push(p.with_feedthrough(&held));
         }
     }
     for name in EXTRA_OUTPUTS {

@@ -15,8 +15,9 @@ use crate::contract::{
 };
 use serde::Deserialize;
 
-fn describe(kind: &str, inputs: &[&str], outputs: &[&str]) -> UnitDescription {
-    let all_inputs: Vec<usize> = (0..inputs.len()).collect();
+/// Ports of a loop unit: generic inputs, and outputs with the inputs each
+/// follows directly (it is stateless: at a communication point too).
+fn describe(kind: &str, inputs: &[&str], outputs: &[(&str, &[usize])]) -> UnitDescription {
     UnitDescription {
         kind: kind.into(),
         inputs: inputs
@@ -25,7 +26,7 @@ fn describe(kind: &str, inputs: &[&str], outputs: &[&str]) -> UnitDescription {
             .collect(),
         outputs: outputs
             .iter()
-            .map(|n| Port::output(n, PortKind::Generic).with_feedthrough(&all_inputs))
+            .map(|(n, depends_on)| Port::output(n, PortKind::Generic).with_feedthrough(depends_on))
             .collect(),
         capabilities: Capabilities {
             hold: HoldSupport::Fixed,
@@ -50,18 +51,23 @@ impl LinearPair {
     /// Builds the unit.
     pub fn new(_params: LinearPairParams) -> LinearPair {
         LinearPair {
-            description: describe("loop_linear_pair", &["c"], &["a", "b"]),
+            // b = -9/5 whatever c is (the two equations fix it): only a follows c.
+            description: describe("loop_linear_pair", &["c"], &[("a", &[0]), ("b", &[])]),
             outputs: vec![0.0; 2],
         }
     }
 
     fn solve(&mut self, inputs: &[f64]) {
+        self.outputs.copy_from_slice(&Self::values(inputs));
+    }
+
+    /// (a, b) for the input c.
+    fn values(inputs: &[f64]) -> [f64; 2] {
         let c = inputs[0];
         // [1 1; 2 -3] [a; b] = [-c; 9 - 2c], by Cramer's rule (determinant -5).
         let (r1, r2) = (-c, 9.0 - 2.0 * c);
         let det = 1.0 * -3.0 - 1.0 * 2.0;
-        self.outputs[0] = (r1 * -3.0 - 1.0 * r2) / det;
-        self.outputs[1] = (1.0 * r2 - 2.0 * r1) / det;
+        [(r1 * -3.0 - 1.0 * r2) / det, (1.0 * r2 - 2.0 * r1) / det]
     }
 }
 
@@ -113,12 +119,18 @@ impl SphereClosure {
         require_positive("radius_squared", params.radius_squared)?;
         Ok(SphereClosure {
             params,
-            description: describe("loop_sphere", &["a", "b"], &["c"]),
+            description: describe("loop_sphere", &["a", "b"], &[("c", &[0, 1])]),
             outputs: vec![0.0; 1],
         })
     }
 
     fn solve(&mut self, inputs: &[f64]) -> Result<(), UnitError> {
+        self.outputs[0] = self.root(inputs)?;
+        Ok(())
+    }
+
+    /// c on the chosen branch for the inputs (a, b).
+    fn root(&self, inputs: &[f64]) -> Result<f64, UnitError> {
         let (a, b) = (inputs[0], inputs[1]);
         let rest = self.params.radius_squared - a * a - b * b;
         if rest.is_nan() || rest < 0.0 {
@@ -136,13 +148,12 @@ impl SphereClosure {
             Branch::Positive => 1.0,
             Branch::Negative => -1.0,
         };
-        self.outputs[0] = sign * rest.sqrt();
-        Ok(())
+        Ok(sign * rest.sqrt())
     }
 }
 
 macro_rules! stateless_unit {
-    ($unit:ty, $solve:expr) => {
+    ($unit:ty, $solve:expr, $evaluate:expr) => {
         impl Unit for $unit {
             fn description(&self) -> &UnitDescription {
                 &self.description
@@ -162,8 +173,10 @@ macro_rules! stateless_unit {
                 Ok(StepReport::default())
             }
 
-            fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
-                out.copy_from_slice(&self.outputs);
+            /// From the inputs as they are now: stateless, every output
+            /// follows its inputs at a communication point too.
+            fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+                $evaluate(self, inputs.end(), out)
             }
 
             fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
@@ -187,11 +200,25 @@ macro_rules! stateless_unit {
     };
 }
 
-stateless_unit!(LinearPair, |u: &mut LinearPair, inputs: &[f64]| {
-    u.solve(inputs);
-    Ok::<(), UnitError>(())
-});
-stateless_unit!(SphereClosure, SphereClosure::solve);
+stateless_unit!(
+    LinearPair,
+    |u: &mut LinearPair, inputs: &[f64]| {
+        u.solve(inputs);
+        Ok::<(), UnitError>(())
+    },
+    |_: &LinearPair, inputs: &[f64], out: &mut [f64]| {
+        out.copy_from_slice(&LinearPair::values(inputs))
+    }
+);
+// Outside the sphere there is no c: NaN, which the master reports (the step
+// with those inputs has already failed with the reason).
+stateless_unit!(
+    SphereClosure,
+    SphereClosure::solve,
+    |u: &SphereClosure, inputs: &[f64], out: &mut [f64]| {
+        out[0] = u.root(inputs).unwrap_or(f64::NAN)
+    }
+);
 
 #[cfg(test)]
 mod tests {

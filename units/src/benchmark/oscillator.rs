@@ -116,6 +116,13 @@ impl Oscillator {
     /// Builds the unit; fails with the first invalid parameter.
     pub fn new(params: OscillatorParams) -> Result<Oscillator, UnitError> {
         params.validate()?;
+        // The spring-damper's force follows the other end's displacement, and
+        // its velocity where the coupling damps.
+        let spring_inputs: Vec<usize> = if params.coupling_damping != 0.0 {
+            vec![0, 1]
+        } else {
+            vec![0]
+        };
         let (inputs, outputs) = match params.coupling {
             Coupling::Spring => (
                 vec![
@@ -125,7 +132,8 @@ impl Oscillator {
                 vec![
                     Port::output("displacement", PortKind::Displacement),
                     Port::output("velocity", PortKind::Velocity),
-                    Port::output("coupling_force", PortKind::Force).with_feedthrough(&[0, 1]),
+                    Port::output("coupling_force", PortKind::Force)
+                        .with_feedthrough(&spring_inputs),
                 ],
             ),
             Coupling::Force => (

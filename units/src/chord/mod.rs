@@ -192,6 +192,8 @@ impl Chord {
         let ports = inner_ports(&params, inner.description())?;
         let mut description = describe(params.moving);
         description.capabilities.step_jacobian = inner.description().capabilities.step_jacobian;
+        let stretch = params.axial_stiffness.is_some();
+        set_dependencies(&mut description, inner.description(), &ports, stretch);
         Ok(Chord {
             params,
             description,
@@ -364,15 +366,14 @@ fn describe(moving: MovingEnd) -> UnitDescription {
         Port::input(&format!("{l}_force_z"), PortKind::Force),
         Port::input(&format!("{l}_moment"), PortKind::Moment),
     ];
-    let all: Vec<usize> = (0..6).collect();
     let outputs = vec![
-        Port::output(&format!("{m}_force_x"), PortKind::Force).with_feedthrough(&all),
-        Port::output(&format!("{m}_force_z"), PortKind::Force).with_feedthrough(&all),
-        Port::output(&format!("{m}_moment"), PortKind::Moment).with_feedthrough(&all),
-        Port::output(&format!("{l}_displacement_x"), PortKind::Displacement).with_feedthrough(&all),
-        Port::output(&format!("{l}_displacement_z"), PortKind::Displacement).with_feedthrough(&all),
-        Port::output(&format!("{l}_rotation"), PortKind::Rotation).with_feedthrough(&all),
-        Port::output("axial_force", PortKind::Force).with_feedthrough(&[3, 4]),
+        Port::output(&format!("{m}_force_x"), PortKind::Force),
+        Port::output(&format!("{m}_force_z"), PortKind::Force),
+        Port::output(&format!("{m}_moment"), PortKind::Moment),
+        Port::output(&format!("{l}_displacement_x"), PortKind::Displacement),
+        Port::output(&format!("{l}_displacement_z"), PortKind::Displacement),
+        Port::output(&format!("{l}_rotation"), PortKind::Rotation),
+        Port::output("axial_force", PortKind::Force),
     ];
     UnitDescription {
         kind: "chord".into(),
@@ -523,6 +524,56 @@ impl Chord {
         // Tension: the loaded end's neighbour pulls away from the section.
         let outward = if self.loaded_at_end() { 1.0 } else { -1.0 };
         out[6] = outward * self.frame.along([now[3], now[4]]);
+    }
+}
+
+/// The outer inputs each output follows at a communication point, through the
+/// frame changes (`local`, `assemble`) and the inner model's own dependencies:
+/// the forces carry the loaded end's axial force and the inner shear, the
+/// displacements the moving end's slide (and the stretch under the axial
+/// force), the rest what the inner outputs follow.
+fn set_dependencies(
+    description: &mut UnitDescription,
+    inner: &UnitDescription,
+    ports: &InnerPorts,
+    stretch: bool,
+) {
+    // The outer inputs behind each inner input the chord feeds (`local`):
+    // deflection, rotation, moment, shear.
+    let sources: [&[usize]; 4] = [&[0, 1], &[2], &[5], &[3, 4]];
+    let through = |inner_output: usize| -> Vec<usize> {
+        let mut outer: Vec<usize> = inner.outputs[inner_output]
+            .depends_on
+            .iter()
+            .filter_map(|p| ports.inputs.iter().position(|q| q == p))
+            .flat_map(|k| sources[k].iter().copied())
+            .collect();
+        outer.sort_unstable();
+        outer.dedup();
+        outer
+    };
+    let [moment, shear, deflection, rotation] = ports.outputs.map(through);
+    let join = |a: &[usize], b: &[usize]| {
+        let mut all = [a, b].concat();
+        all.sort_unstable();
+        all.dedup();
+        all
+    };
+    let axial = [3, 4];
+    let slide: &[usize] = if stretch { &[0, 1, 3, 4] } else { &[0, 1] };
+    let force = join(&axial, &shear);
+    let moved = join(slide, &deflection);
+    let dependencies = [
+        force.clone(),
+        force,
+        moment,
+        moved.clone(),
+        moved,
+        rotation,
+        axial.to_vec(),
+    ];
+    for (port, depends_on) in description.outputs.iter_mut().zip(dependencies) {
+        port.depends_on = depends_on;
     }
 }
 

@@ -175,17 +175,21 @@ pub const EXTRA_OUTPUTS: [(&str, &str); 13] = [
 ];
 
 /// Per end: position x, z, rotation, velocity x, z, angular velocity, and the force
-/// x, z and moment the end exerts on what holds it (feeding through from that
-/// end's force inputs); then the extras; then tension, moment, curvature,
+/// x, z and moment the end exerts on what holds it (a component loaded by a
+/// coupled input reports it: its one direct dependency); then the extras; then tension, moment, curvature,
 /// position x, z and the magnitude of the internal force per station.
 pub fn output_ports(resolved: &[Resolved], stations: usize) -> Vec<Port> {
     let mut out = Vec::new();
     for (end, side) in SIDES.iter().enumerate() {
-        let loads: Vec<usize> = resolved
-            .iter()
-            .filter(|r| r.end == end && matches!(r.condition, DofCondition::Force(_)))
-            .filter_map(|r| r.input)
-            .collect();
+        // A component loaded by a coupled input reports that input.
+        let loads = |component: usize| -> Vec<usize> {
+            resolved
+                .iter()
+                .filter(|r| r.end == end && r.component == component)
+                .filter(|r| matches!(r.condition, DofCondition::Force(_)))
+                .filter_map(|r| r.input)
+                .collect()
+        };
         out.push(Port::output(
             &format!("{side}_position_x"),
             PortKind::Displacement,
@@ -210,13 +214,13 @@ pub fn output_ports(resolved: &[Resolved], stations: usize) -> Vec<Port> {
             Port::output(&format!("{side}_angular_velocity"), PortKind::Generic).with_unit("rad/s"),
         );
         out.push(
-            Port::output(&format!("{side}_force_x"), PortKind::Force).with_feedthrough(&loads),
+            Port::output(&format!("{side}_force_x"), PortKind::Force).with_feedthrough(&loads(0)),
         );
         out.push(
-            Port::output(&format!("{side}_force_z"), PortKind::Force).with_feedthrough(&loads),
+            Port::output(&format!("{side}_force_z"), PortKind::Force).with_feedthrough(&loads(1)),
         );
         out.push(
-            Port::output(&format!("{side}_moment"), PortKind::Moment).with_feedthrough(&loads),
+            Port::output(&format!("{side}_moment"), PortKind::Moment).with_feedthrough(&loads(2)),
         );
     }
     for (name, unit) in EXTRA_OUTPUTS {

@@ -15,7 +15,9 @@ pub(crate) fn two_channels() -> Vec<String> {
 }
 
 /// A channel-by-channel signal unit's ports: inputs `in_<channel>` and outputs
-/// `out_<channel>` of `quantity`, every output fed through from every input.
+/// `out_<channel>` of `quantity`. An output is what the last step made of its
+/// input (sampled, delayed, lagged, noisy): it does not follow the input at a
+/// communication point, so no output declares a direct dependency.
 pub(crate) fn channel_ports(
     channels: &[String],
     quantity: PortKind,
@@ -31,10 +33,9 @@ pub(crate) fn channel_ports(
         .iter()
         .map(|c| Port::input(&format!("in_{c}"), quantity))
         .collect();
-    let all: Vec<usize> = (0..channels.len()).collect();
     let outputs = channels
         .iter()
-        .map(|c| Port::output(&format!("out_{c}"), quantity).with_feedthrough(&all))
+        .map(|c| Port::output(&format!("out_{c}"), quantity))
         .collect();
     Ok((inputs, outputs))
 }

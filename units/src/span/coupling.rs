@@ -209,7 +209,9 @@ impl SpanCoupling {
                 }),
             })
             .collect();
-        let all: Vec<usize> = (0..4).collect();
+        // At a communication point an output follows the inputs its fit's
+        // direct term D couples it to (the rate term E acts through a step).
+        let direct = |o: usize| -> Vec<usize> { (0..4).filter(|&i| fit.d[o][i] != 0.0).collect() };
         let description = UnitDescription {
             kind: "span_coupling".into(),
             inputs: inputs
@@ -221,9 +223,10 @@ impl SpanCoupling {
                 .collect(),
             outputs: outputs
                 .iter()
-                .map(|&q| {
+                .enumerate()
+                .map(|(o, &q)| {
                     let (name, kind) = port_of(q);
-                    Port::output(name, kind).with_feedthrough(&all)
+                    Port::output(name, kind).with_feedthrough(&direct(o))
                 })
                 .collect(),
             capabilities: Capabilities {
