@@ -50,6 +50,7 @@ impl ExportedUnit for ExportConfig {
         let info = KindInfo {
             summary: kind.summary,
             effects: kind.effects,
+            parameters: crate::reference::parameters(kind.name),
         };
         Ok(Layout::new(self, unit, &info))
     }

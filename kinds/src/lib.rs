@@ -5,6 +5,7 @@
 
 pub mod exported;
 pub mod fields;
+pub mod reference;
 pub mod words;
 
 use crate::fields::field_names;

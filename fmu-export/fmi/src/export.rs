@@ -15,8 +15,8 @@
 
 use crate::measure::si_definition;
 use crate::model_description::{
-    CoSimulation, DefaultExperiment, ModelDescription, ScalarVariable, Unknown, Value,
-    VariableCausality,
+    About, CoSimulation, DefaultExperiment, LogCategory, ModelDescription, ScalarVariable, Unknown,
+    Value, VariableCausality,
 };
 use serde::{Deserialize, Serialize};
 use slender_units::{Hold, UnitDescription};
@@ -94,13 +94,41 @@ pub struct ParameterVariable {
     pub start: Value,
 }
 
+/// What a kind's documentation says of one parameter (by its top-level key).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ParameterInfo {
+    /// Unit of measure as written ("kg/m"; empty when none).
+    pub unit: String,
+    /// What the parameter is.
+    pub meaning: String,
+    /// The documented range of a number, inclusive.
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
 /// What a layout needs to know of a unit's kind.
 pub struct KindInfo<'a> {
     /// One line on the kind, for the model description.
     pub summary: &'a str,
     /// The effects the kind can switch (each becomes a Boolean parameter).
     pub effects: &'a [&'a str],
+    /// Its documented parameters, by top-level key.
+    pub parameters: BTreeMap<String, ParameterInfo>,
 }
+
+/// The log categories an exported FMU sends messages in (see the FMU
+/// library's logger).
+pub const LOG_CATEGORIES: [(&str, &str); 3] = [
+    ("logAll", "every message: progress and the unit's notes"),
+    (
+        "logStatusWarning",
+        "warnings: a call that went on with a caveat",
+    ),
+    (
+        "logStatusError",
+        "errors: a call that failed, with the reason",
+    ),
+];
 
 /// The FMU's variables and model description for one configuration.
 pub struct Layout {
@@ -202,7 +230,7 @@ impl Layout {
         let n_in = unit.inputs.len();
         let n_out = unit.outputs.len();
         let parameters = parameter_variables(config, kind, (n_in + n_out) as u32);
-        let (variables, units) = variables(config, &unit, &parameters);
+        let (variables, units) = variables(config, &unit, &parameters, kind);
         let outputs: Vec<Unknown> = unit
             .outputs
             .iter()
@@ -222,6 +250,20 @@ impl Layout {
                 config.kind, config.name, kind.summary
             ),
             generation_tool: format!("slender {}", env!("CARGO_PKG_VERSION")),
+            about: About {
+                author: "slender".into(),
+                version: env!("CARGO_PKG_VERSION").into(),
+                copyright: String::new(),
+                license: env!("CARGO_PKG_LICENSE").into(),
+                generation_date_and_time: None,
+            },
+            log_categories: LOG_CATEGORIES
+                .iter()
+                .map(|(name, description)| LogCategory {
+                    name: (*name).into(),
+                    description: (*description).into(),
+                })
+                .collect(),
             co_simulation: Some(CoSimulation {
                 model_identifier: config.model_identifier(),
                 can_handle_variable_communication_step_size: caps.variable_step,
@@ -279,6 +321,7 @@ fn variables(
     config: &ExportConfig,
     unit: &UnitDescription,
     parameters: &[ParameterVariable],
+    kind: &KindInfo,
 ) -> (
     Vec<ScalarVariable>,
     Vec<crate::model_description::UnitDefinition>,
@@ -315,6 +358,8 @@ fn variables(
             initial: None,
             value: Value::Real(Some(config.inputs.get(&p.name).copied().unwrap_or(0.0))),
             unit: unit_attribute(&p.unit),
+            min: None,
+            max: None,
         });
     }
     for (i, p) in unit.outputs.iter().enumerate() {
@@ -327,21 +372,51 @@ fn variables(
             initial: Some("calculated".into()),
             value: Value::Real(None),
             unit: unit_attribute(&p.unit),
+            min: None,
+            max: None,
         });
     }
     for p in parameters {
-        variables.push(ScalarVariable {
-            name: p.name.clone(),
-            value_reference: p.value_reference,
-            description: "scene parameter; set before initialisation".into(),
-            causality: VariableCausality::Parameter,
-            variability: "fixed".into(),
-            initial: Some("exact".into()),
-            value: p.start.clone(),
-            unit: None,
-        });
+        let variable = parameter_variable(p, kind);
+        let unit = variable.unit.as_deref().and_then(&mut unit_attribute);
+        variables.push(ScalarVariable { unit, ..variable });
     }
     (variables, units)
+}
+
+/// A parameter variable, described as the kind's documentation describes its
+/// top-level key; a number of its own key carries the documented unit (when
+/// slender knows it) and range. Fixed: the unit is built from its parameters at
+/// instantiation and takes no change between steps.
+fn parameter_variable(p: &ParameterVariable, kind: &KindInfo) -> ScalarVariable {
+    let (top, whole) = match &p.target {
+        ParameterTarget::Table(path) => (path[0].as_str(), path.len() == 1),
+        ParameterTarget::Effect(_) => ("", false),
+    };
+    let info = kind.parameters.get(top).cloned().unwrap_or_default();
+    let number = whole && matches!(p.start, Value::Real(_));
+    let mut description = match (&p.target, info.meaning.is_empty()) {
+        (ParameterTarget::Effect(e), _) => format!("whether the effect `{e}` is computed"),
+        (_, true) => "scene parameter".to_owned(),
+        (_, false) if whole => info.meaning.clone(),
+        (_, false) => format!("part of `{top}`: {}", info.meaning),
+    };
+    if !info.unit.is_empty() && whole {
+        description.push_str(&format!(" [{}]", info.unit));
+    }
+    description.push_str("; fixed at instantiation");
+    ScalarVariable {
+        name: p.name.clone(),
+        value_reference: p.value_reference,
+        description,
+        causality: VariableCausality::Parameter,
+        variability: "fixed".into(),
+        initial: Some("exact".into()),
+        value: p.start.clone(),
+        unit: (number && !info.unit.is_empty()).then(|| info.unit.clone()),
+        min: info.min.filter(|_| number),
+        max: info.max.filter(|_| number),
+    }
 }
 
 /// The FMI name of input `i`: its port name, or `<name>_in` when an output has
@@ -383,6 +458,17 @@ fn flatten(table: &toml::Table, path: &mut Vec<String>, out: &mut Vec<ParameterV
     }
 }
 
+/// Now in UTC (xs:dateTime), or `SOURCE_DATE_EPOCH` (s) where it is set, so
+/// that a build meant to be reproducible writes the same description.
+fn generation_date() -> String {
+    let fixed = std::env::var("SOURCE_DATE_EPOCH")
+        .ok()
+        .and_then(|s| s.trim().parse::<u64>().ok())
+        .map(|s| std::time::UNIX_EPOCH + std::time::Duration::from_secs(s));
+    let when = fixed.unwrap_or_else(std::time::SystemTime::now);
+    humantime::format_rfc3339_seconds(when).to_string()
+}
+
 /// Writes the FMU for `config` with `layout` to `out`, with `binary` (the
 /// `slender-fmu` shared library) as `binaries/linux64/<modelIdentifier>.so`.
 pub fn package(
@@ -405,11 +491,10 @@ pub fn package(
     let mut zip = zip::ZipWriter::new(file);
     let options = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated);
+    let mut model = layout.model.clone();
+    model.about.generation_date_and_time = Some(generation_date());
     let entries: [(String, Vec<u8>); 3] = [
-        (
-            "modelDescription.xml".into(),
-            layout.model.to_xml().into_bytes(),
-        ),
+        ("modelDescription.xml".into(), model.to_xml().into_bytes()),
         (
             format!("binaries/linux64/{}.so", config.model_identifier()),
             library,

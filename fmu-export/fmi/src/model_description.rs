@@ -102,6 +102,29 @@ pub struct ScalarVariable {
     pub value: Value,
     /// Unit of measure of a Real, by name (see [`UnitDefinition`]).
     pub unit: Option<String>,
+    /// Bounds of a Real's value, when stated (inclusive).
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
+/// Who made a model and under what terms: the optional attributes of
+/// `fmiModelDescription` (empty strings are left out).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct About {
+    pub author: String,
+    /// The model's version.
+    pub version: String,
+    pub copyright: String,
+    pub license: String,
+    /// `generationDateAndTime` (xs:dateTime, UTC).
+    pub generation_date_and_time: Option<String>,
+}
+
+/// A log category the FMU sends messages in (`LogCategories/Category`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LogCategory {
+    pub name: String,
+    pub description: String,
 }
 
 /// A unit of measure: its name and SI base-unit exponents, factor and offset.
@@ -157,8 +180,10 @@ pub struct ModelDescription {
     pub guid: String,
     pub description: String,
     pub generation_tool: String,
+    pub about: About,
     pub co_simulation: Option<CoSimulation>,
     pub units: Vec<UnitDefinition>,
+    pub log_categories: Vec<LogCategory>,
     pub variables: Vec<ScalarVariable>,
     pub outputs: Vec<Unknown>,
     pub initial_unknowns: Vec<Unknown>,
@@ -190,12 +215,13 @@ impl ModelDescription {
         let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
         let _ = writeln!(
             x,
-            r#"<fmiModelDescription fmiVersion="{}" modelName="{}" guid="{}" description="{}" generationTool="{}" variableNamingConvention="flat" numberOfEventIndicators="0">"#,
+            r#"<fmiModelDescription fmiVersion="{}" modelName="{}" guid="{}" description="{}" generationTool="{}"{} variableNamingConvention="flat" numberOfEventIndicators="0">"#,
             e(&self.fmi_version),
             e(&self.model_name),
             e(&self.guid),
             e(&self.description),
-            e(&self.generation_tool)
+            e(&self.generation_tool),
+            self.about_attributes()
         );
         if let Some(cs) = &self.co_simulation {
             let _ = writeln!(
@@ -211,6 +237,18 @@ impl ModelDescription {
             );
         }
         self.write_units(&mut x);
+        if !self.log_categories.is_empty() {
+            x.push_str("  <LogCategories>\n");
+            for c in &self.log_categories {
+                let _ = writeln!(
+                    x,
+                    r#"    <Category name="{}" description="{}"/>"#,
+                    e(&c.name),
+                    e(&c.description)
+                );
+            }
+            x.push_str("  </LogCategories>\n");
+        }
         if let Some(d) = &self.default_experiment {
             x.push_str("  <DefaultExperiment");
             for (name, v) in [
@@ -233,6 +271,23 @@ impl ModelDescription {
         self.write_structure(&mut x);
         x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
         x
+    }
+
+    /// The [`About`] attributes that are given, each with a leading space.
+    fn about_attributes(&self) -> String {
+        let a = &self.about;
+        let date = a.generation_date_and_time.as_deref().unwrap_or("");
+        [
+            ("author", a.author.as_str()),
+            ("version", a.version.as_str()),
+            ("copyright", a.copyright.as_str()),
+            ("license", a.license.as_str()),
+            ("generationDateAndTime", date),
+        ]
+        .iter()
+        .filter(|(_, v)| !v.is_empty())
+        .map(|(k, v)| format!(r#" {k}="{}""#, escape(*v)))
+        .collect()
     }
 
     /// `<UnitDefinitions>`, when any unit is declared.
@@ -302,6 +357,11 @@ fn write_variable(x: &mut String, i: usize, v: &ScalarVariable) {
     if let Some(unit) = &v.unit {
         let _ = write!(x, r#" unit="{}""#, e(unit));
     }
+    for (name, bound) in [("min", v.min), ("max", v.max)] {
+        if let Some(bound) = bound {
+            let _ = write!(x, r#" {name}="{bound:e}""#);
+        }
+    }
     match &v.value {
         Value::Real(Some(s)) => {
             let _ = write!(x, r#" start="{s:e}""#);
@@ -334,6 +394,17 @@ mod tests {
             guid: "{1}".into(),
             description: "a & b".into(),
             generation_tool: "slender".into(),
+            about: About {
+                author: "a".into(),
+                version: "0.1.0".into(),
+                copyright: String::new(),
+                license: "MIT OR Apache-2.0".into(),
+                generation_date_and_time: Some("2026-12-03T10:00:00Z".into()),
+            },
+            log_categories: vec![LogCategory {
+                name: "logAll".into(),
+                description: "every message".into(),
+            }],
             co_simulation: Some(CoSimulation {
                 model_identifier: "m".into(),
                 can_handle_variable_communication_step_size: true,
@@ -349,38 +420,7 @@ mod tests {
                 factor: 1.0,
                 offset: 0.0,
             }],
-            variables: vec![
-                ScalarVariable {
-                    name: "f".into(),
-                    value_reference: 0,
-                    description: String::new(),
-                    causality: VariableCausality::Input,
-                    variability: "continuous".into(),
-                    initial: None,
-                    value: Value::Real(Some(0.1)),
-                    unit: Some("N".into()),
-                },
-                ScalarVariable {
-                    name: "x".into(),
-                    value_reference: 1,
-                    description: String::new(),
-                    causality: VariableCausality::Output,
-                    variability: "continuous".into(),
-                    initial: Some("calculated".into()),
-                    value: Value::Real(None),
-                    unit: None,
-                },
-                ScalarVariable {
-                    name: "label".into(),
-                    value_reference: 2,
-                    description: "<\"quoted\">".into(),
-                    causality: VariableCausality::Parameter,
-                    variability: "fixed".into(),
-                    initial: Some("exact".into()),
-                    value: Value::String(Some("a<b".into())),
-                    unit: None,
-                },
-            ],
+            variables: sample_variables(),
             outputs: vec![Unknown {
                 index: 2,
                 dependencies: Some(vec![]),
@@ -396,6 +436,47 @@ mod tests {
                 step_size: Some(0.01),
             }),
         }
+    }
+
+    fn sample_variables() -> Vec<ScalarVariable> {
+        vec![
+            ScalarVariable {
+                name: "f".into(),
+                value_reference: 0,
+                description: String::new(),
+                causality: VariableCausality::Input,
+                variability: "continuous".into(),
+                initial: None,
+                value: Value::Real(Some(0.1)),
+                unit: Some("N".into()),
+                min: Some(-1.0),
+                max: Some(2.5e6),
+            },
+            ScalarVariable {
+                name: "x".into(),
+                value_reference: 1,
+                description: String::new(),
+                causality: VariableCausality::Output,
+                variability: "continuous".into(),
+                initial: Some("calculated".into()),
+                value: Value::Real(None),
+                unit: None,
+                min: None,
+                max: None,
+            },
+            ScalarVariable {
+                name: "label".into(),
+                value_reference: 2,
+                description: "<\"quoted\">".into(),
+                causality: VariableCausality::Parameter,
+                variability: "fixed".into(),
+                initial: Some("exact".into()),
+                value: Value::String(Some("a<b".into())),
+                unit: None,
+                min: None,
+                max: None,
+            },
+        ]
     }
 
     #[test]

@@ -189,12 +189,7 @@ impl<'a> Parser<'a> {
             }
             ("fmiModelDescription", "DefaultExperiment") => {
                 if let Some(m) = md.as_mut() {
-                    m.default_experiment = Some(DefaultExperiment {
-                        start_time: attrs.parsed("startTime", "a number")?,
-                        stop_time: attrs.parsed("stopTime", "a number")?,
-                        tolerance: attrs.parsed("tolerance", "a number")?,
-                        step_size: attrs.parsed("stepSize", "a number")?,
-                    });
+                    m.default_experiment = Some(Self::default_experiment(&attrs)?);
                 }
             }
             ("UnitDefinitions", "Unit") => {
@@ -206,6 +201,14 @@ impl<'a> Parser<'a> {
                 });
                 if is_empty && let (Some(m), Some(u)) = (md.as_mut(), current_unit.take()) {
                     m.units.push(u);
+                }
+            }
+            ("LogCategories", "Category") => {
+                if let Some(m) = md.as_mut() {
+                    m.log_categories.push(LogCategory {
+                        name: attrs.required("name")?.to_owned(),
+                        description: attrs.optional("description").unwrap_or("").to_owned(),
+                    });
                 }
             }
             ("Unit", "BaseUnit") => {
@@ -241,6 +244,15 @@ impl<'a> Parser<'a> {
             _ => {}
         }
         Ok(!is_empty)
+    }
+
+    fn default_experiment(attrs: &Attributes) -> Result<DefaultExperiment, DescriptionError> {
+        Ok(DefaultExperiment {
+            start_time: attrs.parsed("startTime", "a number")?,
+            stop_time: attrs.parsed("stopTime", "a number")?,
+            tolerance: attrs.parsed("tolerance", "a number")?,
+            step_size: attrs.parsed("stepSize", "a number")?,
+        })
     }
 
     fn co_simulation(attrs: &Attributes) -> Result<CoSimulation, DescriptionError> {
@@ -303,8 +315,16 @@ impl<'a> Parser<'a> {
             guid: a.required("guid")?.to_owned(),
             description: a.optional("description").unwrap_or("").to_owned(),
             generation_tool: a.optional("generationTool").unwrap_or("").to_owned(),
+            about: About {
+                author: a.optional("author").unwrap_or("").to_owned(),
+                version: a.optional("version").unwrap_or("").to_owned(),
+                copyright: a.optional("copyright").unwrap_or("").to_owned(),
+                license: a.optional("license").unwrap_or("").to_owned(),
+                generation_date_and_time: a.optional("generationDateAndTime").map(str::to_owned),
+            },
             co_simulation: None,
             units: Vec::new(),
+            log_categories: Vec::new(),
             variables: Vec::new(),
             outputs: Vec::new(),
             initial_unknowns: Vec::new(),
@@ -346,6 +366,8 @@ impl<'a> Parser<'a> {
                 .to_owned(),
             initial: sv.optional("initial").map(str::to_owned),
             unit: t.optional("unit").map(str::to_owned),
+            min: t.parsed("min", "a number")?,
+            max: t.parsed("max", "a number")?,
             value,
         })
     }
