@@ -46,6 +46,13 @@ python_passed=$(count passed)
 passed=$((passed + python_passed))
 ignored=$((ignored - python_passed))
 
+step "portable FMU library: built against glibc 2.17 with zig (ignored above)"
+./scripts/portable-fmu.sh
+cargo test --release -p slender-tests --test fmi_portable -- --ignored 2>&1 | tee "$log"
+portable_passed=$(count passed)
+passed=$((passed + portable_passed))
+ignored=$((ignored - portable_passed))
+
 step "cluster test: a UQ study through a local single-node Slurm (ignored above)"
 if [ "$(id -u)" = 0 ]; then
     ./scripts/slurm-up.sh

@@ -2,7 +2,7 @@
 //! the FMI layer only (no scene, coupling, study, plotting or command-line code),
 //! ships stripped, and an exported FMU stays small.
 
-use slender_tests::fmu;
+use slender_tests::{elf, fmu};
 use std::path::Path;
 use std::process::Command;
 
@@ -55,31 +55,6 @@ fn the_fmu_library_links_no_scene_coupling_study_or_cli_crate() {
     }
 }
 
-/// The names of an ELF64 (little-endian) file's sections.
-fn elf_sections(bytes: &[u8]) -> Vec<String> {
-    let u16_at = |o: usize| u16::from_le_bytes([bytes[o], bytes[o + 1]]) as usize;
-    let u64_at = |o: usize| {
-        let mut b = [0u8; 8];
-        b.copy_from_slice(&bytes[o..o + 8]);
-        u64::from_le_bytes(b) as usize
-    };
-    assert_eq!(&bytes[..4], b"\x7fELF", "not an ELF file");
-    let (table, entry, count, names) = (u64_at(0x28), u16_at(0x3A), u16_at(0x3C), u16_at(0x3E));
-    let names_at = u64_at(table + names * entry + 0x18);
-    (0..count)
-        .map(|k| {
-            let name = names_at
-                + u32::from_le_bytes(
-                    bytes[table + k * entry..table + k * entry + 4]
-                        .try_into()
-                        .expect("4 bytes"),
-                ) as usize;
-            let end = bytes[name..].iter().position(|&b| b == 0).unwrap_or(0);
-            String::from_utf8_lossy(&bytes[name..name + end]).into_owned()
-        })
-        .collect()
-}
-
 #[test]
 fn the_release_fmu_library_is_stripped_and_an_fmu_stays_under_3_mb() {
     if cfg!(debug_assertions) {
@@ -88,7 +63,7 @@ fn the_release_fmu_library_is_stripped_and_an_fmu_stays_under_3_mb() {
     }
     let library = fmu::library();
     let bytes = std::fs::read(&library).expect("library readable");
-    let sections = elf_sections(&bytes);
+    let sections: Vec<String> = elf::sections(&bytes).into_iter().map(|s| s.name).collect();
     assert!(sections.iter().any(|s| s == ".text"), "{sections:?}");
     for kept in [".symtab", ".debug_info", ".debug_line", ".strtab"] {
         assert!(
