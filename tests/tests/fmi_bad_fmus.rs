@@ -76,10 +76,16 @@ fn broken_archives_and_model_descriptions_give_clear_errors() {
     );
     // The error names the line where the broken tag ends: `<oops` runs on to the
     // first `>` on the line after `<ModelVariables>`.
-    let line = 2 + xml[..xml.find("<ModelVariables>").unwrap()].matches('\n').count();
+    let line = 2 + xml[..xml.find("<ModelVariables>").unwrap()]
+        .matches('\n')
+        .count();
     expect_error(
         &at("bad_xml.fmu"),
-        &["bad_xml.fmu", &format!("modelDescription.xml:{line}"), "<oops>"],
+        &[
+            "bad_xml.fmu",
+            &format!("modelDescription.xml:{line}"),
+            "<oops>",
+        ],
     );
 
     let no_guid = xml.replacen(" guid=", " nope=", 1);
