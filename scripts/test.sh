@@ -40,8 +40,8 @@ passed=$(count passed)
 failed=$(count failed)
 ignored=$(count ignored)
 
-step "cross-checks with FMPy, pythonfmu and chaospy (ignored above: they need .venv)"
-cargo test --release -p slender-tests --test fmi_python --test uq_python -- --ignored 2>&1 | tee "$log"
+step "cross-checks with FMPy, pythonfmu, libcosim and chaospy (ignored above: they need .venv)"
+cargo test --release -p slender-tests --test fmi_python --test uq_python --test ssp -- --ignored 2>&1 | tee "$log"
 python_passed=$(count passed)
 passed=$((passed + python_passed))
 ignored=$((ignored - python_passed))

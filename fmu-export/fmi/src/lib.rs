@@ -5,6 +5,7 @@
 //! - [`export`]: what an exported FMU carries, its variable layout and the
 //!   packaging; building units from scenes is `slender_scene::export`, the entry
 //!   points themselves live in the `slender-fmu` crate;
+//! - [`ssp`]: SSP 1.0 system structures (`SystemStructure.ssd`) and archives;
 //! - [`ffi`]: the C types both sides share; [`measure`]: units of measure.
 
 pub mod export;
@@ -12,3 +13,4 @@ pub mod ffi;
 pub mod import;
 pub mod measure;
 pub mod model_description;
+pub mod ssp;

@@ -93,10 +93,13 @@ pub enum FmuAction {
         binary: Option<PathBuf>,
     },
     /// Export every unit of a scene and write a copy of the scene that uses the
-    /// FMUs (kind `fmu`): the same run through the FMI layer.
+    /// FMUs (kind `fmu`): the same run through the FMI layer; or, with `--out
+    /// X.ssp`, an SSP 1.0 archive of the FMUs and the system's structure (for
+    /// libcosim, OMSimulator, ... and `slender run X.ssp`).
     Wrap {
         scene: PathBuf,
-        /// Folder for the FMUs and the new scene (<scene>_fmu.toml).
+        /// Folder for the FMUs and the new scene (<scene>_fmu.toml), or an
+        /// `.ssp` file.
         #[arg(long)]
         out: PathBuf,
         /// The slender-fmu shared library (default: next to this executable).

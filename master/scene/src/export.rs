@@ -152,10 +152,9 @@ pub fn wrap_scene(
         path: path.display().to_string(),
         problem,
     };
-    let text = std::fs::read_to_string(&scene.path)
-        .map_err(|e| file_error(&scene.path, format!("cannot read ({e})")))?;
-    let mut table: toml::Table =
-        toml::from_str(&text).map_err(|e| file_error(&scene.path, e.message().to_owned()))?;
+    // The scene as loaded: a `[structure]` already written out as units.
+    let mut table: toml::Table = toml::from_str(scene.source())
+        .map_err(|e| file_error(&scene.path, e.message().to_owned()))?;
     std::fs::create_dir_all(dir).map_err(|e| file_error(dir, format!("cannot create ({e})")))?;
     let units = table
         .get_mut("units")

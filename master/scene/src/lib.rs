@@ -5,6 +5,7 @@
 
 pub mod export;
 pub mod spec;
+pub mod ssp;
 pub mod structure;
 mod structure_lines;
 mod uncertainty_check;
@@ -60,12 +61,17 @@ pub struct Scene {
     /// Keys set on the command line over the file (`slender run --set
     /// KEY=VALUE`), as given; empty for a scene as written.
     pub overrides: Vec<String>,
+    /// An SSP's unpacked archive (its FMUs), kept as long as the scene.
+    pub resources: Option<tempfile::TempDir>,
 }
 
 impl Scene {
-    /// Reads and checks a scene file, and builds it once to check units and
-    /// connections.
+    /// Reads and checks a scene file (or an SSP archive, `.ssp`, or description,
+    /// `.ssd`), and builds it once to check units and connections.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        if ssp::is_ssp(path) {
+            return ssp::load(path);
+        }
         let source = std::fs::read_to_string(path).map_err(|e| SceneError {
             file: path.to_owned(),
             line: None,
@@ -107,6 +113,7 @@ impl Scene {
             step: Time::ZERO,
             steps: 0,
             overrides: Vec::new(),
+            resources: None,
         };
         scene.check_time().map_err(located)?;
         scene.build().map_err(located)?;

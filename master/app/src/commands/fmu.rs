@@ -6,6 +6,7 @@ use slender_fmi::export::{ExportConfig, default_binary};
 use slender_fmi::import::{FmuParams, FmuUnit};
 use slender_fmi::model_description::VariableCausality;
 use slender_scene::export::{SceneExport, package, wrap_scene};
+use slender_scene::ssp::write_ssp;
 use slender_units::Unit;
 use std::path::{Path, PathBuf};
 
@@ -21,9 +22,20 @@ pub fn fmu(action: FmuAction) -> Result<(), CliError> {
         FmuAction::Wrap { scene, out, binary } => {
             let scene = load(&scene)?;
             let binary = library(binary)?;
-            let path =
-                wrap_scene(&scene, &binary, &out).map_err(|e| CliError::input(e.to_string()))?;
-            println!("wrote {}", path.display());
+            let failed = |e: slender_scene::export::ExportError| CliError::input(e.to_string());
+            if slender_scene::ssp::is_ssp(&out) {
+                let system = write_ssp(&scene, &binary, &out).map_err(failed)?;
+                println!(
+                    "wrote {} (SSP 1.0: {} FMUs, {} connections; run it with `slender run {}`)",
+                    out.display(),
+                    system.components.len(),
+                    system.connections.len(),
+                    out.display()
+                );
+            } else {
+                let path = wrap_scene(&scene, &binary, &out).map_err(failed)?;
+                println!("wrote {}", path.display());
+            }
             Ok(())
         }
         FmuAction::Info { fmu, preload } => info(fmu, preload),
