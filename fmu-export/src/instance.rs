@@ -26,7 +26,11 @@ enum Phase {
 pub struct Instance {
     name: String,
     callbacks: fmi2CallbackFunctions,
+    /// An FMI 3.0 instance's logger (its messages go there, not to `callbacks`).
+    pub log3: Option<crate::fmi3::Logger>,
     pub logging: bool,
+    /// FMI 3.0's independent variable `time`.
+    time_reference: u32,
     /// The configuration as exported (for `fmi2Reset`) and as currently set.
     exported: ExportConfig,
     config: ExportConfig,
@@ -127,7 +131,7 @@ pub fn free_state(state: fmi2FMUstate) {
 }
 
 /// The local path of a `file://` URI (percent-decoded).
-fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
+pub fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
     let rest = uri
         .strip_prefix("file://")
         .or_else(|| uri.strip_prefix("file:"))
@@ -155,14 +159,16 @@ fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
 }
 
 impl Instance {
+    /// The instance of the FMU whose resources are in `resources`, checking
+    /// its GUID (FMI 3.0: instantiation token).
     pub fn new(
         name: String,
         guid: &str,
-        resource_location: &str,
+        resources: &std::path::Path,
         callbacks: fmi2CallbackFunctions,
         logging: bool,
     ) -> Result<Instance, String> {
-        let file = path_of_uri(resource_location)?.join(CONFIG_FILE);
+        let file = resources.join(CONFIG_FILE);
         let text = std::fs::read_to_string(&file).map_err(|e| {
             format!(
                 "{}: cannot read the unit's configuration ({e})",
@@ -189,7 +195,9 @@ impl Instance {
         Ok(Instance {
             name,
             callbacks,
+            log3: None,
             logging,
+            time_reference: layout.model.time_reference(),
             exported: config.clone(),
             config,
             outputs: vec![0.0; layout.unit.outputs.len()],
@@ -215,12 +223,11 @@ impl Instance {
 
     pub fn log(&self, status: fmi2Status, message: &str) {
         if status != FMI2_OK || self.logging {
-            log_with(
-                &self.callbacks,
-                &self.name,
-                status,
-                &format!("unit `{}`: {message}", self.config.name),
-            );
+            let message = format!("unit `{}`: {message}", self.config.name);
+            match &self.log3 {
+                Some(logger) => logger.log(status, &message),
+                None => log_with(&self.callbacks, &self.name, status, &message),
+            }
         }
     }
 
@@ -370,6 +377,8 @@ impl Instance {
                 self.inputs[r_us]
             } else if r_us < n_in + n_out {
                 self.outputs[r_us - n_in]
+            } else if *r == self.time_reference {
+                self.time.as_secs()
             } else {
                 match self.parameters[self.parameter(*r)?] {
                     Value::Real(Some(x)) => x,

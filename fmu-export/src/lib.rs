@@ -14,6 +14,7 @@
 
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
+mod fmi3;
 mod instance;
 
 use instance::{Instance, guarded};
@@ -67,7 +68,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
         Instance::new(
             name.clone(),
             &text(guid),
-            &text(resource_location),
+            &instance::path_of_uri(&text(resource_location))?,
             callbacks,
             logging_on != FMI2_FALSE,
         )
@@ -166,7 +167,10 @@ pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
 }
 
 /// Reads `n` value references.
-unsafe fn refs<'a>(vr: *const fmi2ValueReference, n: usize) -> Result<&'a [u32], String> {
+pub(crate) unsafe fn refs<'a>(
+    vr: *const fmi2ValueReference,
+    n: usize,
+) -> Result<&'a [u32], String> {
     if n == 0 {
         Ok(&[])
     } else if vr.is_null() {
@@ -177,7 +181,7 @@ unsafe fn refs<'a>(vr: *const fmi2ValueReference, n: usize) -> Result<&'a [u32],
     }
 }
 
-unsafe fn values<'a, T>(p: *const T, n: usize) -> Result<&'a [T], String> {
+pub(crate) unsafe fn values<'a, T>(p: *const T, n: usize) -> Result<&'a [T], String> {
     if n == 0 {
         Ok(&[])
     } else if p.is_null() {
@@ -188,7 +192,7 @@ unsafe fn values<'a, T>(p: *const T, n: usize) -> Result<&'a [T], String> {
     }
 }
 
-unsafe fn values_mut<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T], String> {
+pub(crate) unsafe fn values_mut<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T], String> {
     if n == 0 {
         Ok(&mut [])
     } else if p.is_null() {

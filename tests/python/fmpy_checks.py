@@ -3,6 +3,7 @@
     fmpy_checks.py validate FMU...            problems per FMU; exit code = their number
     fmpy_checks.py simulate FMU CSV STOP STEP [NAME=VALUE...]
     fmpy_checks.py state FMU                  FMU state save/restore/serialise round trips
+                                              (FMI 2.0 or 3.0)
     fmpy_checks.py derivatives FMU ROWS       fmi2GetDirectionalDerivative against central
                                               differences of fmi2DoStep for the outputs
                                               named in ROWS (comma-separated)
@@ -13,6 +14,7 @@ import sys
 
 from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi2 import FMU2Slave
+from fmpy.fmi3 import FMU3Slave
 from fmpy.util import write_csv
 from fmpy.validation import validate_fmu
 
@@ -39,9 +41,52 @@ def simulate(path, csv, stop, step, assignments):
     return 0
 
 
+class Slave3:
+    """An FMI 3.0 slave behind FMU2Slave's method names (the calls `state` uses)."""
+
+    def __init__(self, md, folder, name):
+        self.s = FMU3Slave(guid=md.guid, unzipDirectory=folder,
+                           modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
+        self.s.instantiate()
+        self.s.enterInitializationMode(startTime=0.0)
+        self.s.exitInitializationMode()
+
+    def setReal(self, vr, values):
+        self.s.setFloat64(vr, values)
+
+    def getReal(self, vr):
+        return self.s.getFloat64(vr)
+
+    def doStep(self, t, h):
+        self.s.doStep(t, h)
+
+    def getFMUState(self):
+        return self.s.getFMUState()
+
+    def setFMUState(self, state):
+        self.s.setFMUState(state)
+
+    def freeFMUState(self, state):
+        self.s.freeFMUState(state)
+
+    def serializeFMUState(self, state):
+        return self.s.serializeFMUState(state)
+
+    def deSerializeFMUstate(self, blob):
+        return self.s.deserializeFMUState(blob)
+
+    def terminate(self):
+        self.s.terminate()
+
+    def freeInstance(self):
+        self.s.freeInstance()
+
+
 def instance(path, name):
     md = read_model_description(path)
     folder = extract(path)
+    if md.fmiVersion == "3.0":
+        return md, Slave3(md, folder, name)
     slave = FMU2Slave(guid=md.guid, unzipDirectory=folder,
                       modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
     slave.instantiate()

@@ -7,7 +7,7 @@
 //! and test.sh runs them with `--ignored`.
 
 use slender_fmi::export::ExportConfig;
-use slender_scene::export::{ExportedUnit, SceneExport};
+use slender_scene::export::{ExportedUnit, FmiVersion, SceneExport, package_version};
 use slender_tests::{fmu, load, root};
 use slender_units::{Hold, Time};
 use std::path::{Path, PathBuf};
@@ -400,5 +400,45 @@ fn the_fmpy_truncation_example_agrees_with_slender_within_its_tolerance() {
             .unwrap_or_else(|| panic!("cannot read: {line}"));
         // Both masters stop iterating below 1e-6 m/s.
         assert!(worst < 1e-6, "{line}");
+    }
+}
+
+/// Exports `unit` of `scene` into `dir` as FMI `version`.
+fn export_version(scene: &str, unit: &str, dir: &Path, version: FmiVersion) -> PathBuf {
+    let config = ExportConfig::from_scene(&load(scene), unit).unwrap_or_else(|e| panic!("{e}"));
+    let out = dir.join(format!("{unit}-{version:?}.fmu"));
+    package_version(&config, &fmu::library(), &out, version).unwrap_or_else(|e| panic!("{e}"));
+    out
+}
+
+#[test]
+#[ignore = "needs FMPy and pythonfmu in .venv: ./scripts/test.sh runs it"]
+fn fmi3_fmus_validate_simulate_as_their_fmi2_twins_and_round_trip_state_in_fmpy() {
+    let dir = tempfile::tempdir().unwrap();
+    for (scene, unit) in [
+        ("examples/b3_force_displacement.toml", "b"),
+        ("examples/truncation_substructured.toml", "n"),
+        ("examples/pipe_dynamic_contact.toml", "pipe"),
+        ("examples/structure_mooring.toml", "line_upper"),
+    ] {
+        let three = export_version(scene, unit, dir.path(), FmiVersion::Three);
+        let two = export_version(scene, unit, dir.path(), FmiVersion::Two);
+        let path = |p: &Path| p.display().to_string();
+        let out = python_script(&["validate", &path(&three)]);
+        assert!(out.status.success(), "{scene} {unit}: FMI 3.0 not valid");
+        let out = python_script(&["state", &path(&three)]);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(text.matches("bit-identical").count(), 3, "{text}");
+        let mut csv = Vec::new();
+        for (fmu, name) in [(&three, "three.csv"), (&two, "two.csv")] {
+            let file = dir.path().join(format!("{unit}-{name}"));
+            let out = python_script(&["simulate", &path(fmu), &path(&file), "0.5", "0.01"]);
+            assert!(out.status.success(), "{scene} {unit}: simulate failed");
+            csv.push(std::fs::read_to_string(&file).unwrap());
+        }
+        assert!(
+            csv[0] == csv[1] && csv[0].lines().count() > 40,
+            "{scene} {unit}: FMI 3.0 and 2.0 results differ"
+        );
     }
 }

@@ -469,13 +469,44 @@ fn generation_date() -> String {
     humantime::format_rfc3339_seconds(when).to_string()
 }
 
-/// Writes the FMU for `config` with `layout` to `out`, with `binary` (the
-/// `slender-fmu` shared library) as `binaries/linux64/<modelIdentifier>.so`.
+/// The FMI version an FMU is written for (the library serves both).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum FmiVersion {
+    #[default]
+    Two,
+    Three,
+}
+
+impl FmiVersion {
+    /// The binaries folder of this platform in the standard's naming.
+    fn binaries(self) -> &'static str {
+        match self {
+            FmiVersion::Two => "binaries/linux64",
+            FmiVersion::Three => "binaries/x86_64-linux",
+        }
+    }
+}
+
+/// Writes the FMI 2.0 FMU for `config` with `layout` to `out` (see
+/// [`package_version`]).
 pub fn package(
     config: &ExportConfig,
     layout: &Layout,
     binary: &Path,
     out: &Path,
+) -> Result<(), PackageError> {
+    package_version(config, layout, binary, out, FmiVersion::Two)
+}
+
+/// Writes the FMU for `config` with `layout` to `out`, with `binary` (the
+/// `slender-fmu` shared library, which has both versions' entry points) as
+/// `<binaries>/<modelIdentifier>.so` and the model description of `version`.
+pub fn package_version(
+    config: &ExportConfig,
+    layout: &Layout,
+    binary: &Path,
+    out: &Path,
+    version: FmiVersion,
 ) -> Result<(), PackageError> {
     check_binary(binary)?;
     let library = std::fs::read(binary).map_err(|e| {
@@ -493,10 +524,14 @@ pub fn package(
         .compression_method(zip::CompressionMethod::Deflated);
     let mut model = layout.model.clone();
     model.about.generation_date_and_time = Some(generation_date());
+    let description = match version {
+        FmiVersion::Two => model.to_xml(),
+        FmiVersion::Three => model.to_xml_fmi3(),
+    };
     let entries: [(String, Vec<u8>); 3] = [
-        ("modelDescription.xml".into(), model.to_xml().into_bytes()),
+        ("modelDescription.xml".into(), description.into_bytes()),
         (
-            format!("binaries/linux64/{}.so", config.model_identifier()),
+            format!("{}/{}.so", version.binaries(), config.model_identifier()),
             library,
         ),
         (

@@ -237,32 +237,8 @@ impl ModelDescription {
             );
         }
         self.write_units(&mut x);
-        if !self.log_categories.is_empty() {
-            x.push_str("  <LogCategories>\n");
-            for c in &self.log_categories {
-                let _ = writeln!(
-                    x,
-                    r#"    <Category name="{}" description="{}"/>"#,
-                    e(&c.name),
-                    e(&c.description)
-                );
-            }
-            x.push_str("  </LogCategories>\n");
-        }
-        if let Some(d) = &self.default_experiment {
-            x.push_str("  <DefaultExperiment");
-            for (name, v) in [
-                ("startTime", d.start_time),
-                ("stopTime", d.stop_time),
-                ("tolerance", d.tolerance),
-                ("stepSize", d.step_size),
-            ] {
-                if let Some(v) = v {
-                    let _ = write!(x, r#" {name}="{v:e}""#);
-                }
-            }
-            x.push_str("/>\n");
-        }
+        self.write_log_categories(&mut x);
+        self.write_default_experiment(&mut x);
         x.push_str("  <ModelVariables>\n");
         for (i, v) in self.variables.iter().enumerate() {
             write_variable(&mut x, i, v);
@@ -288,6 +264,41 @@ impl ModelDescription {
         .filter(|(_, v)| !v.is_empty())
         .map(|(k, v)| format!(r#" {k}="{}""#, escape(*v)))
         .collect()
+    }
+
+    /// `<LogCategories>`, when any is declared.
+    fn write_log_categories(&self, x: &mut String) {
+        let e = |s: &str| escape(s).into_owned();
+        if !self.log_categories.is_empty() {
+            x.push_str("  <LogCategories>\n");
+            for c in &self.log_categories {
+                let _ = writeln!(
+                    x,
+                    r#"    <Category name="{}" description="{}"/>"#,
+                    e(&c.name),
+                    e(&c.description)
+                );
+            }
+            x.push_str("  </LogCategories>\n");
+        }
+    }
+
+    /// `<DefaultExperiment>`, when given.
+    fn write_default_experiment(&self, x: &mut String) {
+        if let Some(d) = &self.default_experiment {
+            x.push_str("  <DefaultExperiment");
+            for (name, v) in [
+                ("startTime", d.start_time),
+                ("stopTime", d.stop_time),
+                ("tolerance", d.tolerance),
+                ("stepSize", d.step_size),
+            ] {
+                if let Some(v) = v {
+                    let _ = write!(x, r#" {name}="{v:e}""#);
+                }
+            }
+            x.push_str("/>\n");
+        }
     }
 
     /// `<UnitDefinitions>`, when any unit is declared.
@@ -380,6 +391,7 @@ fn write_variable(x: &mut String, i: usize, v: &ScalarVariable) {
     x.push_str("/></ScalarVariable>\n");
 }
 
+mod fmi3;
 mod parse;
 use parse::Parser;
 

@@ -77,13 +77,17 @@ pub enum SpanAction {
 
 #[derive(Subcommand)]
 pub enum FmuAction {
-    /// Export one unit of a scene as an FMI 2.0 co-simulation FMU (its parameters,
-    /// effects, hold and start inputs; the scene's time window as default experiment).
+    /// Export one unit of a scene as an FMI 2.0 (or, with `--fmi 3`, FMI 3.0)
+    /// co-simulation FMU (its parameters, effects, hold and start inputs; the
+    /// scene's time window as default experiment).
     Export {
         scene: PathBuf,
         /// The unit to export (its name in the scene).
         #[arg(long)]
         unit: String,
+        /// FMI version of the FMU: 2 (default) or 3.
+        #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+        fmi: u8,
         /// The .fmu to write (default: <unit>.fmu); `--out` as elsewhere.
         #[arg(short, long, visible_alias = "out")]
         output: Option<PathBuf>,

@@ -7,6 +7,7 @@ use crate::kinds::BuildError;
 use crate::{Scene, SceneError};
 use slender_coupling::Master;
 use slender_coupling::MasterError;
+pub use slender_fmi::export::FmiVersion;
 use slender_fmi::export::{ExportConfig, Layout, PackageError};
 pub use slender_kinds::exported::ExportedUnit;
 use slender_units::UnitError;
@@ -119,11 +120,21 @@ impl SceneExport for ExportConfig {
     }
 }
 
-/// Writes the FMU for `config` to `out` (see `slender_fmi::export::package`) and
-/// returns its layout.
+/// Writes the FMI 2.0 FMU for `config` to `out` (see
+/// `slender_fmi::export::package`) and returns its layout.
 pub fn package(config: &ExportConfig, binary: &Path, out: &Path) -> Result<Layout, ExportError> {
+    package_version(config, binary, out, FmiVersion::Two)
+}
+
+/// Writes the FMU for `config` to `out` as FMI `version` and returns its layout.
+pub fn package_version(
+    config: &ExportConfig,
+    binary: &Path,
+    out: &Path,
+    version: FmiVersion,
+) -> Result<Layout, ExportError> {
     let layout = config.layout()?;
-    slender_fmi::export::package(config, &layout, binary, out)?;
+    slender_fmi::export::package_version(config, &layout, binary, out, version)?;
     Ok(layout)
 }
 

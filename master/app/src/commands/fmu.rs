@@ -5,7 +5,7 @@ use crate::cli::FmuAction;
 use slender_fmi::export::{ExportConfig, default_binary};
 use slender_fmi::import::{FmuParams, FmuUnit};
 use slender_fmi::model_description::VariableCausality;
-use slender_scene::export::{SceneExport, package, wrap_scene};
+use slender_scene::export::{FmiVersion, SceneExport, package_version, wrap_scene};
 use slender_scene::ssp::write_ssp;
 use slender_units::Unit;
 use std::path::{Path, PathBuf};
@@ -16,9 +16,17 @@ pub fn fmu(action: FmuAction) -> Result<(), CliError> {
         FmuAction::Export {
             scene,
             unit,
+            fmi,
             output,
             binary,
-        } => export(&scene, &unit, output, binary),
+        } => {
+            let version = if fmi == 3 {
+                FmiVersion::Three
+            } else {
+                FmiVersion::Two
+            };
+            export(&scene, &unit, version, output, binary)
+        }
         FmuAction::Wrap { scene, out, binary } => {
             let scene = load(&scene)?;
             let binary = library(binary)?;
@@ -57,6 +65,7 @@ fn library(binary: Option<PathBuf>) -> Result<PathBuf, CliError> {
 fn export(
     scene: &Path,
     unit: &str,
+    version: FmiVersion,
     output: Option<PathBuf>,
     binary: Option<PathBuf>,
 ) -> Result<(), CliError> {
@@ -64,7 +73,7 @@ fn export(
     let binary = library(binary)?;
     let output = output.unwrap_or_else(|| PathBuf::from(format!("{unit}.fmu")));
     let layout = ExportConfig::from_scene(&scene, unit)
-        .and_then(|config| package(&config, &binary, &output))
+        .and_then(|config| package_version(&config, &binary, &output, version))
         .map_err(|e| CliError::input(e.to_string()))?;
     let model = &layout.model;
     let count = |c| model.variables.iter().filter(|v| v.causality == c).count();

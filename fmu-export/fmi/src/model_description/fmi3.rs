@@ -1,0 +1,122 @@
+//! The same description written as FMI 3.0 (`modelDescription.xml` of an
+//! FMI 3.0 co-simulation FMU): typed variable elements (`Float64`, `Int32`,
+//! `Boolean`, `String`), value references instead of indices in the model
+//! structure, the instantiation token, and the independent variable `time`
+//! FMI 3.0 requires (value reference [`ModelDescription::time_reference`]).
+
+use super::*;
+
+impl ModelDescription {
+    /// The value reference of FMI 3.0's independent variable `time`: one past
+    /// the largest of the description's own.
+    pub fn time_reference(&self) -> u32 {
+        self.variables
+            .iter()
+            .map(|v| v.value_reference + 1)
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The description as FMI 3.0 XML.
+    pub fn to_xml_fmi3(&self) -> String {
+        let mut x = String::new();
+        let e = |s: &str| escape(s).into_owned();
+        let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+        let _ = writeln!(
+            x,
+            r#"<fmiModelDescription fmiVersion="3.0" modelName="{}" instantiationToken="{}" description="{}" generationTool="{}"{} variableNamingConvention="flat">"#,
+            e(&self.model_name),
+            e(&self.guid),
+            e(&self.description),
+            e(&self.generation_tool),
+            self.about_attributes()
+        );
+        if let Some(cs) = &self.co_simulation {
+            let _ = writeln!(
+                x,
+                r#"  <CoSimulation modelIdentifier="{}" canHandleVariableCommunicationStepSize="{}" canGetAndSetFMUState="{}" canSerializeFMUState="{}" providesDirectionalDerivatives="{}" maxOutputDerivativeOrder="0" canReturnEarlyAfterIntermediateUpdate="false" hasEventMode="false" providesIntermediateUpdate="false" canBeInstantiatedOnlyOncePerProcess="false" needsExecutionTool="false"/>"#,
+                e(&cs.model_identifier),
+                cs.can_handle_variable_communication_step_size,
+                cs.can_get_and_set_fmu_state,
+                cs.can_serialize_fmu_state,
+                cs.provides_directional_derivative
+            );
+        }
+        self.write_units(&mut x);
+        self.write_log_categories(&mut x);
+        self.write_default_experiment(&mut x);
+        x.push_str("  <ModelVariables>\n");
+        let _ = writeln!(
+            x,
+            r#"    <Float64 name="time" valueReference="{}" causality="independent" variability="continuous" description="simulation time (s)"/>"#,
+            self.time_reference()
+        );
+        for v in &self.variables {
+            write_variable3(&mut x, v);
+        }
+        x.push_str("  </ModelVariables>\n  <ModelStructure>\n");
+        let reference = |index: usize| self.variables[index - 1].value_reference;
+        for (tag, list) in [
+            ("Output", &self.outputs),
+            ("InitialUnknown", &self.initial_unknowns),
+        ] {
+            for u in list {
+                let _ = write!(x, r#"    <{tag} valueReference="{}""#, reference(u.index));
+                if let Some(deps) = &u.dependencies {
+                    let deps: Vec<String> =
+                        deps.iter().map(|d| reference(*d).to_string()).collect();
+                    let _ = write!(x, r#" dependencies="{}""#, deps.join(" "));
+                }
+                x.push_str("/>\n");
+            }
+        }
+        x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
+        x
+    }
+}
+
+/// One variable as its FMI 3.0 type element.
+fn write_variable3(x: &mut String, v: &ScalarVariable) {
+    let e = |s: &str| escape(s).into_owned();
+    let element = match &v.value {
+        Value::Real(_) => "Float64",
+        Value::Integer(_) | Value::Enumeration(_) => "Int32",
+        Value::Boolean(_) => "Boolean",
+        Value::String(_) => "String",
+    };
+    let _ = write!(
+        x,
+        r#"    <{element} name="{}" valueReference="{}" description="{}" causality="{}" variability="{}""#,
+        e(&v.name),
+        v.value_reference,
+        e(&v.description),
+        v.causality.name(),
+        e(&v.variability)
+    );
+    if let Some(initial) = &v.initial {
+        let _ = write!(x, r#" initial="{}""#, e(initial));
+    }
+    if let Some(unit) = &v.unit {
+        let _ = write!(x, r#" unit="{}""#, e(unit));
+    }
+    for (name, bound) in [("min", v.min), ("max", v.max)] {
+        if let Some(bound) = bound {
+            let _ = write!(x, r#" {name}="{bound:e}""#);
+        }
+    }
+    match &v.value {
+        Value::Real(Some(s)) => {
+            let _ = writeln!(x, r#" start="{s:e}"/>"#);
+        }
+        Value::Integer(Some(s)) | Value::Enumeration(Some(s)) => {
+            let _ = writeln!(x, r#" start="{s}"/>"#);
+        }
+        Value::Boolean(Some(s)) => {
+            let _ = writeln!(x, r#" start="{s}"/>"#);
+        }
+        Value::String(Some(s)) => {
+            let _ = writeln!(x, r#"><Start value="{}"/></String>"#, e(s));
+        }
+        _ => x.push_str("/>\n"),
+    }
+}
