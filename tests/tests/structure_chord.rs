@@ -27,6 +27,7 @@ fn parse(text: &str) -> Result<Scene, String> {
 fn plan(sections: &[&str], duration: f64) -> FidelityPlan {
     FidelityPlan {
         max_runs: slender_app::DEFAULT_MAX_RUNS,
+        repeats: 1,
         sections: sections
             .iter()
             .map(|s| s.parse::<SectionChoices>().unwrap())

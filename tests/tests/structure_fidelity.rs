@@ -160,6 +160,7 @@ fn swapping_a_section_to_cable_changes_its_unit_and_its_cuts_only() {
 fn plan(sections: &[&str], design: Design, jobs: usize) -> FidelityPlan {
     FidelityPlan {
         max_runs: slender_app::DEFAULT_MAX_RUNS,
+        repeats: 1,
         sections: sections
             .iter()
             .map(|s| s.parse::<SectionChoices>().unwrap())
@@ -259,7 +260,13 @@ fn a_fidelity_grid_gives_the_same_errors_on_one_job_and_on_two() {
     let path = root().join("examples/structure_mooring.toml");
     let sections = ["lower=cable,nonlinear:16"];
     let errors = |jobs| {
-        let report = run_fidelity(&path, &plan(&sections, Design::Grid, jobs), |_| {}).unwrap();
+        // Two jobs time each run twice: its cost is the median of two, with
+        // their spread; the errors are those of one run.
+        let mut plan = plan(&sections, Design::Grid, jobs);
+        plan.repeats = jobs;
+        let report = run_fidelity(&path, &plan, |_| {}).unwrap();
+        let spread_given = report.rows.iter().all(|r| r.cost_spread >= 0.0);
+        assert_eq!(spread_given, jobs == 2, "cost spreads with {jobs} job(s)");
         report
             .rows
             .iter()

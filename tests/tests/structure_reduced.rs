@@ -232,6 +232,7 @@ fn a_fidelity_study_compares_reduced_corners_by_their_modes() {
     let path = root().join("examples/structure_frame_reduced.toml");
     let plan = FidelityPlan {
         max_runs: slender_app::DEFAULT_MAX_RUNS,
+        repeats: 1,
         sections: vec![
             "corner=reduced:2,reduced:6"
                 .parse::<SectionChoices>()

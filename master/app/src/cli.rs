@@ -196,9 +196,16 @@ pub enum Command {
         /// time.
         #[arg(long)]
         grid: bool,
-        /// Runs at once (default: the machine's cores); results do not depend on it.
+        /// Runs at once (default 1: each run times its cost alone; more finish
+        /// sooner but share the cores, so their costs are not comparable).
+        /// Results other than costs do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
+        /// Times each run is timed (default 1): its cost is the median, the
+        /// spread (max - min) / median is reported, and a spread above 20 % is
+        /// warned about.
+        #[arg(long, default_value_t = 1)]
+        repeats: usize,
         /// The most runs to start (default 10 000): a larger study is
         /// refused before any run, naming its size.
         #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
@@ -248,9 +255,16 @@ pub enum Command {
         /// top_force,touchdown,sagbend_moment; default: all of them.
         #[arg(long, value_delimiter = ',')]
         quantities: Vec<String>,
-        /// Runs at once (default: the machine's cores); results do not depend on it.
+        /// Runs at once (default 1: each run times its cost alone; more finish
+        /// sooner but share the cores, so their costs are not comparable).
+        /// Results other than costs do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
+        /// Times each run is timed (default 1): its cost is the median, the
+        /// spread (max - min) / median is reported, and a spread above 20 % is
+        /// warned about.
+        #[arg(long, default_value_t = 1)]
+        repeats: usize,
         /// The most runs to start (default 10 000): a larger study is
         /// refused before any run, naming its size.
         #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]

@@ -7,6 +7,7 @@
 //! - [`fidelity`]: a structure's sections at chosen fidelities against the monolithic model;
 //! - [`parallel`]: independent runs on a few threads.
 
+pub mod costs;
 pub mod coupling_study;
 pub mod fidelity;
 pub mod indicators;

@@ -44,6 +44,7 @@ fn an_in_run_reference_is_measured_in_every_run_under_its_norm() {
         jobs: 1,
         cost_units: vec!["model".into()],
         reference: None,
+        repeats: 3,
     };
     let rows = run_study(&path, &plan, |_| {}).unwrap();
     assert_eq!(rows.len(), 2);
@@ -56,6 +57,9 @@ fn an_in_run_reference_is_measured_in_every_run_under_its_norm() {
             "{amplitude}: {e} vs {expected}"
         );
         assert!(row.cost_per_simulated_second.is_finite());
+        // Timed three times: the median and a spread (the run is repeated, its
+        // results are the first run's).
+        assert!(row.cost_spread >= 0.0, "{}", row.cost_spread);
     }
     std::fs::remove_dir_all(dir).unwrap();
 }

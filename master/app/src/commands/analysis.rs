@@ -67,6 +67,7 @@ pub fn modes(
 /// A convergence and cost study; the rows are written even when some runs fail
 /// (those are marked FAILED with their reason), and the command then exits 1.
 pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), CliError> {
+    count_in("--repeats", plan.repeats, 1, 1000)?;
     let (dir, _) = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
     let _lock = super::lock::lock(&dir)?;
     let rows = study::run_study(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
@@ -87,6 +88,9 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
     whole::through(&svg, |f| slender_app::plot::study(f, &title, &rows))
         .map_err(CliError::failure)?;
     report_written(&[csv, md, svg]);
+    if let Some(w) = slender_app::costs::spread_warning(rows.iter().map(|r| r.cost_spread)) {
+        eprintln!("{w}");
+    }
     runs_failed(failed, rows.len(), "marked FAILED above and in study.csv")
 }
 
@@ -130,6 +134,7 @@ pub(super) fn study_folder(
 /// command then exits 1.
 pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Result<(), CliError> {
     positive("--tolerance", plan.tolerance)?;
+    count_in("--repeats", plan.repeats, 1, 1000)?;
     let (dir, _) = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
     let _lock = super::lock::lock(&dir)?;
     let report =
@@ -147,6 +152,10 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
         .map_err(CliError::failure)?;
     println!("{}", fidelity::report::conclusion(&report));
     report_written(&[files, vec![svg]].concat());
+    let spreads = report.rows.iter().map(|r| r.cost_spread);
+    if let Some(w) = slender_app::costs::spread_warning(spreads) {
+        eprintln!("{w}");
+    }
     let failed = report.rows.iter().filter(|r| r.error.is_some()).count();
     runs_failed(
         failed,

@@ -62,6 +62,7 @@ fn studies(command: Command) -> Result<(), CliError> {
             sweeps,
             grid,
             jobs,
+            repeats,
             max_runs,
             duration,
             reference,
@@ -73,9 +74,10 @@ fn studies(command: Command) -> Result<(), CliError> {
                 sweeps,
                 design: design(grid),
                 duration,
-                jobs: jobs_or_cores(jobs),
+                jobs: jobs.unwrap_or(1),
                 cost_units,
                 reference,
+                repeats,
             };
             analysis::study(&scene, &plan, out)
         }
@@ -86,6 +88,7 @@ fn studies(command: Command) -> Result<(), CliError> {
             tolerance,
             quantities,
             jobs,
+            repeats,
             max_runs,
             duration,
             out,
@@ -95,9 +98,10 @@ fn studies(command: Command) -> Result<(), CliError> {
                 sections,
                 design: design(grid),
                 duration,
-                jobs: jobs_or_cores(jobs),
+                jobs: jobs.unwrap_or(1),
                 tolerance,
                 judged: quantities,
+                repeats,
             };
             analysis::fidelity(&scene, &plan, out)
         }
@@ -119,18 +123,24 @@ fn studies(command: Command) -> Result<(), CliError> {
                 duration,
                 shard: None,
             };
-            let mode = match (shard, slurm) {
-                (Some((k, n)), _) => uq::Mode::Shard(k, n),
-                (_, Some(0)) => {
-                    return Err(CliError::input("--slurm 0: expected at least one shard"));
-                }
-                (_, Some(n)) => uq::Mode::Slurm(n),
-                _ => uq::Mode::Whole { merge },
-            };
-            uq::uq(&scene, &plan, out, mode)
+            uq::uq(&scene, &plan, out, uq_mode(shard, slurm, merge)?)
         }
         _ => Err(CliError::failure("not a study command")),
     }
+}
+
+/// How a `slender uq` runs: a shard, through Slurm, or whole (merging shards).
+fn uq_mode(
+    shard: Option<(usize, usize)>,
+    slurm: Option<usize>,
+    merge: bool,
+) -> Result<uq::Mode, CliError> {
+    Ok(match (shard, slurm) {
+        (Some((k, n)), _) => uq::Mode::Shard(k, n),
+        (_, Some(0)) => return Err(CliError::input("--slurm 0: expected at least one shard")),
+        (_, Some(n)) => uq::Mode::Slurm(n),
+        _ => uq::Mode::Whole { merge },
+    })
 }
 
 /// Runs one command.

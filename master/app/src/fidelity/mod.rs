@@ -12,11 +12,11 @@ pub mod floors;
 pub mod quantities;
 pub mod report;
 mod rows;
+mod run;
 mod written;
 
 pub use choice::{Choice, SectionChoices};
 
-use crate::run::{RunOptions, run_scene};
 use crate::study::Design;
 use quantities::{Features, SectionUnit};
 use serde::Serialize;
@@ -42,6 +42,8 @@ pub struct FidelityPlan {
     pub judged: Vec<String>,
     /// The most runs the study may start (`--max-runs`).
     pub max_runs: usize,
+    /// Times each run is timed (`--repeats`): its cost is their median.
+    pub repeats: usize,
 }
 
 /// One run: a combination (or the reference) and what it measured.
@@ -54,7 +56,10 @@ pub struct FidelityRow {
     pub errors: Vec<(String, f64)>,
     /// The largest of `errors` over the judged quantities.
     pub worst_error: f64,
+    /// The median of the run's timed repeats.
     pub cost_per_simulated_second: f64,
+    /// (max - min) / median of the repeats' costs (NaN for one).
+    pub cost_spread: f64,
     /// The reference's cost over this run's.
     pub speed_up: f64,
     pub iterations_per_step: f64,
@@ -104,7 +109,9 @@ struct Outcome {
     iterations_per_step: f64,
     non_converged_steps: u64,
     start_change: Option<f64>,
+    /// The median of the run's timed repeats, and their spread.
     cost: f64,
+    cost_spread: f64,
     error: Option<String>,
 }
 
@@ -152,12 +159,12 @@ pub fn run_fidelity(
     // Each finished run says which of how many it is.
     let done = std::sync::atomic::AtomicUsize::new(0);
     let outcomes = crate::parallel::run_all(&tasks, &order, plan.jobs, |task| {
-        let outcome = run_one(path, &table, &structure, task.as_deref(), plan.duration);
+        let outcome = run::run_one(path, &table, &structure, task.as_deref(), plan);
         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         progress(&format!(
             "[{k}/{}] {}",
             tasks.len(),
-            describe(task.as_deref(), &outcome)
+            run::describe(task.as_deref(), &outcome)
         ));
         outcome
     });
@@ -509,74 +516,6 @@ fn finish(
     );
     table.insert("output".into(), Value::Table(output));
     Ok((table, units))
-}
-
-fn run_one(
-    path: &Path,
-    table: &Table,
-    structure: &Structure,
-    combination: Option<&[(String, Choice)]>,
-    duration: Option<f64>,
-) -> Outcome {
-    let failed = |error: String| Outcome {
-        time: Vec::new(),
-        series: Vec::new(),
-        iterations_per_step: f64::NAN,
-        non_converged_steps: 0,
-        start_change: None,
-        cost: f64::NAN,
-        error: Some(error),
-    };
-    let (table, units) = match run_table(table, structure, combination) {
-        Ok(t) => t,
-        Err(e) => return failed(e),
-    };
-    let scene = match crate::study::scene_with(path, &table, duration) {
-        Ok(s) => s,
-        Err(e) => return failed(e),
-    };
-    let options = RunOptions {
-        output_dir: None,
-        progress: false,
-        realtime: false,
-    };
-    let result = match run_scene(&scene, &options) {
-        Ok(r) => r,
-        Err(e) => return failed(e.to_string()),
-    };
-    let series: Result<Vec<Vec<f64>>, String> = quantities::names(&structure.features)
-        .iter()
-        .map(|n| quantities::series(n, &units, &structure.features, &result.recorder))
-        .collect();
-    let counters = &result.summary.counters;
-    match series {
-        Ok(series) => Outcome {
-            time: result.recorder.time.clone(),
-            series,
-            iterations_per_step: counters.mean_iterations(),
-            non_converged_steps: counters.non_converged_steps,
-            start_change: counters.start_load.as_ref().map(|l| l.relative_change),
-            cost: result.summary.cost_per_simulated_second,
-            error: result.summary.error.clone(),
-        },
-        Err(e) => failed(e),
-    }
-}
-
-/// A line of progress for a finished run.
-fn describe(combination: Option<&[(String, Choice)]>, o: &Outcome) -> String {
-    let what = match combination {
-        None => "reference (monolithic)".to_owned(),
-        Some(c) => c
-            .iter()
-            .map(|(s, c)| format!("{s}={}", c.label()))
-            .collect::<Vec<_>>()
-            .join(" "),
-    };
-    match &o.error {
-        Some(e) => format!("{what}: FAILED: {e}"),
-        None => format!("{what}: {:.3e} s per simulated s", o.cost),
-    }
 }
 
 /// The judged quantities: the plan's, each one the structure has, or all.

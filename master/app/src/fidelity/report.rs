@@ -25,18 +25,19 @@ pub fn to_csv(report: &FidelityReport) -> String {
         .map(|n| format!("epsilon_{n}"))
         .collect();
     let mut out = format!(
-        "combination,reference,{},worst_epsilon,cost_per_simulated_second,speed_up,iterations_per_step,non_converged_steps,start_change,pareto,within_tolerance,error\n",
+        "combination,reference,{},worst_epsilon,cost_per_simulated_second,cost_spread,speed_up,iterations_per_step,non_converged_steps,start_change,pareto,within_tolerance,error\n",
         eps.join(",")
     );
     for r in &report.rows {
         let eps: Vec<String> = r.errors.iter().map(|(_, e)| format!("{e:e}")).collect();
         out += &format!(
-            "{},{},{},{:e},{:e},{},{},{},{},{},{},{}\n",
+            "{},{},{},{:e},{:e},{},{},{},{},{},{},{},{}\n",
             label(r),
             r.reference,
             eps.join(","),
             r.worst_error,
             r.cost_per_simulated_second,
+            crate::costs::csv(r.cost_spread),
             r.speed_up,
             r.iterations_per_step,
             r.non_converged_steps,
@@ -71,10 +72,10 @@ pub fn to_markdown(report: &FidelityReport) -> String {
             None => format!(" {} |", if r.pareto { "yes" } else { "" }),
         };
         out += &format!(
-            "| {name} | {} | {:.2e} | {:.3e} | {:.2} | {:.2} | {} | {} |{tail}\n",
+            "| {name} | {} | {:.2e} | {} | {:.2} | {:.2} | {} | {} |{tail}\n",
             eps.join(" | "),
             r.worst_error,
-            r.cost_per_simulated_second,
+            crate::costs::cell(r.cost_per_simulated_second, r.cost_spread),
             r.speed_up,
             r.iterations_per_step,
             r.non_converged_steps,

@@ -46,6 +46,7 @@ pub(super) fn rows_of(
                 worst_error: worst,
                 errors,
                 cost_per_simulated_second: o.cost,
+                cost_spread: o.cost_spread,
                 speed_up: reference.cost / o.cost,
                 iterations_per_step: o.iterations_per_step,
                 non_converged_steps: o.non_converged_steps,

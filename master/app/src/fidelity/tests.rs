@@ -6,6 +6,7 @@ use super::*;
 fn one_at_a_time(sections: &[&str]) -> FidelityPlan {
     FidelityPlan {
         max_runs: crate::DEFAULT_MAX_RUNS,
+        repeats: 1,
         sections: sections.iter().map(|s| s.parse().unwrap()).collect(),
         design: Design::OneAtATime,
         duration: None,

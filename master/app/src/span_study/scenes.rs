@@ -126,6 +126,7 @@ pub(crate) fn engine_rows(
             vec![cost.into()]
         },
         reference: None,
+        repeats: 1,
     };
     study::run_study_against(path, &plan, Some(reference), |_| {}).map_err(StudyError::Plan)
 }

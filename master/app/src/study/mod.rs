@@ -121,6 +121,8 @@ pub struct StudyPlan {
     pub reference: Option<PathBuf>,
     /// The most runs the study may start (`--max-runs`).
     pub max_runs: usize,
+    /// Times each run is timed (`--repeats`): its cost is their median.
+    pub repeats: usize,
 }
 
 /// One run of a study.
@@ -143,7 +145,10 @@ pub struct StudyRow {
     /// The master's start check: the largest relative change over the first
     /// step of a load a section's statics were solved under.
     pub start_change: Option<f64>,
+    /// The median of the run's timed repeats.
     pub cost_per_simulated_second: f64,
+    /// (max - min) / median of the repeats' costs (NaN for one).
+    pub cost_spread: f64,
     pub error: Option<String>,
 }
 
@@ -156,6 +161,7 @@ struct Outcome {
     iterations_per_step: f64,
     start_change: Option<f64>,
     cost: f64,
+    cost_spread: f64,
     error: Option<String>,
 }
 
@@ -271,8 +277,9 @@ pub fn run_study_against(
         let how = match &o.error {
             Some(e) => format!("FAILED: {e}"),
             None => format!(
-                "{:.2} it/step, {:.3e} s per simulated s",
-                o.iterations_per_step, o.cost
+                "{:.2} it/step, {} s per simulated s",
+                o.iterations_per_step,
+                crate::costs::cell(o.cost, o.cost_spread)
             ),
         };
         progress(&format!("[{k}/{}] {}: {how}", all.len(), what.join(" ")));
@@ -398,7 +405,14 @@ fn run_one(
         }
     }
     match scene_with(path, &table, plan.duration) {
-        Ok(scene) => outcome_of(&scene, &plan.cost_units),
+        Ok(scene) => {
+            let mut o = outcome_of(&scene, &plan.cost_units);
+            if o.error.is_none() {
+                let again = || outcome_of(&scene, &plan.cost_units).cost;
+                (o.cost, o.cost_spread) = crate::costs::repeated(plan.repeats, o.cost, again);
+            }
+            o
+        }
         Err(e) => {
             let with: Vec<String> = assignments
                 .iter()
@@ -422,6 +436,7 @@ fn failed(judged: &[Judged], error: String) -> Outcome {
         iterations_per_step: f64::NAN,
         start_change: None,
         cost: f64::NAN,
+        cost_spread: f64::NAN,
         error: Some(error),
     }
 }
@@ -455,6 +470,7 @@ fn outcome_of(scene: &Scene, cost_units: &[String]) -> Outcome {
                 iterations_per_step: s.counters.mean_iterations(),
                 start_change: s.counters.start_load.as_ref().map(|l| l.relative_change),
                 cost,
+                cost_spread: f64::NAN,
                 error: s.error.clone(),
             }
         }
@@ -513,6 +529,7 @@ fn rows_of(
                 iterations_per_step: o.iterations_per_step,
                 start_change: o.start_change,
                 cost_per_simulated_second: o.cost,
+                cost_spread: o.cost_spread,
                 error: o.error.clone(),
             }
         })

@@ -16,6 +16,7 @@ fn row(elements: f64, error: f64, reference: bool) -> StudyRow {
         iterations_per_step: 1.0,
         start_change: None,
         cost_per_simulated_second: 1.0,
+        cost_spread: f64::NAN,
         error: None,
     }
 }

@@ -36,7 +36,7 @@ pub fn to_csv(rows: &[StudyRow]) -> String {
     let eps: Vec<String> = names.iter().map(|n| format!("epsilon_{n}")).collect();
     let orders: Vec<String> = names.iter().map(|n| format!("order_{n}")).collect();
     let mut out = format!(
-        "setting,value,{},{},iterations_per_step,start_change,cost_per_simulated_second,error\n",
+        "setting,value,{},{},iterations_per_step,start_change,cost_per_simulated_second,cost_spread,error\n",
         eps.join(","),
         orders.join(",")
     );
@@ -44,7 +44,7 @@ pub fn to_csv(rows: &[StudyRow]) -> String {
         let eps: Vec<String> = r.errors.iter().map(|(_, e)| format!("{e:e}")).collect();
         let orders: Vec<String> = r.orders.iter().map(|(_, p)| format!("{p}")).collect();
         out += &format!(
-            "{},{},{},{},{},{},{:e},{}\n",
+            "{},{},{},{},{},{},{:e},{},{}\n",
             setting_of(r).replace(',', ";"),
             value_of(r).replace(',', ";"),
             eps.join(","),
@@ -52,6 +52,7 @@ pub fn to_csv(rows: &[StudyRow]) -> String {
             r.iterations_per_step,
             r.start_change.map(|c| format!("{c:e}")).unwrap_or_default(),
             r.cost_per_simulated_second,
+            crate::costs::csv(r.cost_spread),
             r.error.as_deref().unwrap_or("").replace(',', ";")
         );
     }
@@ -100,14 +101,14 @@ pub fn to_markdown(rows: &[StudyRow]) -> String {
             })
             .collect();
         out += &format!(
-            "| {} | {} | {} | {} | {:.2} | {} | {:.2e} |{}\n",
+            "| {} | {} | {} | {} | {:.2} | {} | {} |{}\n",
             setting_of(r),
             value_of(r),
             eps.join(" | "),
             orders.join(" | "),
             r.iterations_per_step,
             start_change(r.start_change),
-            r.cost_per_simulated_second,
+            crate::costs::cell(r.cost_per_simulated_second, r.cost_spread),
             r.error
                 .as_ref()
                 .map(|e| format!(" failed: {e}"))
