@@ -7,7 +7,8 @@
 //! where the unit gives its step Jacobian; inputs held over a step (FMI 3.0
 //! co-simulation passes no input derivatives without event mode).
 
-use crate::instance::{self, Instance, guarded};
+use crate::instance::{Instance, guarded};
+use crate::states;
 use crate::{refs, values, values_mut};
 use slender_fmi::ffi::*;
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
@@ -382,13 +383,7 @@ pub unsafe extern "C" fn fmi3DoStep(
 /// `fmi3GetFMUState`: a copy of the unit's state.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetFMUState(c: Instance3, state: *mut fmi2FMUstate) -> Status {
-    guarded(c, "fmi3GetFMUState", |i| {
-        if state.is_null() {
-            return Err("null state pointer".into());
-        }
-        // SAFETY: checked non-null; FMI passes a pointer to a state handle.
-        i.get_state(unsafe { &mut *state })
-    })
+    unsafe { states::get(c, "fmi3GetFMUState", state) }
 }
 
 /// `fmi3SetFMUState`.
@@ -400,15 +395,7 @@ pub unsafe extern "C" fn fmi3SetFMUState(c: Instance3, state: fmi2FMUstate) -> S
 /// `fmi3FreeFMUState`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3FreeFMUState(c: Instance3, state: *mut fmi2FMUstate) -> Status {
-    guarded(c, "fmi3FreeFMUState", |_| {
-        if !state.is_null() {
-            // SAFETY: FMI passes a pointer to a state handle we made.
-            let handle = unsafe { &mut *state };
-            instance::free_state(*handle);
-            *handle = std::ptr::null_mut();
-        }
-        Ok(FMI2_OK)
-    })
+    unsafe { states::free(c, "fmi3FreeFMUState", state) }
 }
 
 /// `fmi3SerializedFMUStateSize`.
@@ -418,12 +405,7 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
     state: fmi2FMUstate,
     size: *mut usize,
 ) -> Status {
-    guarded(c, "fmi3SerializedFMUStateSize", |i| {
-        let bytes = i.serialize(state)?;
-        let size = unsafe { size.as_mut() }.ok_or("null size pointer")?;
-        *size = bytes.len();
-        Ok(FMI2_OK)
-    })
+    unsafe { states::size(c, "fmi3SerializedFMUStateSize", state, size) }
 }
 
 /// `fmi3SerializeFMUState`.
@@ -434,15 +416,7 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
     bytes: *mut u8,
     size: usize,
 ) -> Status {
-    guarded(c, "fmi3SerializeFMUState", |i| {
-        let data = i.serialize(state)?;
-        if data.len() != size {
-            return Err(format!("{size} bytes given, the state has {}", data.len()));
-        }
-        // SAFETY: FMI passes room for `size` bytes.
-        unsafe { values_mut(bytes, size)? }.copy_from_slice(&data);
-        Ok(FMI2_OK)
-    })
+    unsafe { states::serialize(c, "fmi3SerializeFMUState", state, (bytes, size)) }
 }
 
 /// `fmi3DeserializeFMUState`.
@@ -453,15 +427,7 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     size: usize,
     state: *mut fmi2FMUstate,
 ) -> Status {
-    guarded(c, "fmi3DeserializeFMUState", |i| {
-        // SAFETY: FMI passes `size` bytes.
-        let data = unsafe { values(bytes, size)? };
-        if state.is_null() {
-            return Err("null state pointer".into());
-        }
-        // SAFETY: checked non-null.
-        i.deserialize(data, unsafe { &mut *state })
-    })
+    unsafe { states::deserialize(c, "fmi3DeserializeFMUState", (bytes, size), state) }
 }
 
 /// `fmi3GetDirectionalDerivative`: the unit's step Jacobian times the seed.

@@ -16,6 +16,7 @@
 
 mod fmi3;
 mod instance;
+mod states;
 
 use instance::{Instance, guarded};
 use slender_fmi::ffi::*;
@@ -334,13 +335,7 @@ pub unsafe extern "C" fn fmi2SetString(
 /// `fmi2GetFMUstate`: a copy of the unit's state (new, or written into `*state`).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
-    guarded(c, "fmi2GetFMUstate", |i| {
-        if state.is_null() {
-            return Err("null state pointer".into());
-        }
-        // SAFETY: checked non-null; FMI passes a pointer to a state handle.
-        i.get_state(unsafe { &mut *state })
-    })
+    unsafe { states::get(c, "fmi2GetFMUstate", state) }
 }
 
 /// `fmi2SetFMUstate`.
@@ -355,15 +350,7 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(
     c: fmi2Component,
     state: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    guarded(c, "fmi2FreeFMUstate", |_| {
-        if !state.is_null() {
-            // SAFETY: FMI passes a pointer to a handle from fmi2GetFMUstate.
-            let handle = unsafe { &mut *state };
-            instance::free_state(*handle);
-            *handle = std::ptr::null_mut();
-        }
-        Ok(FMI2_OK)
-    })
+    unsafe { states::free(c, "fmi2FreeFMUstate", state) }
 }
 
 /// `fmi2SerializedFMUstateSize`.
@@ -373,13 +360,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     state: fmi2FMUstate,
     size: *mut usize,
 ) -> fmi2Status {
-    guarded(c, "fmi2SerializedFMUstateSize", |i| {
-        let bytes = i.serialize(state)?;
-        // SAFETY: FMI passes room for one size.
-        let out = unsafe { values_mut(size, 1)? };
-        out[0] = bytes.len();
-        Ok(FMI2_OK)
-    })
+    unsafe { states::size(c, "fmi2SerializedFMUstateSize", state, size) }
 }
 
 /// `fmi2SerializeFMUstate`.
@@ -390,19 +371,7 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     bytes: *mut fmi2Byte,
     size: usize,
 ) -> fmi2Status {
-    guarded(c, "fmi2SerializeFMUstate", |i| {
-        let data = i.serialize(state)?;
-        if data.len() != size {
-            return Err(format!(
-                "the buffer holds {size} bytes, the state needs {}",
-                data.len()
-            ));
-        }
-        // SAFETY: FMI passes room for `size` bytes.
-        let out = unsafe { values_mut(bytes.cast::<u8>(), size)? };
-        out.copy_from_slice(&data);
-        Ok(FMI2_OK)
-    })
+    unsafe { states::serialize(c, "fmi2SerializeFMUstate", state, (bytes.cast(), size)) }
 }
 
 /// `fmi2DeSerializeFMUstate`.
@@ -413,15 +382,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     state: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    guarded(c, "fmi2DeSerializeFMUstate", |i| {
-        // SAFETY: FMI passes `size` bytes and a handle to fill.
-        let data = unsafe { values(bytes.cast::<u8>(), size)? };
-        if state.is_null() {
-            return Err("null state pointer".into());
-        }
-        // SAFETY: checked non-null.
-        i.deserialize(data, unsafe { &mut *state })
-    })
+    unsafe { states::deserialize(c, "fmi2DeSerializeFMUstate", (bytes.cast(), size), state) }
 }
 
 /// `fmi2GetDirectionalDerivative`: the unit's step Jacobian times the seed

@@ -364,31 +364,37 @@ fn write_variable(x: &mut String, i: usize, v: &ScalarVariable) {
     if let Some(initial) = &v.initial {
         let _ = write!(x, r#" initial="{}""#, e(initial));
     }
-    let _ = write!(x, "><{}", v.value.type_name());
+    let _ = write!(x, "><{}{}", v.value.type_name(), type_attributes(v));
+    if let Some(start) = start_text(&v.value) {
+        let _ = write!(x, r#" start="{}""#, e(&start));
+    }
+    x.push_str("/></ScalarVariable>\n");
+}
+
+/// A variable's `unit`, `min` and `max` attributes (each with a leading space),
+/// the same in FMI 2.0's type element and FMI 3.0's variable element.
+fn type_attributes(v: &ScalarVariable) -> String {
+    let mut x = String::new();
     if let Some(unit) = &v.unit {
-        let _ = write!(x, r#" unit="{}""#, e(unit));
+        let _ = write!(x, r#" unit="{}""#, escape(unit.as_str()));
     }
     for (name, bound) in [("min", v.min), ("max", v.max)] {
         if let Some(bound) = bound {
             let _ = write!(x, r#" {name}="{bound:e}""#);
         }
     }
-    match &v.value {
-        Value::Real(Some(s)) => {
-            let _ = write!(x, r#" start="{s:e}""#);
-        }
-        Value::Integer(Some(s)) | Value::Enumeration(Some(s)) => {
-            let _ = write!(x, r#" start="{s}""#);
-        }
-        Value::Boolean(Some(s)) => {
-            let _ = write!(x, r#" start="{s}""#);
-        }
-        Value::String(Some(s)) => {
-            let _ = write!(x, r#" start="{}""#, e(s));
-        }
-        _ => {}
+    x
+}
+
+/// A start value as written (unescaped), when there is one.
+fn start_text(value: &Value) -> Option<String> {
+    match value {
+        Value::Real(Some(s)) => Some(format!("{s:e}")),
+        Value::Integer(Some(s)) | Value::Enumeration(Some(s)) => Some(s.to_string()),
+        Value::Boolean(Some(s)) => Some(s.to_string()),
+        Value::String(Some(s)) => Some(s.clone()),
+        _ => None,
     }
-    x.push_str("/></ScalarVariable>\n");
 }
 
 mod fmi3;

@@ -96,27 +96,14 @@ fn write_variable3(x: &mut String, v: &ScalarVariable) {
     if let Some(initial) = &v.initial {
         let _ = write!(x, r#" initial="{}""#, e(initial));
     }
-    if let Some(unit) = &v.unit {
-        let _ = write!(x, r#" unit="{}""#, e(unit));
-    }
-    for (name, bound) in [("min", v.min), ("max", v.max)] {
-        if let Some(bound) = bound {
-            let _ = write!(x, r#" {name}="{bound:e}""#);
+    x.push_str(&type_attributes(v));
+    match (&v.value, start_text(&v.value)) {
+        (Value::String(_), Some(start)) => {
+            let _ = writeln!(x, r#"><Start value="{}"/></String>"#, e(&start));
         }
-    }
-    match &v.value {
-        Value::Real(Some(s)) => {
-            let _ = writeln!(x, r#" start="{s:e}"/>"#);
+        (_, Some(start)) => {
+            let _ = writeln!(x, r#" start="{}"/>"#, e(&start));
         }
-        Value::Integer(Some(s)) | Value::Enumeration(Some(s)) => {
-            let _ = writeln!(x, r#" start="{s}"/>"#);
-        }
-        Value::Boolean(Some(s)) => {
-            let _ = writeln!(x, r#" start="{s}"/>"#);
-        }
-        Value::String(Some(s)) => {
-            let _ = writeln!(x, r#"><Start value="{}"/></String>"#, e(s));
-        }
-        _ => x.push_str("/>\n"),
+        (_, None) => x.push_str("/>\n"),
     }
 }
