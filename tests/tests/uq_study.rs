@@ -32,6 +32,35 @@ fn plan(samples: Option<usize>, jobs: usize) -> UqPlan {
     }
 }
 
+/// An expansion that misses more than a tenth of the variance is reported with
+/// a caution, and only then.
+fn cautions_follow_the_loo_error(report: &slender_app::uq::UqReport) {
+    let markdown = slender_app::uq::report::to_markdown(report);
+    let poor = report
+        .outputs
+        .iter()
+        .filter(|o| o.loo_error > slender_app::uq::report::LOO_TRUSTED)
+        .count();
+    eprintln!(
+        "LOO errors: {:?}",
+        report
+            .outputs
+            .iter()
+            .map(|o| o.loo_error)
+            .collect::<Vec<_>>()
+    );
+    assert_eq!(markdown.matches("**Caution:**").count(), poor, "{markdown}");
+    let mut good = report.outputs[0].clone();
+    good.loo_error = 0.01;
+    assert!(slender_app::uq::report::poor_fit(&good).is_none());
+    good.loo_error = 0.5;
+    let caution = slender_app::uq::report::poor_fit(&good).unwrap();
+    assert!(
+        caution.contains(&good.name) && caution.contains("0.50"),
+        "{caution}"
+    );
+}
+
 #[test]
 fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     let dir = tempfile::tempdir().unwrap();
@@ -63,6 +92,7 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
         assert_eq!(o.convergence[1].1, o.mean);
         assert!(o.total.iter().all(|t| (-1e-9..=1.0 + 1e-9).contains(t)));
     }
+    cautions_follow_the_loo_error(&second);
     // One job: the same runs and the same expansions.
     let (again, runs1) = run_uq(&path, &plan(Some(32), 1), &[], |_, _| {}).unwrap();
     let bits = |r: &[Run]| -> Vec<u64> {

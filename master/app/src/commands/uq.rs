@@ -77,29 +77,36 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                 write("uq.json", json)?,
                 write("uq.md", markdown.clone())?,
             ];
-            let figure = |name: &str, draw: &dyn Fn(&Path) -> Result<(), PlotError>| {
-                slender_app::whole::through(&dir.join(name), draw).map_err(CliError::failure)
-            };
-            figure("sobol.svg", &|f| uq::plot::sobol_bars(f, &report))?;
-            figure("convergence.svg", &|f| uq::plot::convergence(f, &report))?;
-            figure("distribution.svg", &|f| {
-                uq::plot::distribution(f, &report, &runs)
-            })?;
-            figure("scatter.svg", &|f| uq::plot::scatter(f, &report, &runs))?;
-            files.extend(
-                [
-                    "sobol.svg",
-                    "convergence.svg",
-                    "distribution.svg",
-                    "scatter.svg",
-                ]
-                .map(|name| dir.join(name)),
-            );
+            files.extend(figures(&dir, &report, &runs)?);
             print!("{markdown}");
+            for caution in report.outputs.iter().filter_map(uq::report::poor_fit) {
+                eprintln!("warning: {caution}");
+            }
             report_written(&files);
             Ok(())
         }
     }
+}
+
+/// The study's figures, drawn into `dir`; their paths.
+fn figures(dir: &Path, report: &uq::UqReport, runs: &[uq::Run]) -> Result<Vec<PathBuf>, CliError> {
+    let figure = |name: &str, draw: &dyn Fn(&Path) -> Result<(), PlotError>| {
+        slender_app::whole::through(&dir.join(name), draw).map_err(CliError::failure)
+    };
+    figure("sobol.svg", &|f| uq::plot::sobol_bars(f, report))?;
+    figure("convergence.svg", &|f| uq::plot::convergence(f, report))?;
+    figure("distribution.svg", &|f| {
+        uq::plot::distribution(f, report, runs)
+    })?;
+    figure("scatter.svg", &|f| uq::plot::scatter(f, report, runs))?;
+    Ok([
+        "sobol.svg",
+        "convergence.svg",
+        "distribution.svg",
+        "scatter.svg",
+    ]
+    .map(|name| dir.join(name))
+    .to_vec())
 }
 
 /// Refuses a design of more runs than `--max-runs` before anything is

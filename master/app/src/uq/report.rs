@@ -99,6 +99,25 @@ pub fn to_markdown(report: &UqReport) -> String {
             .map(|&i| format!("{} ({:.2})", report.inputs[i], o.total[i]))
             .collect();
         out += &format!("\nMost influential (total index): {}.\n", top.join(", "));
+        if let Some(caution) = poor_fit(o) {
+            out += &format!("\n**Caution:** {caution}\n");
+        }
     }
     out
+}
+
+/// The largest leave-one-out error (relative to the output's variance) at
+/// which an expansion's moments, indices and ranking are reported without a
+/// caution: above it the expansion misses more than a tenth of the variance.
+pub const LOO_TRUSTED: f64 = 0.1;
+
+/// Why an output's expansion should not be trusted, when its leave-one-out
+/// error is above [`LOO_TRUSTED`] (or not a number).
+pub fn poor_fit(o: &super::OutputResult) -> Option<String> {
+    (o.loo_error.is_nan() || o.loo_error > LOO_TRUSTED).then(|| {
+        format!(
+            "`{}`: the expansion's leave-one-out error is {:.2} (above {LOO_TRUSTED}): it explains the output poorly, so its moments, indices and ranking are not reliable; run more samples (--samples, doubling keeps the runs made) or study fewer inputs",
+            o.name, o.loo_error
+        )
+    })
 }
