@@ -106,3 +106,16 @@ fn a_cap_on_iterations_is_reported_with_the_connection_that_did_not_settle() {
     );
     assert!(error.contains("->"), "{error}");
 }
+
+#[test]
+fn the_scene_s_exact_indicator_finds_the_root_newton_reaches() {
+    let s = slender_tests::run(&load(SCENE));
+    assert!(s.error.is_none(), "{:?}", s.error);
+    let exact = s
+        .indicators
+        .iter()
+        .find(|i| i.name == "exact")
+        .expect("the scene's exact indicator");
+    assert!((s.last("exact_c.value") - roots().0).abs() < 1e-15);
+    assert!(exact.relative_error < 1e-10, "{}", exact.relative_error);
+}
