@@ -214,8 +214,9 @@ fn a_run_of_more_steps_than_the_bound_is_refused_unless_the_scene_lifts_it() {
     std::fs::write(&scene, lifted).unwrap();
     let out = slender(&["check", scene.to_str().unwrap()]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    // The recorded time series too: 101 rows of 5 columns is about 12 kB,
-    // more than a stated 10 kB; `output.max_bytes` lifts it.
+    // The recorded time series too: 101 rows of 7 columns (B1's motion and
+    // its analytic solution) is about 17 kB, more than a stated 10 kB;
+    // `output.max_bytes` lifts it.
     let results = dir.join("out");
     let small = |bytes: u64| {
         let text = base
@@ -233,7 +234,7 @@ fn a_run_of_more_steps_than_the_bound_is_refused_unless_the_scene_lifts_it() {
     assert!(text(&checked.stderr).contains("output.max_bytes = 10000"));
     let err = text(&out.stderr);
     assert!(
-        err.contains("101 rows of 5 columns") && err.contains("output.max_bytes = 10000"),
+        err.contains("101 rows of 7 columns") && err.contains("output.max_bytes = 10000"),
         "{err}"
     );
     assert!(!results.join("timeseries.csv").exists());
