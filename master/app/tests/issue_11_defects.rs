@@ -287,7 +287,8 @@ fn input_errors_of_modes_and_study_exit_with_code_2() {
     refused(
         &slender(&[
             "study",
-            "examples/b6_algebraic_loop.toml",
+            // A scene without indicators (B6 now has one against its root).
+            "examples/hybrid_oscillator.toml",
             "--vary",
             "master.max_iterations=30,40",
         ]),
