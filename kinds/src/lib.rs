@@ -242,8 +242,54 @@ impl Kind {
     }
 }
 
-/// Reads a kind's parameter table into its typed parameters.
+/// Reads a kind's parameter table into its typed parameters; an error names
+/// the key path where it went wrong (`sines.0.phase`).
 fn parameters<T: DeserializeOwned>(table: toml::Table) -> Result<T, BuildError> {
-    T::deserialize(toml::Value::Table(table))
-        .map_err(|e| BuildError::Parameters(words::in_words(e.message().trim())))
+    serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
+        let message = words::in_words(e.inner().message().trim());
+        let path = e.path().to_string();
+        BuildError::Parameters(if path.is_empty() || path == "." {
+            message
+        } else {
+            format!("`{path}`: {message}")
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The message of building `kind` from `parameters` (TOML text).
+    fn refusal(kind: &str, parameters: &str) -> String {
+        let context = BuildContext {
+            effects: &[],
+            base_dir: Path::new("."),
+        };
+        let table: toml::Table = parameters.parse().expect("TOML");
+        match find(kind).expect("a kind").build(table, &context) {
+            Ok(_) => panic!("{kind} accepted {parameters}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn a_parameter_that_does_not_read_is_named_by_its_key_path() {
+        let e = refusal(
+            "oscillator",
+            "mass = 1.0\nstiffness = 1.0\ncoupling_stiffness = [1, 2]",
+        );
+        assert!(
+            e.starts_with("`coupling_stiffness`: ") && e.contains("an array"),
+            "{e}"
+        );
+        let e = refusal(
+            "signal",
+            "quantity = \"force\"\nsines = [{ amplitude = 1.0, angular_frequency = 1.0, phase = \"up\" }]",
+        );
+        assert!(
+            e.starts_with("`sines[0].phase`: ") && e.contains("a number"),
+            "{e}"
+        );
+    }
 }

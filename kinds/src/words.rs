@@ -3,7 +3,7 @@
 //! scene's author should not need to know (issue 27: 33 such messages).
 
 /// Rust type names and serde's terms, and what a scene's author calls them.
-const WORDS: [(&str, &str); 16] = [
+const WORDS: [(&str, &str); 18] = [
     ("expected f64", "expected a number"),
     ("expected f32", "expected a number"),
     ("expected u8", "expected a whole number >= 0"),
@@ -23,6 +23,11 @@ const WORDS: [(&str, &str); 16] = [
         "expected a name in quotes or a table",
     ),
     ("invalid type: map", "invalid type: a table"),
+    ("invalid type: sequence", "invalid type: an array"),
+    (
+        "expected fewer elements in array",
+        "expected fewer values in the array",
+    ),
 ];
 
 /// `message` with the Rust type names replaced by the user's words.
