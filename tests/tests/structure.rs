@@ -274,4 +274,12 @@ fn bad_structures_are_refused_with_the_key() {
         "{e}"
     );
     assert!(Path::new(&root().join("examples/structure_hanging_pipe.toml")).exists());
+    // A model value that does not read is named by its path in the model.
+    let riser = std::fs::read_to_string(root().join("examples/structure_riser.toml")).unwrap();
+    let e = parse(&riser.replace("start = [0.0, -1000.0]", "start = [0.0, -1000.0, 5.0]"))
+        .expect_err("refused");
+    assert!(
+        e.contains("`structure.model.start`") && e.contains("fewer values"),
+        "{e}"
+    );
 }

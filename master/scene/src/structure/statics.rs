@@ -21,9 +21,15 @@ impl Equilibrium {
     /// Solves the model's statics at `t0` (the simulation's start: the ends'
     /// positions and the loads there); the error says why it cannot.
     pub fn solve(model: &Table, t0: Time) -> Result<Equilibrium, String> {
-        let params: NonlinearParams = Value::Table(model.clone())
-            .try_into()
-            .map_err(|e| format!("`structure.model`: {e}"))?;
+        // The key path inside the model where it does not read.
+        let params: NonlinearParams = serde_path_to_error::deserialize(Value::Table(model.clone()))
+            .map_err(|e| {
+                let message = crate::words::in_words(e.inner().message().trim());
+                match e.path().to_string().as_str() {
+                    "" | "." => format!("`structure.model`: {message}"),
+                    path => format!("`structure.model.{path}`: {message}"),
+                }
+            })?;
         let unit = NonlinearSection::new(params).map_err(|e| format!("`structure.model`: {e}"))?;
         if !unit.description().inputs.is_empty() {
             return Err("`structure.model.static_start`: the structure's statics are solved on their own, so its ends cannot take coupled inputs".into());
