@@ -247,17 +247,20 @@ impl Unit for StaticSection {
         let u = yielded.as_ref().unwrap_or(&self.state.displacement);
         let dot = |row: &[f64; 3]| row.iter().zip(u).map(|(k, u)| k * u).sum::<f64>();
         let p = &self.params;
-        let rows = p.stiffness.iter().chain(&p.start_stiffness);
-        let at_rest = p.force.iter().chain(&p.start_force);
-        for ((o, row), f0) in out[..5].iter_mut().zip(rows).zip(at_rest) {
-            *o = f0 + dot(row);
-        }
-        if yielded.is_some() {
-            // Under force inputs the end exerts what is applied on it, reversed
-            // (f0 + K C (-f - f0) = -f): exactly, not through K C's round-off.
+        // Under force inputs the end exerts what is applied on it, reversed
+        // (f0 + K C (-f - f0) = -f): exactly, not through K C's round-off.
+        let given = if yielded.is_some() {
             for (o, f) in out[..3].iter_mut().zip(inputs.end()) {
                 *o = -f;
             }
+            3
+        } else {
+            0
+        };
+        let rows = p.stiffness.iter().chain(&p.start_stiffness);
+        let at_rest = p.force.iter().chain(&p.start_force);
+        for ((o, row), f0) in out[..5].iter_mut().zip(rows).zip(at_rest).skip(given) {
+            *o = f0 + dot(row);
         }
         out[5..8].copy_from_slice(u);
         for (o, q) in out[8..].iter_mut().zip(&p.quantities) {

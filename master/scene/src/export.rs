@@ -8,7 +8,7 @@ use crate::{Scene, SceneError};
 use slender_coupling::Master;
 use slender_coupling::MasterError;
 pub use slender_fmi::export::FmiVersion;
-use slender_fmi::export::{ExportConfig, Layout, PackageError};
+use slender_fmi::export::{ExportConfig, Layout, PackageError, input_variable_name};
 pub use slender_kinds::exported::ExportedUnit;
 use slender_units::UnitError;
 use std::collections::BTreeMap;
@@ -171,7 +171,7 @@ pub fn wrap_scene(
         .get_mut("units")
         .and_then(toml::Value::as_array_mut)
         .ok_or_else(|| file_error(&scene.path, "no [[units]]".into()))?;
-    let master = settle(scene)?;
+    let exported = export_units(scene, binary, dir)?;
     // Inputs renamed in the FMUs ("unit.port" -> "unit.port_in"), for the
     // connections below.
     let mut renamed = BTreeMap::new();
@@ -184,11 +184,13 @@ pub fn wrap_scene(
             .and_then(toml::Value::as_str)
             .ok_or_else(|| file_error(&scene.path, "a unit without a name".into()))?
             .to_owned();
-        let config = ExportConfig::from_settled(scene, &master, &name)?;
-        let file = format!("{name}.fmu");
-        let layout = package(&config, binary, &dir.join(&file))?;
+        let (file, layout) = exported
+            .iter()
+            .find(|e| e.name == name)
+            .map(|e| (format!("{name}.fmu"), &e.layout))
+            .ok_or_else(|| file_error(&scene.path, format!("unit `{name}` was not exported")))?;
         for (i, port) in layout.unit.inputs.iter().enumerate() {
-            let variable = &layout.model.variables[i].name;
+            let variable = &input_variable_name(&layout.unit, i);
             if variable != &port.name {
                 renamed.insert(
                     format!("{name}.{}", port.name),
@@ -208,15 +210,44 @@ pub fn wrap_scene(
         unit.insert("parameters".into(), toml::Value::Table(parameters));
     }
     rewire_for_fmus(&mut table, &renamed);
-    let stem = scene
-        .path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "scene".into());
-    let out = dir.join(format!("{stem}_fmu.toml"));
+    let out = dir.join(format!("{}_fmu.toml", scene_stem(scene)));
     let written = toml::to_string(&table).map_err(|e| file_error(&out, e.to_string()))?;
     std::fs::write(&out, written).map_err(|e| file_error(&out, format!("cannot write ({e})")))?;
     Ok(out)
+}
+
+/// One unit exported as an FMU: its name, the file written, its layout.
+pub struct ExportedFmu {
+    pub name: String,
+    pub file: std::path::PathBuf,
+    pub layout: Layout,
+}
+
+/// Every unit of the scene exported as an FMU into `dir` (`<unit>.fmu`), in
+/// scene order, each started from the inputs the scene's master settles on.
+pub fn export_units(
+    scene: &Scene,
+    binary: &Path,
+    dir: &Path,
+) -> Result<Vec<ExportedFmu>, ExportError> {
+    let master = settle(scene)?;
+    let mut exported = Vec::new();
+    for unit in &scene.spec.units {
+        let name = unit.name.get_ref().clone();
+        let config = ExportConfig::from_settled(scene, &master, &name)?;
+        let file = dir.join(format!("{name}.fmu"));
+        let layout = package(&config, binary, &file)?;
+        exported.push(ExportedFmu { name, file, layout });
+    }
+    Ok(exported)
+}
+
+/// The scene file's stem ("scene" when it has none).
+pub fn scene_stem(scene: &Scene) -> String {
+    scene
+        .path
+        .file_stem()
+        .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
 }
 
 /// The wrapped scene's connections to renamed inputs, its title, and no output

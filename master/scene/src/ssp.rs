@@ -6,9 +6,9 @@
 //! non-iterative Jacobi scheme that libcosim's fixed-step algorithm runs, and
 //! inputs held over each step (an SSP master passes values, not derivatives).
 
-use crate::export::{ExportError, SceneExport, package, settle};
+use crate::export::{ExportError, ExportedFmu, export_units, scene_stem};
 use crate::{Scene, SceneError};
-use slender_fmi::export::{ExportConfig, input_variable_name};
+use slender_fmi::export::input_variable_name;
 use slender_fmi::model_description::{Value as FmiValue, VariableCausality};
 use slender_fmi::ssp::{Component, Connection, Connector, ConnectorKind, SystemStructure, archive};
 use std::collections::BTreeMap;
@@ -23,16 +23,11 @@ pub fn write_ssp(scene: &Scene, binary: &Path, out: &Path) -> Result<SystemStruc
         path: out.display().to_string(),
         problem: format!("no temporary folder for the FMUs ({e})"),
     })?;
-    let master = settle(scene)?;
     let mut components = Vec::new();
     let mut fmus = Vec::new();
     // (unit, input port) -> the FMU's variable name.
     let mut variables = BTreeMap::new();
-    for unit in &scene.spec.units {
-        let name = unit.name.get_ref();
-        let config = ExportConfig::from_settled(scene, &master, name)?;
-        let file = dir.path().join(format!("{name}.fmu"));
-        let layout = package(&config, binary, &file)?;
+    for ExportedFmu { name, file, layout } in export_units(scene, binary, dir.path())? {
         let mut connectors = Vec::new();
         for (i, port) in layout.unit.inputs.iter().enumerate() {
             let variable = input_variable_name(&layout.unit, i);
@@ -49,7 +44,7 @@ pub fn write_ssp(scene: &Scene, binary: &Path, out: &Path) -> Result<SystemStruc
         let source = format!("resources/{name}.fmu");
         fmus.push((source.clone(), file));
         components.push(Component {
-            name: name.clone(),
+            name,
             source,
             connectors,
             parameters: BTreeMap::new(),
@@ -74,7 +69,7 @@ pub fn write_ssp(scene: &Scene, binary: &Path, out: &Path) -> Result<SystemStruc
         })
         .collect();
     let structure = SystemStructure {
-        name: scene_name(scene),
+        name: scene_stem(scene),
         components,
         connections,
         start_time: Some(scene.start.as_secs()),
@@ -84,14 +79,6 @@ pub fn write_ssp(scene: &Scene, binary: &Path, out: &Path) -> Result<SystemStruc
     };
     archive::package(&structure, &fmus, out)?;
     Ok(structure)
-}
-
-/// The scene file's stem (the system's name).
-fn scene_name(scene: &Scene) -> String {
-    scene
-        .path
-        .file_stem()
-        .map_or_else(|| "system".into(), |s| s.to_string_lossy().into_owned())
 }
 
 /// Whether `path` names an SSP archive or description (`.ssp`, `.ssd`).

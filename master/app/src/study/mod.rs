@@ -408,7 +408,10 @@ fn run_one(
         Ok(scene) => {
             let mut o = outcome_of(&scene, &plan.cost_units);
             if o.error.is_none() {
-                let again = || outcome_of(&scene, &plan.cost_units).cost;
+                let again = || {
+                    run_scene(&scene, &QUIET)
+                        .map_or(f64::NAN, |r| cost_of(&r.summary, &plan.cost_units))
+                };
                 (o.cost, o.cost_spread) = crate::costs::repeated(plan.repeats, o.cost, again);
             }
             o
@@ -441,28 +444,35 @@ fn failed(judged: &[Judged], error: String) -> Outcome {
     }
 }
 
+/// A run without output files, progress or pacing.
+const QUIET: RunOptions = RunOptions {
+    output_dir: None,
+    progress: false,
+    realtime: false,
+};
+
+/// A run's cost per simulated second: that of `cost_units` when given, else
+/// the whole run's.
+fn cost_of(s: &crate::run::Summary, cost_units: &[String]) -> f64 {
+    if cost_units.is_empty() {
+        return s.cost_per_simulated_second;
+    }
+    let time: f64 = s
+        .counters
+        .units
+        .iter()
+        .filter(|u| cost_units.contains(&u.name))
+        .map(|u| u.step_time_s)
+        .sum();
+    time / s.simulated_s
+}
+
 /// Runs `scene`; its cost is that of `cost_units` when given, else the run's.
 fn outcome_of(scene: &Scene, cost_units: &[String]) -> Outcome {
-    let options = RunOptions {
-        output_dir: None,
-        progress: false,
-        realtime: false,
-    };
-    match run_scene(scene, &options) {
+    match run_scene(scene, &QUIET) {
         Ok(result) => {
             let s = &result.summary;
-            let cost = if cost_units.is_empty() {
-                s.cost_per_simulated_second
-            } else {
-                let time: f64 = s
-                    .counters
-                    .units
-                    .iter()
-                    .filter(|u| cost_units.contains(&u.name))
-                    .map(|u| u.step_time_s)
-                    .sum();
-                time / s.simulated_s
-            };
+            let cost = cost_of(s, cost_units);
             Outcome {
                 columns: indicator_columns(scene, &result.recorder),
                 time: result.recorder.time.clone(),
