@@ -2,7 +2,8 @@
 //! binary is `main.rs`).
 //!
 //! - [`run`]: running a scene with recording, summary and plots;
-//! - [`record`], [`plot`], [`indicators`]: CSV time series, SVG figures, phi / epsilon;
+//! - [`record`], [`plot`], [`indicators`]: CSV time series, SVG figures of runs, phi / epsilon;
+//! - [`figures`]: the parts of readable figures (ticks, keys), study and trade-off figures;
 //! - [`study`], [`span_study`], [`coupling_study`]: convergence and cost studies;
 //! - [`fidelity`]: a structure's sections at chosen fidelities against the monolithic model;
 //! - [`parallel`]: independent runs on a few threads.
@@ -10,6 +11,7 @@
 pub mod costs;
 pub mod coupling_study;
 pub mod fidelity;
+pub mod figures;
 pub mod indicators;
 pub mod interrupt;
 pub mod parallel;

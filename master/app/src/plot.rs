@@ -1,5 +1,8 @@
 //! SVG figures of recorded time series (plotters, SVG backend: no fonts needed).
 
+use crate::figures::axes::{linear_axis, log_axis, positive_range};
+use crate::figures::labels::{Area, DrawResult, Entry, side_legend};
+use crate::figures::ticks;
 use crate::record::Recorder;
 use plotters::prelude::*;
 use std::path::Path;
@@ -27,17 +30,8 @@ impl PlotError {
     }
 }
 
-/// A tick label: plain for moderate magnitudes, engineering notation otherwise.
-fn tick(v: f64) -> String {
-    let a = v.abs();
-    if a != 0.0 && !(1e-2..1e4).contains(&a) {
-        format!("{v:.2e}")
-    } else {
-        format!("{v:.3}")
-    }
-}
-
-/// Draws stacked panels; each panel overlays the named recorded signals against time.
+/// Draws stacked panels; each panel overlays the named recorded signals
+/// against time, its y axis titled with their units and the legend beside it.
 pub fn time_series(
     path: &Path,
     title: &str,
@@ -45,7 +39,7 @@ pub fn time_series(
     panels: &[Vec<String>],
 ) -> Result<(), PlotError> {
     let height = 60 + 220 * panels.len() as u32;
-    let root = SVGBackend::new(path, (1000, height)).into_drawing_area();
+    let root = SVGBackend::new(path, (1200, height)).into_drawing_area();
     let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let root = root
@@ -66,54 +60,81 @@ pub fn time_series(
                     .ok_or_else(|| PlotError::new(path, &format!("`{n}` is not a recorded signal")))
             })
             .collect::<Result<_, _>>()?;
-        let (lo, hi) = series
-            .iter()
-            .flat_map(|(_, c)| c.iter().copied())
-            .filter(|v| v.is_finite())
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-                (a.min(v), b.max(v))
-            });
-        let pad = if hi > lo {
-            0.05 * (hi - lo)
-        } else {
-            1.0_f64.max(lo.abs() * 0.05)
-        };
-        let (lo, hi) = if lo.is_finite() {
-            (lo - pad, hi + pad)
-        } else {
-            (-1.0, 1.0)
-        };
-        let mut chart = ChartBuilder::on(area)
-            .margin(10)
-            .x_label_area_size(30)
-            .y_label_area_size(80)
-            .build_cartesian_2d(t0..t1, lo..hi)
+        let (chart_area, legend) = area.split_horizontally(950);
+        let y_title = units_title(panel.iter().map(|n| recorder.unit(n).unwrap_or("")));
+        panel_chart(&chart_area, (t0, t1), &y_title, &recorder.time, &series)
             .map_err(|e| fail(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc("time (s)")
-            .y_label_formatter(&|v| tick(*v))
-            .draw()
-            .map_err(|e| fail(&e))?;
-        for (i, (name, column)) in series.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            chart
-                .draw_series(LineSeries::new(
-                    recorder.time.iter().copied().zip(column.iter().copied()),
-                    color.stroke_width(2),
-                ))
-                .map_err(|e| fail(&e))?
-                .label(name.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| fail(&e))?;
+        let entries: Vec<Entry> = (series.iter().enumerate())
+            .map(|(i, (name, _))| Entry {
+                text: (*name).clone(),
+                colour: Palette99::pick(i).to_rgba(),
+                marker: false,
+            })
+            .collect();
+        side_legend(&legend, "", &entries).map_err(|e| fail(&e))?;
     }
     root.present().map_err(|e| fail(&e))
+}
+
+/// A y axis title from its signals' units: `value (N)`, `value (N, m)` where
+/// they differ, `value (-)` where they have none.
+fn units_title<'a>(units: impl Iterator<Item = &'a str>) -> String {
+    let mut distinct: Vec<&str> = Vec::new();
+    for u in units.map(|u| if u.is_empty() { "-" } else { u }) {
+        if !distinct.contains(&u) {
+            distinct.push(u);
+        }
+    }
+    format!("value ({})", distinct.join(", "))
+}
+
+/// One panel: the signals against time on 1-2-5 ticks.
+fn panel_chart(
+    area: &Area<'_>,
+    (t0, t1): (f64, f64),
+    y_title: &str,
+    time: &[f64],
+    series: &[(&String, &[f64])],
+) -> DrawResult {
+    let (lo, hi) = series
+        .iter()
+        .flat_map(|(_, c)| c.iter().copied())
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    let pad = if hi > lo {
+        0.05 * (hi - lo)
+    } else {
+        1.0_f64.max(lo.abs() * 0.05)
+    };
+    let (lo, hi) = if lo.is_finite() {
+        (lo - pad, hi + pad)
+    } else {
+        (-1.0, 1.0)
+    };
+    let (x_axis, x_step) = linear_axis(t0, t1, 10);
+    let (y_axis, y_step) = linear_axis(lo, hi, 6);
+    let mut chart = ChartBuilder::on(area)
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(85)
+        .build_cartesian_2d(x_axis, y_axis)?;
+    chart
+        .configure_mesh()
+        .x_desc("time (s)")
+        .y_desc(y_title)
+        .x_label_formatter(&|v| ticks::linear_label(*v, x_step))
+        .y_label_formatter(&|v| ticks::linear_label(*v, y_step))
+        .draw()?;
+    for (i, (_, column)) in series.iter().enumerate() {
+        let color = Palette99::pick(i).to_rgba();
+        chart.draw_series(LineSeries::new(
+            time.iter().copied().zip(column.iter().copied()),
+            color.stroke_width(2),
+        ))?;
+    }
+    Ok(())
 }
 
 /// Mode shapes like seed 000 Fig. 12: each mode's displacement normal to the chord
@@ -181,82 +202,12 @@ pub fn mode_shapes(
     root.present().map_err(|e| fail(&e))
 }
 
-/// Study figure: for each varied setting, the relative errors (left) and the cost
-/// per simulated second (right) against the setting's value, log-log.
-pub fn study(path: &Path, title: &str, rows: &[crate::study::StudyRow]) -> Result<(), PlotError> {
-    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
-    // One row of panels per group whose values are numbers.
-    let mut knobs: Vec<String> = Vec::new();
-    for r in rows
-        .iter()
-        .filter(|r| r.value.is_finite() && r.settings.len() == 1)
-    {
-        if !knobs.contains(&r.group) {
-            knobs.push(r.group.clone());
-        }
-    }
-    let root =
-        SVGBackend::new(path, (1100, 60 + 300 * knobs.len().max(1) as u32)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| fail(&e))?;
-    let root = root
-        .titled(title, ("sans-serif", 22))
-        .map_err(|e| fail(&e))?;
-    let cells = root.split_evenly((knobs.len().max(1), 2));
-    for (k, knob) in knobs.iter().enumerate() {
-        let mine: Vec<&crate::study::StudyRow> = rows
-            .iter()
-            .filter(|r| r.group == *knob && r.value.is_finite())
-            .collect();
-        let names: Vec<String> = mine
-            .first()
-            .map(|r| r.errors.iter().map(|e| e.0.clone()).collect())
-            .unwrap_or_default();
-        let errors: Vec<(String, Vec<(f64, f64)>)> = names
-            .iter()
-            .enumerate()
-            .map(|(i, n)| {
-                (
-                    n.clone(),
-                    mine.iter()
-                        .map(|r| (r.value, r.errors[i].1))
-                        .filter(|p| p.1 > 0.0)
-                        .collect(),
-                )
-            })
-            .collect();
-        let cost = vec![(
-            String::new(),
-            mine.iter()
-                .map(|r| (r.value, r.cost_per_simulated_second))
-                .collect(),
-        )];
-        log_log_panel(&cells[2 * k], knob, "epsilon vs reference", 0, &errors)
-            .map_err(|e| fail(&e))?;
-        log_log_panel(&cells[2 * k + 1], knob, "s per simulated s", 1, &cost)
-            .map_err(|e| fail(&e))?;
-    }
-    root.present().map_err(|e| fail(&e))
-}
-
-/// Bounds of the positive finite values, widened for a log axis.
-fn positive_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values
-        .filter(|x| x.is_finite() && *x > 0.0)
-        .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
-    if lo.is_finite() {
-        (lo / 1.5, hi * 1.5)
-    } else {
-        (1e-12, 1.0)
-    }
-}
-
 /// One log-log panel with a line and markers per named series (a legend when
-/// the series have names); y labels in engineering notation with `y_digits` decimals.
+/// the series have names), ticked at decades or 1-2-5.
 fn log_log_panel(
     area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
     x_desc: &str,
     y_desc: &str,
-    y_digits: usize,
     series: &[(String, Vec<(f64, f64)>)],
 ) -> Result<(), Box<dyn std::error::Error>> {
     let (xlo, xhi) = positive_range(series.iter().flat_map(|s| s.1.iter().map(|p| p.0)));
@@ -265,13 +216,13 @@ fn log_log_panel(
         .margin(10)
         .x_label_area_size(35)
         .y_label_area_size(70)
-        .build_cartesian_2d((xlo..xhi).log_scale(), (ylo..yhi).log_scale())?;
+        .build_cartesian_2d(log_axis(xlo, xhi, 7), log_axis(ylo, yhi, 8))?;
     chart
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
-        .x_label_formatter(&|v| format!("{v:.3}"))
-        .y_label_formatter(&|v| format!("{v:.y_digits$e}"))
+        .x_label_formatter(&|v| ticks::log_label(*v))
+        .y_label_formatter(&|v| ticks::log_label(*v))
         .draw()?;
     for (i, (name, points)) in series.iter().enumerate() {
         let color = if name.is_empty() {
@@ -316,26 +267,26 @@ pub fn bode(
         .margin(10)
         .x_label_area_size(35)
         .y_label_area_size(70)
-        .build_cartesian_2d((w0..w1).log_scale(), (lo.max(hi * 1e-8)..hi).log_scale())
+        .build_cartesian_2d(log_axis(w0, w1, 10), log_axis(lo.max(hi * 1e-8), hi, 10))
         .map_err(|e| fail(&e))?;
     mag.configure_mesh()
         .x_desc("omega (rad/s)")
         .y_desc("|H| (m/rad)")
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| ticks::log_label(*v))
+        .y_label_formatter(&|v| ticks::log_label(*v))
         .draw()
         .map_err(|e| fail(&e))?;
     let mut phase = ChartBuilder::on(&bottom)
         .margin(10)
         .x_label_area_size(35)
         .y_label_area_size(70)
-        .build_cartesian_2d((w0..w1).log_scale(), -180.0f64..180.0)
+        .build_cartesian_2d(log_axis(w0, w1, 10), -180.0f64..180.0)
         .map_err(|e| fail(&e))?;
     phase
         .configure_mesh()
         .x_desc("omega (rad/s)")
         .y_desc("phase (deg)")
-        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| ticks::log_label(*v))
         .draw()
         .map_err(|e| fail(&e))?;
     for (i, (name, h)) in series.iter().enumerate() {
@@ -387,7 +338,6 @@ pub fn accuracy_cost(
             None => series.push((label.clone(), vec![point])),
         }
     }
-    log_log_panel(&root, "cost (s per simulated s)", error_label, 0, &series)
-        .map_err(|e| fail(&e))?;
+    log_log_panel(&root, "cost (s per simulated s)", error_label, &series).map_err(|e| fail(&e))?;
     root.present().map_err(|e| fail(&e))
 }

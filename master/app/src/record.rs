@@ -12,6 +12,8 @@ use std::path::Path;
 /// Recorded signals: names, and one column of values per signal.
 pub struct Recorder {
     pub names: Vec<String>,
+    /// Each signal's unit of measure (`""` where it has none).
+    pub units: Vec<String>,
     ports: Vec<(usize, usize)>,
     pub time: Vec<f64>,
     pub columns: Vec<Vec<f64>>,
@@ -46,7 +48,17 @@ impl Recorder {
             }
             None => None,
         };
+        let units = signals
+            .iter()
+            .map(|s| {
+                master
+                    .output_unit(s)
+                    .map(str::to_owned)
+                    .map_err(RunError::from)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Recorder {
+            units,
             columns: vec![Vec::new(); signals.len()],
             names: signals,
             ports,
@@ -96,6 +108,12 @@ impl Recorder {
     }
 
     /// The recorded column of `name`.
+    /// The unit of the signal `name`, if recorded.
+    pub fn unit(&self, name: &str) -> Option<&str> {
+        let i = self.names.iter().position(|n| n == name)?;
+        Some(&self.units[i])
+    }
+
     pub fn column(&self, name: &str) -> Option<&[f64]> {
         self.names
             .iter()

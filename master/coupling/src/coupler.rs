@@ -512,6 +512,13 @@ impl Master {
         Ok(self.units[unit].outputs[port])
     }
 
+    /// The unit of measure of output "unit.port" (`""` where it has none), for
+    /// figures and headers.
+    pub fn output_unit(&self, path: &str) -> Result<&str, MasterError> {
+        let (unit, port) = self.find(path, Causality::Output)?;
+        Ok(&self.units[unit].description().outputs[port].unit)
+    }
+
     /// Unit and port indices of "unit.port".
     pub fn find(&self, path: &str, causality: Causality) -> Result<(usize, usize), MasterError> {
         let not_found = || MasterError::Invalid(format!("no port `{path}`"));

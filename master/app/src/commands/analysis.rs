@@ -3,7 +3,7 @@
 use super::{CliError, count_in, load, made_folder, positive, report_written, results_folder};
 use slender_app::fidelity::{self, FidelityPlan};
 use slender_app::study::{self, StudyPlan};
-use slender_app::whole;
+use slender_app::{figures, whole};
 use std::path::{Path, PathBuf};
 
 /// Modes of a unit about its initial state: a table on screen, modes.csv and
@@ -85,9 +85,18 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
         .map_err(|e| CliError::failure(format!("{}: {e}", md.display())))?;
     let svg = dir.join("study.svg");
     let title = format!("Convergence and cost: {}", path.display());
-    whole::through(&svg, |f| slender_app::plot::study(f, &title, &rows))
+    let scene = (std::fs::read_to_string(path).ok())
+        .and_then(|text| text.parse::<toml::Table>().ok())
+        .unwrap_or_default();
+    let unit_of = |key: &str| figures::units::setting_unit(&scene, key);
+    whole::through(&svg, |f| figures::study::study(f, &title, &rows, &unit_of))
         .map_err(CliError::failure)?;
-    report_written(&[csv, md, svg]);
+    let tradeoff = dir.join("error_cost.svg");
+    let title = format!("Error against cost: {}", path.display());
+    let figure = study::tradeoff(&rows, &title);
+    whole::through(&tradeoff, |f| figures::tradeoff::draw(f, &figure))
+        .map_err(CliError::failure)?;
+    report_written(&[csv, md, svg, tradeoff]);
     if let Some(w) = slender_app::costs::spread_warning(rows.iter().map(|r| r.cost_spread)) {
         eprintln!("{w}");
     }

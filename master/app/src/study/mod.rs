@@ -24,7 +24,7 @@ use slender_scene::spec::Norm;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-pub use report::{to_csv, to_markdown};
+pub use report::{to_csv, to_markdown, tradeoff};
 
 /// An indicator's name and its recorded signal columns.
 type IndicatorColumns = (String, Vec<Vec<f64>>);

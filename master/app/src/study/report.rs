@@ -123,3 +123,31 @@ pub fn to_markdown(rows: &[StudyRow]) -> String {
 pub fn start_change(change: Option<f64>) -> String {
     change.map_or("-".into(), |c| format!("{:.2} %", 100.0 * c))
 }
+
+/// The error-against-cost figure of a study: each run (its settings, the
+/// worst epsilon over the indicators against its group's reference, its
+/// cost); failed runs are left out.
+pub fn tradeoff<'a>(rows: &[StudyRow], title: &'a str) -> crate::figures::tradeoff::Tradeoff<'a> {
+    let points = rows
+        .iter()
+        .filter(|r| r.error.is_none())
+        .map(|r| crate::figures::tradeoff::Point {
+            label: r
+                .settings
+                .iter()
+                .map(|(k, v)| format!("{k}={v}"))
+                .collect::<Vec<_>>()
+                .join(" "),
+            cost: r.cost_per_simulated_second,
+            error: r.errors.iter().map(|e| e.1).fold(0.0, f64::max),
+        })
+        .collect();
+    crate::figures::tradeoff::Tradeoff {
+        title,
+        error_label: "worst epsilon against the reference (-)",
+        points,
+        tolerance: None,
+        reference_cost: None,
+        chosen: None,
+    }
+}
