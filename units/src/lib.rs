@@ -20,6 +20,7 @@ pub mod integrators;
 pub mod nonlinear;
 pub mod numerics;
 pub mod reduced;
+pub mod sea;
 pub mod signal;
 pub mod span;
 pub mod static_section;

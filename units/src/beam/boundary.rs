@@ -2,6 +2,7 @@
 //! shear, each a function of time or a coupled input.
 
 use crate::contract::UnitError;
+use crate::sea::SeaState;
 use serde::Deserialize;
 
 /// The four end quantities. Moment is EI y'' (N m), shear EI y''' (N).
@@ -71,7 +72,7 @@ pub enum InputMarker {
 
 /// Sum of a constant, a sine and a decaying exponential (SI units, t in s).
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(from = "ExpressionSpec")]
 pub struct Expression {
     pub offset: f64,
     pub amplitude: f64,
@@ -82,7 +83,8 @@ pub struct Expression {
     pub decay_amplitude: f64,
     /// 1/s
     pub decay_rate: f64,
-    /// More sines added to it (a vessel's motion as a sum of wave components).
+    /// More sines added to it (a vessel's motion as a sum of wave
+    /// components), then the sea state's.
     pub sines: Vec<Sine>,
     /// Duration (s) over which the sines fade in from t = 0 by the quintic
     /// smoothstep `r = x^3 (10 - 15 x + 6 x^2)`, x = t / fade_in (continuous
@@ -90,6 +92,41 @@ pub struct Expression {
     /// launches no wave); 0 (default) starts them at full amplitude. The
     /// offset and the decay are not faded.
     pub fade_in: f64,
+    /// An irregular sea whose sines were added to `sines` (kept to be checked).
+    pub sea: Option<SeaState>,
+}
+
+/// An expression as a scene writes it.
+#[derive(Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct ExpressionSpec {
+    offset: f64,
+    amplitude: f64,
+    angular_frequency: f64,
+    phase: f64,
+    decay_amplitude: f64,
+    decay_rate: f64,
+    sines: Vec<Sine>,
+    fade_in: f64,
+    sea: Option<SeaState>,
+}
+
+impl From<ExpressionSpec> for Expression {
+    fn from(spec: ExpressionSpec) -> Expression {
+        let mut sines = spec.sines;
+        sines.extend(spec.sea.iter().flat_map(SeaState::sines));
+        Expression {
+            offset: spec.offset,
+            amplitude: spec.amplitude,
+            angular_frequency: spec.angular_frequency,
+            phase: spec.phase,
+            decay_amplitude: spec.decay_amplitude,
+            decay_rate: spec.decay_rate,
+            sines,
+            fade_in: spec.fade_in,
+            sea: spec.sea,
+        }
+    }
 }
 
 /// The quintic smoothstep over `duration` (s) at t and its first two time
@@ -106,25 +143,7 @@ fn smoothstep(t: f64, duration: f64) -> [f64; 3] {
     ]
 }
 
-/// One sine `amplitude sin(angular_frequency t + phase)`.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Sine {
-    pub amplitude: f64,
-    /// rad/s
-    pub angular_frequency: f64,
-    /// rad
-    pub phase: f64,
-}
-
-impl Sine {
-    /// Value and its first two time derivatives at t.
-    pub fn eval(&self, t: f64) -> [f64; 3] {
-        let (w, a) = (self.angular_frequency, self.amplitude);
-        let arg = w * t + self.phase;
-        [a * arg.sin(), a * w * arg.cos(), -a * w * w * arg.sin()]
-    }
-}
+pub use crate::signal::sine::Sine;
 
 impl TimeFunction {
     /// Value and its first two time derivatives at t; `None` for an input.
@@ -169,6 +188,9 @@ impl TimeFunction {
     }
 
     fn validate(&self, key: &str) -> Result<(), UnitError> {
+        if let TimeFunction::Expression(Expression { sea: Some(sea), .. }) = self {
+            sea.validate(&format!("{key}.sea"))?;
+        }
         let ok = match self {
             TimeFunction::Constant(c) => c.is_finite(),
             TimeFunction::Input(_) => true,

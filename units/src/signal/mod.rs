@@ -5,6 +5,7 @@ pub mod artefact;
 pub mod characteristic_load;
 pub mod compensation;
 pub mod prescribed;
+pub mod sine;
 pub mod source;
 
 use crate::contract::{Port, PortKind, UnitError};

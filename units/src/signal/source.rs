@@ -1,5 +1,5 @@
 //! A prescribed signal as a source unit (kind `signal`): an offset, a sum of
-//! sines faded in, and steps, evaluated at the end of every step. Studies drive
+//! sines (given, or a sea state's) faded in, and steps, evaluated at the end of every step. Studies drive
 //! the unit they measure with it (the span studies' end motions), so the motion
 //! is part of the scene, not of the study's code.
 
@@ -7,19 +7,10 @@ use super::prescribed::{Prescribed, Source};
 use crate::contract::{
     Port, PortKind, UnitError, require_finite, require_non_negative, require_positive,
 };
+use crate::sea::SeaState;
 use serde::Deserialize;
 
-/// One sine: `amplitude sin(angular_frequency t + phase)`.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Sine {
-    /// In the output's unit of measure.
-    pub amplitude: f64,
-    /// rad/s
-    pub angular_frequency: f64,
-    /// rad
-    pub phase: f64,
-}
+pub use super::sine::Sine;
 
 /// How the sines start.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
@@ -65,19 +56,50 @@ pub struct Step {
 
 /// Parameters (scene kind `signal`).
 #[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(from = "SignalSpec")]
 pub struct SignalParams {
     /// The output's physical kind (its unit of measure), e.g. "rotation".
     pub quantity: PortKind,
-    #[serde(default)]
     pub offset: f64,
-    #[serde(default)]
+    /// The sines given, then the sea state's.
     pub sines: Vec<Sine>,
     /// Applied to the sines only; none: the sines start at full size.
-    #[serde(default)]
     pub fade_in: Option<FadeIn>,
-    #[serde(default)]
     pub steps: Vec<Step>,
+    /// The sea state whose sines were added to `sines` (kept to be checked).
+    pub sea: Option<SeaState>,
+}
+
+/// The parameters as a scene writes them.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SignalSpec {
+    quantity: PortKind,
+    #[serde(default)]
+    offset: f64,
+    #[serde(default)]
+    sines: Vec<Sine>,
+    #[serde(default)]
+    fade_in: Option<FadeIn>,
+    #[serde(default)]
+    steps: Vec<Step>,
+    #[serde(default)]
+    sea: Option<SeaState>,
+}
+
+impl From<SignalSpec> for SignalParams {
+    fn from(spec: SignalSpec) -> SignalParams {
+        let mut sines = spec.sines;
+        sines.extend(spec.sea.iter().flat_map(SeaState::sines));
+        SignalParams {
+            quantity: spec.quantity,
+            offset: spec.offset,
+            sines,
+            fade_in: spec.fade_in,
+            steps: spec.steps,
+            sea: spec.sea,
+        }
+    }
 }
 
 impl SignalParams {
@@ -90,6 +112,9 @@ impl SignalParams {
         }
         if let Some(fade) = &self.fade_in {
             require_positive("fade_in.time", fade.time)?;
+        }
+        if let Some(sea) = &self.sea {
+            sea.validate("sea")?;
         }
         for (i, s) in self.steps.iter().enumerate() {
             require_finite(&format!("steps.{i}.time"), s.time)?;
@@ -154,6 +179,7 @@ mod tests {
                 time: 1.0,
                 size: -1.0,
             }],
+            sea: None,
         }
     }
 
