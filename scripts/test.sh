@@ -18,6 +18,8 @@ if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r scripts/requirements-test.txt
+# The Python reader of results (python/, `import slender`), as a user installs it.
+.venv/bin/python -m pip install --quiet --disable-pip-version-check ./python
 export SLENDER_PYTHON="$PWD/.venv/bin/python"
 
 step "format"
@@ -40,8 +42,8 @@ passed=$(count passed)
 failed=$(count failed)
 ignored=$(count ignored)
 
-step "cross-checks with FMPy, pythonfmu, libcosim and chaospy (ignored above: they need .venv)"
-cargo test --release -p slender-tests --test fmi_python --test uq_python --test ssp -- --ignored 2>&1 | tee "$log"
+step "cross-checks with FMPy, pythonfmu, libcosim, chaospy and the Python reader (ignored above: they need .venv)"
+cargo test --release -p slender-tests --test fmi_python --test uq_python --test ssp --test python_reader -- --ignored 2>&1 | tee "$log"
 python_passed=$(count passed)
 passed=$((passed + python_passed))
 ignored=$((ignored - python_passed))

@@ -49,6 +49,9 @@ pub struct Summary {
     pub counters: Counters,
     /// Indicators of `[[output.indicators]]` over the recorded time.
     pub indicators: Vec<crate::indicators::Indicator>,
+    /// The unit of measure of each recorded signal (the timeseries.csv
+    /// columns; `""` for a dimensionless one).
+    pub units: std::collections::BTreeMap<String, String>,
     /// The computing time per step of a paced run (`--realtime`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub realtime: Option<RealtimeReport>,
@@ -107,12 +110,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         scene: scene.path.display().to_string(),
         overrides: scene.overrides.clone(),
         title: scene.spec.title.clone(),
-        status: match &outcome {
-            Ok(()) => "completed",
-            Err(_) if crate::interrupt::requested() => "interrupted",
-            Err(_) => "failed",
-        }
-        .into(),
+        status: status_of(&outcome).into(),
         error: outcome.err(),
         start_s: scene.start.as_secs(),
         step_s: scene.step.as_secs(),
@@ -127,6 +125,9 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         settings: master.settings().clone(),
         counters: master.counters(),
         indicators: indicators(scene, &recorder),
+        units: (recorder.names.iter().cloned())
+            .zip(recorder.units.iter().cloned())
+            .collect(),
         realtime,
         warnings,
     };
@@ -144,6 +145,15 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         recorder,
         files,
     })
+}
+
+/// A run's status from its outcome: `completed`, `interrupted` (Ctrl-C) or `failed`.
+fn status_of(outcome: &Result<(), String>) -> &'static str {
+    match outcome {
+        Ok(()) => "completed",
+        Err(_) if crate::interrupt::requested() => "interrupted",
+        Err(_) => "failed",
+    }
 }
 
 fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indicator> {

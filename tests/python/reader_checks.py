@@ -1,0 +1,71 @@
+"""The Python reader (python/slender) against the files the CLI writes:
+run by tests/tests/python_reader.rs with SLENDER_BINARY set and the package
+installed in the test venv. Prints one line per check; exits non-zero on the
+first failure."""
+
+import csv
+import json
+import math
+import sys
+import tempfile
+from pathlib import Path
+
+import slender
+
+root = Path(sys.argv[1])
+work = Path(tempfile.mkdtemp(prefix="reader-"))
+
+# A run: the frame is timeseries.csv, indexed by time, with summary.json's units.
+b1 = slender.run(root / "examples/b1_two_masses.toml", out=work / "b1")
+assert b1.status == "completed", b1.summary
+with open(work / "b1" / "timeseries.csv") as f:
+    rows = list(csv.DictReader(f))
+frame = b1.timeseries
+assert list(frame.columns) == [k for k in rows[0] if k != "time"], frame.columns
+assert len(frame) == len(rows) == 101, len(frame)
+assert frame.index.name == "time" and frame.index[-1] == 1.0
+for row, (t, values) in zip(rows, frame.iterrows()):
+    assert float(row["time"]) == t
+    assert all(float(row[c]) == values[c] for c in frame.columns)
+assert b1.units["left.displacement"] == "m" and b1.units["left.velocity"] == "m/s"
+assert frame.attrs["units"] == b1.units
+# B1's analytic solution, u1 = (cos 2 pi t + cos 6 pi t) / 2, to the scheme's error.
+exact = [(math.cos(2 * math.pi * t) + math.cos(6 * math.pi * t)) / 2 for t in frame.index]
+worst = max(abs(a - b) for a, b in zip(frame["left.displacement"], exact))
+assert worst < 0.05, worst
+print(f"run: {len(frame)} rows x {len(frame.columns)} signals, units {b1.units['left.velocity']}, B1 within {worst:.2e} m")
+
+# --set and --duration reach the command.
+short = slender.run(root / "examples/b1_two_masses.toml", out=work / "short", duration=0.5,
+                    set={"master.scheme": "iterative_jacobi"})
+assert short.timeseries.index[-1] == 0.5 and short.summary["overrides"] == ['master.scheme="iterative_jacobi"'], short.summary
+print("run: --duration and --set passed through")
+
+# A study: one row per run, as study.csv.
+rows = slender.study(root / "examples/b3_force_displacement.toml", vary={"step": [0.001, 0.002, 0.005]},
+                     out=work / "study")
+assert list(rows["value"]) == [0.001, 0.002, 0.005], rows
+assert rows["epsilon_motion"].iloc[0] == 0.0 and (rows["epsilon_motion"].iloc[1:] > 0).all()
+assert (rows["cost_per_simulated_second"] > 0).all()
+print(f"study: {len(rows)} rows, epsilon {list(rows['epsilon_motion'])}")
+
+# A failed run is a row with its reason, not an exception.
+rows = slender.study(root / "examples/b3_force_displacement.toml", vary={"step": [0.001, 0.06]},
+                     out=work / "failing")
+assert rows["error"].iloc[1].startswith("with step = 0.06"), rows["error"]
+print("study: a failed run is a row with its error")
+
+# A fidelity study.
+table = slender.fidelity(root / "examples/structure_hanging_pipe.toml", {"middle": ["nonlinear", "linear"]},
+                         out=work / "fidelity", duration=2.0)
+assert len(table) == 3 and bool(table["reference"].iloc[0]) and table["combination"].iloc[0] == "monolithic=nonlinear", table
+print(f"fidelity: {len(table)} rows")
+
+# Bad input raises with the command's message.
+try:
+    slender.run(root / "examples/no_such_scene.toml", out=work / "missing")
+except slender.SlenderError as e:
+    assert e.code == 2 and "no_such_scene" in str(e), e
+    print("bad input: SlenderError, exit 2")
+else:
+    raise AssertionError("a missing scene did not raise")
