@@ -219,6 +219,21 @@ fn a_static_touchdown_section_holds_the_slay_under_its_tensioner_also_under_a_sp
     }
 }
 
+#[test]
+#[ignore = "known regression since chords stretch (5f98994): under a span chord and the coarse stinger the static touchdown section stops at 21.1 s, the stinger's Newton failing as the cut force grows (Newton or IQN-ILS at the cuts alike); it ran the 30 s with a rigid chord"]
+fn a_static_touchdown_section_under_a_span_runs_with_the_coarse_stinger_too() {
+    let report = run_fidelity(
+        &root().join(SLAY),
+        &plan(
+            &["touchdown=static", "suspended=span", "stinger=nonlinear:24"],
+            30.0,
+        ),
+        |_| {},
+    )
+    .unwrap();
+    assert!(report.rows[1].error.is_none(), "{:?}", report.rows[1].error);
+}
+
 /// The expanded scene's units (by name) and connections.
 fn expanded(text: &str) -> (Vec<(String, Value)>, Vec<Value>) {
     units_and_links(&parse(text).expect("scene"))
