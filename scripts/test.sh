@@ -67,6 +67,21 @@ else
 fi
 rm -f "$log"
 
+step "HTML reports in a headless browser (Debian's chromium; ignored above)"
+if [ ! -x /usr/bin/chromium ] && [ "$(id -u)" = 0 ]; then
+    apt-get install -y --no-install-recommends chromium >/dev/null 2>&1 \
+        || { apt-get update >/dev/null && apt-get install -y --no-install-recommends chromium >/dev/null; }
+fi
+if [ -x /usr/bin/chromium ]; then
+    cargo test --release -p slender-tests --test report_browser -- --ignored 2>&1 | tee "$log"
+    browser_passed=$(count passed)
+    passed=$((passed + browser_passed))
+    ignored=$((ignored - browser_passed))
+else
+    echo "skipped: installing chromium needs root (apt-get install chromium)"
+fi
+rm -f "$log"
+
 step "example scenes (outputs bit-identical to tests/reference/scene-fingerprints.txt)"
 ./scripts/scene-fingerprints.sh --compare tests/reference/scene-fingerprints.txt
 for scene in examples/*.toml; do

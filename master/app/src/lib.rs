@@ -3,6 +3,7 @@
 //!
 //! - [`run`]: running a scene with recording, summary and plots;
 //! - [`record`], [`plot`], [`indicators`]: CSV time series, SVG figures of runs, phi / epsilon;
+//! - [`report`]: one self-contained HTML page per run and per study;
 //! - [`figures`]: the parts of readable figures (ticks, keys), study and trade-off figures;
 //! - [`study`], [`span_study`], [`coupling_study`]: convergence and cost studies;
 //! - [`fidelity`]: a structure's sections at chosen fidelities against the monolithic model;
@@ -18,6 +19,7 @@ pub mod parallel;
 pub mod plot;
 pub mod realtime;
 pub mod record;
+pub mod report;
 pub mod run;
 pub mod span_study;
 pub mod study;

@@ -138,6 +138,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         let path = dir.join("summary.json");
         let text = serde_json::to_string_pretty(&summary)?;
         whole::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
+        files.push(report_page(dir, &summary, &files)?);
         files.push(path);
     }
     Ok(RunResult {
@@ -145,6 +146,20 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         recorder,
         files,
     })
+}
+
+/// Writes the run's `report.html` (its summary and figures) into `dir`.
+fn report_page(dir: &Path, summary: &Summary, files: &[PathBuf]) -> Result<PathBuf, RunError> {
+    let figures: Vec<PathBuf> = (files.iter())
+        .filter(|f| f.extension().is_some_and(|e| e == "svg"))
+        .cloned()
+        .collect();
+    let parts = crate::report::run_page::parts(summary, &figures);
+    let title = format!("Run of {}", summary.scene);
+    let html = crate::report::page(&title, &crate::report::command_line(), &parts);
+    let path = dir.join("report.html");
+    whole::write(&path, html).map_err(|e| RunError::file(&path, &e))?;
+    Ok(path)
 }
 
 /// A run's status from its outcome: `completed`, `interrupted` (Ctrl-C) or `failed`.
@@ -222,7 +237,7 @@ impl RunError {
 }
 
 /// `timeseries.csv` in the results folder (made if need be), if there is one.
-/// An earlier run's `summary.json`, `timeseries.csv` and `overruns.csv` there
+/// An earlier run's `summary.json`, `timeseries.csv`, `overruns.csv` and `report.html` there
 /// are removed first: a run stopped outright must not leave an older run's
 /// complete-looking results beside its own partial ones.
 fn fresh_csv_in(dir: Option<&Path>) -> Result<Option<PathBuf>, RunError> {
@@ -230,7 +245,12 @@ fn fresh_csv_in(dir: Option<&Path>) -> Result<Option<PathBuf>, RunError> {
         return Ok(None);
     };
     std::fs::create_dir_all(dir).map_err(|e| RunError::file(dir, &e))?;
-    for name in ["summary.json", "timeseries.csv", "overruns.csv"] {
+    for name in [
+        "summary.json",
+        "timeseries.csv",
+        "overruns.csv",
+        "report.html",
+    ] {
         let old = dir.join(name);
         match std::fs::remove_file(&old) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {

@@ -2,6 +2,7 @@
 
 use super::{CliError, count_in, load, made_folder, positive, report_written, results_folder};
 use slender_app::fidelity::{self, FidelityPlan};
+use slender_app::report::Part;
 use slender_app::study::{self, StudyPlan};
 use slender_app::{figures, whole};
 use std::path::{Path, PathBuf};
@@ -94,9 +95,19 @@ pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), 
     let tradeoff = dir.join("error_cost.svg");
     let title = format!("Error against cost: {}", path.display());
     let figure = study::tradeoff(&rows, &title);
-    whole::through(&tradeoff, |f| figures::tradeoff::draw(f, &figure))
-        .map_err(CliError::failure)?;
-    report_written(&[csv, md, svg, tradeoff]);
+    let mut hover = Vec::new();
+    whole::through(&tradeoff, |f| {
+        hover = figures::tradeoff::draw(f, &figure)?;
+        Ok::<(), slender_app::plot::PlotError>(())
+    })
+    .map_err(CliError::failure)?;
+    let parts = [
+        Part::Markdown(study::to_markdown(&rows)),
+        Part::figure(&svg, Vec::new()),
+        Part::figure(&tradeoff, hover),
+    ];
+    let page = super::write_report(&dir, &format!("Study of {}", path.display()), &parts)?;
+    report_written(&[csv, md, svg, tradeoff, page]);
     if let Some(w) = slender_app::costs::spread_warning(rows.iter().map(|r| r.cost_spread)) {
         eprintln!("{w}");
     }
@@ -157,10 +168,23 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
     ];
     let svg = dir.join("fidelity.svg");
     let title = format!("Fidelity and cost: {}", path.display());
-    whole::through(&svg, |f| fidelity::report::plot(f, &title, &report))
-        .map_err(CliError::failure)?;
+    let mut hover = Vec::new();
+    whole::through(&svg, |f| {
+        hover = fidelity::report::plot(f, &title, &report)?;
+        Ok::<(), slender_app::plot::PlotError>(())
+    })
+    .map_err(CliError::failure)?;
     println!("{}", fidelity::report::conclusion(&report));
-    report_written(&[files, vec![svg]].concat());
+    let parts = [
+        Part::Markdown(fidelity::report::to_markdown(&report)),
+        Part::figure(&svg, hover),
+    ];
+    let page = super::write_report(
+        &dir,
+        &format!("Fidelity study of {}", path.display()),
+        &parts,
+    )?;
+    report_written(&[files, vec![svg, page]].concat());
     let spreads = report.rows.iter().map(|r| r.cost_spread);
     if let Some(w) = slender_app::costs::spread_warning(spreads) {
         eprintln!("{w}");

@@ -283,6 +283,21 @@ fn write_in(dir: &std::path::Path, name: &str, text: String) -> Result<PathBuf, 
     Ok(file)
 }
 
+/// Writes `report.html` in `dir`: the page of `parts` under `title`, with
+/// the command line that made it.
+fn write_report(
+    dir: &std::path::Path,
+    title: &str,
+    parts: &[slender_app::report::Part],
+) -> Result<PathBuf, CliError> {
+    let command = slender_app::report::command_line();
+    write_in(
+        dir,
+        "report.html",
+        slender_app::report::page(title, &command, parts),
+    )
+}
+
 /// Prints the files written.
 fn report_written(files: &[PathBuf]) {
     for f in files {

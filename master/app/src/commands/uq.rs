@@ -77,7 +77,16 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                 write("uq.json", json)?,
                 write("uq.md", markdown.clone())?,
             ];
-            files.extend(figures(&dir, &report, &runs)?);
+            let drawn = figures(&dir, &report, &runs)?;
+            let mut parts = vec![slender_app::report::Part::Markdown(markdown.clone())];
+            parts.extend(
+                drawn
+                    .iter()
+                    .map(|f| slender_app::report::Part::figure(f, Vec::new())),
+            );
+            files.extend(drawn);
+            let title = format!("Uncertainty study of {}", path.display());
+            files.push(super::write_report(&dir, &title, &parts)?);
             print!("{markdown}");
             for caution in report.outputs.iter().filter_map(uq::report::poor_fit) {
                 eprintln!("warning: {caution}");

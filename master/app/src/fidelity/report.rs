@@ -127,8 +127,12 @@ fn judged(report: &FidelityReport) -> String {
 /// Worst epsilon against cost per simulated second (log-log): every
 /// combination a numbered marker with its key beside the chart, the Pareto
 /// front joined, the cheapest within the tolerance ringed, the tolerance and
-/// the reference's cost as lines.
-pub fn plot(path: &Path, title: &str, report: &FidelityReport) -> Result<(), PlotError> {
+/// the reference's cost as lines; the points' pixels and combinations.
+pub fn plot(
+    path: &Path,
+    title: &str,
+    report: &FidelityReport,
+) -> Result<Vec<crate::report::hover::Point>, PlotError> {
     let usable: Vec<(usize, &FidelityRow)> = (report.rows.iter().enumerate())
         .filter(|(_, r)| !r.reference && r.error.is_none())
         .collect();

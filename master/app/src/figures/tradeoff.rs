@@ -4,9 +4,10 @@
 //! given the tolerance, the reference's cost and the chosen run.
 
 use super::axes::{fitting, log_axis, positive_range};
-use super::labels::{Area, CHAR_WIDTH, DrawResult, Entry, KEY_ROW, place_labels, side_legend};
+use super::labels::{Area, CHAR_WIDTH, Entry, KEY_ROW, place_labels, side_legend};
 use super::ticks;
 use crate::plot::PlotError;
+use crate::report::hover;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -52,8 +53,9 @@ pub fn pareto(points: &[Point]) -> Vec<bool> {
         .collect()
 }
 
-/// Draws the figure to `path` (SVG).
-pub fn draw(path: &Path, figure: &Tradeoff<'_>) -> Result<(), PlotError> {
+/// Draws the figure to `path` (SVG); returns each drawn point's pixel and
+/// text, for a report's tooltips.
+pub fn draw(path: &Path, figure: &Tradeoff<'_>) -> Result<Vec<hover::Point>, PlotError> {
     let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     let entries = key_entries(figure);
     let widest = entries.iter().map(|e| e.text.len()).max().unwrap_or(0) as i32;
@@ -67,13 +69,18 @@ pub fn draw(path: &Path, figure: &Tradeoff<'_>) -> Result<(), PlotError> {
         .map_err(|e| fail(&e))?;
     let (chart_area, key_area) = root.split_horizontally(800);
     let chart_area = chart_area.shrink((0, 0), (800, 600.min(height - 40)));
-    chart(&chart_area, figure).map_err(|e| fail(&e))?;
+    let hover = chart(&chart_area, figure).map_err(|e| fail(&e))?;
     side_legend(&key_area, "runs", &entries).map_err(|e| fail(&e))?;
-    root.present().map_err(|e| fail(&e))
+    root.present().map_err(|e| fail(&e))?;
+    Ok(hover)
 }
 
-/// The chart: axes, front, tolerance, reference cost, numbered points.
-fn chart(area: &Area<'_>, figure: &Tradeoff<'_>) -> DrawResult {
+/// The chart: axes, front, tolerance, reference cost, numbered points; the
+/// points' pixels and texts.
+fn chart(
+    area: &Area<'_>,
+    figure: &Tradeoff<'_>,
+) -> Result<Vec<hover::Point>, Box<dyn std::error::Error>> {
     let shown: Vec<(usize, (f64, f64))> = figure
         .points
         .iter()
@@ -135,7 +142,18 @@ fn chart(area: &Area<'_>, figure: &Tradeoff<'_>) -> DrawResult {
             ("sans-serif", 12),
         ))?;
     }
-    Ok(())
+    let hover = (shown.iter().zip(&pixels))
+        .map(|((k, (cost, error)), &(x, y))| hover::Point {
+            x,
+            y,
+            text: format!(
+                "{}: {} (error {error:.3e}, cost {cost:.3e} s/s)",
+                k + 1,
+                figure.points[*k].label
+            ),
+        })
+        .collect();
+    Ok(hover)
 }
 
 /// The key: what the lines and markers are, then each run by its number.
