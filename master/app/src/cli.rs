@@ -182,7 +182,9 @@ pub enum Command {
     /// Convergence and cost study (seed 000 Appendix B): vary one setting at a time
     /// and report, per run, the relative error of the scene's indicator signals
     /// against the finest value, iterations per step and cost per simulated second.
-    /// Writes study.csv, study.md and study.svg.
+    /// Writes study.csv, study.md, study.svg, error_cost.svg and report.html;
+    /// resumable: runs/ keeps each finished run, and the same command again
+    /// reuses them.
     Study {
         scene: PathBuf,
         /// KEY=V1,V2,...; KEY is a scene key by its path (simulation.step,
@@ -222,6 +224,10 @@ pub enum Command {
         /// e.g. the model under study, not its driver or an in-run reference.
         #[arg(long = "cost", value_delimiter = ',')]
         cost_units: Vec<String>,
+        /// Run every run anew: the runs an earlier study kept in the results
+        /// folder (runs/) are removed first, e.g. to time costs again.
+        #[arg(long)]
+        fresh: bool,
         /// Results folder (default: results/<scene name>-study).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -231,7 +237,9 @@ pub enum Command {
     /// the monolithic reference (the whole structure as one nonlinear unit): epsilon
     /// of each quantity of interest, cost, speed-up, iterations, non-converged
     /// steps, the Pareto front and the cheapest combination within --tolerance.
-    /// Writes fidelity.csv, fidelity.json, fidelity.md and fidelity.svg.
+    /// Writes fidelity.csv, fidelity.json, fidelity.md, fidelity.svg and
+    /// report.html; resumable: runs/ keeps each finished run, and the same
+    /// command again reuses them.
     Fidelity {
         scene: PathBuf,
         /// NAME=CHOICE,CHOICE,...: a section and its fidelities (nonlinear,
@@ -272,6 +280,10 @@ pub enum Command {
         /// Simulated time of each run (s); default: the scene's duration.
         #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,
+        /// Run every run anew: the runs an earlier study kept in the results
+        /// folder (runs/) are removed first, e.g. to time costs again.
+        #[arg(long)]
+        fresh: bool,
         /// Results folder (default: results/<scene name>-fidelity).
         #[arg(long)]
         out: Option<PathBuf>,

@@ -11,7 +11,7 @@ use serde::Serialize;
 use slender_scene::spec::Norm;
 
 /// One indicator's value.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Indicator {
     pub name: String,
     /// -1/2 log10 S.

@@ -7,7 +7,7 @@
 //! - [`figures`]: the parts of readable figures (ticks, keys), study and trade-off figures;
 //! - [`study`], [`span_study`], [`coupling_study`]: convergence and cost studies;
 //! - [`fidelity`]: a structure's sections at chosen fidelities against the monolithic model;
-//! - [`parallel`]: independent runs on a few threads.
+//! - [`parallel`]: independent runs on a few threads; [`resume`]: a stopped study resumed.
 
 pub mod costs;
 pub mod coupling_study;
@@ -20,6 +20,7 @@ pub mod plot;
 pub mod realtime;
 pub mod record;
 pub mod report;
+pub mod resume;
 pub mod run;
 pub mod span_study;
 pub mod study;

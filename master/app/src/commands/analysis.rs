@@ -67,11 +67,28 @@ pub fn modes(
 
 /// A convergence and cost study; the rows are written even when some runs fail
 /// (those are marked FAILED with their reason), and the command then exits 1.
-pub fn study(path: &Path, plan: &StudyPlan, out: Option<PathBuf>) -> Result<(), CliError> {
+pub fn study(
+    path: &Path,
+    plan: &StudyPlan,
+    (out, fresh): (Option<PathBuf>, bool),
+) -> Result<(), CliError> {
     count_in("--repeats", plan.repeats, 1, 1000)?;
     let (dir, _) = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
     let _lock = super::lock::lock(&dir)?;
-    let rows = study::run_study(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
+    // What shapes a run besides the scene and its own settings.
+    let options = format!(
+        "duration {:?}, repeats {}, cost units {:?}",
+        plan.duration, plan.repeats, plan.cost_units
+    );
+    let kept = kept_runs(&dir, path, &options, fresh)?;
+    let reference = (plan.reference.as_ref())
+        .map(|r| study::run_reference(r, plan.duration))
+        .transpose()
+        .map_err(CliError::input)?;
+    let rows = study::run_study_kept(path, plan, (reference.as_ref(), Some(&kept)), |line| {
+        println!("{line}")
+    })
+    .map_err(CliError::input)?;
     println!(
         "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"
@@ -152,13 +169,19 @@ pub(super) fn study_folder(
 /// A fidelity study of a structure's sections; the rows are written even when
 /// some combinations fail (those are marked FAILED with their reason), and the
 /// command then exits 1.
-pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Result<(), CliError> {
+pub fn fidelity(
+    path: &Path,
+    plan: &FidelityPlan,
+    (out, fresh): (Option<PathBuf>, bool),
+) -> Result<(), CliError> {
     positive("--tolerance", plan.tolerance)?;
     count_in("--repeats", plan.repeats, 1, 1000)?;
     let (dir, _) = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
     let _lock = super::lock::lock(&dir)?;
-    let report =
-        fidelity::run_fidelity(path, plan, |line| println!("{line}")).map_err(CliError::input)?;
+    let options = format!("duration {:?}, repeats {}", plan.duration, plan.repeats);
+    let kept = kept_runs(&dir, path, &options, fresh)?;
+    let report = fidelity::run_fidelity_kept(path, plan, Some(&kept), |line| println!("{line}"))
+        .map_err(CliError::input)?;
     let write = |name: &str, text: String| super::write_in(&dir, name, text);
     let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
     let files = vec![
@@ -195,6 +218,23 @@ pub fn fidelity(path: &Path, plan: &FidelityPlan, out: Option<PathBuf>) -> Resul
         report.rows.len(),
         "marked FAILED in fidelity.md and fidelity.csv",
     )
+}
+
+/// The runs a study keeps in `dir/runs` to resume (emptied first when
+/// `fresh`), keyed by the scene's text, this build's version and `options`.
+fn kept_runs(
+    dir: &Path,
+    scene: &Path,
+    options: &str,
+    fresh: bool,
+) -> Result<slender_app::resume::Kept, CliError> {
+    let runs = dir.join("runs");
+    if fresh && runs.is_dir() {
+        std::fs::remove_dir_all(&runs)
+            .map_err(|e| CliError::failure(format!("{}: {e}", runs.display())))?;
+    }
+    let options = format!("slender {}, {options}", env!("CARGO_PKG_VERSION"));
+    slender_app::resume::Kept::new(dir, scene, &options).map_err(CliError::failure)
 }
 
 /// One finished run (groups print when all their runs are done).

@@ -67,6 +67,7 @@ fn studies(command: Command) -> Result<(), CliError> {
             duration,
             reference,
             cost_units,
+            fresh,
             out,
         } => {
             let plan = slender_app::study::StudyPlan {
@@ -79,7 +80,7 @@ fn studies(command: Command) -> Result<(), CliError> {
                 reference,
                 repeats,
             };
-            analysis::study(&scene, &plan, out)
+            analysis::study(&scene, &plan, (out, fresh))
         }
         Command::Fidelity {
             scene,
@@ -91,6 +92,7 @@ fn studies(command: Command) -> Result<(), CliError> {
             repeats,
             max_runs,
             duration,
+            fresh,
             out,
         } => {
             let plan = slender_app::fidelity::FidelityPlan {
@@ -103,7 +105,7 @@ fn studies(command: Command) -> Result<(), CliError> {
                 judged: quantities,
                 repeats,
             };
-            analysis::fidelity(&scene, &plan, out)
+            analysis::fidelity(&scene, &plan, (out, fresh))
         }
         Command::Uq {
             scene,

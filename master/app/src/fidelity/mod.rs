@@ -102,7 +102,8 @@ struct Structure {
     features: Features,
 }
 
-/// A run's recording reduced to the quantities.
+/// A run's recording reduced to the quantities (kept to resume a study).
+#[derive(Serialize, serde::Deserialize)]
 struct Outcome {
     time: Vec<f64>,
     series: Vec<Vec<f64>>,
@@ -122,6 +123,18 @@ pub fn run_fidelity(
     plan: &FidelityPlan,
     progress: impl Fn(&str) + Sync,
 ) -> Result<FidelityReport, String> {
+    run_fidelity_kept(path, plan, None, progress)
+}
+
+/// [`run_fidelity`] that reads back the runs `kept` holds instead of running
+/// them again, and keeps each run it finishes without error (see
+/// [`crate::resume`]).
+pub fn run_fidelity_kept(
+    path: &Path,
+    plan: &FidelityPlan,
+    kept: Option<&crate::resume::Kept>,
+    progress: impl Fn(&str) + Sync,
+) -> Result<FidelityReport, String> {
     let mut table = crate::study::scene_table(path)?;
     // The scene must load as written.
     crate::study::scene_with(path, &table, plan.duration)?;
@@ -132,21 +145,7 @@ pub fn run_fidelity(
         s.remove("reference");
     }
     table.remove("output");
-    // Counted before they are built: a grid of many sections would not fit.
-    let choices = plan.sections.iter().map(|s| s.choices.len());
-    let runs = match plan.design {
-        Design::OneAtATime => choices.fold(1usize, usize::saturating_add),
-        Design::Grid => choices
-            .fold(1usize, usize::saturating_mul)
-            .saturating_add(1),
-    };
-    if runs > plan.max_runs {
-        return Err(crate::too_many_runs(
-            "the reference and the combinations",
-            runs,
-            plan.max_runs,
-        ));
-    }
+    within_bound(plan)?;
     let mut tasks: Vec<Task> = vec![None];
     tasks.extend(
         combinations(plan, &own_choices(&table))
@@ -159,13 +158,16 @@ pub fn run_fidelity(
     // Each finished run says which of how many it is.
     let done = std::sync::atomic::AtomicUsize::new(0);
     let outcomes = crate::parallel::run_all(&tasks, &order, plan.jobs, |task| {
-        let outcome = run::run_one(path, &table, &structure, task.as_deref(), plan);
+        let what = run::combination_label(task.as_deref());
+        let (outcome, reused) = crate::resume::run_or_reuse(
+            kept,
+            &what,
+            |o: &Outcome| o.error.is_none(),
+            || run::run_one(path, &table, &structure, task.as_deref(), plan),
+        );
         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        progress(&format!(
-            "[{k}/{}] {}",
-            tasks.len(),
-            run::describe(task.as_deref(), &outcome)
-        ));
+        let how = run::describe(&outcome);
+        progress(&format!("[{k}/{}] {what}: {how}{reused}", tasks.len()));
         outcome
     });
     let judged = judged_of(plan, &names)?;
@@ -195,6 +197,26 @@ pub fn run_fidelity(
         cheapest,
         floors,
     })
+}
+
+/// Refuses a study of more runs than `plan.max_runs`, counted before they
+/// are built (a grid of many sections would not fit in memory).
+fn within_bound(plan: &FidelityPlan) -> Result<(), String> {
+    let choices = plan.sections.iter().map(|s| s.choices.len());
+    let runs = match plan.design {
+        Design::OneAtATime => choices.fold(1usize, usize::saturating_add),
+        Design::Grid => choices
+            .fold(1usize, usize::saturating_mul)
+            .saturating_add(1),
+    };
+    if runs > plan.max_runs {
+        return Err(crate::too_many_runs(
+            "the reference and the combinations",
+            runs,
+            plan.max_runs,
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses a section given twice or not in the structure, naming them.

@@ -74,23 +74,27 @@ pub(super) fn run_one(
     }
 }
 
-/// A line of progress for a finished run.
-pub(super) fn describe(combination: Option<&[(String, Choice)]>, o: &Outcome) -> String {
-    let what = match combination {
+/// A combination in words (the reference's name for `None`).
+pub(super) fn combination_label(combination: Option<&[(String, Choice)]>) -> String {
+    match combination {
         None => "reference (monolithic)".to_owned(),
         Some(c) => c
             .iter()
             .map(|(s, c)| format!("{s}={}", c.label()))
             .collect::<Vec<_>>()
             .join(" "),
-    };
+    }
+}
+
+/// A line of progress for a finished run: its cost, or why it failed.
+pub(super) fn describe(o: &Outcome) -> String {
     match &o.error {
-        Some(e) => format!("{what}: FAILED: {e}"),
+        Some(e) => format!("FAILED: {e}"),
         None if o.cost_spread.is_finite() => format!(
-            "{what}: {:.3e} s per simulated s (median, spread {:.0} %)",
+            "{:.3e} s per simulated s (median, spread {:.0} %)",
             o.cost,
             100.0 * o.cost_spread
         ),
-        None => format!("{what}: {:.3e} s per simulated s", o.cost),
+        None => format!("{:.3e} s per simulated s", o.cost),
     }
 }

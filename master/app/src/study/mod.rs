@@ -14,8 +14,10 @@ mod orders;
 mod orders_tests;
 pub mod report;
 pub mod setting;
+mod tasks;
 
 use crate::indicators::interpolate;
+use crate::resume::Kept;
 use crate::run::{RunOptions, run_scene};
 use serde::Serialize;
 use setting::{Refinement, Setting, label, numeric, parse_value};
@@ -23,6 +25,7 @@ use slender_scene::Scene;
 use slender_scene::spec::Norm;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
+use tasks::{Assignment, costliest_first, groups};
 
 pub use report::{to_csv, to_markdown, tradeoff};
 
@@ -152,7 +155,8 @@ pub struct StudyRow {
     pub error: Option<String>,
 }
 
-/// A run's outcome before errors are computed.
+/// A run's outcome before errors are computed (kept to resume a study).
+#[derive(Serialize, serde::Deserialize)]
 struct Outcome {
     time: Vec<f64>,
     columns: Vec<IndicatorColumns>,
@@ -228,6 +232,18 @@ pub fn run_study_against(
     reference: Option<&ReferenceRun>,
     progress: impl Fn(&str) + Sync,
 ) -> Result<Vec<StudyRow>, String> {
+    run_study_kept(path, plan, (reference, None), progress)
+}
+
+/// [`run_study_against`] that reads back the runs `kept` holds instead of
+/// running them again, and keeps each run it finishes without error (see
+/// [`crate::resume`]).
+pub fn run_study_kept(
+    path: &Path,
+    plan: &StudyPlan,
+    (reference, kept): (Option<&ReferenceRun>, Option<&Kept>),
+    progress: impl Fn(&str) + Sync,
+) -> Result<Vec<StudyRow>, String> {
     let base = Scene::load(path).map_err(|e| e.to_string())?;
     if base.spec.output.indicators.is_empty() {
         return Err(format!(
@@ -268,21 +284,27 @@ pub fn run_study_against(
     // Each finished run says which of how many it is.
     let done = std::sync::atomic::AtomicUsize::new(0);
     let mut outcomes = crate::parallel::run_all(&all, &order, plan.jobs, |assignments| {
-        let o = run_one(path, &table, assignments, plan, &judged);
-        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         let what: Vec<String> = assignments
             .iter()
             .map(|(s, v)| format!("{s}={}", label(v)))
             .collect();
+        let what = what.join(" ");
+        let (o, reused) = crate::resume::run_or_reuse(
+            kept,
+            &what,
+            |o: &Outcome| o.error.is_none(),
+            || run_one(path, &table, assignments, plan, &judged),
+        );
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         let how = match &o.error {
             Some(e) => format!("FAILED: {e}"),
             None => format!(
-                "{:.2} it/step, {} s per simulated s",
+                "{:.2} it/step, {} s per simulated s{reused}",
                 o.iterations_per_step,
                 crate::costs::cell(o.cost, o.cost_spread)
             ),
         };
-        progress(&format!("[{k}/{}] {}: {how}", all.len(), what.join(" ")));
+        progress(&format!("[{k}/{}] {what}: {how}", all.len()));
         o
     });
     let mut rows = Vec::new();
@@ -294,62 +316,6 @@ pub fn run_study_against(
         rows.extend(group_rows);
     }
     Ok(rows)
-}
-
-/// A varied key with its value.
-type Assignment = (Setting, toml::Value);
-
-/// Task indices by likely cost, descending: a run's cost grows with its element
-/// counts and falls with its step.
-fn costliest_first(tasks: &[&Vec<Assignment>]) -> Vec<usize> {
-    let weight = |task: &Vec<Assignment>| {
-        task.iter()
-            .fold(1.0f64, |w, (s, v)| match (s.refinement(), numeric(v)) {
-                (Refinement::Larger, Some(x)) => w * x,
-                (Refinement::Smaller, Some(x)) if s.to_string().contains("step") => w / x,
-                _ => w,
-            })
-    };
-    let mut order: Vec<usize> = (0..tasks.len()).collect();
-    order.sort_by(|&a, &b| weight(tasks[b]).total_cmp(&weight(tasks[a])));
-    order
-}
-
-/// The runs of each group, the reference first.
-fn groups(plan: &StudyPlan) -> Vec<(String, Vec<Vec<Assignment>>)> {
-    match plan.design {
-        Design::OneAtATime => plan
-            .sweeps
-            .iter()
-            .map(|s| {
-                let mut values: Vec<&toml::Value> = vec![s.reference()];
-                values.extend(s.values.iter().filter(|v| *v != s.reference()));
-                let runs = values
-                    .into_iter()
-                    .map(|v| vec![(s.setting.clone(), v.clone())])
-                    .collect();
-                (s.setting.to_string(), runs)
-            })
-            .collect(),
-        Design::Grid => {
-            let mut runs: Vec<Vec<Assignment>> = vec![Vec::new()];
-            for s in &plan.sweeps {
-                let mut values: Vec<&toml::Value> = vec![s.reference()];
-                values.extend(s.values.iter().filter(|v| *v != s.reference()));
-                runs = runs
-                    .into_iter()
-                    .flat_map(|run| {
-                        values.iter().map(move |v| {
-                            let mut next = run.clone();
-                            next.push((s.setting.clone(), (*v).clone()));
-                            next
-                        })
-                    })
-                    .collect();
-            }
-            vec![("grid".into(), runs)]
-        }
-    }
 }
 
 /// The scene file at `path` as written (a `[structure]` still a structure), as
