@@ -28,7 +28,7 @@ fn moments_and_ranking_match_the_paper() {
         duration: None,
         shard: None,
     };
-    let (report, _) = run_uq(&path, &plan, &[], |_, _| {}).unwrap();
+    let (report, _) = run_uq(&path, &plan, &[], |_, _, _| {}).unwrap();
     let report = report.unwrap();
     let paper = published();
     let f = &paper["fidelity_results"];

@@ -66,7 +66,7 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     let dir = tempfile::tempdir().unwrap();
     let path = scene(dir.path(), 16, None);
     let fresh = Mutex::new(Vec::new());
-    let (first, runs) = run_uq(&path, &plan(None, 2), &[], |k, _| {
+    let (first, runs) = run_uq(&path, &plan(None, 2), &[], |k, _, _| {
         fresh.lock().unwrap().push(k)
     })
     .unwrap();
@@ -75,7 +75,7 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     assert_eq!(first.unwrap().inputs.len(), 12);
     // Doubled: 16 more runs, the first 16 kept as they were.
     fresh.lock().unwrap().clear();
-    let (second, more) = run_uq(&path, &plan(Some(32), 2), &runs, |k, _| {
+    let (second, more) = run_uq(&path, &plan(Some(32), 2), &runs, |k, _, _| {
         fresh.lock().unwrap().push(k)
     })
     .unwrap();
@@ -94,7 +94,7 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     }
     cautions_follow_the_loo_error(&second);
     // One job: the same runs and the same expansions.
-    let (again, runs1) = run_uq(&path, &plan(Some(32), 1), &[], |_, _| {}).unwrap();
+    let (again, runs1) = run_uq(&path, &plan(Some(32), 1), &[], |_, _, _| {}).unwrap();
     let bits = |r: &[Run]| -> Vec<u64> {
         r.iter()
             .flat_map(|(x, y)| x.iter().chain(y).map(|v| v.to_bits()))
@@ -113,7 +113,7 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
             shard: Some((k, 3)),
             ..plan(Some(32), 1)
         };
-        let (report, rows) = run_uq(&path, &shard, &[], |_, _| {}).unwrap();
+        let (report, rows) = run_uq(&path, &shard, &[], |_, _, _| {}).unwrap();
         assert!(report.is_none());
         for (i, r) in rows
             .into_iter()
@@ -125,7 +125,7 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
         }
     }
     let ran = Mutex::new(0);
-    let (report, all) = run_uq(&path, &plan(Some(32), 2), &merged, |_, _| {
+    let (report, all) = run_uq(&path, &plan(Some(32), 2), &merged, |_, _, _| {
         *ran.lock().unwrap() += 1
     })
     .unwrap();
@@ -154,7 +154,7 @@ fn failed_runs_are_left_out_and_reported_with_their_reason() {
             "\"units.sensor.parameters.loss_probability\", distribution = { kind = \"uniform\", low = 0.3, high = 1.2 }",
         )),
     );
-    let (report, runs) = run_uq(&path, &plan(None, 2), &[], |_, _| {}).unwrap();
+    let (report, runs) = run_uq(&path, &plan(None, 2), &[], |_, _, _| {}).unwrap();
     let report = report.unwrap();
     let failed: Vec<usize> = (0..runs.len())
         .filter(|&k| runs[k].1.iter().any(|v| v.is_nan()))
@@ -190,13 +190,13 @@ fn bad_uncertainty_tables_are_refused_with_the_key() {
         ),
     ] {
         let path = scene(dir.path(), 16, Some(change));
-        let e = run_uq(&path, &plan(None, 1), &[], |_, _| {});
+        let e = run_uq(&path, &plan(None, 1), &[], |_, _, _| {});
         match e {
             Err(e) => assert!(e.contains(says), "{change:?}: {e}"),
             Ok(_) => panic!("{change:?} accepted"),
         }
     }
     let path = scene(dir.path(), 16, None);
-    let e = run_uq(&path, &plan(Some(24), 1), &[], |_, _| {}).unwrap_err();
+    let e = run_uq(&path, &plan(Some(24), 1), &[], |_, _, _| {}).unwrap_err();
     assert!(e.contains("power of two"), "{e}");
 }

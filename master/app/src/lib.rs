@@ -7,7 +7,8 @@
 //! - [`figures`]: the parts of readable figures (ticks, keys), study and trade-off figures;
 //! - [`study`], [`span_study`], [`coupling_study`]: convergence and cost studies;
 //! - [`fidelity`]: a structure's sections at chosen fidelities against the monolithic model;
-//! - [`parallel`]: independent runs on a few threads; [`resume`]: a stopped study resumed.
+//! - [`parallel`]: independent runs on a few threads; [`resume`]: a stopped study resumed;
+//!   [`progress`]: k of N runs and the time left.
 
 pub mod costs;
 pub mod coupling_study;
@@ -17,6 +18,7 @@ pub mod indicators;
 pub mod interrupt;
 pub mod parallel;
 pub mod plot;
+pub mod progress;
 pub mod realtime;
 pub mod record;
 pub mod report;

@@ -64,27 +64,44 @@ impl Kept {
     }
 }
 
+/// A run's outcome, read back or made now.
+pub struct Fetched<T> {
+    pub outcome: T,
+    /// Read back from an earlier study, not run now.
+    pub reused: bool,
+    /// What the progress line adds: " (reused)", or why it was not kept.
+    pub note: String,
+}
+
 /// The outcome of `run` read back from `kept` when it is there, else made by
-/// `make` and kept when `keep` says it may be (a run finished without error);
-/// with what the progress line adds: " (reused)", or why it was not kept.
+/// `make` and kept when `keep` says it may be (a run finished without error).
 pub fn run_or_reuse<T: Serialize + DeserializeOwned>(
     kept: Option<&Kept>,
     run: &str,
     keep: impl Fn(&T) -> bool,
     make: impl FnOnce() -> T,
-) -> (T, String) {
+) -> Fetched<T> {
+    let made = |outcome: T, note: String| Fetched {
+        outcome,
+        reused: false,
+        note,
+    };
     let Some(kept) = kept else {
-        return (make(), String::new());
+        return made(make(), String::new());
     };
     if let Some(outcome) = kept.get(run) {
-        return (outcome, " (reused)".to_owned());
+        return Fetched {
+            outcome,
+            reused: true,
+            note: " (reused)".to_owned(),
+        };
     }
     let outcome = make();
     let note = match keep(&outcome).then(|| kept.put(run, &outcome)) {
         Some(Err(e)) => format!(" (not kept to resume: {e})"),
         _ => String::new(),
     };
-    (outcome, note)
+    made(outcome, note)
 }
 
 const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
@@ -153,13 +170,14 @@ mod tests {
             made.set(made.get() + 1);
             vec![made.get() as f64]
         };
-        let (first, note) = run_or_reuse(Some(&kept), "new", |_| true, make);
-        assert_eq!((first, note.as_str()), (vec![1.0], ""));
-        let (again, note) = run_or_reuse(Some(&kept), "new", |_| true, make);
-        assert_eq!((again, note.as_str()), (vec![1.0], " (reused)"));
-        let (_, _) = run_or_reuse(Some(&kept), "failed", |_| false, make);
-        let (second, _) = run_or_reuse(Some(&kept), "failed", |_| false, make);
-        assert_eq!(second, vec![3.0]);
+        let first = run_or_reuse(Some(&kept), "new", |_| true, make);
+        assert_eq!((first.outcome, first.reused), (vec![1.0], false));
+        let again = run_or_reuse(Some(&kept), "new", |_| true, make);
+        assert_eq!((again.outcome, again.reused), (vec![1.0], true));
+        assert_eq!(again.note, " (reused)");
+        run_or_reuse(Some(&kept), "failed", |_| false, make);
+        let second = run_or_reuse(Some(&kept), "failed", |_| false, make);
+        assert_eq!((second.outcome, second.reused), (vec![3.0], false));
         // The FNV-1a reference value of "a" (64 bit).
         assert_eq!(fnv1a(FNV_OFFSET, b"a"), 0xaf63_dc4c_8601_ec8c);
     }

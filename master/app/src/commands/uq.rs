@@ -156,15 +156,14 @@ fn run_appending(
         .open(csv)
         .map_err(fail)?;
     let file = std::sync::Mutex::new(file);
-    // Each finished run says how many are done (uq was silent for minutes).
-    let count = std::sync::atomic::AtomicUsize::new(0);
-    let (report, runs) = uq::run_uq(path, plan, &earlier, |k, run| {
+    // Each finished run says how many are done and the time left (uq was
+    // silent for minutes).
+    let (report, runs) = uq::run_uq(path, plan, &earlier, |k, run, progress| {
         let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
         // A row that cannot be written is run again on resume.
         let _ = f.write_all(uq::report::row(k, run).as_bytes());
-        let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         let outputs: Vec<String> = run.1.iter().map(|v| format!("{v:.4e}")).collect();
-        println!("[{n} new] design point {k}: {}", outputs.join(", "));
+        println!("{progress} design point {k}: {}", outputs.join(", "));
     })
     .map_err(CliError::input)?;
     let rows: String = runs

@@ -155,19 +155,20 @@ pub fn run_fidelity_kept(
     let order = order_of(&tasks);
     let names = quantities::names(&structure.features);
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
-    // Each finished run says which of how many it is.
-    let done = std::sync::atomic::AtomicUsize::new(0);
+    // Each finished run says which of how many it is, and the time left.
+    let counter = crate::progress::Progress::new(tasks.len());
     let outcomes = crate::parallel::run_all(&tasks, &order, plan.jobs, |task| {
         let what = run::combination_label(task.as_deref());
-        let (outcome, reused) = crate::resume::run_or_reuse(
+        let fetched = crate::resume::run_or_reuse(
             kept,
             &what,
             |o: &Outcome| o.error.is_none(),
             || run::run_one(path, &table, &structure, task.as_deref(), plan),
         );
-        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        let (outcome, reused) = (fetched.outcome, fetched.note);
+        let k = counter.tick(!fetched.reused);
         let how = run::describe(&outcome);
-        progress(&format!("[{k}/{}] {what}: {how}{reused}", tasks.len()));
+        progress(&format!("{k} {what}: {how}{reused}"));
         outcome
     });
     let judged = judged_of(plan, &names)?;

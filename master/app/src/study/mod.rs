@@ -281,21 +281,22 @@ pub fn run_study_kept(
     let groups = groups(plan);
     let all: Vec<&Vec<Assignment>> = groups.iter().flat_map(|(_, runs)| runs).collect();
     let order = costliest_first(&all);
-    // Each finished run says which of how many it is.
-    let done = std::sync::atomic::AtomicUsize::new(0);
+    // Each finished run says which of how many it is, and the time left.
+    let counter = crate::progress::Progress::new(all.len());
     let mut outcomes = crate::parallel::run_all(&all, &order, plan.jobs, |assignments| {
         let what: Vec<String> = assignments
             .iter()
             .map(|(s, v)| format!("{s}={}", label(v)))
             .collect();
         let what = what.join(" ");
-        let (o, reused) = crate::resume::run_or_reuse(
+        let fetched = crate::resume::run_or_reuse(
             kept,
             &what,
             |o: &Outcome| o.error.is_none(),
             || run_one(path, &table, assignments, plan, &judged),
         );
-        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        let (o, reused) = (fetched.outcome, fetched.note);
+        let k = counter.tick(!fetched.reused);
         let how = match &o.error {
             Some(e) => format!("FAILED: {e}"),
             None => format!(
@@ -304,7 +305,7 @@ pub fn run_study_kept(
                 crate::costs::cell(o.cost, o.cost_spread)
             ),
         };
-        progress(&format!("[{k}/{}] {what}: {how}", all.len()));
+        progress(&format!("{k} {what}: {how}"));
         o
     });
     let mut rows = Vec::new();

@@ -75,12 +75,13 @@ pub type Run = (Vec<f64>, Vec<f64>);
 
 /// Runs the study, reusing the rows of `runs` (the earlier runs of the same
 /// design, or every shard's) and calling `done` with each new run's index as it
-/// finishes. The report is None for a shard.
+/// finishes, and its progress (`[k/N, about T left]` of the new runs). The
+/// report is None for a shard.
 pub fn run_uq(
     path: &Path,
     plan: &UqPlan,
     earlier: &[Run],
-    done: impl Fn(usize, &Run) + Sync,
+    done: impl Fn(usize, &Run, &str) + Sync,
 ) -> Result<(Option<UqReport>, Vec<Run>), String> {
     let table = crate::study::scene_table(path)?;
     let scene = crate::study::scene_with(path, &table, plan.duration)?;
@@ -104,17 +105,7 @@ pub fn run_uq(
     if samples > plan.max_runs {
         return Err(crate::too_many_runs("the design", samples, plan.max_runs));
     }
-    let design = design_of(&spec, samples)?;
-    let points: Vec<Vec<f64>> = design
-        .iter()
-        .map(|u| {
-            spec.inputs
-                .iter()
-                .zip(u)
-                .map(|(i, &u)| i.distribution.from_unit(u))
-                .collect()
-        })
-        .collect();
+    let points = points_of(&spec, samples)?;
     let order: Vec<usize> = match plan.shard {
         Some((k, n)) if k >= 1 && k <= n => (k - 1..points.len()).step_by(n).collect(),
         Some((k, n)) => return Err(format!("--shard {k}/{n}: expected K in 1..=N")),
@@ -122,10 +113,15 @@ pub fn run_uq(
     };
     let fresh = Mutex::new(());
     let tasks: Vec<usize> = (0..order.len()).collect();
-    let outcomes = crate::parallel::run_all(&order, &tasks, plan.jobs, |&k| {
-        // An earlier run of the same point is kept; a failed one is tried again.
+    // An earlier run of the same point is kept; a failed one is tried again.
+    let kept = |k: usize| {
         let same = |r: &&Run| r.0 == points[k] && r.1.iter().all(|v| v.is_finite());
-        if let Some(run) = earlier.get(k).filter(same) {
+        earlier.get(k).filter(same)
+    };
+    let counter =
+        crate::progress::Progress::new(order.iter().filter(|&&k| kept(k).is_none()).count());
+    let outcomes = crate::parallel::run_all(&order, &tasks, plan.jobs, |&k| {
+        if let Some(run) = kept(k) {
             return (run.clone(), None);
         }
         let outcome = run_one(
@@ -143,7 +139,7 @@ pub fn run_uq(
         let run = (points[k].clone(), values);
         // One writer at a time: the caller appends the row to its file.
         let _turn = fresh.lock().unwrap_or_else(|e| e.into_inner());
-        done(k, &run);
+        done(k, &run, &counter.tick(true));
         (run, why)
     });
     let failures: Vec<(usize, String)> = outcomes.iter().filter_map(|o| o.1.clone()).collect();
@@ -155,6 +151,21 @@ pub fn run_uq(
     let mut report = expand(path, &spec, &runs)?;
     report.failures = failures;
     Ok((Some(report), runs))
+}
+
+/// The design's points of `samples` runs, in the inputs' own values.
+fn points_of(spec: &UncertaintySpec, samples: usize) -> Result<Vec<Vec<f64>>, String> {
+    let design = design_of(spec, samples)?;
+    Ok(design
+        .iter()
+        .map(|u| {
+            spec.inputs
+                .iter()
+                .zip(u)
+                .map(|(i, &u)| i.distribution.from_unit(u))
+                .collect()
+        })
+        .collect())
 }
 
 /// A shard's runs at their design indices (the others empty).
