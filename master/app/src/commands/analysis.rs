@@ -81,14 +81,8 @@ pub fn study(
         plan.duration, plan.repeats, plan.cost_units
     );
     let kept = kept_runs(&dir, path, &options, fresh)?;
-    let reference = (plan.reference.as_ref())
-        .map(|r| study::run_reference(r, plan.duration))
-        .transpose()
+    let rows = study::run_study_resuming(path, plan, Some(&kept), |line| println!("{line}"))
         .map_err(CliError::input)?;
-    let rows = study::run_study_kept(path, plan, (reference.as_ref(), Some(&kept)), |line| {
-        println!("{line}")
-    })
-    .map_err(CliError::input)?;
     println!(
         "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"

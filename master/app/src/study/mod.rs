@@ -188,11 +188,23 @@ pub fn run_study(
     plan: &StudyPlan,
     progress: impl Fn(&str) + Sync,
 ) -> Result<Vec<StudyRow>, String> {
+    run_study_resuming(path, plan, None, progress)
+}
+
+/// [`run_study`] that reads back the runs `kept` holds instead of running
+/// them again, and keeps each run it finishes without error (see
+/// [`crate::resume`]); the reference scene's run is not kept.
+pub fn run_study_resuming(
+    path: &Path,
+    plan: &StudyPlan,
+    kept: Option<&Kept>,
+    progress: impl Fn(&str) + Sync,
+) -> Result<Vec<StudyRow>, String> {
     let reference = match &plan.reference {
         Some(r) => Some(run_reference(r, plan.duration)?),
         None => None,
     };
-    run_study_against(path, plan, reference.as_ref(), progress)
+    run_study_kept(path, plan, (reference.as_ref(), kept), progress)
 }
 
 /// The run of a reference scene, to measure several studies against (see
@@ -235,10 +247,9 @@ pub fn run_study_against(
     run_study_kept(path, plan, (reference, None), progress)
 }
 
-/// [`run_study_against`] that reads back the runs `kept` holds instead of
-/// running them again, and keeps each run it finishes without error (see
-/// [`crate::resume`]).
-pub fn run_study_kept(
+/// [`run_study_against`], reading back and keeping runs in `kept` as
+/// [`run_study_resuming`] does.
+fn run_study_kept(
     path: &Path,
     plan: &StudyPlan,
     (reference, kept): (Option<&ReferenceRun>, Option<&Kept>),
