@@ -22,6 +22,7 @@ use slender_tests::{published, root};
 fn moments_and_ranking_match_the_paper() {
     let path = root().join("examples/truncation_uq.toml");
     let plan = UqPlan {
+        overrides: Vec::new(),
         max_runs: slender_app::DEFAULT_MAX_RUNS,
         samples: Some(416),
         jobs: std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get),

@@ -24,6 +24,7 @@ fn scene(dir: &std::path::Path, samples: usize, change: Option<(&str, &str)>) ->
 
 fn plan(samples: Option<usize>, jobs: usize) -> UqPlan {
     UqPlan {
+        overrides: Vec::new(),
         max_runs: slender_app::DEFAULT_MAX_RUNS,
         samples,
         jobs,
@@ -141,6 +142,36 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     );
 }
 
+/// Issue 28: any `--samples`. Off the doubling ladder (24 from a first design
+/// of 16) the design is a Latin hypercube of its own size, said so in the
+/// report, with no nested sizes to show convergence over; runs of the 16-point
+/// design are not taken for its points.
+#[test]
+fn a_design_off_the_doubling_ladder_is_a_latin_hypercube_of_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene(dir.path(), 16, None);
+    let (_, sixteen) = run_uq(&path, &plan(None, 2), &[], |_, _, _| {}).unwrap();
+    let fresh = Mutex::new(0);
+    let (report, runs) = run_uq(&path, &plan(Some(24), 2), &sixteen, |_, _, _| {
+        *fresh.lock().unwrap() += 1
+    })
+    .unwrap();
+    assert_eq!(runs.len(), 24);
+    assert_eq!(
+        *fresh.lock().unwrap(),
+        24,
+        "a run of another design was reused"
+    );
+    let report = report.unwrap();
+    assert!(report.design.contains("of its own"), "{}", report.design);
+    for o in &report.outputs {
+        assert!(o.mean.is_finite() && o.sd >= 0.0, "{o:?}");
+        assert_eq!(o.convergence.len(), 1);
+        assert_eq!(o.convergence[0].0, 24);
+    }
+    // Its strata (one point each) are checked in the app's unit tests.
+}
+
 #[test]
 fn failed_runs_are_left_out_and_reported_with_their_reason() {
     // A loss probability beyond 1 is refused by the artefact: those points
@@ -197,6 +228,7 @@ fn bad_uncertainty_tables_are_refused_with_the_key() {
         }
     }
     let path = scene(dir.path(), 16, None);
-    let e = run_uq(&path, &plan(Some(24), 1), &[], |_, _, _| {}).unwrap_err();
-    assert!(e.contains("power of two"), "{e}");
+    // Any design size (issue 28), but not one too small to fit.
+    let e = run_uq(&path, &plan(Some(3), 1), &[], |_, _, _| {}).unwrap_err();
+    assert!(e.contains("--samples 3: expected at least 4"), "{e}");
 }

@@ -14,6 +14,12 @@ use std::path::PathBuf;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
+    /// Set a scene key over the file, by its path as `study --vary` takes it
+    /// (repeatable), on every command that reads a scene: `--set
+    /// master.scheme=jacobi --set units.line.parameters.elements=40`; the
+    /// value is TOML (a bare word a string). summary.json lists them.
+    #[arg(long = "set", value_name = "KEY=VALUE", global = true)]
+    pub set: Vec<String>,
 }
 
 #[derive(Subcommand)]
@@ -140,12 +146,6 @@ pub enum Command {
         /// whole number of its steps.
         #[arg(long)]
         duration: Option<f64>,
-        /// Set a scene key over the file, by its path as `study --vary` takes
-        /// it (repeatable): `--set master.scheme=jacobi --set
-        /// units.line.parameters.elements=40`; the value is TOML (a bare word
-        /// a string). summary.json lists them.
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        set: Vec<String>,
     },
     /// Check a scene without running it: parse, build every unit, resolve connections.
     Check { scene: PathBuf },
@@ -295,7 +295,9 @@ pub enum Command {
     /// runs.csv, uq.json and uq.md.
     Uq {
         scene: PathBuf,
-        /// Design size: `uncertainty.samples` times a power of two (default: it).
+        /// Design size (default: `uncertainty.samples`); that times a power of
+        /// two keeps the runs of a smaller study, any other size is a Latin
+        /// hypercube of its own.
         #[arg(long)]
         samples: Option<usize>,
         /// Runs at once (default: the machine's cores); results do not depend on it.

@@ -11,7 +11,7 @@ use std::process::ExitCode;
 fn main() -> ExitCode {
     end_quietly_on_a_closed_pipe();
     slender_app::interrupt::install();
-    match commands::dispatch(cli::Cli::parse().command) {
+    match commands::dispatch(cli::Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {}", e.message);

@@ -479,3 +479,105 @@ fn run_sets_scene_keys_over_the_file() {
         assert!(err.contains(expected), "{set}: {err}");
     }
 }
+
+/// Issue 28: `--set` on the commands that read a scene (check, expand,
+/// bench), refused on one that reads none.
+#[test]
+fn every_scene_command_takes_set() {
+    let b1 = "examples/b1_two_masses.toml";
+    let jacobi = "master.scheme=jacobi";
+    let check = slender(&["check", b1, "--set", jacobi]);
+    assert!(check.status.success(), "{}", text(&check.stderr));
+    assert!(text(&check.stdout).contains("scheme jacobi"));
+    let expand = slender(&["expand", b1, "--set", "simulation.duration=0.25"]);
+    assert!(text(&expand.stdout).contains("duration = 0.25"));
+    let bench = slender(&["bench", b1, "--repeats", "1", "--json", "--set", jacobi]);
+    let figures: serde_json::Value = serde_json::from_slice(&bench.stdout).unwrap();
+    // Jacobi makes one pass per step where the file's iterative scheme iterates.
+    assert_eq!(figures["iterations"].as_u64(), figures["steps"].as_u64());
+    let kinds = slender(&["kinds", "--set", jacobi]);
+    assert_eq!(kinds.status.code(), Some(2));
+    assert!(text(&kinds.stderr).contains("reads no scene"));
+}
+
+/// Issue 28: `--set` on the study commands (their runs, uq's cluster scripts)
+/// and on fmu export, each bad key named.
+#[test]
+fn the_study_commands_take_set() {
+    let b1 = "examples/b1_two_masses.toml";
+    let jacobi = "master.scheme=jacobi";
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("study");
+    let study = slender(&[
+        "study",
+        b1,
+        "--vary",
+        "step=0.01,0.005",
+        "--set",
+        jacobi,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(study.status.success(), "{}", text(&study.stderr));
+    let table = std::fs::read_to_string(out.join("study.csv")).unwrap();
+    let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+    let column = header
+        .iter()
+        .position(|h| h.starts_with("iterations"))
+        .unwrap();
+    for row in table.lines().skip(1) {
+        assert_eq!(row.split(',').nth(column), Some("1"), "{table}");
+    }
+    let uq = dir.path().join("uq");
+    let scripts = slender(&[
+        "uq",
+        "examples/truncation_uq.toml",
+        "--slurm",
+        "2",
+        "--out",
+        uq.to_str().unwrap(),
+        "--set",
+        "simulation.duration=2",
+    ]);
+    assert!(scripts.status.success(), "{}", text(&scripts.stderr));
+    let sbatch = std::fs::read_to_string(uq.join("uq-shards.sbatch")).unwrap();
+    assert!(
+        sbatch.contains("--set \"simulation.duration=2\""),
+        "{sbatch}"
+    );
+    for args in [
+        vec![
+            "fmu",
+            "export",
+            b1,
+            "--unit",
+            "left",
+            "--set",
+            "master.shceme=x",
+        ],
+        vec![
+            "study",
+            b1,
+            "--vary",
+            "step=0.01",
+            "--set",
+            "master.shceme=x",
+        ],
+        vec![
+            "fidelity",
+            b1,
+            "--section",
+            "a=cable",
+            "--set",
+            "master.shceme=x",
+        ],
+    ] {
+        let bad = slender(&args);
+        assert_eq!(bad.status.code(), Some(2), "{args:?}");
+        assert!(
+            text(&bad.stderr).contains("--set master.shceme=x"),
+            "{}",
+            text(&bad.stderr)
+        );
+    }
+}

@@ -33,6 +33,7 @@ fn an_in_run_reference_is_measured_in_every_run_under_its_norm() {
     let path = dir.join("gap.toml");
     std::fs::write(&path, SCENE).unwrap();
     let plan = StudyPlan {
+        overrides: Vec::new(),
         max_runs: slender_app::DEFAULT_MAX_RUNS,
         sweeps: vec![
             "units.model.parameters.sines.0.amplitude=1.0,1.2"

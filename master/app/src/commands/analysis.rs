@@ -1,6 +1,8 @@
 //! `slender modes` and `slender study`.
 
-use super::{CliError, count_in, load, made_folder, positive, report_written, results_folder};
+use super::{
+    CliError, SceneArg, count_in, load, made_folder, positive, report_written, results_folder,
+};
 use slender_app::fidelity::{self, FidelityPlan};
 use slender_app::report::Part;
 use slender_app::study::{self, StudyPlan};
@@ -10,14 +12,15 @@ use std::path::{Path, PathBuf};
 /// Modes of a unit about its initial state: a table on screen, modes.csv and
 /// modes.svg.
 pub fn modes(
-    path: &Path,
+    arg: &SceneArg,
     unit: &str,
     count: usize,
     out: Option<PathBuf>,
     plot: usize,
 ) -> Result<(), CliError> {
     let count = count_in("--count", count, 1, 10_000)?;
-    let scene = load(path)?;
+    let path = &arg.path;
+    let scene = load(arg)?;
     let dir = out.unwrap_or_else(|| scene.default_output_dir());
     let _lock = results_folder(&dir)?;
     let mut master = scene.build().map_err(|e| CliError::input(e.to_string()))?;
@@ -73,12 +76,13 @@ pub fn study(
     (out, fresh): (Option<PathBuf>, bool),
 ) -> Result<(), CliError> {
     count_in("--repeats", plan.repeats, 1, 1000)?;
-    let (dir, _) = study_folder(path, out, "-study", (plan.duration, plan.jobs))?;
+    let scene = SceneArg::new(path.to_owned(), &plan.overrides);
+    let (dir, _) = study_folder(&scene, out, "-study", (plan.duration, plan.jobs))?;
     let _lock = super::lock::lock(&dir)?;
     // What shapes a run besides the scene and its own settings.
     let options = format!(
-        "duration {:?}, repeats {}, cost units {:?}",
-        plan.duration, plan.repeats, plan.cost_units
+        "duration {:?}, repeats {}, cost units {:?}, set {:?}",
+        plan.duration, plan.repeats, plan.cost_units, plan.overrides
     );
     let kept = kept_runs(&dir, path, &options, fresh)?;
     let rows = study::run_study_resuming(path, plan, Some(&kept), |line| println!("{line}"))
@@ -141,7 +145,7 @@ fn runs_failed(failed: usize, runs: usize, marked: &str) -> Result<(), CliError>
 /// not held (the caller holds it, or each shard its own); the scene must load
 /// (returned with it), `--duration` be positive and `--jobs` sensible.
 pub(super) fn study_folder(
-    path: &Path,
+    scene: &SceneArg,
     out: Option<PathBuf>,
     suffix: &str,
     (duration, jobs): (Option<f64>, usize),
@@ -150,7 +154,7 @@ pub(super) fn study_folder(
         positive("--duration", d)?;
     }
     count_in("--jobs", jobs, 1, 1024)?;
-    let scene = load(path)?;
+    let scene = load(scene)?;
     let dir = out.unwrap_or_else(|| {
         let mut d = scene.default_output_dir().into_os_string();
         d.push(suffix);
@@ -170,9 +174,13 @@ pub fn fidelity(
 ) -> Result<(), CliError> {
     positive("--tolerance", plan.tolerance)?;
     count_in("--repeats", plan.repeats, 1, 1000)?;
-    let (dir, _) = study_folder(path, out, "-fidelity", (plan.duration, plan.jobs))?;
+    let scene = SceneArg::new(path.to_owned(), &plan.overrides);
+    let (dir, _) = study_folder(&scene, out, "-fidelity", (plan.duration, plan.jobs))?;
     let _lock = super::lock::lock(&dir)?;
-    let options = format!("duration {:?}, repeats {}", plan.duration, plan.repeats);
+    let options = format!(
+        "duration {:?}, repeats {}, set {:?}",
+        plan.duration, plan.repeats, plan.overrides
+    );
     let kept = kept_runs(&dir, path, &options, fresh)?;
     let report = fidelity::run_fidelity_kept(path, plan, Some(&kept), |line| println!("{line}"))
         .map_err(CliError::input)?;

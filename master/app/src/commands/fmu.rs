@@ -1,6 +1,6 @@
 //! `slender fmu export|wrap|info`.
 
-use super::{CliError, load};
+use super::{CliError, SceneArg, load};
 use crate::cli::FmuAction;
 use slender_fmi::export::{ExportConfig, default_binary};
 use slender_fmi::import::{FmuParams, FmuUnit};
@@ -10,8 +10,8 @@ use slender_scene::ssp::write_ssp;
 use slender_units::Unit;
 use std::path::{Path, PathBuf};
 
-/// Runs one FMU action.
-pub fn fmu(action: FmuAction) -> Result<(), CliError> {
+/// Runs one FMU action (`set`: the scene keys of `--set`).
+pub fn fmu(action: FmuAction, set: &[String]) -> Result<(), CliError> {
     match action {
         FmuAction::Export {
             scene,
@@ -25,10 +25,10 @@ pub fn fmu(action: FmuAction) -> Result<(), CliError> {
             } else {
                 FmiVersion::Two
             };
-            export(&scene, &unit, version, output, binary)
+            export(&SceneArg::new(scene, set), &unit, version, output, binary)
         }
         FmuAction::Wrap { scene, out, binary } => {
-            let scene = load(&scene)?;
+            let scene = load(&SceneArg::new(scene, set))?;
             let binary = library(binary)?;
             let failed = |e: slender_scene::export::ExportError| CliError::input(e.to_string());
             if slender_scene::ssp::is_ssp(&out) {
@@ -63,7 +63,7 @@ fn library(binary: Option<PathBuf>) -> Result<PathBuf, CliError> {
 }
 
 fn export(
-    scene: &Path,
+    scene: &SceneArg,
     unit: &str,
     version: FmiVersion,
     output: Option<PathBuf>,

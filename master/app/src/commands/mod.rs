@@ -9,7 +9,7 @@ mod scene;
 mod span;
 mod uq;
 
-use crate::cli::Command;
+use crate::cli::{Cli, Command};
 use slender_scene::Scene;
 use std::path::{Path, PathBuf};
 
@@ -54,8 +54,9 @@ fn jobs_or_cores(jobs: Option<usize>) -> usize {
     })
 }
 
-/// The study commands: their plans from the arguments.
-fn studies(command: Command) -> Result<(), CliError> {
+/// The study commands: their plans from the arguments (`set`: `--set`).
+fn studies(command: Command, set: &[String]) -> Result<(), CliError> {
+    let overrides = set.to_vec();
     match command {
         Command::Study {
             scene,
@@ -79,6 +80,7 @@ fn studies(command: Command) -> Result<(), CliError> {
                 cost_units,
                 reference,
                 repeats,
+                overrides,
             };
             analysis::study(&scene, &plan, (out, fresh))
         }
@@ -104,6 +106,7 @@ fn studies(command: Command) -> Result<(), CliError> {
                 tolerance,
                 judged: quantities,
                 repeats,
+                overrides,
             };
             analysis::fidelity(&scene, &plan, (out, fresh))
         }
@@ -124,6 +127,7 @@ fn studies(command: Command) -> Result<(), CliError> {
                 jobs: jobs_or_cores(jobs),
                 duration,
                 shard: None,
+                overrides,
             };
             uq::uq(&scene, &plan, out, uq_mode(shard, slurm, merge)?)
         }
@@ -145,32 +149,40 @@ fn uq_mode(
     })
 }
 
-/// Runs one command.
-pub fn dispatch(command: Command) -> Result<(), CliError> {
-    match command {
+/// Runs one command; `--set` on a command that reads no scene is bad input.
+pub fn dispatch(cli: Cli) -> Result<(), CliError> {
+    let set = &cli.set;
+    if !set.is_empty() && !reads_a_scene(&cli.command) {
+        return Err(CliError::input(format!(
+            "--set {}: this command reads no scene",
+            set.join(" --set ")
+        )));
+    }
+    match cli.command {
         Command::Run {
             scene,
             out,
             quiet,
             realtime,
             duration,
-            set,
-        } => scene::run(&scene, out, (quiet, realtime), duration, &set),
-        Command::Check { scene } => scene::check(&scene),
-        Command::Expand { scene } => scene::expand(&scene),
+        } => scene::run(&SceneArg::new(scene, set), out, (quiet, realtime), duration),
+        Command::Check { scene } => scene::check(&SceneArg::new(scene, set)),
+        Command::Expand { scene } => scene::expand(&SceneArg::new(scene, set)),
         Command::Bench {
             scene,
             repeats,
             json,
-        } => scene::bench(&scene, repeats, json),
+        } => scene::bench(&SceneArg::new(scene, set), repeats, json),
         Command::Modes {
             scene,
             unit,
             count,
             out,
             plot,
-        } => analysis::modes(&scene, &unit, count, out, plot),
-        c @ (Command::Study { .. } | Command::Fidelity { .. } | Command::Uq { .. }) => studies(c),
+        } => analysis::modes(&SceneArg::new(scene, set), &unit, count, out, plot),
+        c @ (Command::Study { .. } | Command::Fidelity { .. } | Command::Uq { .. }) => {
+            studies(c, set)
+        }
         Command::Span {
             action,
             flexural_rigidity,
@@ -190,7 +202,7 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
             };
             span::span(&span, action, &out)
         }
-        Command::Fmu { action } => fmu::fmu(action),
+        Command::Fmu { action } => fmu::fmu(action, set),
         Command::Kinds => {
             scene::kinds();
             Ok(())
@@ -198,9 +210,34 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
     }
 }
 
-/// Loads and checks a scene (bad input on failure).
-fn load(path: &Path) -> Result<Scene, CliError> {
-    Scene::load(path).map_err(|e| CliError::input(e.to_string()))
+/// Whether `command` reads a scene (so `--set` applies to it).
+fn reads_a_scene(command: &Command) -> bool {
+    use crate::cli::FmuAction;
+    !matches!(
+        command,
+        Command::Span { .. }
+            | Command::Kinds
+            | Command::Fmu {
+                action: FmuAction::Info { .. }
+            }
+    )
+}
+
+/// A scene file and the keys `--set` sets over it.
+struct SceneArg<'a> {
+    path: PathBuf,
+    set: &'a [String],
+}
+
+impl SceneArg<'_> {
+    fn new(path: PathBuf, set: &[String]) -> SceneArg<'_> {
+        SceneArg { path, set }
+    }
+}
+
+/// Loads and checks a scene with its `--set` keys (bad input on failure).
+fn load(scene: &SceneArg) -> Result<Scene, CliError> {
+    slender_app::study::scene_with_overrides(&scene.path, scene.set).map_err(CliError::input)
 }
 
 /// Makes the results folder `dir` and holds it (one writer at a time,

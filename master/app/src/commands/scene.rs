@@ -1,24 +1,19 @@
 //! `slender run`, `check`, `bench` and `kinds`.
 
-use super::{CliError, count_in, load, results_folder};
+use super::{CliError, SceneArg, count_in, load, results_folder};
 use slender_app::run::{RunOptions, RunResult, benchmark, run_scene};
 use slender_scene::kinds;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Runs a scene and prints its summary; a run that stops early is a failure
 /// (exit 1) with its results up to then on disk.
 pub fn run(
-    path: &Path,
+    scene: &SceneArg,
     out: Option<PathBuf>,
     (quiet, realtime): (bool, bool),
     duration: Option<f64>,
-    overrides: &[String],
 ) -> Result<(), CliError> {
-    let mut scene = load(path)?;
-    if !overrides.is_empty() {
-        scene =
-            slender_app::study::scene_with_overrides(path, overrides).map_err(CliError::input)?;
-    }
+    let mut scene = load(scene)?;
     if let Some(d) = duration {
         super::positive("--duration", d)?;
         scene
@@ -149,16 +144,17 @@ fn print_summary(result: &RunResult) {
 }
 
 /// Prints the scene as it runs (a `[structure]` expanded), after checking it.
-pub fn expand(path: &Path) -> Result<(), CliError> {
-    let scene = load(path)?;
+pub fn expand(scene: &SceneArg) -> Result<(), CliError> {
+    let scene = load(scene)?;
     scene.build().map_err(|e| CliError::input(e.to_string()))?;
     print!("{}", scene.source());
     Ok(())
 }
 
 /// Checks a scene and prints its units, ports, connections and schedule.
-pub fn check(path: &Path) -> Result<(), CliError> {
-    let scene = load(path)?;
+pub fn check(arg: &SceneArg) -> Result<(), CliError> {
+    let path = &arg.path;
+    let scene = load(arg)?;
     let master = scene.build().map_err(|e| CliError::input(e.to_string()))?;
     let signals = scene.signals(&master).len();
     slender_app::run::check_output_size(&scene, signals).map_err(CliError::input)?;
@@ -189,9 +185,10 @@ pub fn check(path: &Path) -> Result<(), CliError> {
 }
 
 /// Measures a scene's cost per simulated second.
-pub fn bench(path: &Path, repeats: usize, json: bool) -> Result<(), CliError> {
+pub fn bench(arg: &SceneArg, repeats: usize, json: bool) -> Result<(), CliError> {
     let repeats = count_in("--repeats", repeats, 1, 1000)?;
-    let scene = load(path)?;
+    let path = &arg.path;
+    let scene = load(arg)?;
     let b = benchmark(&scene, repeats).map_err(CliError::failure)?;
     if json {
         let text =

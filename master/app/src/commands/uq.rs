@@ -2,7 +2,7 @@
 //! the Slurm scripts that run the shards as a job array and merge them.
 
 use super::analysis::study_folder;
-use super::{CliError, report_written};
+use super::{CliError, SceneArg, report_written};
 use slender_app::plot::PlotError;
 use slender_app::uq::{self, Run, UqPlan};
 use std::io::Write;
@@ -23,7 +23,8 @@ pub enum Mode {
 /// against the design size), distribution.svg (Fig. 9's distribution: the runs'
 /// histogram and the expansion's density) and scatter.svg (like its Fig. 8).
 pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Result<(), CliError> {
-    let (dir, scene) = study_folder(path, out, "-uq", (plan.duration, plan.jobs))?;
+    let arg = SceneArg::new(path.to_owned(), &plan.overrides);
+    let (dir, scene) = study_folder(&arg, out, "-uq", (plan.duration, plan.jobs))?;
     let spec =
         scene.spec.uncertainty.clone().ok_or_else(|| {
             CliError::input(format!("{}: no `[uncertainty]` table", path.display()))
@@ -221,18 +222,23 @@ fn slurm_scripts(path: &Path, plan: &UqPlan, dir: &Path, n: usize) -> Result<(),
     if let Some(d) = plan.duration {
         common += &format!(" --duration {d}");
     }
+    for o in &plan.overrides {
+        common += &format!(" --set {}", shell_word(o));
+    }
     let command = format!(
-        "{:?} uq {:?} {common}",
-        exe.display().to_string(),
-        scene.display().to_string()
+        "{} uq {} {common}",
+        shell_word(&exe.display().to_string()),
+        shell_word(&scene.display().to_string())
     );
+    // The merge's command goes inside the single quotes of `--wrap '...'`.
+    let wrapped = command.replace('\'', "'\\''");
     let array = format!(
         "#!/bin/sh\n#SBATCH --job-name=slender-uq\n#SBATCH --array=1-{n}\n#SBATCH --ntasks=1\n#SBATCH --cpus-per-task={jobs}\n#SBATCH --output={o}/shard-%a.log\n{command} --jobs {jobs} --shard \"$SLURM_ARRAY_TASK_ID/{n}\"\n",
         jobs = plan.jobs,
         o = out.display()
     );
     let submit = format!(
-        "#!/bin/sh\n# Submits the {n} shards as a job array, then the merge once all succeed.\nset -e\njob=$(sbatch --parsable {o}/uq-shards.sbatch)\nsbatch --dependency=afterok:\"$job\" --job-name=slender-uq-merge --output={o}/merge.log --wrap '{command} --jobs {jobs} --merge'\n",
+        "#!/bin/sh\n# Submits the {n} shards as a job array, then the merge once all succeed.\nset -e\njob=$(sbatch --parsable {o}/uq-shards.sbatch)\nsbatch --dependency=afterok:\"$job\" --job-name=slender-uq-merge --output={o}/merge.log --wrap '{wrapped} --jobs {jobs} --merge'\n",
         o = out.display(),
         jobs = plan.jobs
     );
@@ -249,4 +255,18 @@ fn slurm_scripts(path: &Path, plan: &UqPlan, dir: &Path, n: usize) -> Result<(),
     report_written(&files);
     println!("submit with: sh {}", out.join("submit.sh").display());
     Ok(())
+}
+
+/// `text` as one word of a POSIX shell command: in double quotes, with the
+/// characters the shell reads there (`"`, `\`, `$`, `` ` ``) escaped.
+fn shell_word(text: &str) -> String {
+    let mut word = String::from('"');
+    for c in text.chars() {
+        if matches!(c, '"' | '\\' | '$' | '`') {
+            word.push('\\');
+        }
+        word.push(c);
+    }
+    word.push('"');
+    word
 }

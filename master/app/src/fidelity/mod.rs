@@ -44,6 +44,8 @@ pub struct FidelityPlan {
     pub max_runs: usize,
     /// Times each run is timed (`--repeats`): its cost is their median.
     pub repeats: usize,
+    /// Scene keys set over the file first (`KEY=VALUE`, `--set`).
+    pub overrides: Vec<String>,
 }
 
 /// One run: a combination (or the reference) and what it measured.
@@ -135,7 +137,7 @@ pub fn run_fidelity_kept(
     kept: Option<&crate::resume::Kept>,
     progress: impl Fn(&str) + Sync,
 ) -> Result<FidelityReport, String> {
-    let mut table = crate::study::scene_table(path)?;
+    let mut table = crate::study::scene_table(path, &plan.overrides)?;
     // The scene must load as written.
     crate::study::scene_with(path, &table, plan.duration)?;
     let structure = structure_of(&table)?;

@@ -5,6 +5,7 @@ use super::*;
 /// A one-section-at-a-time plan of `sections` (`NAME=CHOICE,...`).
 fn one_at_a_time(sections: &[&str]) -> FidelityPlan {
     FidelityPlan {
+        overrides: Vec::new(),
         max_runs: crate::DEFAULT_MAX_RUNS,
         repeats: 1,
         sections: sections.iter().map(|s| s.parse().unwrap()).collect(),

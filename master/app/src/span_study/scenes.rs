@@ -115,6 +115,7 @@ pub(crate) fn engine_rows(
     reference: &ReferenceRun,
 ) -> Result<Vec<StudyRow>, StudyError> {
     let plan = study::StudyPlan {
+        overrides: Vec::new(),
         max_runs: crate::DEFAULT_MAX_RUNS,
         sweeps,
         design,

@@ -126,6 +126,9 @@ pub struct StudyPlan {
     pub max_runs: usize,
     /// Times each run is timed (`--repeats`): its cost is their median.
     pub repeats: usize,
+    /// Scene keys set over the file before the study's own settings
+    /// (`KEY=VALUE`, `--set`); not applied to `reference`, another scene.
+    pub overrides: Vec<String>,
 }
 
 /// One run of a study.
@@ -218,7 +221,7 @@ pub struct ReferenceRun {
 /// Runs the reference scene at `path` (for `duration` when given); `Err` when it
 /// does not load or its run fails.
 pub fn run_reference(path: &Path, duration: Option<f64>) -> Result<ReferenceRun, String> {
-    let scene = scene_with(path, &scene_table(path)?, duration)?;
+    let scene = scene_with(path, &scene_table(path, &[])?, duration)?;
     let outcome = outcome_of(&scene, &[]);
     if let Some(e) = &outcome.error {
         return Err(format!("reference {}: {e}", path.display()));
@@ -255,26 +258,11 @@ fn run_study_kept(
     (reference, kept): (Option<&ReferenceRun>, Option<&Kept>),
     progress: impl Fn(&str) + Sync,
 ) -> Result<Vec<StudyRow>, String> {
-    let base = Scene::load(path).map_err(|e| e.to_string())?;
-    if base.spec.output.indicators.is_empty() {
-        return Err(format!(
-            "{}: a study compares the signals of [[output.indicators]]; the scene has none",
-            path.display()
-        ));
-    }
-    // The scene as written (a `[structure]` still a structure, so its keys vary).
-    let table = scene_table(path)?;
-    let judged: Vec<Judged> = base
-        .spec
-        .output
-        .indicators
-        .iter()
-        .map(|i| Judged {
-            name: i.name.clone(),
-            norm: i.norm,
-            in_run: !i.reference.is_empty(),
-        })
-        .collect();
+    // The scene as written (a `[structure]` still a structure, so its keys
+    // vary), with the user's `--set` over it.
+    let table = scene_table(path, &plan.overrides)?;
+    let base = scene_with_overrides(path, &plan.overrides)?;
+    let judged = judged_of(path, &base)?;
     check::check_plan(path, &base, &table, plan, reference.is_some())?;
     if let Some(r) = reference {
         if let Some(j) = judged
@@ -330,23 +318,48 @@ fn run_study_kept(
     Ok(rows)
 }
 
-/// The scene file at `path` as written (a `[structure]` still a structure), as
-/// the TOML table the studies vary.
-pub(crate) fn scene_table(path: &Path) -> Result<toml::Table, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+/// What a study judges: the scene's indicators (`Err` when it has none).
+fn judged_of(path: &Path, scene: &Scene) -> Result<Vec<Judged>, String> {
+    let indicators = &scene.spec.output.indicators;
+    if indicators.is_empty() {
+        return Err(format!(
+            "{}: a study compares the signals of [[output.indicators]]; the scene has none",
+            path.display()
+        ));
+    }
+    Ok(indicators
+        .iter()
+        .map(|i| Judged {
+            name: i.name.clone(),
+            norm: i.norm,
+            in_run: !i.reference.is_empty(),
+        })
+        .collect())
 }
 
-/// The scene at `path` with `overrides` (`KEY=VALUE`, `slender run --set`)
-/// set over the file; each error names the override.
-pub fn scene_with_overrides(path: &Path, overrides: &[String]) -> Result<Scene, String> {
-    let mut table = scene_table(path)?;
+/// The scene file at `path` as written (a `[structure]` still a structure), as
+/// the TOML table the studies vary, with `overrides` (`KEY=VALUE`, `--set`)
+/// set over it; each error names the override.
+pub(crate) fn scene_table(path: &Path, overrides: &[String]) -> Result<toml::Table, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut table: toml::Table =
+        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     for text in overrides {
-        let (setting, value) = setting::parse_override(text)?;
+        let (setting, value) = setting::parse_override(text).map_err(|e| format!("--set {e}"))?;
         setting
             .apply(&mut table, &value)
             .map_err(|e| format!("--set {text}: {e}"))?;
     }
+    Ok(table)
+}
+
+/// The scene at `path` with `overrides` (`KEY=VALUE`, `--set`) set over the
+/// file; each error names the override.
+pub fn scene_with_overrides(path: &Path, overrides: &[String]) -> Result<Scene, String> {
+    if overrides.is_empty() {
+        return Scene::load(path).map_err(|e| e.to_string());
+    }
+    let table = scene_table(path, overrides)?;
     let mut scene = scene_with(path, &table, None)
         .map_err(|e| format!("--set {}: {e}", overrides.join(" --set ")))?;
     scene.overrides = overrides.to_vec();

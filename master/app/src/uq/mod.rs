@@ -25,7 +25,8 @@ use std::sync::Mutex;
 /// What a study runs.
 #[derive(Clone, Debug)]
 pub struct UqPlan {
-    /// Design size: the scene's `samples` times a power of two (default: it).
+    /// Design size (default: the scene's `samples`); the scene's `samples`
+    /// times a power of two keeps a smaller study's runs.
     pub samples: Option<usize>,
     pub jobs: usize,
     /// Simulated time of each run (s); the scene's when `None`.
@@ -35,6 +36,8 @@ pub struct UqPlan {
     pub shard: Option<(usize, usize)>,
     /// The most runs the design may have (`--max-runs`).
     pub max_runs: usize,
+    /// Scene keys set over the file first (`KEY=VALUE`, `--set`).
+    pub overrides: Vec<String>,
 }
 
 /// One output's expansion.
@@ -83,7 +86,7 @@ pub fn run_uq(
     earlier: &[Run],
     done: impl Fn(usize, &Run, &str) + Sync,
 ) -> Result<(Option<UqReport>, Vec<Run>), String> {
-    let table = crate::study::scene_table(path)?;
+    let table = crate::study::scene_table(path, &plan.overrides)?;
     let scene = crate::study::scene_with(path, &table, plan.duration)?;
     let spec = scene
         .spec
@@ -177,25 +180,40 @@ fn shard_rows(order: &[usize], runs: Vec<Run>) -> Vec<Run> {
     all
 }
 
-/// The design of `samples` points: the first design doubled as often as it
-/// takes (a Latin hypercube splits its strata; a Sobol' sequence goes on).
-fn design_of(spec: &UncertaintySpec, samples: usize) -> Result<Vec<Vec<f64>>, String> {
-    let mut n = spec.samples;
+/// How many times the scene's first design (`uncertainty.samples` points)
+/// doubles to `samples` points; `None` when no whole number of doublings does.
+fn doublings(spec: &UncertaintySpec, samples: usize) -> Option<usize> {
+    let mut n = spec.samples.max(1);
     let mut doublings = 0;
     while n < samples {
-        n *= 2;
+        n = n.saturating_mul(2);
         doublings += 1;
     }
-    if n != samples {
-        return Err(format!(
-            "--samples {samples}: expected `uncertainty.samples` = {} times a power of two (the design doubles, keeping its runs)",
-            spec.samples
-        ));
+    (n == samples).then_some(doublings)
+}
+
+/// Whether the design of `samples` points nests the smaller designs (its first
+/// `uncertainty.samples` points, twice as many, ... are designs themselves):
+/// every Sobol' design, and a Latin hypercube the scene's first one doubles to.
+fn nests(spec: &UncertaintySpec, samples: usize) -> bool {
+    spec.design == DesignKind::Sobol || doublings(spec, samples).is_some()
+}
+
+/// The design of `samples` points (at least 4): the first design doubled as
+/// often as it takes (a Latin hypercube splits its strata; a Sobol' sequence
+/// goes on); any other size of Latin hypercube is one of its own, which keeps
+/// no earlier design's runs.
+fn design_of(spec: &UncertaintySpec, samples: usize) -> Result<Vec<Vec<f64>>, String> {
+    if samples < 4 {
+        return Err(format!("--samples {samples}: expected at least 4 runs"));
     }
     let dims = spec.inputs.len();
     if spec.design == DesignKind::Sobol {
-        return sobol(samples, dims, spec.seed).map_err(|e| e.to_string());
+        return sobol(samples, dims, spec.seed).map_err(|e| format!("--samples {samples}: {e}"));
     }
+    let Some(doublings) = doublings(spec, samples) else {
+        return latin_hypercube(samples, dims, 20, spec.seed).map_err(|e| e.to_string());
+    };
     let mut design =
         latin_hypercube(spec.samples, dims, 20, spec.seed).map_err(|e| e.to_string())?;
     for k in 0..doublings {
@@ -288,6 +306,9 @@ fn convergence(
     k: usize,
 ) -> Result<Vec<(usize, f64, f64)>, String> {
     let mut out = Vec::new();
+    if !nests(spec, runs.len()) {
+        return Ok(out);
+    }
     let mut size = spec.samples;
     while size < runs.len() {
         let ok: Vec<&Run> = runs[..size]
@@ -346,9 +367,14 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
     Ok(UqReport {
         scene: path.display().to_string(),
         samples: runs.len(),
-        design: match spec.design {
-            DesignKind::Lhs => "maximin Latin hypercube".into(),
-            DesignKind::Sobol => "Owen-scrambled Sobol' sequence".into(),
+        design: match (spec.design, nests(spec, runs.len())) {
+            (DesignKind::Lhs, true) => "maximin Latin hypercube".into(),
+            (DesignKind::Lhs, false) => format!(
+                "maximin Latin hypercube of its own ({} is not uncertainty.samples = {} times a power of two, so it nests no smaller design)",
+                runs.len(),
+                spec.samples
+            ),
+            (DesignKind::Sobol, _) => "Owen-scrambled Sobol' sequence".into(),
         },
         inputs: spec.inputs.iter().map(|i| i.name.clone()).collect(),
         failed_runs: runs.len() - ok.len(),
@@ -375,15 +401,23 @@ inputs = [
     }
 
     #[test]
-    fn both_designs_grow_keeping_their_points_and_refuse_other_sizes() {
+    fn both_designs_grow_keeping_their_points_and_take_any_size() {
         for kind in ["lhs", "sobol"] {
             let s = spec(kind);
             let small = design_of(&s, 8).unwrap();
             let large = design_of(&s, 32).unwrap();
             assert_eq!(&large[..8], &small[..], "{kind}");
             slender_uq::design::check_lhs(&large).unwrap();
-            assert!(design_of(&s, 24).unwrap_err().contains("power of two"));
+            assert!(design_of(&s, 3).unwrap_err().contains("at least 4"));
         }
+        // Off the doubling ladder: a Latin hypercube of its own size (every
+        // stratum once), or the Sobol' sequence's first points.
+        let lhs = design_of(&spec("lhs"), 24).unwrap();
+        assert_eq!(lhs.len(), 24);
+        slender_uq::design::check_lhs(&lhs).unwrap();
+        assert!(!nests(&spec("lhs"), 24) && nests(&spec("lhs"), 64));
+        let sobol = design_of(&spec("sobol"), 24).unwrap();
+        assert_eq!(&sobol[..8], &design_of(&spec("sobol"), 8).unwrap()[..]);
         assert_ne!(design_of(&spec("lhs"), 8), design_of(&spec("sobol"), 8));
         let bad = toml::from_str::<UncertaintySpec>(
             "samples = 8\ndesign = \"halton\"\noutputs = []\ninputs = []",
