@@ -201,6 +201,7 @@ pub fn order(error_h: f64, error_half: f64) -> f64 {
 /// hold it is given), echoes the input it saw on `u_seen` (direct feedthrough), and
 /// misbehaves on cue.
 pub mod elf;
+pub mod exact;
 pub mod samples;
 pub mod slay;
 

@@ -127,29 +127,12 @@ fn the_scene_s_exact_indicator_is_its_error_against_the_analytic_solution() {
     // The scene carries the analytic solution as signals; its `exact`
     // indicator must be what the formula gives from the recorded motion.
     let s = slender_tests::run(&load(SCENE));
-    let exact: Vec<(f64, f64)> = s.time.iter().map(|&t| b1_exact(t)).collect();
-    let (e1, e2): (Vec<f64>, Vec<f64>) = exact.into_iter().unzip();
-    for (signal, formula) in [("exact_left.value", &e1), ("exact_right.value", &e2)] {
-        let worst = s
-            .get(signal)
-            .iter()
-            .zip(formula)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        assert!(worst < 1e-12, "{signal}: {worst:e} from the formula");
-    }
-    let x = [s.get("left.displacement"), s.get("right.displacement")];
-    let by_hand = slender_app::indicators::normalized_error(&s.time, &x, &[&e1, &e2]).sqrt();
-    let reported = s
-        .indicators
-        .iter()
-        .find(|i| i.name == "exact")
-        .expect("the scene's exact indicator")
-        .relative_error;
-    eprintln!("B1 against its analytic solution: epsilon {reported:.4e}");
-    assert!(
-        (reported - by_hand).abs() <= 1e-9 * by_hand,
-        "{reported} vs {by_hand}"
+    let reported = slender_tests::exact::check_exact_indicator(
+        &s,
+        ["left.displacement", "right.displacement"],
+        ["exact_left.value", "exact_right.value"],
+        |t| b1_exact(t).into(),
     );
+    eprintln!("B1 against its analytic solution: epsilon {reported:.4e}");
     assert!(reported > 0.0 && reported < 0.05, "{reported}");
 }

@@ -83,3 +83,39 @@ fn the_monolithic_reference_conserves_energy() {
     let last = *states.last().unwrap();
     assert!(((c.energy(last) - e0) / e0).abs() < 1e-12);
 }
+
+/// The scene's `exact` indicator (issue 28) is its error against the modal
+/// solution, derived here from the chain's matrices (not the scene's numbers);
+/// with the coupling iterated to convergence it falls as h^2 (Newmark's order).
+#[test]
+fn the_scene_s_exact_indicator_is_its_error_against_the_analytic_solution() {
+    let pair = (
+        ["soft.displacement", "stiff.displacement"],
+        ["exact_soft.value", "exact_stiff.value"],
+    );
+    let epsilon = |s: &slender_tests::Series| {
+        slender_tests::exact::check_exact_indicator(s, pair.0, pair.1, |t| chain().exact(t))
+    };
+    let scene_as_written = epsilon(&slender_tests::run(&load(SCENE)));
+    eprintln!(
+        "B2 (Gauss-Seidel, 1 ms) against its analytic solution: epsilon {scene_as_written:.4e}"
+    );
+    assert!(
+        scene_as_written > 0.0 && scene_as_written < 0.1,
+        "{scene_as_written}"
+    );
+    let converged = |h: f64| {
+        let mut scene = load(SCENE);
+        scene.spec.master.tolerances.displacement = 1e-13;
+        epsilon(&run_with(
+            &mut scene,
+            Scheme::IterativeGaussSeidel,
+            Acceleration::None,
+            h,
+        ))
+    };
+    let (coarse, fine) = (converged(2e-3), converged(1e-3));
+    let order = slender_tests::order(coarse, fine);
+    eprintln!("B2 iterated: epsilon {coarse:.3e} at 2 ms, {fine:.3e} at 1 ms, order {order:.2}");
+    assert!((1.8..2.2).contains(&order), "{order}");
+}

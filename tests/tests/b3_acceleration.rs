@@ -146,3 +146,31 @@ fn acceleration_cuts_the_iterations_needed_for_a_tolerance() {
         }
     }
 }
+
+/// The scene's `exact` indicator (issue 28) is its error against the damped
+/// modal solution, derived here from the chain's matrices; at the scene's 10 ms
+/// the (1, -1) mode (245 rad/s, w h = 2.45) is poorly resolved, and with the
+/// step the error falls as h^2 (Newmark's order).
+#[test]
+fn the_scene_s_exact_indicator_is_its_error_against_the_analytic_solution() {
+    let pair = (
+        ["a.displacement", "b.displacement"],
+        ["exact_a.value", "exact_b.value"],
+    );
+    let epsilon = |s: &slender_tests::Series| {
+        slender_tests::exact::check_exact_indicator(s, pair.0, pair.1, |t| b3_chain().exact(t))
+    };
+    let scene_as_written = epsilon(&slender_tests::run(&load(SCENE)));
+    eprintln!("B3 (10 ms) against its analytic solution: epsilon {scene_as_written:.4e}");
+    assert!(scene_as_written > 0.1, "{scene_as_written}");
+    let at = |h: f64| {
+        let mut scene = load(SCENE);
+        scene.set_step(h).unwrap();
+        epsilon(&slender_tests::run(&scene))
+    };
+    let (coarse, fine) = (at(1e-3), at(5e-4));
+    let order = slender_tests::order(coarse, fine);
+    eprintln!("B3: epsilon {coarse:.3e} at 1 ms, {fine:.3e} at 0.5 ms, order {order:.2}");
+    assert!((1.8..2.2).contains(&order), "{order}");
+    assert!(fine < 1e-2, "{fine}");
+}

@@ -156,6 +156,7 @@ impl TimeFunction {
                     amplitude: e.amplitude,
                     angular_frequency: e.angular_frequency,
                     phase: e.phase,
+                    decay: 0.0,
                 };
                 let ex = e.decay_amplitude * (-e.decay_rate * t).exp();
                 let [r, dr, ddr] = smoothstep(t, e.fade_in);
@@ -208,10 +209,11 @@ impl TimeFunction {
                 .chain(
                     e.sines
                         .iter()
-                        .flat_map(|s| [s.amplitude, s.angular_frequency, s.phase]),
+                        .flat_map(|s| [s.amplitude, s.angular_frequency, s.phase, s.decay]),
                 )
                 .all(f64::is_finite)
                     && e.fade_in >= 0.0
+                    && e.sines.iter().all(|s| s.decay >= 0.0)
             }
         };
         if ok {
@@ -220,7 +222,7 @@ impl TimeFunction {
             Err(UnitError::parameter(
                 key,
                 format!("{self:?}"),
-                "expected finite values and fade_in >= 0 (s)",
+                "expected finite values, fade_in >= 0 (s) and each sine's decay >= 0 (1/s)",
             ))
         }
     }

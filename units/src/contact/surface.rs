@@ -331,10 +331,8 @@ impl Surface {
 }
 
 fn finite_sines(key: &str, sines: &[Sine]) -> Result<(), UnitError> {
-    for s in sines {
-        require_finite(key, s.amplitude)?;
-        require_finite(key, s.angular_frequency)?;
-        require_finite(key, s.phase)?;
+    for (i, s) in sines.iter().enumerate() {
+        s.check(&format!("{key}.{i}"))?;
     }
     Ok(())
 }

@@ -68,6 +68,7 @@ impl Rao {
                     amplitude: w.amplitude * amplitude,
                     angular_frequency: w.angular_frequency,
                     phase: w.phase + phase,
+                    decay: w.decay,
                 }
             })
             .collect()

@@ -159,6 +159,7 @@ impl Spectrum {
                     amplitude: (2.0 * self.density(omega) * dw).sqrt(),
                     angular_frequency: omega,
                     phase: rng.random_range(0.0..2.0 * PI),
+                    decay: 0.0,
                 }
             })
             .collect()

@@ -1,9 +1,12 @@
-//! One sine `amplitude sin(angular_frequency t + phase)`: the wave component a
-//! signal, an end motion and a sea state are sums of.
+//! One sine `amplitude exp(-decay t) sin(angular_frequency t + phase)`: the
+//! wave component a signal, an end motion and a sea state are sums of (with a
+//! decay, a damped free vibration, as the analytic solutions of the benchmark
+//! scenes have them).
 
+use crate::contract::{UnitError, require_finite, require_non_negative};
 use serde::Deserialize;
 
-/// One sine `amplitude sin(angular_frequency t + phase)`.
+/// One sine `amplitude exp(-decay t) sin(angular_frequency t + phase)`.
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Sine {
@@ -13,6 +16,8 @@ pub struct Sine {
     pub angular_frequency: f64,
     /// rad
     pub phase: f64,
+    /// 1/s: the amplitude falls as exp(-decay t); 0 (default) a steady sine.
+    pub decay: f64,
 }
 
 impl Sine {
@@ -20,6 +25,52 @@ impl Sine {
     pub fn eval(&self, t: f64) -> [f64; 3] {
         let (w, a) = (self.angular_frequency, self.amplitude);
         let arg = w * t + self.phase;
-        [a * arg.sin(), a * w * arg.cos(), -a * w * w * arg.sin()]
+        if self.decay == 0.0 {
+            return [a * arg.sin(), a * w * arg.cos(), -a * w * w * arg.sin()];
+        }
+        let d = self.decay;
+        let (sin, cos) = arg.sin_cos();
+        let e = a * (-d * t).exp();
+        [
+            e * sin,
+            e * (w * cos - d * sin),
+            e * ((d * d - w * w) * sin - 2.0 * d * w * cos),
+        ]
+    }
+
+    /// Refuses a field that is not finite or a negative decay (which would
+    /// grow without bound), naming the field under `key`.
+    pub fn check(&self, key: &str) -> Result<(), UnitError> {
+        require_finite(&format!("{key}.amplitude"), self.amplitude)?;
+        require_finite(&format!("{key}.angular_frequency"), self.angular_frequency)?;
+        require_finite(&format!("{key}.phase"), self.phase)?;
+        require_non_negative(&format!("{key}.decay"), self.decay)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_decaying_sine_s_rates_are_its_derivatives() {
+        let s = Sine {
+            amplitude: 0.3,
+            angular_frequency: 7.0,
+            phase: 0.4,
+            decay: 1.5,
+        };
+        let h = 1e-6;
+        for t in [0.0, 0.3, 1.1] {
+            let [v, dv, ddv] = s.eval(t);
+            let (before, after) = (s.eval(t - h), s.eval(t + h));
+            assert!((dv - (after[0] - before[0]) / (2.0 * h)).abs() < 1e-7 * 7.0);
+            assert!((ddv - (after[1] - before[1]) / (2.0 * h)).abs() < 1e-6 * 49.0);
+            let expected = 0.3 * (-1.5 * t).exp() * (7.0 * t + 0.4).sin();
+            assert!((v - expected).abs() < 1e-15);
+        }
+        let bad = Sine { decay: -1.0, ..s };
+        let e = bad.check("sines.2").unwrap_err().to_string();
+        assert!(e.contains("sines.2.decay"), "{e}");
     }
 }

@@ -106,9 +106,8 @@ impl SignalParams {
     fn validate(&self) -> Result<(), UnitError> {
         require_finite("offset", self.offset)?;
         for (i, s) in self.sines.iter().enumerate() {
-            require_finite(&format!("sines.{i}.amplitude"), s.amplitude)?;
+            s.check(&format!("sines.{i}"))?;
             require_non_negative(&format!("sines.{i}.angular_frequency"), s.angular_frequency)?;
-            require_finite(&format!("sines.{i}.phase"), s.phase)?;
         }
         if let Some(fade) = &self.fade_in {
             require_positive("fade_in.time", fade.time)?;
@@ -125,11 +124,7 @@ impl SignalParams {
 
     /// The signal at time t (s).
     pub fn value(&self, t: f64) -> f64 {
-        let sines: f64 = self
-            .sines
-            .iter()
-            .map(|s| s.amplitude * (s.angular_frequency * t + s.phase).sin())
-            .sum();
+        let sines: f64 = self.sines.iter().map(|s| s.eval(t)[0]).sum();
         let fade = self.fade_in.as_ref().map_or(1.0, |f| f.factor(t));
         let steps: f64 = self
             .steps
@@ -173,6 +168,7 @@ mod tests {
                 amplitude: 2.0,
                 angular_frequency: 3.0,
                 phase: 0.25,
+                decay: 0.0,
             }],
             fade_in,
             steps: vec![Step {
