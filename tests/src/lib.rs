@@ -512,7 +512,7 @@ ends.end = {{ kind = "pinned" }}
         format!(
             r#"
 formulation = "seed002"
-segments = [{{ length = 10.0, angle = 90.0, elements = 20, {s} }}, {{ length = 10.0, elements = 20, {s} }}]
+segments = [{{ length = 10.0, angle_deg = 90.0, elements = 20, {s} }}, {{ length = 10.0, elements = 20, {s} }}]
 ends.start = {{ kind = "pinned" }}
 ends.end = {{ kind = "pinned" }}
 supports = [{{ at = 10.0, x = true }}]
@@ -571,7 +571,7 @@ static_start = true
 {parameters}
 start_shape = "catenary"
 start = [0.0, -300.0]
-segments = [{{ length = 500.0, angle = 37.0, elements = 50, axial_stiffness = 4.0631e9, bending_stiffness = 4.6937e7, mass_per_length = 154.08, submerged_weight = 683.05, diameter = 0.3239, drag_normal = {drag:?}, added_mass_normal = 1.0 }}]
+segments = [{{ length = 500.0, angle_deg = 37.0, elements = 50, axial_stiffness = 4.0631e9, bending_stiffness = 4.6937e7, mass_per_length = 154.08, submerged_weight = 683.05, diameter = 0.3239, drag_normal = {drag:?}, added_mass_normal = 1.0 }}]
 ends.start = {{ kind = "pinned" }}
 ends.end = {{ kind = "pinned", x = {{ displacement = -50.0 }}, z = {{ displacement = {heave} }} }}
 integrator = {{ kind = "hht", alpha = 0.1 }}

@@ -33,7 +33,7 @@ pub fn inline(kind: &str, parameters: &str) -> ExportConfig {
 /// A hanging line with every effect on: weight, drag in a current, added mass,
 /// Rayleigh damping, contact, a coupled velocity and a coupled force.
 pub const NONLINEAR_SAMPLE: &str = r#"
-segments = [{ length = 10.0, angle = -60.0, elements = 8, axial_stiffness = 1e7, bending_stiffness = 1e3, mass_per_length = 10.0, submerged_weight = 50.0, diameter = 0.1, drag_normal = 1.0, drag_tangential = 0.1, added_mass_normal = 1.0 }]
+segments = [{ length = 10.0, angle_deg = -60.0, elements = 8, axial_stiffness = 1e7, bending_stiffness = 1e3, mass_per_length = 10.0, submerged_weight = 50.0, diameter = 0.1, drag_normal = 1.0, drag_tangential = 0.1, added_mass_normal = 1.0 }]
 ends.start = { kind = "pinned", x = "velocity" }
 ends.end = { z = { force = "input" } }
 current = { z = [-20.0, 0.0], velocity = [0.0, 0.5] }

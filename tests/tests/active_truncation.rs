@@ -313,8 +313,8 @@ fn bad_line_data_gets_a_clear_error() {
     assert!(e.contains("elements"), "{e}");
     // A top force pulling down cannot hold the line up off the seabed.
     let e = cable_error(&[(
-        "static_angle_from_vertical = 50.0",
-        "static_angle_from_vertical = 170.0",
+        "static_angle_from_vertical_deg = 50.0",
+        "static_angle_from_vertical_deg = 170.0",
     )]);
     eprintln!("{e}");
     assert!(

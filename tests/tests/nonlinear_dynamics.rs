@@ -102,7 +102,7 @@ fn seed000_table3_eigenperiods_about_the_static_state_within_half_a_percent() {
         r#"
 static_start = true
 water_density = {rho}
-segments = [{{ length = {}, angle = 90.0, elements = 200, axial_stiffness = {}, bending_stiffness = 1e4, mass_per_length = {}, diameter = {d}, added_mass_normal = {} }}]
+segments = [{{ length = {}, angle_deg = 90.0, elements = 200, axial_stiffness = {}, bending_stiffness = 1e4, mass_per_length = {}, diameter = {d}, added_mass_normal = {} }}]
 ends.start = {{ kind = "pinned" }}
 ends.end = {{ z = {{ force = {} }} }}
 "#,

@@ -193,7 +193,7 @@ fn a_hanging_line_matches_irvines_elastic_catenary_within_1e_4() {
         r#"
 static_start = true
 start_shape = "catenary"
-segments = [{{ length = {length}, angle = {angle}, elements = 100, axial_stiffness = {ea}, bending_stiffness = 1.0, mass_per_length = 100.0, submerged_weight = {w} }}]
+segments = [{{ length = {length}, angle_deg = {angle}, elements = 100, axial_stiffness = {ea}, bending_stiffness = 1.0, mass_per_length = 100.0, submerged_weight = {w} }}]
 ends.start = {{ kind = "pinned" }}
 ends.end = {{ kind = "pinned", x = {{ displacement = {ex} }}, z = {{ displacement = {ez} }} }}
 "#
@@ -246,7 +246,7 @@ fn the_polyester_line_matches_the_cable_unit_at_the_top_and_the_truncation_point
     let text = format!(
         r#"
 static_start = true
-segments = [{{ length = {length}, angle = 39.4, elements = 80, axial_stiffness = {ea}, bending_stiffness = 1.0e2, mass_per_length = {m}, submerged_weight = {w}, diameter = {d}, drag_normal = {cd}, added_mass_normal = 1.0 }}]
+segments = [{{ length = {length}, angle_deg = 39.4, elements = 80, axial_stiffness = {ea}, bending_stiffness = 1.0e2, mass_per_length = {m}, submerged_weight = {w}, diameter = {d}, drag_normal = {cd}, added_mass_normal = 1.0 }}]
 ends.start = {{ kind = "pinned" }}
 ends.end = {{ x = {{ force = {fx} }}, z = {{ force = {fz} }} }}
 current = {{ z = [0.0, 1200.0], velocity = [0.0, 0.5] }}
@@ -311,7 +311,7 @@ fn the_internal_force_at_a_node_is_the_weight_hanging_below_it() {
         r#"
 static_start = true
 start = [0.0, 0.0]
-segments = [{ length = 30.0, angle = -90.0, elements = 30, axial_stiffness = 1e10, bending_stiffness = 1e3, mass_per_length = 50.0, submerged_weight = 300.0 }]
+segments = [{ length = 30.0, angle_deg = -90.0, elements = 30, axial_stiffness = 1e10, bending_stiffness = 1e3, mass_per_length = 50.0, submerged_weight = 300.0 }]
 ends.start = { kind = "pinned" }
 stations = [10.0, 20.0, 10.5]
 "#,

@@ -39,7 +39,7 @@ fn scene(angle: f64, cuts: &[f64], extra: &str) -> String {
 name = "pipe"
 reference = true
 [structure.model]
-segments = [{{ length = 30.0, angle = {angle}, elements = 30, axial_stiffness = 1e8, bending_stiffness = 1e5, mass_per_length = 50.0, submerged_weight = 300.0 }}]
+segments = [{{ length = 30.0, angle_deg = {angle}, elements = 30, axial_stiffness = 1e8, bending_stiffness = 1e5, mass_per_length = 50.0, submerged_weight = 300.0 }}]
 ends.start = {{ kind = "pinned", x = {{ displacement = {{ amplitude = 0.5, angular_frequency = 1.5 }} }} }}
 # Newton's own tolerance sets a floor under the reactions (accelerations from
 # the iterate over beta h^2): tight, so the comparison sees the coupling.
@@ -181,8 +181,8 @@ fn changing_one_section_changes_only_its_unit() {
 #[test]
 fn a_sections_element_count_keeps_a_graded_mesh_graded() {
     let graded = scene(-90.0, &[], "elements = 10").replace(
-        "segments = [{ length = 30.0, angle = -90, elements = 30,",
-        "segments = [{ length = 10.0, angle = -90, elements = 20, axial_stiffness = 1e8, bending_stiffness = 1e5, mass_per_length = 50.0, submerged_weight = 300.0 }, { length = 20.0, angle = -90, elements = 10,",
+        "segments = [{ length = 30.0, angle_deg = -90, elements = 30,",
+        "segments = [{ length = 10.0, angle_deg = -90, elements = 20, axial_stiffness = 1e8, bending_stiffness = 1e5, mass_per_length = 50.0, submerged_weight = 300.0 }, { length = 20.0, angle_deg = -90, elements = 10,",
     );
     assert!(graded.contains("elements = 20"), "the model is graded");
     let scene = parse(&graded).expect("scene");

@@ -151,7 +151,7 @@ fn errors_in_a_structure_name_the_users_line() {
     // out: the model's line, not a line of the expanded text.
     let text = riser(100, 0.1)
         .replace("static_start = true\n", "")
-        .replace("hang_off = { angle = 12.0 }\n", "")
+        .replace("hang_off = { angle_deg = 12.0 }\n", "")
         .replace(
             "integrator = {",
             "rayleigh_stiffness = -1.0\nintegrator = {",
@@ -173,7 +173,7 @@ fn a_structure_refuses_unknown_keys_and_an_unreachable_hang_off() {
         e.contains("`structure.hangoff`: unknown key") && e.contains("hang_off"),
         "{e}"
     );
-    let e = parse(&text.replace("angle = 12.0 }", "angle = 95.0 }")).unwrap_err();
+    let e = parse(&text.replace("angle_deg = 12.0 }", "angle_deg = 95.0 }")).unwrap_err();
     assert!(e.contains("between 0 and 90"), "{e}");
     let e = parse(&text.replace("static_start = true\n", "")).unwrap_err();
     assert!(e.contains("static_start = true"), "{e}");
@@ -185,8 +185,8 @@ fn a_structure_refuses_unknown_keys_and_an_unreachable_hang_off() {
             &format!("name = \"{section}\"\nfidelity = \"{fidelity}\"\n"),
         )
         .replace(
-            "hang_off = { angle = 12.0 }",
-            "hang_off = { angle = 12.0 }\nwater_depth = 1000.0\nseabed = -1000.0",
+            "hang_off = { angle_deg = 12.0 }",
+            "hang_off = { angle_deg = 12.0 }\nwater_depth = 1000.0\nseabed = -1000.0",
         )
     };
     for (section, fidelity) in [("laid", "cable"), ("sagbend", "beam"), ("sagbend", "span")] {
@@ -198,6 +198,6 @@ fn a_structure_refuses_unknown_keys_and_an_unreachable_hang_off() {
     }
     // 2000 m of pipe cannot hang at 89 deg from 1000 m: the line would have to
     // lie flat at the top.
-    let e = parse(&text.replace("angle = 12.0 }", "angle = 89.0 }")).unwrap_err();
+    let e = parse(&text.replace("angle_deg = 12.0 }", "angle_deg = 89.0 }")).unwrap_err();
     assert!(e.contains("`structure.hang_off"), "{e}");
 }

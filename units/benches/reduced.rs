@@ -42,7 +42,7 @@ fn cable(extra: &str) -> String {
 
 fn frame() -> String {
     format!(
-        "formulation = \"seed002\"\nsegments = [{{ length = 10.0, angle = 90.0, elements = 20, {STEEL} }}, {{ length = 10.0, elements = 20, {STEEL} }}]\nends.start = {{ kind = \"pinned\" }}\nends.end = {{ kind = \"pinned\" }}\nsupports = [{{ at = 10.0, x = true }}]"
+        "formulation = \"seed002\"\nsegments = [{{ length = 10.0, angle_deg = 90.0, elements = 20, {STEEL} }}, {{ length = 10.0, elements = 20, {STEEL} }}]\nends.start = {{ kind = \"pinned\" }}\nends.end = {{ kind = \"pinned\" }}\nsupports = [{{ at = 10.0, x = true }}]"
     )
 }
 

@@ -45,7 +45,7 @@ impl Model {
         let mut reference = vec![params.start];
         let mut arc = vec![0.0];
         for (i, s) in params.segments.iter().enumerate() {
-            let (sin0, cos0) = s.angle.to_radians().sin_cos();
+            let (sin0, cos0) = s.angle_deg.to_radians().sin_cos();
             let l = s.length / s.elements as f64;
             for _ in 0..s.elements {
                 elements.push(Element {

@@ -19,9 +19,10 @@ use serde::Deserialize;
 pub struct Segment {
     /// Unstretched length (m).
     pub length: f64,
-    /// Direction of the stress-free segment, counter-clockwise from +x (deg).
+    /// Direction of the stress-free segment, counter-clockwise from +x (deg:
+    /// the key says so, as every angle input in degrees does).
     #[serde(default)]
-    pub angle: f64,
+    pub angle_deg: f64,
     pub elements: usize,
     /// EA (N).
     pub axial_stiffness: f64,
@@ -505,7 +506,7 @@ impl Integrator {
 
 fn validate_segment(key: &str, s: &Segment) -> Result<(), UnitError> {
     require_in_range(&format!("{key}.length"), s.length, 1e-3, 1e6, "m")?;
-    require_finite(&format!("{key}.angle"), s.angle)?;
+    require_finite(&format!("{key}.angle_deg"), s.angle_deg)?;
     require_in_range(
         &format!("{key}.elements"),
         s.elements as f64,

@@ -21,7 +21,7 @@ pub struct CharacteristicLoadParams {
     /// Static top tension (N).
     pub static_tension: f64,
     /// Angle of the static tension from the vertical (deg).
-    pub static_angle_from_vertical: f64,
+    pub static_angle_from_vertical_deg: f64,
     /// Low-frequency amplitude (N), along the static direction.
     pub lf_amplitude: f64,
     /// Low-frequency sweep end (Hz).
@@ -33,24 +33,24 @@ pub struct CharacteristicLoadParams {
     /// Duration of both sweeps (s).
     pub sweep_duration: f64,
     /// Direction of the wave-frequency load at t = 0, from the x axis (deg).
-    pub wf_initial_direction: f64,
+    pub wf_initial_direction_deg: f64,
     /// Turning rate of the wave-frequency direction (deg/s); default one turn per
     /// sweep.
-    pub wf_direction_rate: Option<f64>,
+    pub wf_direction_rate_deg_per_s: Option<f64>,
 }
 
 impl Default for CharacteristicLoadParams {
     fn default() -> Self {
         CharacteristicLoadParams {
             static_tension: 2.5e6,
-            static_angle_from_vertical: 50.0,
+            static_angle_from_vertical_deg: 50.0,
             lf_amplitude: 1.0e6,
             lf_max_frequency: 0.02,
             wf_amplitude: 2.5e5,
             wf_max_frequency: 0.2,
             sweep_duration: 200.0,
-            wf_initial_direction: 0.0,
-            wf_direction_rate: None,
+            wf_initial_direction_deg: 0.0,
+            wf_direction_rate_deg_per_s: None,
         }
     }
 }
@@ -59,17 +59,17 @@ impl CharacteristicLoadParams {
     fn validate(&self) -> Result<(), UnitError> {
         require_non_negative("static_tension", self.static_tension)?;
         require_finite(
-            "static_angle_from_vertical",
-            self.static_angle_from_vertical,
+            "static_angle_from_vertical_deg",
+            self.static_angle_from_vertical_deg,
         )?;
         require_non_negative("lf_amplitude", self.lf_amplitude)?;
         require_non_negative("lf_max_frequency", self.lf_max_frequency)?;
         require_non_negative("wf_amplitude", self.wf_amplitude)?;
         require_non_negative("wf_max_frequency", self.wf_max_frequency)?;
         require_positive("sweep_duration", self.sweep_duration)?;
-        require_finite("wf_initial_direction", self.wf_initial_direction)?;
-        if let Some(r) = self.wf_direction_rate {
-            require_finite("wf_direction_rate", r)?;
+        require_finite("wf_initial_direction_deg", self.wf_initial_direction_deg)?;
+        if let Some(r) = self.wf_direction_rate_deg_per_s {
+            require_finite("wf_direction_rate_deg_per_s", r)?;
         }
         Ok(())
     }
@@ -87,14 +87,14 @@ impl CharacteristicLoadParams {
 
     /// The load [fx, fz] (N) at time t (s).
     pub fn force(&self, t: f64) -> [f64; 2] {
-        let a = self.static_angle_from_vertical.to_radians();
+        let a = self.static_angle_from_vertical_deg.to_radians();
         let axis = [a.sin(), a.cos()];
         let lf =
             self.static_tension + self.lf_amplitude * self.phase(self.lf_max_frequency, t).sin();
         let rate = self
-            .wf_direction_rate
+            .wf_direction_rate_deg_per_s
             .unwrap_or(360.0 / self.sweep_duration);
-        let dir = (self.wf_initial_direction + rate * t).to_radians();
+        let dir = (self.wf_initial_direction_deg + rate * t).to_radians();
         let wf = self.wf_amplitude * self.phase(self.wf_max_frequency, t).sin();
         [lf * axis[0] + wf * dir.cos(), lf * axis[1] + wf * dir.sin()]
     }

@@ -1,5 +1,5 @@
 //! The hang-off of a structure's top given by its angle: `[structure] hang_off
-//! = { angle = 12.0 }` places the structure's end (its top) horizontally so
+//! = { angle_deg = 12.0 }` places the structure's end (its top) horizontally so
 //! that, in the static equilibrium, the pipe's tangent there is `angle`
 //! degrees from the vertical (a riser's hang-off angle), at the height the
 //! scene gives it. The end's x displacement offset is found by the secant
@@ -23,20 +23,20 @@ pub(super) fn angle_of(structure: &Table) -> Result<Option<f64>, String> {
     };
     let table = value
         .as_table()
-        .ok_or("`structure.hang_off`: expected a table `{ angle = DEG }`")?;
-    if let Some(key) = table.keys().find(|k| *k != "angle") {
+        .ok_or("`structure.hang_off`: expected a table `{ angle_deg = DEG }`")?;
+    if let Some(key) = table.keys().find(|k| *k != "angle_deg") {
         return Err(format!(
-            "`structure.hang_off.{key}`: unknown key; the hang-off takes `angle` (deg from the vertical)"
+            "`structure.hang_off.{key}`: unknown key; the hang-off takes `angle_deg` (the pipe tangent's angle from the vertical, deg)"
         ));
     }
-    let angle = match table.get("angle") {
+    let angle = match table.get("angle_deg") {
         Some(Value::Float(a)) => *a,
         Some(Value::Integer(a)) => *a as f64,
-        _ => return Err("`structure.hang_off.angle`: expected the pipe tangent's angle from the vertical at the top, in degrees".into()),
+        _ => return Err("`structure.hang_off.angle_deg`: expected the pipe tangent's angle from the vertical at the top, in degrees".into()),
     };
     if !(angle > 0.0 && angle < 90.0) {
         return Err(format!(
-            "`structure.hang_off.angle` = {angle}: expected an angle between 0 and 90 deg from the vertical"
+            "`structure.hang_off.angle_deg` = {angle}: expected an angle between 0 and 90 deg from the vertical"
         ));
     }
     Ok(Some(angle))
@@ -76,7 +76,7 @@ pub(super) fn place(model: &mut Table, angle: f64, t0: Time) -> Result<(f64, Equ
     }
     let reached = best.end_angle_from_vertical();
     Err(format!(
-        "`structure.hang_off.angle` = {angle}: the top's position was not found in {MAX_SOLVES} static solves (the tangent reached {reached:.4} deg); is the angle reachable with this length and depth?"
+        "`structure.hang_off.angle_deg` = {angle}: the top's position was not found in {MAX_SOLVES} static solves (the tangent reached {reached:.4} deg); is the angle reachable with this length and depth?"
     ))
 }
 

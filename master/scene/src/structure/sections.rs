@@ -45,7 +45,7 @@ pub(super) fn segments_of(model: &Table) -> Result<Vec<Segment>, String> {
             let segment = Segment {
                 from,
                 length: number("length", None)?,
-                angle_deg: number("angle", Some(0.0))?,
+                angle_deg: number("angle_deg", Some(0.0))?,
                 elements: number("elements", None)?,
                 table: t.clone(),
             };
