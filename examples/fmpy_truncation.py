@@ -110,8 +110,10 @@ def main():
     subprocess.run([args.slender, "run", SCENE, "--quiet", "--out", native], check=True,
                    stdout=subprocess.DEVNULL)
     with open(os.path.join(native, "timeseries.csv")) as f:
-        reader = csv.DictReader(f)
-        reference = {round(float(r["time"]), 6): r for r in reader}
+        reader = csv.reader(f)
+        # The header gives each column's unit in brackets: "p.top_velocity_x [m/s]".
+        header = [c.split(" [")[0] for c in next(reader)]
+        reference = {round(float(r[0]), 6): dict(zip(header, r)) for r in reader}
     names = ["p.top_velocity_x", "p.top_velocity_z", "n.bottom_force_x", "n.bottom_force_z"]
     print(f"FMPy master: {steps} steps, {iterations / steps:.2f} iterations per step")
     for j, name in enumerate(names):

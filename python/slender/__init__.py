@@ -132,14 +132,29 @@ def run(scene: PathLike, out: Optional[PathLike] = None, duration: Optional[floa
     return read_run(folder)
 
 
+def _name_and_unit(column: str) -> tuple:
+    """A timeseries.csv header column, ``"left.displacement [m]"``, as its
+    signal name and unit (``""`` when it gives none)."""
+    if column.endswith("]") and " [" in column:
+        name, unit = column[:-1].rsplit(" [", 1)
+        return name, unit
+    return column, ""
+
+
 def read_run(folder: PathLike) -> Run:
-    """A run's folder: timeseries.csv (indexed by time), summary.json and the
-    columns' units (summary.json's ``units``)."""
+    """A run's folder: timeseries.csv (indexed by time, its columns the signals'
+    names; the units its header gives in brackets), summary.json and the
+    columns' units."""
     folder = Path(folder)
     summary = json.loads((folder / "summary.json").read_text())
     series = folder / "timeseries.csv"
-    frame = pd.read_csv(series, index_col="time", float_precision="round_trip") if series.exists() else pd.DataFrame()
+    frame = pd.read_csv(series, float_precision="round_trip") if series.exists() else pd.DataFrame()
     units = dict(summary.get("units", {}))
+    if not frame.empty:
+        named = [_name_and_unit(c) for c in frame.columns]
+        units.update({n: u for n, u in named[1:]})
+        frame.columns = [n for n, _ in named]
+        frame = frame.set_index("time")
     frame.attrs["units"] = units
     return Run(folder=folder, timeseries=frame, summary=summary, units=units)
 

@@ -74,7 +74,11 @@ fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
         .next()
         .unwrap()
         .split(',')
-        .map(|s| s.trim_matches('"').to_owned())
+        .map(|s| {
+            slender_app::record::split_column(s.trim_matches('"'))
+                .0
+                .to_owned()
+        })
         .collect();
     let rows = lines
         .map(|l| l.split(',').map(|v| v.trim().parse().unwrap()).collect())

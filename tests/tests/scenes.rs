@@ -267,12 +267,12 @@ fn a_failing_run_leaves_readable_partial_results() {
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(
         rows[0],
-        "time,a.displacement,b.displacement,a.coupling_force"
+        "time [s],a.displacement [m],b.displacement [m],a.coupling_force [N],exact_a.value [m],exact_b.value [m]"
     );
     assert!(rows.len() > 100);
     for row in &rows[1..] {
         let fields: Vec<f64> = row.split(',').map(|f| f.parse().unwrap()).collect();
-        assert_eq!(fields.len(), 4);
+        assert_eq!(fields.len(), 6);
     }
     let last_time: f64 = rows
         .last()
@@ -353,5 +353,47 @@ fn the_scene_reference_documents_every_kind_parameter_and_master_setting() {
             output.contains(&format!("`{key}`")),
             "output key `{key}` is not documented"
         );
+    }
+}
+
+/// Issue 28: one rule for angles, radians unless the key ends in `_deg`. The
+/// keys that took degrees before the rule (a segment's `angle`, the hang-off's
+/// `angle`, the characteristic load's angles) are refused by their old names,
+/// the error listing the new one, never read as radians or dropped.
+#[test]
+fn angle_keys_in_degrees_say_so_and_the_old_names_are_refused() {
+    let example = |name: &str| std::fs::read_to_string(root().join("examples").join(name)).unwrap();
+    for (scene, new, old, key) in [
+        (
+            "polyester_line.toml",
+            "angle_deg = 39.4",
+            "angle = 39.4",
+            "angle",
+        ),
+        (
+            "structure_mooring.toml",
+            "angle_deg = 39.4",
+            "angle = 39.4",
+            "angle",
+        ),
+        (
+            "structure_riser.toml",
+            "{ angle_deg = 12",
+            "{ angle = 12",
+            "angle",
+        ),
+        (
+            "truncation_fig10.toml",
+            "static_angle_from_vertical_deg",
+            "static_angle_from_vertical",
+            "static_angle_from_vertical",
+        ),
+    ] {
+        let text = example(scene);
+        assert!(text.contains(new), "{scene}: {new}");
+        let e = error_of(&text.replacen(new, old, 1));
+        assert!(e.contains(&format!("{key}`")), "{scene}: {e}");
+        assert!(e.contains(&format!("`{key}_deg`")), "{scene}: {e}");
+        assert!(e.contains("unknown"), "{scene}: {e}");
     }
 }

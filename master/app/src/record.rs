@@ -23,6 +23,29 @@ pub struct Recorder {
     counter: u32,
 }
 
+/// The CSV header: `time [s]`, then each signal with its unit of measure in
+/// brackets (`line.top_force [N]`; a dimensionless one bare), so that the file
+/// says its units to any reader (summary.json lists them too).
+pub fn header(signals: &[String], units: &[String]) -> String {
+    let column = |name: &str, unit: &str| match unit {
+        "" => name.to_owned(),
+        unit => format!("{name} [{unit}]"),
+    };
+    std::iter::once(column("time", "s"))
+        .chain(signals.iter().zip(units).map(|(s, u)| column(s, u)))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// A header column's signal name and unit (`""` when it gives none): the
+/// inverse of [`header`].
+pub fn split_column(column: &str) -> (&str, &str) {
+    match column.strip_suffix(']').and_then(|c| c.rsplit_once(" [")) {
+        Some((name, unit)) => (name, unit),
+        None => (column, ""),
+    }
+}
+
 impl Recorder {
     /// Records `signals` ("unit.port" outputs) every `every` steps, writing CSV to
     /// `csv_path` when given.
@@ -36,18 +59,6 @@ impl Recorder {
             .iter()
             .map(|s| master.find(s, Causality::Output).map_err(RunError::from))
             .collect::<Result<Vec<_>, _>>()?;
-        let csv = match csv_path {
-            Some(p) => {
-                let partial = crate::whole::partial(p);
-                let f = File::create(&partial).map_err(|e| RunError::file(&partial, &e))?;
-                let mut w = BufWriter::new(f);
-                let header = std::iter::once("time").chain(signals.iter().map(String::as_str));
-                writeln!(w, "{}", header.collect::<Vec<_>>().join(","))
-                    .map_err(|e| RunError::file(&partial, &e))?;
-                Some((w, p.to_owned()))
-            }
-            None => None,
-        };
         let units = signals
             .iter()
             .map(|s| {
@@ -57,6 +68,17 @@ impl Recorder {
                     .map_err(RunError::from)
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let csv = match csv_path {
+            Some(p) => {
+                let partial = crate::whole::partial(p);
+                let f = File::create(&partial).map_err(|e| RunError::file(&partial, &e))?;
+                let mut w = BufWriter::new(f);
+                writeln!(w, "{}", header(&signals, &units))
+                    .map_err(|e| RunError::file(&partial, &e))?;
+                Some((w, p.to_owned()))
+            }
+            None => None,
+        };
         Ok(Recorder {
             units,
             columns: vec![Vec::new(); signals.len()],
@@ -119,5 +141,24 @@ impl Recorder {
             .iter()
             .position(|n| n == name)
             .map(|i| self.columns[i].as_slice())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_header_carries_units_and_splits_back() {
+        let signals = ["a.displacement".to_owned(), "a.ratio".to_owned()];
+        let units = ["m".to_owned(), String::new()];
+        let header = header(&signals, &units);
+        assert_eq!(header, "time [s],a.displacement [m],a.ratio");
+        let split: Vec<(&str, &str)> = header.split(',').map(split_column).collect();
+        assert_eq!(
+            split,
+            [("time", "s"), ("a.displacement", "m"), ("a.ratio", "")]
+        );
+        assert_eq!(split_column("x [N m]"), ("x", "N m"));
     }
 }

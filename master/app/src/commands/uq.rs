@@ -29,6 +29,9 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
         scene.spec.uncertainty.clone().ok_or_else(|| {
             CliError::input(format!("{}: no `[uncertainty]` table", path.display()))
         })?;
+    // The inputs' keys first, so that a design refused for its size was
+    // otherwise valid.
+    uq::check_inputs(path, plan).map_err(CliError::input)?;
     check_size(plan, spec.samples)?;
     let names: Vec<String> = spec.inputs.iter().map(|i| i.name.clone()).collect();
     let header = uq::report::header(&names, &spec.outputs);

@@ -147,6 +147,11 @@ pub fn run_fidelity_kept(
         s.remove("reference");
     }
     table.remove("output");
+    let names = quantities::names(&structure.features);
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    // Before any run (a misspelt quantity was refused after them all), and
+    // the bound last, so that a study refused for its size was otherwise valid.
+    let judged = judged_of(plan, &names)?;
     within_bound(plan)?;
     let mut tasks: Vec<Task> = vec![None];
     tasks.extend(
@@ -155,8 +160,6 @@ pub fn run_fidelity_kept(
             .map(Some),
     );
     let order = order_of(&tasks);
-    let names = quantities::names(&structure.features);
-    let names: Vec<&str> = names.iter().map(String::as_str).collect();
     // Each finished run says which of how many it is, and the time left.
     let counter = crate::progress::Progress::new(tasks.len());
     let outcomes = crate::parallel::run_all(&tasks, &order, plan.jobs, |task| {
@@ -173,7 +176,6 @@ pub fn run_fidelity_kept(
         progress(&format!("{k} {what}: {how}{reused}"));
         outcome
     });
-    let judged = judged_of(plan, &names)?;
     let (scales, floors) = floors::floors(&names, &outcomes[0]);
     let rows = rows::rows_of(
         &structure,

@@ -24,10 +24,6 @@ pub(super) fn check_plan(
             ));
         }
     }
-    let runs = run_count(plan);
-    if runs > plan.max_runs {
-        return Err(crate::too_many_runs("the study", runs, plan.max_runs));
-    }
     for sweep in &plan.sweeps {
         if sweep.values.len() < 2 && !has_reference {
             return Err(format!(
@@ -42,6 +38,11 @@ pub(super) fn check_plan(
             .map_err(|e| format!("{}: {e}", sweep.setting))?;
         scene_with(path, &probe, plan.duration)
             .map_err(|e| format!("{} = {}: {e}", sweep.setting, label(sweep.reference())))?;
+    }
+    // Last, so that a study refused for its size was otherwise valid.
+    let runs = run_count(plan);
+    if runs > plan.max_runs {
+        return Err(crate::too_many_runs("the study", runs, plan.max_runs));
     }
     Ok(())
 }

@@ -76,6 +76,38 @@ pub struct UqReport {
 /// One run: its inputs and its outputs' phi (NaN when it failed).
 pub type Run = (Vec<f64>, Vec<f64>);
 
+/// Checks the scene's `[uncertainty]` table and that each input's key applies
+/// to the scene, as a study does before its first run.
+pub fn check_inputs(path: &Path, plan: &UqPlan) -> Result<(), String> {
+    checked_inputs(path, plan).map(|_| ())
+}
+
+/// The scene's table, its `[uncertainty]` and each input's setting, checked:
+/// a key that does not apply (a unit that is not there) is bad input, probed
+/// with its input's median.
+fn checked_inputs(
+    path: &Path,
+    plan: &UqPlan,
+) -> Result<(toml::Table, UncertaintySpec, Vec<Setting>), String> {
+    let table = crate::study::scene_table(path, &plan.overrides)?;
+    let scene = crate::study::scene_with(path, &table, plan.duration)?;
+    let spec = scene
+        .spec
+        .uncertainty
+        .clone()
+        .ok_or("a UQ study needs an `[uncertainty]` table in the scene")?;
+    let settings = check(&scene, &spec)?;
+    for (input, setting) in spec.inputs.iter().zip(&settings) {
+        let mut probe = table.clone();
+        let median = toml::Value::Float(input.distribution.from_unit(0.5));
+        setting
+            .apply(&mut probe, &median)
+            .and_then(|()| crate::study::scene_with(path, &probe, plan.duration).map(|_| ()))
+            .map_err(|e| format!("`uncertainty.inputs` `{}` ({}): {e}", input.name, input.key))?;
+    }
+    Ok((table, spec, settings))
+}
+
 /// Runs the study, reusing the rows of `runs` (the earlier runs of the same
 /// design, or every shard's) and calling `done` with each new run's index as it
 /// finishes, and its progress (`[k/N, about T left]` of the new runs). The
@@ -86,24 +118,7 @@ pub fn run_uq(
     earlier: &[Run],
     done: impl Fn(usize, &Run, &str) + Sync,
 ) -> Result<(Option<UqReport>, Vec<Run>), String> {
-    let table = crate::study::scene_table(path, &plan.overrides)?;
-    let scene = crate::study::scene_with(path, &table, plan.duration)?;
-    let spec = scene
-        .spec
-        .uncertainty
-        .clone()
-        .ok_or("a UQ study needs an `[uncertainty]` table in the scene")?;
-    let settings = check(&scene, &spec)?;
-    // A key that does not apply (a unit that is not there) is bad input: probe
-    // each with its input's median.
-    for (input, setting) in spec.inputs.iter().zip(&settings) {
-        let mut probe = table.clone();
-        let median = toml::Value::Float(input.distribution.from_unit(0.5));
-        setting
-            .apply(&mut probe, &median)
-            .and_then(|()| crate::study::scene_with(path, &probe, plan.duration).map(|_| ()))
-            .map_err(|e| format!("`uncertainty.inputs` `{}` ({}): {e}", input.name, input.key))?;
-    }
+    let (table, spec, settings) = checked_inputs(path, plan)?;
     let samples = plan.samples.unwrap_or(spec.samples);
     if samples > plan.max_runs {
         return Err(crate::too_many_runs("the design", samples, plan.max_runs));

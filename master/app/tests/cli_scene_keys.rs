@@ -1,0 +1,211 @@
+//! Scene keys over the file (`--set`) on every command that reads a scene,
+//! and the checks a study makes before its first run (issue 28).
+
+mod common;
+use common::{slender, summary, text};
+
+/// Issue 28: `run --set KEY=VALUE` sets scene keys over the file (a TOML
+/// value, a bare word a string), lists them in summary.json and on screen,
+/// and names a bad one.
+#[test]
+fn run_sets_scene_keys_over_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("set");
+    let run_b1 = |sets: &[&str]| {
+        let mut args = vec!["run", "examples/b1_two_masses.toml", "--quiet"];
+        args.extend(["--out", out.to_str().unwrap()]);
+        args.extend(sets.iter().flat_map(|s| ["--set", s]));
+        slender(&args)
+    };
+    let run = run_b1(&[
+        "simulation.duration=0.5",
+        "master.acceleration={ kind = \"aitken\" }",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(text(&run.stdout).contains("set          simulation.duration=0.5"));
+    let s = summary(&out);
+    assert_eq!(s["simulated_s"].as_f64(), Some(0.5));
+    assert_eq!(
+        s["settings"]["acceleration"]["kind"].as_str(),
+        Some("aitken")
+    );
+    assert_eq!(s["overrides"].as_array().map(Vec::len), Some(2));
+    for (set, expected) in [
+        ("master.shceme=jacobi", "unknown field `shceme`"),
+        ("simulation.duration", "expected KEY=VALUE"),
+        ("simulation.step=-1", "--set simulation.step=-1"),
+    ] {
+        let run = run_b1(&[set]);
+        assert_eq!(run.status.code(), Some(2), "{set}");
+        let err = text(&run.stderr);
+        assert!(err.contains(expected), "{set}: {err}");
+    }
+}
+
+/// Issue 28: `--set` on the commands that read a scene (check, expand,
+/// bench), refused on one that reads none.
+#[test]
+fn every_scene_command_takes_set() {
+    let b1 = "examples/b1_two_masses.toml";
+    let jacobi = "master.scheme=jacobi";
+    let check = slender(&["check", b1, "--set", jacobi]);
+    assert!(check.status.success(), "{}", text(&check.stderr));
+    assert!(text(&check.stdout).contains("scheme jacobi"));
+    let expand = slender(&["expand", b1, "--set", "simulation.duration=0.25"]);
+    assert!(text(&expand.stdout).contains("duration = 0.25"));
+    let bench = slender(&["bench", b1, "--repeats", "1", "--json", "--set", jacobi]);
+    let figures: serde_json::Value = serde_json::from_slice(&bench.stdout).unwrap();
+    // Jacobi makes one pass per step where the file's iterative scheme iterates.
+    assert_eq!(figures["iterations"].as_u64(), figures["steps"].as_u64());
+    let kinds = slender(&["kinds", "--set", jacobi]);
+    assert_eq!(kinds.status.code(), Some(2));
+    assert!(text(&kinds.stderr).contains("reads no scene"));
+}
+
+/// Issue 28: `--set` on the study commands (their runs, uq's cluster scripts)
+/// and on fmu export, each bad key named.
+#[test]
+fn the_study_commands_take_set() {
+    let b1 = "examples/b1_two_masses.toml";
+    let jacobi = "master.scheme=jacobi";
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("study");
+    let study = slender(&[
+        "study",
+        b1,
+        "--vary",
+        "step=0.01,0.005",
+        "--set",
+        jacobi,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(study.status.success(), "{}", text(&study.stderr));
+    let table = std::fs::read_to_string(out.join("study.csv")).unwrap();
+    let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+    let column = header
+        .iter()
+        .position(|h| h.starts_with("iterations"))
+        .unwrap();
+    for row in table.lines().skip(1) {
+        assert_eq!(row.split(',').nth(column), Some("1"), "{table}");
+    }
+    let uq = dir.path().join("uq");
+    let scripts = slender(&[
+        "uq",
+        "examples/truncation_uq.toml",
+        "--slurm",
+        "2",
+        "--out",
+        uq.to_str().unwrap(),
+        "--set",
+        "simulation.duration=2",
+    ]);
+    assert!(scripts.status.success(), "{}", text(&scripts.stderr));
+    let sbatch = std::fs::read_to_string(uq.join("uq-shards.sbatch")).unwrap();
+    assert!(
+        sbatch.contains("--set \"simulation.duration=2\""),
+        "{sbatch}"
+    );
+    for args in [
+        vec![
+            "fmu",
+            "export",
+            b1,
+            "--unit",
+            "left",
+            "--set",
+            "master.shceme=x",
+        ],
+        vec![
+            "study",
+            b1,
+            "--vary",
+            "step=0.01",
+            "--set",
+            "master.shceme=x",
+        ],
+        vec![
+            "fidelity",
+            b1,
+            "--section",
+            "a=cable",
+            "--set",
+            "master.shceme=x",
+        ],
+    ] {
+        let bad = slender(&args);
+        assert_eq!(bad.status.code(), Some(2), "{args:?}");
+        assert!(
+            text(&bad.stderr).contains("--set master.shceme=x"),
+            "{}",
+            text(&bad.stderr)
+        );
+    }
+}
+
+/// A misspelt `--quantities` is refused before any run (it was refused only
+/// after the whole study had run), and `--max-runs 0` refuses a study only
+/// once everything else in it was found valid.
+#[test]
+fn a_fidelity_study_is_checked_before_its_first_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("f");
+    let out = out.to_str().unwrap();
+    let mooring = "examples/structure_mooring.toml";
+    let section = "lower=nonlinear,cable";
+    let typo = slender(&[
+        "fidelity",
+        mooring,
+        "--section",
+        section,
+        "--quantities",
+        "top_forc",
+        "--out",
+        out,
+    ]);
+    assert_eq!(typo.status.code(), Some(2));
+    assert!(text(&typo.stderr).contains("`top_forc` is not a quantity"));
+    assert!(
+        !text(&typo.stdout).contains("[1/"),
+        "{}",
+        text(&typo.stdout)
+    );
+    let both = slender(&[
+        "fidelity",
+        mooring,
+        "--section",
+        section,
+        "--quantities",
+        "top_forc",
+        "--max-runs",
+        "0",
+        "--out",
+        out,
+    ]);
+    assert!(
+        text(&both.stderr).contains("top_forc"),
+        "{}",
+        text(&both.stderr)
+    );
+    let study = slender(&[
+        "study",
+        "examples/b1_two_masses.toml",
+        "--vary",
+        "units.left.parameters.mas=1,2",
+        "--max-runs",
+        "0",
+        "--out",
+        out,
+    ]);
+    assert!(
+        text(&study.stderr).contains("mas"),
+        "{}",
+        text(&study.stderr)
+    );
+    assert!(
+        !text(&study.stderr).contains("bound"),
+        "{}",
+        text(&study.stderr)
+    );
+}

@@ -1,0 +1,110 @@
+//! Issue 28: every concrete command the README shows (a fenced line or an
+//! inline `slender ...` naming an example scene) still works as written. Runs
+//! and mode analyses run for real, over ten of their scene's steps; study,
+//! fidelity and uq commands are checked up to their first run (arguments,
+//! scene, every key and section they name) by `--max-runs 0`, which they
+//! refuse only after everything else was accepted, since their grids take
+//! minutes to hours (their figures are measured in BENCHMARKS.md and by the
+//! study tests). Commands on a previous command's results (`results/...`) and
+//! the span commands (span_cli.rs) are left out, and listed when the test runs.
+
+mod common;
+
+use common::{slender, text};
+use std::path::Path;
+
+/// The README's commands with an example scene, each as its words.
+fn readme_commands() -> Vec<Vec<String>> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let mut commands = Vec::new();
+    let mut in_block = false;
+    let mut pending = String::new();
+    for line in readme.lines() {
+        if line.trim_start().starts_with("```") {
+            in_block = !in_block;
+            continue;
+        }
+        if !in_block {
+            continue;
+        }
+        let line = line.split(" #").next().unwrap_or(line).trim();
+        let continued = !pending.is_empty();
+        if continued || line.starts_with("slender ") || line.starts_with("cargo run --release -- ")
+        {
+            pending.push_str(line.trim_end_matches('\\'));
+            pending.push(' ');
+            if !line.ends_with('\\') {
+                commands.push(std::mem::take(&mut pending));
+            }
+        }
+    }
+    // Inline code spans, which may break across lines.
+    let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    commands.extend(
+        flat.split('`')
+            .skip(1)
+            .step_by(2)
+            .filter(|span| span.starts_with("slender "))
+            .map(str::to_owned),
+    );
+    commands
+        .iter()
+        .map(|c| {
+            let words = c.split_whitespace().map(str::to_owned);
+            let words: Vec<String> = words.skip_while(|w| w != "slender" && w != "--").collect();
+            words.into_iter().skip(1).collect()
+        })
+        .filter(|w: &Vec<String>| w.iter().any(|w| w.starts_with("examples/")))
+        .collect()
+}
+
+/// The scene's step (s), to run ten of them.
+fn step_of(scene: &str) -> f64 {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let table: toml::Table = std::fs::read_to_string(root.join(scene))
+        .unwrap()
+        .parse()
+        .unwrap();
+    table["simulation"]["step"].as_float().unwrap()
+}
+
+#[test]
+fn every_readme_command_with_an_example_scene_works_as_written() {
+    let commands = readme_commands();
+    assert!(commands.len() >= 10, "{commands:?}");
+    let dir = tempfile::tempdir().unwrap();
+    for (k, words) in commands.iter().enumerate() {
+        let out = dir.path().join(k.to_string());
+        let out = out.to_str().unwrap();
+        let mut args: Vec<String> = words.clone();
+        let scene = words.iter().find(|w| w.starts_with("examples/")).unwrap();
+        let checked_to_the_start = matches!(words[0].as_str(), "study" | "fidelity" | "uq");
+        match words[0].as_str() {
+            "run" => {
+                let ten_steps = format!("{}", 10.0 * step_of(scene));
+                args.extend(["--quiet".into(), "--duration".into(), ten_steps]);
+            }
+            "study" | "fidelity" | "uq" => args.extend(["--max-runs".into(), "0".into()]),
+            _ => {}
+        }
+        args.extend(["--out".into(), out.into()]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let output = slender(&args);
+        let (stdout, stderr) = (text(&output.stdout), text(&output.stderr));
+        eprintln!(
+            "slender {}: exit {:?}",
+            words.join(" "),
+            output.status.code()
+        );
+        if checked_to_the_start {
+            assert_eq!(output.status.code(), Some(2), "{words:?}: {stderr}");
+            assert!(
+                stderr.contains("more than the bound of 0"),
+                "{words:?} refused before its size was checked: {stderr}"
+            );
+        } else {
+            assert!(output.status.success(), "{words:?}: {stdout}{stderr}");
+        }
+    }
+}
