@@ -60,6 +60,12 @@ fn cautions_follow_the_loo_error(report: &slender_app::uq::UqReport) {
         caution.contains(&good.name) && caution.contains("0.50"),
         "{caution}"
     );
+    // The design size to try next: twice this one's.
+    let size = good.convergence.last().unwrap().0;
+    assert!(
+        caution.contains(&format!("--samples {}", 2 * size)),
+        "{caution}"
+    );
 }
 
 #[test]

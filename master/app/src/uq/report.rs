@@ -112,12 +112,17 @@ pub fn to_markdown(report: &UqReport) -> String {
 pub const LOO_TRUSTED: f64 = 0.1;
 
 /// Why an output's expansion should not be trusted, when its leave-one-out
-/// error is above [`LOO_TRUSTED`] (or not a number).
+/// error is above [`LOO_TRUSTED`] (or not a number), with the design size to
+/// try next: twice the design's (the error of a sparse expansion falls with
+/// the design; how fast depends on the output).
 pub fn poor_fit(o: &super::OutputResult) -> Option<String> {
+    let size = o.convergence.last().map_or(0, |c| c.0);
     (o.loo_error.is_nan() || o.loo_error > LOO_TRUSTED).then(|| {
         format!(
-            "`{}`: the expansion's leave-one-out error is {:.2} (above {LOO_TRUSTED}): it explains the output poorly, so its moments, indices and ranking are not reliable; run more samples (--samples, doubling keeps the runs made) or study fewer inputs",
-            o.name, o.loo_error
+            "`{}`: the expansion's leave-one-out error is {:.2} (above {LOO_TRUSTED}) on {size} runs: it explains the output poorly, so its moments, indices and ranking are not reliable; try --samples {} (twice the design; the scene's `samples` times a power of two keeps the runs made) and see whether the error falls, or study fewer inputs",
+            o.name,
+            o.loo_error,
+            2 * size
         )
     })
 }
