@@ -6,7 +6,7 @@ use slender_tests::beams::{cond, contact_params, params, reference_distance};
 use slender_units::Driver;
 use slender_units::Time;
 use slender_units::beam::boundary::{Boundary, Condition, Quantity, TimeFunction};
-use slender_units::beam::{Beam, ContactIntegration, ContactParams};
+use slender_units::beam::{Beam, BeamDriver, ContactIntegration, ContactParams};
 use slender_units::contact::surface::{Motion, Shape, Surface};
 use slender_units::contact::{LambdaUpdate, Law};
 

@@ -20,18 +20,12 @@ const NOT_IN_AN_FMU: [&str; 9] = [
     "indicatif",
 ];
 
-#[test]
-fn the_fmu_library_links_no_scene_coupling_study_or_cli_crate() {
+/// The crates `package` links (its normal and build dependencies), as
+/// `cargo tree` lists them.
+fn linked_by(package: &str) -> Vec<String> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let tree = Command::new(cargo)
-        .args([
-            "tree",
-            "--offline",
-            "-p",
-            "slender-fmu",
-            "-e",
-            "normal,build",
-        ])
+        .args(["tree", "--offline", "-p", package, "-e", "normal,build"])
         .args(["--prefix", "none", "--format", "{p}"])
         .current_dir(slender_tests::root())
         .output()
@@ -41,11 +35,34 @@ fn the_fmu_library_links_no_scene_coupling_study_or_cli_crate() {
         "cargo tree failed: {}",
         String::from_utf8_lossy(&tree.stderr)
     );
-    let tree = String::from_utf8_lossy(&tree.stdout);
-    let linked: Vec<&str> = tree
+    String::from_utf8_lossy(&tree.stdout)
         .lines()
-        .filter_map(|l| l.split_whitespace().next())
-        .collect();
+        .filter_map(|l| l.split_whitespace().next().map(str::to_owned))
+        .collect()
+}
+
+/// The unit contract is its own crate: the master and the FMI layer depend on
+/// it, not on the physics (issue 29).
+#[test]
+fn the_master_and_the_fmi_layer_depend_on_the_contract_not_the_units() {
+    for package in ["slender-coupling", "slender-fmi"] {
+        let linked = linked_by(package);
+        assert!(
+            linked.iter().any(|c| c == "slender-contract"),
+            "{package}: {linked:?}"
+        );
+        assert!(
+            !linked.iter().any(|c| c == "slender-units"),
+            "{package}: {linked:?}"
+        );
+    }
+}
+
+#[test]
+fn the_fmu_library_links_no_scene_coupling_study_or_cli_crate() {
+    let linked = linked_by("slender-fmu");
+    let tree = linked.join("\n");
+    let linked: Vec<&str> = linked.iter().map(String::as_str).collect();
     assert!(linked.contains(&"slender-kinds") && linked.contains(&"slender-units"));
     for name in NOT_IN_AN_FMU {
         assert!(

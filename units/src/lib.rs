@@ -1,4 +1,5 @@
-//! slender-units: the unit contract and the native units of slender.
+//! slender-units: the native units of slender, and the unit contract
+//! (crate `slender-contract`) re-exported as [`contract`].
 //!
 //! A unit is one substructure (or signal block) with an FMI-like stepping contract,
 //! see [`contract::Unit`]; [`contract::Driver`] drives one through it. The master
@@ -10,12 +11,16 @@
 //!   [`chord`] (a small-deflection section in its chord frame);
 //! - [`benchmark`]: the coupling benchmark units (oscillator, algebraic loops).
 
+/// The unit contract, in its own crate (`slender-contract`) so that the master
+/// and the FMI layer depend on it without the physics.
+pub use slender_contract as contract;
+pub use slender_contract::state_struct;
+
 pub mod beam;
 pub mod benchmark;
 pub mod cable;
 pub mod chord;
 pub mod contact;
-pub mod contract;
 pub mod integrators;
 pub mod nonlinear;
 pub mod numerics;

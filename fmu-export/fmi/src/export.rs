@@ -19,7 +19,7 @@ use crate::model_description::{
     Value, VariableCausality,
 };
 use serde::{Deserialize, Serialize};
-use slender_units::{Hold, UnitDescription};
+use slender_contract::{Hold, UnitDescription};
 use std::collections::BTreeMap;
 use std::io::Write as _;
 use std::path::Path;

@@ -24,8 +24,8 @@ use crate::ffi::*;
 use crate::measure::si_definition;
 use crate::model_description::{ModelDescription, Value, VariableCausality};
 use serde::{Deserialize, Serialize};
-use slender_units::contract::names::did_you_mean;
-use slender_units::{
+use slender_contract::names::did_you_mean;
+use slender_contract::{
     Capabilities, Hold, HoldSupport, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
     UnitDescription, UnitError,
 };

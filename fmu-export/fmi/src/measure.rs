@@ -1,9 +1,9 @@
 //! Units of measure in FMI terms: a port's unit name as a `UnitDefinition` (SI
-//! base-unit exponents, from [`slender_units::contract::measure`]).
+//! base-unit exponents, from [`slender_contract::measure`]).
 
 use crate::model_description::UnitDefinition;
-pub use slender_units::contract::measure::same_unit;
-use slender_units::contract::measure::si_exponents;
+pub use slender_contract::measure::same_unit;
+use slender_contract::measure::si_exponents;
 
 /// The FMI definition of a unit name such as "N.m" or "m/s^2"; `None` for an empty
 /// name or a symbol slender does not know.

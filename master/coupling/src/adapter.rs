@@ -8,7 +8,7 @@
 
 use crate::counters::UnitCounters;
 use crate::error::MasterError;
-use slender_units::{Driver, DriverSlot, Hold, Time, Unit, UnitError};
+use slender_contract::{Driver, DriverSlot, Hold, Time, Unit, UnitError};
 use std::time::{Duration, Instant};
 
 /// A unit as the master holds it.
@@ -67,7 +67,7 @@ impl UnitAdapter {
     }
 
     /// The wrapped unit's description.
-    pub fn description(&self) -> &slender_units::UnitDescription {
+    pub fn description(&self) -> &slender_contract::UnitDescription {
         self.driver.description()
     }
 
@@ -170,7 +170,7 @@ impl UnitAdapter {
     }
 
     /// The unit's modes about its initial state.
-    pub fn modes(&self, count: usize) -> Result<slender_units::ModalAnalysis, MasterError> {
+    pub fn modes(&self, count: usize) -> Result<slender_contract::ModalAnalysis, MasterError> {
         if !self.driver.is_initialized() {
             return Err(MasterError::Invalid(format!(
                 "unit `{}`: modal analysis before initialize",
@@ -241,7 +241,7 @@ impl UnitAdapter {
     }
 
     /// Restores the state saved by the last `save`; with `warm`, hints the unit
-    /// that it repeats the step it last took ([`slender_units::Unit::warm_repeat`]).
+    /// that it repeats the step it last took ([`slender_contract::Unit::warm_repeat`]).
     pub fn restore_hinted(
         &mut self,
         t: Time,

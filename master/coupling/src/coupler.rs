@@ -15,7 +15,7 @@ use crate::error::MasterError;
 use crate::order::{derive_order, reached_by_torn, torn_connections, wiring};
 use crate::settings::{Extrapolation, MasterSettings, OnMaxIterations};
 use crate::system::{Connection, System};
-use slender_units::{Causality, Hold, Time};
+use slender_contract::{Causality, Hold, Time};
 use std::time::Instant;
 
 mod initial;
@@ -556,7 +556,7 @@ impl Master {
         &self,
         name: &str,
         count: usize,
-    ) -> Result<slender_units::ModalAnalysis, MasterError> {
+    ) -> Result<slender_contract::ModalAnalysis, MasterError> {
         let adapter = self.units.iter().find(|u| u.name == name).ok_or_else(|| {
             MasterError::Invalid(format!(
                 "no unit named `{name}`{}",
@@ -567,7 +567,7 @@ impl Master {
     }
 
     /// Description of unit `unit`.
-    pub fn description(&self, unit: usize) -> &slender_units::UnitDescription {
+    pub fn description(&self, unit: usize) -> &slender_contract::UnitDescription {
         self.units[unit].description()
     }
 }

@@ -1,6 +1,6 @@
 //! Errors of the master, and the "did you mean" helper shared by messages.
 
-use slender_units::UnitError;
+use slender_contract::UnitError;
 use thiserror::Error;
 
 /// Why building or running a coupled simulation failed.
@@ -69,4 +69,4 @@ pub enum MasterError {
     SingularJacobian { time: f64, iteration: u32 },
 }
 
-pub use slender_units::contract::names::did_you_mean;
+pub use slender_contract::names::did_you_mean;

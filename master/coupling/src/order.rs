@@ -111,7 +111,7 @@ pub(crate) fn reached_by_torn(
 mod tests {
     use super::*;
     use crate::system::{Link, PortRef};
-    use slender_units::PortKind;
+    use slender_contract::PortKind;
 
     fn edge(from: usize, to: usize) -> Connection {
         Connection {

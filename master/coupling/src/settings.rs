@@ -4,7 +4,7 @@
 //! built in code.
 
 use serde::{Deserialize, Serialize};
-use slender_units::PortKind;
+use slender_contract::PortKind;
 
 /// How units are stepped within a synchronisation step.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -1,8 +1,8 @@
 //! A coupled system: named units and the connections between their ports.
 
 use crate::error::did_you_mean;
-use slender_units::contract::names::NameError;
-use slender_units::{Causality, Port, PortKind, Unit};
+use slender_contract::names::NameError;
+use slender_contract::{Causality, Port, PortKind, Unit};
 use std::collections::HashMap;
 use thiserror::Error;
 
@@ -149,7 +149,7 @@ impl System {
 
     /// Adds a unit under a unique name; returns its index.
     pub fn add_unit(&mut self, name: &str, unit: Box<dyn Unit>) -> Result<usize, SystemError> {
-        slender_units::contract::names::check_name("unit name", name)?;
+        slender_contract::names::check_name("unit name", name)?;
         if self.unit_index(name).is_some() {
             return Err(SystemError::DuplicateUnit(name.to_owned()));
         }
@@ -274,7 +274,7 @@ impl System {
         // Units of measure are compared whenever both ports declare one (FMU
         // ports of a kind slender does not know are generic but keep their unit).
         let declared = !out.unit.is_empty() && !inp.unit.is_empty();
-        if declared && !slender_units::contract::measure::same_unit(&out.unit, &inp.unit) {
+        if declared && !slender_contract::measure::same_unit(&out.unit, &inp.unit) {
             return Err(SystemError::UnitMismatch {
                 label,
                 from_unit: out.unit.clone(),

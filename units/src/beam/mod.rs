@@ -530,10 +530,15 @@ fn contact_points(params: &BeamParams, lengths: &[f64]) -> Vec<ContactPoint> {
     points
 }
 
-/// Beam changes that depend on the inputs, through the driver that holds them.
-impl crate::contract::Driver<Beam> {
+/// Beam changes that depend on the inputs, through the driver that holds them
+/// (a trait: the driver is the contract crate's type).
+pub trait BeamDriver {
     /// [`Beam::set_initial_shape`] with the driver's inputs (after `initialize`).
-    pub fn set_initial_shape(&mut self, f: impl Fn(f64) -> (f64, f64)) -> Result<(), UnitError> {
+    fn set_initial_shape(&mut self, f: impl Fn(f64) -> (f64, f64)) -> Result<(), UnitError>;
+}
+
+impl BeamDriver for crate::contract::Driver<Beam> {
+    fn set_initial_shape(&mut self, f: impl Fn(f64) -> (f64, f64)) -> Result<(), UnitError> {
         let (beam, inputs) = self.unit_mut_with_inputs();
         beam.set_initial_shape(inputs, f)
     }

@@ -4,7 +4,7 @@
 use super::{Master, link_value};
 use crate::error::MasterError;
 use crate::order::tears;
-use slender_units::Time;
+use slender_contract::Time;
 
 impl Master {
     /// Initialises every unit at `t0`, in order, each fed by the units initialised

@@ -1,5 +1,5 @@
 //! The start check (issue 30): a unit that solves its statics under a coupled
-//! load (its [`Unit::static_inputs`](slender_units::Unit::static_inputs)) starts
+//! load (its [`Unit::static_inputs`](slender_contract::Unit::static_inputs)) starts
 //! in equilibrium with the value the other side reported at the start. If the
 //! other side then reports something else after the first step, the unit's
 //! static state was solved under a load that does not persist: the section

@@ -10,7 +10,7 @@
 use crate::adapter::UnitAdapter;
 use crate::settings::Tolerances;
 use crate::system::Connection;
-use slender_units::PortKind;
+use slender_contract::PortKind;
 
 /// Per connection: the tolerance's source and the scale of a relative one.
 pub(crate) struct ConnectionTolerances {

@@ -4,7 +4,7 @@
 //! the unit's state. The master's adapter, the FMU entry points, the studies and
 //! the tests all step units through it, so no unit repeats this.
 
-use crate::contract::{
+use crate::{
     HeldInputs, Hold, HoldSupport, Inputs, ModalAnalysis, StateSlot, StepReport, Time, Unit,
     UnitDescription, UnitError,
 };

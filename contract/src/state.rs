@@ -1,7 +1,7 @@
 //! Storage for a unit's saved state, used by the master to roll units back and by
 //! the FMI layer to serialise a unit's state into bytes.
 
-use crate::contract::UnitError;
+use crate::UnitError;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::any::Any;

@@ -16,9 +16,9 @@
 //!
 //! Errors are values: a unit never panics on bad input or a failed solve.
 
-use crate::contract::StateSlot;
-use crate::contract::Time;
-use crate::contract::{Causality, Inputs, Port, PortKind};
+use crate::StateSlot;
+use crate::Time;
+use crate::{Causality, Inputs, Port, PortKind};
 use thiserror::Error;
 
 /// What a unit can do, declared rather than assumed.

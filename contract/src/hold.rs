@@ -4,7 +4,7 @@
 //! hands the unit an [`Inputs`] view at every call, so units never store, check or
 //! roll back their inputs themselves.
 
-use crate::contract::Hold;
+use crate::Hold;
 
 /// Input values at the start and at the end of the current step, and how to fill
 /// in between. The start values are the last accepted inputs: the driver saves and
