@@ -18,6 +18,12 @@ pub struct Indicator {
     pub fidelity: f64,
     /// sqrt(S).
     pub relative_error: f64,
+    /// The signals whose reference is round-off against the indicator's
+    /// largest (a free end's force), each judged against that largest
+    /// component's energy instead of its own (`ROUND_OFF_ENERGY`); the run
+    /// states them so that no epsilon is read against a scale it does not have.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub floored: Vec<String>,
 }
 
 /// Trapezoidal integral of f(t)^2 ... over samples, for `f` given per sample.
@@ -32,6 +38,16 @@ pub(crate) fn integral(time: &[f64], f: impl Fn(usize) -> f64) -> f64 {
 /// 1e4 N load. Such a component is judged against the largest component's
 /// energy instead (issue 27: an exact partition was called 88 % off).
 pub const ROUND_OFF_ENERGY: f64 = 1e-12;
+
+/// The components of references `r` whose energy is round-off against the
+/// largest's (each judged against the largest by [`normalized_error`]).
+pub fn round_off_components(time: &[f64], r: &[&[f64]]) -> Vec<usize> {
+    let energy: Vec<f64> = r.iter().map(|r| integral(time, |k| r[k].powi(2))).collect();
+    let largest = energy.iter().copied().fold(0.0f64, f64::max);
+    (0..energy.len())
+        .filter(|&i| energy[i] < ROUND_OFF_ENERGY * largest)
+        .collect()
+}
 
 /// S for signals `x` against references `r` (same times, one column each):
 /// each component's squared error over its reference's energy, or over the
@@ -60,6 +76,7 @@ pub fn indicator(name: &str, s: f64) -> Indicator {
         name: name.to_owned(),
         fidelity: -0.5 * s.log10(),
         relative_error: s.sqrt(),
+        floored: Vec::new(),
     }
 }
 
@@ -78,6 +95,7 @@ pub fn measure(name: &str, norm: Norm, time: &[f64], x: &[&[f64]], r: &[&[f64]])
                 name: name.to_owned(),
                 fidelity: -e.log10(),
                 relative_error: e,
+                floored: Vec::new(),
             }
         }
     }
@@ -131,6 +149,8 @@ mod tests {
         assert!(s.sqrt() < 1e-11, "{}", s.sqrt());
         // Against itself it would be 200 %.
         assert!((normalized_error(&t, &[&free_x], &[&free_r]).sqrt() - 2.0).abs() < 1e-12);
+        assert_eq!(round_off_components(&t, &[&load, &free_r]), [1]);
+        assert!(round_off_components(&t, &[&load, &load]).is_empty());
     }
 
     #[test]

@@ -356,3 +356,56 @@ fn a_study_larger_than_its_bound_is_refused_before_any_run() {
         assert!(!Path::new(&folder).join("runs.csv").exists());
     }
 }
+
+/// Issue 27: a component whose reference is round-off against the
+/// indicator's largest (a free end's force) is judged against that largest
+/// component, and the run says so on screen and in summary.json.
+#[test]
+fn a_run_states_which_components_were_judged_against_the_largest() {
+    let dir = tempfile::tempdir().unwrap();
+    let tiny = "[[units]]\nname = \"tiny\"\nkind = \"signal\"\nparameters = { quantity = \"displacement\", offset = 1e-9 }\n\n[[connections]]";
+    let mixed = "[[output.indicators]]\nname = \"mixed\"\nsignals = [\"left.displacement\", \"right.displacement\"]\nreference = [\"exact_left.value\", \"tiny.value\"]\n\n[[output.indicators]]";
+    let scene = common::variant_in(
+        dir.path(),
+        "examples/b1_two_masses.toml",
+        &[
+            (
+                "[[connections]]\nfrom = \"left.displacement\"",
+                &format!("{tiny}\nfrom = \"left.displacement\""),
+            ),
+            (
+                "[[output.indicators]]\nname = \"exact\"",
+                &format!("{mixed}\nname = \"exact\""),
+            ),
+            (
+                "\"exact_right.value\"]\n\n# Against",
+                "\"exact_right.value\", \"tiny.value\"]\n\n# Against",
+            ),
+        ],
+    );
+    let out = dir.path().join("out");
+    let run = slender(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let stdout = text(&run.stdout);
+    assert!(
+        stdout.contains("right.displacement judged against the indicator's largest component"),
+        "{stdout}"
+    );
+    let summary = common::summary(&out);
+    let indicators = summary["indicators"].as_array().unwrap();
+    let floored = |name: &str| {
+        let i = indicators.iter().find(|i| i["name"] == name).unwrap();
+        i.get("floored").cloned()
+    };
+    assert_eq!(
+        floored("mixed"),
+        Some(serde_json::json!(["right.displacement"]))
+    );
+    assert_eq!(floored("exact"), None, "nothing floored, nothing listed");
+}

@@ -131,6 +131,13 @@ fn print_summary(result: &RunResult) {
             "indicator    {:<12} phi = {:.3}, epsilon = {:.3e}",
             i.name, i.fidelity, i.relative_error
         );
+        if !i.floored.is_empty() {
+            println!(
+                "             {} judged against the indicator's largest component: {} reference is round-off against it",
+                i.floored.join(", "),
+                if i.floored.len() == 1 { "its" } else { "their" }
+            );
+        }
     }
     for u in &c.units {
         println!(
