@@ -30,9 +30,28 @@ const WORDS: [(&str, &str); 18] = [
     ),
 ];
 
+/// serde's words before a Rust type's own name (`expected struct
+/// Tolerances`), and what a scene's author calls that kind of value.
+const NAMED: [(&str, &str); 3] = [
+    (
+        "expected struct ",
+        "expected a table ({ key = value, ... })",
+    ),
+    ("expected tuple struct ", "expected an array ([a, b, ...])"),
+    ("expected enum ", "expected a name in quotes or a table"),
+];
+
 /// `message` with the Rust type names replaced by the user's words.
 pub fn in_words(message: &str) -> String {
     let mut text = message.to_owned();
+    for (rust, words) in NAMED {
+        while let Some(at) = text.find(rust) {
+            let name = text[at + rust.len()..]
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .map_or(text.len(), |n| at + rust.len() + n);
+            text.replace_range(at..name, words);
+        }
+    }
     for (rust, words) in WORDS {
         // Whole words only: `expected u32` must not match `expected u320`.
         let mut from = 0;
@@ -54,6 +73,18 @@ pub fn in_words(message: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::in_words;
+
+    #[test]
+    fn a_rust_type_s_own_name_becomes_words() {
+        assert_eq!(
+            in_words("invalid type: integer `3`, expected struct Tolerances"),
+            "invalid type: integer `3`, expected a table ({ key = value, ... })"
+        );
+        assert_eq!(
+            in_words("expected enum Kind, at the end"),
+            "expected a name in quotes or a table, at the end"
+        );
+    }
 
     #[test]
     fn rust_type_names_become_words() {

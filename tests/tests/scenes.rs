@@ -397,3 +397,23 @@ fn angle_keys_in_degrees_say_so_and_the_old_names_are_refused() {
         assert!(e.contains("unknown"), "{scene}: {e}");
     }
 }
+
+/// Issue 27: an error inside an inline table of an array (a line that starts
+/// with `{`, not with its key) names the key path, not the line's first word.
+#[test]
+fn an_error_in_an_inline_table_names_its_key_path() {
+    let text = std::fs::read_to_string(root().join("examples/truncation_uq.toml")).unwrap();
+    let drop_sd = "mean = 1.0, sd = 0.015 } },";
+    assert!(text.contains(drop_sd));
+    let e = error_of(&text.replacen(drop_sd, "mean = 1.0 } },", 1));
+    assert!(
+        e.contains("`uncertainty.inputs[0].distribution`: missing field `sd`"),
+        "{e}"
+    );
+    let e = error_of(&text.replacen("kind = \"normal\"", "kind = \"norml\"", 1));
+    assert!(
+        e.contains("`uncertainty.inputs[0].distribution.kind`"),
+        "{e}"
+    );
+    assert!(!e.contains("`{"), "{e}");
+}

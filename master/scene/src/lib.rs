@@ -101,6 +101,8 @@ impl Scene {
                 key: e
                     .span()
                     .map(|s| key_at(&source, s.start))
+                    .filter(|key| !key.starts_with("`{"))
+                    .or_else(|| key_path::<SceneSpec>(&source))
                     .unwrap_or_default(),
                 message: migration_hint(e.message().trim()),
             })
@@ -500,6 +502,16 @@ fn key_at(source: &str, offset: usize) -> String {
     } else {
         format!("`{}`", key.chars().take(80).collect::<String>())
     }
+}
+
+/// The key path where deserialising `source` as `T` fails
+/// (`uncertainty.inputs[0].distribution`), for an error inside an inline table
+/// or array, whose line does not start with its key.
+fn key_path<T: serde::de::DeserializeOwned>(source: &str) -> Option<String> {
+    let deserializer = toml::Deserializer::parse(source).ok()?;
+    let error = serde_path_to_error::deserialize::<_, T>(deserializer).err()?;
+    let path = error.path().to_string();
+    (!path.is_empty() && path != ".").then(|| format!("`{path}`"))
 }
 
 fn line_of(source: &str, offset: usize) -> usize {
