@@ -6,7 +6,8 @@
 //! refuse only after everything else was accepted, since their grids take
 //! minutes to hours (their figures are measured in BENCHMARKS.md and by the
 //! study tests). Commands on a previous command's results (`results/...`) and
-//! the span commands (span_cli.rs) are left out, and listed when the test runs.
+//! the span commands (span_cli.rs) are left out. Every figure the README shows
+//! is made again by its command, in full (seconds).
 
 mod common;
 
@@ -107,4 +108,69 @@ fn every_readme_command_with_an_example_scene_works_as_written() {
             assert!(output.status.success(), "{words:?}: {stdout}{stderr}");
         }
     }
+}
+
+/// The texts of an SVG figure (titles, ticks, key entries), unescaped as
+/// written.
+fn texts(svg: &str) -> Vec<String> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| t.split_once('>').map(|(_, rest)| rest))
+        .map(|t| t.split("</text>").next().unwrap_or("").trim().to_owned())
+        .collect()
+}
+
+/// Every figure the README shows (`![...](docs/figures/X.svg)`) is made again
+/// by the command in the fenced block just before it: the same points, the
+/// same key (every combination by number), titles and axes. Costs, and so the
+/// points' places along the cost axis, its ticks and which run within the
+/// tolerance is cheapest, vary with the machine.
+#[test]
+fn every_readme_figure_is_reproduced_by_its_command() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let mut figures = 0;
+    for (before, after) in readme
+        .split("](docs/figures/")
+        .zip(readme.split("](docs/figures/").skip(1))
+    {
+        let name = after.split(')').next().unwrap();
+        let block = before
+            .rsplit("```")
+            .nth(1)
+            .expect("a fenced command before the figure");
+        let words: Vec<&str> = block.split_whitespace().filter(|w| *w != "\\").collect();
+        assert_eq!(words[0], "slender", "{block}");
+        let out = dir.path().join(name);
+        let mut args: Vec<&str> = words[1..].to_vec();
+        args.extend(["--out", out.to_str().unwrap()]);
+        let run = slender(&args);
+        // The S-lay grid has one known failed run (BENCHMARKS.md: the static
+        // touchdown section under a span chord stops at 21.1 s); its row and
+        // the figure are written all the same.
+        assert!(
+            matches!(run.status.code(), Some(0 | 1)),
+            "{}",
+            text(&run.stderr)
+        );
+        let made = std::fs::read_to_string(out.join("fidelity.svg")).unwrap();
+        let shown = std::fs::read_to_string(root.join("docs/figures").join(name)).unwrap();
+        assert_eq!(
+            made.matches("<circle").count(),
+            shown.matches("<circle").count(),
+            "{name}: points"
+        );
+        let lasting = |svg: &str| -> Vec<String> {
+            texts(svg)
+                .into_iter()
+                .filter(|t| t.contains('=') || t.chars().any(char::is_alphabetic))
+                // Which run within tolerance is cheapest is a matter of cost.
+                .filter(|t| !t.contains("cheapest"))
+                .collect()
+        };
+        assert_eq!(lasting(&made), lasting(&shown), "{name}: titles and key");
+        figures += 1;
+    }
+    assert!(figures >= 1, "the README shows no figure");
 }
