@@ -408,4 +408,27 @@ fn a_run_states_which_components_were_judged_against_the_largest() {
         Some(serde_json::json!(["right.displacement"]))
     );
     assert_eq!(floored("exact"), None, "nothing floored, nothing listed");
+    // A study says so too, for an indicator with its reference in the run and
+    // for one against the study's reference run (`drift`, whose second
+    // component is the constant 1e-9 in every run).
+    let drift = "[[output.indicators]]\nname = \"drift\"\nsignals = [\"left.displacement\", \"tiny.value\"]\n";
+    let with_drift = std::fs::read_to_string(&scene).unwrap() + "\n" + drift;
+    std::fs::write(&scene, with_drift).unwrap();
+    let study_out = dir.path().join("study");
+    let study = slender(&[
+        "study",
+        scene.to_str().unwrap(),
+        "--vary",
+        "step=0.01,0.005",
+        "--out",
+        study_out.to_str().unwrap(),
+    ]);
+    assert!(study.status.success(), "{}", text(&study.stderr));
+    let md = std::fs::read_to_string(study_out.join("study.md")).unwrap();
+    assert!(
+        md.contains("Judged against their indicator's largest component")
+            && md.contains("`mixed: right.displacement`")
+            && md.contains("`drift: tiny.value`"),
+        "{md}"
+    );
 }

@@ -138,6 +138,7 @@ fn row(group: &str, settings: &[(&str, &str)], errors: &[f64], cost: f64) -> Stu
         cost_per_simulated_second: cost,
         cost_spread: f64::NAN,
         error: None,
+        floored: Vec::new(),
     }
 }
 

@@ -9,6 +9,7 @@
 //! indicator with reference signals of its own is measured inside each run.
 
 mod check;
+mod errors;
 mod orders;
 #[cfg(test)]
 mod orders_tests;
@@ -16,7 +17,6 @@ pub mod report;
 pub mod setting;
 mod tasks;
 
-use crate::indicators::interpolate;
 use crate::resume::Kept;
 use crate::run::{RunOptions, run_scene};
 use serde::Serialize;
@@ -156,6 +156,10 @@ pub struct StudyRow {
     /// (max - min) / median of the repeats' costs (NaN for one).
     pub cost_spread: f64,
     pub error: Option<String>,
+    /// `indicator: signal` of each component judged against its indicator's
+    /// largest, its reference being round-off against it (a free end's force).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub floored: Vec<String>,
 }
 
 /// A run's outcome before errors are computed (kept to resume a study).
@@ -178,6 +182,8 @@ struct Judged {
     norm: Norm,
     /// Against reference signals inside the run.
     in_run: bool,
+    /// The indicator's signals, to name a component judged against its largest.
+    signals: Vec<String>,
 }
 
 /// Runs the plan on the scene at `path` and reports one row per run, grouped and
@@ -333,6 +339,7 @@ fn judged_of(path: &Path, scene: &Scene) -> Result<Vec<Judged>, String> {
             name: i.name.clone(),
             norm: i.norm,
             in_run: !i.reference.is_empty(),
+            signals: i.signals.clone(),
         })
         .collect())
 }
@@ -512,7 +519,7 @@ fn rows_of(
                     } else if is_reference {
                         0.0
                     } else {
-                        relative_error(j, o, reference)
+                        errors::relative_error(j, o, reference)
                     };
                     (j.name.clone(), e)
                 })
@@ -532,6 +539,7 @@ fn rows_of(
                 cost_per_simulated_second: o.cost,
                 cost_spread: o.cost_spread,
                 error: o.error.clone(),
+                floored: errors::floored(judged, o, (reference, is_reference)),
             }
         })
         .collect();
@@ -557,34 +565,4 @@ fn indicator_columns(scene: &Scene, rec: &crate::record::Recorder) -> Vec<Indica
             (i.name.clone(), cols)
         })
         .collect()
-}
-
-/// epsilon of indicator `j` under its norm: the run's signals against the
-/// reference run's of the same indicator name, interpolated at the run's
-/// recorded times (NaN when the reference recorded nothing).
-fn relative_error(j: &Judged, run: &Outcome, reference: &Outcome) -> f64 {
-    let columns = |o: &Outcome| {
-        o.columns
-            .iter()
-            .find(|(name, _)| *name == j.name)
-            .map(|(_, cols)| cols.clone())
-    };
-    let (Some(cols), Some(ref_cols)) = (columns(run), columns(reference)) else {
-        return f64::NAN;
-    };
-    if reference.time.is_empty() || cols.len() != ref_cols.len() {
-        return f64::NAN;
-    }
-    let time = &run.time;
-    let resampled: Vec<Vec<f64>> = ref_cols
-        .iter()
-        .map(|r| {
-            time.iter()
-                .map(|&t| interpolate(&reference.time, r, t))
-                .collect()
-        })
-        .collect();
-    let x: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
-    let r: Vec<&[f64]> = resampled.iter().map(Vec::as_slice).collect();
-    crate::indicators::measure(&j.name, j.norm, time, &x, &r).relative_error
 }

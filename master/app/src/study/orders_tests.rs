@@ -18,6 +18,7 @@ fn row(elements: f64, error: f64, reference: bool) -> StudyRow {
         cost_per_simulated_second: 1.0,
         cost_spread: f64::NAN,
         error: None,
+        floored: Vec::new(),
     }
 }
 

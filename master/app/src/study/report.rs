@@ -118,6 +118,19 @@ pub fn to_markdown(rows: &[StudyRow]) -> String {
                 .unwrap_or_default()
         );
     }
+    let mut floored: Vec<&String> = rows.iter().flat_map(|r| &r.floored).collect();
+    floored.sort();
+    floored.dedup();
+    if !floored.is_empty() {
+        out += &format!(
+            "\nJudged against their indicator's largest component (their reference is round-off against it): {}.\n",
+            floored
+                .iter()
+                .map(|f| format!("`{f}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
     out
 }
 
