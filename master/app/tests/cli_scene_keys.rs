@@ -209,3 +209,21 @@ fn a_fidelity_study_is_checked_before_its_first_run() {
         text(&study.stderr)
     );
 }
+
+/// `--set` on an SSP (a packaged system, not a scene file) is refused with the
+/// reason, not with a TOML parse error of a zip archive.
+#[test]
+fn set_on_an_ssp_says_why_it_cannot() {
+    let dir = tempfile::tempdir().unwrap();
+    let ssp = dir.path().join("b1.ssp");
+    std::fs::write(&ssp, b"PK\x03\x04 not really an archive").unwrap();
+    let run = slender(&[
+        "check",
+        ssp.to_str().unwrap(),
+        "--set",
+        "master.scheme=jacobi",
+    ]);
+    assert_eq!(run.status.code(), Some(2));
+    let err = text(&run.stderr);
+    assert!(err.contains("an SSP is a packaged system"), "{err}");
+}

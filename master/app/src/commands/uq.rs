@@ -151,18 +151,17 @@ fn run_appending(
         .filter(|(_, r)| !r.0.is_empty())
         .map(|(k, r)| uq::report::row(k, r))
         .collect();
-    if !done.is_empty() {
-        println!("reusing the runs already in {}", csv.display());
-    }
     std::fs::write(csv, format!("{header}{done}")).map_err(fail)?;
     let file = std::fs::OpenOptions::new()
         .append(true)
         .open(csv)
         .map_err(fail)?;
     let file = std::sync::Mutex::new(file);
+    let new_runs = std::sync::atomic::AtomicUsize::new(0);
     // Each finished run says how many are done and the time left (uq was
     // silent for minutes).
     let (report, runs) = uq::run_uq(path, plan, &earlier, |k, run, progress| {
+        new_runs.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
         // A row that cannot be written is run again on resume.
         let _ = f.write_all(uq::report::row(k, run).as_bytes());
@@ -170,6 +169,13 @@ fn run_appending(
         println!("{progress} design point {k}: {}", outputs.join(", "));
     })
     .map_err(CliError::input)?;
+    // Only the earlier runs at this design's points count (a design of
+    // another size may place its points elsewhere).
+    let made = runs.iter().filter(|r| !r.0.is_empty()).count();
+    let reused = made.saturating_sub(new_runs.into_inner());
+    if reused > 0 {
+        println!("reused {reused} runs already in {}", csv.display());
+    }
     let rows: String = runs
         .iter()
         .enumerate()

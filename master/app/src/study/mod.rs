@@ -348,6 +348,12 @@ fn judged_of(path: &Path, scene: &Scene) -> Result<Vec<Judged>, String> {
 /// the TOML table the studies vary, with `overrides` (`KEY=VALUE`, `--set`)
 /// set over it; each error names the override.
 pub(crate) fn scene_table(path: &Path, overrides: &[String]) -> Result<toml::Table, String> {
+    if slender_scene::ssp::is_ssp(path) {
+        return Err(format!(
+            "{}: an SSP is a packaged system, not a scene file, so --set and studies cannot change its keys; set them in the scene it was wrapped from and wrap it again",
+            path.display()
+        ));
+    }
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut table: toml::Table =
         toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;

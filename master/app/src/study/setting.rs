@@ -211,12 +211,20 @@ impl FromStr for Setting {
             });
         }
         let path: Vec<String> = name.split('.').map(str::to_owned).collect();
-        let known = ["simulation", "master", "units", "output", "structure"];
+        let known = [
+            "simulation",
+            "master",
+            "units",
+            "connections",
+            "output",
+            "structure",
+            "uncertainty",
+        ];
         if path.len() < 2 || path.iter().any(String::is_empty) || !known.contains(&path[0].as_str())
         {
             let shorts = SHORT.iter().map(|(s, _)| *s);
             return Err(format!(
-                "unknown study setting `{name}`{}: expected elements, step, velocity_tolerance, force_tolerance or a scene key path such as master.scheme or units.<name>.parameters.<key>",
+                "unknown study setting `{name}`{}: expected elements, step, velocity_tolerance, force_tolerance or a scene key path under simulation, master, units, connections, output, structure or uncertainty, such as master.scheme or units.<name>.parameters.<key>",
                 slender_coupling::error::did_you_mean(name, shorts)
             ));
         }
