@@ -39,11 +39,17 @@ pub(crate) fn integral(time: &[f64], f: impl Fn(usize) -> f64) -> f64 {
 /// energy instead (issue 27: an exact partition was called 88 % off).
 pub const ROUND_OFF_ENERGY: f64 = 1e-12;
 
+/// Each reference component's energy `int r_i^2 dt`, and the largest.
+fn energies(time: &[f64], r: &[&[f64]]) -> (Vec<f64>, f64) {
+    let energy: Vec<f64> = r.iter().map(|r| integral(time, |k| r[k].powi(2))).collect();
+    let largest = energy.iter().copied().fold(0.0f64, f64::max);
+    (energy, largest)
+}
+
 /// The components of references `r` whose energy is round-off against the
 /// largest's (each judged against the largest by [`normalized_error`]).
 pub fn round_off_components(time: &[f64], r: &[&[f64]]) -> Vec<usize> {
-    let energy: Vec<f64> = r.iter().map(|r| integral(time, |k| r[k].powi(2))).collect();
-    let largest = energy.iter().copied().fold(0.0f64, f64::max);
+    let (energy, largest) = energies(time, r);
     (0..energy.len())
         .filter(|&i| energy[i] < ROUND_OFF_ENERGY * largest)
         .collect()
@@ -53,8 +59,7 @@ pub fn round_off_components(time: &[f64], r: &[&[f64]]) -> Vec<usize> {
 /// each component's squared error over its reference's energy, or over the
 /// largest component's where its own is round-off (`ROUND_OFF_ENERGY`).
 pub fn normalized_error(time: &[f64], x: &[&[f64]], r: &[&[f64]]) -> f64 {
-    let energy: Vec<f64> = r.iter().map(|r| integral(time, |k| r[k].powi(2))).collect();
-    let largest = energy.iter().copied().fold(0.0f64, f64::max);
+    let (energy, largest) = energies(time, r);
     x.iter()
         .zip(r)
         .zip(&energy)
@@ -80,11 +85,23 @@ pub fn indicator(name: &str, s: f64) -> Indicator {
     }
 }
 
-/// The indicator called `name` of signals `x` against references `r` (same times,
-/// one column each) under `norm`.
-pub fn measure(name: &str, norm: Norm, time: &[f64], x: &[&[f64]], r: &[&[f64]]) -> Indicator {
+/// The indicator called `name` of signals `x` (named `signals`) against
+/// references `r` (same times, one column each) under `norm`; under the RMS
+/// norm it names the signals judged against the largest component.
+pub fn measure(
+    (name, signals): (&str, &[String]),
+    norm: Norm,
+    time: &[f64],
+    x: &[&[f64]],
+    r: &[&[f64]],
+) -> Indicator {
     match norm {
-        Norm::Rms => indicator(name, normalized_error(time, x, r)),
+        Norm::Rms => Indicator {
+            floored: (round_off_components(time, r).into_iter())
+                .filter_map(|k| signals.get(k).cloned())
+                .collect(),
+            ..indicator(name, normalized_error(time, x, r))
+        },
         Norm::Peak => {
             let e = x
                 .iter()
@@ -159,7 +176,7 @@ mod tests {
         let (r1, x1) = ([1.0, -4.0, 2.0], [1.0, -3.0, 2.0]);
         // 1 of 4 in the first component; 0.15 of 0.5 in the second, the worst.
         let (r2, x2) = ([0.5, 0.5, 0.5], [0.5, 0.65, 0.5]);
-        let i = measure("p", Norm::Peak, &t, &[&x1, &x2], &[&r1, &r2]);
+        let i = measure(("p", &[]), Norm::Peak, &t, &[&x1, &x2], &[&r1, &r2]);
         assert!((i.relative_error - 0.3).abs() < 1e-15);
         assert!((i.fidelity + 0.3f64.log10()).abs() < 1e-15);
     }

@@ -186,14 +186,14 @@ fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indi
                     .collect::<Option<Vec<_>>>()
             };
             let (x, r) = (cols(&spec.signals)?, cols(&spec.reference)?);
-            let mut i = crate::indicators::measure(&spec.name, spec.norm, &recorder.time, &x, &r);
-            if spec.norm == slender_scene::spec::Norm::Rms {
-                i.floored = crate::indicators::round_off_components(&recorder.time, &r)
-                    .into_iter()
-                    .map(|k| spec.signals[k].clone())
-                    .collect();
-            }
-            Some(i)
+            let named = (spec.name.as_str(), spec.signals.as_slice());
+            Some(crate::indicators::measure(
+                named,
+                spec.norm,
+                &recorder.time,
+                &x,
+                &r,
+            ))
         })
         .collect()
 }

@@ -31,7 +31,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
         })?;
     // The inputs' keys first, so that a design refused for its size was
     // otherwise valid.
-    uq::check_inputs(path, plan).map_err(CliError::input)?;
+    let inputs = uq::check_inputs(path, plan).map_err(CliError::input)?;
     check_size(plan, spec.samples)?;
     let names: Vec<String> = spec.inputs.iter().map(|i| i.name.clone()).collect();
     let header = uq::report::header(&names, &spec.outputs);
@@ -52,7 +52,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                 shard: Some((k, n)),
                 ..plan.clone()
             };
-            let (_, runs) = run_appending(path, &plan, &csv, &header, earlier)?;
+            let (_, runs) = run_appending((path, &inputs), &plan, &csv, &header, earlier)?;
             println!(
                 "shard {k} of {n}: {} runs",
                 runs.iter().filter(|r| !r.0.is_empty()).count()
@@ -70,7 +70,7 @@ pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Resul
                     earlier.iter().filter(|r| !r.0.is_empty()).count()
                 );
             }
-            let (report, runs) = run_appending(path, plan, &csv, &header, earlier)?;
+            let (report, runs) = run_appending((path, &inputs), plan, &csv, &header, earlier)?;
             let report = report.ok_or_else(|| CliError::failure("no report from a whole study"))?;
             let write = |name: &str, text: String| super::write_in(&dir, name, text);
             // runs.csv is already complete and in index order.
@@ -133,10 +133,11 @@ fn check_size(plan: &UqPlan, scene_samples: usize) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Runs the plan, appending each new run to `csv` as it finishes (a file
-/// with another header starts afresh), then rewrites it in index order.
+/// Runs the plan on the scene at `path` with its checked `inputs`, appending
+/// each new run to `csv` as it finishes (a file with another header starts
+/// afresh), then rewrites it in index order.
 fn run_appending(
-    path: &Path,
+    (path, inputs): (&Path, &uq::CheckedInputs),
     plan: &UqPlan,
     csv: &Path,
     header: &str,
@@ -160,7 +161,7 @@ fn run_appending(
     let new_runs = std::sync::atomic::AtomicUsize::new(0);
     // Each finished run says how many are done and the time left (uq was
     // silent for minutes).
-    let (report, runs) = uq::run_uq(path, plan, &earlier, |k, run, progress| {
+    let (report, runs) = uq::run_checked(path, plan, inputs, &earlier, |k, run, progress| {
         new_runs.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
         // A row that cannot be written is run again on resume.

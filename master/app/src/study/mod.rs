@@ -267,7 +267,7 @@ fn run_study_kept(
     // The scene as written (a `[structure]` still a structure, so its keys
     // vary), with the user's `--set` over it.
     let table = scene_table(path, &plan.overrides)?;
-    let base = scene_with_overrides(path, &plan.overrides)?;
+    let base = scene_from(path, &table, &plan.overrides)?;
     let judged = judged_of(path, &base)?;
     check::check_plan(path, &base, &table, plan, reference.is_some())?;
     if let Some(r) = reference {
@@ -372,8 +372,16 @@ pub fn scene_with_overrides(path: &Path, overrides: &[String]) -> Result<Scene, 
     if overrides.is_empty() {
         return Scene::load(path).map_err(|e| e.to_string());
     }
-    let table = scene_table(path, overrides)?;
-    let mut scene = scene_with(path, &table, None)
+    scene_from(path, &scene_table(path, overrides)?, overrides)
+}
+
+/// The scene of `table`, the file at `path` with `overrides` already set over
+/// it; without overrides the file itself, so that errors name its lines.
+fn scene_from(path: &Path, table: &toml::Table, overrides: &[String]) -> Result<Scene, String> {
+    if overrides.is_empty() {
+        return Scene::load(path).map_err(|e| e.to_string());
+    }
+    let mut scene = scene_with(path, table, None)
         .map_err(|e| format!("--set {}: {e}", overrides.join(" --set ")))?;
     scene.overrides = overrides.to_vec();
     Ok(scene)
@@ -512,24 +520,16 @@ fn rows_of(
         .enumerate()
         .map(|(k, (assignments, o))| {
             let is_reference = k == 0 && external.is_none();
-            let errors = judged
+            let measured: Vec<(f64, Vec<String>)> = judged
                 .iter()
-                .map(|j| {
-                    let e = if o.error.is_some() && o.time.is_empty() {
-                        f64::NAN
-                    } else if j.in_run {
-                        o.own
-                            .iter()
-                            .find(|i| i.name == j.name)
-                            .map_or(f64::NAN, |i| i.relative_error)
-                    } else if is_reference {
-                        0.0
-                    } else {
-                        errors::relative_error(j, o, reference)
-                    };
-                    (j.name.clone(), e)
-                })
+                .map(|j| errors::judged(j, o, (reference, is_reference)))
                 .collect();
+            let errors = judged.iter().zip(&measured);
+            let floored = errors
+                .clone()
+                .flat_map(|(j, (_, f))| f.iter().map(move |s| format!("{}: {s}", j.name)))
+                .collect();
+            let errors = errors.map(|(j, (e, _))| (j.name.clone(), *e)).collect();
             StudyRow {
                 group: group.to_owned(),
                 settings: assignments
@@ -545,7 +545,7 @@ fn rows_of(
                 cost_per_simulated_second: o.cost,
                 cost_spread: o.cost_spread,
                 error: o.error.clone(),
-                floored: errors::floored(judged, o, (reference, is_reference)),
+                floored,
             }
         })
         .collect();

@@ -76,19 +76,18 @@ pub struct UqReport {
 /// One run: its inputs and its outputs' phi (NaN when it failed).
 pub type Run = (Vec<f64>, Vec<f64>);
 
-/// Checks the scene's `[uncertainty]` table and that each input's key applies
-/// to the scene, as a study does before its first run.
-pub fn check_inputs(path: &Path, plan: &UqPlan) -> Result<(), String> {
-    checked_inputs(path, plan).map(|_| ())
+/// A study's scene checked before its first run: the table it varies, its
+/// `[uncertainty]` and each input's setting.
+pub struct CheckedInputs {
+    table: toml::Table,
+    spec: UncertaintySpec,
+    settings: Vec<Setting>,
 }
 
-/// The scene's table, its `[uncertainty]` and each input's setting, checked:
-/// a key that does not apply (a unit that is not there) is bad input, probed
-/// with its input's median.
-fn checked_inputs(
-    path: &Path,
-    plan: &UqPlan,
-) -> Result<(toml::Table, UncertaintySpec, Vec<Setting>), String> {
+/// Checks the scene's `[uncertainty]` table and that each input's key applies
+/// to the scene: a key that does not apply (a unit that is not there) is bad
+/// input, probed with its input's median.
+pub fn check_inputs(path: &Path, plan: &UqPlan) -> Result<CheckedInputs, String> {
     let table = crate::study::scene_table(path, &plan.overrides)?;
     let scene = crate::study::scene_with(path, &table, plan.duration)?;
     let spec = scene
@@ -105,7 +104,11 @@ fn checked_inputs(
             .and_then(|()| crate::study::scene_with(path, &probe, plan.duration).map(|_| ()))
             .map_err(|e| format!("`uncertainty.inputs` `{}` ({}): {e}", input.name, input.key))?;
     }
-    Ok((table, spec, settings))
+    Ok(CheckedInputs {
+        table,
+        spec,
+        settings,
+    })
 }
 
 /// Runs the study, reusing the rows of `runs` (the earlier runs of the same
@@ -118,12 +121,27 @@ pub fn run_uq(
     earlier: &[Run],
     done: impl Fn(usize, &Run, &str) + Sync,
 ) -> Result<(Option<UqReport>, Vec<Run>), String> {
-    let (table, spec, settings) = checked_inputs(path, plan)?;
+    run_checked(path, plan, &check_inputs(path, plan)?, earlier, done)
+}
+
+/// [`run_uq`] on inputs [`check_inputs`] has already checked.
+pub fn run_checked(
+    path: &Path,
+    plan: &UqPlan,
+    inputs: &CheckedInputs,
+    earlier: &[Run],
+    done: impl Fn(usize, &Run, &str) + Sync,
+) -> Result<(Option<UqReport>, Vec<Run>), String> {
+    let CheckedInputs {
+        table,
+        spec,
+        settings,
+    } = inputs;
     let samples = plan.samples.unwrap_or(spec.samples);
     if samples > plan.max_runs {
         return Err(crate::too_many_runs("the design", samples, plan.max_runs));
     }
-    let points = points_of(&spec, samples)?;
+    let points = points_of(spec, samples)?;
     let order: Vec<usize> = match plan.shard {
         Some((k, n)) if k >= 1 && k <= n => (k - 1..points.len()).step_by(n).collect(),
         Some((k, n)) => return Err(format!("--shard {k}/{n}: expected K in 1..=N")),
@@ -144,8 +162,8 @@ pub fn run_uq(
         }
         let outcome = run_one(
             path,
-            &table,
-            &settings,
+            table,
+            settings,
             &points[k],
             plan.duration,
             &spec.outputs,
@@ -166,7 +184,7 @@ pub fn run_uq(
         let shard: Vec<Run> = order.iter().zip(runs).map(|(_, r)| r).collect();
         return Ok((None, shard_rows(&order, shard)));
     }
-    let mut report = expand(path, &spec, &runs)?;
+    let mut report = expand(path, spec, &runs)?;
     report.failures = failures;
     Ok((Some(report), runs))
 }
