@@ -53,6 +53,18 @@ pub fn linear_sample() -> String {
     format!("{}\nlinear = true\n", without_stinger.join("\n"))
 }
 
+/// The nonlinear sample reduced about its start (`reduced_modes = 4`: four
+/// modes, the attachment vector of its loaded end, the modal derivatives and
+/// the constraint modes of its held ends; no stinger, whose augmented
+/// Lagrangian a reduced section refuses).
+pub fn reduced_sample() -> String {
+    let without_stinger: Vec<&str> = NONLINEAR_SAMPLE
+        .lines()
+        .filter(|l| !l.starts_with("stinger"))
+        .collect();
+    format!("{}\nreduced_modes = 4\n", without_stinger.join("\n"))
+}
+
 /// One sample per registry kind (an FMU sample needs a folder to export into).
 pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
     let exported = fmu::export("examples/b3_force_displacement.toml", "b", dir);
@@ -68,6 +80,7 @@ pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
         ),
         ("nonlinear", inline("nonlinear", NONLINEAR_SAMPLE)),
         ("nonlinear linear", inline("nonlinear", &linear_sample())),
+        ("nonlinear reduced", inline("nonlinear", &reduced_sample())),
         (
             "span",
             inline(

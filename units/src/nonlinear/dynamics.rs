@@ -5,7 +5,7 @@
 
 use super::params::Integrator;
 use super::{NonlinearSection, contact};
-use crate::contract::{Inputs, ModalAnalysis, Mode, UnitError};
+use crate::contract::{Inputs, UnitError};
 use crate::integrators::central_difference::CentralDifference;
 use crate::integrators::hht::{
     Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales,
@@ -112,19 +112,23 @@ impl NonlinearSection {
         if let Some(c) = &self.c {
             c.mul_add(-1.0, &self.state.v, &mut rhs);
         }
-        let mut m = self.m.clone();
         for &(d, [_, _, a]) in &held {
-            m.set_identity_row(d);
             rhs[d] = a;
         }
-        let factor = BandLdlt::new(&m).ok_or_else(|| {
-            UnitError::Numerical(
-                "nonlinear section: the mass matrix is not positive definite".into(),
-            )
-        })?;
-        // Held accelerations are zero at rest here, so no right-hand-side coupling.
-        factor.solve_in_place(&mut rhs);
-        self.state.a.copy_from_slice(&rhs);
+        if !self.reduced_start(&mut rhs)? {
+            let mut m = self.m.clone();
+            for &(d, _) in &held {
+                m.set_identity_row(d);
+            }
+            let factor = BandLdlt::new(&m).ok_or_else(|| {
+                UnitError::Numerical(
+                    "nonlinear section: the mass matrix is not positive definite".into(),
+                )
+            })?;
+            // Held accelerations are zero at rest here, so no right-hand-side coupling.
+            factor.solve_in_place(&mut rhs);
+            self.state.a.copy_from_slice(&rhs);
+        }
         self.finish(&load, false)?;
         if self.params.static_start {
             // The force the section reports at its start is the equilibrium's
@@ -187,7 +191,10 @@ impl NonlinearSection {
         self.jacobian_work.ready = false;
         let offers = self.offers_jacobian();
         if let (Some(guess), true) = (self.jacobian_work.warm_guess(t0, inputs.end()), offers) {
-            self.hht.guess_next(guess);
+            match self.reduction.as_mut() {
+                Some(r) => r.guess_next(guess),
+                None => self.hht.guess_next(guess),
+            }
         }
         // A whole step leaves the state at its start when Newton fails, so the
         // copy for sub-stepping is only taken then (nothing per ordinary step).
@@ -224,8 +231,9 @@ impl NonlinearSection {
         self.jacobian_work.ready = pieces == 1 && result.is_ok() && self.offers_jacobian();
         self.jacobian_work.h = h;
         if self.jacobian_work.ready {
-            self.jacobian_work
-                .record_step(t0, inputs.end(), &self.state.q);
+            let mut work = std::mem::take(&mut self.jacobian_work);
+            work.record_step(t0, inputs.end(), self.stepped_coordinates());
+            self.jacobian_work = work;
         }
         result
     }
@@ -305,13 +313,18 @@ impl NonlinearSection {
                     g0: (!self.energy_conserving() && !linear).then_some(w.g0.as_slice()),
                     held: &w.held,
                 };
-                let mut hht = std::mem::take(&mut self.hht);
                 let newton = NewtonSettings {
                     tolerance,
                     max_iterations,
                 };
-                let result = hht.step(self, &loads, newton);
-                self.hht = hht;
+                let result = if self.reduction.is_some() {
+                    self.reduced_step((&w.f0, &w.f1, &w.held), (t0, t1, h), newton)
+                } else {
+                    let mut hht = std::mem::take(&mut self.hht);
+                    let result = hht.step(self, &loads, newton);
+                    self.hht = hht;
+                    result
+                };
                 result.map_err(Failure::Newton)?
             }
             Integrator::CentralDifference => {
@@ -524,44 +537,4 @@ impl SecondOrderSystem for NonlinearSection {
             );
         }
     }
-}
-
-/// Modes about the current state (tangent stiffness, the dynamics' mass) with the
-/// kinematic end conditions held, longest period first.
-pub(super) fn modes(section: &NonlinearSection, count: usize) -> Result<ModalAnalysis, UnitError> {
-    let held: Vec<usize> = section.held().map(|r| r.dof).collect();
-    let n = section.model.dofs();
-    let free: Vec<usize> = (0..n).filter(|d| !held.contains(d)).collect();
-    let pick = |m: &SymmetricBand| {
-        nalgebra::DMatrix::from_fn(free.len(), free.len(), |i, j| m.get(free[i], free[j]))
-    };
-    let k = section.tangent_stiffness();
-    let (m, k) = (pick(&section.m), pick(&k));
-    let mut modes = Vec::new();
-    for (w2, phi) in crate::numerics::modal::lowest_modes(
-        &m,
-        &k,
-        count,
-        "the section has a zero-stiffness mode",
-    )? {
-        let mut full = vec![0.0; n];
-        for (a, &d) in free.iter().enumerate() {
-            full[d] = phi[a];
-        }
-        let scale = full
-            .chunks(3)
-            .fold(0.0f64, |a, c| a.max(c[0].abs()).max(c[1].abs()))
-            .max(1e-300);
-        modes.push(Mode {
-            period: 2.0 * std::f64::consts::PI / w2.sqrt(),
-            shape: full
-                .chunks(3)
-                .map(|c| [c[0] / scale, c[1] / scale])
-                .collect(),
-        });
-    }
-    Ok(ModalAnalysis {
-        positions: section.positions(),
-        modes,
-    })
 }

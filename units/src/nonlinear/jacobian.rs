@@ -56,6 +56,9 @@ impl NonlinearSection {
         inputs: Inputs<'_>,
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
+        if self.reduction.is_some() {
+            return self.reduced_jacobian(inputs, jacobian);
+        }
         if !self.jacobian_work.ready {
             return Err(UnitError::Unsupported(
                 "the step Jacobian of a nonlinear section after a step taken in sub-steps, or before any step".into(),
@@ -109,7 +112,7 @@ impl NonlinearSection {
     }
 
     /// How a unit change of input `j` drives the step, if it does.
-    fn drive_of(&self, inputs: Inputs<'_>, j: usize, h: f64) -> Option<Drive> {
+    pub(super) fn drive_of(&self, inputs: Inputs<'_>, j: usize, h: f64) -> Option<Drive> {
         let r = self.ends.iter().find(|r| r.input == Some(j))?;
         let ramp = inputs.hold(j) == Hold::Ramp;
         let (alpha, _, _) = self.hht.parameters();
@@ -192,6 +195,14 @@ impl NonlinearSection {
 }
 
 impl JacobianWork {
+    /// The last step's derivatives of the stepped coordinates with respect
+    /// to each input (`n_in x coordinates`), for the warm start.
+    pub fn set_columns(&mut self, columns: &[f64]) {
+        self.columns.clear();
+        self.columns.extend_from_slice(columns);
+        self.columns_valid = true;
+    }
+
     /// Records a whole step from `t0` that ended at `q` with end `inputs`.
     pub fn record_step(&mut self, t0: f64, inputs: &[f64], q: &[f64]) {
         self.last_t0 = t0;

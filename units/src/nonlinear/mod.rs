@@ -19,6 +19,8 @@ pub mod params;
 mod dynamics;
 mod jacobian;
 mod linear;
+mod modes;
+mod reduced;
 mod start_shape;
 mod statics;
 
@@ -66,6 +68,37 @@ crate::state_struct! {
         /// Largest |moment| (N m) and tension (N) at the current time.
         largest: [f64; 2],
         newton_iterations: u32,
+        /// A reduced section's coordinates, velocities and accelerations
+        /// (empty otherwise).
+        reduced: Vec<f64>,
+    }
+}
+
+impl SectionState {
+    /// At rest at the stress-free shape (`n` DOFs), nothing in contact.
+    fn at_rest(n: usize, lambda: Vec<f64>) -> SectionState {
+        let zeros = vec![0.0; n];
+        SectionState {
+            t: 0.0,
+            q: zeros.clone(),
+            v: zeros.clone(),
+            a: zeros.clone(),
+            force: zeros.clone(),
+            elastic: zeros.clone(),
+            reaction: zeros.clone(),
+            stepped_contact: zeros,
+            lambda,
+            contact: ContactSummary {
+                touchdown: f64::NAN,
+                crossing: [f64::NAN; 2],
+                ..ContactSummary::default()
+            },
+            bend_now: [0.0; 2],
+            bend_step: [0.0; 2],
+            largest: [0.0; 2],
+            newton_iterations: 0,
+            reduced: Vec::new(),
+        }
     }
 }
 
@@ -92,6 +125,8 @@ pub struct NonlinearSection {
     jacobian_work: jacobian::JacobianWork,
     /// The linear model about the start (`linear = true`), after `initialize`.
     linear: Option<linear::Linearised>,
+    /// The basis about the start (`reduced_modes`), after `initialize`.
+    reduction: Option<Box<reduced::Reduction>>,
 }
 
 impl NonlinearSection {
@@ -99,6 +134,7 @@ impl NonlinearSection {
     pub fn new(params: NonlinearParams) -> Result<NonlinearSection, UnitError> {
         params.validate()?;
         linear::validate(&params)?;
+        reduced::validate(&params)?;
         let model = Model::new(&params);
         let n = model.dofs();
         let (ends, inputs) = ends::resolve(&params, model.reference.len());
@@ -123,7 +159,6 @@ impl NonlinearSection {
             Integrator::Hht { alpha, .. } => alpha,
             Integrator::EnergyConserving { .. } | Integrator::CentralDifference => 0.0,
         };
-        let zeros = vec![0.0; n];
         let environment = Environment::new(&params, &model);
         // Formed about the start state by `initialize`.
         let m = SymmetricBand::zeros(n, BAND);
@@ -134,32 +169,14 @@ impl NonlinearSection {
                 outputs,
                 capabilities: Capabilities::default(),
             },
-            state: SectionState {
-                t: 0.0,
-                q: zeros.clone(),
-                v: zeros.clone(),
-                a: zeros.clone(),
-                force: zeros.clone(),
-                elastic: zeros.clone(),
-                reaction: zeros.clone(),
-                stepped_contact: zeros,
-                lambda: environment.contacts.initial_lambda(),
-                contact: ContactSummary {
-                    touchdown: f64::NAN,
-                    crossing: [f64::NAN; 2],
-                    ..ContactSummary::default()
-                },
-                bend_now: [0.0; 2],
-                bend_step: [0.0; 2],
-                largest: [0.0; 2],
-                newton_iterations: 0,
-            },
+            state: SectionState::at_rest(n, environment.contacts.initial_lambda()),
             environment,
             hht: HhtAlpha::new(alpha, n, BAND),
             explicit: CentralDifference::new(),
             work: dynamics::StepWork::default(),
             jacobian_work: jacobian::JacobianWork::default(),
             linear: None,
+            reduction: None,
             c: None,
             m,
             critical_step: f64::NAN,
@@ -439,6 +456,7 @@ impl Unit for NonlinearSection {
         }
         self.prepare_dynamics()?;
         self.linearise()?;
+        self.reduce()?;
         self.initial_acceleration(inputs)
     }
 
@@ -524,7 +542,7 @@ impl Unit for NonlinearSection {
     }
 
     fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {
-        dynamics::modes(self, count)
+        modes::modes(self, count)
     }
 }
 

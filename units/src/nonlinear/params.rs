@@ -323,6 +323,8 @@ pub struct NonlinearParams {
     /// Step the section linearised about its start state (see `linear`).
     #[serde(default)]
     pub linear: bool,
+    /// Step the section on N modes of its tangent at the start (see `reduced`).
+    pub reduced_modes: Option<usize>,
     #[serde(default)]
     pub start_shape: StartShape,
     /// The polyline (x, z in m) of `start_shape = "points"`.

@@ -141,7 +141,7 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
 /// coupling in the tests); with a static start the other way round, so that in
 /// the master's first initial iterate every section hangs from what holds it
 /// and its own static solve is well posed. Some fidelities fix the way round: a
-/// cable's top takes force and its bottom velocity; a reduced section takes
+/// cable's top takes force and its bottom velocity; a reduced section about its stress-free state takes
 /// force at both its cuts; a static first section either follows the section
 /// above and every section above is held at its end (all cuts the first way
 /// round), or, when the structure's end carries a force (`holding_static`),
@@ -157,7 +157,7 @@ fn orientation(
     for (k, cut) in cuts.iter().enumerate() {
         let (below, above) = match cut.fidelity {
             Fidelity::Cable | Fidelity::Beam | Fidelity::Span => (Some(true), Some(true)),
-            Fidelity::Reduced => (Some(false), Some(true)),
+            Fidelity::Reduced if !static_start => (Some(false), Some(true)),
             Fidelity::Static if k == 0 && holding_static => (None, Some(true)),
             Fidelity::Static if k == 0 => {
                 for c in 0..last {
@@ -325,10 +325,13 @@ impl Built {
                 k,
                 self.statics.as_ref(),
             )?,
+            Fidelity::Reduced if self.statics.is_some() => {
+                reduced::reduced_unit(self.section_unit(cut, (start, end))?, cut, true)?
+            }
             Fidelity::Reduced => {
                 let section =
                     section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
-                reduced::reduced_unit(section, cut, self.statics.is_some())?
+                reduced::reduced_unit(section, cut, false)?
             }
             Fidelity::Cable => {
                 cable_fits(&self.model, cuts, k, self.top_load.is_some())?;

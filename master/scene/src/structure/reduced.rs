@@ -1,6 +1,9 @@
-//! The `reduced` fidelity of a section: the section's `nonlinear` parameters
-//! reduced about their stress-free state by the `reduced` unit (seed 002), loaded
-//! at its cuts (the generator orients them so).
+//! The `reduced` fidelity of a section. Started from the structure's static
+//! equilibrium, the section's `nonlinear` unit reduced about that state
+//! (`reduced_modes`: modes of its tangent there, attachment and constraint
+//! vectors, the forces through its elements); from the stress-free state, the
+//! `reduced` unit of seed 002, loaded at its cuts (the generator orients them
+//! so).
 
 use super::sections::Cut;
 use toml::{Table, Value};
@@ -8,25 +11,30 @@ use toml::{Table, Value};
 /// Modes in the basis when the scene gives none.
 const DEFAULT_MODES: i64 = 6;
 
-/// The `reduced` unit of one section from its `nonlinear` unit: `modes` (default
-/// 6) and `derivatives` (default "taylor": the modes' derivatives follow the
-/// modal coordinates, so the critical step is the modes' own) from the
-/// fidelity, the section's parameters as its `section`.
+/// The keys a section reduced about its static state takes besides `kind`
+/// and `elements` (seed 002's `derivatives`, `attachments` and `integrator`
+/// belong to the reduction about the stress-free state).
+const STATIC_KEYS: [&str; 1] = ["modes"];
+
+/// The reduced unit of one section from its `nonlinear` unit: `modes`
+/// (default 6) and, about the stress-free state, `derivatives` (default
+/// "taylor": the modes' derivatives follow the modal coordinates, so the
+/// critical step is the modes' own) from the fidelity, the section's
+/// parameters as its `section`.
 pub(super) fn reduced_unit(
     mut section: Table,
     cut: &Cut,
     static_start: bool,
 ) -> Result<Table, String> {
     let key = format!("structure.sections.{}.fidelity", cut.name);
+    let options = cut.options.clone().unwrap_or_default();
     if static_start {
-        return Err(format!(
-            "`{key}` = \"reduced\": a reduced section is expanded about its stress-free state, so the structure cannot start from its static equilibrium; leave out `structure.model.static_start`"
-        ));
+        return about_static_state(section, &key, &options);
     }
     let parameters = section
         .remove("parameters")
         .ok_or(format!("`{key}`: the section has no parameters"))?;
-    let mut reduced = cut.options.clone().unwrap_or_default();
+    let mut reduced = options;
     reduced
         .entry("modes")
         .or_insert(Value::Integer(DEFAULT_MODES));
@@ -36,5 +44,25 @@ pub(super) fn reduced_unit(
     reduced.insert("section".into(), parameters);
     section.insert("kind".into(), Value::String("reduced".into()));
     section.insert("parameters".into(), Value::Table(reduced));
+    Ok(section)
+}
+
+/// The section's `nonlinear` unit with `reduced_modes`: reduced about the
+/// equilibrium it starts from.
+fn about_static_state(mut section: Table, key: &str, options: &Table) -> Result<Table, String> {
+    if let Some(other) = options.keys().find(|k| !STATIC_KEYS.contains(&k.as_str())) {
+        return Err(format!(
+            "`{key}.{other}`: a section reduced about the structure's static equilibrium takes `modes` only (its basis: modes of the tangent there with attachment and constraint vectors, stepped by the section's own integrator)"
+        ));
+    }
+    let modes = options
+        .get("modes")
+        .cloned()
+        .unwrap_or(Value::Integer(DEFAULT_MODES));
+    let parameters = section
+        .get_mut("parameters")
+        .and_then(Value::as_table_mut)
+        .ok_or(format!("`{key}`: the section has no parameters"))?;
+    parameters.insert("reduced_modes".into(), modes);
     Ok(section)
 }

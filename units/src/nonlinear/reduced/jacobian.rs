@@ -1,0 +1,238 @@
+//! The reduced section's interface Jacobian over its last step: the
+//! sensitivity of the reduced step (`integrators::hht_sensitivity`) with the
+//! reduced Newton matrix formed exactly at the step's end (the step itself may
+//! have converged on a frozen tangent), mapped to the end outputs through the
+//! basis. A coupled end motion drives its constraint coordinate; a coupled end
+//! force loads the coordinates through its row of the basis.
+
+use super::{Reduction, project, times};
+use crate::contract::{Inputs, UnitError};
+use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
+use crate::nonlinear::NonlinearSection;
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
+
+/// Buffers of the Jacobian, kept between calls.
+#[derive(Default)]
+pub(super) struct JacobianBuffers {
+    /// The full tangent stiffness and drag damping at the step's end.
+    stiffness: Option<SymmetricBand>,
+    drag: Option<SymmetricBand>,
+    force: Vec<f64>,
+    scratch: Vec<f64>,
+    /// Their projections (m x m, row-major).
+    reduced_stiffness: Vec<f64>,
+    reduced_drag: Vec<f64>,
+    change: Change,
+    /// dz / d input per input (`n_in x m`): the warm start of a repeated step.
+    columns: Vec<f64>,
+    /// The change of the full motion: dq, dv, da.
+    full: [Vec<f64>; 3],
+}
+
+impl NonlinearSection {
+    /// Fills `jacobian` (outputs x inputs, row-major): the end outputs' rows,
+    /// the others NaN.
+    pub(in crate::nonlinear) fn reduced_jacobian(
+        &mut self,
+        inputs: Inputs<'_>,
+        jacobian: &mut [f64],
+    ) -> Result<(), UnitError> {
+        let Some(mut r) = self.reduction.take() else {
+            return Err(UnitError::Unsupported(
+                "the Jacobian of a reduced section before its basis is formed".into(),
+            ));
+        };
+        let result = self.reduced_columns(&mut r, inputs, jacobian);
+        if result.is_ok() {
+            self.jacobian_work.set_columns(&r.jacobian.columns);
+        }
+        self.reduction = Some(r);
+        result
+    }
+
+    /// The full tangents at the step's end, projected.
+    fn end_tangents(&self, r: &Reduction, b: &mut JacobianBuffers) {
+        let n = r.n;
+        let s = &self.state;
+        b.force.clear();
+        b.force.resize(n, 0.0);
+        let mut k = b
+            .stiffness
+            .take()
+            .unwrap_or_else(|| SymmetricBand::zeros(n, crate::nonlinear::model::BAND));
+        let mut c = b.drag.take().unwrap_or_else(|| k.clone());
+        k.fill_zero();
+        c.fill_zero();
+        self.model
+            .add_internal_force(&s.q, 1.0, Some((&mut k, 1.0)), &mut b.force);
+        if !self.environment.is_empty() {
+            let at = (s.q.as_slice(), s.v.as_slice(), s.t);
+            let env = &self.environment;
+            env.add_force(
+                &self.model,
+                at,
+                &s.lambda,
+                1.0,
+                true,
+                Some((&mut k, 1.0, 0.0)),
+                &mut b.force,
+            );
+            env.add_force(
+                &self.model,
+                at,
+                &s.lambda,
+                1.0,
+                true,
+                Some((&mut c, 0.0, 1.0)),
+                &mut b.force,
+            );
+        }
+        project(
+            &r.basis,
+            (n, r.m),
+            &k,
+            &mut b.scratch,
+            &mut b.reduced_stiffness,
+        );
+        project(&r.basis, (n, r.m), &c, &mut b.scratch, &mut b.reduced_drag);
+        (b.stiffness, b.drag) = (Some(k), Some(c));
+    }
+
+    fn reduced_columns(
+        &self,
+        r: &mut Reduction,
+        inputs: Inputs<'_>,
+        jacobian: &mut [f64],
+    ) -> Result<(), UnitError> {
+        if !self.jacobian_work.ready {
+            return Err(UnitError::Unsupported(
+                "the step Jacobian of a reduced section after a step taken in sub-steps, or before any step".into(),
+            ));
+        }
+        let mut b = std::mem::take(&mut r.jacobian);
+        self.end_tangents(r, &mut b);
+        let (n, m, free) = (r.n, r.m, r.m - r.held.len());
+        let h = self.jacobian_work.h;
+        let (alpha, beta, gamma) = r.hht.parameters();
+        let rayleigh = |i: usize, k: usize| r.damping.as_ref().map_or(0.0, |c| c.get(i, k));
+        let damping = |i: usize, k: usize| rayleigh(i, k) + b.reduced_drag[i * m + k];
+        let mut newton = SymmetricBand::zeros(m, m - 1);
+        for i in 0..m {
+            for k in i..m {
+                let value = r.mass.get(i, k) / (beta * h * h)
+                    + (1.0 - alpha)
+                        * (gamma / (beta * h) * damping(i, k) + b.reduced_stiffness[i * m + k]);
+                newton.add(i, k, value);
+            }
+        }
+        let mut with_held = newton.clone();
+        (free..m).for_each(|j| with_held.set_identity_row(j));
+        let factor = BandLdlt::new(&with_held).ok_or_else(|| {
+            UnitError::Numerical("reduced section: its Newton matrix is singular".into())
+        })?;
+        let sensitivity = StepSensitivity {
+            newton: &newton,
+            factor: &factor,
+            mass: &r.mass,
+            damping: &damping,
+            parameters: (alpha, beta, gamma),
+            h,
+        };
+        let held: Vec<usize> = (free..m).collect();
+        let n_in = inputs.len();
+        jacobian.fill(f64::NAN);
+        b.columns.clear();
+        for j in 0..n_in {
+            let mut change = std::mem::take(&mut b.change);
+            match self.drive_of(inputs, j, h) {
+                Some(Drive::Motion { dof, change: c }) => {
+                    match r.held.iter().position(|&d| d == dof) {
+                        Some(p) => {
+                            let drive = Drive::Motion {
+                                dof: free + p,
+                                change: c,
+                            };
+                            sensitivity.solve(drive, &held, &mut change);
+                        }
+                        None => change.clear(m),
+                    }
+                }
+                Some(Drive::Load { dof, weight }) => {
+                    load_change(r, (dof, weight), &factor, (beta, gamma, h), &mut change);
+                }
+                None => change.clear(m),
+            }
+            for (full, reduced) in b.full.iter_mut().zip([&change.dq, &change.dv, &change.da]) {
+                full.clear();
+                full.resize(n, 0.0);
+                times(&r.basis, (n, m), reduced, full);
+            }
+            self.end_rows(&b, (j, n_in), jacobian);
+            b.columns.extend_from_slice(&change.dq);
+            b.change = change;
+        }
+        r.jacobian = b;
+        Ok(())
+    }
+
+    /// The end outputs' rows of column `j` from the full motion's change.
+    fn end_rows(&self, b: &JacobianBuffers, (j, n_in): (usize, usize), jacobian: &mut [f64]) {
+        let [dq, dv, _] = &b.full;
+        let nodes = self.model.reference.len();
+        for end in 0..2 {
+            let node = if end == 0 { 0 } else { nodes - 1 };
+            let base = 9 * end;
+            for k in 0..3 {
+                let dof = 3 * node + k;
+                jacobian[(base + k) * n_in + j] = dq[dof];
+                jacobian[(base + 3 + k) * n_in + j] = dv[dof];
+                let loaded = self
+                    .ends
+                    .iter()
+                    .find(|c| c.end == end && c.component == k && !c.is_kinematic());
+                jacobian[(base + 6 + k) * n_in + j] = match loaded {
+                    Some(c) if c.input == Some(j) => -1.0,
+                    Some(_) => 0.0,
+                    None => -self.reaction_change(b, dof),
+                };
+            }
+        }
+    }
+
+    /// The change of the reaction M a + (C + C_t) v + K_t q at DOF `i`.
+    fn reaction_change(&self, b: &JacobianBuffers, i: usize) -> f64 {
+        let [dq, dv, da] = &b.full;
+        let (Some(k), Some(ct)) = (&b.stiffness, &b.drag) else {
+            return f64::NAN;
+        };
+        let w = k.half_bandwidth();
+        (i.saturating_sub(w)..(i + w + 1).min(dq.len()))
+            .map(|c| {
+                let damping = self.c.as_ref().map_or(0.0, |m| m.get(i, c)) + ct.get(i, c);
+                self.m.get(i, c) * da[c] + damping * dv[c] + k.get(i, c) * dq[c]
+            })
+            .sum()
+    }
+}
+
+/// The reduced motion's change under a unit load at full DOF `dof` with its
+/// weight in the residual: S dz = weight T^T e_dof, the held coordinates
+/// still; velocities and accelerations by Newmark.
+fn load_change(
+    r: &Reduction,
+    (dof, weight): (usize, f64),
+    factor: &BandLdlt,
+    (beta, gamma, h): (f64, f64, f64),
+    change: &mut Change,
+) {
+    let (n, m, free) = (r.n, r.m, r.m - r.held.len());
+    change.clear(m);
+    for (i, dz) in change.dq.iter_mut().enumerate().take(free) {
+        *dz = weight * r.basis[i * n + dof];
+    }
+    factor.solve_in_place(&mut change.dq);
+    for i in 0..m {
+        change.da[i] = change.dq[i] / (beta * h * h);
+        change.dv[i] = gamma / (beta * h) * change.dq[i];
+    }
+}
