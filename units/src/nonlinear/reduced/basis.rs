@@ -14,6 +14,10 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 /// ones before it (after orthogonalisation) and left out.
 const DEPENDENCE: f64 = 1e-9;
 
+/// The smallest singular value, relative to the largest, of the modal
+/// derivatives' principal directions kept in the basis.
+const DERIVATIVE_SHARE: f64 = 1e-5;
+
 /// The displacement (m or rad, on columns scaled to a largest entry of 1) of
 /// the second differences that give the modal derivatives.
 const PROBE: f64 = 1e-3;
@@ -60,14 +64,16 @@ pub(super) fn columns(
         free.push(x);
     }
     let moving: Vec<&Vec<f64>> = modes.iter().chain(&constraints).collect();
+    let mut derivatives = Vec::new();
     for (i, a) in moving.iter().enumerate() {
         for b in &moving[i..] {
             let mut x = second_difference(section, a, b);
             held.iter().for_each(|&h| x[h] = 0.0);
             factor.solve_in_place(&mut x);
-            free.push(x);
+            derivatives.push(x);
         }
     }
+    free.extend(principal_directions(derivatives, n));
     modes.append(&mut free);
     let mut basis = independent(modes, n);
     constraints.iter().for_each(|c| basis.extend(c));
@@ -103,6 +109,28 @@ fn second_difference(section: &NonlinearSection, a: &[f64], b: &[f64]) -> Vec<f6
     // The derivative is -K_t^-1 of it.
     out.iter_mut().for_each(|x| *x = -*x);
     out
+}
+
+/// The derivatives' principal directions (left singular vectors) down to
+/// `DERIVATIVE_SHARE` of the largest singular value: the derivatives of k
+/// moving columns are k (k + 1) / 2 vectors, most of them nearly parallel
+/// (the axial stretch of turning), and a basis of all would cost O(k^4) a
+/// step. Each derivative enters at its own size (the displacement per unit
+/// products of columns scaled to a largest entry of 1 m or rad).
+fn principal_directions(derivatives: Vec<Vec<f64>>, n: usize) -> Vec<Vec<f64>> {
+    if derivatives.is_empty() {
+        return Vec::new();
+    }
+    let d = nalgebra::DMatrix::from_fn(n, derivatives.len(), |i, j| derivatives[j][i]);
+    let svd = d.svd(true, false);
+    let (Some(u), values) = (svd.u, svd.singular_values) else {
+        return Vec::new();
+    };
+    let largest = values.iter().fold(0.0f64, |a, &v| a.max(v));
+    (0..values.len())
+        .filter(|&k| largest > 0.0 && values[k] > DERIVATIVE_SHARE * largest)
+        .map(|k| u.column(k).iter().copied().collect())
+        .collect()
 }
 
 /// `v` scaled to a largest entry of 1.

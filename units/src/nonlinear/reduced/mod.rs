@@ -536,9 +536,12 @@ fn project(
     }
     projected.clear();
     projected.resize(m * m, 0.0);
+    // B is symmetric: the upper triangle, mirrored.
     for i in 0..m {
-        for j in 0..m {
-            projected[i * m + j] = dot(&basis[i * n..(i + 1) * n], &scratch[j * n..(j + 1) * n]);
+        for j in i..m {
+            let value = dot(&basis[i * n..(i + 1) * n], &scratch[j * n..(j + 1) * n]);
+            projected[i * m + j] = value;
+            projected[j * m + i] = value;
         }
     }
 }
