@@ -63,6 +63,14 @@ pub trait SecondOrderSystem {
         force: &mut Vec<f64>,
     );
 
+    /// Whether the tangent the last `nonlinear_force` added is the system's
+    /// frozen one (a function of the tangent scales alone, as a reduced
+    /// section's at its start): the integrator then reuses its factor of the
+    /// same step size instead of refactorising.
+    fn tangent_is_frozen(&self) -> bool {
+        false
+    }
+
     /// Called after each Newton correction with the new iterate (e.g. Lagrangian
     /// updates of a contact law).
     fn after_iteration(&mut self, q: &[f64], t: f64) {
@@ -113,6 +121,9 @@ pub struct HhtAlpha {
     jacobian: SymmetricBand,
     /// Factor of the Newton matrix with the tangent, refactorised in place.
     factor: Option<BandLdlt>,
+    /// The step size `factor` was formed for with a frozen tangent (NaN when
+    /// its tangent was not the frozen one).
+    frozen_h: f64,
     q0: Vec<f64>,
     v0: Vec<f64>,
     a0: Vec<f64>,
@@ -151,6 +162,7 @@ impl HhtAlpha {
             linear_factor: None,
             jacobian: SymmetricBand::zeros(n, w),
             factor: None,
+            frozen_h: f64::NAN,
             q0: Vec::new(),
             v0: Vec::new(),
             a0: Vec::new(),
@@ -212,6 +224,7 @@ impl HhtAlpha {
     /// unit initialised again), so the next step forms it anew.
     pub fn forget_matrices(&mut self) {
         self.linear_h = f64::NAN;
+        self.frozen_h = f64::NAN;
     }
 
     /// Forms and factorises the linear Newton matrix when `h` changed.
@@ -402,6 +415,10 @@ impl HhtAlpha {
         if let Some(kept) = self.kept.as_mut() {
             kept.copy_from(&self.jacobian);
         }
+        let frozen = system.tangent_is_frozen();
+        if frozen && self.frozen_h == loads.h && self.factor.is_some() {
+            return true;
+        }
         for (d, _) in loads.held {
             self.jacobian.set_identity_row(*d);
         }
@@ -410,7 +427,13 @@ impl HhtAlpha {
         let factor = self.factor.get_or_insert_with(|| {
             BandLdlt::zeros(self.jacobian.size(), self.jacobian.half_bandwidth())
         });
-        factor.refactorise_nonsingular(&self.jacobian)
+        let factorised = factor.refactorise_nonsingular(&self.jacobian);
+        self.frozen_h = if frozen && factorised {
+            loads.h
+        } else {
+            f64::NAN
+        };
+        factorised
     }
 
     /// residual = constant + g1 + M a1 + (1 - alpha) (C v1 + K q1), zero at held DOFs.

@@ -19,7 +19,9 @@ pub(super) struct JacobianBuffers {
     drag: Option<SymmetricBand>,
     force: Vec<f64>,
     scratch: Vec<f64>,
-    /// Their projections (m x m, row-major).
+    /// K_t + c C_t, and the projections (m x m, row-major) of that and of
+    /// C_t's columns at the held coordinates.
+    combined: Option<SymmetricBand>,
     reduced_stiffness: Vec<f64>,
     reduced_drag: Vec<f64>,
     change: Change,
@@ -50,8 +52,9 @@ impl NonlinearSection {
         result
     }
 
-    /// The full tangents at the step's end, projected.
-    fn end_tangents(&self, r: &Reduction, b: &mut JacobianBuffers) {
+    /// The full tangents at the step's end; projected, K_t + `damping_scale`
+    /// C_t and C_t's columns at the held coordinates.
+    fn end_tangents(&self, r: &Reduction, b: &mut JacobianBuffers, damping_scale: f64) {
         let n = r.n;
         let s = &self.state;
         b.force.clear();
@@ -87,14 +90,30 @@ impl NonlinearSection {
                 &mut b.force,
             );
         }
+        // The Newton matrix needs K_t + c C_t only; the motion of a held
+        // coordinate also C_t's columns there.
+        let mut combined = b.combined.take().unwrap_or_else(|| k.clone());
+        combined.set_combination(&[(1.0, &k), (damping_scale, &c)]);
+        let m = r.m;
         project(
             &r.basis,
-            (n, r.m),
-            &k,
+            (n, m),
+            &combined,
             &mut b.scratch,
             &mut b.reduced_stiffness,
         );
-        project(&r.basis, (n, r.m), &c, &mut b.scratch, &mut b.reduced_drag);
+        b.combined = Some(combined);
+        b.reduced_drag.clear();
+        b.reduced_drag.resize(m * m, 0.0);
+        b.scratch.resize(n, 0.0);
+        let free = m - r.held.len();
+        for j in free..m {
+            b.scratch.fill(0.0);
+            c.mul_add(1.0, &r.basis[j * n..(j + 1) * n], &mut b.scratch);
+            for i in 0..m {
+                b.reduced_drag[i * m + j] = super::dot(&r.basis[i * n..(i + 1) * n], &b.scratch);
+            }
+        }
         (b.stiffness, b.drag) = (Some(k), Some(c));
     }
 
@@ -110,10 +129,10 @@ impl NonlinearSection {
             ));
         }
         let mut b = std::mem::take(&mut r.jacobian);
-        self.end_tangents(r, &mut b);
         let (n, m, free) = (r.n, r.m, r.m - r.held.len());
         let h = self.jacobian_work.h;
         let (alpha, beta, gamma) = r.hht.parameters();
+        self.end_tangents(r, &mut b, gamma / (beta * h));
         let rayleigh = |i: usize, k: usize| r.damping.as_ref().map_or(0.0, |c| c.get(i, k));
         let damping = |i: usize, k: usize| rayleigh(i, k) + b.reduced_drag[i * m + k];
         let mut newton = SymmetricBand::zeros(m, m - 1);
@@ -121,7 +140,7 @@ impl NonlinearSection {
             for k in i..m {
                 let value = r.mass.get(i, k) / (beta * h * h)
                     + (1.0 - alpha)
-                        * (gamma / (beta * h) * damping(i, k) + b.reduced_stiffness[i * m + k]);
+                        * (gamma / (beta * h) * rayleigh(i, k) + b.reduced_stiffness[i * m + k]);
                 newton.add(i, k, value);
             }
         }

@@ -85,6 +85,8 @@ struct Work {
     held: Vec<(usize, [f64; 3])>,
     motion: [Vec<f64>; 3],
     iteration: u32,
+    /// Whether the last tangent added was the frozen one.
+    frozen: bool,
     /// A Newton correction in the full DOFs (`limit_correction` has `&self`).
     correction: std::cell::RefCell<Vec<f64>>,
 }
@@ -385,6 +387,10 @@ impl SecondOrderSystem for ReducedSystem<'_> {
         false
     }
 
+    fn tangent_is_frozen(&self) -> bool {
+        self.reduction.work.frozen
+    }
+
     /// As the full section: a correction moving a node by more than the
     /// shortest element or turning it by more than 0.5 rad is scaled down.
     fn limit_correction(&self, dz: &mut [f64]) -> f64 {
@@ -425,6 +431,7 @@ impl SecondOrderSystem for ReducedSystem<'_> {
         let scale = scales.map_or(1.0, |s| s.stiffness);
         w.iteration += u32::from(tangent.is_some());
         let fresh = scales.filter(|_| w.iteration > FROZEN_ITERATIONS);
+        w.frozen = tangent.is_some() && fresh.is_none();
         let mut full_tangent = fresh.map(|_| {
             let mut k = w
                 .tangent
