@@ -189,8 +189,10 @@ impl NonlinearSection {
     }
 
     /// The reduced coordinates of the current state's held DOFs (the free ones
-    /// zero: the start), with `a` the held accelerations; the state then
-    /// follows them. Called at the start, after the held DOFs are set.
+    /// zero: the start) and the accelerations from `rhs` (f - C v - g, the
+    /// held accelerations at the held DOFs); the state then follows them.
+    /// Called at the start, after the held DOFs are set; false when the
+    /// section is not reduced.
     pub(super) fn reduced_start(&mut self, rhs: &mut [f64]) -> Result<bool, UnitError> {
         let Some(r) = self.reduction.as_deref() else {
             return Ok(false);
