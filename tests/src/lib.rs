@@ -555,7 +555,17 @@ pub fn hanging_pipe(
     (heave, drag): (&str, f64),
     output: &str,
 ) -> slender_scene::Scene {
-    let text = format!(
+    let text = hanging_pipe_text((duration, parameters), (heave, drag), output);
+    slender_scene::Scene::parse(&root().join("hanging.toml"), text).expect("the hanging pipe")
+}
+
+/// The text of [`hanging_pipe`]'s scene (to test what its parsing refuses).
+pub fn hanging_pipe_text(
+    (duration, parameters): (f64, &str),
+    (heave, drag): (&str, f64),
+    output: &str,
+) -> String {
+    format!(
         r#"
 title = "hanging steel pipe"
 [simulation]
@@ -578,6 +588,5 @@ integrator = {{ kind = "hht", alpha = 0.1 }}
 [output]
 {output}
 "#
-    );
-    slender_scene::Scene::parse(&root().join("hanging.toml"), text).expect("the hanging pipe")
+    )
 }

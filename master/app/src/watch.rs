@@ -8,8 +8,10 @@
 //! their statics (a laid section's own small tension is no scale for the
 //! top's). One beyond `factor` (default 5) times that scale is a warning
 //! with the unit, port, value and time (once per port), kept in
-//! `summary.json`; with `stop` it ends the run instead. Without load at the start (a structure released
-//! from its stress-free shape) there is no scale and nothing is watched.
+//! `summary.json`; with `stop` it ends the run instead. A `breaking_load`
+//! (N) bounds the tension too, whichever is lower. Without load at the start
+//! (a structure released from its stress-free shape) there is no scale and
+//! only a breaking load is watched.
 
 use slender_coupling::coupler::Master;
 use slender_scene::spec::WatchSpec;
@@ -20,12 +22,30 @@ use slender_scene::spec::WatchSpec;
 /// line example), so no multiple of the static one marks a broken run.
 const WATCHED: [&str; 1] = ["max_tension"];
 
-/// One watched port: unit, port, and the bound on its magnitude (N or N m).
+/// One watched port: unit, port, and the bound on its magnitude (N or N m)
+/// with what it is.
 struct Watched {
     unit: usize,
     port: usize,
     bound: f64,
+    what: &'static str,
     warned: bool,
+}
+
+/// The watched bound: `factor` times the start `scale`, or the breaking
+/// load where that is lower (or the only bound: no scale at the start).
+fn bound(spec: &WatchSpec, scale: f64) -> Option<(f64, &'static str)> {
+    let relative = (scale > 0.0).then_some((
+        spec.factor * scale,
+        "output.watch.factor times the largest at the start",
+    ));
+    let breaking = spec
+        .breaking_load
+        .map(|b| (b, "output.watch.breaking_load"));
+    match (relative, breaking) {
+        (Some(r), Some(b)) => Some(if b.0 < r.0 { b } else { r }),
+        (r, b) => r.or(b),
+    }
 }
 
 /// The watch over a run.
@@ -55,12 +75,15 @@ impl Watch {
         }
         let watched = found
             .into_iter()
-            .filter(|&(_, _, k)| scale[k] > 0.0)
-            .map(|(unit, port, k)| Watched {
-                unit,
-                port,
-                bound: spec.factor * scale[k],
-                warned: false,
+            .filter_map(|(unit, port, k)| {
+                let (bound, what) = bound(&spec, scale[k])?;
+                Some(Watched {
+                    unit,
+                    port,
+                    bound,
+                    what,
+                    warned: false,
+                })
             })
             .collect();
         Watch {
@@ -85,8 +108,8 @@ impl Watch {
                 let port = &master.description(w.unit).outputs[w.port];
                 let name = master.unit_names().nth(w.unit).unwrap_or("?");
                 let warning = format!(
-                    "implausible load: `{name}.{}` = {value:.4e} {} at t = {t} s, beyond {:.4e} (output.watch.factor times the largest at the start)",
-                    port.name, port.unit, w.bound
+                    "implausible load: `{name}.{}` = {value:.4e} {} at t = {t} s, beyond {:.4e} ({})",
+                    port.name, port.unit, w.bound, w.what
                 );
                 if self.stop {
                     return Err(warning);

@@ -268,6 +268,9 @@ impl Scene {
         if self.spec.output.every == 0 {
             return Err(self.error(None, "output.every", "0: expected at least 1"));
         }
+        if let Err((key, message)) = self.spec.output.watch.check() {
+            return Err(self.error(None, key, message));
+        }
         self.check_outputs(&system)?;
         let mut master = Master::new(system, self.spec.master.clone(), self.step)
             .map_err(|e| self.error(None, "master", e.to_string()))?;

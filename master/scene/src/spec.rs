@@ -187,7 +187,7 @@ pub struct OutputSpec {
     pub watch: WatchSpec,
 }
 
-/// `[output] watch = { factor, stop }`.
+/// `[output] watch = { factor, stop, breaking_load }`.
 #[derive(Copy, Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WatchSpec {
@@ -198,6 +198,29 @@ pub struct WatchSpec {
     /// Stop the run at the first implausible load instead of warning.
     #[serde(default)]
     pub stop: bool,
+    /// The sections' breaking load (N): a largest tension beyond it is
+    /// implausible whatever the start.
+    #[serde(default)]
+    pub breaking_load: Option<f64>,
+}
+
+impl WatchSpec {
+    /// The key and what was expected where a value is out of range.
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        if !(self.factor.is_finite() && self.factor > 1.0) {
+            return Err((
+                "output.watch.factor",
+                format!("{}: expected a finite multiple above 1", self.factor),
+            ));
+        }
+        match self.breaking_load {
+            Some(b) if !(b.is_finite() && b > 0.0) => Err((
+                "output.watch.breaking_load",
+                format!("{b}: expected a positive force in N"),
+            )),
+            _ => Ok(()),
+        }
+    }
 }
 
 fn default_factor() -> f64 {
@@ -209,6 +232,7 @@ impl Default for WatchSpec {
         WatchSpec {
             factor: default_factor(),
             stop: false,
+            breaking_load: None,
         }
     }
 }
