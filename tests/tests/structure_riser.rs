@@ -162,6 +162,27 @@ fn errors_in_a_structure_name_the_users_line() {
         e.contains(&format!("structure_riser.toml:{line}:")) && e.contains("rayleigh_stiffness"),
         "{e}"
     );
+    // Keys outside the structure, in a scene that has one: their own lines
+    // (they named the `[structure]` table's line: the scene is read again
+    // after the structure is written out).
+    for (from, to, key) in [
+        ("step = 0.05", "step = \"x\"", "step"),
+        ("scheme = \"iterative_jacobi\"", "scheme = 3", "scheme"),
+        (
+            "max_iterations = 50",
+            "max_iterations = 1.5",
+            "max_iterations",
+        ),
+    ] {
+        let text = riser(100, 0.1).replacen(from, to, 1);
+        assert!(text.contains(to), "{to}");
+        let e = parse(&text).unwrap_err();
+        let line = line_of(&text, to);
+        assert!(
+            e.contains(&format!("structure_riser.toml:{line}: `{key}`")),
+            "{to}: {e}"
+        );
+    }
 }
 
 #[test]

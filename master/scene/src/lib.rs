@@ -88,12 +88,15 @@ impl Scene {
         // An error in the units a structure writes out names a line of the
         // user's file, not of the expanded text.
         let located = |mut e: SceneError| {
-            if let (Some(name), Some(_)) = (&structure, e.line) {
-                e.line = structure_lines::generated_unit_line(&source, name, &e.key, &e.message);
+            if let (Some(name), Some(line)) = (&structure, e.line) {
+                e.line =
+                    structure_lines::user_line(&source, &expanded, line, &e.key).or_else(|| {
+                        structure_lines::generated_unit_line(&source, name, &e.key, &e.message)
+                    });
             }
             e
         };
-        let source = expanded;
+        let source = expanded.clone();
         let spec: SceneSpec = toml::from_str(&source)
             .map_err(|e| SceneError {
                 file: path.to_owned(),
@@ -531,8 +534,11 @@ fn expand_structure(path: &Path, source: &str) -> Result<(String, Option<String>
     }
     let error = |message: String| SceneError {
         file: path.to_owned(),
-        line: structure_lines::structure_key(&message)
-            .and_then(|key| structure_lines::key_line(source, key))
+        line: structure_lines::model_parameter_line(source, &message)
+            .or_else(|| {
+                structure_lines::structure_key(&message)
+                    .and_then(|key| structure_lines::key_line(source, key))
+            })
             .or_else(|| structure_lines::key_line(source, "structure")),
         key: "structure".into(),
         message,

@@ -80,6 +80,43 @@ pub fn structure_key(message: &str) -> Option<&str> {
         .map(|k| k.split(" = ").next().unwrap_or(k))
 }
 
+/// The line in the user's file `source` of an error found at line `line` of
+/// the expanded text about `key` (a dotted path, or a key as written on that
+/// line, in backticks): the path itself where the file writes it, else the
+/// key under the table header above that line; None for a key of the units
+/// and connections the structure writes out.
+pub fn user_line(source: &str, expanded: &str, line: usize, key: &str) -> Option<usize> {
+    let key = key.trim_matches('`');
+    if key.is_empty() || key.starts_with('{') {
+        return None;
+    }
+    if let Some(found) = key_line(source, key).filter(|_| key.contains('.')) {
+        return Some(found);
+    }
+    let header = expanded
+        .lines()
+        .take(line.saturating_sub(1))
+        .filter(|l| l.trim_start().starts_with('['))
+        .last()
+        .map(str::trim);
+    match header {
+        Some(h) if h.starts_with("[[") => None,
+        Some(h) => key_line(source, &format!("{}.{key}", h.trim_matches(['[', ']']))),
+        None => key_line(source, key),
+    }
+}
+
+/// The line of the `structure.model` parameter a message names
+/// (`parameter `x``), where the file writes it.
+pub fn model_parameter_line(source: &str, message: &str) -> Option<usize> {
+    let parameter = message
+        .split("parameter `")
+        .nth(1)
+        .and_then(|rest| rest.split('`').next())
+        .map(|p| p.split('.').next().unwrap_or(p))?;
+    key_line(source, &format!("structure.model.{parameter}"))
+}
+
 /// Where in the user's file an error found in the units a `[structure]`
 /// writes out is about: a model parameter it names (`parameter `x``) in
 /// `structure.model`, else the section whose unit (`<name>_<section>`) it
@@ -90,12 +127,7 @@ pub fn generated_unit_line(
     key: &str,
     message: &str,
 ) -> Option<usize> {
-    let parameter = message
-        .split("parameter `")
-        .nth(1)
-        .and_then(|rest| rest.split('`').next())
-        .map(|p| p.split('.').next().unwrap_or(p));
-    if let Some(line) = parameter.and_then(|p| key_line(source, &format!("structure.model.{p}"))) {
+    if let Some(line) = model_parameter_line(source, message) {
         return Some(line);
     }
     let unit = key.split('"').nth(1).unwrap_or_default();
