@@ -51,3 +51,24 @@ fn an_order_is_given_where_the_error_falls_with_each_refinement_only() {
         rows[0].orders
     );
 }
+
+#[test]
+fn against_an_analytic_solution_the_finest_pair_has_an_order_too() {
+    // B3's `exact` indicator over steps 10, 5, 2.5, 1.25 ms (measured errors):
+    // the reference run's own error counts, so 2.5 ms gets its order (1.93),
+    // where it printed '-'.
+    let mut rows = vec![
+        row(0.01, 5.89e-1, false),
+        row(0.005, 4.03e-1, false),
+        row(0.0025, 1.58e-1, false),
+        row(0.00125, 4.14e-2, true),
+    ];
+    observed_orders(Refinement::Smaller, &mut rows);
+    let expected = (1.58e-1f64 / 4.14e-2).ln() / 2f64.ln();
+    assert!(
+        (rows[2].orders[0].1 - expected).abs() < 1e-12,
+        "{:?}",
+        rows[2].orders
+    );
+    assert!(rows[3].orders[0].1.is_nan(), "the finest has no finer run");
+}
