@@ -140,3 +140,35 @@ fn a_section_reduced_about_its_static_state_takes_modes_only() {
         "{message}"
     );
 }
+
+#[test]
+fn more_modes_than_the_section_has_free_dofs_are_refused_when_the_scene_is_read() {
+    // The mooring line's lower section: 65 nodes, 196 free DOFs. Refused by
+    // `check` (the unit is built, not run), on the section's table.
+    let text = std::fs::read_to_string(root().join("examples/structure_mooring.toml"))
+        .unwrap()
+        .replace(
+            "fidelity = \"cable\"",
+            "fidelity = { kind = \"reduced\", modes = 500 }",
+        );
+    let error = Scene::parse(
+        &root().join("examples/structure_mooring.toml"),
+        text.clone(),
+    )
+    .err()
+    .map(|e| e.to_string())
+    .unwrap_or_default();
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("[[structure.sections]]"))
+        .unwrap()
+        + 1;
+    assert!(
+        error.contains("reduced_modes") && error.contains("at most 196"),
+        "{error}"
+    );
+    assert!(
+        error.contains(&format!("structure_mooring.toml:{line}:")),
+        "{error}"
+    );
+}

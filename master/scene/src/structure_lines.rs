@@ -13,11 +13,27 @@ use toml::de::{DeTable, DeValue};
 /// writes (a section's own line where its `fidelity` is left to the default).
 /// A name after an array picks the element whose `name` it is.
 pub fn key_line(source: &str, path: &str) -> Option<usize> {
+    locate(source, path).map(|(line, _)| line)
+}
+
+/// The line of `path` only where the file writes all of it.
+fn exact_key_line(source: &str, path: &str) -> Option<usize> {
+    locate(source, path)
+        .filter(|&(_, whole)| whole)
+        .map(|(line, _)| line)
+}
+
+/// The line of the deepest part of `path` the file writes, and whether that
+/// is all of it.
+fn locate(source: &str, path: &str) -> Option<(usize, bool)> {
     let document = DeTable::parse(source).ok()?;
     let mut table = document.get_ref();
     let mut array: Option<&[Spanned<DeValue>]> = None;
     let mut found = None;
-    for part in split(path) {
+    let parts = split(path);
+    let mut reached = 0;
+    for part in &parts {
+        let part = *part;
         let value = match (array, part.strip_prefix('[')) {
             (Some(items), Some(index)) => {
                 items.get(index.trim_end_matches(']').parse::<usize>().ok()?)
@@ -32,6 +48,7 @@ pub fn key_line(source: &str, path: &str) -> Option<usize> {
                 }),
         };
         let Some(value) = value else { break };
+        reached += 1;
         if array.is_some() {
             found = Some(value.span().start);
         }
@@ -42,7 +59,8 @@ pub fn key_line(source: &str, path: &str) -> Option<usize> {
             _ => break,
         }
     }
-    found.map(|offset| source[..offset.min(source.len())].matches('\n').count() + 1)
+    let line = |offset: usize| source[..offset.min(source.len())].matches('\n').count() + 1;
+    found.map(|offset| (line(offset), reached == parts.len()))
 }
 
 /// The parts of a dotted key, an index `[i]` its own part.
@@ -90,7 +108,7 @@ pub fn user_line(source: &str, expanded: &str, line: usize, key: &str) -> Option
     if key.is_empty() || key.starts_with('{') {
         return None;
     }
-    if let Some(found) = key_line(source, key).filter(|_| key.contains('.')) {
+    if let Some(found) = exact_key_line(source, key).filter(|_| key.contains('.')) {
         return Some(found);
     }
     let header = expanded
@@ -101,8 +119,8 @@ pub fn user_line(source: &str, expanded: &str, line: usize, key: &str) -> Option
         .map(str::trim);
     match header {
         Some(h) if h.starts_with("[[") => None,
-        Some(h) => key_line(source, &format!("{}.{key}", h.trim_matches(['[', ']']))),
-        None => key_line(source, key),
+        Some(h) => exact_key_line(source, &format!("{}.{key}", h.trim_matches(['[', ']']))),
+        None => exact_key_line(source, key),
     }
 }
 
@@ -114,7 +132,7 @@ pub fn model_parameter_line(source: &str, message: &str) -> Option<usize> {
         .nth(1)
         .and_then(|rest| rest.split('`').next())
         .map(|p| p.split('.').next().unwrap_or(p))?;
-    key_line(source, &format!("structure.model.{parameter}"))
+    exact_key_line(source, &format!("structure.model.{parameter}"))
 }
 
 /// Where in the user's file an error found in the units a `[structure]`

@@ -186,6 +186,7 @@ impl NonlinearSection {
             model,
             params,
         };
+        section.check_reduced_size()?;
         section.description.capabilities.step_jacobian = section.offers_jacobian();
         if section.offers_jacobian() {
             section.hht.keep_newton_matrix();

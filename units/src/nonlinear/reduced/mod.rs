@@ -128,17 +128,20 @@ pub(super) fn validate(params: &NonlinearParams) -> Result<(), UnitError> {
     Ok(())
 }
 
+/// The most free DOFs a reduced section's basis is formed for: its modes
+/// come from a dense eigen-solve (O(n^3) time, 8 n^2 bytes), minutes and
+/// gigabytes beyond this.
+const MOST_FREE_DOFS: usize = 3000;
+
 impl NonlinearSection {
-    /// Forms the basis about the current state (after the statics), with `m`
-    /// and `c` the dynamics' mass and damping.
-    pub(super) fn reduce(&mut self) -> Result<(), UnitError> {
-        self.reduction = None;
+    /// Refuses `reduced_modes` beyond the section's free DOFs, and a section
+    /// too large for the dense modal solve, when the unit is built (so that
+    /// `slender check` says so).
+    pub(super) fn check_reduced_size(&self) -> Result<(), UnitError> {
         let Some(count) = self.params.reduced_modes else {
             return Ok(());
         };
-        let n = self.model.dofs();
-        let held = self.held_dofs();
-        let free = n - held.len();
+        let free = self.model.dofs() - self.held_dofs().len();
         if count > free {
             return Err(UnitError::parameter(
                 "reduced_modes",
@@ -146,6 +149,28 @@ impl NonlinearSection {
                 &format!("at most {free}, the section's free DOFs"),
             ));
         }
+        if free > MOST_FREE_DOFS {
+            return Err(UnitError::parameter(
+                "reduced_modes",
+                count.to_string(),
+                &format!(
+                    "none on a section of {free} free DOFs: its modes are found by a dense eigen-solve, bounded to {MOST_FREE_DOFS} free DOFs (coarsen the section or cut it shorter)"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Forms the basis about the current state (after the statics), with `m`
+    /// and `c` the dynamics' mass and damping.
+    pub(super) fn reduce(&mut self) -> Result<(), UnitError> {
+        self.reduction = None;
+        let Some(count) = self.params.reduced_modes else {
+            return Ok(());
+        };
+        self.check_reduced_size()?;
+        let n = self.model.dofs();
+        let held = self.held_dofs();
         let k = self.tangent_stiffness();
         let basis = basis::columns(self, &k, count, &held)?;
         let m = basis.len() / n;
