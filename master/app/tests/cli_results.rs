@@ -166,9 +166,10 @@ fn a_fidelity_study_with_failed_runs_writes_its_rows_and_exits_1() {
         "examples/structure_mooring.toml",
         "--duration",
         "0.2",
-        // A reduced section cannot start from the static equilibrium.
+        // More modes than the lower section has free DOFs (196): that run
+        // fails when its scene is built; the others run.
         "--section",
-        "lower=cable,reduced",
+        "lower=cable,reduced:500",
         "--out",
         dir.to_str().unwrap(),
     ]);

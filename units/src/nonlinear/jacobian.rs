@@ -171,14 +171,30 @@ impl NonlinearSection {
             Some(drive) => sensitivity.solve(drive, held, change),
             None => change.clear(self.model.dofs()),
         }
+        let reaction = |dof| sensitivity.reaction_change(change, dof);
+        self.end_rows((&change.dq, &change.dv), &reaction, (j, n_in), jacobian);
+        Ok(())
+    }
+
+    /// Column `j` of the end outputs' rows from the motion's change `dq`,
+    /// `dv` (all DOFs): positions and velocities directly, a force as minus
+    /// the change of the support `reaction` at its DOF, or of the applied
+    /// load where the end is loaded.
+    pub(super) fn end_rows(
+        &self,
+        (dq, dv): (&[f64], &[f64]),
+        reaction: &dyn Fn(usize) -> f64,
+        (j, n_in): (usize, usize),
+        jacobian: &mut [f64],
+    ) {
         let nodes = self.model.reference.len();
         for end in 0..2 {
             let node = if end == 0 { 0 } else { nodes - 1 };
             let base = 9 * end;
             for k in 0..3 {
                 let dof = 3 * node + k;
-                jacobian[(base + k) * n_in + j] = change.dq[dof];
-                jacobian[(base + 3 + k) * n_in + j] = change.dv[dof];
+                jacobian[(base + k) * n_in + j] = dq[dof];
+                jacobian[(base + 3 + k) * n_in + j] = dv[dof];
                 let loaded = self
                     .ends
                     .iter()
@@ -186,11 +202,10 @@ impl NonlinearSection {
                 jacobian[(base + 6 + k) * n_in + j] = match loaded {
                     Some(c) if c.input == Some(j) => -1.0,
                     Some(_) => 0.0,
-                    None => -sensitivity.reaction_change(change, dof),
+                    None => -reaction(dof),
                 };
             }
         }
-        Ok(())
     }
 }
 

@@ -186,36 +186,14 @@ impl NonlinearSection {
                 full.resize(n, 0.0);
                 times(&r.basis, (n, m), reduced, full);
             }
-            self.end_rows(&b, (j, n_in), jacobian);
+            let [dq, dv, _] = &b.full;
+            let reaction = |dof| self.reaction_change(&b, dof);
+            self.end_rows((dq, dv), &reaction, (j, n_in), jacobian);
             b.columns.extend_from_slice(&change.dq);
             b.change = change;
         }
         r.jacobian = b;
         Ok(())
-    }
-
-    /// The end outputs' rows of column `j` from the full motion's change.
-    fn end_rows(&self, b: &JacobianBuffers, (j, n_in): (usize, usize), jacobian: &mut [f64]) {
-        let [dq, dv, _] = &b.full;
-        let nodes = self.model.reference.len();
-        for end in 0..2 {
-            let node = if end == 0 { 0 } else { nodes - 1 };
-            let base = 9 * end;
-            for k in 0..3 {
-                let dof = 3 * node + k;
-                jacobian[(base + k) * n_in + j] = dq[dof];
-                jacobian[(base + 3 + k) * n_in + j] = dv[dof];
-                let loaded = self
-                    .ends
-                    .iter()
-                    .find(|c| c.end == end && c.component == k && !c.is_kinematic());
-                jacobian[(base + 6 + k) * n_in + j] = match loaded {
-                    Some(c) if c.input == Some(j) => -1.0,
-                    Some(_) => 0.0,
-                    None => -self.reaction_change(b, dof),
-                };
-            }
-        }
     }
 
     /// The change of the reaction M a + (C + C_t) v + K_t q at DOF `i`.
