@@ -94,21 +94,24 @@ impl NonlinearSection {
             .get_or_insert_with(|| SymmetricBand::zeros(n, super::model::BAND));
         b.fill_zero();
         // A linear section's drag is explicit: no tangent damping.
-        if self.environment.is_empty() || self.linear.is_some() {
+        if self.linear.is_none() {
+            self.add_drag_damping(b, &mut w.force);
+        }
+    }
+
+    /// Adds the drag's tangent damping C_t at the current state to `band`
+    /// (nothing without drag; in a current not zero at rest), with `scratch`
+    /// for the force it also forms.
+    pub(super) fn add_drag_damping(&self, band: &mut SymmetricBand, scratch: &mut Vec<f64>) {
+        if self.environment.is_empty() {
             return;
         }
-        w.force.clear();
-        w.force.resize(n, 0.0);
+        scratch.clear();
+        scratch.resize(self.model.dofs(), 0.0);
         let s = &self.state;
-        self.environment.add_force(
-            &self.model,
-            (&s.q, &s.v, s.t),
-            &s.lambda,
-            1.0,
-            true,
-            Some((b, 0.0, 1.0)),
-            &mut w.force,
-        );
+        let at = (s.q.as_slice(), s.v.as_slice(), s.t);
+        let tangent = Some((band, 0.0, 1.0));
+        (self.environment).add_force(&self.model, at, &s.lambda, 1.0, true, tangent, scratch);
     }
 
     /// How a unit change of input `j` drives the step, if it does.

@@ -25,6 +25,13 @@ pub(super) struct JacobianBuffers {
     reduced_stiffness: Vec<f64>,
     reduced_drag: Vec<f64>,
     change: Change,
+    /// The reduced Newton matrix, it with the held coordinates as identity
+    /// rows factorised, and those coordinates (kept: nothing allocated per
+    /// call once sized).
+    newton: Option<SymmetricBand>,
+    with_held: Option<SymmetricBand>,
+    factor: Option<BandLdlt>,
+    held: Vec<usize>,
     /// dz / d input per input (`n_in x m`): the warm start of a repeated step.
     columns: Vec<f64>,
     /// The change of the full motion: dq, dv, da.
@@ -70,26 +77,18 @@ impl NonlinearSection {
             .add_internal_force(&s.q, 1.0, Some((&mut k, 1.0)), &mut b.force);
         if !self.environment.is_empty() {
             let at = (s.q.as_slice(), s.v.as_slice(), s.t);
-            let env = &self.environment;
-            env.add_force(
+            let tangent = Some((&mut k, 1.0, 0.0));
+            (self.environment).add_force(
                 &self.model,
                 at,
                 &s.lambda,
                 1.0,
                 true,
-                Some((&mut k, 1.0, 0.0)),
-                &mut b.force,
-            );
-            env.add_force(
-                &self.model,
-                at,
-                &s.lambda,
-                1.0,
-                true,
-                Some((&mut c, 0.0, 1.0)),
+                tangent,
                 &mut b.force,
             );
         }
+        self.add_drag_damping(&mut c, &mut b.force);
         // The Newton matrix needs K_t + c C_t only; the motion of a held
         // coordinate also C_t's columns there.
         let mut combined = b.combined.take().unwrap_or_else(|| k.clone());
@@ -133,22 +132,12 @@ impl NonlinearSection {
         let h = self.jacobian_work.h;
         let (alpha, beta, gamma) = r.hht.parameters();
         self.end_tangents(r, &mut b, gamma / (beta * h));
+        let (newton, factor) = reduced_newton(r, &mut b, h)?;
         let rayleigh = |i: usize, k: usize| r.damping.as_ref().map_or(0.0, |c| c.get(i, k));
         let damping = |i: usize, k: usize| rayleigh(i, k) + b.reduced_drag[i * m + k];
-        let mut newton = SymmetricBand::zeros(m, m - 1);
-        for i in 0..m {
-            for k in i..m {
-                let value = r.mass.get(i, k) / (beta * h * h)
-                    + (1.0 - alpha)
-                        * (gamma / (beta * h) * rayleigh(i, k) + b.reduced_stiffness[i * m + k]);
-                newton.add(i, k, value);
-            }
-        }
-        let mut with_held = newton.clone();
-        (free..m).for_each(|j| with_held.set_identity_row(j));
-        let factor = BandLdlt::new(&with_held).ok_or_else(|| {
-            UnitError::Numerical("reduced section: its Newton matrix is singular".into())
-        })?;
+        let mut held = std::mem::take(&mut b.held);
+        held.clear();
+        held.extend(free..m);
         let sensitivity = StepSensitivity {
             newton: &newton,
             factor: &factor,
@@ -157,7 +146,6 @@ impl NonlinearSection {
             parameters: (alpha, beta, gamma),
             h,
         };
-        let held: Vec<usize> = (free..m).collect();
         let n_in = inputs.len();
         jacobian.fill(f64::NAN);
         b.columns.clear();
@@ -192,6 +180,7 @@ impl NonlinearSection {
             b.columns.extend_from_slice(&change.dq);
             b.change = change;
         }
+        (b.newton, b.factor, b.held) = (Some(newton), Some(factor), held);
         r.jacobian = b;
         Ok(())
     }
@@ -210,6 +199,39 @@ impl NonlinearSection {
             })
             .sum()
     }
+}
+
+/// The reduced Newton matrix at the step's end, M_r / (beta h^2) + (1 -
+/// alpha) (gamma / (beta h) C_r + [K_t + c C_t]_r), and its factor with the
+/// held coordinates as identity rows, in `b`'s buffers.
+fn reduced_newton(
+    r: &Reduction,
+    b: &mut JacobianBuffers,
+    h: f64,
+) -> Result<(SymmetricBand, BandLdlt), UnitError> {
+    let (m, free) = (r.m, r.m - r.held.len());
+    let (alpha, beta, gamma) = r.hht.parameters();
+    let rayleigh = |i: usize, k: usize| r.damping.as_ref().map_or(0.0, |c| c.get(i, k));
+    let mut newton = (b.newton.take()).unwrap_or_else(|| SymmetricBand::zeros(m, m - 1));
+    newton.fill_zero();
+    for i in 0..m {
+        for k in i..m {
+            let value = r.mass.get(i, k) / (beta * h * h)
+                + (1.0 - alpha)
+                    * (gamma / (beta * h) * rayleigh(i, k) + b.reduced_stiffness[i * m + k]);
+            newton.add(i, k, value);
+        }
+    }
+    let with_held = b.with_held.get_or_insert_with(|| newton.clone());
+    with_held.copy_from(&newton);
+    (free..m).for_each(|j| with_held.set_identity_row(j));
+    let mut factor = (b.factor.take()).unwrap_or_else(|| BandLdlt::zeros(m, m - 1));
+    if !factor.refactorise(with_held) {
+        return Err(UnitError::Numerical(
+            "reduced section: its Newton matrix is singular".into(),
+        ));
+    }
+    Ok((newton, factor))
 }
 
 /// The reduced motion's change under a unit load at full DOF `dof` with its

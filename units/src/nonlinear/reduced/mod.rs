@@ -191,7 +191,9 @@ impl NonlinearSection {
         let mass = band(project(&self.m));
         let damping = self.c.as_ref().map(|c| band(project(c)));
         let stiffness = project(&k);
-        let drag_damping = project(&self.drag_tangent());
+        let mut drag = SymmetricBand::zeros(n, super::model::BAND);
+        self.add_drag_damping(&mut drag, &mut Vec::new());
+        let drag_damping = project(&drag);
         let alpha = match self.params.integrator {
             Integrator::Hht { alpha, .. } => alpha,
             _ => 0.0,
@@ -248,29 +250,6 @@ impl NonlinearSection {
         self.state.reduced = z;
         self.expand_reduced();
         Ok(true)
-    }
-
-    /// The drag's tangent damping C_t at the current state (zero without
-    /// drag; in a current not zero at rest).
-    pub(super) fn drag_tangent(&self) -> SymmetricBand {
-        let n = self.model.dofs();
-        let mut c = SymmetricBand::zeros(n, super::model::BAND);
-        if !self.environment.is_empty() {
-            let s = &self.state;
-            let mut scratch = vec![0.0; n];
-            let at = (s.q.as_slice(), s.v.as_slice(), s.t);
-            let tangent = Some((&mut c, 0.0, 1.0));
-            (self.environment).add_force(
-                &self.model,
-                at,
-                &s.lambda,
-                1.0,
-                true,
-                tangent,
-                &mut scratch,
-            );
-        }
-        c
     }
 
     /// The coordinates a step solves for: the reduced ones, or the
