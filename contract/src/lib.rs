@@ -21,7 +21,7 @@ pub mod unit;
 pub use driver::{Driver, DriverSlot};
 pub use hold::{HeldInputs, Inputs};
 pub use port::{Causality, Hold, Port, PortKind};
-pub use state::{StateSlot, StateVector};
+pub use state::{NestedSlot, StateSlot, StateVector};
 pub use time::Time;
 pub use unit::{
     Capabilities, HoldSupport, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,

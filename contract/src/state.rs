@@ -37,6 +37,27 @@ enum Saved {
     /// Read from bytes (an FMU state deserialised by the FMI layer); the unit
     /// decodes it on restore.
     Bytes(Vec<u8>),
+    /// Saved by a unit that wraps another: its own state and the inner unit's
+    /// slot ([`StateSlot::store_nested`]).
+    Nested(Box<dyn SavedState>, Box<StateSlot>),
+}
+
+/// The inner unit's slot of a nested state ([`StateSlot::load_nested`]):
+/// borrowed when the outer unit saved it, decoded when it came from bytes.
+pub enum NestedSlot<'a> {
+    Borrowed(&'a StateSlot),
+    Owned(StateSlot),
+}
+
+impl std::ops::Deref for NestedSlot<'_> {
+    type Target = StateSlot;
+
+    fn deref(&self) -> &StateSlot {
+        match self {
+            NestedSlot::Borrowed(slot) => slot,
+            NestedSlot::Owned(slot) => slot,
+        }
+    }
 }
 
 /// An opaque slot that holds one saved state of one unit.
@@ -78,6 +99,65 @@ impl StateSlot {
         self.0 = Saved::Typed(Box::new(state.clone()));
     }
 
+    /// Saves a copy of `own`, the state of a unit that wraps another, and
+    /// returns the slot the inner unit saves into; reuses the slot's memory
+    /// when it already holds such a pair.
+    pub fn store_nested<S: Clone + Send + Serialize + 'static>(
+        &mut self,
+        own: &S,
+    ) -> &mut StateSlot {
+        let reusable = matches!(&self.0, Saved::Nested(saved, _) if saved.as_any().is::<S>());
+        if !reusable {
+            self.0 = Saved::Nested(Box::new(own.clone()), Box::new(StateSlot::new()));
+        }
+        match &mut self.0 {
+            Saved::Nested(saved, inner) => {
+                if let Some(saved) = saved.as_any_mut().downcast_mut::<S>() {
+                    saved.clone_from(own);
+                }
+                inner
+            }
+            _ => unreachable!("the slot was made nested above"),
+        }
+    }
+
+    /// The state saved by [`StateSlot::store_nested`]: the outer unit's own
+    /// and the inner unit's slot; an error when the slot holds anything else.
+    pub fn load_nested<S: Clone + DeserializeOwned + 'static>(
+        &self,
+    ) -> Result<(Cow<'_, S>, NestedSlot<'_>), UnitError> {
+        let mismatch = || {
+            UnitError::State(
+                "the state slot is empty or was saved by another kind of unit (expected a wrapping unit's)"
+                    .into(),
+            )
+        };
+        match &self.0 {
+            Saved::Nested(saved, inner) => {
+                let own = saved.as_any().downcast_ref::<S>().ok_or_else(mismatch)?;
+                Ok((Cow::Borrowed(own), NestedSlot::Borrowed(inner)))
+            }
+            Saved::Bytes(bytes) => {
+                let (own, inner): (Vec<u8>, Vec<u8>) =
+                    postcard::from_bytes(bytes).map_err(|e| {
+                        UnitError::State(format!(
+                            "the serialised state does not decode as a wrapping unit's state ({e})"
+                        ))
+                    })?;
+                let own = postcard::from_bytes::<S>(&own).map_err(|e| {
+                    UnitError::State(format!(
+                        "the serialised state does not decode as this unit's state ({e})"
+                    ))
+                })?;
+                Ok((
+                    Cow::Owned(own),
+                    NestedSlot::Owned(StateSlot::from_bytes(inner)),
+                ))
+            }
+            _ => Err(mismatch()),
+        }
+    }
+
     /// The saved state for in-place update, when the slot holds one of type `S`
     /// saved by a unit (not read from bytes).
     pub fn get_mut<S: 'static>(&mut self) -> Option<&mut S> {
@@ -94,7 +174,7 @@ impl StateSlot {
             UnitError::State("the state slot is empty or was saved by another kind of unit".into())
         };
         match &self.0 {
-            Saved::Empty => Err(mismatch()),
+            Saved::Empty | Saved::Nested(..) => Err(mismatch()),
             Saved::Typed(saved) => saved
                 .as_any()
                 .downcast_ref::<S>()
@@ -115,6 +195,10 @@ impl StateSlot {
             Saved::Empty => Err(UnitError::State("no state saved".into())),
             Saved::Typed(saved) => saved.to_bytes(),
             Saved::Bytes(bytes) => Ok(bytes.clone()),
+            Saved::Nested(saved, inner) => {
+                postcard::to_stdvec(&(saved.to_bytes()?, inner.to_bytes()?))
+                    .map_err(|e| UnitError::State(format!("serialising: {e}")))
+            }
         }
     }
 }
@@ -211,5 +295,22 @@ mod tests {
         let garbage = StateSlot::from_bytes(vec![0xff; 3]);
         assert!(garbage.load::<(Vec<f64>, u64)>().is_err());
         assert!(StateSlot::new().to_bytes().is_err());
+    }
+
+    #[test]
+    fn a_nested_state_round_trips_in_memory_and_through_bytes() {
+        let mut slot = StateSlot::new();
+        slot.store_nested(&[1.5_f64, -2.0]).store(&vec![3.0_f64]);
+        slot.store_nested(&[0.25_f64, 4.0]).store(&vec![5.0_f64]);
+        let (own, inner) = slot.load_nested::<[f64; 2]>().unwrap();
+        assert_eq!(*own, [0.25, 4.0]);
+        assert_eq!(*inner.load::<Vec<f64>>().unwrap(), vec![5.0]);
+        let copy = StateSlot::from_bytes(slot.to_bytes().unwrap());
+        let (own, inner) = copy.load_nested::<[f64; 2]>().unwrap();
+        assert_eq!(*own, [0.25, 4.0]);
+        assert_eq!(*inner.load::<Vec<f64>>().unwrap(), vec![5.0]);
+        assert!(slot.load::<[f64; 2]>().is_err());
+        assert!(slot.load_nested::<u64>().is_err());
+        assert!(StateSlot::new().load_nested::<[f64; 2]>().is_err());
     }
 }

@@ -171,7 +171,7 @@ pub fn section_samples() -> Vec<(&'static str, ExportConfig)> {
             "chord",
             inline(
                 "chord",
-                "model = \"span\"\nmoving = \"start\"\nstart = [0.0, 0.0]\nend = [48.0, 14.0]\nweight = 9.0e3\nweight_at = [24.0, 7.0]\nloaded_end_displacement = [0.0, 0.0, 0.0]\nflexural_rigidity = 1.0e7\nmass_per_length = 150.0\ndamping_per_length = 20.0\ntension = 1.0e5\norder = 16\naxial_stiffness = 1.0e6",
+                "model = \"span\"\nmoving = \"start\"\nstart = [0.0, 0.0]\nend = [48.0, 14.0]\nweight = 9.0e3\nweight_at = [24.0, 7.0]\nloaded_end_displacement = [0.0, 0.0, 0.0]\nflexural_rigidity = 1.0e7\nmass_per_length = 150.0\ndamping_per_length = 20.0\ntension = 1.0e5\norder = 16\naxial_stiffness = 1.0e6\naxial_mass = 100.0",
             ),
         ),
         (

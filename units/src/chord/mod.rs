@@ -9,20 +9,26 @@
 //! neighbour's force and moment and returns the displacement that neighbour
 //! follows. Everything is a deviation from the state at initialisation (the
 //! equilibrium): transverse to the chord the inner model answers, along the
-//! chord the section is a spring (`axial_stiffness`: the moving end's axial
-//! motion carries the loaded end, which moves further by the change of its
-//! axial force over the stiffness; the force passes through) or, without one, a
-//! rigid link; the section's axial inertia is left out. The static part of the forces is the section's
+//! chord (`axial`) the section is a spring (`axial_stiffness`) carrying a mass
+//! at its loaded end (`axial_mass`), a spring alone (the loaded end moves
+//! further than the moving one by the change of its axial force over the
+//! stiffness; the force passes through) or, without either, a rigid link. The
+//! static part of the forces is the section's
 //! own balance: the loaded end's force and moment at initialisation plus the
 //! section's submerged weight, exact for any shape.
+
+mod axial;
+mod ports;
 
 use crate::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
 use crate::beam::{Beam, BeamParams};
 use crate::contract::{
-    Capabilities, Hold, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
-    UnitError, require_finite, require_positive,
+    Hold, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription, UnitError, require_finite,
+    require_positive,
 };
 use crate::span::coupling::{Orientation, SpanCoupling, SpanCouplingParams};
+use axial::{Axial, AxialState};
+use ports::{describe, inner_ports, set_dependencies};
 use serde::Deserialize;
 
 /// The small-deflection model in the chord frame.
@@ -73,6 +79,10 @@ pub struct ChordParams {
     /// force over it (the section stretches); none: a rigid link.
     #[serde(default)]
     pub axial_stiffness: Option<f64>,
+    /// The mass (kg) the loaded end carries along the chord, with the
+    /// stiffness: the section's inertia in that motion; none: quasi-static.
+    #[serde(default)]
+    pub axial_mass: Option<f64>,
     /// Beam elements, default 20.
     #[serde(default = "twenty")]
     pub elements: usize,
@@ -155,6 +165,7 @@ pub struct Chord {
     inner: Box<dyn Unit>,
     ports: InnerPorts,
     reference: Reference,
+    axial: Axial,
 }
 
 impl Chord {
@@ -180,9 +191,7 @@ impl Chord {
         ];
         let length = d[0].hypot(d[1]);
         require_positive("the chord's length |end - start|", length)?;
-        if let Some(k) = params.axial_stiffness {
-            require_positive("axial_stiffness", k)?;
-        }
+        let axial = Axial::new(params.axial_stiffness, params.axial_mass, params.alpha)?;
         let e = [d[0] / length, d[1] / length];
         let frame = Frame {
             e,
@@ -192,8 +201,7 @@ impl Chord {
         let ports = inner_ports(&params, inner.description())?;
         let mut description = describe(params.moving);
         description.capabilities.step_jacobian = inner.description().capabilities.step_jacobian;
-        let stretch = params.axial_stiffness.is_some();
-        set_dependencies(&mut description, inner.description(), &ports, stretch);
+        set_dependencies(&mut description, inner.description(), &ports, &axial);
         Ok(Chord {
             params,
             description,
@@ -201,6 +209,7 @@ impl Chord {
             inner,
             ports,
             reference: Reference::default(),
+            axial,
         })
     }
 
@@ -308,81 +317,6 @@ fn inner_model(params: &ChordParams, length: f64) -> Result<Box<dyn Unit>, UnitE
     })
 }
 
-/// The inner model's ports by name (the beam's ends are `left` and `right`, the
-/// span's `upper` at x = 0 and `lower`).
-fn inner_ports(params: &ChordParams, inner: &UnitDescription) -> Result<InnerPorts, UnitError> {
-    let (start, end) = match params.model {
-        ChordModel::Beam => ("left", "right"),
-        ChordModel::Span => ("upper", "lower"),
-    };
-    let (moving, loaded) = match params.moving {
-        MovingEnd::Start => (start, end),
-        MovingEnd::End => (end, start),
-    };
-    let find = |ports: &[Port], name: String| {
-        ports.iter().position(|p| p.name == name).ok_or_else(|| {
-            UnitError::State(format!("the chord's inner model has no port `{name}`"))
-        })
-    };
-    let inputs = [
-        find(&inner.inputs, format!("{moving}_deflection"))?,
-        find(&inner.inputs, format!("{moving}_rotation"))?,
-        find(&inner.inputs, format!("{loaded}_moment"))?,
-        find(&inner.inputs, format!("{loaded}_shear"))?,
-    ];
-    let outputs = [
-        find(&inner.outputs, format!("{moving}_moment"))?,
-        find(&inner.outputs, format!("{moving}_shear"))?,
-        find(&inner.outputs, format!("{loaded}_deflection"))?,
-        find(&inner.outputs, format!("{loaded}_rotation"))?,
-    ];
-    let output_count = inner.outputs.len();
-    if output_count > MAX_INNER_OUTPUTS || inner.inputs.len() != 4 {
-        return Err(UnitError::State(format!(
-            "the chord's inner model has {} inputs and {output_count} outputs: expected 4 and at most {MAX_INNER_OUTPUTS}",
-            inner.inputs.len()
-        )));
-    }
-    Ok(InnerPorts {
-        inputs,
-        outputs,
-        output_count,
-    })
-}
-
-/// Ports: the moving end's position and rotation and the loaded end's force
-/// and moment in; the force and moment the moving end exerts, the loaded
-/// end's neighbour's displacement and the axial force out.
-fn describe(moving: MovingEnd) -> UnitDescription {
-    let (m, l) = match moving {
-        MovingEnd::Start => ("start", "end"),
-        MovingEnd::End => ("end", "start"),
-    };
-    let inputs = vec![
-        Port::input(&format!("{m}_position_x"), PortKind::Displacement),
-        Port::input(&format!("{m}_position_z"), PortKind::Displacement),
-        Port::input(&format!("{m}_rotation"), PortKind::Rotation),
-        Port::input(&format!("{l}_force_x"), PortKind::Force),
-        Port::input(&format!("{l}_force_z"), PortKind::Force),
-        Port::input(&format!("{l}_moment"), PortKind::Moment),
-    ];
-    let outputs = vec![
-        Port::output(&format!("{m}_force_x"), PortKind::Force),
-        Port::output(&format!("{m}_force_z"), PortKind::Force),
-        Port::output(&format!("{m}_moment"), PortKind::Moment),
-        Port::output(&format!("{l}_displacement_x"), PortKind::Displacement),
-        Port::output(&format!("{l}_displacement_z"), PortKind::Displacement),
-        Port::output(&format!("{l}_rotation"), PortKind::Rotation),
-        Port::output("axial_force", PortKind::Force),
-    ];
-    UnitDescription {
-        kind: "chord".into(),
-        inputs,
-        outputs,
-        capabilities: Capabilities::default(),
-    }
-}
-
 impl Unit for Chord {
     fn description(&self) -> &UnitDescription {
         &self.description
@@ -412,6 +346,7 @@ impl Unit for Chord {
             static_force_across: self.frame.across(force),
             static_moment: moment,
         };
+        self.axial.initialize();
         let holds = [Hold::Ramp; 4];
         let zero = [0.0; 4];
         self.inner.initialize(t0, Inputs::new(&holds, &zero, &zero))
@@ -420,7 +355,12 @@ impl Unit for Chord {
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let (start, end) = (self.local(inputs.start()), self.local(inputs.end()));
         let holds = self.inner_holds(inputs);
-        self.inner.do_step(t, h, Inputs::new(&holds, &start, &end))
+        let report = self
+            .inner
+            .do_step(t, h, Inputs::new(&holds, &start, &end))?;
+        let (slide, force) = self.along(inputs.end());
+        self.axial.do_step(h, slide, force);
+        Ok(report)
     }
 
     fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
@@ -428,11 +368,14 @@ impl Unit for Chord {
     }
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        self.inner.save_state(slot)
+        self.inner.save_state(slot.store_nested(&self.axial.state))
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.inner.restore_state(slot)
+        let (axial, inner) = slot.load_nested::<AxialState>()?;
+        self.inner.restore_state(&inner)?;
+        self.axial.state = *axial;
+        Ok(())
     }
 
     /// Through the inner model's (where it gives one: `span`): the outer inputs
@@ -475,6 +418,16 @@ impl Unit for Chord {
 }
 
 impl Chord {
+    /// The moving end's slide along the chord (m) and the change of the
+    /// loaded end's axial force along it (N) from the outer inputs `now`.
+    fn along(&self, now: &[f64]) -> (f64, f64) {
+        let r = &self.reference.inputs;
+        (
+            self.frame.along([now[0] - r[0], now[1] - r[1]]),
+            self.frame.along([now[3] - r[3], now[4] - r[4]]),
+        )
+    }
+
     /// The inner model's moment and shear at the moving end and deflection
     /// and rotation at the loaded end, with the outer inputs `inputs`.
     fn inner_outputs(&self, inputs: Inputs<'_>) -> [f64; 4] {
@@ -498,25 +451,19 @@ impl Chord {
             (-shear, moment)
         };
         let r = &self.reference;
-        let axial = self.frame.along([now[3], now[4] - self.params.weight]);
+        let (slide, axial_force) = self.along(now);
+        let axial = self
+            .frame
+            .along([r.inputs[3], r.inputs[4] - self.params.weight])
+            + self.axial.spring_force(slide, axial_force);
         let across = r.static_force_across - applied_force;
         let force = self.frame.global(axial, across);
         out[0] = force[0];
         out[1] = force[1];
         out[2] = r.static_moment - applied_moment;
-        // The moving end's slide along the chord, and the section's stretch
-        // under the change of the loaded end's axial force (in the force's
-        // direction: outward under more tension at either end).
-        let stretch = self.params.axial_stiffness.map_or(0.0, |k| {
-            self.frame
-                .along([now[3] - r.inputs[3], now[4] - r.inputs[4]])
-                / k
-        });
-        let slide = self
+        let moved = self
             .frame
-            .along([now[0] - r.inputs[0], now[1] - r.inputs[1]])
-            + stretch;
-        let moved = self.frame.global(slide, deflection);
+            .global(self.axial.displacement(slide, axial_force), deflection);
         let d = &self.params.loaded_end_displacement;
         out[3] = d[0] + moved[0];
         out[4] = d[1] + moved[1];
@@ -524,56 +471,6 @@ impl Chord {
         // Tension: the loaded end's neighbour pulls away from the section.
         let outward = if self.loaded_at_end() { 1.0 } else { -1.0 };
         out[6] = outward * self.frame.along([now[3], now[4]]);
-    }
-}
-
-/// The outer inputs each output follows at a communication point, through the
-/// frame changes (`local`, `assemble`) and the inner model's own dependencies:
-/// the forces carry the loaded end's axial force and the inner shear, the
-/// displacements the moving end's slide (and the stretch under the axial
-/// force), the rest what the inner outputs follow.
-fn set_dependencies(
-    description: &mut UnitDescription,
-    inner: &UnitDescription,
-    ports: &InnerPorts,
-    stretch: bool,
-) {
-    // The outer inputs behind each inner input the chord feeds (`local`):
-    // deflection, rotation, moment, shear.
-    let sources: [&[usize]; 4] = [&[0, 1], &[2], &[5], &[3, 4]];
-    let through = |inner_output: usize| -> Vec<usize> {
-        let mut outer: Vec<usize> = inner.outputs[inner_output]
-            .depends_on
-            .iter()
-            .filter_map(|p| ports.inputs.iter().position(|q| q == p))
-            .flat_map(|k| sources[k].iter().copied())
-            .collect();
-        outer.sort_unstable();
-        outer.dedup();
-        outer
-    };
-    let [moment, shear, deflection, rotation] = ports.outputs.map(through);
-    let join = |a: &[usize], b: &[usize]| {
-        let mut all = [a, b].concat();
-        all.sort_unstable();
-        all.dedup();
-        all
-    };
-    let axial = [3, 4];
-    let slide: &[usize] = if stretch { &[0, 1, 3, 4] } else { &[0, 1] };
-    let force = join(&axial, &shear);
-    let moved = join(slide, &deflection);
-    let dependencies = [
-        force.clone(),
-        force,
-        moment,
-        moved.clone(),
-        moved,
-        rotation,
-        axial.to_vec(),
-    ];
-    for (port, depends_on) in description.outputs.iter_mut().zip(dependencies) {
-        port.depends_on = depends_on;
     }
 }
 

@@ -18,6 +18,7 @@ fn chord(model: ChordModel, moving: MovingEnd, tension: f64) -> Driver<Chord> {
         damping_per_length: 40.0,
         tension,
         axial_stiffness: None,
+        axial_mass: None,
         elements: 20,
         alpha: 0.0,
         order: 16,
@@ -139,4 +140,85 @@ fn with_an_axial_stiffness_the_loaded_end_moves_along_the_chord_by_the_force_ove
         let across = -0.8 * out[3] + 0.6 * out[4];
         assert!(across.abs() < 1e-9, "{moving:?}: {across}");
     }
+}
+
+/// The chord of `chord` with EA / L = 1e5 N/m and 100 kg at its loaded end
+/// (omega = 31.6 rad/s), Newmark's `alpha`, pulled 500 N further along its
+/// chord from the first step on, its moving end held; the loaded end's
+/// displacement along the chord (m) and the moving end's axial force's change
+/// (N) over `steps` steps of `h` (s).
+fn pulled_mass(alpha: f64, steps: usize, h: f64) -> Vec<(f64, f64)> {
+    let mut params = chord(ChordModel::Beam, MovingEnd::Start, 0.0)
+        .unit()
+        .params
+        .clone();
+    params.axial_stiffness = Some(1e5);
+    params.axial_mass = Some(100.0);
+    params.alpha = alpha;
+    let mut unit = Driver::new(Chord::new(params).unwrap());
+    unit.set_inputs(&[0.0; 6]).unwrap();
+    unit.initialize(Time::ZERO).unwrap();
+    unit.set_inputs(&[0.0, 0.0, 0.0, 300.0, 400.0, 0.0])
+        .unwrap();
+    let step = Time::from_secs(h).unwrap();
+    let mut out = [0.0; 7];
+    (0..steps)
+        .map(|k| {
+            unit.do_step(Time::from_secs(h * k as f64).unwrap(), step)
+                .unwrap();
+            unit.outputs(&mut out).unwrap();
+            (0.6 * out[3] + 0.8 * out[4], 0.6 * out[0] + 0.8 * out[1])
+        })
+        .collect()
+}
+
+#[test]
+fn an_axial_mass_oscillates_on_the_stretch_as_a_mass_on_a_spring() {
+    // 500 N on 1e5 N/m from rest: u = 5 mm (1 - cos w t), w = sqrt(1e3); the
+    // spring pulls the moving end by k u. Trapezoidal rule, w h = 0.032.
+    let w = 1e3f64.sqrt();
+    let run = pulled_mass(0.0, 2000, 1e-3);
+    let mut worst = 0.0f64;
+    for (k, (along, force)) in run.iter().enumerate() {
+        let t = 1e-3 * (k + 1) as f64;
+        // The force ramps in over the first step (its centre at h / 2).
+        let exact = 5e-3 * (1.0 - (w * (t - 5e-4)).cos());
+        worst = worst.max((along - exact).abs() / 5e-3);
+        assert!((force - 1e5 * along).abs() < 1e-6, "t = {t}: {force}");
+    }
+    assert!(
+        worst < 2e-2,
+        "largest error {worst:.3e} of the static stretch"
+    );
+    // Undamped: after 2 s (10 periods) it still swings over the full range.
+    let late = &run[1700..];
+    let top = late.iter().map(|r| r.0).fold(f64::MIN, f64::max);
+    assert!(top > 9.9e-3, "{top}");
+}
+
+#[test]
+fn numerical_damping_settles_the_axial_mass_on_the_static_stretch() {
+    // At w h = 1.6 Newmark's alpha = 0.3 damps the swing within 20 s; the
+    // trapezoidal rule (alpha = 0) keeps it.
+    let run = pulled_mass(0.3, 400, 0.05);
+    let (along, force) = run[run.len() - 1];
+    assert!((along - 5e-3).abs() < 1e-6, "{along}");
+    assert!((force - 500.0).abs() < 1e-2, "{force}");
+    let undamped = pulled_mass(0.0, 400, 0.05);
+    let swing = undamped[380..].iter().map(|r| (r.0 - 5e-3).abs());
+    assert!(swing.fold(0.0, f64::max) > 1e-3);
+}
+
+#[test]
+fn a_mass_without_a_stiffness_is_refused() {
+    let mut params = chord(ChordModel::Beam, MovingEnd::Start, 0.0)
+        .unit()
+        .params
+        .clone();
+    params.axial_mass = Some(100.0);
+    let e = Chord::new(params).err().expect("refused").to_string();
+    assert!(
+        e.contains("axial_mass") && e.contains("axial_stiffness"),
+        "{e}"
+    );
 }

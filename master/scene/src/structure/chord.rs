@@ -10,7 +10,8 @@
 //! (`mod.rs::orientation`); below it may be a static first section that takes
 //! force (`statics::static_takes_force`).
 
-use super::cuts::link;
+use super::cuts::{End, link};
+use super::nonlinear::section_unit;
 use super::sections::{Cut, Fidelity, Segment};
 use super::statics::Equilibrium;
 use toml::{Table, Value};
@@ -60,6 +61,65 @@ fn uniform_enough(equilibrium: &Equilibrium, cut: &Cut, key: &str) -> Result<(),
     Ok(())
 }
 
+/// The section's stiffness along its chord (N/m) as its loaded end feels it:
+/// the end's static stiffness with its start held in the structure's
+/// equilibrium (`Equilibrium::end_stiffness`: sag, bending and seabed contact
+/// included), inverted to the compliance under a force (the end free to turn
+/// and to move across), whose component along the chord is one over this. On
+/// the S-lay's sag bend (109.7 to 231.0 m of arc) 6.4e4 N/m where EA over the
+/// arc length is 2.5e7: the sag, not the pipe's stretch, gives way.
+fn axial_stiffness(
+    structure: &str,
+    (model, segments): (&Table, &[Segment]),
+    cut: &Cut,
+    equilibrium: &Equilibrium,
+) -> Result<f64, String> {
+    let held = End {
+        moving: true,
+        pinned: false,
+        by_displacement: false,
+    };
+    let mut section = section_unit(structure, model, segments, cut, (Some(held), Some(held)))?;
+    equilibrium.start_section(&mut section, (cut.from, cut.to))?;
+    // The end force is the section's pull on what holds it: its stiffness is
+    // the negative of the force's derivative.
+    let force_derivative = equilibrium.end_stiffness(&section, (cut.from, cut.to))?;
+    let stiffness = force_derivative.map(|row| row.map(|k| -k));
+    let (a, b) = (
+        equilibrium.position_at(cut.from),
+        equilibrium.position_at(cut.to),
+    );
+    let length = (b[0] - a[0]).hypot(b[1] - a[1]);
+    let e = [(b[0] - a[0]) / length, (b[1] - a[1]) / length, 0.0];
+    let compliance = solve3(stiffness, e);
+    let along = 1.0 / (e[0] * compliance[0] + e[1] * compliance[1]);
+    if along.is_finite() && along > 0.0 {
+        Ok(along)
+    } else {
+        Err(format!(
+            "the section's static stiffness along its chord is {along:.4e} N/m in the equilibrium (expected a positive stiffness: the section must hold its end against a pull)"
+        ))
+    }
+}
+
+/// x with `a` x = `b` for a 3 x 3 matrix (Cramer's rule); not finite where `a`
+/// is singular.
+fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
+    let det = |m: [[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(a);
+    std::array::from_fn(|j| {
+        let mut m = a;
+        for (row, v) in m.iter_mut().zip(b) {
+            row[j] = v;
+        }
+        det(m) / d
+    })
+}
+
 /// The `chord` unit of section `k`, its start moving with the section below.
 pub(super) fn chord_unit(
     structure: &str,
@@ -79,12 +139,6 @@ pub(super) fn chord_unit(
     uniform_enough(equilibrium, cut, &key)?;
     let mut p = cut.options.clone().unwrap_or_default();
     let drag_velocity = drag_velocity_of(&mut p, &key)?;
-    section_properties(
-        &mut p,
-        properties(model, segments, cut, &key)?,
-        cut,
-        drag_velocity,
-    );
     p.insert("model".into(), Value::String(word.into()));
     p.insert("moving".into(), Value::String("start".into()));
     p.insert("start".into(), pair(equilibrium.position_at(cut.from)));
@@ -102,6 +156,20 @@ pub(super) fn chord_unit(
                 .collect(),
         ),
     );
+    let [ei, mass, drag, structural] = properties(model, segments, cut, &key)?;
+    section_properties(&mut p, [ei, mass, drag], drag_velocity);
+    let stiffness = axial_stiffness(structure, (model, segments), cut, equilibrium)
+        .map_err(|e| format!("`{key}` = \"{word}\": {e}"))?;
+    p.insert("axial_stiffness".into(), Value::Float(stiffness));
+    // The section's own inertia along the pipe: the loaded end's half of it
+    // (the moving end's half is left out: its acceleration would come from
+    // differencing its neighbour's positions). The mass of the static shapes
+    // the end drags along (the sag's motion across the pipe, 8 times the
+    // section's mass on the S-lay) was tried: it doubled the sag-bend error.
+    let axial_mass = 0.5 * structural * (cut.to - cut.from);
+    if axial_mass > 0.0 {
+        p.insert("axial_mass".into(), Value::Float(axial_mass));
+    }
     let middle = 0.5 * (cut.from + cut.to);
     p.insert(
         "tension".into(),
@@ -148,25 +216,13 @@ fn drag_velocity_of(p: &mut Table, key: &str) -> Result<f64, String> {
     }
 }
 
-/// The section's EI, mass, drag damping (at `drag_velocity`, unless the
-/// scene gives `damping_per_length`) and axial stiffness (EA over its arc
-/// length, where the model gives EA) into the chord's parameters `p`.
-fn section_properties(
-    p: &mut Table,
-    [ei, mass, drag, ea]: [f64; 4],
-    cut: &Cut,
-    drag_velocity: f64,
-) {
+/// The section's EI, mass and drag damping (at `drag_velocity`, unless the
+/// scene gives `damping_per_length`) into the chord's parameters `p`.
+fn section_properties(p: &mut Table, [ei, mass, drag]: [f64; 3], drag_velocity: f64) {
     p.entry("damping_per_length")
         .or_insert(Value::Float(drag * drag_velocity));
     p.insert("flexural_rigidity".into(), Value::Float(ei));
     p.insert("mass_per_length".into(), Value::Float(mass));
-    if ea > 0.0 {
-        p.insert(
-            "axial_stiffness".into(),
-            Value::Float(ea / (cut.to - cut.from)),
-        );
-    }
 }
 
 /// A chord section lies between two numerical sections that follow its
@@ -204,8 +260,9 @@ fn neighbours_fit(cuts: &[Cut], k: usize, key: &str) -> Result<(), String> {
 /// EI (N m^2), the transversely moving mass per length (kg/m, with the added
 /// mass Ca rho pi D^2 / 4) and the normal drag's linear damping per unit of
 /// velocity amplitude (8 / (3 pi) rho / 2 Cd D, N s/m^2 per m/s: the harmonic
-/// equivalent linearisation) and EA (N; 0 where the model gives none) of the
-/// segments the section spans; one value each, or an error.
+/// equivalent linearisation) and the structural mass per length (kg/m,
+/// moving along the pipe) of the segments the section spans; one value each,
+/// or an error.
 fn properties(
     model: &Table,
     segments: &[Segment],
@@ -230,7 +287,8 @@ fn properties(
             * std::f64::consts::PI
             * diameter.powi(2)
             / 4.0;
-        let mass = number(t, "mass_per_length").unwrap_or(0.0) + added;
+        let structural = number(t, "mass_per_length").unwrap_or(0.0);
+        let mass = structural + added;
         let drag = 8.0 / (3.0 * std::f64::consts::PI)
             * 0.5
             * density
@@ -244,7 +302,7 @@ fn properties(
                     "`{key}`: the section spans segments of different bending stiffness or mass; a chord section takes one of each, so cut at the segments' joint"
                 ));
             }
-            _ => found = Some([ei, mass, drag, number(t, "axial_stiffness").unwrap_or(0.0)]),
+            _ => found = Some([ei, mass, drag, structural]),
         }
     }
     found.ok_or(format!("`{key}`: the section is empty"))

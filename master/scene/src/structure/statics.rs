@@ -156,23 +156,9 @@ impl Equilibrium {
         section: &Table,
         (from, to): (f64, f64),
     ) -> Result<Table, String> {
-        let at_rest = self.displacement_at(to);
-        let length = to - from;
-        let steps = [1e-5 * length, 1e-5 * length, 1e-5];
-        let response = |d: [f64; 3]| {
-            end_held_response(section, d, self.t0).map_err(|e| format!("`{key}` = \"static\": {e}"))
-        };
-        let base = response(at_rest)?;
-        let mut columns = [[0.0; RESPONSES]; 3];
-        for (j, column) in columns.iter_mut().enumerate() {
-            let (mut plus, mut minus) = (at_rest, at_rest);
-            plus[j] += steps[j];
-            minus[j] -= steps[j];
-            let (p, m) = (response(plus)?, response(minus)?);
-            for i in 0..RESPONSES {
-                column[i] = (p[i] - m[i]) / (2.0 * steps[j]);
-            }
-        }
+        let (base, columns) = self
+            .end_held_derivatives(section, (from, to))
+            .map_err(|e| format!("`{key}` = \"static\": {e}"))?;
         let row = |i: usize| Value::Array((0..3).map(|j| Value::Float(columns[j][i])).collect());
         let numbers = |v: &[f64]| Value::Array(v.iter().map(|&x| Value::Float(x)).collect());
         let mut parameters = Table::new();
@@ -207,6 +193,49 @@ impl Equilibrium {
         unit.insert("kind".into(), Value::String("static_section".into()));
         unit.insert("parameters".into(), Value::Table(parameters));
         Ok(unit)
+    }
+
+    /// A section's static response with its end held where the equilibrium
+    /// puts it (`end_held_response`), and its derivatives with the end's
+    /// position (x, z, rotation: one column each) by central differences,
+    /// steps of 1e-5 of the section's length and 1e-5 rad; seven static solves.
+    fn end_held_derivatives(
+        &self,
+        section: &Table,
+        (from, to): (f64, f64),
+    ) -> Result<([f64; RESPONSES], [[f64; RESPONSES]; 3]), String> {
+        let at_rest = self.displacement_at(to);
+        let length = to - from;
+        let steps = [1e-5 * length, 1e-5 * length, 1e-5];
+        let response = |d: [f64; 3]| end_held_response(section, d, self.t0);
+        let base = response(at_rest)?;
+        let mut columns = [[0.0; RESPONSES]; 3];
+        for (j, column) in columns.iter_mut().enumerate() {
+            let (mut plus, mut minus) = (at_rest, at_rest);
+            plus[j] += steps[j];
+            minus[j] -= steps[j];
+            let (p, m) = (response(plus)?, response(minus)?);
+            for i in 0..RESPONSES {
+                column[i] = (p[i] - m[i]) / (2.0 * steps[j]);
+            }
+        }
+        Ok((base, columns))
+    }
+
+    /// The static stiffness of a section's end (N/m, N, N m: rows the end's
+    /// force x, z and moment, columns its displacement x, z and rotation)
+    /// about the equilibrium, its start held there: what a chord section's
+    /// neighbour feels when it moves the section's end slowly. Sag and seabed
+    /// contact make it far softer along the chord than EA over the length.
+    pub fn end_stiffness(
+        &self,
+        section: &Table,
+        (from, to): (f64, f64),
+    ) -> Result<[[f64; 3]; 3], String> {
+        let (_, columns) = self.end_held_derivatives(section, (from, to))?;
+        Ok(std::array::from_fn(|i| {
+            std::array::from_fn(|j| columns[j][i])
+        }))
     }
 
     /// The axial force (N, tension positive) at arc length `s`.
@@ -294,6 +323,41 @@ const RESPONSES: usize = 7;
 /// moment of a `nonlinear` section's static solve with its end displaced by `d`
 /// (x, z, rotation) from the stress-free position.
 fn end_held_response(section: &Table, d: [f64; 3], t0: Time) -> Result<[f64; RESPONSES], String> {
+    let section = end_held_solve(section, d, t0)?;
+    let names: Vec<String> = section
+        .unit()
+        .description()
+        .outputs
+        .iter()
+        .map(|p| p.name.clone())
+        .collect();
+    let mut out = vec![0.0; names.len()];
+    section.outputs(&mut out).map_err(|e| e.to_string())?;
+    let pick = |name: &str| {
+        names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| out[i])
+            .ok_or(format!("the section has no output `{name}`"))
+    };
+    Ok([
+        pick("end_force_x")?,
+        pick("end_force_z")?,
+        pick("end_moment")?,
+        pick("start_force_x")?,
+        pick("start_force_z")?,
+        section.unit().seabed_crossing().unwrap_or(f64::NAN),
+        pick("sagbend_moment")?,
+    ])
+}
+
+/// A `nonlinear` section's static solve with its end displaced by `d` (x, z,
+/// rotation) from the stress-free position.
+fn end_held_solve(
+    section: &Table,
+    d: [f64; 3],
+    t0: Time,
+) -> Result<Driver<NonlinearSection>, String> {
     let mut parameters = section
         .get("parameters")
         .and_then(Value::as_table)
@@ -313,32 +377,9 @@ fn end_held_response(section: &Table, d: [f64; 3], t0: Time) -> Result<[f64; RES
         .try_into()
         .map_err(|e| format!("{e}"))?;
     let unit = NonlinearSection::new(params).map_err(|e| e.to_string())?;
-    let names: Vec<String> = unit
-        .description()
-        .outputs
-        .iter()
-        .map(|p| p.name.clone())
-        .collect();
     let mut section = Driver::new(unit);
     section
         .initialize(t0)
         .map_err(|e| format!("the section's static solve with its end held: {e}"))?;
-    let mut out = vec![0.0; names.len()];
-    section.outputs(&mut out).map_err(|e| e.to_string())?;
-    let pick = |name: &str| {
-        names
-            .iter()
-            .position(|n| n == name)
-            .map(|i| out[i])
-            .ok_or(format!("the section has no output `{name}`"))
-    };
-    Ok([
-        pick("end_force_x")?,
-        pick("end_force_z")?,
-        pick("end_moment")?,
-        pick("start_force_x")?,
-        pick("start_force_z")?,
-        section.unit().seabed_crossing().unwrap_or(f64::NAN),
-        pick("sagbend_moment")?,
-    ])
+    Ok(section)
 }
