@@ -4,7 +4,9 @@
 //! suspended span (inclined chord) and a hanging pipe's middle (vertical chord)
 //! they follow the monolithic twin to the small-deflection model's accuracy;
 //! the two linear models agree with each other; a static touchdown section that
-//! holds the sections above under the tensioner runs through; swapping a
+//! holds the sections above under the tensioner runs through (also under a
+//! span chord with a coarse stinger); a chord gives way along itself as the
+//! elastic catenary does; swapping a
 //! section to `beam` changes its unit, its cuts and its upper neighbour's end
 //! condition only; what cannot couple is refused with the key.
 
