@@ -25,5 +25,5 @@ pub use state::{NestedSlot, StateSlot, StateVector};
 pub use time::Time;
 pub use unit::{
     Capabilities, HoldSupport, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
-    require_finite, require_in_range, require_non_negative, require_positive,
+    require_finite, require_finite_state, require_in_range, require_non_negative, require_positive,
 };

@@ -304,6 +304,22 @@ pub fn number(x: f64) -> String {
     }
 }
 
+/// Checks a unit's state after a step: an error naming `quantity` (what the
+/// values are, in the user's words) and the first non-finite entry, where one
+/// overflowed or became NaN (extreme inputs or parameters, an unstable step),
+/// so that a run stops with the unit, time and quantity rather than carrying
+/// NaN on in values no output shows.
+pub fn require_finite_state(quantity: &str, values: &[f64]) -> Result<(), UnitError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(k) => Err(UnitError::Numerical(format!(
+            "{quantity} became non-finite ({} at entry {k} of {}): an overflow from extreme inputs or parameters, or an unstable step",
+            values[k],
+            values.len()
+        ))),
+    }
+}
+
 /// Checks that a parameter is finite.
 pub fn require_finite(name: &str, value: f64) -> Result<(), UnitError> {
     if value.is_finite() {

@@ -3,12 +3,15 @@
 //! scene's author should not need to know (issue 27: 33 such messages).
 
 /// Rust type names and serde's terms, and what a scene's author calls them.
-const WORDS: [(&str, &str); 18] = [
+const WORDS: [(&str, &str); 19] = [
     ("expected f64", "expected a number"),
     ("expected f32", "expected a number"),
-    ("expected u8", "expected a whole number >= 0"),
-    ("expected u16", "expected a whole number >= 0"),
-    ("expected u32", "expected a whole number >= 0"),
+    ("expected u8", "expected a whole number from 0 to 255"),
+    ("expected u16", "expected a whole number from 0 to 65535"),
+    (
+        "expected u32",
+        "expected a whole number from 0 to 4294967295",
+    ),
     ("expected u64", "expected a whole number >= 0"),
     ("expected usize", "expected a whole number >= 0"),
     ("expected i32", "expected a whole number"),
@@ -28,7 +31,15 @@ const WORDS: [(&str, &str); 18] = [
         "expected fewer elements in array",
         "expected fewer values in the array",
     ),
+    (
+        "invalid type: floating point",
+        "invalid type: a number with a fraction",
+    ),
 ];
+
+/// Numbers in a message longer than this are written in scientific notation:
+/// serde writes 1e308 with 309 digits.
+const LONGEST_NUMBER: usize = 16;
 
 /// serde's words before a Rust type's own name (`expected struct
 /// Tolerances`), and what a scene's author calls that kind of value.
@@ -67,7 +78,49 @@ pub fn in_words(message: &str) -> String {
             from = at + words.len();
         }
     }
-    text
+    shorten_numbers(&text)
+}
+
+/// `text` with every number of more than `LONGEST_NUMBER` characters written
+/// in scientific notation (`1e308`, not its 309 digits); numbers with an
+/// exponent are short already and stay as written.
+pub fn shorten_numbers(text: &str) -> String {
+    let is_part = |c: char| c.is_ascii_digit() || c == '.';
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_digit()) {
+        let sign = usize::from(rest[..start].ends_with('-'));
+        let digits_end = rest[start..]
+            .find(|c: char| !is_part(c))
+            .map_or(rest.len(), |n| start + n);
+        let exponent = exponent_length(&rest[digits_end..]);
+        let end = digits_end + exponent;
+        let literal = &rest[start - sign..end];
+        out.push_str(&rest[..start - sign]);
+        match literal.parse::<f64>() {
+            Ok(v) if exponent == 0 && literal.len() > LONGEST_NUMBER => {
+                out.push_str(&format!("{v:e}"))
+            }
+            _ => out.push_str(literal),
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The length of the exponent (`e9`, `E-12`) `text` starts with; 0 without one.
+fn exponent_length(text: &str) -> usize {
+    let b = text.as_bytes();
+    if !matches!(b.first(), Some(b'e' | b'E')) {
+        return 0;
+    }
+    let sign = usize::from(matches!(b.get(1), Some(b'+' | b'-')));
+    let digits = b[1 + sign..]
+        .iter()
+        .take_while(|c| c.is_ascii_digit())
+        .count();
+    if digits == 0 { 0 } else { 1 + sign + digits }
 }
 
 #[cfg(test)]
@@ -94,7 +147,11 @@ mod tests {
         );
         assert_eq!(
             in_words("invalid value: integer `-3`, expected u32"),
-            "invalid value: integer `-3`, expected a whole number >= 0"
+            "invalid value: integer `-3`, expected a whole number from 0 to 4294967295"
+        );
+        assert_eq!(
+            in_words("invalid type: floating point `0.5`, expected usize"),
+            "invalid type: a number with a fraction `0.5`, expected a whole number >= 0"
         );
         assert_eq!(
             in_words("invalid type: integer `5`, expected a map"),
@@ -106,5 +163,20 @@ mod tests {
         );
         // Not inside a longer word.
         assert_eq!(in_words("expected u320"), "expected u320");
+    }
+
+    #[test]
+    fn long_numbers_are_written_in_scientific_notation() {
+        let digits = format!("{}", 1e308f64);
+        assert_eq!(digits.len(), 309);
+        assert_eq!(
+            in_words(&format!(
+                "invalid type: floating point `-{digits}.0`, expected usize"
+            )),
+            "invalid type: a number with a fraction `-1e308`, expected a whole number >= 0"
+        );
+        // Short numbers, names with digits and versions stay as written.
+        let kept = "units[12] (\"u2\"): 0.5 of 4294967296 at 1.2.3 to -9.223372036854776e9 s";
+        assert_eq!(super::shorten_numbers(kept), kept);
     }
 }

@@ -45,7 +45,12 @@ impl fmt::Display for SceneError {
         if !self.key.is_empty() {
             write!(f, ": {}", self.key)?;
         }
-        write!(f, ": {}", self.message)
+        // Numbers as the user wrote them, not 1e308's 309 digits.
+        write!(
+            f,
+            ": {}",
+            slender_kinds::words::shorten_numbers(&self.message)
+        )
     }
 }
 
@@ -98,16 +103,21 @@ impl Scene {
         };
         let source = expanded.clone();
         let spec: SceneSpec = toml::from_str(&source)
-            .map_err(|e| SceneError {
-                file: path.to_owned(),
-                line: e.span().map(|s| line_of(&source, s.start)),
-                key: e
-                    .span()
-                    .map(|s| key_at(&source, s.start))
-                    .filter(|key| !key.starts_with("`{"))
-                    .or_else(|| key_path::<SceneSpec>(&source))
-                    .unwrap_or_default(),
-                message: migration_hint(e.message().trim()),
+            .map_err(|e| {
+                // A key missing from the whole file: no line or key to blame.
+                let span = e.span().filter(|s| {
+                    !(s.start == 0 && (s.end == 0 || s.end >= source.trim_end().len()))
+                });
+                SceneError {
+                    file: path.to_owned(),
+                    line: span.clone().map(|s| line_of(&source, s.start)),
+                    key: span
+                        .map(|s| key_at(&source, s.start))
+                        .filter(|key| !key.starts_with("`{"))
+                        .or_else(|| key_path::<SceneSpec>(&source))
+                        .unwrap_or_default(),
+                    message: migration_hint(e.message().trim()),
+                }
             })
             .map_err(located)?;
         let mut scene = Scene {

@@ -52,7 +52,10 @@ impl Quantity {
 
 /// A prescribed value over time.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "expected a number, \"input\" or a table { offset, amplitude, angular_frequency, phase, decay_amplitude, decay_rate, sines, fade_in, sea } (an unknown key in the table also gives this)"
+)]
 pub enum TimeFunction {
     /// A constant.
     Constant(f64),
@@ -192,40 +195,52 @@ impl TimeFunction {
         if let TimeFunction::Expression(Expression { sea: Some(sea), .. }) = self {
             sea.validate(&format!("{key}.sea"))?;
         }
-        let ok = match self {
-            TimeFunction::Constant(c) => c.is_finite(),
-            TimeFunction::Input(_) => true,
-            TimeFunction::Expression(e) => {
-                [
-                    e.offset,
-                    e.amplitude,
-                    e.angular_frequency,
-                    e.phase,
-                    e.decay_amplitude,
-                    e.decay_rate,
-                    e.fade_in,
-                ]
-                .into_iter()
-                .chain(
-                    e.sines
-                        .iter()
-                        .flat_map(|s| [s.amplitude, s.angular_frequency, s.phase, s.decay]),
-                )
-                .all(f64::is_finite)
-                    && e.fade_in >= 0.0
-                    && e.sines.iter().all(|s| s.decay >= 0.0)
+        let expected = "expected finite values, fade_in >= 0 (s) and each sine's decay >= 0 (1/s)";
+        match self {
+            TimeFunction::Constant(c) if !c.is_finite() => {
+                Err(UnitError::parameter(key, *c, expected))
             }
-        };
-        if ok {
-            Ok(())
-        } else {
-            Err(UnitError::parameter(
-                key,
-                format!("{self:?}"),
-                "expected finite values, fade_in >= 0 (s) and each sine's decay >= 0 (1/s)",
-            ))
+            TimeFunction::Constant(_) | TimeFunction::Input(_) => Ok(()),
+            TimeFunction::Expression(e) => match first_bad_field(e) {
+                Some((field, value)) => Err(UnitError::parameter(
+                    &format!("{key}.{field}"),
+                    value,
+                    expected,
+                )),
+                None => Ok(()),
+            },
         }
     }
+}
+
+/// The first field of `e` out of range (its name as the scene writes it, and
+/// its value), or None.
+fn first_bad_field(e: &Expression) -> Option<(String, f64)> {
+    let fields = [
+        ("offset", e.offset),
+        ("amplitude", e.amplitude),
+        ("angular_frequency", e.angular_frequency),
+        ("phase", e.phase),
+        ("decay_amplitude", e.decay_amplitude),
+        ("decay_rate", e.decay_rate),
+    ];
+    if let Some((name, v)) = fields.iter().find(|(_, v)| !v.is_finite()) {
+        return Some(((*name).to_owned(), *v));
+    }
+    if !(e.fade_in.is_finite() && e.fade_in >= 0.0) {
+        return Some(("fade_in".into(), e.fade_in));
+    }
+    e.sines.iter().enumerate().find_map(|(k, s)| {
+        let values = [
+            ("amplitude", s.amplitude),
+            ("angular_frequency", s.angular_frequency),
+            ("phase", s.phase),
+        ];
+        let bad = values.into_iter().find(|(_, v)| !v.is_finite());
+        let decay = (!(s.decay.is_finite() && s.decay >= 0.0)).then_some(("decay", s.decay));
+        bad.or(decay)
+            .map(|(name, v)| (format!("sines[{k}].{name}"), v))
+    })
 }
 
 /// One condition at an end.

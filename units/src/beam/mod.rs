@@ -18,7 +18,7 @@ use crate::contact::surface::Surface;
 use crate::contract::StateSlot;
 use crate::contract::Time;
 use crate::contract::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
-use crate::contract::{Inputs, Port, PortKind};
+use crate::contract::{Inputs, Port, PortKind, require_finite_state};
 use crate::integrators::hht::HhtAlpha;
 use crate::numerics::banded::SymmetricBand;
 use boundary::{Quantity, TimeFunction};
@@ -376,6 +376,8 @@ impl Unit for Beam {
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         self.jacobian.ready = false;
         let iterations = self.hht_step(inputs, t.as_secs(), (t + h).as_secs(), h.as_secs())?;
+        require_finite_state("the beam's nodal displacements", &self.state.q)?;
+        require_finite_state("the beam's nodal velocities", &self.state.v)?;
         self.jacobian.ready = self.description.capabilities.step_jacobian;
         self.jacobian.h = h.as_secs();
         Ok(StepReport {

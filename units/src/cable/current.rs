@@ -60,16 +60,7 @@ impl CurrentProfile {
                 seabed + s * (surface - seabed)
             }
             CurrentProfile::Table { z: zs, speed } => {
-                let last = zs.len() - 1;
-                if z <= zs[0] {
-                    return speed[0];
-                }
-                if z >= zs[last] {
-                    return speed[last];
-                }
-                let i = zs.partition_point(|&v| v <= z) - 1;
-                let s = (z - zs[i]) / (zs[i + 1] - zs[i]);
-                speed[i] + s * (speed[i + 1] - speed[i])
+                crate::numerics::table::interpolate(zs, speed, z)
             }
         }
     }

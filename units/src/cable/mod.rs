@@ -29,7 +29,7 @@ use crate::contract::Time;
 use crate::contract::{
     Capabilities, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
 };
-use crate::contract::{Hold, Inputs, Port, PortKind};
+use crate::contract::{Hold, Inputs, Port, PortKind, require_finite_state};
 use crate::numerics::banded::SymmetricBand;
 use drag::Drag;
 use elements::ElementProperties;
@@ -415,6 +415,8 @@ impl Unit for Cable {
         d.newmark = newmark;
         self.jacobian.ready = false;
         let iterations = outcome?;
+        require_finite_state("the cable's nodal displacements", &s.q)?;
+        require_finite_state("the cable's nodal velocities", &s.v)?;
         s.qb = qb;
         s.vb = vb;
         s.ab = ab;

@@ -226,7 +226,7 @@ impl CableParams {
         require_in_range("diameter", self.diameter, 1e-4, 1e2, "m")?;
         require_in_range("mass_per_length", self.mass_per_length, 1e-3, 1e7, "kg/m")?;
         require_in_range("youngs_modulus", self.youngs_modulus, 1e3, 1e13, "Pa")?;
-        require_non_negative("submerged_weight", self.submerged_weight)?;
+        require_in_range("submerged_weight", self.submerged_weight, 0.0, 1e8, "N/m")?;
         require_non_negative("added_mass_normal", self.added_mass_normal)?;
         require_non_negative("added_mass_tangential", self.added_mass_tangential)?;
         require_non_negative("drag_normal", self.drag_normal)?;

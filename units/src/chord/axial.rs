@@ -10,8 +10,8 @@
 //! unit's outputs follow its inputs at a communication point exactly and its
 //! step Jacobian stays exact: d u / d F = beta h^2 / (M + beta h^2 k).
 
-use crate::contract::require_positive;
 use crate::contract::{Time, UnitError};
+use crate::contract::{require_finite_state, require_positive};
 use serde::{Deserialize, Serialize};
 
 /// Displacement (m), velocity (m/s) and acceleration (m/s^2) of the loaded
@@ -114,6 +114,15 @@ impl Axial {
             (Some(k), Some(_)) => k * (self.displacement(slide, force) - slide),
             _ => force,
         }
+    }
+
+    /// An error where the motion along the chord became non-finite.
+    pub fn require_finite(&self) -> Result<(), UnitError> {
+        let m = &self.state.end;
+        require_finite_state(
+            "the chord's motion along itself (displacement, velocity, acceleration)",
+            &[m.displacement, m.velocity, m.acceleration],
+        )
     }
 
     /// Newmark's step from `start` over `h` (s).

@@ -360,6 +360,7 @@ impl Unit for Chord {
             .do_step(t, h, Inputs::new(&holds, &start, &end))?;
         let (slide, force) = self.along(inputs.end());
         self.axial.do_step(h, slide, force);
+        self.axial.require_finite()?;
         Ok(report)
     }
 

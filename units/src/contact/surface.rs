@@ -314,17 +314,7 @@ impl Surface {
                 }
             }
             Shape::Rollers { .. } => return None,
-            Shape::Table { x: xs, y } => {
-                let last = xs.len() - 1;
-                if x <= xs[0] {
-                    y[0]
-                } else if x >= xs[last] {
-                    y[last]
-                } else {
-                    let i = xs.partition_point(|&v| v <= x) - 1;
-                    y[i] + (y[i + 1] - y[i]) * (x - xs[i]) / (xs[i + 1] - xs[i])
-                }
-            }
+            Shape::Table { x: xs, y } => crate::numerics::table::interpolate(xs, y, x),
         };
         Some((f + dz, rate))
     }

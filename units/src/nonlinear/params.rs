@@ -537,7 +537,14 @@ fn validate_segment(key: &str, s: &Segment) -> Result<(), UnitError> {
         1e6,
         "kg/m",
     )?;
-    require_finite(&format!("{key}.submerged_weight"), s.submerged_weight)?;
+    // As heavy or as buoyant as 1e6 kg/m in water (mass_per_length's bound).
+    require_in_range(
+        &format!("{key}.submerged_weight"),
+        s.submerged_weight,
+        -1e8,
+        1e8,
+        "N/m",
+    )?;
     for (name, v) in [
         ("diameter", s.diameter),
         ("drag_normal", s.drag_normal),
@@ -580,15 +587,6 @@ fn validate_current(c: &Current) -> Result<(), UnitError> {
 impl Current {
     /// Horizontal current (m/s) at height z.
     pub fn at(&self, z: f64) -> f64 {
-        let last = self.z.len() - 1;
-        if z <= self.z[0] {
-            self.velocity[0]
-        } else if z >= self.z[last] {
-            self.velocity[last]
-        } else {
-            let i = self.z.partition_point(|&v| v <= z) - 1;
-            let f = (z - self.z[i]) / (self.z[i + 1] - self.z[i]);
-            self.velocity[i] + f * (self.velocity[i + 1] - self.velocity[i])
-        }
+        crate::numerics::table::interpolate(&self.z, &self.velocity, z)
     }
 }

@@ -4,3 +4,4 @@ pub mod banded;
 pub mod bounded;
 pub mod lanczos;
 pub mod modal;
+pub mod table;

@@ -21,13 +21,17 @@ use super::jacobian::JacobianWork;
 use super::polynomial::CubicSection;
 use crate::contract::{
     Capabilities, HeldInputs, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit,
-    UnitDescription, UnitError,
+    UnitDescription, UnitError, require_finite_state,
 };
 use crate::integrators::hht::{NewtonSettings, SecondOrderSystem, StepLoads};
 use crate::nonlinear::model::element_dofs;
 use crate::nonlinear::{NonlinearParams, NonlinearSection};
 use nalgebra::DVector;
 use serde::Deserialize;
+
+/// What the reduced section's motion is, for an error where it became
+/// non-finite.
+const MOTION: &str = "the reduced section's coordinates, velocities and accelerations";
 
 /// How the modes' derivatives enter the basis.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
@@ -507,6 +511,7 @@ impl Unit for ReducedUnit {
         if let Model::Linear(_, Stepper::Implicit(_)) = self.model {
             let iterations = self.implicit_step(t0, h, inputs)?;
             self.store_motion();
+            require_finite_state(MOTION, &self.state.motion)?;
             self.refresh_outputs();
             self.jacobian.ready = true;
             return Ok(StepReport {
@@ -532,6 +537,7 @@ impl Unit for ReducedUnit {
             }
         }
         self.store_motion();
+        require_finite_state(MOTION, &self.state.motion)?;
         self.refresh_outputs();
         self.jacobian.ready = true;
         Ok(StepReport::default())

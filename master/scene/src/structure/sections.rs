@@ -192,8 +192,9 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
             None if last => length,
             Some(to) if last && (to - length).abs() <= 1e-9 * length => length,
             other => {
+                let written = other.map_or("none".to_owned(), |to| to.to_string());
                 return Err(format!(
-                    "`{key}.to` = {other:?}: expected an arc length in ({from}, {length}) m, increasing, and none (or the length) for the last section"
+                    "`{key}.to` = {written}: expected an arc length in ({from}, {length}) m, increasing, and none (or the length) for the last section"
                 ));
             }
         };
