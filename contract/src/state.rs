@@ -105,7 +105,7 @@ impl StateSlot {
     pub fn store_nested<S: Clone + Send + Serialize + 'static>(
         &mut self,
         own: &S,
-    ) -> &mut StateSlot {
+    ) -> Result<&mut StateSlot, UnitError> {
         let reusable = matches!(&self.0, Saved::Nested(saved, _) if saved.as_any().is::<S>());
         if !reusable {
             self.0 = Saved::Nested(Box::new(own.clone()), Box::new(StateSlot::new()));
@@ -115,9 +115,9 @@ impl StateSlot {
                 if let Some(saved) = saved.as_any_mut().downcast_mut::<S>() {
                     saved.clone_from(own);
                 }
-                inner
+                Ok(inner)
             }
-            _ => unreachable!("the slot was made nested above"),
+            _ => Err(UnitError::State("the slot holds no nested state".into())),
         }
     }
 
@@ -300,8 +300,12 @@ mod tests {
     #[test]
     fn a_nested_state_round_trips_in_memory_and_through_bytes() {
         let mut slot = StateSlot::new();
-        slot.store_nested(&[1.5_f64, -2.0]).store(&vec![3.0_f64]);
-        slot.store_nested(&[0.25_f64, 4.0]).store(&vec![5.0_f64]);
+        slot.store_nested(&[1.5_f64, -2.0])
+            .unwrap()
+            .store(&vec![3.0_f64]);
+        slot.store_nested(&[0.25_f64, 4.0])
+            .unwrap()
+            .store(&vec![5.0_f64]);
         let (own, inner) = slot.load_nested::<[f64; 2]>().unwrap();
         assert_eq!(*own, [0.25, 4.0]);
         assert_eq!(*inner.load::<Vec<f64>>().unwrap(), vec![5.0]);

@@ -369,7 +369,7 @@ impl Unit for Chord {
     }
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        self.inner.save_state(slot.store_nested(&self.axial.state))
+        self.inner.save_state(slot.store_nested(&self.axial.state)?)
     }
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
