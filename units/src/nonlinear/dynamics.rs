@@ -115,6 +115,9 @@ impl NonlinearSection {
         for &(d, [_, _, a]) in &held {
             rhs[d] = a;
         }
+        if self.params.reduced_modes.is_some() {
+            self.reduced_start_rhs.clone_from(&rhs);
+        }
         if !self.reduced_start(&mut rhs)? {
             let mut m = self.m.clone();
             for &(d, _) in &held {

@@ -125,8 +125,17 @@ pub struct NonlinearSection {
     jacobian_work: jacobian::JacobianWork,
     /// The linear model about the start (`linear = true`), after `initialize`.
     linear: Option<linear::Linearised>,
-    /// The basis about the start (`reduced_modes`), after `initialize`.
+    /// The basis about the start (`reduced_modes`), formed at the first step
+    /// after `initialize` (`reduced::ensure_reduced`): the master's initial
+    /// iterates initialise a unit many times (15 on the riser), and the basis
+    /// (a dense eigen-solve and second differences) is only needed to step.
     reduction: Option<Box<reduced::Reduction>>,
+    /// The start's right-hand side f - C v - g (held DOFs: their
+    /// accelerations) from `initialize`, from which the reduced start is set.
+    reduced_start_rhs: Vec<f64>,
+    /// The state at the end of `initialize`, about which the basis is formed
+    /// (a reduced section only).
+    reduced_origin: Option<Box<SectionState>>,
 }
 
 impl NonlinearSection {
@@ -177,6 +186,8 @@ impl NonlinearSection {
             jacobian_work: jacobian::JacobianWork::default(),
             linear: None,
             reduction: None,
+            reduced_start_rhs: Vec::new(),
+            reduced_origin: None,
             c: None,
             m,
             critical_step: f64::NAN,
@@ -452,16 +463,25 @@ impl Unit for NonlinearSection {
         self.state.q.fill(0.0);
         self.state.v.fill(0.0);
         self.state.lambda = self.environment.contacts.initial_lambda();
+        self.state.reduced.clear();
         if self.params.static_start {
             self.solve_static(inputs)?;
         }
         self.prepare_dynamics()?;
         self.linearise()?;
-        self.reduce()?;
-        self.initial_acceleration(inputs)
+        self.reduction = None;
+        self.initial_acceleration(inputs)?;
+        if self.params.reduced_modes.is_some() {
+            match self.reduced_origin.as_mut() {
+                Some(origin) => (**origin).clone_from(&self.state),
+                None => self.reduced_origin = Some(Box::new(self.state.clone())),
+            }
+        }
+        Ok(())
     }
 
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        self.ensure_reduced()?;
         let iterations = self.step(inputs, t.as_secs(), (t + h).as_secs(), h.as_secs())?;
         Ok(StepReport {
             solver_iterations: iterations,

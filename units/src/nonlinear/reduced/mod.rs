@@ -161,6 +161,31 @@ impl NonlinearSection {
         Ok(())
     }
 
+    /// Before a step of a reduced section: the basis about the start, formed
+    /// the first time, and the reduced start where the state has none (the
+    /// first step, or a step from a state saved before it).
+    pub(super) fn ensure_reduced(&mut self) -> Result<(), UnitError> {
+        if self.params.reduced_modes.is_none() {
+            return Ok(());
+        }
+        if self.reduction.is_none() {
+            // About the start, whatever state was restored since.
+            let mut origin = self.reduced_origin.take().ok_or_else(|| {
+                UnitError::State("a reduced section stepped before it was initialised".into())
+            })?;
+            std::mem::swap(&mut self.state, &mut origin);
+            let formed = self.reduce();
+            std::mem::swap(&mut self.state, &mut origin);
+            self.reduced_origin = Some(origin);
+            formed?;
+        }
+        if self.state.reduced.is_empty() {
+            let mut rhs = self.reduced_start_rhs.clone();
+            self.reduced_start(&mut rhs)?;
+        }
+        Ok(())
+    }
+
     /// Forms the basis about the current state (after the statics), with `m`
     /// and `c` the dynamics' mass and damping.
     pub(super) fn reduce(&mut self) -> Result<(), UnitError> {
