@@ -96,24 +96,27 @@ impl Axial {
         };
     }
 
-    /// The loaded end's displacement along the chord (m) with the current end
-    /// inputs `slide` and `force` (as in `do_step`).
-    pub fn displacement(&self, slide: f64, force: f64) -> f64 {
+    /// The loaded end's displacement along the chord (m) and the change of
+    /// the axial force (N) the section exerts on its moving end's neighbour,
+    /// pulling it along the chord, with the current end inputs `slide` and
+    /// `force` (as in `do_step`): the spring's force, or without a mass the
+    /// loaded end's change passing through.
+    pub fn response(&self, slide: f64, force: f64) -> (f64, f64) {
         let s = &self.state;
-        match (self.mass, s.step > 0.0) {
+        let displacement = match (self.mass, s.step > 0.0) {
             (Some(_), true) => self.advance(s.start, s.step, slide, force).displacement,
-            _ => slide + self.stiffness.map_or(0.0, |k| force / k),
-        }
+            _ => self.quasi_static(slide, force),
+        };
+        let pull = match (self.stiffness, self.mass) {
+            (Some(k), Some(_)) => k * (displacement - slide),
+            _ => force,
+        };
+        (displacement, pull)
     }
 
-    /// The change of the axial force (N) the section exerts on its moving
-    /// end's neighbour, pulling it along the chord: the spring's; without a
-    /// mass the loaded end's change passes through.
-    pub fn spring_force(&self, slide: f64, force: f64) -> f64 {
-        match (self.stiffness, self.mass) {
-            (Some(k), Some(_)) => k * (self.displacement(slide, force) - slide),
-            _ => force,
-        }
+    /// Where the spring alone puts the loaded end (m).
+    fn quasi_static(&self, slide: f64, force: f64) -> f64 {
+        slide + self.stiffness.map_or(0.0, |k| force / k)
     }
 
     /// An error where the motion along the chord became non-finite.
@@ -129,7 +132,7 @@ impl Axial {
     fn advance(&self, start: Motion, h: f64, slide: f64, force: f64) -> Motion {
         let (Some(k), Some(m)) = (self.stiffness, self.mass) else {
             return Motion {
-                displacement: slide + self.stiffness.map_or(0.0, |k| force / k),
+                displacement: self.quasi_static(slide, force),
                 ..Motion::default()
             };
         };

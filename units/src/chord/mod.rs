@@ -453,18 +453,17 @@ impl Chord {
         };
         let r = &self.reference;
         let (slide, axial_force) = self.along(now);
+        let (along_chord, pull) = self.axial.response(slide, axial_force);
         let axial = self
             .frame
             .along([r.inputs[3], r.inputs[4] - self.params.weight])
-            + self.axial.spring_force(slide, axial_force);
+            + pull;
         let across = r.static_force_across - applied_force;
         let force = self.frame.global(axial, across);
         out[0] = force[0];
         out[1] = force[1];
         out[2] = r.static_moment - applied_moment;
-        let moved = self
-            .frame
-            .global(self.axial.displacement(slide, axial_force), deflection);
+        let moved = self.frame.global(along_chord, deflection);
         let d = &self.params.loaded_end_displacement;
         out[3] = d[0] + moved[0];
         out[4] = d[1] + moved[1];

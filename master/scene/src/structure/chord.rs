@@ -90,9 +90,12 @@ fn axial_stiffness(
         equilibrium.position_at(cut.to),
     );
     let length = (b[0] - a[0]).hypot(b[1] - a[1]);
-    let e = [(b[0] - a[0]) / length, (b[1] - a[1]) / length, 0.0];
-    let compliance = solve3(stiffness, e);
-    let along = 1.0 / (e[0] * compliance[0] + e[1] * compliance[1]);
+    let e = nalgebra::Vector3::new((b[0] - a[0]) / length, (b[1] - a[1]) / length, 0.0);
+    let stiffness = nalgebra::Matrix3::from_fn(|i, j| stiffness[i][j]);
+    let along = stiffness
+        .lu()
+        .solve(&e)
+        .map_or(f64::NAN, |compliance| 1.0 / e.dot(&compliance));
     if along.is_finite() && along > 0.0 {
         Ok(along)
     } else {
@@ -100,24 +103,6 @@ fn axial_stiffness(
             "the section's static stiffness along its chord is {along:.4e} N/m in the equilibrium (expected a positive stiffness: the section must hold its end against a pull)"
         ))
     }
-}
-
-/// x with `a` x = `b` for a 3 x 3 matrix (Cramer's rule); not finite where `a`
-/// is singular.
-fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
-    let det = |m: [[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(a);
-    std::array::from_fn(|j| {
-        let mut m = a;
-        for (row, v) in m.iter_mut().zip(b) {
-            row[j] = v;
-        }
-        det(m) / d
-    })
 }
 
 /// The `chord` unit of section `k`, its start moving with the section below.

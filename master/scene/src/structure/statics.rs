@@ -323,41 +323,6 @@ const RESPONSES: usize = 7;
 /// moment of a `nonlinear` section's static solve with its end displaced by `d`
 /// (x, z, rotation) from the stress-free position.
 fn end_held_response(section: &Table, d: [f64; 3], t0: Time) -> Result<[f64; RESPONSES], String> {
-    let section = end_held_solve(section, d, t0)?;
-    let names: Vec<String> = section
-        .unit()
-        .description()
-        .outputs
-        .iter()
-        .map(|p| p.name.clone())
-        .collect();
-    let mut out = vec![0.0; names.len()];
-    section.outputs(&mut out).map_err(|e| e.to_string())?;
-    let pick = |name: &str| {
-        names
-            .iter()
-            .position(|n| n == name)
-            .map(|i| out[i])
-            .ok_or(format!("the section has no output `{name}`"))
-    };
-    Ok([
-        pick("end_force_x")?,
-        pick("end_force_z")?,
-        pick("end_moment")?,
-        pick("start_force_x")?,
-        pick("start_force_z")?,
-        section.unit().seabed_crossing().unwrap_or(f64::NAN),
-        pick("sagbend_moment")?,
-    ])
-}
-
-/// A `nonlinear` section's static solve with its end displaced by `d` (x, z,
-/// rotation) from the stress-free position.
-fn end_held_solve(
-    section: &Table,
-    d: [f64; 3],
-    t0: Time,
-) -> Result<Driver<NonlinearSection>, String> {
     let mut parameters = section
         .get("parameters")
         .and_then(Value::as_table)
@@ -377,9 +342,32 @@ fn end_held_solve(
         .try_into()
         .map_err(|e| format!("{e}"))?;
     let unit = NonlinearSection::new(params).map_err(|e| e.to_string())?;
+    let names: Vec<String> = unit
+        .description()
+        .outputs
+        .iter()
+        .map(|p| p.name.clone())
+        .collect();
     let mut section = Driver::new(unit);
     section
         .initialize(t0)
         .map_err(|e| format!("the section's static solve with its end held: {e}"))?;
-    Ok(section)
+    let mut out = vec![0.0; names.len()];
+    section.outputs(&mut out).map_err(|e| e.to_string())?;
+    let pick = |name: &str| {
+        names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| out[i])
+            .ok_or(format!("the section has no output `{name}`"))
+    };
+    Ok([
+        pick("end_force_x")?,
+        pick("end_force_z")?,
+        pick("end_moment")?,
+        pick("start_force_x")?,
+        pick("start_force_z")?,
+        section.unit().seabed_crossing().unwrap_or(f64::NAN),
+        pick("sagbend_moment")?,
+    ])
 }
