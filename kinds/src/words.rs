@@ -3,7 +3,7 @@
 //! scene's author should not need to know (issue 27: 33 such messages).
 
 /// Rust type names and serde's terms, and what a scene's author calls them.
-const WORDS: [(&str, &str); 19] = [
+const WORDS: [(&str, &str); 21] = [
     ("expected f64", "expected a number"),
     ("expected f32", "expected a number"),
     ("expected u8", "expected a whole number from 0 to 255"),
@@ -21,6 +21,8 @@ const WORDS: [(&str, &str); 19] = [
     ("expected a boolean", "expected true or false"),
     ("expected unit variant", "expected a name in quotes"),
     ("expected unit struct", "expected a name in quotes"),
+    ("expected variant identifier", "expected a name in quotes"),
+    ("expected field identifier", "expected a key name"),
     (
         "wanted string or table",
         "expected a name in quotes or a table",
@@ -160,6 +162,11 @@ mod tests {
         assert_eq!(
             in_words("wanted string or table"),
             "expected a name in quotes or a table"
+        );
+        // A table where a kind's name belongs (`kind = { ... }`).
+        assert_eq!(
+            in_words("invalid type: map, expected variant identifier"),
+            "invalid type: a table, expected a name in quotes"
         );
         // Not inside a longer word.
         assert_eq!(in_words("expected u320"), "expected u320");

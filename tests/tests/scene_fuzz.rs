@@ -135,7 +135,7 @@ fn replace_token(line: &str, rng: &mut ChaCha8Rng, number: bool) -> String {
 /// What a refusal must not say, since a scene's author does not write Rust:
 /// type names, serde's terms, debug forms, a number in hundreds of digits.
 fn in_rust_words(message: &str) -> Option<&'static str> {
-    const WORDS: [&str; 15] = [
+    const WORDS: [&str; 16] = [
         "expected f32",
         "expected f64",
         "expected u8",
@@ -148,6 +148,7 @@ fn in_rust_words(message: &str) -> Option<&'static str> {
         "a map",
         "unit variant",
         "untagged enum",
+        "identifier",
         "expected struct",
         "expected enum",
         "Some(",
