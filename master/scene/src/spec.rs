@@ -187,7 +187,7 @@ pub struct OutputSpec {
     pub watch: WatchSpec,
 }
 
-/// `[output] watch = { factor, stop, breaking_load }`.
+/// `[output] watch = { factor, stop, breaking_load, energy_growth }`.
 #[derive(Copy, Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WatchSpec {
@@ -202,6 +202,11 @@ pub struct WatchSpec {
     /// implausible whatever the start.
     #[serde(default)]
     pub breaking_load: Option<f64>,
+    /// A section's energy error (the energy its time stepping made, J)
+    /// beyond this fraction of the largest energy any section exchanged so
+    /// far is implausible growth (default 0.05).
+    #[serde(default = "default_energy_growth")]
+    pub energy_growth: f64,
 }
 
 impl WatchSpec {
@@ -211,6 +216,15 @@ impl WatchSpec {
             return Err((
                 "output.watch.factor",
                 format!("{}: expected a finite multiple above 1", self.factor),
+            ));
+        }
+        if !(self.energy_growth.is_finite() && self.energy_growth > 0.0) {
+            return Err((
+                "output.watch.energy_growth",
+                format!(
+                    "{}: expected a positive fraction of the energy exchanged",
+                    self.energy_growth
+                ),
             ));
         }
         match self.breaking_load {
@@ -227,12 +241,17 @@ fn default_factor() -> f64 {
     5.0
 }
 
+fn default_energy_growth() -> f64 {
+    0.05
+}
+
 impl Default for WatchSpec {
     fn default() -> Self {
         WatchSpec {
             factor: default_factor(),
             stop: false,
             breaking_load: None,
+            energy_growth: default_energy_growth(),
         }
     }
 }

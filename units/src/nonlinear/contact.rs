@@ -209,6 +209,11 @@ impl NodalContacts {
         self.list.is_empty()
     }
 
+    /// Whether any surface moves (its energy then changes at a fixed shape).
+    pub fn moves(&self) -> bool {
+        (self.list.iter()).any(|c| c.surface.motion != crate::contact::surface::Motion::None)
+    }
+
     /// Whether energy-conserving laws act by their discrete gradient.
     pub fn is_discrete(&self) -> bool {
         self.discrete

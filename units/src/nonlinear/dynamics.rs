@@ -27,6 +27,8 @@ pub(super) struct StepWork {
     pub(super) drag: Vec<f64>,
     pub(super) linear_f0: Vec<f64>,
     pub(super) linear_f1: Vec<f64>,
+    /// The outside force at the step's end (`energy::record_step`).
+    outside: Vec<f64>,
 }
 
 impl NonlinearSection {
@@ -133,6 +135,7 @@ impl NonlinearSection {
             self.state.a.copy_from_slice(&rhs);
         }
         self.finish(&load, false)?;
+        self.open_ledger(&load);
         if self.params.static_start {
             // The force the section reports at its start is the equilibrium's
             // (g - f): the damping of an end already moving while every other
@@ -291,10 +294,9 @@ impl NonlinearSection {
             let start = [self.state.q[d], self.state.v[d], self.state.a[d]];
             w.held.push((d, r.motion(inputs, (t1, h), (s0, s1), start)));
         }
-        if self.energy_conserving() {
-            w.q0.clear();
-            w.q0.extend_from_slice(&self.state.q);
-        }
+        w.q0.clear();
+        w.q0.extend_from_slice(&self.state.q);
+        let surface_jump = self.surface_jump(t1);
         let iterations = match self.params.integrator {
             Integrator::Hht {
                 tolerance,
@@ -345,10 +347,21 @@ impl NonlinearSection {
             }
         };
         self.state.t = t1;
+        self.end_step(w, h, surface_jump)?;
+        Ok(iterations)
+    }
+
+    /// After a step of length `h` (s) from `w.q0` under `w.f1`: the restoring
+    /// forces, reactions and contact summary at its end, and its entry in the
+    /// energy balance (with the moving surfaces' `surface_jump`, J).
+    fn end_step(&mut self, w: &mut StepWork, h: f64, surface_jump: f64) -> Result<(), Failure> {
         let q0 = self.energy_conserving().then_some(w.q0.as_slice());
         self.restoring_forces(q0, Some(&w.drag));
+        let surface_power = self.surface_power();
         self.finish(&w.f1, true).map_err(Failure::Other)?;
-        Ok(iterations)
+        let surface = (surface_power, surface_jump);
+        self.record_step(&w.f1, (&w.q0, h), surface, &mut w.outside);
+        Ok(())
     }
 }
 

@@ -158,7 +158,7 @@ pub fn resolve(params: &NonlinearParams, nodes: usize) -> (Vec<Resolved>, Vec<Po
 }
 
 /// Names of the outputs after the end quantities.
-pub const EXTRA_OUTPUTS: [(&str, &str); 13] = [
+pub const EXTRA_OUTPUTS: [(&str, &str); 15] = [
     ("kinetic_energy", "J"),
     ("strain_energy", "J"),
     ("potential_energy", "J"),
@@ -172,6 +172,8 @@ pub const EXTRA_OUTPUTS: [(&str, &str); 13] = [
     ("overbend_moment", "N.m"),
     ("touchdown_arc", "m"),
     ("touchdown_x", "m"),
+    ("external_work", "J"),
+    ("energy_error", "J"),
 ];
 
 /// Per end: position x, z, rotation, velocity x, z, angular velocity, and the force

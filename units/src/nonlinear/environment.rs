@@ -92,10 +92,17 @@ impl Environment {
         }
     }
 
-    /// Adds the drag force alone (as it enters the left-hand side) at (q, v).
-    pub fn add_drag_force(&self, model: &Model, q: &[f64], v: &[f64], out: &mut [f64]) {
+    /// Adds `scale` times the drag force alone (as it enters the left-hand
+    /// side) at (q, v).
+    pub fn add_drag_force(
+        &self,
+        model: &Model,
+        (q, v): (&[f64], &[f64]),
+        scale: f64,
+        out: &mut [f64],
+    ) {
         if !self.drag.is_empty() {
-            self.add_drag(model, q, v, 1.0, None, out);
+            self.add_drag(model, q, v, scale, None, out);
         }
     }
 

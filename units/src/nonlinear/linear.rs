@@ -106,7 +106,7 @@ impl NonlinearSection {
         w.drag.clear();
         w.drag.resize(s.q.len(), 0.0);
         self.environment
-            .add_drag_force(&self.model, &s.q, &s.v, &mut w.drag);
+            .add_drag_force(&self.model, (&s.q, &s.v), 1.0, &mut w.drag);
         for (out, f) in [(&mut w.linear_f0, &w.f0), (&mut w.linear_f1, &w.f1)] {
             out.clear();
             let shifted = f.iter().zip(&l.offset).zip(&w.drag);
@@ -130,7 +130,7 @@ impl NonlinearSection {
             Some(drag) => s.force.iter_mut().zip(drag).for_each(|(f, d)| *f += d),
             None => self
                 .environment
-                .add_drag_force(&self.model, &s.q, &s.v, &mut s.force),
+                .add_drag_force(&self.model, (&s.q, &s.v), 1.0, &mut s.force),
         }
     }
 }

@@ -17,6 +17,7 @@ pub mod model;
 pub mod params;
 
 mod dynamics;
+mod energy;
 mod jacobian;
 mod linear;
 mod modes;
@@ -71,6 +72,10 @@ crate::state_struct! {
         /// A reduced section's coordinates, velocities and accelerations
         /// (empty otherwise).
         reduced: Vec<f64>,
+        /// The forces from outside the section's energy at the current time
+        /// (N, N m; `energy::outside_force`) and the energy balance.
+        outside: Vec<f64>,
+        ledger: energy::EnergyLedger,
     }
 }
 
@@ -98,6 +103,8 @@ impl SectionState {
             largest: [0.0; 2],
             newton_iterations: 0,
             reduced: Vec::new(),
+            outside: Vec::new(),
+            ledger: energy::EnergyLedger::default(),
         }
     }
 }
@@ -280,35 +287,6 @@ impl NonlinearSection {
     /// Newton iterations of the last step or static solve.
     pub fn last_newton_iterations(&self) -> u32 {
         self.state.newton_iterations
-    }
-
-    /// Kinetic, strain and potential energy (J) at the current time; the
-    /// potential is the contact energy plus that of the weight and the constant
-    /// end loads, -f . q (zero at the stress-free shape).
-    pub fn energies(&self) -> [f64; 3] {
-        let kinetic = 0.5 * self.m.quadratic_form(&self.state.v);
-        let strain = (0..self.model.elements.len())
-            .map(|e| {
-                self.model.elements[e].strain_energy(
-                    self.model.formulation,
-                    &model::element_dofs(&self.state.q, e),
-                )
-            })
-            .sum();
-        let mut work: f64 = self
-            .weight
-            .iter()
-            .zip(&self.state.q)
-            .map(|(w, q)| w * q)
-            .sum();
-        for r in &self.ends {
-            if let params::DofCondition::Force(crate::beam::boundary::TimeFunction::Constant(f)) =
-                r.condition
-            {
-                work += f * self.state.q[r.dof];
-            }
-        }
-        [kinetic, strain, self.state.contact.energy - work]
     }
 
     /// The external load at time `t` (weight, distributed loads, end loads;
@@ -532,6 +510,8 @@ impl Unit for NonlinearSection {
             self.state.bend_step[1],
             finite_or_zero(self.state.contact.crossing[0]),
             finite_or_zero(self.state.contact.crossing[1]),
+            self.external_work(),
+            self.energy_error(),
         ];
         let stations = 18 + extra.len();
         out[18..stations].copy_from_slice(&extra);

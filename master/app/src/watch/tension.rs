@@ -1,14 +1,13 @@
-//! A watch on physical plausibility (issue 27): a run can end "completed"
-//! with loads no structure of its kind could carry (a riser meshed too
-//! coarsely at its touchdown, stepped without numerical damping, reported
-//! 9.8 MN where the converged tension stays below 1.1 MN). After every step
+//! The watch on loads: a run can end "completed" with loads no structure of
+//! its kind could carry (a riser meshed too coarsely at its touchdown,
+//! stepped without numerical damping, reported 9.8 MN where the converged
+//! tension stays below 1.1 MN). After every step
 //! the largest tension along each section (the `nonlinear` unit's
 //! `max_tension`) is compared with the structure's scale: the largest over
 //! all sections at the start, the static one where the sections start from
 //! their statics (a laid section's own small tension is no scale for the
 //! top's). One beyond `factor` (default 5) times that scale is a warning
-//! with the unit, port, value and time (once per port), kept in
-//! `summary.json`; with `stop` it ends the run instead. A `breaking_load`
+//! with the unit, port, value and time (once per port). A `breaking_load`
 //! (N) bounds the tension too, whichever is lower. Without load at the start
 //! (a structure released from its stress-free shape) there is no scale and
 //! only a breaking load is watched.
@@ -48,17 +47,16 @@ fn bound(spec: &WatchSpec, scale: f64) -> Option<(f64, &'static str)> {
     }
 }
 
-/// The watch over a run.
-pub struct Watch {
+/// The watch on the sections' tensions over a run.
+pub struct TensionWatch {
     watched: Vec<Watched>,
-    stop: bool,
 }
 
-impl Watch {
+impl TensionWatch {
     /// The watched outputs (after `Master::initialize`), each bounded by
     /// `spec.factor` times the largest start value of its name over all
     /// units.
-    pub fn new(master: &Master, spec: WatchSpec) -> Watch {
+    pub fn new(master: &Master, spec: &WatchSpec) -> TensionWatch {
         let mut found = Vec::new();
         let mut scale = [0.0f64; WATCHED.len()];
         for unit in 0..master.unit_names().count() {
@@ -76,7 +74,7 @@ impl Watch {
         let watched = found
             .into_iter()
             .filter_map(|(unit, port, k)| {
-                let (bound, what) = bound(&spec, scale[k])?;
+                let (bound, what) = bound(spec, scale[k])?;
                 Some(Watched {
                     unit,
                     port,
@@ -86,37 +84,24 @@ impl Watch {
                 })
             })
             .collect();
-        Watch {
-            watched,
-            stop: spec.stop,
-        }
+        TensionWatch { watched }
     }
 
     /// Checks the outputs after a step at simulated time `t` (s), adding a
     /// warning to `warnings` per port the first time it goes beyond its
-    /// bound; `Err` with the warning when the watch stops the run.
-    pub fn observe(
-        &mut self,
-        master: &Master,
-        t: f64,
-        warnings: &mut Vec<String>,
-    ) -> Result<(), String> {
+    /// bound.
+    pub fn observe(&mut self, master: &Master, t: f64, warnings: &mut Vec<String>) {
         for w in self.watched.iter_mut().filter(|w| !w.warned) {
             let value = master.outputs(w.unit)[w.port];
             if value.abs() > w.bound {
                 w.warned = true;
                 let port = &master.description(w.unit).outputs[w.port];
                 let name = master.unit_names().nth(w.unit).unwrap_or("?");
-                let warning = format!(
+                warnings.push(format!(
                     "implausible load: `{name}.{}` = {value:.4e} {} at t = {t} s, beyond {:.4e} ({})",
                     port.name, port.unit, w.bound, w.what
-                );
-                if self.stop {
-                    return Err(warning);
-                }
-                warnings.push(warning);
+                ));
             }
         }
-        Ok(())
     }
 }
