@@ -211,7 +211,20 @@ impl NodalContacts {
 
     /// Whether any surface moves (its energy then changes at a fixed shape).
     pub fn moves(&self) -> bool {
-        (self.list.iter()).any(|c| c.surface.motion != crate::contact::surface::Motion::None)
+        self.list.iter().any(NodalContact::moves)
+    }
+
+    /// The contact energy (J) of the moving surfaces alone at (q, t): what
+    /// changes at a fixed shape, for the energy balance.
+    pub fn moving_energy(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> f64 {
+        let mut energy = 0.0;
+        for (c, contact) in self.list.iter().enumerate().filter(|(_, c)| c.moves()) {
+            let lambda = &lambda[self.offsets[c]..];
+            for_each_point(contact, model, &self.tributary, (q, t), |p| {
+                energy += p.weight * contact.method.evaluate(p.gap, lambda[p.index]).0;
+            });
+        }
+        energy
     }
 
     /// Whether energy-conserving laws act by their discrete gradient.

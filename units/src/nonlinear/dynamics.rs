@@ -424,14 +424,13 @@ impl NonlinearSection {
         }
         if !self.environment.is_empty() {
             let state = (s.q.as_slice(), s.v.as_slice(), s.t);
-            self.environment.add_force(
+            let drag = &mut self.drag_at_state;
+            (self.environment).add_force_keeping_drag(
                 &self.model,
                 state,
                 &s.lambda,
-                1.0,
-                true,
-                None,
                 &mut s.force,
+                drag,
             );
         }
     }

@@ -61,18 +61,20 @@ impl NonlinearSection {
         self.state.ledger.work
     }
 
-    /// The energy (J) the time stepping made since the start: E - E0 - W.
-    /// Negative where numerical damping removed energy; positive growth is
-    /// energy no physics put in.
-    pub fn energy_error(&self) -> f64 {
-        let energy: f64 = self.energies().iter().sum();
+    /// The energy (J) the time stepping made since the start, E - E0 - W,
+    /// given the current `energies` (kinetic, strain, potential). Negative
+    /// where numerical damping removed energy; positive growth is energy no
+    /// physics put in.
+    pub fn energy_error(&self, energies: [f64; 3]) -> f64 {
+        let energy: f64 = energies.iter().sum();
         energy - self.state.ledger.start - self.state.ledger.work
     }
 
     /// The forces on the section from outside its energy at the current
     /// state (N, N m per DOF) into `out`, the external `load` given: the load
     /// less the weight and the constant end loads, the support reactions at
-    /// the held DOFs, less drag and Rayleigh damping.
+    /// the held DOFs, less drag and Rayleigh damping. After the restoring
+    /// forces at that state (`refresh_forces` keeps its drag).
     fn outside_force(&self, load: &[f64], out: &mut [f64]) {
         for ((o, f), w) in out.iter_mut().zip(load).zip(&self.weight) {
             *o = f - w;
@@ -88,7 +90,14 @@ impl NonlinearSection {
             }
         }
         let s = &self.state;
-        (self.environment).add_drag_force(&self.model, (&s.q, &s.v), -1.0, out);
+        if self.linear.is_some() {
+            // The linear model's forces do not keep the drag at the state.
+            (self.environment).add_drag_force(&self.model, (&s.q, &s.v), -1.0, out);
+        } else {
+            for (o, d) in out.iter_mut().zip(&self.drag_at_state) {
+                *o -= d;
+            }
+        }
         if let Some(c) = &self.c {
             c.mul_add(-1.0, &s.v, out);
         }
@@ -120,7 +129,7 @@ impl NonlinearSection {
             return 0.0;
         }
         let s = &self.state;
-        let energy = |t| contacts.summary(&self.model, (&s.q, t, &s.lambda)).energy;
+        let energy = |t| contacts.moving_energy(&self.model, (&s.q, t, &s.lambda));
         (energy(s.t + SURFACE_DT) - energy(s.t - SURFACE_DT)) / (2.0 * SURFACE_DT)
     }
 
@@ -135,7 +144,7 @@ impl NonlinearSection {
             return 0.0;
         }
         let s = &self.state;
-        let energy = |t| contacts.summary(&self.model, (&s.q, t, &s.lambda)).energy;
+        let energy = |t| contacts.moving_energy(&self.model, (&s.q, t, &s.lambda));
         energy(t1) - energy(s.t)
     }
 

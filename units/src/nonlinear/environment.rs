@@ -76,14 +76,8 @@ impl Environment {
         out: &mut [f64],
     ) {
         if !self.drag.is_empty() {
-            self.add_drag(
-                model,
-                q,
-                v,
-                scale,
-                tangent.as_mut().map(|(b, _, d)| (&mut **b, *d)),
-                out,
-            );
+            let tangent = tangent.as_mut().map(|(b, _, d)| (&mut **b, *d));
+            self.add_drag(model, (q, v), scale, tangent, (out, None));
         }
         if !self.contacts.is_empty() {
             let tangent = tangent.map(|(b, k, _)| (b, k));
@@ -102,20 +96,42 @@ impl Environment {
         out: &mut [f64],
     ) {
         if !self.drag.is_empty() {
-            self.add_drag(model, q, v, scale, None, out);
+            self.add_drag(model, (q, v), scale, None, (out, None));
         }
     }
 
-    /// Drag per element on the midpoint's relative velocity, half to each node;
-    /// the damping tangent (velocity derivative) only.
+    /// Adds the drag and contact force at the state (q, v, t) with the
+    /// contacts' parameters `lambda` to `out` as [`Self::add_force`] does
+    /// (the laws stepped by their discrete gradient left out, no tangent),
+    /// and writes the drag alone to `drag` (N, N m per DOF): the energy
+    /// balance's, without a second evaluation.
+    pub fn add_force_keeping_drag(
+        &self,
+        model: &Model,
+        (q, v, t): (&[f64], &[f64], f64),
+        lambda: &[f64],
+        out: &mut [f64],
+        drag: &mut [f64],
+    ) {
+        drag.fill(0.0);
+        if !self.drag.is_empty() {
+            self.add_drag(model, (q, v), 1.0, None, (out, Some(drag)));
+        }
+        if !self.contacts.is_empty() {
+            (self.contacts).add_force(model, (q, t, lambda), 1.0, true, None, out);
+        }
+    }
+
+    /// Drag per element on the midpoint's relative velocity, half to each node,
+    /// added to `out` (and to `also` when given); the damping tangent
+    /// (velocity derivative) only.
     fn add_drag(
         &self,
         model: &Model,
-        q: &[f64],
-        v: &[f64],
+        (q, v): (&[f64], &[f64]),
         scale: f64,
         mut tangent: Option<(&mut SymmetricBand, f64)>,
-        out: &mut [f64],
+        (out, mut also): (&mut [f64], Option<&mut [f64]>),
     ) {
         for (e, d) in self.drag.iter().enumerate() {
             let b = 3 * e;
@@ -139,6 +155,10 @@ impl Environment {
             for node in [i, j] {
                 out[node] += scale * 0.5 * f[0];
                 out[node + 1] += scale * 0.5 * f[1];
+                if let Some(also) = also.as_deref_mut() {
+                    also[node] += scale * 0.5 * f[0];
+                    also[node + 1] += scale * 0.5 * f[1];
+                }
             }
             if let Some((band, factor)) = tangent.as_mut() {
                 // d f / d vr = Cn (|vn| P + vn vn^T / |vn|) + 2 Ct |vt| t t^T.

@@ -124,6 +124,9 @@ pub struct NonlinearSection {
     weight: Vec<f64>,
     /// Critical step 2 / omega_max of the tangent at the start of the dynamics (s).
     critical_step: f64,
+    /// The drag (N, N m per DOF) at the state of the last `refresh_forces`
+    /// (zero without drag), for the energy balance.
+    drag_at_state: Vec<f64>,
     state: SectionState,
     // Scratch.
     hht: HhtAlpha,
@@ -198,6 +201,7 @@ impl NonlinearSection {
             c: None,
             m,
             critical_step: f64::NAN,
+            drag_at_state: vec![0.0; n],
             patterns,
             weight,
             ends,
@@ -489,7 +493,8 @@ impl Unit for NonlinearSection {
                 out[base + 6 + c.component] = -c.load(inputs, self.state.t, 1.0);
             }
         }
-        let [kinetic, strain, potential] = self.energies();
+        let energies = self.energies();
+        let [kinetic, strain, potential] = energies;
         let [max_moment, max_tension] = self.state.largest;
         let extra = [
             kinetic,
@@ -511,7 +516,7 @@ impl Unit for NonlinearSection {
             finite_or_zero(self.state.contact.crossing[0]),
             finite_or_zero(self.state.contact.crossing[1]),
             self.external_work(),
-            self.energy_error(),
+            self.energy_error(energies),
         ];
         let stations = 18 + extra.len();
         out[18..stations].copy_from_slice(&extra);

@@ -271,6 +271,13 @@ pub struct NodalContact {
     pub surface: Surface,
 }
 
+impl NodalContact {
+    /// Whether the surface moves.
+    pub fn moves(&self) -> bool {
+        self.surface.motion != crate::contact::surface::Motion::None
+    }
+}
+
 /// A current: horizontal velocity (m/s) as a table over z (m), linear between and
 /// constant beyond its points.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
