@@ -210,7 +210,9 @@ impl FromStr for Setting {
                 path,
             });
         }
-        let path: Vec<String> = name.split('.').map(str::to_owned).collect();
+        // An array's entry as `segments[1]` or `segments.1`.
+        let dotted = name.replace('[', ".").replace(']', "");
+        let path: Vec<String> = dotted.split('.').map(str::to_owned).collect();
         let known = [
             "simulation",
             "master",
@@ -325,6 +327,12 @@ segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
         assert_eq!(
             t["units"][1]["parameters"]["segments"][1]["elements"].as_integer(),
             Some(16)
+        );
+        // The same entry written with brackets.
+        let t = set("units.b.parameters.segments[0].elements", "6").unwrap();
+        assert_eq!(
+            t["units"][1]["parameters"]["segments"][0]["elements"].as_integer(),
+            Some(6)
         );
         let t = set("master.acceleration.kind", "aitken").unwrap();
         assert_eq!(t["master"]["acceleration"]["kind"].as_str(), Some("aitken"));
