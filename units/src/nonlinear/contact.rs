@@ -209,16 +209,24 @@ impl NodalContacts {
         self.list.is_empty()
     }
 
-    /// Whether any surface moves (its energy then changes at a fixed shape).
-    pub fn moves(&self) -> bool {
-        self.list.iter().any(NodalContact::moves)
+    /// Whether a surface moves whose law acts by its discrete gradient
+    /// (`discrete`) or by its force at the step's end (not `discrete`).
+    pub fn moves_by(&self, discrete: bool) -> bool {
+        (self.list.iter()).any(|c| c.moves() && is_energy_conserving(&c.method) == discrete)
     }
 
-    /// The contact energy (J) of the moving surfaces alone at (q, t): what
-    /// changes at a fixed shape, for the energy balance.
-    pub fn moving_energy(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> f64 {
+    /// The contact energy (J) at (q, t) of the moving surfaces whose law acts
+    /// by its discrete gradient (`discrete`) or not: what changes at a fixed
+    /// shape, for the energy balance.
+    pub fn moving_energy(
+        &self,
+        model: &Model,
+        (q, t, lambda): (&[f64], f64, &[f64]),
+        discrete: bool,
+    ) -> f64 {
         let mut energy = 0.0;
-        for (c, contact) in self.list.iter().enumerate().filter(|(_, c)| c.moves()) {
+        let moving = |c: &NodalContact| c.moves() && is_energy_conserving(&c.method) == discrete;
+        for (c, contact) in self.list.iter().enumerate().filter(|(_, c)| moving(c)) {
             let lambda = &lambda[self.offsets[c]..];
             for_each_point(contact, model, &self.tributary, (q, t), |p| {
                 energy += p.weight * contact.method.evaluate(p.gap, lambda[p.index]).0;

@@ -120,31 +120,31 @@ impl NonlinearSection {
     /// The power (W) moving contact surfaces put into the section at the
     /// current state: the rate of their energy at a fixed shape (the force on
     /// the pipe times the surface's velocity), by a central difference over
-    /// `SURFACE_DT`; zero where no surface moves or where the laws act by
-    /// their discrete gradient (`surface_jump`). Taken before `finish`
+    /// `SURFACE_DT`, of the surfaces whose laws act by their force at the
+    /// step's end (those acting by their discrete gradient: `surface_jump`). Taken before `finish`
     /// updates the Lagrangian parameters, with those the step used.
     pub(super) fn surface_power(&self) -> f64 {
         let contacts = &self.environment.contacts;
-        if !contacts.moves() || contacts.is_discrete() {
+        if !contacts.moves_by(false) {
             return 0.0;
         }
         let s = &self.state;
-        let energy = |t| contacts.moving_energy(&self.model, (&s.q, t, &s.lambda));
+        let energy = |t| contacts.moving_energy(&self.model, (&s.q, t, &s.lambda), false);
         (energy(s.t + SURFACE_DT) - energy(s.t - SURFACE_DT)) / (2.0 * SURFACE_DT)
     }
 
-    /// The energy (J) moving surfaces put in over a step to `t1`, where the
-    /// contact laws act by their discrete gradient: those take the surface
+    /// The energy (J) moving surfaces whose laws act by their discrete
+    /// gradient put in over a step to `t1`: those take the surface
     /// where it is at the step's end over the whole step, so the surface
     /// moves at the step's start, its shape fixed: the contact energy of the
     /// state at the step's start between its time and `t1`. Zero otherwise.
     pub(super) fn surface_jump(&self, t1: f64) -> f64 {
         let contacts = &self.environment.contacts;
-        if !contacts.moves() || !contacts.is_discrete() {
+        if !contacts.moves_by(true) {
             return 0.0;
         }
         let s = &self.state;
-        let energy = |t| contacts.moving_energy(&self.model, (&s.q, t, &s.lambda));
+        let energy = |t| contacts.moving_energy(&self.model, (&s.q, t, &s.lambda), true);
         energy(t1) - energy(s.t)
     }
 

@@ -92,7 +92,7 @@ impl EnergyWatch {
                 b.warned = true;
                 let name = master.unit_names().nth(b.unit).unwrap_or("?");
                 warnings.push(format!(
-                    "implausible energy growth: `{name}.energy_error` = {error:.4e} J at t = {t} s, beyond {:.4e} J (output.watch.energy_growth = {} times the largest energy a section exchanged, {:.4e} J): the time stepping puts energy in; refine the mesh where the section bends most or damp numerically (integrator alpha > 0)",
+                    "implausible energy growth: `{name}.energy_error` = {error:.4e} J at t = {t} s, beyond {:.4e} J (output.watch.energy_growth = {} times the largest energy a section exchanged, {:.4e} J): the time stepping puts energy in: refine the mesh where the section bends most, shorten the step (stiff contact), or damp numerically (integrator alpha > 0)",
                     bound, self.fraction, self.scale
                 ));
             }
