@@ -1,7 +1,8 @@
 //! The watch on loads: a run can end "completed" with loads no structure of
-//! its kind could carry (a riser meshed too coarsely at its touchdown,
-//! stepped without numerical damping, reported 9.8 MN where the converged
-//! tension stays below 1.1 MN). After every step
+//! its kind could carry (issue 27 reported a riser meshed too coarsely at
+//! its touchdown, stepped without numerical damping, at 9.8 MN where the
+//! converged tension stays below 1.1 MN; one that gains energy while its
+//! loads still look possible is the energy watch's). After every step
 //! the largest tension along each section (the `nonlinear` unit's
 //! `max_tension`) is compared with the structure's scale: the largest over
 //! all sections at the start, the static one where the sections start from
