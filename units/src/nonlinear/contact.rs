@@ -212,7 +212,7 @@ impl NodalContacts {
     /// Whether a surface moves whose law acts by its discrete gradient
     /// (`discrete`) or by its force at the step's end (not `discrete`).
     pub fn moves_by(&self, discrete: bool) -> bool {
-        (self.list.iter()).any(|c| c.moves() && is_energy_conserving(&c.method) == discrete)
+        self.list.iter().any(|c| moves_by(c, discrete))
     }
 
     /// The contact energy (J) at (q, t) of the moving surfaces whose law acts
@@ -225,8 +225,12 @@ impl NodalContacts {
         discrete: bool,
     ) -> f64 {
         let mut energy = 0.0;
-        let moving = |c: &NodalContact| c.moves() && is_energy_conserving(&c.method) == discrete;
-        for (c, contact) in self.list.iter().enumerate().filter(|(_, c)| moving(c)) {
+        for (c, contact) in self
+            .list
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| moves_by(c, discrete))
+        {
             let lambda = &lambda[self.offsets[c]..];
             for_each_point(contact, model, &self.tributary, (q, t), |p| {
                 energy += p.weight * contact.method.evaluate(p.gap, lambda[p.index]).0;
@@ -501,6 +505,12 @@ pub fn validate(params: &NonlinearParams) -> Result<(), UnitError> {
         }
     }
     Ok(())
+}
+
+/// Whether `contact`'s surface moves and its law acts by its discrete
+/// gradient (`discrete`) or by its force at the step's end (not `discrete`).
+fn moves_by(contact: &NodalContact, discrete: bool) -> bool {
+    contact.moves() && is_energy_conserving(&contact.method) == discrete
 }
 
 fn is_energy_conserving(law: &Law) -> bool {
