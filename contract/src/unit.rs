@@ -167,6 +167,21 @@ pub struct Mode {
     pub shape: Vec<[f64; 2]>,
 }
 
+/// A quantity along a unit, one value per node or per element (node
+/// positions, the tension along the line): what an FMI 3.0 export declares as
+/// an array output. Its length is fixed when the unit is built.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Field {
+    /// Name, e.g. "tension".
+    pub name: String,
+    /// SI unit of measure, e.g. "N" ("" for dimensionless).
+    pub unit: String,
+    /// What the values are and where (e.g. "per element, from the first end").
+    pub description: String,
+    /// Number of values.
+    pub len: usize,
+}
+
 /// Modes of a structural unit and the node positions (m) they refer to.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModalAnalysis {
@@ -238,6 +253,22 @@ pub trait Unit: Send {
         let _ = (inputs, jacobian);
         Err(UnitError::Unsupported(format!(
             "the step Jacobian of a `{}` unit",
+            self.description().kind
+        )))
+    }
+
+    /// The quantities along the unit it can report (constant over its life,
+    /// known before `initialize`). Default: none.
+    fn fields(&self) -> Vec<Field> {
+        Vec::new()
+    }
+
+    /// The current values of field `index` of [`Unit::fields`] into `out`
+    /// (its length); after `initialize`. Default: `Unsupported`.
+    fn field_values(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
+        let _ = out;
+        Err(UnitError::Unsupported(format!(
+            "field {index} of a `{}` unit",
             self.description().kind
         )))
     }
@@ -385,6 +416,14 @@ macro_rules! forward_unit {
 
             fn static_inputs(&self) -> Vec<usize> {
                 (**self).static_inputs()
+            }
+
+            fn fields(&self) -> Vec<Field> {
+                (**self).fields()
+            }
+
+            fn field_values(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
+                (**self).field_values(index, out)
             }
         }
     )*};

@@ -11,6 +11,7 @@ use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
 
 mod derivative;
+mod fields;
 mod state;
 use state::SavedInstance;
 
@@ -371,8 +372,15 @@ impl Instance {
             self.refresh_feedthrough()?;
         }
         let (n_in, n_out) = (self.n_in(), self.n_out());
-        for (r, v) in vr.iter().zip(out.iter_mut()) {
+        let mut at = 0;
+        for r in vr {
+            if let Some(field) = self.field_of(*r) {
+                at += self.read_field(field, out.get_mut(at..).unwrap_or_default())?;
+                continue;
+            }
             let r_us = *r as usize;
+            let v = out.get_mut(at).ok_or("more value references than values")?;
+            at += 1;
             *v = if r_us < n_in {
                 self.inputs[r_us]
             } else if r_us < n_in + n_out {
@@ -385,6 +393,12 @@ impl Instance {
                     _ => return Err(format!("value reference {r} is not a Real")),
                 }
             };
+        }
+        if at != out.len() {
+            return Err(format!(
+                "{} values passed for variables that hold {at}",
+                out.len()
+            ));
         }
         Ok(FMI2_OK)
     }
@@ -408,6 +422,9 @@ impl Instance {
                     "`{}` is an output and cannot be set",
                     self.layout.unit.outputs[r_us - n_in].name
                 ));
+            } else if let Some(k) = self.field_of(*r) {
+                let name = &self.layout.fields[k].name;
+                return Err(format!("`{name}` is an output and cannot be set"));
             } else {
                 self.set_parameter(*r, Value::Real(Some(*v)))?;
             }

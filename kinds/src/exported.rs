@@ -52,6 +52,6 @@ impl ExportedUnit for ExportConfig {
             effects: kind.effects,
             parameters: crate::reference::parameters(kind.name),
         };
-        Ok(Layout::new(self, unit, &info))
+        Ok(Layout::new(self, unit, driver.fields(), &info))
     }
 }

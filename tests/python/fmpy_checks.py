@@ -4,6 +4,8 @@
     fmpy_checks.py simulate FMU CSV STOP STEP [NAME=VALUE...]
     fmpy_checks.py state FMU                  FMU state save/restore/serialise round trips
                                               (FMI 2.0 or 3.0)
+    fmpy_checks.py arrays FMU STOP STEP       a section's FMI 3.0 array outputs (x, z,
+                                              tension) against its end and extreme outputs
     fmpy_checks.py derivatives FMU ROWS       fmi2GetDirectionalDerivative against central
                                               differences of fmi2DoStep for the outputs
                                               named in ROWS (comma-separated)
@@ -50,12 +52,15 @@ class Slave3:
         self.s.instantiate()
         self.s.enterInitializationMode(startTime=0.0)
         self.s.exitInitializationMode()
+        # How many values each array variable holds (fixed dimensions).
+        self.sizes = {v.valueReference: math.prod(int(d.start) for d in v.dimensions)
+                      for v in md.modelVariables if v.dimensions}
 
     def setReal(self, vr, values):
         self.s.setFloat64(vr, values)
 
     def getReal(self, vr):
-        return self.s.getFloat64(vr)
+        return self.s.getFloat64(vr, nValues=sum(self.sizes.get(r, 1) for r in vr))
 
     def doStep(self, t, h):
         self.s.doStep(t, h)
@@ -203,6 +208,25 @@ def derivatives(path, rows):
     return failures
 
 
+def arrays(path, stop, step):
+    """Simulates a section's FMI 3.0 FMU in FMPy and checks at every output
+    point that its node arrays end at its end positions and that the largest
+    element tension is its max_tension output, bit for bit."""
+    result = simulate_fmu(path, stop_time=float(stop), output_interval=float(step))
+    failures = 0
+    for row in result:
+        x, z, tension = row["x"], row["z"], row["tension"]
+        checks = [
+            (x[0], row["start_position_x"]), (x[-1], row["end_position_x"]),
+            (z[0], row["start_position_z"]), (z[-1], row["end_position_z"]),
+            (max(tension), row["max_tension"]),
+        ]
+        failures += sum(1 for a, b in checks if a != b)
+    print(f"{path}: {len(result)} output points, {len(result[0]['x'])} nodes, "
+          f"{len(result[0]['tension'])} elements, {failures} disagreements")
+    return failures
+
+
 if __name__ == "__main__":
     command, args = sys.argv[1], sys.argv[2:]
     if command == "validate":
@@ -211,6 +235,8 @@ if __name__ == "__main__":
         sys.exit(simulate(args[0], args[1], args[2], args[3], args[4:]))
     if command == "state":
         sys.exit(state(args[0]))
+    if command == "arrays":
+        sys.exit(arrays(args[0], args[1], args[2]))
     if command == "derivatives":
         sys.exit(derivatives(args[0], args[1]))
     sys.exit(f"unknown command {command}")

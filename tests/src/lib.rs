@@ -319,7 +319,7 @@ pub mod fmu {
     use super::root;
     use slender_fmi::export::ExportConfig;
     use slender_scene::Scene;
-    use slender_scene::export::{SceneExport, package, wrap_scene};
+    use slender_scene::export::{FmiVersion, SceneExport, package, wrap_scene};
     use std::path::{Path, PathBuf};
 
     /// `libslender_fmu.so` of the profile the tests run in (target/<profile>/).
@@ -359,11 +359,16 @@ pub mod fmu {
         out
     }
 
-    /// Exports every unit of an example scene into `dir` and loads the scene
-    /// that uses the FMUs.
+    /// Exports every unit of an example scene into `dir` (FMI 2.0) and loads
+    /// the scene that uses the FMUs.
     pub fn wrapped(scene: &str, dir: &Path) -> Scene {
+        wrapped_version(scene, dir, FmiVersion::Two)
+    }
+
+    /// As [`wrapped`], with FMUs of FMI `version`.
+    pub fn wrapped_version(scene: &str, dir: &Path, version: FmiVersion) -> Scene {
         let scene = super::load(scene);
-        let path = wrap_scene(&scene, &library(), dir).unwrap_or_else(|e| panic!("{e}"));
+        let path = wrap_scene(&scene, &library(), dir, version).unwrap_or_else(|e| panic!("{e}"));
         Scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
     }
 

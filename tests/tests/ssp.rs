@@ -206,8 +206,13 @@ fn a_structure_wraps_as_its_written_out_sections() {
     // [[units]]": it read the file as written, not the expanded scene.
     let dir = tempfile::tempdir().unwrap();
     let scene = load("examples/structure_mooring.toml");
-    let written = slender_scene::export::wrap_scene(&scene, &fmu::library(), dir.path())
-        .unwrap_or_else(|e| panic!("{e}"));
+    let written = slender_scene::export::wrap_scene(
+        &scene,
+        &fmu::library(),
+        dir.path(),
+        slender_scene::export::FmiVersion::Two,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let wrapped = Scene::load(&written).unwrap_or_else(|e| panic!("{e}"));
     let kinds: Vec<&str> = wrapped
         .spec

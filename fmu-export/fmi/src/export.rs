@@ -19,7 +19,7 @@ use crate::model_description::{
     Value, VariableCausality,
 };
 use serde::{Deserialize, Serialize};
-use slender_contract::{Hold, UnitDescription};
+use slender_contract::{Field, Hold, UnitDescription};
 use std::collections::BTreeMap;
 use std::io::Write as _;
 use std::path::Path;
@@ -135,6 +135,10 @@ pub struct Layout {
     /// The unit's own description (ports, feedthrough, capabilities).
     pub unit: UnitDescription,
     pub parameters: Vec<ParameterVariable>,
+    /// The unit's fields, FMI 3.0 array outputs with value references from
+    /// `first_field_reference` (after every scalar).
+    pub fields: Vec<Field>,
+    pub first_field_reference: u32,
     pub model: ModelDescription,
 }
 
@@ -225,8 +229,13 @@ impl ExportConfig {
 
 impl Layout {
     /// The layout of `config`'s FMU for its unit's description `unit` (the ports
-    /// with the holds in force) and its kind.
-    pub fn new(config: &ExportConfig, unit: UnitDescription, kind: &KindInfo) -> Layout {
+    /// with the holds in force), its fields and its kind.
+    pub fn new(
+        config: &ExportConfig,
+        unit: UnitDescription,
+        fields: Vec<Field>,
+        kind: &KindInfo,
+    ) -> Layout {
         let n_in = unit.inputs.len();
         let n_out = unit.outputs.len();
         let parameters = parameter_variables(config, kind, (n_in + n_out) as u32);
@@ -241,7 +250,7 @@ impl Layout {
             })
             .collect();
         let caps = unit.capabilities;
-        let model = ModelDescription {
+        let mut model = ModelDescription {
             fmi_version: "2.0".into(),
             model_name: config.name.clone(),
             guid: config.guid.clone(),
@@ -284,13 +293,21 @@ impl Layout {
                 step_size: Some(config.step),
             }),
         };
+        let first_field_reference = (n_in + n_out + parameters.len()) as u32;
+        arrays::add(&mut model, &fields, first_field_reference);
         Layout {
             unit,
             parameters,
+            fields,
+            first_field_reference,
             model,
         }
     }
 }
+
+mod arrays;
+mod binary;
+pub use binary::{check_binary, default_binary};
 
 /// The parameter variables: the scalars of the parameter table, then a Boolean per
 /// effect the kind can switch, numbered from value reference `first`.
@@ -360,6 +377,7 @@ fn variables(
             unit: unit_attribute(&p.unit),
             min: None,
             max: None,
+            dimensions: Vec::new(),
         });
     }
     for (i, p) in unit.outputs.iter().enumerate() {
@@ -374,6 +392,7 @@ fn variables(
             unit: unit_attribute(&p.unit),
             min: None,
             max: None,
+            dimensions: Vec::new(),
         });
     }
     for p in parameters {
@@ -416,6 +435,7 @@ fn parameter_variable(p: &ParameterVariable, kind: &KindInfo) -> ScalarVariable 
         unit: (number && !info.unit.is_empty()).then(|| info.unit.clone()),
         min: info.min.filter(|_| number),
         max: info.max.filter(|_| number),
+        dimensions: Vec::new(),
     }
 }
 
@@ -546,40 +566,4 @@ pub fn package_version(
     }
     zip.finish().map_err(|e| failed(&e))?;
     Ok(())
-}
-
-/// Checks that `binary` is an ELF shared library carrying the FMI 2.0
-/// co-simulation entry points (as `libslender_fmu.so` does), so that a wrong
-/// `--binary` is refused instead of packaged.
-pub fn check_binary(binary: &Path) -> Result<(), PackageError> {
-    let bytes = std::fs::read(binary)
-        .map_err(|e| file_error(binary, format!("cannot read the FMU library ({e})")))?;
-    if !bytes.starts_with(b"\x7fELF") {
-        return Err(file_error(
-            binary,
-            "not a shared library (no ELF header); expected libslender_fmu.so".into(),
-        ));
-    }
-    for symbol in ["fmi2Instantiate", "fmi2DoStep", "fmi2GetReal"] {
-        if !bytes.windows(symbol.len()).any(|w| w == symbol.as_bytes()) {
-            return Err(file_error(
-                binary,
-                format!(
-                    "a shared library without the FMI entry point `{symbol}`; expected libslender_fmu.so"
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// The FMU library next to the running executable (`target/<profile>/`), where
-/// `cargo build -p slender-fmu` puts it.
-pub fn default_binary() -> Option<std::path::PathBuf> {
-    let exe = std::env::current_exe().ok()?;
-    let dir = exe.parent()?;
-    [dir, dir.parent()?]
-        .iter()
-        .map(|d| d.join("libslender_fmu.so"))
-        .find(|p| p.exists())
 }

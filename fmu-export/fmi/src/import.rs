@@ -1,11 +1,13 @@
-//! Importing an FMI 2.0 co-simulation FMU as a unit.
+//! Importing an FMI 2.0 or FMI 3.0 co-simulation FMU as a unit.
 //!
 //! The FMU is unzipped into a temporary folder, its model description parsed and
-//! its `binaries/linux64/<modelIdentifier>.so` loaded with every symbol bound at
-//! load time. Real inputs and outputs become ports; their kind follows from the
-//! unit of measure (N: force, m/s: velocity, ...), direct feedthrough from
-//! `ModelStructure/Outputs`. Rollback is offered only when the FMU declares
-//! `canGetAndSetFMUstate`.
+//! its `binaries/linux64/<modelIdentifier>.so` (FMI 3.0:
+//! `binaries/x86_64-linux/`) loaded with every symbol bound at load time. Real
+//! (Float64) inputs and outputs become ports, an FMI 3.0 array one port per
+//! element (`name[1]`, `name[2]`, ... row-major); their kind follows from the
+//! unit of measure (N: force, m/s: velocity, ...), direct feedthrough from the
+//! model structure's outputs. Rollback is offered only when the FMU declares
+//! that it can get and set its state.
 //!
 //! Input timing. The contract gives a unit the input values at the END of a step;
 //! FMI reads the values set before `fmi2DoStep` as those at its start. Under a
@@ -61,6 +63,10 @@ use archive::{binary_for_this_platform, unpack};
 
 use describe::{describe, real_refs, start_values};
 pub use error::LoadError;
+mod api3;
+mod calls;
+use api3::Api3;
+use calls::Calls;
 use library::{Api, LogBook, instantiate, log_tail, open_binary};
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -92,19 +98,23 @@ pub(super) enum StartValue {
     String(u32, CString),
 }
 
-/// An FMI 2.0 co-simulation FMU behind the unit contract.
+/// An FMI 2.0 or 3.0 co-simulation FMU behind the unit contract.
 pub struct FmuUnit {
     /// The FMU's file name, for messages.
     label: String,
     id: u64,
     description: UnitDescription,
     model: ModelDescription,
-    api: Api,
+    calls: Calls,
     component: fmi2Component,
     phase: Phase,
     starts: Vec<StartValue>,
+    /// The value references of the Real inputs and outputs (an array's one
+    /// reference stands for all its elements, which follow in the values).
     input_refs: Vec<u32>,
     output_refs: Vec<u32>,
+    /// How many values each output reference holds (1 for a scalar).
+    output_sizes: Vec<usize>,
     /// The input values sent before a step: start values of ramped inputs, end
     /// values of held ones (scratch).
     values: Vec<f64>,
@@ -118,8 +128,8 @@ pub struct FmuUnit {
     /// Every FMU state handle handed out, freed with the instance.
     states: Mutex<Vec<usize>>,
     log: Box<LogBook>,
-    /// Kept alive for the instance, which holds a pointer to them.
-    _callbacks: Box<fmi2CallbackFunctions>,
+    /// Kept alive for an FMI 2.0 instance, which holds a pointer to them.
+    _callbacks: Option<Box<fmi2CallbackFunctions>>,
     // Dropped last: the library and the unzipped files.
     library: Option<libloading::Library>,
     _folder: tempfile::TempDir,
@@ -140,30 +150,44 @@ impl FmuUnit {
         };
         let label = path.display().to_string();
         let (folder, model, cs) = unpack(&path, &label)?;
-        let binary = binary_for_this_platform(folder.path(), &cs.model_identifier, &label)?;
+        let three = model.fmi_version.starts_with('3');
+        let binary = binary_for_this_platform(folder.path(), &cs.model_identifier, three, &label)?;
         let library = open_binary(&binary, &params.preload, &label)?;
-        let api = Api::bind(
-            &library,
+        let (states, derivatives) = (
             cs.can_get_and_set_fmu_state,
             cs.provides_directional_derivative,
-        )
-        .map_err(|message| LoadError::Library {
+        );
+        let library_error = |message| LoadError::Library {
             fmu: label.clone(),
             message,
-        })?;
+        };
+        let calls = if three {
+            Calls::Three(Api3::bind(&library, states, derivatives).map_err(library_error)?)
+        } else {
+            Calls::Two(Api::bind(&library, states, derivatives).map_err(library_error)?)
+        };
         let description = describe(&model, &label)?;
         let starts = start_values(&model, &params.start, &label)?;
-        let input_refs: Vec<u32> = real_refs(&model, VariableCausality::Input);
-        let output_refs: Vec<u32> = real_refs(&model, VariableCausality::Output);
-        let n_in = input_refs.len();
-        let (component, log, callbacks) =
-            instantiate(&api, &model, folder.path(), params.logging, &label)?;
+        let (input_refs, _) = real_refs(&model, VariableCausality::Input);
+        let (output_refs, output_sizes) = real_refs(&model, VariableCausality::Output);
+        let (n_in, n_out) = (description.inputs.len(), description.outputs.len());
+        let (component, log, callbacks) = match &calls {
+            Calls::Two(api) => {
+                let (c, log, callbacks) =
+                    instantiate(api, &model, folder.path(), params.logging, &label)?;
+                (c, log, Some(callbacks))
+            }
+            Calls::Three(api) => {
+                let (c, log) = api.instantiate(&model, folder.path(), params.logging, &label)?;
+                (c, log, None)
+            }
+        };
         let mut unit = FmuUnit {
             label,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             description,
             model,
-            api,
+            calls,
             component,
             phase: Phase::Instantiated,
             starts,
@@ -171,10 +195,11 @@ impl FmuUnit {
             values: vec![0.0; n_in],
             slopes: vec![0.0; n_in],
             orders: vec![1; n_in],
-            outputs: vec![0.0; output_refs.len()],
+            outputs: vec![0.0; n_out],
             seed: vec![0.0; n_in],
-            column: vec![0.0; output_refs.len()],
+            column: vec![0.0; n_out],
             output_refs,
+            output_sizes,
             states: Mutex::new(Vec::new()),
             log,
             _callbacks: callbacks,
@@ -192,26 +217,21 @@ impl FmuUnit {
         Ok(unit)
     }
 
-    /// `fmi2GetDirectionalDerivative` of the outputs `rows` for the seed, into
-    /// the same rows of `column`; the status.
-    fn derivative(
-        &mut self,
-        get: library::GetDirectionalDerivative,
-        rows: std::ops::Range<usize>,
-    ) -> fmi2Status {
-        let n_in = self.input_refs.len();
-        let (refs, column) = (&self.output_refs[rows.clone()], &mut self.column[rows]);
-        // SAFETY: FMI 2.0 call on a live instance; the arrays have the lengths
-        // passed.
+    /// The directional derivative of the output references `refs` (their
+    /// values from `first` in `column`) for the seed; the status.
+    fn derivative(&mut self, refs: std::ops::Range<usize>, first: usize) -> fmi2Status {
+        let size: usize = self.output_sizes[refs.clone()].iter().sum();
+        let (refs, column) = (
+            &self.output_refs[refs],
+            &mut self.column[first..first + size],
+        );
+        // SAFETY: a call on a live instance; the arrays have the lengths passed.
         unsafe {
-            get(
+            self.calls.directional_derivative(
                 self.component,
-                refs.as_ptr(),
-                refs.len(),
-                self.input_refs.as_ptr(),
-                n_in,
-                self.seed.as_ptr(),
-                column.as_mut_ptr(),
+                (refs, &self.input_refs),
+                &self.seed,
+                column,
             )
         }
     }
@@ -246,7 +266,7 @@ impl FmuUnit {
     /// Sends the inputs for a step of `h` seconds (0: initialisation): under a ramp
     /// the start value and the slope, under a zero-order hold the end value.
     fn send_inputs(&mut self, inputs: Inputs<'_>, h: f64) -> Result<(), UnitError> {
-        let n = self.input_refs.len();
+        let n = self.values.len();
         if n == 0 {
             return Ok(());
         }
@@ -260,25 +280,26 @@ impl FmuUnit {
                 inputs.end()[i]
             };
         }
-        // SAFETY: arrays of n value references and values.
+        // SAFETY: the input references and their n values.
         let status = unsafe {
-            (self.api.set_real)(
-                self.component,
-                self.input_refs.as_ptr(),
-                n,
-                self.values.as_ptr(),
-            )
+            self.calls
+                .set_reals(self.component, &self.input_refs, &self.values)
         };
-        self.check("fmi2SetReal (inputs)", status)?;
+        self.check_with(status, || {
+            format!(
+                "{} (inputs)",
+                self.calls.name("fmi2SetReal", "fmi3SetFloat64")
+            )
+        })?;
         if ramped {
-            // SAFETY: arrays of n references, orders and values.
+            // SAFETY: n references, orders and values (ramps exist only where
+            // the FMU interpolates inputs: FMI 2.0).
             let status = unsafe {
-                (self.api.set_real_input_derivatives)(
+                self.calls.set_input_slopes(
                     self.component,
-                    self.input_refs.as_ptr(),
-                    n,
-                    self.orders.as_ptr(),
-                    self.slopes.as_ptr(),
+                    &self.input_refs,
+                    &self.orders,
+                    &self.slopes,
                 )
             };
             self.check("fmi2SetRealInputDerivatives", status)?;
@@ -287,48 +308,44 @@ impl FmuUnit {
     }
 
     fn read_outputs(&mut self) -> Result<(), UnitError> {
-        let n = self.output_refs.len();
-        if n == 0 {
+        if self.outputs.is_empty() {
             return Ok(());
         }
-        // SAFETY: arrays of n references and n values.
+        // SAFETY: the output references and their values.
         let status = unsafe {
-            (self.api.get_real)(
-                self.component,
-                self.output_refs.as_ptr(),
-                n,
-                self.outputs.as_mut_ptr(),
-            )
+            self.calls
+                .get_reals(self.component, &self.output_refs, &mut self.outputs)
         };
-        self.check("fmi2GetReal (outputs)", status)
+        self.check_with(status, || {
+            format!(
+                "{} (outputs)",
+                self.calls.name("fmi2GetReal", "fmi3GetFloat64")
+            )
+        })
     }
 
     fn apply_start_values(&mut self) -> Result<(), UnitError> {
+        let calls = &self.calls;
         for s in &self.starts {
-            // SAFETY: single-element arrays matching each setter's type.
+            // SAFETY: single values matching each setter's type.
             let (call, status) = unsafe {
                 match s {
-                    StartValue::Real(vr, v) => {
-                        ("fmi2SetReal", (self.api.set_real)(self.component, vr, 1, v))
-                    }
-                    StartValue::Integer(vr, v) => (
-                        "fmi2SetInteger",
-                        (self.api.set_integer)(self.component, vr, 1, v),
+                    StartValue::Real(vr, v) => (
+                        calls.name("fmi2SetReal", "fmi3SetFloat64"),
+                        calls.set_reals(self.component, &[*vr], &[*v]),
                     ),
-                    StartValue::Boolean(vr, v) => {
-                        let b = if *v { FMI2_TRUE } else { FMI2_FALSE };
-                        (
-                            "fmi2SetBoolean",
-                            (self.api.set_boolean)(self.component, vr, 1, &b),
-                        )
-                    }
-                    StartValue::String(vr, v) => {
-                        let p = v.as_ptr();
-                        (
-                            "fmi2SetString",
-                            (self.api.set_string)(self.component, vr, 1, &p),
-                        )
-                    }
+                    StartValue::Integer(vr, v) => (
+                        calls.name("fmi2SetInteger", "fmi3SetInt32"),
+                        calls.set_integer(self.component, *vr, *v),
+                    ),
+                    StartValue::Boolean(vr, v) => (
+                        calls.name("fmi2SetBoolean", "fmi3SetBoolean"),
+                        calls.set_boolean(self.component, *vr, *v),
+                    ),
+                    StartValue::String(vr, v) => (
+                        calls.name("fmi2SetString", "fmi3SetString"),
+                        calls.set_string(self.component, *vr, v.as_ptr()),
+                    ),
                 }
             };
             self.check(&format!("{call} (start value)"), status)?;
@@ -343,29 +360,27 @@ impl Unit for FmuUnit {
     }
 
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let calls = &self.calls;
         if self.phase == Phase::Stepping {
-            // SAFETY: FMI 2.0 call on a live instance.
-            let status = unsafe { (self.api.reset)(self.component) };
-            self.check("fmi2Reset", status)?;
+            // SAFETY: a call on a live instance.
+            let status = unsafe { calls.reset(self.component) };
+            self.check(calls.name("fmi2Reset", "fmi3Reset"), status)?;
             self.phase = Phase::Instantiated;
         }
         if self.phase == Phase::Instantiated {
-            // SAFETY: FMI 2.0 call on a live instance.
-            let status = unsafe {
-                (self.api.setup_experiment)(
-                    self.component,
-                    FMI2_FALSE,
-                    0.0,
-                    t0.as_secs(),
-                    FMI2_FALSE,
-                    0.0,
-                )
-            };
+            // SAFETY: as above.
+            let status = unsafe { calls.setup(self.component, t0.as_secs()) };
             self.check("fmi2SetupExperiment", status)?;
             self.apply_start_values()?;
             // SAFETY: as above.
-            let status = unsafe { (self.api.enter_initialization_mode)(self.component) };
-            self.check("fmi2EnterInitializationMode", status)?;
+            let status = unsafe {
+                self.calls
+                    .enter_initialization(self.component, t0.as_secs())
+            };
+            let call = self
+                .calls
+                .name("fmi2EnterInitializationMode", "fmi3EnterInitializationMode");
+            self.check(call, status)?;
             self.phase = Phase::Initialization;
         }
         self.send_inputs(inputs, 0.0)?;
@@ -381,25 +396,40 @@ impl Unit for FmuUnit {
                 )));
             }
             Phase::Initialization => {
-                // SAFETY: FMI 2.0 call on a live instance.
-                let status = unsafe { (self.api.exit_initialization_mode)(self.component) };
-                self.check("fmi2ExitInitializationMode", status)?;
+                // SAFETY: a call on a live instance.
+                let status = unsafe { self.calls.exit_initialization(self.component) };
+                let call = self
+                    .calls
+                    .name("fmi2ExitInitializationMode", "fmi3ExitInitializationMode");
+                self.check(call, status)?;
                 self.phase = Phase::Stepping;
             }
             Phase::Stepping => {}
         }
         let h_secs = h.as_secs();
         self.send_inputs(inputs, h_secs)?;
-        let no_prior = if self.description.capabilities.rollback {
-            FMI2_FALSE
-        } else {
-            FMI2_TRUE
+        let no_prior = !self.description.capabilities.rollback;
+        // SAFETY: a call on a live instance.
+        let (status, terminate) = unsafe {
+            self.calls
+                .do_step(self.component, t.as_secs(), h_secs, no_prior)
         };
-        // SAFETY: FMI 2.0 call on a live instance.
-        let status = unsafe { (self.api.do_step)(self.component, t.as_secs(), h_secs, no_prior) };
-        self.check_with(status, || {
-            format!("fmi2DoStep(t = {} s, h = {h_secs} s)", t.as_secs())
-        })?;
+        let call = || {
+            format!(
+                "{}(t = {} s, h = {h_secs} s)",
+                self.calls.name("fmi2DoStep", "fmi3DoStep"),
+                t.as_secs()
+            )
+        };
+        self.check_with(status, call)?;
+        if terminate {
+            return Err(UnitError::Numerical(format!(
+                "FMU {}: {} asked to end the simulation{}",
+                self.label,
+                call(),
+                log_tail(&self.log)
+            )));
+        }
         self.read_outputs()?;
         Ok(StepReport::default())
     }
@@ -408,30 +438,32 @@ impl Unit for FmuUnit {
         out.copy_from_slice(&self.outputs);
     }
 
-    /// One `fmi2GetDirectionalDerivative` per input (seed: that input), every
-    /// output unknown; where the FMU refuses that, one output at a time, NaN
-    /// for the outputs it refuses (a master then differences the FMU).
+    /// One directional derivative per input (seed: that input), every
+    /// output unknown; where the FMU refuses that, one output (or array) at
+    /// a time, NaN for those it refuses (a master then differences the FMU).
     fn step_jacobian(
         &mut self,
         _inputs: Inputs<'_>,
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
-        let get = self.api.get_directional_derivative.ok_or_else(|| {
-            UnitError::Unsupported(format!(
-                "FMU {}: no directional derivatives (providesDirectionalDerivative is false)",
+        if !self.calls.has_derivatives() {
+            return Err(UnitError::Unsupported(format!(
+                "FMU {}: no directional derivatives (the FMU does not provide them)",
                 self.label
-            ))
-        })?;
-        let (n_in, n_out) = (self.input_refs.len(), self.output_refs.len());
+            )));
+        }
+        let (n_in, n_refs) = (self.values.len(), self.output_refs.len());
         for j in 0..n_in {
             self.seed.fill(0.0);
             self.seed[j] = 1.0;
-            let all = self.derivative(get, 0..n_out);
-            if all != FMI2_OK {
-                for i in 0..n_out {
-                    if self.derivative(get, i..i + 1) != FMI2_OK {
-                        self.column[i] = f64::NAN;
+            if self.derivative(0..n_refs, 0) != FMI2_OK {
+                let mut first = 0;
+                for r in 0..n_refs {
+                    let size = self.output_sizes[r];
+                    if self.derivative(r..r + 1, first) != FMI2_OK {
+                        self.column[first..first + size].fill(f64::NAN);
                     }
+                    first += size;
                 }
             }
             for (i, d) in self.column.iter().enumerate() {
@@ -442,7 +474,10 @@ impl Unit for FmuUnit {
     }
 
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        let get = self.api.get_fmu_state.ok_or_else(|| self.no_state())?;
+        if !self.calls.has_state() {
+            return Err(self.no_state());
+        }
+        let call = self.calls.name("fmi2GetFMUstate", "fmi3GetFMUState");
         // A slot this unit filled before is updated in place: the FMU overwrites
         // its state, the vectors are copied without allocating.
         if let Some(saved) = slot.get_mut::<SavedFmu>()
@@ -450,8 +485,8 @@ impl Unit for FmuUnit {
         {
             let mut handle = saved.handle as fmi2FMUstate;
             // SAFETY: FMI 2.0: a handle of this instance is overwritten in place.
-            let status = unsafe { get(self.component, &mut handle) };
-            self.check("fmi2GetFMUstate", status)?;
+            let status = unsafe { self.calls.get_state(self.component, &mut handle) };
+            self.check(call, status)?;
             saved.handle = handle as usize;
             saved.phase = self.phase;
             saved.outputs.copy_from_slice(&self.outputs);
@@ -459,8 +494,8 @@ impl Unit for FmuUnit {
         }
         let mut handle: fmi2FMUstate = std::ptr::null_mut();
         // SAFETY: FMI 2.0: a null handle asks for a new state.
-        let status = unsafe { get(self.component, &mut handle) };
-        self.check("fmi2GetFMUstate", status)?;
+        let status = unsafe { self.calls.get_state(self.component, &mut handle) };
+        self.check(call, status)?;
         if let Ok(mut states) = self.states.lock() {
             states.push(handle as usize);
         }
@@ -481,10 +516,18 @@ impl Unit for FmuUnit {
                 self.label
             )));
         }
-        let set = self.api.set_fmu_state.ok_or_else(|| self.no_state())?;
-        // SAFETY: the handle came from this instance's fmi2GetFMUstate.
-        let status = unsafe { set(self.component, saved.handle as fmi2FMUstate) };
-        self.check("fmi2SetFMUstate", status)?;
+        if !self.calls.has_state() {
+            return Err(self.no_state());
+        }
+        // SAFETY: the handle came from this instance's get-state call.
+        let status = unsafe {
+            self.calls
+                .set_state(self.component, saved.handle as fmi2FMUstate)
+        };
+        self.check(
+            self.calls.name("fmi2SetFMUstate", "fmi3SetFMUState"),
+            status,
+        )?;
         self.phase = saved.phase;
         self.outputs.copy_from_slice(&saved.outputs);
         Ok(())
@@ -502,19 +545,19 @@ impl FmuUnit {
 
 impl Drop for FmuUnit {
     fn drop(&mut self) {
-        if let (Some(free_state), Ok(states)) = (self.api.free_fmu_state, self.states.get_mut()) {
+        if let Ok(states) = self.states.get_mut() {
             for s in states.iter() {
                 let mut handle = *s as fmi2FMUstate;
-                // SAFETY: handles from this instance's fmi2GetFMUstate.
-                unsafe { free_state(self.component, &mut handle) };
+                // SAFETY: handles from this instance's get-state call.
+                unsafe { self.calls.free_state(self.component, &mut handle) };
             }
         }
         // SAFETY: ending a live instance; terminate only after initialisation.
         unsafe {
             if self.phase != Phase::Instantiated {
-                (self.api.terminate)(self.component);
+                self.calls.terminate(self.component);
             }
-            (self.api.free_instance)(self.component);
+            self.calls.free_instance(self.component);
         }
         self.library.take();
     }

@@ -33,7 +33,8 @@ pub enum VariableCausality {
 impl VariableCausality {
     fn parse(s: &str) -> Option<Self> {
         Some(match s {
-            "parameter" => Self::Parameter,
+            // FMI 3.0's parameters that size arrays.
+            "parameter" | "structuralParameter" => Self::Parameter,
             "calculatedParameter" => Self::CalculatedParameter,
             "input" => Self::Input,
             "output" => Self::Output,
@@ -105,6 +106,21 @@ pub struct ScalarVariable {
     /// Bounds of a Real's value, when stated (inclusive).
     pub min: Option<f64>,
     pub max: Option<f64>,
+    /// An FMI 3.0 array's length in each dimension, row-major (empty: a
+    /// scalar; FMI 2.0 has none). The FMI 2.0 description leaves arrays out.
+    pub dimensions: Vec<usize>,
+}
+
+impl ScalarVariable {
+    /// How many values the variable holds (1 for a scalar).
+    pub fn len(&self) -> usize {
+        self.dimensions.iter().product()
+    }
+
+    /// Whether it holds no value (an array with a zero dimension).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
 }
 
 /// Who made a model and under what terms: the optional attributes of
@@ -203,7 +219,11 @@ impl ModelDescription {
         self.units.iter().find(|u| u.name == name)
     }
 
-    /// Parses a model description, checking what a co-simulation master relies on.
+    /// Parses a model description (FMI 2.0 or 3.0), checking what a
+    /// co-simulation master relies on. FMI 3.0's Float64, Int32, Boolean and
+    /// String variables are read (arrays with their dimensions); variables of
+    /// other types are left out, and the model structure refers to variables
+    /// by index as FMI 2.0 does.
     pub fn parse(xml: &str) -> Result<ModelDescription, DescriptionError> {
         Parser::new(xml).run()
     }
@@ -240,8 +260,12 @@ impl ModelDescription {
         self.write_log_categories(&mut x);
         self.write_default_experiment(&mut x);
         x.push_str("  <ModelVariables>\n");
+        // Arrays are FMI 3.0's and come after every scalar, so leaving them
+        // out keeps the scalars' indices.
         for (i, v) in self.variables.iter().enumerate() {
-            write_variable(&mut x, i, v);
+            if v.dimensions.is_empty() {
+                write_variable(&mut x, i, v);
+            }
         }
         x.push_str("  </ModelVariables>\n  <ModelStructure>\n");
         self.write_structure(&mut x);
@@ -331,11 +355,12 @@ impl ModelDescription {
             ("Outputs", &self.outputs),
             ("InitialUnknowns", &self.initial_unknowns),
         ] {
-            if list.is_empty() {
+            let scalar = |u: &&Unknown| self.variables[u.index - 1].dimensions.is_empty();
+            if !list.iter().any(|u| scalar(&u)) {
                 continue;
             }
             let _ = writeln!(x, "    <{tag}>");
-            for u in list {
+            for u in list.iter().filter(scalar) {
                 let _ = write!(x, r#"      <Unknown index="{}""#, u.index);
                 if let Some(deps) = &u.dependencies {
                     let deps: Vec<String> = deps.iter().map(|d| d.to_string()).collect();
@@ -402,124 +427,4 @@ mod parse;
 use parse::Parser;
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn sample() -> ModelDescription {
-        ModelDescription {
-            fmi_version: "2.0".into(),
-            model_name: "m".into(),
-            guid: "{1}".into(),
-            description: "a & b".into(),
-            generation_tool: "slender".into(),
-            about: About {
-                author: "a".into(),
-                version: "0.1.0".into(),
-                copyright: String::new(),
-                license: "MIT OR Apache-2.0".into(),
-                generation_date_and_time: Some("2026-12-03T10:00:00Z".into()),
-            },
-            log_categories: vec![LogCategory {
-                name: "logAll".into(),
-                description: "every message".into(),
-            }],
-            co_simulation: Some(CoSimulation {
-                model_identifier: "m".into(),
-                can_handle_variable_communication_step_size: true,
-                can_interpolate_inputs: true,
-                max_output_derivative_order: 0,
-                can_get_and_set_fmu_state: true,
-                can_serialize_fmu_state: true,
-                provides_directional_derivative: true,
-            }),
-            units: vec![UnitDefinition {
-                name: "N".into(),
-                exponents: [1, 1, -2, 0, 0, 0, 0, 0],
-                factor: 1.0,
-                offset: 0.0,
-            }],
-            variables: sample_variables(),
-            outputs: vec![Unknown {
-                index: 2,
-                dependencies: Some(vec![]),
-            }],
-            initial_unknowns: vec![Unknown {
-                index: 2,
-                dependencies: Some(vec![1]),
-            }],
-            default_experiment: Some(DefaultExperiment {
-                start_time: Some(0.0),
-                stop_time: Some(10.0),
-                tolerance: None,
-                step_size: Some(0.01),
-            }),
-        }
-    }
-
-    fn sample_variables() -> Vec<ScalarVariable> {
-        vec![
-            ScalarVariable {
-                name: "f".into(),
-                value_reference: 0,
-                description: String::new(),
-                causality: VariableCausality::Input,
-                variability: "continuous".into(),
-                initial: None,
-                value: Value::Real(Some(0.1)),
-                unit: Some("N".into()),
-                min: Some(-1.0),
-                max: Some(2.5e6),
-            },
-            ScalarVariable {
-                name: "x".into(),
-                value_reference: 1,
-                description: String::new(),
-                causality: VariableCausality::Output,
-                variability: "continuous".into(),
-                initial: Some("calculated".into()),
-                value: Value::Real(None),
-                unit: None,
-                min: None,
-                max: None,
-            },
-            ScalarVariable {
-                name: "label".into(),
-                value_reference: 2,
-                description: "<\"quoted\">".into(),
-                causality: VariableCausality::Parameter,
-                variability: "fixed".into(),
-                initial: Some("exact".into()),
-                value: Value::String(Some("a<b".into())),
-                unit: None,
-                min: None,
-                max: None,
-            },
-        ]
-    }
-
-    #[test]
-    fn written_descriptions_parse_back_identically() {
-        let md = sample();
-        assert_eq!(ModelDescription::parse(&md.to_xml()).unwrap(), md);
-    }
-
-    #[test]
-    fn errors_name_the_element_attribute_and_line() {
-        let xml = sample()
-            .to_xml()
-            .replace(r#"valueReference="1""#, r#"valueReference="x""#);
-        let e = ModelDescription::parse(&xml).unwrap_err();
-        assert!(e.message.contains("<ScalarVariable>") && e.message.contains("valueReference"));
-        assert!(e.line > 5, "{e}");
-        let xml = sample().to_xml().replace(r#" guid="{1}""#, "");
-        let e = ModelDescription::parse(&xml).unwrap_err().to_string();
-        assert!(e.contains("guid"), "{e}");
-        let xml = sample().to_xml().replace(r#" start="1e-1""#, "");
-        let e = ModelDescription::parse(&xml).unwrap_err().to_string();
-        assert!(e.contains("no start value"), "{e}");
-        let e = ModelDescription::parse("<a><b></a>")
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("not well-formed") || e.contains("root"), "{e}");
-    }
-}
+mod tests;

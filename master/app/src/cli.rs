@@ -112,6 +112,10 @@ pub enum FmuAction {
         /// `.ssp` file.
         #[arg(long)]
         out: PathBuf,
+        /// FMI version of the FMUs: 2 (default) or 3 (not in an `.ssp`: SSP
+        /// 1.0 holds FMI 2.0 FMUs).
+        #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+        fmi: u8,
         /// The slender-fmu shared library (default: next to this executable).
         #[arg(long)]
         binary: Option<PathBuf>,

@@ -151,13 +151,14 @@ pub fn settle(scene: &Scene) -> Result<Master, ExportError> {
     Ok(master)
 }
 
-/// Exports every unit of a scene as an FMU into `dir` and writes there a copy of
-/// the scene whose units are those FMUs (kind `fmu`), so the same run can go
-/// through the FMI layer. Returns the new scene's path.
+/// Exports every unit of a scene as an FMU (FMI `version`) into `dir` and
+/// writes there a copy of the scene whose units are those FMUs (kind `fmu`),
+/// so the same run can go through the FMI layer. Returns the new scene's path.
 pub fn wrap_scene(
     scene: &Scene,
     binary: &Path,
     dir: &Path,
+    version: FmiVersion,
 ) -> Result<std::path::PathBuf, ExportError> {
     let file_error = |path: &Path, problem: String| ExportError::SceneFile {
         path: path.display().to_string(),
@@ -171,7 +172,7 @@ pub fn wrap_scene(
         .get_mut("units")
         .and_then(toml::Value::as_array_mut)
         .ok_or_else(|| file_error(&scene.path, "no [[units]]".into()))?;
-    let exported = export_units(scene, binary, dir)?;
+    let exported = export_units(scene, binary, dir, version)?;
     // Inputs renamed in the FMUs ("unit.port" -> "unit.port_in"), for the
     // connections below.
     let mut renamed = BTreeMap::new();
@@ -209,7 +210,7 @@ pub fn wrap_scene(
         parameters.insert("file".into(), toml::Value::String(file));
         unit.insert("parameters".into(), toml::Value::Table(parameters));
     }
-    rewire_for_fmus(&mut table, &renamed);
+    rewire_for_fmus(&mut table, &renamed, version);
     let out = dir.join(format!("{}_fmu.toml", scene_stem(scene)));
     let written = toml::to_string(&table).map_err(|e| file_error(&out, e.to_string()))?;
     std::fs::write(&out, written).map_err(|e| file_error(&out, format!("cannot write ({e})")))?;
@@ -223,12 +224,14 @@ pub struct ExportedFmu {
     pub layout: Layout,
 }
 
-/// Every unit of the scene exported as an FMU into `dir` (`<unit>.fmu`), in
-/// scene order, each started from the inputs the scene's master settles on.
+/// Every unit of the scene exported as an FMU (FMI `version`) into `dir`
+/// (`<unit>.fmu`), in scene order, each started from the inputs the scene's
+/// master settles on.
 pub fn export_units(
     scene: &Scene,
     binary: &Path,
     dir: &Path,
+    version: FmiVersion,
 ) -> Result<Vec<ExportedFmu>, ExportError> {
     let master = settle(scene)?;
     let mut exported = Vec::new();
@@ -236,7 +239,7 @@ pub fn export_units(
         let name = unit.name.get_ref().clone();
         let config = ExportConfig::from_settled(scene, &master, &name)?;
         let file = dir.join(format!("{name}.fmu"));
-        let layout = package(&config, binary, &file)?;
+        let layout = package_version(&config, binary, &file, version)?;
         exported.push(ExportedFmu { name, file, layout });
     }
     Ok(exported)
@@ -252,7 +255,11 @@ pub fn scene_stem(scene: &Scene) -> String {
 
 /// The wrapped scene's connections to renamed inputs, its title, and no output
 /// folder of its own.
-fn rewire_for_fmus(table: &mut toml::Table, renamed: &BTreeMap<String, String>) {
+fn rewire_for_fmus(
+    table: &mut toml::Table,
+    renamed: &BTreeMap<String, String>,
+    version: FmiVersion,
+) {
     if let Some(connections) = table
         .get_mut("connections")
         .and_then(toml::Value::as_array_mut)
@@ -265,7 +272,11 @@ fn rewire_for_fmus(table: &mut toml::Table, renamed: &BTreeMap<String, String>) 
         }
     }
     if let Some(title) = table.get("title").and_then(toml::Value::as_str) {
-        let title = format!("{title} [every unit through FMI 2.0]");
+        let fmi = match version {
+            FmiVersion::Two => "2.0",
+            FmiVersion::Three => "3.0",
+        };
+        let title = format!("{title} [every unit through FMI {fmi}]");
         table.insert("title".into(), toml::Value::String(title));
     }
     if let Some(output) = table.get_mut("output").and_then(toml::Value::as_table_mut) {

@@ -6,7 +6,7 @@
 //! non-iterative Jacobi scheme that libcosim's fixed-step algorithm runs, and
 //! inputs held over each step (an SSP master passes values, not derivatives).
 
-use crate::export::{ExportError, ExportedFmu, export_units, scene_stem};
+use crate::export::{ExportError, ExportedFmu, FmiVersion, export_units, scene_stem};
 use crate::{Scene, SceneError};
 use slender_fmi::export::input_variable_name;
 use slender_fmi::model_description::{Value as FmiValue, VariableCausality};
@@ -27,7 +27,9 @@ pub fn write_ssp(scene: &Scene, binary: &Path, out: &Path) -> Result<SystemStruc
     let mut fmus = Vec::new();
     // (unit, input port) -> the FMU's variable name.
     let mut variables = BTreeMap::new();
-    for ExportedFmu { name, file, layout } in export_units(scene, binary, dir.path())? {
+    for ExportedFmu { name, file, layout } in
+        export_units(scene, binary, dir.path(), FmiVersion::Two)?
+    {
         let mut connectors = Vec::new();
         for (i, port) in layout.unit.inputs.iter().enumerate() {
             let variable = input_variable_name(&layout.unit, i);
@@ -171,7 +173,9 @@ fn unit_of(c: &Component, root: &Path) -> Result<(Value, Option<f64>), (String, 
         .and_then(|d| d.default_experiment.as_ref()?.step_size);
     let mut inputs = Table::new();
     for v in description.iter().flat_map(|d| &d.variables) {
-        if let (VariableCausality::Input, FmiValue::Real(Some(start))) = (v.causality, &v.value) {
+        if let (VariableCausality::Input, FmiValue::Real(Some(start)), true) =
+            (v.causality, &v.value, v.dimensions.is_empty())
+        {
             inputs.insert(v.name.clone(), Value::Float(*start));
         }
     }

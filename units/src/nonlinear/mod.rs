@@ -18,6 +18,7 @@ pub mod params;
 
 mod dynamics;
 mod energy;
+mod fields;
 mod jacobian;
 mod linear;
 mod modes;
@@ -26,7 +27,7 @@ mod start_shape;
 mod statics;
 
 use crate::contract::{
-    Capabilities, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription, UnitError,
+    Capabilities, Field, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription, UnitError,
 };
 use crate::integrators::central_difference::CentralDifference;
 use crate::integrators::hht::HhtAlpha;
@@ -460,6 +461,14 @@ impl Unit for NonlinearSection {
             }
         }
         Ok(())
+    }
+
+    fn fields(&self) -> Vec<Field> {
+        self.field_list()
+    }
+
+    fn field_values(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
+        self.write_field(index, out)
     }
 
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {

@@ -44,14 +44,18 @@ pub(super) fn unpack(
     Ok((folder, model, cs))
 }
 
-/// The FMU's linux64 binary, or an error saying which platforms it has.
+/// The FMU's binary for 64-bit Linux (`linux64`, FMI 3.0: `x86_64-linux`),
+/// or an error saying which platforms it has.
 pub(super) fn binary_for_this_platform(
     folder: &Path,
     identifier: &str,
+    fmi3: bool,
     label: &str,
 ) -> Result<PathBuf, LoadError> {
+    let platform = if fmi3 { "x86_64-linux" } else { "linux64" };
     let binary = folder
-        .join("binaries/linux64")
+        .join("binaries")
+        .join(platform)
         .join(format!("{identifier}.so"));
     if !binary.exists() {
         let platforms: Vec<String> = std::fs::read_dir(folder.join("binaries"))
@@ -63,7 +67,7 @@ pub(super) fn binary_for_this_platform(
             .unwrap_or_default();
         return Err(LoadError::NoBinary {
             fmu: label.to_owned(),
-            identifier: identifier.to_owned(),
+            identifier: format!("{platform}/{identifier}"),
             found: if platforms.is_empty() {
                 "no binaries at all (source-only FMUs are not compiled by slender)".to_owned()
             } else {

@@ -4,29 +4,39 @@
 
 use super::*;
 
-/// The unit description of an FMU: Real inputs and outputs as ports.
+/// The unit description of an FMU: Real inputs and outputs as ports, an
+/// array one port per element (`name[1]`, ... row-major).
 pub(super) fn describe(
     model: &ModelDescription,
     label: &str,
 ) -> Result<UnitDescription, LoadError> {
-    let inputs: Vec<usize> = (0..model.variables.len())
-        .filter(|&i| is_real(model, i, VariableCausality::Input))
-        .collect();
-    let port_of = |i: usize, input: bool| {
-        let v = &model.variables[i];
-        let (kind, unit) = kind_of(model, v.unit.as_deref());
-        let port = if input {
-            Port::input(&v.name, kind)
-        } else {
-            Port::output(&v.name, kind)
-        };
-        port.with_unit(&unit)
-    };
-    let mut outputs = Vec::new();
-    for i in 0..model.variables.len() {
-        if !is_real(model, i, VariableCausality::Output) {
-            continue;
+    let ports_of = |causality: VariableCausality| -> Vec<(usize, Port)> {
+        let mut ports = Vec::new();
+        for i in 0..model.variables.len() {
+            if !is_real(model, i, causality) {
+                continue;
+            }
+            let v = &model.variables[i];
+            let (kind, unit) = kind_of(model, v.unit.as_deref());
+            for k in 0..v.len() {
+                let name = if v.dimensions.is_empty() {
+                    v.name.clone()
+                } else {
+                    format!("{}[{}]", v.name, k + 1)
+                };
+                let port = if causality == VariableCausality::Input {
+                    Port::input(&name, kind)
+                } else {
+                    Port::output(&name, kind)
+                };
+                ports.push((i, port.with_unit(&unit)));
+            }
         }
+        ports
+    };
+    let inputs = ports_of(VariableCausality::Input);
+    let mut outputs = Vec::new();
+    for (i, port) in ports_of(VariableCausality::Output) {
         let deps = model
             .outputs
             .iter()
@@ -34,12 +44,11 @@ pub(super) fn describe(
             .map(|u| u.dependencies.clone());
         let depends_on: Vec<usize> = match deps.flatten() {
             None => (0..inputs.len()).collect(),
-            Some(list) => list
-                .iter()
-                .filter_map(|d| inputs.iter().position(|&k| k + 1 == *d))
+            Some(list) => (0..inputs.len())
+                .filter(|&k| list.contains(&(inputs[k].0 + 1)))
                 .collect(),
         };
-        outputs.push(port_of(i, false).with_feedthrough(&depends_on));
+        outputs.push(port.with_feedthrough(&depends_on));
     }
     let cs = model
         .co_simulation
@@ -49,7 +58,7 @@ pub(super) fn describe(
         })?;
     Ok(UnitDescription {
         kind: "fmu".into(),
-        inputs: inputs.iter().map(|&i| port_of(i, true)).collect(),
+        inputs: inputs.into_iter().map(|(_, p)| p).collect(),
         outputs,
         capabilities: Capabilities {
             rollback: cs.can_get_and_set_fmu_state,
@@ -60,8 +69,8 @@ pub(super) fn describe(
             } else {
                 HoldSupport::ZeroOrderOnly
             },
-            // The step Jacobian through fmi2GetDirectionalDerivative, taken
-            // as with respect to the inputs at the end of the last step.
+            // The step Jacobian through the FMU's directional derivative,
+            // taken as with respect to the inputs at the end of the last step.
             step_jacobian: cs.provides_directional_derivative,
         },
     })
@@ -72,11 +81,16 @@ pub(super) fn is_real(model: &ModelDescription, i: usize, causality: VariableCau
     v.causality == causality && matches!(v.value, Value::Real(_))
 }
 
-pub(super) fn real_refs(model: &ModelDescription, causality: VariableCausality) -> Vec<u32> {
+/// The value references of the Real variables of `causality` and how many
+/// values each holds.
+pub(super) fn real_refs(
+    model: &ModelDescription,
+    causality: VariableCausality,
+) -> (Vec<u32>, Vec<usize>) {
     (0..model.variables.len())
         .filter(|&i| is_real(model, i, causality))
-        .map(|i| model.variables[i].value_reference)
-        .collect()
+        .map(|i| (model.variables[i].value_reference, model.variables[i].len()))
+        .unzip()
 }
 
 /// The port kind and unit name for an FMU unit of measure: the kind whose SI unit

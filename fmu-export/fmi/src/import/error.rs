@@ -22,12 +22,12 @@ pub enum LoadError {
         source: DescriptionError,
     },
     #[error(
-        "{fmu}: the FMU does not offer co-simulation (no <CoSimulation> element); only FMI 2.0 co-simulation FMUs can be units"
+        "{fmu}: the FMU does not offer co-simulation (no <CoSimulation> element); only co-simulation FMUs (FMI 2.0 or 3.0) can be units"
     )]
     NotCoSimulation { fmu: String },
-    /// No binary for linux64; `found` says what the FMU has instead.
+    /// No binary for 64-bit Linux; `found` says what the FMU has instead.
     #[error(
-        "{fmu}: no binary for this platform: expected binaries/linux64/{identifier}.so; the FMU has {found}"
+        "{fmu}: no binary for this platform: expected binaries/{identifier}.so; the FMU has {found}"
     )]
     NoBinary {
         fmu: String,
@@ -61,7 +61,11 @@ pub enum LoadError {
     },
     #[error("{fmu}: `{text}` contains a NUL character")]
     Nul { fmu: String, text: String },
-    /// `fmi2Instantiate` returned null; `log` holds the FMU's last log lines.
-    #[error("{fmu}: fmi2Instantiate failed{log}")]
-    Instantiate { fmu: String, log: String },
+    /// Instantiation returned null; `log` holds the FMU's last log lines.
+    #[error("{fmu}: {call} failed{log}")]
+    Instantiate {
+        fmu: String,
+        call: &'static str,
+        log: String,
+    },
 }

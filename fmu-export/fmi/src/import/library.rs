@@ -41,30 +41,49 @@ pub(super) extern "C" fn slender_fmi_log_sink(
         if environment.is_null() {
             return;
         }
+        // SAFETY: the environment is the LogBook the unit registered and outlives
+        // the FMU instance (dropped after fmi2FreeInstance).
+        let book = unsafe { &*(environment as *const LogBook) };
+        book.push(instance, status, category, message);
+    });
+}
+
+impl LogBook {
+    /// Keeps one message (the last [`LOG_KEPT`]); the strings are
+    /// NUL-terminated or null.
+    pub(super) fn push(
+        &self,
+        instance: *const c_char,
+        status: c_int,
+        category: *const c_char,
+        message: *const c_char,
+    ) {
         let text = |p: *const c_char| {
             if p.is_null() {
                 String::new()
             } else {
-                // SAFETY: the FMU passes NUL-terminated strings (FMI 2.0 logger contract).
+                // SAFETY: FMUs pass NUL-terminated strings (FMI logger contract).
                 unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
             }
         };
-        // SAFETY: the environment is the LogBook the unit registered and outlives
-        // the FMU instance (dropped after fmi2FreeInstance).
-        let book = unsafe { &*(environment as *const LogBook) };
-        if let Ok(mut lines) = book.0.lock() {
+        if let Ok(mut lines) = self.0.lock() {
             if lines.len() == LOG_KEPT {
                 lines.remove(0);
             }
+            let who = text(instance);
+            let who = if who.is_empty() {
+                who
+            } else {
+                format!("{who} ")
+            };
             lines.push(format!(
-                "[{} {} {}] {}",
-                text(instance),
+                "[{who}{} {}] {}",
                 status_name(status),
                 text(category),
                 text(message)
             ));
         }
-    });
+    }
 }
 
 pub(super) type Instantiate = unsafe extern "C" fn(
@@ -144,7 +163,10 @@ pub(super) fn symbol<T: Copy>(library: &libloading::Library, name: &str) -> Resu
     unsafe { library.get::<T>(c_name.as_bytes()) }
         .map(|s| *s)
         .map_err(|_| {
-            format!("the binary does not export `{name}` (required by FMI 2.0 co-simulation)")
+            format!(
+                "the binary does not export `{name}` (required by FMI {}.0 co-simulation)",
+                if name.starts_with("fmi3") { 3 } else { 2 }
+            )
         })
 }
 
@@ -271,6 +293,7 @@ pub(super) fn instantiate(
     if component.is_null() {
         return Err(LoadError::Instantiate {
             fmu: label.to_owned(),
+            call: "fmi2Instantiate",
             log: log_tail(&log),
         });
     }

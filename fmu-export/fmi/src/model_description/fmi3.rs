@@ -46,14 +46,15 @@ impl ModelDescription {
         self.write_log_categories(&mut x);
         self.write_default_experiment(&mut x);
         x.push_str("  <ModelVariables>\n");
+        for v in &self.variables {
+            write_variable3(&mut x, v);
+        }
+        // Last, so that the variables keep their FMI 2.0 indices when read back.
         let _ = writeln!(
             x,
             r#"    <Float64 name="time" valueReference="{}" causality="independent" variability="continuous" description="simulation time (s)"/>"#,
             self.time_reference()
         );
-        for v in &self.variables {
-            write_variable3(&mut x, v);
-        }
         x.push_str("  </ModelVariables>\n  <ModelStructure>\n");
         let reference = |index: usize| self.variables[index - 1].value_reference;
         for (tag, list) in [
@@ -97,13 +98,22 @@ fn write_variable3(x: &mut String, v: &ScalarVariable) {
         let _ = write!(x, r#" initial="{}""#, e(initial));
     }
     x.push_str(&type_attributes(v));
+    let mut children = String::new();
     match (&v.value, start_text(&v.value)) {
         (Value::String(_), Some(start)) => {
-            let _ = writeln!(x, r#"><Start value="{}"/></String>"#, e(&start));
+            let _ = write!(children, r#"<Start value="{}"/>"#, e(&start));
         }
         (_, Some(start)) => {
-            let _ = writeln!(x, r#" start="{}"/>"#, e(&start));
+            let _ = write!(x, r#" start="{}""#, e(&start));
         }
-        (_, None) => x.push_str("/>\n"),
+        (_, None) => {}
+    }
+    for n in &v.dimensions {
+        let _ = write!(children, r#"<Dimension start="{n}"/>"#);
+    }
+    if children.is_empty() {
+        x.push_str("/>\n");
+    } else {
+        let _ = writeln!(x, ">{children}</{element}>");
     }
 }

@@ -12,7 +12,11 @@ struct ParseState {
     md: Option<ModelDescription>,
     variable: Option<(Attributes, Option<ScalarVariable>)>,
     unit: Option<UnitDefinition>,
+    /// What only an FMI 3.0 description needs.
+    fmi3: Option<fmi3::Pending>,
 }
+
+mod fmi3;
 
 /// The state of one parse: the reader, and the element path.
 pub(super) struct Parser<'a> {
@@ -22,6 +26,7 @@ pub(super) struct Parser<'a> {
 }
 
 /// The attributes of one element, by name.
+#[derive(Clone)]
 struct Attributes {
     element: String,
     line: usize,
@@ -144,6 +149,9 @@ impl<'a> Parser<'a> {
                 self.path.push(name);
             }
         }
+        if let (Some(md), Some(pending)) = (state.md.as_mut(), state.fmi3.take()) {
+            pending.resolve(md)?;
+        }
         let md = state.md.ok_or_else(|| DescriptionError {
             line: 1,
             message: "no <fmiModelDescription> element".into(),
@@ -154,7 +162,9 @@ impl<'a> Parser<'a> {
 
     /// The end of an element: a variable or unit definition is complete.
     fn close(&mut self, closed: &str, state: &mut ParseState) -> Result<(), DescriptionError> {
-        if closed == "ScalarVariable" {
+        if state.fmi3.is_some() && self.path.last().is_some_and(|p| p == "ModelVariables") {
+            self.finish_variable3(state)?;
+        } else if closed == "ScalarVariable" {
             self.finish_variable(&mut state.md, state.variable.take())?;
         } else if closed == "Unit"
             && let (Some(m), Some(u)) = (state.md.as_mut(), state.unit.take())
@@ -162,6 +172,36 @@ impl<'a> Parser<'a> {
             m.units.push(u);
         }
         Ok(())
+    }
+
+    /// The root element (which says the FMI version), or an element of an
+    /// FMI 3.0 description where it differs from FMI 2.0: whether it stays
+    /// open, or `None` when it is read as FMI 2.0 reads it.
+    fn root_or_fmi3(
+        &mut self,
+        parent: &str,
+        attrs: &Attributes,
+        is_empty: bool,
+        state: &mut ParseState,
+    ) -> Result<Option<bool>, DescriptionError> {
+        if state.fmi3.is_some() {
+            return self.element3(parent, attrs.clone(), is_empty, state);
+        }
+        match (parent, attrs.element.as_str()) {
+            ("", "fmiModelDescription") => {}
+            ("", other) => {
+                return Err(attrs.error(format!(
+                    "the root element must be <fmiModelDescription>, found <{other}>"
+                )));
+            }
+            _ => return Ok(None),
+        }
+        let md = Self::root(attrs)?;
+        if md.fmi_version.starts_with("3.") {
+            state.fmi3 = Some(fmi3::Pending::default());
+        }
+        state.md = Some(md);
+        Ok(Some(!is_empty))
     }
 
     /// One element start (or empty element); whether it stays open.
@@ -173,15 +213,12 @@ impl<'a> Parser<'a> {
     ) -> Result<bool, DescriptionError> {
         let name = attrs.element.clone();
         let parent = self.path.last().cloned().unwrap_or_default();
+        if let Some(open) = self.root_or_fmi3(&parent, &attrs, is_empty, state)? {
+            return Ok(open);
+        }
         let (md, current_variable, current_unit) =
             (&mut state.md, &mut state.variable, &mut state.unit);
         match (parent.as_str(), name.as_str()) {
-            ("", "fmiModelDescription") => *md = Some(Self::root(&attrs)?),
-            ("", other) => {
-                return Err(attrs.error(format!(
-                    "the root element must be <fmiModelDescription>, found <{other}>"
-                )));
-            }
             ("fmiModelDescription", "CoSimulation") => {
                 if let Some(m) = md.as_mut() {
                     m.co_simulation = Some(Self::co_simulation(&attrs)?);
@@ -304,15 +341,19 @@ impl<'a> Parser<'a> {
 
     fn root(a: &Attributes) -> Result<ModelDescription, DescriptionError> {
         let version = a.required("fmiVersion")?;
-        if version != "2.0" {
-            return Err(a.error(format!(
-                "fmiVersion = \"{version}\": only FMI 2.0 is supported"
-            )));
-        }
+        let token = match version {
+            "2.0" => "guid",
+            v if v == "3.0" || v.starts_with("3.0.") => "instantiationToken",
+            _ => {
+                return Err(a.error(format!(
+                    "fmiVersion = \"{version}\": FMI 2.0 and 3.0 are supported"
+                )));
+            }
+        };
         Ok(ModelDescription {
             fmi_version: version.to_owned(),
             model_name: a.required("modelName")?.to_owned(),
-            guid: a.required("guid")?.to_owned(),
+            guid: a.required(token)?.to_owned(),
             description: a.optional("description").unwrap_or("").to_owned(),
             generation_tool: a.optional("generationTool").unwrap_or("").to_owned(),
             about: About {
@@ -340,8 +381,8 @@ impl<'a> Parser<'a> {
             ))
         })?;
         let value = match t.element.as_str() {
-            "Real" => Value::Real(t.parsed("start", "a real number")?),
-            "Integer" => Value::Integer(t.parsed("start", "a 32-bit integer")?),
+            "Real" | "Float64" => Value::Real(t.parsed("start", "a real number")?),
+            "Integer" | "Int32" => Value::Integer(t.parsed("start", "a 32-bit integer")?),
             "Enumeration" => Value::Enumeration(t.parsed("start", "a 32-bit integer")?),
             "Boolean" => Value::Boolean(match t.optional("start") {
                 None => None,
@@ -368,6 +409,7 @@ impl<'a> Parser<'a> {
             unit: t.optional("unit").map(str::to_owned),
             min: t.parsed("min", "a number")?,
             max: t.parsed("max", "a number")?,
+            dimensions: Vec::new(),
             value,
         })
     }
@@ -392,7 +434,7 @@ impl<'a> Parser<'a> {
         );
         if needs_start && !variable.value.has_start() {
             return Err(attrs.error(format!(
-                "{} `{}` has no start value (FMI 2.0 requires one for inputs and parameters)",
+                "{} `{}` has no start value (FMI requires one for inputs and parameters)",
                 variable.causality.name(),
                 variable.name
             )));

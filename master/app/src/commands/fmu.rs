@@ -19,15 +19,26 @@ pub fn fmu(action: FmuAction, set: &[String]) -> Result<(), CliError> {
             fmi,
             output,
             binary,
+        } => export(
+            &SceneArg::new(scene, set),
+            &unit,
+            fmi_version(fmi),
+            output,
+            binary,
+        ),
+        FmuAction::Wrap {
+            scene,
+            out,
+            fmi,
+            binary,
         } => {
-            let version = if fmi == 3 {
-                FmiVersion::Three
-            } else {
-                FmiVersion::Two
-            };
-            export(&SceneArg::new(scene, set), &unit, version, output, binary)
-        }
-        FmuAction::Wrap { scene, out, binary } => {
+            let version = fmi_version(fmi);
+            if version == FmiVersion::Three && slender_scene::ssp::is_ssp(&out) {
+                return Err(CliError::input(format!(
+                    "--out {}: an SSP 1.0 archive holds FMI 2.0 FMUs; wrap with --fmi 2, or into a folder with --fmi 3",
+                    out.display()
+                )));
+            }
             let scene = load(&SceneArg::new(scene, set))?;
             let binary = library(binary)?;
             let failed = |e: slender_scene::export::ExportError| CliError::input(e.to_string());
@@ -41,12 +52,21 @@ pub fn fmu(action: FmuAction, set: &[String]) -> Result<(), CliError> {
                     out.display()
                 );
             } else {
-                let path = wrap_scene(&scene, &binary, &out).map_err(failed)?;
+                let path = wrap_scene(&scene, &binary, &out, version).map_err(failed)?;
                 println!("wrote {}", path.display());
             }
             Ok(())
         }
         FmuAction::Info { fmu, preload } => info(fmu, preload),
+    }
+}
+
+/// The FMI version of `--fmi` (2 or 3, checked by the argument parser).
+fn fmi_version(fmi: u8) -> FmiVersion {
+    if fmi == 3 {
+        FmiVersion::Three
+    } else {
+        FmiVersion::Two
     }
 }
 
@@ -76,9 +96,19 @@ fn export(
         .and_then(|config| package_version(&config, &binary, &output, version))
         .map_err(|e| CliError::input(e.to_string()))?;
     let model = &layout.model;
-    let count = |c| model.variables.iter().filter(|v| v.causality == c).count();
+    let count = |c| {
+        let scalars = model.variables.iter().filter(|v| v.dimensions.is_empty());
+        scalars.filter(|v| v.causality == c).count()
+    };
+    // FMI 3.0 carries the unit's fields as array outputs; FMI 2.0 has none.
+    let arrays = match version {
+        FmiVersion::Three if !layout.fields.is_empty() => {
+            format!(", {} array outputs", layout.fields.len())
+        }
+        _ => String::new(),
+    };
     println!(
-        "wrote {} ({} inputs, {} outputs, {} parameters, guid {})",
+        "wrote {} ({} inputs, {} outputs{arrays}, {} parameters, guid {})",
         output.display(),
         count(VariableCausality::Input),
         count(VariableCausality::Output),

@@ -1,0 +1,175 @@
+//! slender's FMI 3.0 importer on FMUs it did not write: two of the Modelica
+//! Association's Reference FMUs (`tests/reference-fmus/`), compiled here with
+//! the C compiler. StateSpace has array inputs and outputs sized by
+//! structural parameters and a known solution (explicit Euler at 1 ms on
+//! dx/dt = x + u, y = x + u); Feedthrough has one variable of every FMI 3.0
+//! type, of which slender reads the Float64 ones as ports and sets the others
+//! from start values.
+
+use slender_fmi::import::{FmuParams, FmuUnit};
+use slender_tests::root;
+use slender_units::{Driver, DriverSlot, Time};
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Compiles Reference FMU `model` into `dir/<model>.fmu` (FMI 3.0).
+fn build(model: &str, dir: &Path) -> PathBuf {
+    let source = root().join("tests/reference-fmus");
+    let library = dir.join(format!("{model}.so"));
+    let compiler = std::env::var("CC").unwrap_or_else(|_| "cc".into());
+    let status = Command::new(&compiler)
+        .args([
+            "-shared",
+            "-fPIC",
+            "-O2",
+            "-DFMI_VERSION=3",
+            "-DDISABLE_PREFIX",
+        ])
+        .arg(format!("-I{}", source.join("include").display()))
+        .arg(format!("-I{}", source.join(model).display()))
+        .arg(source.join(model).join("model.c"))
+        .arg(source.join("src/fmi3Functions.c"))
+        .arg(source.join("src/cosimulation.c"))
+        .arg("-o")
+        .arg(&library)
+        .arg("-lm")
+        .status()
+        .unwrap_or_else(|e| panic!("{compiler}: {e} (a C compiler builds the Reference FMUs)"));
+    assert!(status.success(), "compiling {model}");
+    let fmu = dir.join(format!("{model}.fmu"));
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(&fmu).unwrap());
+    let options = zip::write::SimpleFileOptions::default();
+    for (name, file) in [
+        (
+            "modelDescription.xml".to_owned(),
+            source.join(model).join("FMI3.xml"),
+        ),
+        (format!("binaries/x86_64-linux/{model}.so"), library),
+    ] {
+        zip.start_file(name, options).unwrap();
+        zip.write_all(&std::fs::read(file).unwrap()).unwrap();
+    }
+    zip.finish().unwrap();
+    fmu
+}
+
+fn load(fmu: &Path, start: &str) -> Driver<FmuUnit> {
+    let params = FmuParams {
+        file: fmu.to_owned(),
+        start: toml::from_str(start).unwrap(),
+        preload: Vec::new(),
+        logging: false,
+    };
+    Driver::new(FmuUnit::load(&params, Path::new(".")).unwrap_or_else(|e| panic!("{e}")))
+}
+
+fn names(ports: &[slender_units::Port]) -> Vec<&str> {
+    ports.iter().map(|p| p.name.as_str()).collect()
+}
+
+#[test]
+fn the_state_space_reference_fmu_runs_with_array_ports_to_its_known_solution() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut unit = load(&build("StateSpace", dir.path()), "");
+    let d = unit.description();
+    assert_eq!(names(&d.inputs), ["u[1]", "u[2]", "u[3]"]);
+    assert_eq!(names(&d.outputs), ["y[1]", "y[2]", "y[3]"]);
+    // No `dependencies`: every output depends on every input (y = C x + D u).
+    assert!(d.outputs.iter().all(|p| p.depends_on == [0, 1, 2]));
+    assert!(d.capabilities.rollback);
+    let u = [1.0, 2.0, -3.0];
+    unit.set_inputs(&u).unwrap();
+    unit.initialize(Time::ZERO).unwrap();
+    let mut y = [0.0; 3];
+    unit.outputs(&mut y).unwrap();
+    assert_eq!(y, u, "y = x0 + u with x0 = 0");
+    // Explicit Euler at 1 ms, ten steps per 10 ms communication step:
+    // x_k = u ((1.001)^k - 1), y_k = u 1.001^k.
+    let h = Time::from_secs(0.01).unwrap();
+    let mut worst = 0.0_f64;
+    let mut slot = DriverSlot::new();
+    let mut after_save = Vec::new();
+    for n in 0..100 {
+        if n == 50 {
+            unit.save(&mut slot).unwrap();
+        }
+        unit.do_step(h * n, h).unwrap();
+        unit.outputs(&mut y).unwrap();
+        if n >= 50 {
+            after_save.push(y);
+        }
+        let growth = 1.001_f64.powi(10 * (n as i32 + 1));
+        for (yi, ui) in y.iter().zip(u) {
+            worst = worst.max((yi - ui * growth).abs() / (ui * growth).abs());
+        }
+    }
+    println!(
+        "StateSpace: 100 steps, worst relative difference to Euler's solution {worst:.2e}; y(1 s) = {y:?} (e u = {:?})",
+        u.map(|v| v * 1f64.exp())
+    );
+    assert!(worst < 1e-12, "{worst:e}");
+    // Rollback through fmi3GetFMUState / fmi3SetFMUState.
+    unit.restore(&slot).unwrap();
+    for (k, n) in (50..100).enumerate() {
+        unit.do_step(h * n, h).unwrap();
+        unit.outputs(&mut y).unwrap();
+        assert_eq!(y, after_save[k], "step {n} after the restore");
+    }
+}
+
+#[test]
+fn the_feedthrough_reference_fmu_passes_its_float64s_and_takes_every_start_type() {
+    let dir = tempfile::tempdir().unwrap();
+    let fmu = build("Feedthrough", dir.path());
+    let starts = r#"
+        Float64_fixed_parameter = 2.5
+        Int32_input = 7
+        Boolean_input = true
+        String_input = "slender"
+    "#;
+    let mut unit = load(&fmu, starts);
+    let d = unit.description();
+    // Float32, the integer widths, Boolean, String, Binary and Enumeration
+    // variables are not ports.
+    assert_eq!(
+        names(&d.inputs),
+        ["Float64_continuous_input", "Float64_discrete_input"]
+    );
+    assert_eq!(
+        names(&d.outputs),
+        ["Float64_continuous_output", "Float64_discrete_output"]
+    );
+    assert_eq!(
+        (&d.outputs[0].depends_on, &d.outputs[1].depends_on),
+        (&vec![0], &vec![1])
+    );
+    unit.set_inputs(&[1.25, -3.5]).unwrap();
+    unit.initialize(Time::ZERO).unwrap();
+    let mut y = [0.0; 2];
+    unit.outputs(&mut y).unwrap();
+    assert_eq!(y, [1.25, -3.5]);
+    let h = Time::from_secs(0.1).unwrap();
+    for n in 0..20 {
+        let x = (n as f64).sin();
+        unit.set_inputs(&[x, 0.5]).unwrap();
+        unit.do_step(h * n, h).unwrap();
+        unit.outputs(&mut y).unwrap();
+        assert_eq!(y[0], x, "step {n}: continuous output follows its input");
+    }
+    // A start value of the wrong type is refused with the variable's name.
+    let params = FmuParams {
+        file: fmu,
+        start: toml::from_str("Int32_input = 1.5").unwrap(),
+        preload: Vec::new(),
+        logging: false,
+    };
+    let error = FmuUnit::load(&params, Path::new("."))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        error.contains("Int32_input") && error.contains("Integer"),
+        "{error}"
+    );
+}
