@@ -1,7 +1,7 @@
 //! One FMU instance: the unit, its variables and its FMI state machine.
 
 use serde::{Deserialize, Serialize};
-use slender_fmi::export::{CONFIG_FILE, ExportConfig, Layout};
+use slender_fmi::export::{CONFIG_FILE, ExportConfig, Layout, VARIABLES_FILE};
 use slender_fmi::ffi::*;
 use slender_fmi::model_description::Value;
 use slender_kinds::exported::ExportedUnit;
@@ -184,6 +184,10 @@ impl Instance {
             ));
         }
         let layout = config.layout().map_err(|e| e.to_string())?;
+        // FMUs exported before the list existed carry none.
+        if let Ok(carried) = std::fs::read_to_string(resources.join(VARIABLES_FILE)) {
+            layout.check_variables(&carried)?;
+        }
         let n_in = layout.unit.inputs.len();
         let inputs = layout
             .unit

@@ -253,3 +253,43 @@ fn an_fmi3_fmu_without_its_platform_binary_says_where_it_looked() {
         "{error}"
     );
 }
+
+#[test]
+fn a_cable_s_fields_end_at_its_end_tensions() {
+    let scene = "examples/truncation_substructured.toml";
+    let config = ExportConfig::from_scene(&load(scene), "p").unwrap();
+    let mut cable = config.driver().unwrap();
+    let fields = cable.unit().fields();
+    let names: Vec<&str> = fields.iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(names, ["x", "z", "tension"]);
+    assert_eq!(fields[0].len, fields[2].len + 1);
+    let start: Vec<f64> = cable
+        .description()
+        .inputs
+        .iter()
+        .map(|p| config.inputs.get(&p.name).copied().unwrap_or(0.0))
+        .collect();
+    assert!(
+        cable.unit().field_values(2, &mut [0.0]).is_err(),
+        "before initialisation"
+    );
+    cable.set_inputs(&start).unwrap();
+    cable.initialize(Time::ZERO).unwrap();
+    let outputs = steps(&mut cable, &start, 0, 40);
+    let index = |name: &str| cable.description().output_index(name).unwrap();
+    let mut tension = vec![0.0; fields[2].len];
+    let mut z = vec![0.0; fields[1].len];
+    cable.unit().field_values(2, &mut tension).unwrap();
+    cable.unit().field_values(1, &mut z).unwrap();
+    let last = &outputs[39];
+    assert_eq!(tension.last().copied(), Some(last[index("top_tension")]));
+    assert_eq!(tension[0], last[index("bottom_tension")]);
+    assert!(
+        z.windows(2).all(|w| w[1] > w[0]),
+        "a hanging line rises to its top"
+    );
+    assert!(
+        cable.unit().field_values(2, &mut z).is_err(),
+        "wrong length refused"
+    );
+}

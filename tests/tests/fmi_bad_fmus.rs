@@ -155,6 +155,37 @@ fn missing_binaries_symbols_resources_and_wrong_guids_give_clear_errors() {
         ],
     );
     expect_error(&at("guid.fmu"), &["fmi2Instantiate failed", "GUID"]);
+
+    // A library that lays the unit out otherwise than the description (built
+    // from other sources than the exporter) is refused at instantiation,
+    // naming the first variable that differs; an FMU without the list (older
+    // exports) still loads.
+    let variables = "resources/slender-variables.txt";
+    let entries = |list: &[u8]| -> Vec<(&str, Vec<u8>)> {
+        vec![
+            ("modelDescription.xml", xml.as_bytes().to_vec()),
+            (so, library.clone()),
+            (res, resources.clone()),
+            (variables, list.to_vec()),
+        ]
+    };
+    let list = b"0 force_in Input Real []\n";
+    let stale: Vec<(&str, Vec<u8>)> = entries(list);
+    let stale: Vec<(&str, &[u8])> = stale.iter().map(|(n, b)| (*n, &b[..])).collect();
+    write_zip(&at("stale_library.fmu"), &stale);
+    expect_error(
+        &at("stale_library.fmu"),
+        &["lays the unit out differently", "`0 force_in Input Real []`", "export again"],
+    );
+    write_zip(
+        &at("no_list.fmu"),
+        &[
+            ("modelDescription.xml", xml.as_bytes()),
+            (so, &library),
+            (res, &resources),
+        ],
+    );
+    assert!(import(&at("no_list.fmu")).is_ok());
 }
 
 #[test]

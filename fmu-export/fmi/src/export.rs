@@ -307,7 +307,9 @@ impl Layout {
 
 mod arrays;
 mod binary;
+mod variables;
 pub use binary::{check_binary, default_binary};
+pub use variables::VARIABLES_FILE;
 
 /// The parameter variables: the scalars of the parameter table, then a Boolean per
 /// effect the kind can switch, numbered from value reference `first`.
@@ -548,7 +550,7 @@ pub fn package_version(
         FmiVersion::Two => model.to_xml(),
         FmiVersion::Three => model.to_xml_fmi3(),
     };
-    let entries: [(String, Vec<u8>); 3] = [
+    let entries: [(String, Vec<u8>); 4] = [
         ("modelDescription.xml".into(), description.into_bytes()),
         (
             format!("{}/{}.so", version.binaries(), config.model_identifier()),
@@ -557,6 +559,10 @@ pub fn package_version(
         (
             format!("resources/{CONFIG_FILE}"),
             config.to_toml()?.into_bytes(),
+        ),
+        (
+            format!("resources/{VARIABLES_FILE}"),
+            layout.variables_text().into_bytes(),
         ),
     ];
     let failed = |e: &dyn std::fmt::Display| file_error(out, format!("writing the FMU: {e}"));

@@ -231,6 +231,37 @@ fn a_non_library_binary_is_not_packaged() {
 }
 
 #[test]
+fn an_fmi3_wrap_into_an_ssp_is_refused_with_the_way_out() {
+    let dir = temp("wrap3");
+    let ssp = dir.join("system.ssp");
+    refused(
+        &slender(&[
+            "fmu",
+            "wrap",
+            "examples/b1_two_masses.toml",
+            "--fmi",
+            "3",
+            "--out",
+            ssp.to_str().unwrap(),
+        ]),
+        &["SSP 1.0 archive holds FMI 2.0 FMUs", "--fmi 2", "--fmi 3"],
+    );
+    assert!(!ssp.exists());
+    refused(
+        &slender(&[
+            "fmu",
+            "wrap",
+            "examples/b1_two_masses.toml",
+            "--fmi",
+            "4",
+            "--out",
+            "x",
+        ]),
+        &["--fmi"],
+    );
+}
+
+#[test]
 fn counts_of_zero_repeated_sweep_values_and_negative_durations_are_refused() {
     refused(
         &slender(&["bench", "examples/b1_two_masses.toml", "--repeats", "0"]),

@@ -16,6 +16,7 @@
 pub mod current;
 pub mod drag;
 pub mod elements;
+mod fields;
 pub mod params;
 pub mod statics;
 
@@ -27,7 +28,7 @@ use dynamics::{CableStep, Dynamics, mat2};
 use crate::contract::StateSlot;
 use crate::contract::Time;
 use crate::contract::{
-    Capabilities, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
+    Capabilities, Field, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
 };
 use crate::contract::{Hold, Inputs, Port, PortKind, require_finite_state};
 use crate::numerics::banded::SymmetricBand;
@@ -336,6 +337,14 @@ fn describe() -> UnitDescription {
 impl Unit for Cable {
     fn description(&self) -> &UnitDescription {
         &self.description
+    }
+
+    fn fields(&self) -> Vec<Field> {
+        self.field_list()
+    }
+
+    fn field_values(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
+        self.write_field(index, out)
     }
 
     /// The top force: the statics are solved under it.
