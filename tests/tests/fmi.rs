@@ -373,7 +373,7 @@ fn the_corpus_parses() {
 
 #[test]
 fn mutated_model_descriptions_give_errors_never_panics() {
-    const TOKENS: [&str; 12] = [
+    const TOKENS: [&str; 16] = [
         "<",
         ">",
         "/>",
@@ -386,6 +386,11 @@ fn mutated_model_descriptions_give_errors_never_panics() {
         "<ScalarVariable>",
         "</ModelVariables>",
         "\u{feff}",
+        // FMI 3.0's arrays and value references.
+        "<Dimension valueReference=\"99\"/>",
+        "<Dimension start=\"18446744073709551615\"/>",
+        "valueReference=\"4294967295\"",
+        "<Float64 name=\"a\" valueReference=\"0\" causality=\"input\" start=\"1 2\">",
     ];
     let mut rng = ChaCha8Rng::seed_from_u64(6);
     let (mut parsed, mut rejected) = (0, 0);

@@ -175,7 +175,11 @@ fn missing_binaries_symbols_resources_and_wrong_guids_give_clear_errors() {
     write_zip(&at("stale_library.fmu"), &stale);
     expect_error(
         &at("stale_library.fmu"),
-        &["lays the unit out differently", "`0 force_in Input Real []`", "export again"],
+        &[
+            "lays the unit out differently",
+            "`0 force_in Input Real []`",
+            "export again",
+        ],
     );
     write_zip(
         &at("no_list.fmu"),

@@ -149,7 +149,8 @@ impl<'a> Parser<'a> {
                 self.path.push(name);
             }
         }
-        if let (Some(md), Some(pending)) = (state.md.as_mut(), state.fmi3.take()) {
+        if let (Some(md), Some(mut pending)) = (state.md.as_mut(), state.fmi3.take()) {
+            pending.last_line = self.line(self.xml.len() as u64);
             pending.resolve(md)?;
         }
         let md = state.md.ok_or_else(|| DescriptionError {

@@ -204,6 +204,12 @@ fn fmi3_errors_name_the_element_and_line() {
     );
     let e = ModelDescription::parse(&bad).unwrap_err().to_string();
     assert!(e.contains("no start value") && e.contains("`u`"), "{e}");
+    let huge = FMI3.replace(
+        r#"<Dimension start="3"/>"#,
+        r#"<Dimension start="18446744073709551615"/>"#,
+    );
+    let e = ModelDescription::parse(&huge).unwrap_err().to_string();
+    assert!(e.contains("`grid`") && e.contains("more than"), "{e}");
     let old = FMI3.replace(r#"fmiVersion="3.0""#, r#"fmiVersion="1.0""#);
     let e = ModelDescription::parse(&old).unwrap_err().to_string();
     assert!(e.contains("FMI 2.0 and 3.0 are supported"), "{e}");

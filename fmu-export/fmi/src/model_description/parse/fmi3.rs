@@ -11,6 +11,10 @@ use super::*;
 /// out of the variables.
 const READ: [&str; 4] = ["Float64", "Int32", "Boolean", "String"];
 
+/// The most values an array may hold (each becomes a port when it is an input
+/// or an output).
+const MAX_VALUES: usize = 1 << 20;
+
 /// The integer types whose start value can size an array.
 const INTEGERS: [&str; 8] = [
     "Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32", "Int64", "UInt64",
@@ -25,6 +29,8 @@ pub(super) struct Pending {
     /// (variable index, dimension index, value reference, line).
     dimensions: Vec<(usize, usize, u32, usize)>,
     unknowns: Vec<Unknown3>,
+    /// The description's last line, for errors found after reading it.
+    pub(super) last_line: usize,
 }
 
 /// A model structure entry as FMI 3.0 writes it: whether an Output (else an
@@ -53,6 +59,21 @@ impl Pending {
                 .and_then(|v| v.dimensions.get_mut(dimension))
             {
                 *d = size;
+            }
+        }
+        for v in &md.variables {
+            let values = v
+                .dimensions
+                .iter()
+                .try_fold(1usize, |n, &d| n.checked_mul(d));
+            if values.is_none_or(|n| n > MAX_VALUES) {
+                return Err(DescriptionError {
+                    line: self.last_line,
+                    message: format!(
+                        "`{}`: an array of {:?} values, more than the {MAX_VALUES} slender takes",
+                        v.name, v.dimensions
+                    ),
+                });
             }
         }
         let index: HashMap<u32, usize> = md
