@@ -182,6 +182,18 @@ pub struct Field {
     pub len: usize,
 }
 
+impl Field {
+    /// A field called `name` of `len` values in `unit`.
+    pub fn new(name: &str, unit: &str, description: &str, len: usize) -> Field {
+        Field {
+            name: name.to_owned(),
+            unit: unit.to_owned(),
+            description: description.to_owned(),
+            len,
+        }
+    }
+}
+
 /// Modes of a structural unit and the node positions (m) they refer to.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModalAnalysis {

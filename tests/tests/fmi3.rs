@@ -56,6 +56,13 @@ fn steps<U: Unit>(
     all
 }
 
+/// The inputs an exported unit starts from: those the scene settled on.
+fn start_inputs<U: Unit>(config: &ExportConfig, unit: &Driver<U>) -> Vec<f64> {
+    let inputs = &unit.description().inputs;
+    let start = |p: &slender_units::Port| config.inputs.get(&p.name).copied();
+    inputs.iter().map(|p| start(p).unwrap_or(0.0)).collect()
+}
+
 fn column(unit: &Driver<FmuUnit>, name: &str) -> usize {
     unit.description()
         .output_index(name)
@@ -126,12 +133,7 @@ fn an_fmi3_section_steps_as_its_fmi2_twin_and_gives_its_fields_as_arrays() {
     check_ports(&two, &three, nodes);
     let scalars = two.description().outputs.len();
 
-    let start: Vec<f64> = native
-        .description()
-        .inputs
-        .iter()
-        .map(|p| config.inputs.get(&p.name).copied().unwrap_or(0.0))
-        .collect();
+    let start = start_inputs(&config, &native);
     for p in 0..start.len() {
         native.set_hold(p, Hold::ZeroOrder).unwrap();
     }
@@ -263,12 +265,7 @@ fn a_cable_s_fields_end_at_its_end_tensions() {
     let names: Vec<&str> = fields.iter().map(|f| f.name.as_str()).collect();
     assert_eq!(names, ["x", "z", "tension"]);
     assert_eq!(fields[0].len, fields[2].len + 1);
-    let start: Vec<f64> = cable
-        .description()
-        .inputs
-        .iter()
-        .map(|p| config.inputs.get(&p.name).copied().unwrap_or(0.0))
-        .collect();
+    let start = start_inputs(&config, &cable);
     assert!(
         cable.unit().field_values(2, &mut [0.0]).is_err(),
         "before initialisation"

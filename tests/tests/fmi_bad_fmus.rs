@@ -155,7 +155,15 @@ fn missing_binaries_symbols_resources_and_wrong_guids_give_clear_errors() {
         ],
     );
     expect_error(&at("guid.fmu"), &["fmi2Instantiate failed", "GUID"]);
+}
 
+#[test]
+fn a_library_that_lays_the_unit_out_otherwise_is_refused() {
+    let dir = temp();
+    let (xml, library, resources) = parts(dir.path());
+    let at = |name: &str| dir.path().join(name);
+    let so = "binaries/linux64/slender_left.so";
+    let res = "resources/slender-unit.toml";
     // A library that lays the unit out otherwise than the description (built
     // from other sources than the exporter) is refused at instantiation,
     // naming the first variable that differs; an FMU without the list (older

@@ -9,12 +9,7 @@ impl Cable {
     /// Node x and z (m, bottom first) and each element's tension (N).
     pub(super) fn field_list(&self) -> Vec<Field> {
         let elements = self.element_count();
-        let field = |name: &str, unit: &str, description: &str, len: usize| Field {
-            name: name.to_owned(),
-            unit: unit.to_owned(),
-            description: description.to_owned(),
-            len,
-        };
+        let field = Field::new;
         vec![
             field(
                 "x",

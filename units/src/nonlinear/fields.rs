@@ -15,12 +15,7 @@ impl NonlinearSection {
     /// each element (N, tension positive).
     pub(super) fn field_list(&self) -> Vec<Field> {
         let nodes = self.model.reference.len();
-        let field = |name: &str, unit: &str, description: &str, len: usize| Field {
-            name: name.to_owned(),
-            unit: unit.to_owned(),
-            description: description.to_owned(),
-            len,
-        };
+        let field = Field::new;
         vec![
             field(
                 "x",

@@ -63,6 +63,26 @@ impl Attributes {
         }
     }
 
+    /// A whitespace-separated list of numbers (`None` when the attribute is
+    /// absent, which a model structure reads differently from an empty list).
+    fn list<T: std::str::FromStr>(
+        &self,
+        name: &str,
+        expected: &str,
+    ) -> Result<Option<Vec<T>>, DescriptionError> {
+        let Some(list) = self.optional(name) else {
+            return Ok(None);
+        };
+        let item = |d: &str| {
+            d.parse()
+                .map_err(|_| self.error(format!("{name}: `{d}` is not {expected}")))
+        };
+        list.split_whitespace()
+            .map(item)
+            .collect::<Result<_, _>>()
+            .map(Some)
+    }
+
     fn flag(&self, name: &str) -> Result<bool, DescriptionError> {
         match self.optional(name) {
             None | Some("false") | Some("0") => Ok(false),
@@ -322,18 +342,7 @@ impl<'a> Parser<'a> {
         let index = attrs
             .parsed("index", "a 1-based variable index")?
             .ok_or_else(|| attrs.error("missing required attribute `index`".into()))?;
-        let dependencies = match attrs.optional("dependencies") {
-            None => None,
-            Some(list) => Some(
-                list.split_whitespace()
-                    .map(|d| {
-                        d.parse().map_err(|_| {
-                            attrs.error(format!("dependencies: `{d}` is not a variable index"))
-                        })
-                    })
-                    .collect::<Result<Vec<usize>, _>>()?,
-            ),
-        };
+        let dependencies = attrs.list("dependencies", "a variable index")?;
         Ok(Unknown {
             index,
             dependencies,

@@ -213,18 +213,7 @@ impl Parser<'_> {
         let vr = attrs
             .parsed("valueReference", "a value reference")?
             .ok_or_else(|| attrs.error("missing required attribute `valueReference`".into()))?;
-        let dependencies = match attrs.optional("dependencies") {
-            None => None,
-            Some(list) => Some(
-                list.split_whitespace()
-                    .map(|d| {
-                        d.parse().map_err(|_| {
-                            attrs.error(format!("dependencies: `{d}` is not a value reference"))
-                        })
-                    })
-                    .collect::<Result<Vec<u32>, _>>()?,
-            ),
-        };
+        let dependencies = attrs.list("dependencies", "a value reference")?;
         Ok((output, vr, dependencies, attrs.line))
     }
 }
