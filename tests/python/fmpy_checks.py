@@ -4,8 +4,9 @@
     fmpy_checks.py simulate FMU CSV STOP STEP [NAME=VALUE...]
     fmpy_checks.py state FMU                  FMU state save/restore/serialise round trips
                                               (FMI 2.0 or 3.0)
-    fmpy_checks.py arrays FMU STOP STEP       a section's FMI 3.0 array outputs (x, z,
-                                              tension) against its end and extreme outputs
+    fmpy_checks.py arrays FMU STOP STEP       a section's (nonlinear or cable) FMI 3.0 array
+                                              outputs (x, z, tension) against its end and
+                                              extreme outputs
     fmpy_checks.py derivatives FMU ROWS       fmi2GetDirectionalDerivative against central
                                               differences of fmi2DoStep for the outputs
                                               named in ROWS (comma-separated)
@@ -210,17 +211,23 @@ def derivatives(path, rows):
 
 def arrays(path, stop, step):
     """Simulates a section's FMI 3.0 FMU in FMPy and checks at every output
-    point that its node arrays end at its end positions and that the largest
-    element tension is its max_tension output, bit for bit."""
+    point, bit for bit, that a nonlinear section's node arrays end at its end
+    positions and its largest element tension is its max_tension output, or
+    that a cable's first and last element tensions are its end tensions."""
     result = simulate_fmu(path, stop_time=float(stop), output_interval=float(step))
+    cable = "top_tension" in result.dtype.names
     failures = 0
     for row in result:
         x, z, tension = row["x"], row["z"], row["tension"]
-        checks = [
-            (x[0], row["start_position_x"]), (x[-1], row["end_position_x"]),
-            (z[0], row["start_position_z"]), (z[-1], row["end_position_z"]),
-            (max(tension), row["max_tension"]),
-        ]
+        if cable:
+            # Bottom first; the end tensions are the first and last elements'.
+            checks = [(tension[0], row["bottom_tension"]), (tension[-1], row["top_tension"])]
+        else:
+            checks = [
+                (x[0], row["start_position_x"]), (x[-1], row["end_position_x"]),
+                (z[0], row["start_position_z"]), (z[-1], row["end_position_z"]),
+                (max(tension), row["max_tension"]),
+            ]
         failures += sum(1 for a, b in checks if a != b)
     print(f"{path}: {len(result)} output points, {len(result[0]['x'])} nodes, "
           f"{len(result[0]['tension'])} elements, {failures} disagreements")
