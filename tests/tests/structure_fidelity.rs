@@ -327,3 +327,97 @@ fn a_quantity_at_round_off_is_judged_against_its_kinds_scale() {
         slender_app::fidelity::report::conclusion(&report)
     );
 }
+
+/// The layout `slender fidelity` reads (issue 26: names, kinds and outputs
+/// written once, in the scene crate) names the units the expansion writes
+/// and outputs they have: the S-lay's touchdown section at each fidelity that
+/// lies on the seabed (nonlinear, linear, static) beside each suspended one,
+/// and the mooring line's lower section as each fidelity, every output the
+/// layout names recorded over a few steps. A `linear` section reports its
+/// touchdown point as a `nonlinear` one does (the study used to leave it out
+/// and judge the touchdown 100 % off).
+#[test]
+fn the_layout_names_the_units_and_outputs_the_expansion_writes() {
+    for (touchdown, suspended) in [
+        ("nonlinear", "beam"),
+        ("linear", "span"),
+        ("static", "nonlinear"),
+        ("linear", "reduced"),
+    ] {
+        let (layout, series) = layout_run("structure_slay_fidelity.toml", &[touchdown, suspended]);
+        let lying = &layout.sections[0];
+        assert_eq!(lying.choice, touchdown);
+        assert_eq!(lying.outputs.stations, touchdown != "static");
+        // The touchdown point lies inside the lying section (m of arc).
+        let output = lying.outputs.touchdown.as_ref().expect(touchdown);
+        let arc = series.last(&format!("{}.{output}", lying.unit));
+        println!(
+            "{touchdown}/{suspended}: touchdown at {arc:.2} m of {:.2} m",
+            lying.to
+        );
+        assert!(arc > 0.0 && arc < lying.to, "{touchdown}: {arc}");
+    }
+    for lower in ["cable", "static", "linear", "reduced"] {
+        let (layout, _) = layout_run("structure_mooring.toml", &[lower]);
+        // Without a seabed no section reports a touchdown point.
+        assert!(
+            layout
+                .sections
+                .iter()
+                .all(|s| s.outputs.touchdown.is_none())
+        );
+        assert_eq!(
+            layout.sections[0].outputs.end_force.is_none(),
+            lower == "cable"
+        );
+    }
+}
+
+/// The example `example`'s layout with its first sections at `choices`, and a
+/// run of a few steps recording every output the layout names (each checked
+/// finite).
+fn layout_run(
+    example: &str,
+    choices: &[&str],
+) -> (slender_scene::structure::Layout, slender_tests::Series) {
+    use slender_scene::structure::{layout, write_choice};
+    let path = root().join("examples").join(example);
+    let mut table: toml::Table = std::fs::read_to_string(&path).unwrap().parse().unwrap();
+    table["simulation"]["duration"] = Value::Float(0.25);
+    let sections = table["structure"]["sections"].as_array_mut().unwrap();
+    for (section, word) in sections.iter_mut().zip(choices) {
+        write_choice(section.as_table_mut().unwrap(), word, None, None).unwrap();
+    }
+    let layout = layout(&table).unwrap().unwrap();
+    let mut signals = Vec::new();
+    for s in &layout.sections {
+        let o = &s.outputs;
+        let mut names: Vec<&String> = o.start_force.iter().collect();
+        names.extend(o.end_force.iter().flatten());
+        names.extend(
+            [&o.touchdown, &o.sagbend_moment, &o.overbend_moment]
+                .into_iter()
+                .flatten(),
+        );
+        signals.extend(
+            names
+                .into_iter()
+                .map(|n| Value::String(format!("{}.{n}", s.unit))),
+        );
+    }
+    let mut output = toml::Table::new();
+    output.insert("signals".into(), Value::Array(signals.clone()));
+    table.insert("output".into(), Value::Table(output));
+    let what = format!("{example} {choices:?}");
+    let scene = Scene::parse(&path, toml::to_string(&table).unwrap())
+        .unwrap_or_else(|e| panic!("{what}: {e}"));
+    let series = run(&scene);
+    assert!(series.error.is_none(), "{what}: {:?}", series.error);
+    for signal in signals.iter().filter_map(Value::as_str) {
+        assert!(
+            series.get(signal).iter().all(|v| v.is_finite()),
+            "{what}: {signal}"
+        );
+    }
+    (layout, series)
+}

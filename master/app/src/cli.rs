@@ -247,7 +247,7 @@ pub enum Command {
     Fidelity {
         scene: PathBuf,
         /// NAME=CHOICE,CHOICE,...: a section and its fidelities (nonlinear,
-        /// cable, static, reduced, beam, span), each optionally with an element
+        /// linear, cable, static, reduced, beam, span), each optionally with an element
         /// count (for reduced: its modes; for span: the order of its fit) and
         /// sub-steps per coupling step after a slash, e.g.
         /// lower=nonlinear,cable,nonlinear:16,reduced:4,nonlinear:16/4 or

@@ -13,13 +13,13 @@ pub mod quantities;
 pub mod report;
 mod rows;
 mod run;
-mod written;
 
 pub use choice::{Choice, SectionChoices};
 
 use crate::study::Design;
 use quantities::{Features, SectionUnit};
 use serde::Serialize;
+use slender_scene::structure::{Layout, SectionLayout};
 use std::path::Path;
 use toml::{Table, Value};
 
@@ -96,11 +96,10 @@ pub struct FidelityReport {
 /// reference.
 type Task = Option<Vec<(String, Choice)>>;
 
-/// The structure as the study sees it.
+/// The structure as the study sees it: its sections as the scene writes them
+/// (the expansion's layout) and what its model has.
 struct Structure {
-    name: String,
-    /// Section names in order, with their arc-length starts (m).
-    sections: Vec<(String, f64)>,
+    layout: Layout,
     features: Features,
 }
 
@@ -155,7 +154,7 @@ pub fn run_fidelity_kept(
     within_bound(plan)?;
     let mut tasks: Vec<Task> = vec![None];
     tasks.extend(
-        combinations(plan, &own_choices(&table))
+        combinations(plan, &own_choices(&structure.layout))
             .into_iter()
             .map(Some),
     );
@@ -179,7 +178,6 @@ pub fn run_fidelity_kept(
     let (scales, floors) = floors::floors(&names, &outcomes[0]);
     let rows = rows::rows_of(
         &structure,
-        &table,
         (&tasks, &outcomes),
         (&names, &scales),
         (plan.tolerance, &judged),
@@ -236,8 +234,9 @@ fn sections_asked(plan: &FidelityPlan, structure: &Structure) -> Result<(), Stri
                 s.section
             ));
         }
-        if !structure.sections.iter().any(|(n, _)| *n == s.section) {
-            let names: Vec<&str> = structure.sections.iter().map(|(n, _)| n.as_str()).collect();
+        let sections = &structure.layout.sections;
+        if !sections.iter().any(|section| section.name == s.section) {
+            let names: Vec<&str> = sections.iter().map(|s| s.name.as_str()).collect();
             return Err(format!(
                 "--section {}: the structure has no section `{}`; its sections are {}",
                 s.section,
@@ -249,68 +248,32 @@ fn sections_asked(plan: &FidelityPlan, structure: &Structure) -> Result<(), Stri
     Ok(())
 }
 
-/// The scene's `[structure]`: name, sections and what its model has.
+/// The scene's `[structure]`: its layout and what its model has.
 fn structure_of(table: &Table) -> Result<Structure, String> {
-    let s = table
-        .get("structure")
-        .and_then(Value::as_table)
+    let layout = slender_scene::structure::layout(table)?
         .ok_or("a fidelity study needs a scene with a `[structure]`")?;
-    let name = s
-        .get("name")
-        .and_then(Value::as_str)
-        .ok_or("`structure.name`: expected a name")?
-        .to_owned();
-    let model = s.get("model").and_then(Value::as_table);
-    let mut features = Features {
-        seabed: model.is_some_and(|m| m.contains_key("contact")),
-        stinger: model.is_some_and(|m| m.contains_key("stinger")),
-        cuts: Vec::new(),
+    let features = Features {
+        seabed: layout.seabed,
+        stinger: layout.stinger,
+        cuts: (layout.sections.windows(2))
+            .map(|w| format!("cut_{}_{}", w[0].name, w[1].name))
+            .collect(),
     };
-    let mut sections = Vec::new();
-    let mut from = 0.0;
-    for t in s
-        .get("sections")
-        .and_then(Value::as_array)
-        .into_iter()
-        .flatten()
-        .filter_map(Value::as_table)
-    {
-        let name = t.get("name").and_then(Value::as_str).unwrap_or_default();
-        sections.push((name.to_owned(), from));
-        from = t
-            .get("to")
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-            .unwrap_or(f64::NAN);
-    }
-    features.cuts = sections
-        .windows(2)
-        .map(|w| format!("cut_{}_{}", w[0].0, w[1].0))
-        .collect();
-    Ok(Structure {
-        name,
-        sections,
-        features,
-    })
+    Ok(Structure { layout, features })
 }
 
 /// Each section's choice as the scene writes it, where it is a plain one (a
-/// fidelity word, no `elements` or `substeps`): (section, choice).
-fn own_choices(table: &Table) -> Vec<(String, Choice)> {
-    let sections = (table.get("structure"))
-        .and_then(|s| s.get("sections"))
-        .and_then(Value::as_array);
-    (sections.into_iter().flatten())
-        .filter_map(Value::as_table)
-        .filter(|t| !t.contains_key("elements") && !t.contains_key("substeps"))
-        .filter(|t| !matches!(t.get("fidelity"), Some(Value::Table(_))))
-        .filter_map(|t| {
-            let name = t.get("name")?.as_str()?.to_owned();
+/// fidelity word, no count, sub-steps or options): (section, choice).
+fn own_choices(layout: &Layout) -> Vec<(String, Choice)> {
+    (layout.sections.iter())
+        .filter(|s| s.plain)
+        .map(|s| {
             let choice = Choice {
-                fidelity: written::written_kind(t).to_owned(),
+                fidelity: s.choice.clone(),
                 elements: None,
                 substeps: None,
             };
-            Some((name, choice))
+            (s.name.clone(), choice)
         })
         .collect()
 }
@@ -372,7 +335,7 @@ fn order_of(tasks: &[Task]) -> Vec<usize> {
 
 /// The scene of one run: the combination's choices on the sections, or (for
 /// the reference, `None`) the whole structure as one section; and its sections'
-/// units.
+/// units, as the run's layout names them.
 fn run_table(
     table: &Table,
     structure: &Structure,
@@ -391,14 +354,11 @@ fn run_table(
         let mut whole = Table::new();
         whole.insert("name".into(), Value::String("monolithic".into()));
         *sections = vec![Value::Table(whole)];
-        let first = add_cut_stations(s, structure)?;
-        let units = vec![SectionUnit {
-            unit: format!("{}_monolithic", structure.name),
-            kind: "nonlinear".into(),
-            from: 0.0,
-            cut_stations: Some(first),
-            end_stations: [None, None],
-        }];
+        let first = add_cut_stations(s, &structure.layout)?;
+        let mut units = run_sections(&table)?;
+        if let [whole] = units.as_mut_slice() {
+            whole.cut_stations = Some(first);
+        }
         return finish(table, units, &structure.features);
     };
     for (name, choice) in combination {
@@ -407,61 +367,37 @@ fn run_table(
             .filter_map(Value::as_table_mut)
             .find(|t| t.get("name").and_then(Value::as_str) == Some(name))
             .ok_or(format!("no section `{name}`"))?;
-        section.insert("fidelity".into(), Value::String(choice.fidelity.clone()));
-        match (choice.fidelity.as_str(), choice.elements) {
-            // Their number is the basis's modes or the fit's order.
-            (kind @ ("reduced" | "span"), Some(n)) => {
-                let mut fidelity = Table::new();
-                fidelity.insert("kind".into(), Value::String(kind.into()));
-                let key = if kind == "reduced" { "modes" } else { "order" };
-                fidelity.insert(key.into(), Value::Integer(n as i64));
-                section.insert("fidelity".into(), Value::Table(fidelity));
-                section.remove("elements")
-            }
-            (_, Some(n)) => section.insert("elements".into(), Value::Integer(n as i64)),
-            (_, None) => section.remove("elements"),
-        };
-        match choice.substeps {
-            Some(n) => section.insert("substeps".into(), Value::Integer(i64::from(n))),
-            None => section.remove("substeps"),
-        };
+        slender_scene::structure::write_choice(
+            section,
+            &choice.fidelity,
+            choice.elements,
+            choice.substeps,
+        )?;
     }
-    let kinds: Vec<String> = sections
-        .iter()
-        .filter_map(Value::as_table)
-        .map(|t| written::written_kind(t).to_owned())
-        .collect();
-    let end_stations = add_end_stations(s, structure, &kinds)?;
-    let sections = s
-        .get("sections")
-        .and_then(Value::as_array)
-        .ok_or("`structure.sections`: expected a list")?;
-    let units = sections
-        .iter()
-        .filter_map(Value::as_table)
-        .zip(&structure.sections)
-        .zip(end_stations)
-        .map(|((t, (name, from)), end_stations)| SectionUnit {
-            unit: format!("{}_{name}", structure.name),
-            kind: section_kind(t).to_owned(),
-            from: *from,
-            cut_stations: None,
-            end_stations,
-        })
-        .collect();
+    let mut units = run_sections(&table)?;
+    let end_stations = add_end_stations(&mut table, &units)?;
+    for (unit, ends) in units.iter_mut().zip(end_stations) {
+        unit.end_stations = ends;
+    }
     finish(table, units, &structure.features)
 }
 
-/// A section's kind as the study reads its outputs: an FMU section has the
-/// ports of the fidelity it names.
-fn section_kind(t: &Table) -> &str {
-    match written::written_kind(t) {
-        "fmu" => t
-            .get("fidelity")
-            .and_then(|f| f.get("ports"))
-            .and_then(Value::as_str)
-            .unwrap_or("nonlinear"),
-        kind => kind,
+/// The sections' units of a run's scene, from its layout.
+fn run_sections(table: &Table) -> Result<Vec<SectionUnit>, String> {
+    let layout = slender_scene::structure::layout(table)?.ok_or("no `[structure]`")?;
+    Ok(layout.sections.into_iter().map(SectionUnit::new).collect())
+}
+
+impl SectionUnit {
+    /// A section of a run, before its stations are placed.
+    fn new(section: SectionLayout) -> SectionUnit {
+        SectionUnit {
+            unit: section.unit,
+            from: section.from,
+            outputs: section.outputs,
+            cut_stations: None,
+            end_stations: [None, None],
+        }
     }
 }
 
@@ -478,31 +414,34 @@ fn model_stations(structure_table: &mut Table) -> Result<&mut Vec<Value>, String
 }
 
 /// Puts stations in the elements on both sides of every cut between two
-/// `nonlinear` sections (not FMUs: their outputs are fixed), just below the
+/// sections that take stations (native `nonlinear` units), just below the
 /// cut in the lower section and at the cut in the upper one (a section holds
 /// the model's stations in [from, to), numbered from 1 in the model's order);
 /// returns each section's numbers of its first- and last-element stations.
 fn add_end_stations(
-    structure_table: &mut Table,
-    structure: &Structure,
-    kinds: &[String],
+    table: &mut Table,
+    sections: &[SectionUnit],
 ) -> Result<Vec<[Option<usize>; 2]>, String> {
-    let n = structure.sections.len();
+    let n = sections.len();
     let mut ends = vec![[None, None]; n];
+    let structure_table = table
+        .get_mut("structure")
+        .and_then(Value::as_table_mut)
+        .ok_or("no `[structure]`")?;
     let stations = model_stations(structure_table)?;
     let arc = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
     let mut count = vec![0usize; n];
-    let section_of = |s: f64| structure.sections.iter().rposition(|(_, from)| *from <= s);
+    let section_of = |s: f64| sections.iter().rposition(|section| section.from <= s);
     for s in stations.iter().filter_map(arc) {
         if let Some(k) = section_of(s) {
             count[k] += 1;
         }
     }
     for k in 0..n.saturating_sub(1) {
-        if kinds[k] != "nonlinear" || kinds[k + 1] != "nonlinear" {
+        if !sections[k].outputs.stations || !sections[k + 1].outputs.stations {
             continue;
         }
-        let cut = structure.sections[k + 1].1;
+        let cut = sections[k + 1].from;
         // Inside the lower section's last element, clear of round-off.
         stations.push(Value::Float(cut - 1e-6 * cut.abs().max(1.0)));
         count[k] += 1;
@@ -516,16 +455,10 @@ fn add_end_stations(
 
 /// Puts a station at each cut on the whole structure's model (the reference),
 /// after the model's own; returns the number of the first.
-fn add_cut_stations(structure_table: &mut Table, structure: &Structure) -> Result<usize, String> {
+fn add_cut_stations(structure_table: &mut Table, layout: &Layout) -> Result<usize, String> {
     let stations = model_stations(structure_table)?;
     let first = stations.len() + 1;
-    stations.extend(
-        structure
-            .sections
-            .iter()
-            .skip(1)
-            .map(|(_, from)| Value::Float(*from)),
-    );
+    stations.extend((layout.sections.iter().skip(1)).map(|section| Value::Float(section.from)));
     Ok(first)
 }
 

@@ -10,18 +10,20 @@
 //! reference are measured the same way.
 
 use crate::record::Recorder;
+use slender_scene::structure::SectionOutputs;
 
-/// One section of a run: its unit, its kind and where it starts (m of arc).
+/// One section of a run: its unit, where it starts (m of arc) and which of
+/// its outputs the quantities read.
 #[derive(Clone, Debug)]
 pub struct SectionUnit {
     pub unit: String,
-    pub kind: String,
     pub from: f64,
+    pub outputs: SectionOutputs,
     /// The whole structure as one unit (the reference): the number of its
     /// first station at a cut (the cuts' stations follow in order).
     pub cut_stations: Option<usize>,
-    /// A `nonlinear` section: the numbers of its stations in its first and in
-    /// its last element, at its cuts.
+    /// A section that takes stations: the numbers of its stations in its
+    /// first and in its last element, at its cuts.
     pub end_stations: [Option<usize>; 2],
 }
 
@@ -66,10 +68,10 @@ impl CutReading {
 
 /// The force at cut `k` (between sections k and k + 1): in the reference its
 /// station there (the mean of the two elements at the node); where both sides
-/// are `nonlinear`, the mean of their elements' forces at the cut, the same
+/// take stations, the mean of their elements' forces at the cut, the same
 /// measure; else the lower section's end force (the upper section's start
-/// force where the lower one is a cable or a chord section, whose end takes its
-/// force as an input).
+/// force where the lower one's end takes its force as an input: a cable, a
+/// chord section).
 fn cut_reading(sections: &[SectionUnit], k: usize) -> CutReading {
     if let [whole] = sections
         && let Some(first) = whole.cut_stations
@@ -83,29 +85,23 @@ fn cut_reading(sections: &[SectionUnit], k: usize) -> CutReading {
             format!("{}.force_{b}", upper.unit),
         ]);
     }
-    let (section, top) = match lower.kind.as_str() {
-        "beam" | "span" | "cable" => (upper, false),
-        _ => (lower, true),
-    };
-    CutReading::Components(end_force(section, top).map(|(_, p)| p).to_vec())
+    let force = end_force(lower, true).or_else(|| end_force(upper, false));
+    CutReading::Components(force.map_or(Vec::new(), |f| f.to_vec()))
 }
 
 /// The outputs to record for the quantities of `sections`.
 pub fn signals(sections: &[SectionUnit], features: &Features) -> Vec<String> {
     let mut signals = Vec::new();
     if let Some(last) = sections.last() {
-        signals.extend(end_force(last, true).map(|(_, p)| p));
+        signals.extend(end_force(last, true).into_iter().flatten());
     }
     if let Some(first) = sections.first() {
-        signals.extend(end_force(first, false).map(|(_, p)| p));
+        signals.extend(end_force(first, false).into_iter().flatten());
     }
-    for s in sections.iter().filter(|s| touches(s)) {
-        if features.seabed {
-            signals.push(touchdown_signal(s));
-            signals.push(format!("{}.sagbend_moment", s.unit));
-        }
-        if features.stinger && s.kind == "nonlinear" {
-            signals.push(format!("{}.overbend_moment", s.unit));
+    for s in sections {
+        let o = &s.outputs;
+        for output in [&o.touchdown, &o.sagbend_moment, &o.overbend_moment] {
+            signals.extend(output.as_ref().map(|output| format!("{}.{output}", s.unit)));
         }
     }
     for k in 0..features.cuts.len() {
@@ -114,37 +110,21 @@ pub fn signals(sections: &[SectionUnit], features: &Features) -> Vec<String> {
     signals
 }
 
-/// A section's touchdown point (m of arc from its start): where the seabed
-/// gap crosses zero, interpolated between the nodes (a `nonlinear` section's
-/// `touchdown_arc`, a `static` one's estimate `touchdown`), not the first
-/// node on the seabed, which jumps by whole elements.
-fn touchdown_signal(section: &SectionUnit) -> String {
-    match section.kind.as_str() {
-        "nonlinear" => format!("{}.touchdown_arc", section.unit),
-        _ => format!("{}.touchdown", section.unit),
-    }
+/// A section's signal of one of its outputs, where it has it.
+fn signal_of(section: &SectionUnit, output: &Option<String>) -> Option<String> {
+    (output.as_ref()).map(|output| format!("{}.{output}", section.unit))
 }
 
-/// Whether a section reports the touchdown point and the sag-bend moment: a
-/// `nonlinear` one, and a `static` one through its static touchdown estimate.
-fn touches(section: &SectionUnit) -> bool {
-    matches!(section.kind.as_str(), "nonlinear" | "static")
-}
-
-/// The two force components at a section's end (`top`) or start, by kind.
-fn end_force(section: &SectionUnit, top: bool) -> [(usize, String); 2] {
-    let side = match (section.kind.as_str(), top) {
-        ("cable", true) => "top",
-        ("cable", false) => "bottom",
-        (_, true) => "end",
-        (_, false) => "start",
+/// The two force components (x, z) at a section's end (`top`) or start;
+/// none where that force is the section's input.
+fn end_force(section: &SectionUnit, top: bool) -> Option<[String; 2]> {
+    let o = &section.outputs;
+    let ports = if top {
+        o.end_force.as_ref()
+    } else {
+        Some(&o.start_force)
     };
-    [0, 1].map(|k| {
-        (
-            k,
-            format!("{}.{side}_force_{}", section.unit, ["x", "z"][k]),
-        )
-    })
+    ports.map(|ports| ports.clone().map(|p| format!("{}.{p}", section.unit)))
 }
 
 /// The quantity `name`'s time series from a run's recording; the error names a
@@ -162,35 +142,35 @@ pub fn series(
     };
     let magnitude = |section: Option<&SectionUnit>, top: bool| -> Result<Vec<f64>, String> {
         let section = section.ok_or("a structure without sections")?;
-        let [(_, x), (_, z)] = end_force(section, top);
+        let [x, z] = end_force(section, top)
+            .ok_or(format!("`{}`'s force there is its input", section.unit))?;
         let (x, z) = (column(&x)?, column(&z)?);
         Ok(x.iter().zip(z).map(|(x, z)| x.hypot(*z)).collect())
     };
-    let bending: Vec<&SectionUnit> = sections.iter().filter(|s| touches(s)).collect();
-    let largest = |output: &str| -> Result<Vec<f64>, String> {
+    // The largest magnitude over the sections that report an output.
+    let largest = |output: fn(&SectionOutputs) -> &Option<String>| {
         let mut out = vec![0.0f64; recorder.time.len()];
-        let overbend = output == "overbend_moment";
-        for s in bending
+        for signal in sections
             .iter()
-            .filter(|s| !overbend || s.kind == "nonlinear")
+            .filter_map(|s| signal_of(s, output(&s.outputs)))
         {
-            for (o, v) in out.iter_mut().zip(column(&format!("{}.{output}", s.unit))?) {
+            for (o, v) in out.iter_mut().zip(column(&signal)?) {
                 *o = o.max(v.abs());
             }
         }
-        Ok(out)
+        Ok::<_, String>(out)
     };
     match name {
         "top_force" => magnitude(sections.last(), true),
         "start_force" => magnitude(sections.first(), false),
-        "sagbend_moment" | "overbend_moment" => largest(name),
+        "sagbend_moment" => largest(|o| &o.sagbend_moment),
+        "overbend_moment" => largest(|o| &o.overbend_moment),
         "touchdown" => {
             // The highest section in contact gives the touchdown point: its own
             // arc length from its start, plus where it starts.
-            let columns: Vec<(f64, &[f64])> = bending
-                .iter()
-                .rev()
-                .map(|s| Ok((s.from, column(&touchdown_signal(s))?)))
+            let columns: Vec<(f64, &[f64])> = (sections.iter().rev())
+                .filter_map(|s| Some((s.from, signal_of(s, &s.outputs.touchdown)?)))
+                .map(|(from, signal)| Ok((from, column(&signal)?)))
                 .collect::<Result<_, String>>()?;
             Ok((0..recorder.time.len())
                 .map(|k| {

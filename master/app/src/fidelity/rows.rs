@@ -2,15 +2,13 @@
 //! reference, the worst over the judged quantities, the speed-up, the Pareto
 //! front and the tolerance; and each row's combination as labels.
 
-use super::{Choice, FidelityRow, Outcome, Structure, Task, written};
+use super::{Choice, FidelityRow, Outcome, Structure, Task};
 use crate::indicators::{indicator, interpolate, normalized_error};
-use toml::{Table, Value};
 
 /// The report's rows: errors against the reference (task 0), speed-ups, the
 /// Pareto front and the tolerance.
 pub(super) fn rows_of(
     structure: &Structure,
-    table: &Table,
     (tasks, outcomes): (&[Task], &[Outcome]),
     (names, scales): (&[&str], &[Option<f64>]),
     (tolerance, judged): (f64, &[String]),
@@ -41,7 +39,7 @@ pub(super) fn rows_of(
                 }
             });
             FidelityRow {
-                combination: combination_of(structure, table, task.as_deref()),
+                combination: combination_of(structure, task.as_deref()),
                 reference: task.is_none(),
                 worst_error: worst,
                 errors,
@@ -103,31 +101,19 @@ fn epsilon(o: &Outcome, reference: &Outcome, i: usize, scale: Option<f64>) -> f6
 /// Every section's choice in a run: the combination's, else the scene's.
 fn combination_of(
     structure: &Structure,
-    table: &Table,
     combination: Option<&[(String, Choice)]>,
 ) -> Vec<(String, String)> {
     let Some(combination) = combination else {
         return vec![("monolithic".into(), "nonlinear".into())];
     };
-    let written: Vec<&Table> = table
-        .get("structure")
-        .and_then(|s| s.get("sections"))
-        .and_then(Value::as_array)
-        .into_iter()
-        .flatten()
-        .filter_map(Value::as_table)
-        .collect();
-    structure
-        .sections
-        .iter()
-        .zip(written)
-        .map(|((name, _), t)| {
+    (structure.layout.sections.iter())
+        .map(|section| {
             let chosen = combination
                 .iter()
-                .find(|(s, _)| s == name)
+                .find(|(s, _)| *s == section.name)
                 .map(|(_, c)| c.label());
-            let label = chosen.unwrap_or_else(|| written::scene_choice(t));
-            (name.clone(), label)
+            let label = chosen.unwrap_or_else(|| section.choice.clone());
+            (section.name.clone(), label)
         })
         .collect()
 }

@@ -22,6 +22,7 @@ fn one_section_at_a_time_runs_the_scene_as_written_once() {
     let table: Table = r#"
 [structure]
 name = "line"
+model = { segments = [{ length = 30.0, elements = 6 }] }
 [[structure.sections]]
 name = "lower"
 to = 10.0
@@ -40,7 +41,8 @@ name = "upper"
         "middle=nonlinear",
         "upper=nonlinear,nonlinear:8",
     ]);
-    let labels: Vec<String> = combinations(&plan, &own_choices(&table))
+    let layout = slender_scene::structure::layout(&table).unwrap().unwrap();
+    let labels: Vec<String> = combinations(&plan, &own_choices(&layout))
         .iter()
         .map(|run| format!("{}={}", run[0].0, run[0].1.label()))
         .collect();

@@ -154,7 +154,7 @@ pub fn cable_unit(
         p.insert("current".into(), cable_current(current, water.seabed)?);
     }
     Ok(unit_table(
-        format!("{name}_{}", cut.name),
+        super::unit_name(name, &cut.name),
         effects(&p, current.is_some()),
         p,
     ))

@@ -179,7 +179,7 @@ pub(super) fn chord_unit(
     let mut unit = Table::new();
     unit.insert(
         "name".into(),
-        Value::String(format!("{structure}_{}", cut.name)),
+        Value::String(super::unit_name(structure, &cut.name)),
     );
     unit.insert("kind".into(), Value::String("chord".into()));
     unit.insert("parameters".into(), Value::Table(p));

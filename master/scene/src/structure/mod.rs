@@ -22,6 +22,7 @@ mod cable;
 mod chord;
 mod cuts;
 mod hang_off;
+mod layout;
 mod load;
 mod nonlinear;
 mod reduced;
@@ -30,6 +31,9 @@ mod sections;
 mod statics;
 
 use cuts::{End, Side};
+pub use layout::{
+    Layout, SectionLayout, SectionOutputs, layout, reference_name, unit_name, write_choice,
+};
 use nonlinear::{section_unit, start_of};
 pub use sections::FIDELITIES;
 use sections::{Cut, Fidelity, Segment, cuts_of, segments_of};
@@ -119,7 +123,7 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
     }
     if let Some((unit, fidelity)) = built.reference(&structure, length)? {
         if let Some(load) = &built.top_load {
-            connections.extend(load.links(&format!("{}_reference", built.name), fidelity));
+            connections.extend(load.links(&reference_name(&built.name), fidelity));
         }
         units.push(Value::Table(unit));
     }
@@ -443,7 +447,7 @@ impl Built {
     /// How a cut sees a section.
     fn side<'a>(&self, cut: &'a Cut) -> Side<'a> {
         Side {
-            unit: format!("{}_{}", self.name, cut.name),
+            unit: unit_name(&self.name, &cut.name),
             fidelity: cut.fidelity,
             physical: cut.physical.as_ref(),
         }
@@ -481,10 +485,7 @@ impl Built {
             }
             Fidelity::Nonlinear => {
                 let mut unit = Table::new();
-                unit.insert(
-                    "name".into(),
-                    Value::String(format!("{}_reference", self.name)),
-                );
+                unit.insert("name".into(), Value::String(reference_name(&self.name)));
                 unit.insert("kind".into(), Value::String("nonlinear".into()));
                 unit.insert("parameters".into(), Value::Table(self.model.clone()));
                 unit

@@ -67,7 +67,10 @@ pub(super) fn section_unit(
     let ends = coupled_ends(model, coupling);
     parameters.insert("ends".into(), Value::Table(ends));
     let mut unit = Table::new();
-    unit.insert("name".into(), Value::String(format!("{name}_{}", cut.name)));
+    unit.insert(
+        "name".into(),
+        Value::String(super::unit_name(name, &cut.name)),
+    );
     unit.insert("kind".into(), Value::String("nonlinear".into()));
     unit.insert("parameters".into(), Value::Table(parameters));
     Ok(unit)

@@ -1,0 +1,266 @@
+//! What the expansion makes of a structure, for the tools that read its runs
+//! (`slender fidelity`): each section's unit, where it starts and ends, its
+//! fidelity as written, and which of its outputs carry its end forces, its
+//! touchdown point and its moments. Read from the same parse as the expansion
+//! (no statics are solved), so the names and the outputs of a fidelity are
+//! written once, here, and a tool does not derive them again.
+
+use super::sections::{Cut, Fidelity, cuts_of, segments_of};
+use toml::{Table, Value};
+
+/// A structure as its runs show it.
+#[derive(Clone, Debug)]
+pub struct Layout {
+    /// `structure.name`: the prefix of its units' names.
+    pub name: String,
+    pub sections: Vec<SectionLayout>,
+    /// The model has seabed contact (a touchdown point, a sag bend).
+    pub seabed: bool,
+    /// The model has a stinger (an overbend).
+    pub stinger: bool,
+}
+
+/// One section as its runs show it.
+#[derive(Clone, Debug)]
+pub struct SectionLayout {
+    pub name: String,
+    /// The unit the expansion writes for it.
+    pub unit: String,
+    /// Arc length of its start (m).
+    pub from: f64,
+    /// Arc length of its end (m).
+    pub to: f64,
+    /// Its fidelity as the command line writes a choice: the fidelity's name
+    /// (`fmu` for an external FMU), its count after `:` (elements; modes of a
+    /// `reduced` section, order of a `span` fit) and its sub-steps after `/`.
+    pub choice: String,
+    /// Written as a bare fidelity word: no count, sub-steps or options.
+    pub plain: bool,
+    pub outputs: SectionOutputs,
+}
+
+/// Where a section's unit reports what a study measures (output names
+/// without the unit's).
+#[derive(Clone, Debug)]
+pub struct SectionOutputs {
+    /// The force (x, z; N) at its start.
+    pub start_force: [String; 2],
+    /// The force (x, z; N) at its end; none where that force is a coupled
+    /// input (a cable's top, a chord's loaded end), so the force at the cut
+    /// above is read from the section above.
+    pub end_force: Option<[String; 2]>,
+    /// Its touchdown point (m of arc from its start), interpolated where the
+    /// seabed gap crosses zero; none where the model has no seabed contact.
+    pub touchdown: Option<String>,
+    /// Its largest sag-bend moment (N m).
+    pub sagbend_moment: Option<String>,
+    /// Its largest overbend moment (N m), on the stinger.
+    pub overbend_moment: Option<String>,
+    /// It takes the model's `stations` (internal forces `force_<k>` at arc
+    /// lengths the model names): a native `nonlinear` unit.
+    pub stations: bool,
+}
+
+/// The name of the unit the expansion writes for section `section` of
+/// structure `structure`.
+pub fn unit_name(structure: &str, section: &str) -> String {
+    format!("{structure}_{section}")
+}
+
+/// The name of the structure's monolithic twin (`structure.reference`).
+pub fn reference_name(structure: &str) -> String {
+    format!("{structure}_reference")
+}
+
+/// The layout of the scene's `[structure]`; None when it has none. The error
+/// names the key, as the expansion's does.
+pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
+    let Some(structure) = scene.get("structure") else {
+        return Ok(None);
+    };
+    let structure = structure
+        .as_table()
+        .ok_or("`structure`: expected a table")?;
+    let name = structure
+        .get("name")
+        .and_then(Value::as_str)
+        .ok_or("`structure.name`: expected the name the section units start with")?;
+    let model = structure
+        .get("model")
+        .and_then(Value::as_table)
+        .ok_or("`structure.model`: expected the parameters of a `nonlinear` unit")?;
+    let length: f64 = segments_of(model)?.iter().map(|s| s.length).sum();
+    let seabed = model.contains_key("contact");
+    let stinger = model.contains_key("stinger");
+    let sections = cuts_of(structure, length)?
+        .iter()
+        .map(|cut| SectionLayout {
+            name: cut.name.clone(),
+            unit: unit_name(name, &cut.name),
+            from: cut.from,
+            to: cut.to,
+            choice: choice_of(cut),
+            plain: cut.elements.is_none()
+                && cut.substeps.is_none()
+                && cut.options.is_none()
+                && cut.fmu.is_none(),
+            outputs: cut.fidelity.outputs(cut.fmu.is_some(), seabed, stinger),
+        })
+        .collect();
+    Ok(Some(Layout {
+        name: name.to_owned(),
+        sections,
+        seabed,
+        stinger,
+    }))
+}
+
+/// A section's fidelity in the command line's form (`nonlinear:16/4`).
+fn choice_of(cut: &Cut) -> String {
+    let word = if cut.fmu.is_some() {
+        "fmu"
+    } else {
+        cut.fidelity.name()
+    };
+    let count = match cut.fidelity.count_key() {
+        "elements" => cut.elements,
+        key => (cut.options.as_ref())
+            .and_then(|o| o.get(key))
+            .and_then(Value::as_integer)
+            .and_then(|n| usize::try_from(n).ok()),
+    };
+    let mut choice = match count {
+        Some(n) => format!("{word}:{n}"),
+        None => word.to_owned(),
+    };
+    if let Some(n) = cut.substeps {
+        choice += &format!("/{n}");
+    }
+    choice
+}
+
+/// Writes a choice onto the section table `section` of `[[structure.sections]]`
+/// in place of its own: the fidelity `word` (checked), its count (elements; a
+/// `reduced` section's modes, a `span`'s order) and its sub-steps.
+pub fn write_choice(
+    section: &mut Table,
+    word: &str,
+    count: Option<usize>,
+    substeps: Option<u32>,
+) -> Result<(), String> {
+    let fidelity = Fidelity::parse("fidelity", word)?;
+    section.remove("elements");
+    section.remove("substeps");
+    match (fidelity.count_key(), count) {
+        (_, None) => {
+            section.insert("fidelity".into(), Value::String(word.into()));
+        }
+        ("elements", Some(n)) => {
+            section.insert("fidelity".into(), Value::String(word.into()));
+            section.insert("elements".into(), Value::Integer(n as i64));
+        }
+        (key, Some(n)) => {
+            let mut table = Table::new();
+            table.insert("kind".into(), Value::String(word.into()));
+            table.insert(key.into(), Value::Integer(n as i64));
+            section.insert("fidelity".into(), Value::Table(table));
+        }
+    }
+    if let Some(n) = substeps {
+        section.insert("substeps".into(), Value::Integer(i64::from(n)));
+    }
+    Ok(())
+}
+
+impl Fidelity {
+    /// The key a count after `:` sets: `elements`, or a `reduced` section's
+    /// `modes` and a `span` fit's `order`.
+    pub fn count_key(self) -> &'static str {
+        match self {
+            Fidelity::Reduced => "modes",
+            Fidelity::Span => "order",
+            _ => "elements",
+        }
+    }
+
+    /// Where a section of this fidelity (an external FMU with its ports
+    /// when `fmu`) reports what a study measures, in a model with or without
+    /// a seabed and a stinger.
+    fn outputs(self, fmu: bool, seabed: bool, stinger: bool) -> SectionOutputs {
+        let forces = |side: &str| [format!("{side}_force_x"), format!("{side}_force_z")];
+        let (start_force, end_force) = match self {
+            Fidelity::Cable => (forces("bottom"), None),
+            Fidelity::Beam | Fidelity::Span => (forces("start"), None),
+            _ => (forces("start"), Some(forces("end"))),
+        };
+        let touchdown = match self {
+            Fidelity::Nonlinear | Fidelity::Linear => Some("touchdown_arc"),
+            // Its static touchdown estimate.
+            Fidelity::Static => Some("touchdown"),
+            _ => None,
+        };
+        let touches = seabed && touchdown.is_some();
+        SectionOutputs {
+            start_force,
+            end_force,
+            touchdown: touchdown.filter(|_| touches).map(str::to_owned),
+            sagbend_moment: touches.then(|| "sagbend_moment".to_owned()),
+            overbend_moment: (stinger && self.is_section_unit())
+                .then(|| "overbend_moment".to_owned()),
+            stations: self.is_section_unit() && !fmu,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A three-section structure whose sections are written as `sections`.
+    fn scene(sections: &str) -> Table {
+        format!(
+            "[structure]\nname = \"pipe\"\nmodel = {{ segments = [{{ length = 30.0, elements = 6 }}], contact = {{}} }}\n{sections}"
+        )
+        .parse()
+        .unwrap()
+    }
+
+    #[test]
+    fn a_choice_written_onto_a_section_reads_back_the_same() {
+        for (word, count, substeps, label) in [
+            ("nonlinear", Some(16), Some(4), "nonlinear:16/4"),
+            ("reduced", Some(4), None, "reduced:4"),
+            ("span", Some(24), Some(2), "span:24/2"),
+            ("cable", None, None, "cable"),
+        ] {
+            let mut table = scene(
+                "[[structure.sections]]\nname = \"a\"\nto = 10.0\nelements = 3\nsubsteps = 5\n[[structure.sections]]\nname = \"b\"\n",
+            );
+            let sections = table["structure"]["sections"].as_array_mut().unwrap();
+            let a = sections[0].as_table_mut().unwrap();
+            write_choice(a, word, count, substeps).unwrap();
+            let layout = layout(&table).unwrap().unwrap();
+            let a = &layout.sections[0];
+            assert_eq!(a.choice, label);
+            assert_eq!(a.plain, label == word, "{label}");
+            assert_eq!((a.unit.as_str(), a.from, a.to), ("pipe_a", 0.0, 10.0));
+        }
+        let mut section = Table::new();
+        let e = write_choice(&mut section, "coarse", None, None).unwrap_err();
+        assert!(e.contains("expected one of nonlinear, linear"), "{e}");
+    }
+
+    #[test]
+    fn an_fmu_section_reads_as_its_ports_without_stations() {
+        let table = scene(
+            "[[structure.sections]]\nname = \"a\"\nto = 10.0\nfidelity = { kind = \"fmu\", file = \"a.fmu\", ports = \"linear\" }\n[[structure.sections]]\nname = \"b\"\n",
+        );
+        let layout = layout(&table).unwrap().unwrap();
+        let (a, b) = (&layout.sections[0], &layout.sections[1]);
+        assert_eq!((a.choice.as_str(), a.plain), ("fmu", false));
+        assert_eq!(a.outputs.touchdown.as_deref(), Some("touchdown_arc"));
+        assert!(!a.outputs.stations && b.outputs.stations);
+        assert!(layout.seabed && !layout.stinger);
+        assert_eq!(reference_name("pipe"), "pipe_reference");
+    }
+}
