@@ -5,7 +5,8 @@
 //! (no statics are solved), so the names and the outputs of a fidelity are
 //! written once, here, and a tool does not derive them again.
 
-use super::sections::{Cut, Fidelity, cuts_of, segments_of};
+use super::sections::{Cut, Fidelity};
+use super::spec::Spec;
 use toml::{Table, Value};
 
 /// A structure as its runs show it.
@@ -81,19 +82,11 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
     let structure = structure
         .as_table()
         .ok_or("`structure`: expected a table")?;
-    let name = structure
-        .get("name")
-        .and_then(Value::as_str)
-        .ok_or("`structure.name`: expected the name the section units start with")?;
-    let model = structure
-        .get("model")
-        .and_then(Value::as_table)
-        .ok_or("`structure.model`: expected the parameters of a `nonlinear` unit")?;
-    let length: f64 = segments_of(model)?.iter().map(|s| s.length).sum();
-    let seabed = model.contains_key("contact");
-    let stinger = model.contains_key("stinger");
-    let sections = cuts_of(structure, length)?
-        .iter()
+    let spec = Spec::parse(structure)?;
+    let name = &spec.name;
+    let seabed = spec.model.contains_key("contact");
+    let stinger = spec.model.contains_key("stinger");
+    let sections = (spec.sections.iter())
         .map(|cut| SectionLayout {
             name: cut.name.clone(),
             unit: unit_name(name, &cut.name),
@@ -108,7 +101,7 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
         })
         .collect();
     Ok(Some(Layout {
-        name: name.to_owned(),
+        name: name.clone(),
         sections,
         seabed,
         stinger,

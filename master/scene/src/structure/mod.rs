@@ -28,6 +28,7 @@ mod nonlinear;
 mod reduced;
 mod refusals;
 mod sections;
+mod spec;
 mod statics;
 
 use cuts::{End, Side};
@@ -36,8 +37,9 @@ pub use layout::{
 };
 use nonlinear::{section_unit, start_of};
 pub use sections::FIDELITIES;
-use sections::{Cut, Fidelity, Segment, cuts_of, segments_of};
+use sections::{Cut, Fidelity, Segment};
 use slender_units::Time;
+use spec::Spec;
 use toml::{Table, Value};
 
 /// The simulation's start (`[simulation] start`, default 0): when a static
@@ -86,7 +88,8 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
         ));
     }
     let t0 = start_time(scene)?;
-    let (built, cuts, length) = Built::new(&structure, t0)?;
+    let spec = Spec::parse(&structure)?;
+    let (built, cuts) = Built::new(spec, t0)?;
     let force_on_upper = orientation(&cuts, built.statics.is_some(), built.holding_static)?;
     let mut units = Vec::new();
     let mut connections = Vec::new();
@@ -121,7 +124,7 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
     if let (Some(load), Some(last)) = (&built.top_load, cuts.last()) {
         connections.extend(load.links(&built.side(last).unit, last.fidelity));
     }
-    if let Some((unit, fidelity)) = built.reference(&structure, length)? {
+    if let Some((unit, fidelity)) = built.reference()? {
         if let Some(load) = &built.top_load {
             connections.extend(load.links(&reference_name(&built.name), fidelity));
         }
@@ -240,38 +243,37 @@ struct Built {
     /// The model as the units take it (a top load as a coupled input).
     model: Table,
     segments: Vec<Segment>,
+    /// The structure's stress-free length (m).
+    length: f64,
     statics: Option<statics::Equilibrium>,
     water: Option<cable::Water>,
     top_load: Option<load::TopLoad>,
     /// The first section is static and takes force (`statics::static_takes_force`).
     holding_static: bool,
+    /// The monolithic twin's fidelity, if any.
+    reference: Option<Fidelity>,
 }
 
 impl Built {
-    /// The model as the units take it, its segments and cuts, the
-    /// equilibrium of a static start; and the structure's length (m).
-    fn new(structure: &Table, t0: Time) -> Result<(Built, Vec<Cut>, f64), String> {
-        let name = structure
-            .get("name")
-            .and_then(Value::as_str)
-            .ok_or("`structure.name`: expected the name the section units start with")?
-            .to_owned();
-        let mut model = structure
-            .get("model")
-            .and_then(Value::as_table)
-            .ok_or("`structure.model`: expected the parameters of a `nonlinear` unit")?
-            .clone();
-        let top_load = load::TopLoad::of(structure, &model)?;
-        let static_start = model.get("static_start").and_then(Value::as_bool) == Some(true);
-        let hang_off = hang_off::angle_of(structure)?;
-        let mut placed = None;
-        if let Some(angle) = hang_off {
-            if !static_start || top_load.is_some() {
-                return Err("`structure.hang_off`: the top is placed in the static equilibrium, so the structure needs `structure.model.static_start = true` and its end held (not a `top_load`)".into());
-            }
-            let (_, equilibrium) = hang_off::place(&mut model, angle, t0)?;
-            placed = Some(equilibrium);
-        }
+    /// The model as the units take it, with the top placed by its hang-off
+    /// angle, and the equilibrium of a static start at `t0`; and the sections.
+    fn new(spec: Spec, t0: Time) -> Result<(Built, Vec<Cut>), String> {
+        let Spec {
+            name,
+            mut model,
+            segments,
+            sections,
+            length,
+            top_load,
+            static_start,
+            hang_off,
+            water,
+            reference,
+        } = spec;
+        let placed = match hang_off {
+            Some(angle) => Some(hang_off::place(&mut model, angle, t0)?.1),
+            None => None,
+        };
         let statics_model = match &top_load {
             Some(load) => load.held_at_rest(&model),
             None => model.clone(),
@@ -279,26 +281,25 @@ impl Built {
         if let Some(load) = &top_load {
             load.take_input(&mut model);
         }
-        let segments = segments_of(&model)?;
-        let length: f64 = segments.iter().map(|s| s.length).sum();
-        let cuts = cuts_of(structure, length)?;
         let statics = match (static_start, placed) {
             (_, Some(equilibrium)) => Some(equilibrium),
             (true, None) => Some(statics::Equilibrium::solve(&statics_model, t0)?),
             (false, None) => None,
         };
-        let holding_static = cuts[0].fidelity == Fidelity::Static
+        let holding_static = sections[0].fidelity == Fidelity::Static
             && statics::static_takes_force(&statics_model, top_load.is_some());
         let built = Built {
             holding_static,
-            water: cable::Water::of(structure)?,
+            water,
             name,
             model,
             segments,
+            length,
             statics,
             top_load,
+            reference,
         };
-        Ok((built, cuts, length))
+        Ok((built, sections))
     }
 
     /// Section `k`'s unit.
@@ -456,63 +457,38 @@ impl Built {
     /// The monolithic twin `<name>_reference` (`reference = true` or
     /// "nonlinear": the model as one unit; "cable": the whole structure as one
     /// cable) and its fidelity; None without one.
-    fn reference(
-        &self,
-        structure: &Table,
-        length: f64,
-    ) -> Result<Option<(Table, Fidelity)>, String> {
-        let fidelity = match structure.get("reference") {
-            None | Some(Value::Boolean(false)) => return Ok(None),
-            Some(Value::Boolean(true)) => Fidelity::Nonlinear,
-            Some(Value::String(word)) => Fidelity::parse("structure.reference", word)?,
-            Some(other) => {
-                return Err(format!(
-                    "`structure.reference` = {other}: expected true, false or a fidelity ({})",
-                    Fidelity::NAMES.join(", ")
-                ));
-            }
+    fn reference(&self) -> Result<Option<(Table, Fidelity)>, String> {
+        let Some(fidelity) = self.reference else {
+            return Ok(None);
         };
-        let mut unit = match fidelity {
-            Fidelity::Linear
-            | Fidelity::Static
-            | Fidelity::Reduced
-            | Fidelity::Beam
-            | Fidelity::Span => {
-                return Err(format!(
-                    "`structure.reference` = \"{}\": the reference is the whole structure at full fidelity; expected true, \"nonlinear\" or \"cable\"",
-                    fidelity.name()
-                ));
-            }
-            Fidelity::Nonlinear => {
-                let mut unit = Table::new();
-                unit.insert("name".into(), Value::String(reference_name(&self.name)));
-                unit.insert("kind".into(), Value::String("nonlinear".into()));
-                unit.insert("parameters".into(), Value::Table(self.model.clone()));
-                unit
-            }
-            Fidelity::Cable => {
-                let whole = [Cut {
-                    name: "reference".into(),
-                    from: 0.0,
-                    to: length,
-                    fidelity,
-                    elements: None,
-                    substeps: None,
-                    physical: None,
-                    fmu: None,
-                    options: None,
-                }];
-                cable_fits(&self.model, &whole, 0, self.top_load.is_some())?;
-                let start = start_of(&self.model);
-                cable::cable_unit(
-                    &self.name,
-                    &self.model,
-                    &self.segments,
-                    &whole[0],
-                    self.water,
-                    start,
-                )?
-            }
+        let mut unit = if fidelity == Fidelity::Cable {
+            let whole = [Cut {
+                name: "reference".into(),
+                from: 0.0,
+                to: self.length,
+                fidelity,
+                elements: None,
+                substeps: None,
+                physical: None,
+                fmu: None,
+                options: None,
+            }];
+            cable_fits(&self.model, &whole, 0, self.top_load.is_some())?;
+            let start = start_of(&self.model);
+            cable::cable_unit(
+                &self.name,
+                &self.model,
+                &self.segments,
+                &whole[0],
+                self.water,
+                start,
+            )?
+        } else {
+            let mut unit = Table::new();
+            unit.insert("name".into(), Value::String(reference_name(&self.name)));
+            unit.insert("kind".into(), Value::String("nonlinear".into()));
+            unit.insert("parameters".into(), Value::Table(self.model.clone()));
+            unit
         };
         if let Some(load) = &self.top_load {
             load.first_guess(&mut unit, fidelity);

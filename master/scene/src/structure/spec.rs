@@ -1,0 +1,94 @@
+//! `[structure]` parsed once, before any statics are solved: its name, the
+//! model as written, its segments and sections, the top load, the hang-off
+//! angle, the water and the twin asked for. Every key is checked here, so a
+//! scene with a wrong key is refused without a static solve; the expansion
+//! solves the statics from it (`Built::new`) and the layout reads it as it is.
+
+use super::cable::Water;
+use super::hang_off;
+use super::load::TopLoad;
+use super::sections::{Cut, Fidelity, Segment, cuts_of, segments_of};
+use toml::{Table, Value};
+
+/// A `[structure]` as written, checked.
+pub(super) struct Spec {
+    /// The prefix of its units' names.
+    pub name: String,
+    /// `structure.model` as written: a `nonlinear` unit's parameters.
+    pub model: Table,
+    pub segments: Vec<Segment>,
+    /// Its sections, by arc length.
+    pub sections: Vec<Cut>,
+    /// Its stress-free length (m).
+    pub length: f64,
+    pub top_load: Option<TopLoad>,
+    /// `structure.model.static_start`: the whole structure's equilibrium is
+    /// solved once and every section starts from it.
+    pub static_start: bool,
+    /// The hang-off angle of the top (deg from the vertical), which places
+    /// the end in the equilibrium.
+    pub hang_off: Option<f64>,
+    pub water: Option<Water>,
+    /// The monolithic twin's fidelity (`structure.reference`), if any.
+    pub reference: Option<Fidelity>,
+}
+
+impl Spec {
+    /// Reads `[structure]`; the error names the key.
+    pub fn parse(structure: &Table) -> Result<Spec, String> {
+        let name = structure
+            .get("name")
+            .and_then(Value::as_str)
+            .ok_or("`structure.name`: expected the name the section units start with")?
+            .to_owned();
+        let model = structure
+            .get("model")
+            .and_then(Value::as_table)
+            .ok_or("`structure.model`: expected the parameters of a `nonlinear` unit")?
+            .clone();
+        let top_load = TopLoad::of(structure, &model)?;
+        let static_start = model.get("static_start").and_then(Value::as_bool) == Some(true);
+        let hang_off = hang_off::angle_of(structure)?;
+        if hang_off.is_some() && (!static_start || top_load.is_some()) {
+            return Err("`structure.hang_off`: the top is placed in the static equilibrium, so the structure needs `structure.model.static_start = true` and its end held (not a `top_load`)".into());
+        }
+        let segments = segments_of(&model)?;
+        let length: f64 = segments.iter().map(|s| s.length).sum();
+        let sections = cuts_of(structure, length)?;
+        Ok(Spec {
+            water: Water::of(structure)?,
+            reference: reference_of(structure)?,
+            name,
+            model,
+            segments,
+            sections,
+            length,
+            top_load,
+            static_start,
+            hang_off,
+        })
+    }
+}
+
+/// `structure.reference`: true or "nonlinear" (the model as one unit), or
+/// "cable" (the whole structure as one cable); None without a twin.
+fn reference_of(structure: &Table) -> Result<Option<Fidelity>, String> {
+    let fidelity = match structure.get("reference") {
+        None | Some(Value::Boolean(false)) => return Ok(None),
+        Some(Value::Boolean(true)) => Fidelity::Nonlinear,
+        Some(Value::String(word)) => Fidelity::parse("structure.reference", word)?,
+        Some(other) => {
+            return Err(format!(
+                "`structure.reference` = {other}: expected true, false or a fidelity ({})",
+                Fidelity::NAMES.join(", ")
+            ));
+        }
+    };
+    match fidelity {
+        Fidelity::Nonlinear | Fidelity::Cable => Ok(Some(fidelity)),
+        _ => Err(format!(
+            "`structure.reference` = \"{}\": the reference is the whole structure at full fidelity; expected true, \"nonlinear\" or \"cable\"",
+            fidelity.name()
+        )),
+    }
+}
