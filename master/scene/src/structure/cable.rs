@@ -8,8 +8,69 @@
 //! `full` line), so it needs the structure's static start to place its anchor
 //! where the equilibrium puts the section's start.
 
+use super::cuts::End;
+use super::layout::SectionOutputs;
+use super::model::{CutNeeds, Place, SectionModel, outputs_of};
 use super::sections::{Cut, Segment};
+use super::{Built, cable_fits, statics};
 use toml::{Table, Value};
+
+/// The `cable` fidelity.
+pub(super) struct Cable;
+
+impl SectionModel for Cable {
+    fn name(&self) -> &'static str {
+        "cable"
+    }
+    fn bends(&self) -> bool {
+        false
+    }
+    fn has_seabed(&self) -> bool {
+        false
+    }
+    fn end_names(&self) -> [&'static str; 2] {
+        ["bottom", "top"]
+    }
+    /// Its top takes force, its bottom velocity.
+    fn cut_needs(&self, _: Place) -> CutNeeds {
+        CutNeeds {
+            below: Some(true),
+            above: Some(true),
+            all: None,
+        }
+    }
+    fn outputs(&self, _: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
+        outputs_of(self.end_names(), true, None, false, (seabed, stinger))
+    }
+    fn unit(
+        &self,
+        built: &Built,
+        cuts: &[Cut],
+        k: usize,
+        _: (Option<End>, Option<End>),
+    ) -> Result<Table, String> {
+        let cut = &cuts[k];
+        cable_fits(&built.model, cuts, k, built.top_load.is_some())?;
+        let anchor = built.statics.as_ref().map(|e| e.position_at(cut.from)).ok_or(format!(
+            "`structure.sections.{}.fidelity` = \"cable\": a cable section takes its static state from its top force, so the structure needs `structure.model.static_start = true` to place it",
+            cut.name
+        ))?;
+        let mut unit = cable_unit(
+            &built.name,
+            &built.model,
+            &built.segments,
+            cut,
+            built.water,
+            anchor,
+        )?;
+        // Its static state needs the force at its top in the master's first
+        // initial iterate: the equilibrium's, as the first guess.
+        if let (Some(e), true) = (&built.statics, k + 1 < cuts.len()) {
+            statics::first_guess_force(&mut unit, "top", e.force_at(cut.to));
+        }
+        Ok(unit)
+    }
+}
 
 /// Section properties that must be equal along a cable section (the cable unit
 /// has one cross-section).

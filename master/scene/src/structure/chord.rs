@@ -10,11 +10,95 @@
 //! (`mod.rs::orientation`); below it may be a static first section that takes
 //! force (`statics::static_takes_force`).
 
+use super::Built;
 use super::cuts::{End, link};
+use super::layout::SectionOutputs;
+use super::model::{CutNeeds, Place, SectionModel, outputs_of};
 use super::nonlinear::section_unit;
 use super::sections::{Cut, Fidelity, Segment};
 use super::statics::Equilibrium;
 use toml::{Table, Value};
+
+/// A chord fidelity: its name, the keys of its table form and what a count
+/// sets.
+pub(super) struct Chord {
+    name: &'static str,
+    keys: &'static [&'static str],
+    count: &'static str,
+}
+
+/// The `beam` fidelity: seed 004's FE beam with tension about the chord.
+pub(super) const BEAM: Chord = Chord {
+    name: "beam",
+    keys: &BEAM_KEYS,
+    count: "elements",
+};
+
+/// The `span` fidelity: the span's transfer matrix with tension about the
+/// chord.
+pub(super) const SPAN: Chord = Chord {
+    name: "span",
+    keys: &SPAN_KEYS,
+    count: "order",
+};
+
+/// The keys of `{ kind = "beam", ... }`: the `chord` unit's beam settings.
+const BEAM_KEYS: [&str; 5] = [
+    "kind",
+    "elements",
+    "alpha",
+    "damping_per_length",
+    "drag_velocity",
+];
+
+/// The keys of `{ kind = "span", ... }`: the `chord` unit's span settings.
+const SPAN_KEYS: [&str; 6] = [
+    "kind",
+    "order",
+    "band",
+    "alpha",
+    "damping_per_length",
+    "drag_velocity",
+];
+
+impl SectionModel for Chord {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+    fn option_keys(&self) -> &'static [&'static str] {
+        self.keys
+    }
+    fn count_key(&self) -> &'static str {
+        self.count
+    }
+    fn is_chord(&self) -> bool {
+        true
+    }
+    fn has_seabed(&self) -> bool {
+        false
+    }
+    /// It moves at its start and is loaded at its end.
+    fn cut_needs(&self, _: Place) -> CutNeeds {
+        CutNeeds {
+            below: Some(true),
+            above: Some(true),
+            all: None,
+        }
+    }
+    fn outputs(&self, _: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
+        outputs_of(["start", "end"], true, None, false, (seabed, stinger))
+    }
+    fn unit(
+        &self,
+        built: &Built,
+        cuts: &[Cut],
+        k: usize,
+        _: (Option<End>, Option<End>),
+    ) -> Result<Table, String> {
+        let statics = built.statics.as_ref();
+        chord_unit(&built.name, &built.model, &built.segments, cuts, k, statics)
+    }
+}
 
 /// Beam elements of a chord section when the scene gives none.
 const DEFAULT_ELEMENTS: i64 = 20;

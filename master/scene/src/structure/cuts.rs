@@ -83,12 +83,7 @@ pub fn coupled_motion(pinned: bool) -> Value {
 /// `nonlinear` unit's `end_force_x`, the `cable` unit's `top_force_x` (its end
 /// is its top).
 pub fn port(unit: &str, fidelity: Fidelity, at_end: bool, quantity: &str) -> String {
-    let side = match (fidelity, at_end) {
-        (Fidelity::Cable, true) => "top",
-        (Fidelity::Cable, false) => "bottom",
-        (_, true) => "end",
-        (_, false) => "start",
-    };
+    let side = fidelity.model().end_names()[usize::from(at_end)];
     format!("{unit}.{side}_{quantity}")
 }
 

@@ -97,7 +97,12 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
                 && cut.substeps.is_none()
                 && cut.options.is_none()
                 && cut.fmu.is_none(),
-            outputs: cut.fidelity.outputs(cut.fmu.is_some(), seabed, stinger),
+            outputs: (cut.fidelity.model()).outputs(
+                cut.fmu.is_some(),
+                seabed,
+                stinger,
+                spec.static_start,
+            ),
         })
         .collect();
     Ok(Some(Layout {
@@ -169,39 +174,7 @@ impl Fidelity {
     /// The key a count after `:` sets: `elements`, or a `reduced` section's
     /// `modes` and a `span` fit's `order`.
     pub fn count_key(self) -> &'static str {
-        match self {
-            Fidelity::Reduced => "modes",
-            Fidelity::Span => "order",
-            _ => "elements",
-        }
-    }
-
-    /// Where a section of this fidelity (an external FMU with its ports
-    /// when `fmu`) reports what a study measures, in a model with or without
-    /// a seabed and a stinger.
-    fn outputs(self, fmu: bool, seabed: bool, stinger: bool) -> SectionOutputs {
-        let forces = |side: &str| [format!("{side}_force_x"), format!("{side}_force_z")];
-        let (start_force, end_force) = match self {
-            Fidelity::Cable => (forces("bottom"), None),
-            Fidelity::Beam | Fidelity::Span => (forces("start"), None),
-            _ => (forces("start"), Some(forces("end"))),
-        };
-        let touchdown = match self {
-            Fidelity::Nonlinear | Fidelity::Linear => Some("touchdown_arc"),
-            // Its static touchdown estimate.
-            Fidelity::Static => Some("touchdown"),
-            _ => None,
-        };
-        let touches = seabed && touchdown.is_some();
-        SectionOutputs {
-            start_force,
-            end_force,
-            touchdown: touchdown.filter(|_| touches).map(str::to_owned),
-            sagbend_moment: touches.then(|| "sagbend_moment".to_owned()),
-            overbend_moment: (stinger && self.is_section_unit())
-                .then(|| "overbend_moment".to_owned()),
-            stations: self.is_section_unit() && !fmu,
-        }
+        self.model().count_key()
     }
 }
 

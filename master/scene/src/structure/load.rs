@@ -103,10 +103,7 @@ impl TopLoad {
 
     /// The force at rest as the first guess of the unit's top-force inputs.
     pub fn first_guess(&self, unit: &mut Table, fidelity: Fidelity) {
-        let side = match fidelity {
-            Fidelity::Cable => "top",
-            _ => "end",
-        };
+        let side = fidelity.model().end_names()[1];
         super::statics::first_guess_force(unit, side, self.at_rest);
     }
 }

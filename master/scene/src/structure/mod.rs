@@ -24,18 +24,20 @@ mod cuts;
 mod hang_off;
 mod layout;
 mod load;
+mod model;
 mod nonlinear;
 mod reduced;
 mod refusals;
 mod sections;
 mod spec;
+mod static_fidelity;
 mod statics;
 
 use cuts::{End, Side};
 pub use layout::{
     Layout, SectionLayout, SectionOutputs, layout, reference_name, unit_name, write_choice,
 };
-use nonlinear::{section_unit, start_of};
+use nonlinear::start_of;
 pub use sections::FIDELITIES;
 use sections::{Cut, Fidelity, Segment};
 use slender_units::Time;
@@ -162,23 +164,21 @@ fn orientation(
     let mut fixed: Vec<Option<(bool, &Cut)>> = vec![None; cuts.len().saturating_sub(1)];
     let last = cuts.len() - 1;
     for (k, cut) in cuts.iter().enumerate() {
-        let (below, above) = match cut.fidelity {
-            Fidelity::Cable | Fidelity::Beam | Fidelity::Span => (Some(true), Some(true)),
-            Fidelity::Reduced if !static_start => (Some(false), Some(true)),
-            Fidelity::Static if k == 0 && holding_static => (None, Some(true)),
-            Fidelity::Static if k == 0 => {
-                for c in 0..last {
-                    require(&mut fixed, c, false, cut)?;
-                }
-                (None, None)
-            }
-            _ => (None, None),
+        let place = model::Place {
+            k,
+            static_start,
+            holding_static,
         };
-        // `below`: the cut at this section's start; `above`: at its end.
-        if let (Some(way), true) = (below, k > 0) {
+        let needs = cut.fidelity.model().cut_needs(place);
+        if let Some(way) = needs.all {
+            for c in 0..last {
+                require(&mut fixed, c, way, cut)?;
+            }
+        }
+        if let (Some(way), true) = (needs.below, k > 0) {
             require(&mut fixed, k - 1, way, cut)?;
         }
-        if let (Some(way), true) = (above, k < last) {
+        if let (Some(way), true) = (needs.above, k < last) {
             require(&mut fixed, k, way, cut)?;
         }
     }
@@ -306,7 +306,7 @@ impl Built {
     fn section(&self, cuts: &[Cut], k: usize, force_on_upper: &[bool]) -> Result<Table, String> {
         let cut = &cuts[k];
         self.refuse_without_seabed(cut)?;
-        self.refuse_linear_on_stinger(cut)?;
+        cut.fidelity.model().refuse(self, cut)?;
         // Per end at a cut: whether this section is the moving (velocity) side,
         // and whether the cut is pinned (a side without bending).
         let start = (k > 0).then(|| End {
@@ -319,47 +319,7 @@ impl Built {
             pinned: !cuts[k + 1].fidelity.bends() || !cut.fidelity.bends(),
             by_displacement: cuts[k + 1].fidelity.is_chord(),
         });
-        let mut unit = match cut.fidelity {
-            Fidelity::Nonlinear | Fidelity::Linear => self.section_unit(cut, (start, end))?,
-            Fidelity::Static => self.static_unit(cuts, k, (start, end))?,
-            Fidelity::Beam | Fidelity::Span => chord::chord_unit(
-                &self.name,
-                &self.model,
-                &self.segments,
-                cuts,
-                k,
-                self.statics.as_ref(),
-            )?,
-            Fidelity::Reduced if self.statics.is_some() => {
-                reduced::reduced_unit(self.section_unit(cut, (start, end))?, cut, true)?
-            }
-            Fidelity::Reduced => {
-                let section =
-                    section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
-                reduced::reduced_unit(section, cut, false)?
-            }
-            Fidelity::Cable => {
-                cable_fits(&self.model, cuts, k, self.top_load.is_some())?;
-                let anchor = self.statics.as_ref().map(|e| e.position_at(cut.from)).ok_or(format!(
-                    "`structure.sections.{}.fidelity` = \"cable\": a cable section takes its static state from its top force, so the structure needs `structure.model.static_start = true` to place it",
-                    cut.name
-                ))?;
-                let mut unit = cable::cable_unit(
-                    &self.name,
-                    &self.model,
-                    &self.segments,
-                    cut,
-                    self.water,
-                    anchor,
-                )?;
-                // Its static state needs the force at its top in the master's
-                // first initial iterate: the equilibrium's, as the first guess.
-                if let (Some(e), true) = (&self.statics, k + 1 < cuts.len()) {
-                    statics::first_guess_force(&mut unit, "top", e.force_at(cut.to));
-                }
-                unit
-            }
-        };
+        let mut unit = cut.fidelity.model().unit(self, cuts, k, (start, end))?;
         if let (Some(load), true) = (&self.top_load, k + 1 == cuts.len()) {
             load.first_guess(&mut unit, cut.fidelity);
         }
@@ -371,35 +331,6 @@ impl Built {
         }
         if let Some(n) = cut.substeps {
             unit.insert("substeps".into(), Value::Integer(n as i64));
-        }
-        Ok(unit)
-    }
-
-    /// The `static` fidelity's unit of the first section: its static response
-    /// from the equilibrium, taking force where it holds the sections above.
-    fn static_unit(
-        &self,
-        cuts: &[Cut],
-        k: usize,
-        (start, end): (Option<End>, Option<End>),
-    ) -> Result<Table, String> {
-        let cut = &cuts[k];
-        let key = format!("structure.sections.{}.fidelity", cut.name);
-        let equilibrium = match (&self.statics, k, cuts.len()) {
-            (Some(e), 0, 2..) => e,
-            _ => {
-                return Err(format!(
-                    "`{key}` = \"static\": a static section is the structure's first section (a laid pipe from its held start), one of several, and is found from the equilibrium of `structure.model.static_start = true`"
-                ));
-            }
-        };
-        let mut section = section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
-        equilibrium.start_section(&mut section, (cut.from, cut.to))?;
-        let mut unit = equilibrium.static_section(&key, &section, (cut.from, cut.to))?;
-        if self.holding_static
-            && let Some(p) = unit.get_mut("parameters").and_then(Value::as_table_mut)
-        {
-            p.insert("force_input".into(), Value::Boolean(true));
         }
         Ok(unit)
     }

@@ -2,9 +2,74 @@
 //! unit over the section's arc-length range, coupled at its cuts (`linear`:
 //! stepped linearised about its start, `linear = true`).
 
+use super::Built;
 use super::cuts::{End, coupled_displacement, coupled_load, coupled_motion};
+use super::layout::SectionOutputs;
+use super::model::{SectionModel, outputs_of};
 use super::sections::{Cut, Fidelity, Segment};
 use toml::{Table, Value};
+
+/// The `nonlinear` fidelity: the geometrically nonlinear unit.
+pub(super) struct Nonlinear;
+
+/// The `linear` fidelity: the `nonlinear` unit linearised about its start.
+pub(super) struct Linear;
+
+/// The `nonlinear` unit's outputs: end forces, the touchdown point
+/// interpolated where the seabed gap closes (`touchdown_arc`), sag-bend and
+/// overbend moments, and stations (not through an FMU, whose outputs are
+/// fixed when it is exported).
+pub(super) fn section_outputs(fmu: bool, seabed: bool, stinger: bool) -> SectionOutputs {
+    let ends = ["start", "end"];
+    let mut outputs = outputs_of(ends, false, Some("touchdown_arc"), true, (seabed, stinger));
+    outputs.stations = !fmu;
+    outputs
+}
+
+impl SectionModel for Nonlinear {
+    fn name(&self) -> &'static str {
+        "nonlinear"
+    }
+    fn is_section_unit(&self) -> bool {
+        true
+    }
+    fn outputs(&self, fmu: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
+        section_outputs(fmu, seabed, stinger)
+    }
+    fn unit(
+        &self,
+        built: &Built,
+        cuts: &[Cut],
+        k: usize,
+        ends: (Option<End>, Option<End>),
+    ) -> Result<Table, String> {
+        built.section_unit(&cuts[k], ends)
+    }
+}
+
+impl SectionModel for Linear {
+    fn name(&self) -> &'static str {
+        "linear"
+    }
+    fn is_section_unit(&self) -> bool {
+        true
+    }
+    fn outputs(&self, fmu: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
+        section_outputs(fmu, seabed, stinger)
+    }
+    fn unit(
+        &self,
+        built: &Built,
+        cuts: &[Cut],
+        k: usize,
+        ends: (Option<End>, Option<End>),
+    ) -> Result<Table, String> {
+        built.section_unit(&cuts[k], ends)
+    }
+    fn refuse(&self, built: &Built, cut: &Cut) -> Result<(), String> {
+        built.refuse_linear_on_stinger(cut)
+    }
+}
 
 /// The `nonlinear` unit of one section: the model's segments clipped to its range,
 /// its start at the stress-free position of the cut, the structure's ends at the

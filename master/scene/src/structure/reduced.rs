@@ -5,8 +5,78 @@
 //! `reduced` unit of seed 002, loaded at its cuts (the generator orients them
 //! so).
 
+use super::Built;
+use super::cuts::End;
+use super::layout::SectionOutputs;
+use super::model::{CutNeeds, Place, SectionModel, outputs_of};
+use super::nonlinear::{section_outputs, section_unit};
 use super::sections::Cut;
 use toml::{Table, Value};
+
+/// The `reduced` fidelity.
+pub(super) struct Reduced;
+
+/// The keys of `{ kind = "reduced", ... }`: the `reduced` unit's basis.
+const KEYS: [&str; 6] = [
+    "kind",
+    "elements",
+    "modes",
+    "derivatives",
+    "attachments",
+    "integrator",
+];
+
+impl SectionModel for Reduced {
+    fn name(&self) -> &'static str {
+        "reduced"
+    }
+    fn option_keys(&self) -> &'static [&'static str] {
+        &KEYS
+    }
+    fn count_key(&self) -> &'static str {
+        "modes"
+    }
+    /// About the stress-free state (seed 002's unit) it is loaded at both its
+    /// cuts; about the equilibrium it is coupled as a `nonlinear` section.
+    fn cut_needs(&self, place: Place) -> CutNeeds {
+        match place.static_start {
+            true => CutNeeds::default(),
+            false => CutNeeds {
+                below: Some(false),
+                above: Some(true),
+                all: None,
+            },
+        }
+    }
+    /// About the equilibrium, the `nonlinear` unit's outputs; about the
+    /// stress-free state, its end forces.
+    fn outputs(
+        &self,
+        fmu: bool,
+        seabed: bool,
+        stinger: bool,
+        static_start: bool,
+    ) -> SectionOutputs {
+        match static_start {
+            true => section_outputs(fmu, seabed, stinger),
+            false => outputs_of(["start", "end"], false, None, false, (seabed, stinger)),
+        }
+    }
+    fn unit(
+        &self,
+        built: &Built,
+        cuts: &[Cut],
+        k: usize,
+        ends: (Option<End>, Option<End>),
+    ) -> Result<Table, String> {
+        let cut = &cuts[k];
+        if built.statics.is_some() {
+            return reduced_unit(built.section_unit(cut, ends)?, cut, true);
+        }
+        let section = section_unit(&built.name, &built.model, &built.segments, cut, ends)?;
+        reduced_unit(section, cut, false)
+    }
+}
 
 /// Modes in the basis when the scene gives none.
 const DEFAULT_MODES: i64 = 6;

@@ -4,7 +4,7 @@
 //! seabed; a `linear` section over a stinger's rollers.
 
 use super::Built;
-use super::sections::{Cut, Fidelity};
+use super::sections::Cut;
 use toml::Value;
 
 impl Built {
@@ -33,7 +33,7 @@ impl Built {
         }
     }
 
-    /// Refuses a `linear` section whose equilibrium passes over a stinger's
+    /// Refuses a `linear` section (its model's `refuse`) whose equilibrium passes over a stinger's
     /// rollers (by x): the rollers move and the pipe lifts off them, which a
     /// linear model cannot follow (the unit refuses it again at its start,
     /// from its own contact state).
@@ -44,9 +44,6 @@ impl Built {
         let (Some(rollers), Some(equilibrium)) = (rollers, &self.statics) else {
             return Ok(());
         };
-        if cut.fidelity != Fidelity::Linear {
-            return Ok(());
-        }
         let samples = 200;
         let xs = (0..=samples).map(|i| {
             let s = cut.from + (cut.to - cut.from) * f64::from(i) / f64::from(samples);

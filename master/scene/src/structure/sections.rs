@@ -103,7 +103,7 @@ pub(crate) enum Fidelity {
 }
 
 impl Fidelity {
-    /// The fidelities' names as written in scenes.
+    /// The fidelities' names as written in scenes (each its model's `name`).
     pub const NAMES: [&'static str; 7] = [
         "nonlinear",
         "linear",
@@ -114,55 +114,53 @@ impl Fidelity {
         "span",
     ];
 
+    /// Every fidelity, in the order of `NAMES`.
+    pub const ALL: [Fidelity; 7] = [
+        Fidelity::Nonlinear,
+        Fidelity::Linear,
+        Fidelity::Cable,
+        Fidelity::Static,
+        Fidelity::Reduced,
+        Fidelity::Beam,
+        Fidelity::Span,
+    ];
+
+    /// The fidelity written `word` at `key`.
     pub fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
-        match word {
-            "nonlinear" => Ok(Fidelity::Nonlinear),
-            "linear" => Ok(Fidelity::Linear),
-            "cable" => Ok(Fidelity::Cable),
-            "static" => Ok(Fidelity::Static),
-            "reduced" => Ok(Fidelity::Reduced),
-            "beam" => Ok(Fidelity::Beam),
-            "span" => Ok(Fidelity::Span),
-            other => Err(format!(
-                "`{key}` = \"{other}\": expected one of {}",
+        Fidelity::ALL
+            .into_iter()
+            .find(|f| f.name() == word)
+            .ok_or(format!(
+                "`{key}` = \"{word}\": expected one of {}",
                 Fidelity::NAMES.join(", ")
-            )),
-        }
+            ))
     }
 
     /// The name as written in scenes.
     pub fn name(self) -> &'static str {
-        match self {
-            Fidelity::Nonlinear => "nonlinear",
-            Fidelity::Linear => "linear",
-            Fidelity::Cable => "cable",
-            Fidelity::Static => "static",
-            Fidelity::Reduced => "reduced",
-            Fidelity::Beam => "beam",
-            Fidelity::Span => "span",
-        }
+        self.model().name()
     }
 
     /// Whether the section is a `nonlinear` unit (stepped whole or linear):
     /// the same ports, stations and outputs.
     pub fn is_section_unit(self) -> bool {
-        matches!(self, Fidelity::Nonlinear | Fidelity::Linear)
+        self.model().is_section_unit()
     }
 
     /// Whether the model carries bending (rotation and moment at its cuts).
     pub fn bends(self) -> bool {
-        self != Fidelity::Cable
+        self.model().bends()
     }
 
     /// Whether the section is a small-deflection model about its chord.
     pub fn is_chord(self) -> bool {
-        matches!(self, Fidelity::Beam | Fidelity::Span)
+        self.model().is_chord()
     }
 
     /// Whether the model has no seabed contact (a section lying on the
     /// seabed in the equilibrium cannot be it).
     pub fn lacks_seabed(self) -> bool {
-        matches!(self, Fidelity::Cable | Fidelity::Beam | Fidelity::Span)
+        !self.model().has_seabed()
     }
 }
 
@@ -241,9 +239,9 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
 /// `{ kind = "fmu", file, ports, ... }`: an external FMU in place of the unit,
 /// with the ports of the `ports` fidelity (default nonlinear) and the `fmu`
 /// kind's parameters.
-fn fidelity_of(key: &str, value: Option<&Value>) -> Result<SectionModel, String> {
+fn fidelity_of(key: &str, value: Option<&Value>) -> Result<WrittenModel, String> {
     let key = format!("{key}.fidelity");
-    let native = |fidelity, elements| SectionModel {
+    let native = |fidelity, elements| WrittenModel {
         fidelity,
         elements,
         fmu: None,
@@ -252,18 +250,10 @@ fn fidelity_of(key: &str, value: Option<&Value>) -> Result<SectionModel, String>
     match value {
         None => Ok(native(Fidelity::Nonlinear, None)),
         Some(Value::String(word)) => Ok(native(Fidelity::parse(&key, word)?, None)),
-        Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("reduced") => {
-            options_of(&key, t, Fidelity::Reduced, &REDUCED_KEYS)
-        }
-        Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("beam") => {
-            options_of(&key, t, Fidelity::Beam, &BEAM_KEYS)
-        }
-        Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("span") => {
-            options_of(&key, t, Fidelity::Span, &SPAN_KEYS)
-        }
         Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("fmu") => {
             fmu_of(&key, t)
         }
+        Some(Value::Table(t)) if let Some(fidelity) = own_keys(t) => options_of(&key, t, fidelity),
         Some(Value::Table(t)) => {
             if let Some(unknown) = t.keys().find(|k| *k != "kind" && *k != "elements") {
                 return Err(format!(
@@ -293,48 +283,24 @@ fn fidelity_of(key: &str, value: Option<&Value>) -> Result<SectionModel, String>
 /// A section's model: the fidelity its ports follow, its element count, the
 /// `fmu` parameters of an external FMU in its place, and the fidelity's own
 /// keys.
-struct SectionModel {
+struct WrittenModel {
     fidelity: Fidelity,
     elements: Option<usize>,
     fmu: Option<Table>,
     options: Option<Table>,
 }
 
-/// The keys of `{ kind = "reduced", ... }`: the `reduced` unit's basis.
-const REDUCED_KEYS: [&str; 6] = [
-    "kind",
-    "elements",
-    "modes",
-    "derivatives",
-    "attachments",
-    "integrator",
-];
-/// The keys of `{ kind = "beam", ... }`: the `chord` unit's beam settings.
-const BEAM_KEYS: [&str; 5] = [
-    "kind",
-    "elements",
-    "alpha",
-    "damping_per_length",
-    "drag_velocity",
-];
-/// The keys of `{ kind = "span", ... }`: the `chord` unit's span settings.
-const SPAN_KEYS: [&str; 6] = [
-    "kind",
-    "order",
-    "band",
-    "alpha",
-    "damping_per_length",
-    "drag_velocity",
-];
+/// The fidelity `{ kind = NAME, ... }` names where it has keys of its own.
+fn own_keys(t: &Table) -> Option<Fidelity> {
+    let word = t.get("kind").and_then(Value::as_str)?;
+    let fidelity = Fidelity::parse("kind", word).ok()?;
+    (!fidelity.model().option_keys().is_empty()).then_some(fidelity)
+}
 
-/// `{ kind, elements, ... }` of a fidelity with keys of its own (`keys`): those
+/// `{ kind, elements, ... }` of a fidelity with keys of its own: those
 /// besides `kind` and `elements` go to the unit, checked when it is built.
-fn options_of(
-    key: &str,
-    t: &Table,
-    fidelity: Fidelity,
-    keys: &[&str],
-) -> Result<SectionModel, String> {
+fn options_of(key: &str, t: &Table, fidelity: Fidelity) -> Result<WrittenModel, String> {
+    let keys = fidelity.model().option_keys();
     if let Some(unknown) = t.keys().find(|k| !keys.contains(&k.as_str())) {
         return Err(format!(
             "`{key}.{unknown}`: unknown key; a {} section takes {}",
@@ -349,7 +315,7 @@ fn options_of(
     let mut basis = t.clone();
     basis.remove("kind");
     basis.remove("elements");
-    Ok(SectionModel {
+    Ok(WrittenModel {
         fidelity,
         elements,
         fmu: None,
@@ -358,7 +324,7 @@ fn options_of(
 }
 
 /// `{ kind = "fmu", file = "x.fmu", ports = "nonlinear" | "cable", start, preload, logging }`.
-fn fmu_of(key: &str, t: &Table) -> Result<SectionModel, String> {
+fn fmu_of(key: &str, t: &Table) -> Result<WrittenModel, String> {
     const KEYS: [&str; 6] = ["kind", "file", "ports", "start", "preload", "logging"];
     if let Some(unknown) = t.keys().find(|k| !KEYS.contains(&k.as_str())) {
         return Err(format!(
@@ -382,7 +348,7 @@ fn fmu_of(key: &str, t: &Table) -> Result<SectionModel, String> {
     let mut fmu = t.clone();
     fmu.remove("kind");
     fmu.remove("ports");
-    Ok(SectionModel {
+    Ok(WrittenModel {
         fidelity,
         elements: None,
         fmu: Some(fmu),

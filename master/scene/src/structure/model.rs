@@ -1,0 +1,168 @@
+//! What a fidelity is, as the expansion and the tools read it: one type per
+//! fidelity behind `SectionModel`, each in its own file (`nonlinear.rs`:
+//! `nonlinear` and `linear`; `cable.rs`; `static_fidelity.rs`; `reduced.rs`;
+//! `chord.rs`: `beam` and `span`), registered once in `Fidelity::model`
+//! (`sections.rs` holds the names). The trait says which unit a fidelity
+//! writes, what its ends are called, how it needs its cuts coupled, its keys,
+//! where it reports what a study measures and what it refuses.
+
+use super::Built;
+use super::cuts::End;
+use super::layout::SectionOutputs;
+use super::sections::{Cut, Fidelity};
+use toml::Table;
+
+/// Where a section is and how the structure starts, for a fidelity's needs
+/// at its cuts.
+#[derive(Copy, Clone, Debug)]
+pub(super) struct Place {
+    /// The section's index, first at the structure's start.
+    pub k: usize,
+    /// The structure's equilibrium is solved at the start.
+    pub static_start: bool,
+    /// The first section is static and takes force
+    /// (`statics::static_takes_force`).
+    pub holding_static: bool,
+}
+
+/// How a fidelity needs its cuts coupled: per cut, whether the upper side
+/// is the loaded one (`true`) or the moving one; None: either way.
+#[derive(Copy, Clone, Debug, Default)]
+pub(super) struct CutNeeds {
+    /// The cut at the section's start.
+    pub below: Option<bool>,
+    /// The cut at the section's end.
+    pub above: Option<bool>,
+    /// Every cut of the structure (a static first section that every
+    /// section above hangs from).
+    pub all: Option<bool>,
+}
+
+/// One fidelity of a section.
+pub(super) trait SectionModel: Sync {
+    /// The name as written in scenes.
+    fn name(&self) -> &'static str;
+
+    /// Its own keys in `{ kind = NAME, ... }` besides `kind` and `elements`,
+    /// handed to its unit; empty: a table takes `kind` and `elements` only.
+    fn option_keys(&self) -> &'static [&'static str] {
+        &[]
+    }
+
+    /// The key a count after `:` on the command line sets.
+    fn count_key(&self) -> &'static str {
+        "elements"
+    }
+
+    /// Its unit is the `nonlinear` unit (same ports, stations and outputs).
+    fn is_section_unit(&self) -> bool {
+        false
+    }
+
+    /// It carries bending: rotation and moment cross its cuts.
+    fn bends(&self) -> bool {
+        true
+    }
+
+    /// A small-deflection model about its chord, coupled by position.
+    fn is_chord(&self) -> bool {
+        false
+    }
+
+    /// It models seabed contact (a section lying on the seabed in the
+    /// equilibrium cannot be a model without).
+    fn has_seabed(&self) -> bool {
+        true
+    }
+
+    /// Its ports' prefixes at its start and at its end (`start_force_x`).
+    fn end_names(&self) -> [&'static str; 2] {
+        ["start", "end"]
+    }
+
+    /// How it needs its cuts coupled at `place`.
+    fn cut_needs(&self, _place: Place) -> CutNeeds {
+        CutNeeds::default()
+    }
+
+    /// Where it reports what a study measures: its end forces (an end
+    /// loaded by a coupled force reports none), and, in a model with a
+    /// seabed or a stinger, its touchdown point and moments.
+    fn outputs(&self, fmu: bool, seabed: bool, stinger: bool, static_start: bool)
+    -> SectionOutputs;
+
+    /// Its unit for section `k` of `cuts`, coupled at its ends as `ends` says
+    /// (None at the structure's ends); refuses with the reason where it
+    /// cannot model the section.
+    fn unit(
+        &self,
+        built: &Built,
+        cuts: &[Cut],
+        k: usize,
+        ends: (Option<End>, Option<End>),
+    ) -> Result<Table, String>;
+
+    /// Refuses what it cannot model before its unit is written (checked at
+    /// `slender check`); the default refuses nothing.
+    fn refuse(&self, _built: &Built, _cut: &Cut) -> Result<(), String> {
+        Ok(())
+    }
+}
+
+/// The outputs of a section reporting its end forces at `ends` (the end's
+/// none where `end_loaded`), its touchdown point as `touchdown` with its
+/// sag-bend moment where the model has a seabed, and its overbend moment
+/// where `overbend` and the model has a stinger.
+pub(super) fn outputs_of(
+    ends: [&str; 2],
+    end_loaded: bool,
+    touchdown: Option<&str>,
+    overbend: bool,
+    (seabed, stinger): (bool, bool),
+) -> SectionOutputs {
+    let forces = |side: &str| [format!("{side}_force_x"), format!("{side}_force_z")];
+    let touches = seabed && touchdown.is_some();
+    SectionOutputs {
+        start_force: forces(ends[0]),
+        end_force: (!end_loaded).then(|| forces(ends[1])),
+        touchdown: touchdown.filter(|_| touches).map(str::to_owned),
+        sagbend_moment: touches.then(|| "sagbend_moment".to_owned()),
+        overbend_moment: (stinger && overbend).then(|| "overbend_moment".to_owned()),
+        stations: false,
+    }
+}
+
+impl Fidelity {
+    /// The fidelity's model: its registration.
+    pub(super) fn model(self) -> &'static dyn SectionModel {
+        match self {
+            Fidelity::Nonlinear => &super::nonlinear::Nonlinear,
+            Fidelity::Linear => &super::nonlinear::Linear,
+            Fidelity::Cable => &super::cable::Cable,
+            Fidelity::Static => &super::static_fidelity::Static,
+            Fidelity::Reduced => &super::reduced::Reduced,
+            Fidelity::Beam => &super::chord::BEAM,
+            Fidelity::Span => &super::chord::SPAN,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_fidelity_is_registered_under_its_name() {
+        for (fidelity, name) in Fidelity::ALL.into_iter().zip(Fidelity::NAMES) {
+            assert_eq!(fidelity.name(), name);
+            assert_eq!(Fidelity::parse("fidelity", name), Ok(fidelity));
+            let keys = fidelity.model().option_keys();
+            assert!(keys.is_empty() || keys[0] == "kind", "{name}: {keys:?}");
+            let count = fidelity.count_key();
+            assert!(
+                count == "elements" || keys.contains(&count),
+                "{name}: {count}"
+            );
+        }
+    }
+}
