@@ -42,6 +42,21 @@ fn run_sets_scene_keys_over_the_file() {
     }
 }
 
+/// An error in a scene changed by `--set` names the file and the key, not a
+/// line: the text checked is the changed table written out again, whose lines
+/// are not the file's (it named line 90 of the 62-line mooring example).
+#[test]
+fn an_error_under_set_names_no_line_of_another_text() {
+    let set = "structure.sections[0].fidelity={ kind = \"span\", elements = 3 }";
+    let check = slender(&["check", "examples/structure_mooring.toml", "--set", set]);
+    assert_eq!(check.status.code(), Some(2));
+    let err = text(&check.stderr);
+    assert!(
+        err.contains("examples/structure_mooring.toml: structure: `structure.sections[0].fidelity.elements`: unknown key"),
+        "{err}"
+    );
+}
+
 /// Issue 28: `--set` on the commands that read a scene (check, expand,
 /// bench), refused on one that reads none.
 #[test]

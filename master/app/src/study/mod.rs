@@ -387,14 +387,19 @@ fn scene_from(path: &Path, table: &toml::Table, overrides: &[String]) -> Result<
     Ok(scene)
 }
 
-/// The scene of `table`, with `duration` when given.
+/// The scene of `table`, with `duration` when given. An error names the file
+/// and the key but no line: the text parsed is the table written out again,
+/// whose lines are not the file's.
 pub(crate) fn scene_with(
     path: &Path,
     table: &toml::Table,
     duration: Option<f64>,
 ) -> Result<Scene, String> {
     let text = toml::to_string(table).map_err(|e| e.to_string())?;
-    let mut scene = Scene::parse(path, text).map_err(|e| e.to_string())?;
+    let mut scene = Scene::parse(path, text).map_err(|mut e| {
+        e.line = None;
+        e.to_string()
+    })?;
     if let Some(d) = duration {
         scene.spec.simulation.duration = d;
         let step = scene.spec.simulation.step;
