@@ -153,7 +153,8 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
 /// cable's top takes force and its bottom velocity; a reduced section about its stress-free state takes
 /// force at both its cuts; a static first section either follows the section
 /// above and every section above is held at its end (all cuts the first way
-/// round), or, when the structure's end carries a force (`holding_static`),
+/// round), or, when the structure's end carries a force or a chord section is
+/// above it (`holding_static`),
 /// takes force and holds the section above; a chord section moves at its start
 /// and is loaded at its end.
 fn orientation(
@@ -197,13 +198,26 @@ fn require<'a>(
     by: &'a Cut,
 ) -> Result<(), String> {
     match fixed[cut] {
-        Some((way, other)) if way != upper_loaded => Err(format!(
-            "`structure.sections.{}.fidelity` = \"{}\" and `structure.sections.{}.fidelity` = \"{}\" need the cut between them coupled opposite ways (a cable is loaded at its top and moves at its bottom, a reduced section is loaded at both its cuts, a static first section holds every section above at its end); put a nonlinear section between them",
-            other.name,
-            other.fidelity.name(),
-            by.name,
-            by.fidelity.name(),
-        )),
+        Some((way, other)) if way != upper_loaded => {
+            let neighbours = other.to == by.from || by.to == other.from;
+            let between = if neighbours {
+                "the cut between them"
+            } else {
+                "a cut"
+            };
+            let advice = if neighbours {
+                "put a nonlinear section between them"
+            } else {
+                "choose another fidelity for one of them"
+            };
+            Err(format!(
+                "`structure.sections.{}.fidelity` = \"{}\" and `structure.sections.{}.fidelity` = \"{}\" need {between} coupled opposite ways (a cable is loaded at its top and moves at its bottom, a reduced section is loaded at both its cuts, a static first section under a held top hangs every section above from their ends); {advice}",
+                other.name,
+                other.fidelity.name(),
+                by.name,
+                by.fidelity.name(),
+            ))
+        }
         _ => {
             fixed[cut] = Some((upper_loaded, by));
             Ok(())
@@ -286,8 +300,11 @@ impl Built {
             (true, None) => Some(statics::Equilibrium::solve(&statics_model, t0)?),
             (false, None) => None,
         };
+        // A chord section is loaded at its end and moves at its start, so the
+        // section below it cannot hang from it: the static section holds.
+        let chord = sections.iter().any(|c| c.fidelity.is_chord());
         let holding_static = sections[0].fidelity == Fidelity::Static
-            && statics::static_takes_force(&statics_model, top_load.is_some());
+            && (chord || statics::static_takes_force(&statics_model, top_load.is_some()));
         let built = Built {
             holding_static,
             water,
@@ -346,7 +363,7 @@ impl Built {
         });
         let (Some(above), Some(equilibrium)) = (above, &self.statics) else {
             return Err(format!(
-                "`structure.sections.{}.fidelity` = \"static\": the structure's end carries a force, so the static first section holds the section above by its displacement; that section must be numerical and `nonlinear`, `beam` or `span`",
+                "`structure.sections.{}.fidelity` = \"static\": the structure's end carries a force or a chord section is above, so the static first section holds the section above by its displacement; that section must be numerical and `nonlinear`, `beam` or `span`",
                 cuts[0].name
             ));
         };

@@ -258,7 +258,8 @@ impl Equilibrium {
 /// section above where its compliance puts it (rather than following that
 /// section's velocity and returning force): when the structure's end carries
 /// a force in x or z (a tensioner, a top load), the sections above cannot all
-/// be held at their ends, so the static section holds them.
+/// be held at their ends, so the static section holds them (`Built::new` also
+/// makes it hold under a chord section, for the same reason).
 pub fn static_takes_force(model: &Table, top_load: bool) -> bool {
     let end = model
         .get("ends")
