@@ -55,7 +55,8 @@ pub struct Summary {
     /// The computing time per step of a paced run (`--realtime`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub realtime: Option<RealtimeReport>,
-    /// The plausibility watch's warnings (`crate::watch`), when any.
+    /// The scene's advisories (`Scene::advisories`) and the plausibility
+    /// watch's warnings (`crate::watch`), when any.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
 }
@@ -83,7 +84,8 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         csv_path.as_deref(),
     )?;
     let started = Instant::now();
-    let mut warnings = Vec::new();
+    // The scene's advisories first, then the plausibility watch's.
+    let mut warnings = scene.advisories.clone();
     let (outcome, realtime) = simulate(scene, &mut master, &mut recorder, (options, &mut warnings));
     let wall = started.elapsed().as_secs_f64();
     recorder.finish()?;

@@ -68,6 +68,10 @@ pub struct Scene {
     pub overrides: Vec<String>,
     /// An SSP's unpacked archive (its FMUs), kept as long as the scene.
     pub resources: Option<tempfile::TempDir>,
+    /// What the scene's models follow poorly (a `[structure]` section's model
+    /// that keeps its contact state where the touchdown point moves): said by
+    /// `slender check` and among a run's warnings.
+    pub advisories: Vec<String>,
 }
 
 impl Scene {
@@ -89,7 +93,7 @@ impl Scene {
     /// Checks a scene given as text; `path` names it in messages and anchors
     /// relative output folders.
     pub fn parse(path: &Path, source: String) -> Result<Scene, SceneError> {
-        let (expanded, structure) = expand_structure(path, &source)?;
+        let (expanded, structure, advisories) = expand_structure(path, &source)?;
         // An error in the units a structure writes out names a line of the
         // user's file, not of the expanded text.
         let located = |mut e: SceneError| {
@@ -129,6 +133,7 @@ impl Scene {
             steps: 0,
             overrides: Vec::new(),
             resources: None,
+            advisories,
         };
         scene.check_time().map_err(located)?;
         scene.build().map_err(located)?;
@@ -535,10 +540,10 @@ fn line_of(source: &str, offset: usize) -> usize {
 }
 
 /// The scene text with its `[structure]` (if any) written out as plain units and
-/// connections, and the structure's name; unchanged (and none) without one. An
-/// error names the line of the key it is about in `source`.
-fn expand_structure(path: &Path, source: &str) -> Result<(String, Option<String>), SceneError> {
-    let unchanged = || Ok((source.to_owned(), None));
+/// connections, the structure's name and its advisories; unchanged (and none)
+/// without one. An error names the line of the key it is about in `source`.
+fn expand_structure(path: &Path, source: &str) -> Result<Expanded, SceneError> {
+    let unchanged = || Ok((source.to_owned(), None, Vec::new()));
     if !source.contains("structure") {
         return unchanged();
     }
@@ -561,9 +566,13 @@ fn expand_structure(path: &Path, source: &str) -> Result<(String, Option<String>
         .and_then(|s| s.get("name"))
         .and_then(toml::Value::as_str)
         .map(str::to_owned);
-    if !structure::expand(&mut table).map_err(error)? {
+    let Some(advisories) = structure::expand(&mut table).map_err(error)? else {
         return unchanged();
-    }
+    };
     let text = toml::to_string(&table).map_err(|e| error(e.to_string()))?;
-    Ok((text, name))
+    Ok((text, name, advisories))
 }
+
+/// A scene's text with its structure written out, the structure's name and
+/// its advisories.
+type Expanded = (String, Option<String>, Vec<String>);

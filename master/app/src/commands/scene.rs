@@ -166,6 +166,9 @@ pub fn check(arg: &SceneArg) -> Result<(), CliError> {
     let signals = scene.signals(&master).len();
     slender_app::run::check_output_size(&scene, signals).map_err(CliError::input)?;
     println!("{}: ok", path.display());
+    for advisory in &scene.advisories {
+        println!("warning: {advisory}");
+    }
     for (u, name) in master.unit_names().enumerate() {
         let d = master.description(u);
         let ports = |ps: &[slender_units::Port]| {

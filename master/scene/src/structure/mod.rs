@@ -70,11 +70,12 @@ const STRUCTURE_KEYS: [&str; 8] = [
     "hang_off",
 ];
 
-/// Expands `[structure]` in `scene` into units and connections; false when the
-/// scene has none. The error names the key.
-pub fn expand(scene: &mut Table) -> Result<bool, String> {
+/// Expands `[structure]` in `scene` into units and connections; returns the
+/// advisories on what its sections' models follow poorly (None when the
+/// scene has no structure). The error names the key.
+pub fn expand(scene: &mut Table) -> Result<Option<Vec<String>>, String> {
     let Some(structure) = scene.remove("structure") else {
-        return Ok(false);
+        return Ok(None);
     };
     let structure = structure
         .as_table()
@@ -95,8 +96,10 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
     let force_on_upper = orientation(&cuts, built.statics.is_some(), built.holding_static)?;
     let mut units = Vec::new();
     let mut connections = Vec::new();
+    let mut advisories = Vec::new();
     for k in 0..cuts.len() {
         units.push(Value::Table(built.section(&cuts, k, &force_on_upper)?));
+        advisories.extend(built.advise_on_touchdown(&cuts[k]));
         if cut_is_plain(&cuts, k, built.holding_static) {
             let (links, artefacts) = cuts::cut_connections(
                 &built.side(&cuts[k]),
@@ -140,7 +143,7 @@ pub fn expand(scene: &mut Table) -> Result<bool, String> {
     }
     append(scene, "units", units)?;
     append(scene, "connections", connections)?;
-    Ok(true)
+    Ok(Some(advisories))
 }
 
 /// Per cut, whether the upper section's end is the loaded side (it carries the

@@ -102,6 +102,13 @@ pub(super) trait SectionModel: Sync {
         ends: (Option<End>, Option<End>),
     ) -> Result<Table, String>;
 
+    /// How it keeps the contact state it starts with, in words, where it
+    /// does (so it cannot follow a moving touchdown point); None: it follows
+    /// contact as it changes.
+    fn contact_state_kept(&self) -> Option<&'static str> {
+        None
+    }
+
     /// Refuses what it cannot model before its unit is written (checked at
     /// `slender check`); the default refuses nothing.
     fn refuse(&self, _built: &Built, _cut: &Cut) -> Result<(), String> {

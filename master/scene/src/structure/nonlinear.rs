@@ -69,6 +69,9 @@ impl SectionModel for Linear {
     fn refuse(&self, built: &Built, cut: &Cut) -> Result<(), String> {
         built.refuse_linear_on_stinger(cut)
     }
+    fn contact_state_kept(&self) -> Option<&'static str> {
+        Some("a linear section cannot follow: it keeps the seabed as springs where it lay")
+    }
 }
 
 /// The `nonlinear` unit of one section: the model's segments clipped to its range,

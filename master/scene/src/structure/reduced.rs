@@ -36,6 +36,11 @@ impl SectionModel for Reduced {
     fn count_key(&self) -> &'static str {
         "modes"
     }
+    fn contact_state_kept(&self) -> Option<&'static str> {
+        Some(
+            "a reduced section follows poorly: its basis holds the nodes in contact where they lay",
+        )
+    }
     /// About the stress-free state (seed 002's unit) it is loaded at both its
     /// cuts; about the equilibrium it is coupled as a `nonlinear` section.
     fn cut_needs(&self, place: Place) -> CutNeeds {

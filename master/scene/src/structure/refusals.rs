@@ -1,7 +1,10 @@
 //! What a section's fidelity cannot model, refused when the scene is
 //! written out (`slender check`) with the reason, rather than at the start
 //! of a run: a model without seabed contact on a section lying on the
-//! seabed; a `linear` section over a stinger's rollers.
+//! seabed; a `linear` section over a stinger's rollers. And what it models
+//! poorly, said as an advisory (`slender check` and the run's warnings): a
+//! model that keeps its contact state on a section that holds the touchdown
+//! point.
 
 use super::Built;
 use super::sections::Cut;
@@ -12,17 +15,10 @@ impl Built {
     /// a section that lies on a flat seabed in the equilibrium, rather than
     /// letting it fail at the start.
     pub(super) fn refuse_without_seabed(&self, cut: &Cut) -> Result<(), String> {
-        let height = (self.model.get("contact"))
-            .and_then(|c| c.get("surface")?.get("shape"))
-            .filter(|shape| shape.get("kind").and_then(Value::as_str) == Some("flat"))
-            .and_then(|shape| shape.get("height")?.as_float());
-        let (Some(equilibrium), Some(height)) = (&self.statics, height) else {
-            return Ok(());
-        };
         if !cut.fidelity.lacks_seabed() {
             return Ok(());
         }
-        match equilibrium.on_seabed((cut.from, cut.to), height) {
+        match self.lying(cut) {
             Some((first, last)) => Err(format!(
                 "`structure.sections.{}.fidelity` = \"{}\": the section lies on the seabed from {first:.2} to {last:.2} m of arc in the static equilibrium, and a {} model has no seabed contact; choose \"nonlinear\" (or \"static\" for a first, laid section), or cut it above the touchdown point",
                 cut.name,
@@ -31,6 +27,40 @@ impl Built {
             )),
             None => Ok(()),
         }
+    }
+
+    /// The arc lengths (m) of the first and last nodes of `cut` on a flat
+    /// seabed in the equilibrium; None where none lies (or without a static
+    /// start or a flat seabed).
+    fn lying(&self, cut: &Cut) -> Option<(f64, f64)> {
+        let height = (self.model.get("contact"))
+            .and_then(|c| c.get("surface")?.get("shape"))
+            .filter(|shape| shape.get("kind").and_then(Value::as_str) == Some("flat"))
+            .and_then(|shape| {
+                let height = shape.get("height")?;
+                (height.as_float()).or_else(|| height.as_integer().map(|h| h as f64))
+            });
+        self.statics
+            .as_ref()?
+            .on_seabed((cut.from, cut.to), height?)
+    }
+
+    /// An advisory where a model that keeps its contact state (its
+    /// `contact_state_kept`) is given a section holding the touchdown point
+    /// in the equilibrium: it lies on the seabed up to a point inside it and
+    /// hangs above, and the point moves along it.
+    pub(super) fn advise_on_touchdown(&self, cut: &Cut) -> Option<String> {
+        let how = cut.fidelity.model().contact_state_kept()?;
+        // The pipe lies from the structure's start and lifts off the seabed
+        // towards its top: the last node lying is the touchdown point where
+        // it is not the section's end (its start, an anchor, may lie above).
+        let (_, at) = self.lying(cut)?;
+        let holds = at < cut.to - 1e-9 * (cut.to - cut.from);
+        holds.then(|| format!(
+            "`structure.sections.{}.fidelity` = \"{}\": the touchdown point lies in this section (at {at:.1} m of arc in the static equilibrium) and moves along it, which {how}; expect errors of several per cent (the riser's sag bend over 200 s: `linear` 42 % on the sag-bend moment, `reduced` 11 % on the top force); \"nonlinear\" follows it",
+            cut.name,
+            cut.fidelity.name()
+        ))
     }
 
     /// Refuses a `linear` section (its model's `refuse`) whose equilibrium passes over a stinger's
