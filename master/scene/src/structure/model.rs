@@ -143,8 +143,8 @@ impl Fidelity {
     /// The fidelity's model: its registration.
     pub(super) fn model(self) -> &'static dyn SectionModel {
         match self {
-            Fidelity::Nonlinear => &super::nonlinear::Nonlinear,
-            Fidelity::Linear => &super::nonlinear::Linear,
+            Fidelity::Nonlinear => &super::nonlinear::NONLINEAR,
+            Fidelity::Linear => &super::nonlinear::LINEAR,
             Fidelity::Cable => &super::cable::Cable,
             Fidelity::Static => &super::static_fidelity::Static,
             Fidelity::Reduced => &super::reduced::Reduced,

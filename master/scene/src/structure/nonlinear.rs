@@ -9,11 +9,17 @@ use super::model::{SectionModel, outputs_of};
 use super::sections::{Cut, Fidelity, Segment};
 use toml::{Table, Value};
 
-/// The `nonlinear` fidelity: the geometrically nonlinear unit.
-pub(super) struct Nonlinear;
+/// The `nonlinear` fidelity (the geometrically nonlinear unit) and, with
+/// `linear`, the `linear` one (that unit linearised about its start).
+pub(super) struct Section {
+    linear: bool,
+}
 
-/// The `linear` fidelity: the `nonlinear` unit linearised about its start.
-pub(super) struct Linear;
+/// The `nonlinear` fidelity.
+pub(super) const NONLINEAR: Section = Section { linear: false };
+
+/// The `linear` fidelity.
+pub(super) const LINEAR: Section = Section { linear: true };
 
 /// The `nonlinear` unit's outputs: end forces, the touchdown point
 /// interpolated where the seabed gap closes (`touchdown_arc`), sag-bend and
@@ -26,9 +32,9 @@ pub(super) fn section_outputs(fmu: bool, seabed: bool, stinger: bool) -> Section
     outputs
 }
 
-impl SectionModel for Nonlinear {
+impl SectionModel for Section {
     fn name(&self) -> &'static str {
-        "nonlinear"
+        if self.linear { "linear" } else { "nonlinear" }
     }
     fn is_section_unit(&self) -> bool {
         true
@@ -45,32 +51,17 @@ impl SectionModel for Nonlinear {
     ) -> Result<Table, String> {
         built.section_unit(&cuts[k], ends)
     }
-}
-
-impl SectionModel for Linear {
-    fn name(&self) -> &'static str {
-        "linear"
-    }
-    fn is_section_unit(&self) -> bool {
-        true
-    }
-    fn outputs(&self, fmu: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
-        section_outputs(fmu, seabed, stinger)
-    }
-    fn unit(
-        &self,
-        built: &Built,
-        cuts: &[Cut],
-        k: usize,
-        ends: (Option<End>, Option<End>),
-    ) -> Result<Table, String> {
-        built.section_unit(&cuts[k], ends)
-    }
+    /// A linear section cannot follow a stinger's moving rollers.
     fn refuse(&self, built: &Built, cut: &Cut) -> Result<(), String> {
-        built.refuse_linear_on_stinger(cut)
+        match self.linear {
+            true => built.refuse_linear_on_stinger(cut),
+            false => Ok(()),
+        }
     }
     fn contact_state_kept(&self) -> Option<&'static str> {
-        Some("a linear section cannot follow: it keeps the seabed as springs where it lay")
+        (self.linear).then_some(
+            "a linear section cannot follow: it keeps the seabed as springs where it lay",
+        )
     }
 }
 
