@@ -421,3 +421,44 @@ fn layout_run(
     }
     (layout, series)
 }
+
+/// A fidelity study carries each run's warnings into its rows and reports:
+/// the riser's sag bend `linear` (it holds the touchdown point and keeps its
+/// contact state) is named in its row, in the CSV's last column and under the
+/// Markdown table; the `nonlinear` sag bend's row has none.
+#[test]
+fn a_fidelity_study_reports_the_advisories_of_its_runs() {
+    let path = root().join("examples/structure_riser.toml");
+    let plan = plan(&["sagbend=nonlinear,linear"], Design::OneAtATime, 1);
+    let report = run_fidelity(&path, &plan, |_| {}).unwrap();
+    let row = |choice: &str| {
+        let found = report.rows.iter().find(|r| {
+            !r.reference
+                && r.combination
+                    .iter()
+                    .any(|(s, c)| s == "sagbend" && c == choice)
+        });
+        found.unwrap_or_else(|| panic!("no row sagbend={choice}"))
+    };
+    assert!(
+        row("nonlinear").warnings.is_empty(),
+        "{:?}",
+        row("nonlinear").warnings
+    );
+    let warned = &row("linear").warnings;
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    assert!(
+        warned[0].contains("the touchdown point lies in this section"),
+        "{}",
+        warned[0]
+    );
+    let markdown = slender_app::fidelity::report::to_markdown(&report);
+    assert!(markdown.contains("Warnings of the runs:"), "{markdown}");
+    assert!(
+        markdown.contains("(laid=nonlinear sagbend=linear top=nonlinear)"),
+        "{markdown}"
+    );
+    let csv = slender_app::fidelity::report::to_csv(&report);
+    let header = csv.lines().next().unwrap();
+    assert!(header.ends_with(",error,warnings"), "{header}");
+}

@@ -73,6 +73,9 @@ pub struct FidelityRow {
     pub pareto: bool,
     pub within_tolerance: bool,
     pub error: Option<String>,
+    /// The run's warnings: the scene's advisories (a section's model that
+    /// follows the touchdown point poorly) and the plausibility watch's.
+    pub warnings: Vec<String>,
 }
 
 /// A fidelity study's result.
@@ -115,6 +118,9 @@ struct Outcome {
     cost: f64,
     cost_spread: f64,
     error: Option<String>,
+    /// The run's warnings (none in runs kept before they were).
+    #[serde(default)]
+    warnings: Vec<String>,
 }
 
 /// Runs the plan on the scene at `path`. `Err` when the study cannot start (the

@@ -17,7 +17,7 @@ fn label(r: &FidelityRow) -> String {
 
 /// The rows as CSV: combination, epsilon per quantity, worst, cost, speed-up,
 /// iterations per step, non-converged steps, the start check's change,
-/// Pareto, within tolerance, error.
+/// Pareto, within tolerance, error, warnings (`; ` between them).
 pub fn to_csv(report: &FidelityReport) -> String {
     let eps: Vec<String> = report
         .quantities
@@ -25,13 +25,13 @@ pub fn to_csv(report: &FidelityReport) -> String {
         .map(|n| format!("epsilon_{n}"))
         .collect();
     let mut out = format!(
-        "combination,reference,{},worst_epsilon,cost_per_simulated_second,cost_spread,speed_up,iterations_per_step,non_converged_steps,start_change,pareto,within_tolerance,error\n",
+        "combination,reference,{},worst_epsilon,cost_per_simulated_second,cost_spread,speed_up,iterations_per_step,non_converged_steps,start_change,pareto,within_tolerance,error,warnings\n",
         eps.join(",")
     );
     for r in &report.rows {
         let eps: Vec<String> = r.errors.iter().map(|(_, e)| format!("{e:e}")).collect();
         out += &format!(
-            "{},{},{},{:e},{:e},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{:e},{:e},{},{},{},{},{},{},{},{},{}\n",
             label(r),
             r.reference,
             eps.join(","),
@@ -44,7 +44,8 @@ pub fn to_csv(report: &FidelityReport) -> String {
             r.start_change.map(|c| format!("{c:e}")).unwrap_or_default(),
             r.pareto,
             r.within_tolerance,
-            r.error.as_deref().unwrap_or("").replace([',', '\n'], ";")
+            r.error.as_deref().unwrap_or("").replace([',', '\n'], ";"),
+            r.warnings.join("; ").replace([',', '\n'], ";")
         );
     }
     out
@@ -83,6 +84,30 @@ pub fn to_markdown(report: &FidelityReport) -> String {
         );
     }
     out += &format!("\n{}\n", conclusion(report));
+    out += &warnings(report);
+    out
+}
+
+/// Each distinct warning of the runs with the combinations that gave it, as
+/// a list (empty when no run warned).
+fn warnings(report: &FidelityReport) -> String {
+    let mut distinct: Vec<(&str, Vec<String>)> = Vec::new();
+    for r in &report.rows {
+        for w in &r.warnings {
+            match distinct.iter_mut().find(|(text, _)| text == w) {
+                Some((_, rows)) => rows.push(label(r)),
+                None => distinct.push((w, vec![label(r)])),
+            }
+        }
+    }
+    let mut out = String::new();
+    if !distinct.is_empty() {
+        out += "\nWarnings of the runs:\n\n";
+    }
+    for (text, rows) in distinct {
+        let text = text.replace('\n', " ");
+        out += &format!("- {text} ({})\n", rows.join("; "));
+    }
     out
 }
 

@@ -52,6 +52,7 @@ pub(super) fn rows_of(
                 pareto: false,
                 within_tolerance: false,
                 error: o.error.clone(),
+                warnings: o.warnings.clone(),
             }
         })
         .collect();

@@ -26,6 +26,7 @@ pub(super) fn run_one(
         cost: f64::NAN,
         cost_spread: f64::NAN,
         error: Some(error),
+        warnings: Vec::new(),
     };
     let (table, units) = match run_table(table, structure, combination) {
         Ok(t) => t,
@@ -69,6 +70,7 @@ pub(super) fn run_one(
             cost,
             cost_spread,
             error: result.summary.error.clone(),
+            warnings: result.summary.warnings.clone(),
         },
         Err(e) => failed(e),
     }
