@@ -43,8 +43,9 @@ pub(super) trait SectionModel: Sync {
     /// The name as written in scenes.
     fn name(&self) -> &'static str;
 
-    /// Its own keys in `{ kind = NAME, ... }` besides `kind` and `elements`,
-    /// handed to its unit; empty: a table takes `kind` and `elements` only.
+    /// The keys its table form `{ kind = NAME, ... }` takes, `kind` first;
+    /// those besides `kind` and `elements` are handed to its unit. Empty: the
+    /// table takes `kind` and `elements` only.
     fn option_keys(&self) -> &'static [&'static str] {
         &[]
     }
