@@ -462,3 +462,63 @@ fn a_fidelity_study_reports_the_advisories_of_its_runs() {
     let header = csv.lines().next().unwrap();
     assert!(header.ends_with(",error,warnings"), "{header}");
 }
+
+/// Every fidelity on every section of every structure example that the
+/// scene accepts: each output its layout names (end forces, touchdown point,
+/// moments) is an output of the unit the expansion writes, and a section that
+/// takes stations is a `nonlinear` unit. So a fidelity's declaration of its
+/// outputs (its `SectionModel::outputs`) is checked against its unit, not
+/// trusted.
+#[test]
+fn every_fidelity_s_layout_matches_the_units_it_writes() {
+    use slender_scene::structure::{layout, write_choice};
+    let mut checked = 0;
+    for example in [
+        "structure_mooring.toml",
+        "structure_slay.toml",
+        "structure_slay_fidelity.toml",
+        "structure_riser.toml",
+        "structure_truncation.toml",
+        "structure_hanging_pipe.toml",
+        "structure_frame_reduced.toml",
+    ] {
+        let path = root().join("examples").join(example);
+        let base: toml::Table = std::fs::read_to_string(&path).unwrap().parse().unwrap();
+        let count = base["structure"]["sections"].as_array().unwrap().len();
+        for k in 0..count {
+            for word in slender_scene::structure::FIDELITIES {
+                let mut table = base.clone();
+                let sections = table["structure"]["sections"].as_array_mut().unwrap();
+                write_choice(sections[k].as_table_mut().unwrap(), word, None, None).unwrap();
+                let Ok(scene) = Scene::parse(&path, toml::to_string(&table).unwrap()) else {
+                    continue; // refused with its reason (tested elsewhere)
+                };
+                let master = scene.build().unwrap();
+                let layout = layout(&table).unwrap().unwrap();
+                for s in &layout.sections {
+                    let u = master.unit_names().position(|n| n == s.unit);
+                    let u = u.unwrap_or_else(|| panic!("{example} {word}: no unit {}", s.unit));
+                    let d = master.description(u);
+                    let has = |o: &str| d.outputs.iter().any(|p| p.name == o);
+                    let o = &s.outputs;
+                    let mut named: Vec<&String> = o.start_force.iter().collect();
+                    named.extend(o.end_force.iter().flatten());
+                    named.extend(
+                        [&o.touchdown, &o.sagbend_moment, &o.overbend_moment]
+                            .into_iter()
+                            .flatten(),
+                    );
+                    for name in named {
+                        assert!(has(name), "{example} {k}={word}: {} has no {name}", s.unit);
+                    }
+                    if o.stations {
+                        assert_eq!(d.kind, "nonlinear", "{example} {k}={word}: {}", s.unit);
+                    }
+                    checked += 1;
+                }
+            }
+        }
+    }
+    println!("{checked} sections checked");
+    assert!(checked > 100, "{checked}");
+}
