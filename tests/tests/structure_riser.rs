@@ -163,8 +163,8 @@ fn errors_in_a_structure_name_the_users_line() {
         "{e}"
     );
     // Keys outside the structure, in a scene that has one: their own lines
-    // (they named the `[structure]` table's line: the scene is read again
-    // after the structure is written out).
+    // (the scene is read once, from the file's text; the structure's units
+    // are appended typed, not written out as text and read again).
     for (from, to, key) in [
         ("step = 0.05", "step = \"x\"", "step"),
         ("scheme = \"iterative_jacobi\"", "scheme = 3", "scheme"),
@@ -180,6 +180,24 @@ fn errors_in_a_structure_name_the_users_line() {
         let line = line_of(&text, to);
         assert!(
             e.contains(&format!("structure_riser.toml:{line}: `{key}`")),
+            "{to}: {e}"
+        );
+    }
+    // A unit of the user's own beside a structure: the lines of its keys.
+    let path = root().join("examples/structure_truncation.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    for (from, to) in [
+        ("static_tension = 2.5e6", "static_tension = -2.5e6"),
+        (
+            "kind = \"characteristic_load\"",
+            "kind = \"characteristic_lod\"",
+        ),
+    ] {
+        let text = text.replacen(from, to, 1);
+        let e = Scene::parse(&path, text.clone()).unwrap_err().to_string();
+        let line = (text.lines().position(|l| l.contains(to))).expect(to) + 1;
+        assert!(
+            e.contains(&format!("structure_truncation.toml:{line}: units[0]")),
             "{to}: {e}"
         );
     }

@@ -3,6 +3,7 @@
 //!
 //! Errors name the file, the line where known, the key and what was expected.
 
+mod expansion;
 pub mod export;
 pub mod spec;
 pub mod ssp;
@@ -59,7 +60,10 @@ impl fmt::Display for SceneError {
 pub struct Scene {
     pub path: PathBuf,
     pub spec: SceneSpec,
+    /// The text the scene was read from (errors name its lines).
     source: String,
+    /// With a `[structure]`: the scene's text with it written out.
+    expanded: Option<String>,
     pub start: Time,
     pub step: Time,
     pub steps: i64,
@@ -91,43 +95,42 @@ impl Scene {
     }
 
     /// Checks a scene given as text; `path` names it in messages and anchors
-    /// relative output folders.
+    /// relative output folders. A `[structure]` is written out as typed units
+    /// and connections appended to the scene's own (`expansion`): the text is
+    /// read once, and every error names a line of it.
     pub fn parse(path: &Path, source: String) -> Result<Scene, SceneError> {
-        let (expanded, structure, advisories) = expand_structure(path, &source)?;
-        // An error in the units a structure writes out names a line of the
-        // user's file, not of the expanded text.
-        let located = |mut e: SceneError| {
-            if let (Some(name), Some(line)) = (&structure, e.line) {
-                e.line =
-                    structure_lines::user_line(&source, &expanded, line, &e.key).or_else(|| {
-                        structure_lines::generated_unit_line(&source, name, &e.key, &e.message)
-                    });
+        let expansion = expansion::expand(path, &source)?;
+        let mut spec: SceneSpec = toml::from_str(&source).map_err(|e| {
+            // A key missing from the whole file: no line or key to blame.
+            let span = e
+                .span()
+                .filter(|s| !(s.start == 0 && (s.end == 0 || s.end >= source.trim_end().len())));
+            SceneError {
+                file: path.to_owned(),
+                line: span.clone().map(|s| line_of(&source, s.start)),
+                key: span
+                    .map(|s| key_at(&source, s.start))
+                    .filter(|key| !key.starts_with("`{"))
+                    .or_else(|| key_path::<SceneSpec>(&source))
+                    .unwrap_or_default(),
+                message: migration_hint(e.message().trim()),
             }
-            e
+        })?;
+        spec.structure = None;
+        let structure = expansion.as_ref().map(|x| x.name.clone());
+        let (expanded, advisories) = match expansion {
+            Some(x) => {
+                spec.units.extend(x.units);
+                spec.connections.extend(x.connections);
+                (Some(x.text), x.advisories)
+            }
+            None => (None, Vec::new()),
         };
-        let source = expanded.clone();
-        let spec: SceneSpec = toml::from_str(&source)
-            .map_err(|e| {
-                // A key missing from the whole file: no line or key to blame.
-                let span = e.span().filter(|s| {
-                    !(s.start == 0 && (s.end == 0 || s.end >= source.trim_end().len()))
-                });
-                SceneError {
-                    file: path.to_owned(),
-                    line: span.clone().map(|s| line_of(&source, s.start)),
-                    key: span
-                        .map(|s| key_at(&source, s.start))
-                        .filter(|key| !key.starts_with("`{"))
-                        .or_else(|| key_path::<SceneSpec>(&source))
-                        .unwrap_or_default(),
-                    message: migration_hint(e.message().trim()),
-                }
-            })
-            .map_err(located)?;
         let mut scene = Scene {
             path: path.to_owned(),
             spec,
             source,
+            expanded,
             start: Time::ZERO,
             step: Time::ZERO,
             steps: 0,
@@ -135,15 +138,23 @@ impl Scene {
             resources: None,
             advisories,
         };
-        scene.check_time().map_err(located)?;
-        scene.build().map_err(located)?;
+        // An error in the units a structure writes out names the model
+        // parameter or the section it is about.
+        let name = structure.as_deref();
+        if let Err(e) = scene.check_time() {
+            return Err(expansion::locate(&scene.source, name, e));
+        }
+        scene
+            .build()
+            .map_err(|e| expansion::locate(&scene.source, name, e))?;
         Ok(scene)
     }
 
-    /// The scene's TOML text as loaded (with a `[structure]` expanded into plain
-    /// units and connections).
+    /// The scene as it runs, as TOML text: the file's, with a `[structure]`
+    /// written out as plain units and connections (what `slender expand`
+    /// prints; that text is made for showing and exporting, not read again).
     pub fn source(&self) -> &str {
-        &self.source
+        self.expanded.as_deref().unwrap_or(&self.source)
     }
 
     fn error(
@@ -538,41 +549,3 @@ fn key_path<T: serde::de::DeserializeOwned>(source: &str) -> Option<String> {
 fn line_of(source: &str, offset: usize) -> usize {
     source[..offset.min(source.len())].matches('\n').count() + 1
 }
-
-/// The scene text with its `[structure]` (if any) written out as plain units and
-/// connections, the structure's name and its advisories; unchanged (and none)
-/// without one. An error names the line of the key it is about in `source`.
-fn expand_structure(path: &Path, source: &str) -> Result<Expanded, SceneError> {
-    let unchanged = || Ok((source.to_owned(), None, Vec::new()));
-    if !source.contains("structure") {
-        return unchanged();
-    }
-    let error = |message: String| SceneError {
-        file: path.to_owned(),
-        line: structure_lines::model_parameter_line(source, &message)
-            .or_else(|| {
-                structure_lines::structure_key(&message)
-                    .and_then(|key| structure_lines::key_line(source, key))
-            })
-            .or_else(|| structure_lines::key_line(source, "structure")),
-        key: "structure".into(),
-        message,
-    };
-    let Ok(mut table) = toml::from_str::<toml::Table>(source) else {
-        // Let the spec parser report the syntax error with its line.
-        return unchanged();
-    };
-    let name = (table.get("structure"))
-        .and_then(|s| s.get("name"))
-        .and_then(toml::Value::as_str)
-        .map(str::to_owned);
-    let Some(advisories) = structure::expand(&mut table).map_err(error)? else {
-        return unchanged();
-    };
-    let text = toml::to_string(&table).map_err(|e| error(e.to_string()))?;
-    Ok((text, name, advisories))
-}
-
-/// A scene's text with its structure written out, the structure's name and
-/// its advisories.
-type Expanded = (String, Option<String>, Vec<String>);

@@ -25,6 +25,10 @@ pub struct SceneSpec {
     /// Uncertain inputs for `slender uq` (a run ignores it).
     #[serde(default)]
     pub uncertainty: Option<UncertaintySpec>,
+    /// `[structure]`: written out as units and connections when the scene is
+    /// read (`Scene::parse`), which append them to `units` and `connections`.
+    #[serde(default)]
+    pub structure: Option<toml::Value>,
 }
 
 /// `[uncertainty]`: distributions given to scene keys, and the indicators whose

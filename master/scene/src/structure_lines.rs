@@ -1,8 +1,7 @@
-//! Lines of the user's file for errors about a `[structure]`: the structure
-//! is written out as units before the scene is checked, so an error found in
-//! the generated units would otherwise name a line of the expanded text (line
-//! 90 of a 69-line file). Errors name the key they are about; this finds it in
-//! the file as written.
+//! Lines of the user's file for errors about a `[structure]`: the units a
+//! structure writes out point at its `[structure]` header, so an error found
+//! in one of them is placed at the model parameter or the section it is
+//! about; an error of the structure's own checks at the key it names.
 
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
@@ -63,6 +62,17 @@ fn locate(source: &str, path: &str) -> Option<(usize, bool)> {
     found.map(|offset| (line(offset), reached == parts.len()))
 }
 
+/// The byte range of the `structure` key in `source` (the `[structure]`
+/// header), where the file writes it: what the units a structure writes out
+/// point at.
+pub fn structure_span(source: &str) -> Option<std::ops::Range<usize>> {
+    let document = DeTable::parse(source).ok()?;
+    let table = document.get_ref();
+    (table.iter())
+        .find(|(k, _)| k.get_ref() == "structure")
+        .map(|(k, _)| k.span())
+}
+
 /// The parts of a dotted key, an index `[i]` its own part.
 fn split(path: &str) -> Vec<&str> {
     let mut parts = Vec::new();
@@ -96,32 +106,6 @@ pub fn structure_key(message: &str) -> Option<&str> {
         .step_by(2)
         .find(|k| k.starts_with("structure"))
         .map(|k| k.split(" = ").next().unwrap_or(k))
-}
-
-/// The line in the user's file `source` of an error found at line `line` of
-/// the expanded text about `key` (a dotted path, or a key as written on that
-/// line, in backticks): the path itself where the file writes it, else the
-/// key under the table header above that line; None for a key of the units
-/// and connections the structure writes out.
-pub fn user_line(source: &str, expanded: &str, line: usize, key: &str) -> Option<usize> {
-    let key = key.trim_matches('`');
-    if key.is_empty() || key.starts_with('{') {
-        return None;
-    }
-    if let Some(found) = exact_key_line(source, key).filter(|_| key.contains('.')) {
-        return Some(found);
-    }
-    let header = expanded
-        .lines()
-        .take(line.saturating_sub(1))
-        .filter(|l| l.trim_start().starts_with('['))
-        .last()
-        .map(str::trim);
-    match header {
-        Some(h) if h.starts_with("[[") => None,
-        Some(h) => exact_key_line(source, &format!("{}.{key}", h.trim_matches(['[', ']']))),
-        None => exact_key_line(source, key),
-    }
 }
 
 /// The line of the `structure.model` parameter a message names

@@ -1,7 +1,8 @@
 //! `[structure]`: one planar slender structure described once and cut into
-//! sections, each its own unit, written out as plain `[[units]]` and
-//! `[[connections]]` before the scene is checked (`slender expand` prints the
-//! result, so nothing is hidden).
+//! sections, each its own unit, written out as units and connections when the
+//! scene is read (`crate::expansion` types them and appends them to the
+//! scene's own; `slender expand` prints them as plain `[[units]]` and
+//! `[[connections]]`, so nothing is hidden).
 //!
 //! The structure is a `nonlinear` section's parameters (`[structure.model]`:
 //! segments from the start, ends, environment, integrator). `[[structure.sections]]`
@@ -70,10 +71,19 @@ const STRUCTURE_KEYS: [&str; 8] = [
     "hang_off",
 ];
 
-/// Expands `[structure]` in `scene` into units and connections; returns the
-/// advisories on what its sections' models follow poorly (None when the
-/// scene has no structure). The error names the key.
-pub fn expand(scene: &mut Table) -> Result<Option<Vec<String>>, String> {
+/// What a `[structure]` writes out: its units and connections (as tables of
+/// the scene's `[[units]]` and `[[connections]]`), and the advisories on what
+/// its sections' models follow poorly.
+pub struct Written {
+    pub units: Vec<Value>,
+    pub connections: Vec<Value>,
+    pub advisories: Vec<String>,
+}
+
+/// Expands `[structure]` in `scene` into units and connections, appended to
+/// the scene's own and returned (None when the scene has no structure). The
+/// error names the key.
+pub fn expand(scene: &mut Table) -> Result<Option<Written>, String> {
     let Some(structure) = scene.remove("structure") else {
         return Ok(None);
     };
@@ -141,9 +151,13 @@ pub fn expand(scene: &mut Table) -> Result<Option<Vec<String>>, String> {
     {
         fmu_input_names(&built.side(cut).unit, &mut units, &mut connections);
     }
-    append(scene, "units", units)?;
-    append(scene, "connections", connections)?;
-    Ok(Some(advisories))
+    append(scene, "units", units.clone())?;
+    append(scene, "connections", connections.clone())?;
+    Ok(Some(Written {
+        units,
+        connections,
+        advisories,
+    }))
 }
 
 /// Per cut, whether the upper section's end is the loaded side (it carries the
