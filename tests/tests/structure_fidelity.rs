@@ -391,14 +391,7 @@ fn layout_run(
     let layout = layout(&table).unwrap().unwrap();
     let mut signals = Vec::new();
     for s in &layout.sections {
-        let o = &s.outputs;
-        let mut names: Vec<&String> = o.start_force.iter().collect();
-        names.extend(o.end_force.iter().flatten());
-        names.extend(
-            [&o.touchdown, &o.sagbend_moment, &o.overbend_moment]
-                .into_iter()
-                .flatten(),
-        );
+        let names = s.outputs.names();
         signals.extend(
             names
                 .into_iter()
@@ -501,14 +494,7 @@ fn every_fidelity_s_layout_matches_the_units_it_writes() {
                     let d = master.description(u);
                     let has = |o: &str| d.outputs.iter().any(|p| p.name == o);
                     let o = &s.outputs;
-                    let mut named: Vec<&String> = o.start_force.iter().collect();
-                    named.extend(o.end_force.iter().flatten());
-                    named.extend(
-                        [&o.touchdown, &o.sagbend_moment, &o.overbend_moment]
-                            .into_iter()
-                            .flatten(),
-                    );
-                    for name in named {
+                    for name in o.names() {
                         assert!(has(name), "{example} {k}={word}: {} has no {name}", s.unit);
                     }
                     if o.stations {

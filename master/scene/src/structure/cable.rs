@@ -33,11 +33,7 @@ impl SectionModel for Cable {
     }
     /// Its top takes force, its bottom velocity.
     fn cut_needs(&self, _: Place) -> CutNeeds {
-        CutNeeds {
-            below: Some(true),
-            above: Some(true),
-            all: None,
-        }
+        CutNeeds::MOVING_START_LOADED_END
     }
     fn outputs(&self, _: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
         outputs_of(self.end_names(), true, None, false, (seabed, stinger))

@@ -79,11 +79,7 @@ impl SectionModel for Chord {
     }
     /// It moves at its start and is loaded at its end.
     fn cut_needs(&self, _: Place) -> CutNeeds {
-        CutNeeds {
-            below: Some(true),
-            above: Some(true),
-            all: None,
-        }
+        CutNeeds::MOVING_START_LOADED_END
     }
     fn outputs(&self, _: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
         outputs_of(["start", "end"], true, None, false, (seabed, stinger))

@@ -62,6 +62,18 @@ pub struct SectionOutputs {
     pub stations: bool,
 }
 
+impl SectionOutputs {
+    /// Every output named: the end forces, then the touchdown point and the
+    /// moments where the section has them.
+    pub fn names(&self) -> Vec<&String> {
+        let mut names: Vec<&String> = self.start_force.iter().collect();
+        names.extend(self.end_force.iter().flatten());
+        let optional = [&self.touchdown, &self.sagbend_moment, &self.overbend_moment];
+        names.extend(optional.into_iter().flatten());
+        names
+    }
+}
+
 /// The name of the unit the expansion writes for section `section` of
 /// structure `structure`.
 pub fn unit_name(structure: &str, section: &str) -> String {

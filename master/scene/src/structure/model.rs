@@ -38,6 +38,16 @@ pub(super) struct CutNeeds {
     pub all: Option<bool>,
 }
 
+impl CutNeeds {
+    /// A section that moves with the section below at its start and is
+    /// loaded by the section above at its end (a cable, a chord).
+    pub const MOVING_START_LOADED_END: CutNeeds = CutNeeds {
+        below: Some(true),
+        above: Some(true),
+        all: None,
+    };
+}
+
 /// One fidelity of a section.
 pub(super) trait SectionModel: Sync {
     /// The name as written in scenes.
