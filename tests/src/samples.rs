@@ -65,6 +65,16 @@ pub fn reduced_sample() -> String {
     format!("{}\nreduced_modes = 4\n", without_stinger.join("\n"))
 }
 
+/// The reduced sample with its forces sampled after a training window of
+/// 30 ms (`reduced_sampling`): three steps on every element, then on the
+/// trained sample.
+pub fn sampled_sample() -> String {
+    format!(
+        "{}reduced_sampling = {{ training = 0.03 }}\n",
+        reduced_sample()
+    )
+}
+
 /// One sample per registry kind (an FMU sample needs a folder to export into).
 pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
     let exported = fmu::export("examples/b3_force_displacement.toml", "b", dir);
@@ -81,6 +91,7 @@ pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
         ("nonlinear", inline("nonlinear", NONLINEAR_SAMPLE)),
         ("nonlinear linear", inline("nonlinear", &linear_sample())),
         ("nonlinear reduced", inline("nonlinear", &reduced_sample())),
+        ("nonlinear sampled", inline("nonlinear", &sampled_sample())),
         (
             "span",
             inline(

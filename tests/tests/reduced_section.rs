@@ -136,7 +136,8 @@ fn a_section_reduced_about_its_static_state_takes_modes_only() {
     );
     let message = refused.err().unwrap_or_default();
     assert!(
-        message.contains("derivatives") && message.contains("takes `modes` only"),
+        message.contains("derivatives")
+            && message.contains("takes `modes`, `training` and `tolerance` only"),
         "{message}"
     );
 }

@@ -195,7 +195,10 @@ fn bad_reduced_structures_are_refused_with_the_key() {
         "formulation = \"seed002\"\nstatic_start = true",
     );
     let err = parse(&with_taylor).expect_err("taylor about the static state");
-    assert!(err.contains("takes `modes` only"), "{err}");
+    assert!(
+        err.contains("takes `modes`, `training` and `tolerance` only"),
+        "{err}"
+    );
     // Two reduced sections side by side: the cut between them needs a moving side.
     let twice = base.replace(
         "[[structure.sections]]\nname = \"beam\"",

@@ -283,6 +283,58 @@ impl NodalContacts {
         }
     }
 
+    /// Whether any roller presses on the section at `q` (time t): a force
+    /// that no fixed sample of nodes holds (see [`Self::node_force`]).
+    pub fn rollers_press(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> bool {
+        let mut pressed = false;
+        for (c, contact) in self.list.iter().enumerate() {
+            if !matches!(contact.surface.shape, Shape::Rollers { .. }) {
+                continue;
+            }
+            let lambda = &lambda[self.offsets[c]..];
+            for_each_point(contact, model, &self.tributary, (q, t), |p| {
+                pressed |= contact.method.evaluate(p.gap, lambda[p.index]).1 != 0.0;
+            });
+        }
+        pressed
+    }
+
+    /// The force (N, on the node's x and z) of the continuous surfaces on node
+    /// `j` at its displacement `d` (m: x, z) at time `t` with the contacts'
+    /// Lagrangian parameters `lambda`, and its stiffness (N/m): the node's
+    /// share of [`Self::add_force`], for a force summed over sampled nodes.
+    /// Rollers are left out (they meet whichever element passes over them).
+    pub fn node_force(
+        &self,
+        model: &Model,
+        j: usize,
+        (d, t): ([f64; 2], f64),
+        lambda: &[f64],
+    ) -> ([f64; 2], [[f64; 2]; 2]) {
+        let (mut f, mut k) = ([0.0; 2], [[0.0; 2]; 2]);
+        for (c, contact) in self.list.iter().enumerate() {
+            if let Shape::Rollers { .. } = &contact.surface.shape {
+                continue;
+            }
+            let r = model.reference[j];
+            let x = r[0] + d[0];
+            let Some((height, _)) = contact.surface.at(x, t) else {
+                continue;
+            };
+            let grad = [-surface_slope(contact, x, t), 1.0];
+            let gap = r[1] + d[1] - height;
+            let (_, g, stiffness) = contact.method.evaluate(gap, lambda[self.offsets[c] + j]);
+            let w = self.tributary[j];
+            for a in 0..2 {
+                f[a] += w * g * grad[a];
+                for b in 0..2 {
+                    k[a][b] += w * stiffness * grad[a] * grad[b];
+                }
+            }
+        }
+        (f, k)
+    }
+
     /// Adds `scale` times twice the discrete gradient over the step from `q0` to
     /// `q1` of the energy-conserving laws' energy: per point
     /// w (Xi(d1) - Xi(d0)) / (g . dq) g with g the mean of the gap's gradients at

@@ -133,25 +133,11 @@ impl Environment {
         mut tangent: Option<(&mut SymmetricBand, f64)>,
         (out, mut also): (&mut [f64], Option<&mut [f64]>),
     ) {
-        for (e, d) in self.drag.iter().enumerate() {
+        for e in 0..self.drag.len() {
             let b = 3 * e;
             let (i, j) = (b, b + 3);
-            let el = &model.elements[e];
-            let dx = el.length * el.cos0 + q[j] - q[i];
-            let dz = el.length * el.sin0 + q[j + 1] - q[i + 1];
-            let ln = dx.hypot(dz).max(1e-12);
-            let tv = [dx / ln, dz / ln];
-            let zmid =
-                0.5 * (model.reference[e][1] + model.reference[e + 1][1] + q[i + 1] + q[j + 1]);
-            let u = self.current.as_ref().map_or(0.0, |c| c.at(zmid));
-            let vr = [0.5 * (v[i] + v[j]) - u, 0.5 * (v[i + 1] + v[j + 1])];
-            let vt = vr[0] * tv[0] + vr[1] * tv[1];
-            let vn = [vr[0] - vt * tv[0], vr[1] - vt * tv[1]];
-            let an = vn[0].hypot(vn[1]);
-            let f = [
-                d.normal * an * vn[0] + d.tangential * vt.abs() * vt * tv[0],
-                d.normal * an * vn[1] + d.tangential * vt.abs() * vt * tv[1],
-            ];
+            let local = |x: &[f64]| [x[i], x[i + 1], x[i + 2], x[j], x[j + 1], x[j + 2]];
+            let (f, k) = self.element_drag(model, e, (&local(q), &local(v)), tangent.is_some());
             for node in [i, j] {
                 out[node] += scale * 0.5 * f[0];
                 out[node + 1] += scale * 0.5 * f[1];
@@ -161,16 +147,6 @@ impl Environment {
                 }
             }
             if let Some((band, factor)) = tangent.as_mut() {
-                // d f / d vr = Cn (|vn| P + vn vn^T / |vn|) + 2 Ct |vt| t t^T.
-                let mut k = [[0.0; 2]; 2];
-                for r in 0..2 {
-                    for c in 0..2 {
-                        let p = if r == c { 1.0 } else { 0.0 } - tv[r] * tv[c];
-                        let outer = if an > 0.0 { vn[r] * vn[c] / an } else { 0.0 };
-                        k[r][c] = d.normal * (an * p + outer)
-                            + 2.0 * d.tangential * vt.abs() * tv[r] * tv[c];
-                    }
-                }
                 // Each node's velocity enters vr with 1/2, each node takes half the force.
                 for a in [i, j] {
                     for bn in [i, j] {
@@ -185,5 +161,50 @@ impl Environment {
                 }
             }
         }
+    }
+
+    /// The drag of element `e` (N, both nodes' x and z together) at its end
+    /// nodes' displacements and velocities `q`, `v` (x, z, rotation of each),
+    /// and with `tangent` its derivative by the relative velocity (N s/m;
+    /// zero without). Zero where the section has no drag.
+    pub fn element_drag(
+        &self,
+        model: &Model,
+        e: usize,
+        (q, v): (&[f64; 6], &[f64; 6]),
+        tangent: bool,
+    ) -> ([f64; 2], [[f64; 2]; 2]) {
+        let Some(d) = self.drag.get(e) else {
+            return ([0.0; 2], [[0.0; 2]; 2]);
+        };
+        let (i, j) = (0, 3);
+        let el = &model.elements[e];
+        let dx = el.length * el.cos0 + q[j] - q[i];
+        let dz = el.length * el.sin0 + q[j + 1] - q[i + 1];
+        let ln = dx.hypot(dz).max(1e-12);
+        let tv = [dx / ln, dz / ln];
+        let zmid = 0.5 * (model.reference[e][1] + model.reference[e + 1][1] + q[i + 1] + q[j + 1]);
+        let u = self.current.as_ref().map_or(0.0, |c| c.at(zmid));
+        let vr = [0.5 * (v[i] + v[j]) - u, 0.5 * (v[i + 1] + v[j + 1])];
+        let vt = vr[0] * tv[0] + vr[1] * tv[1];
+        let vn = [vr[0] - vt * tv[0], vr[1] - vt * tv[1]];
+        let an = vn[0].hypot(vn[1]);
+        let f = [
+            d.normal * an * vn[0] + d.tangential * vt.abs() * vt * tv[0],
+            d.normal * an * vn[1] + d.tangential * vt.abs() * vt * tv[1],
+        ];
+        let mut k = [[0.0; 2]; 2];
+        if tangent {
+            // d f / d vr = Cn (|vn| P + vn vn^T / |vn|) + 2 Ct |vt| t t^T.
+            for r in 0..2 {
+                for c in 0..2 {
+                    let p = if r == c { 1.0 } else { 0.0 } - tv[r] * tv[c];
+                    let outer = if an > 0.0 { vn[r] * vn[c] / an } else { 0.0 };
+                    k[r][c] =
+                        d.normal * (an * p + outer) + 2.0 * d.tangential * vt.abs() * tv[r] * tv[c];
+                }
+            }
+        }
+        (f, k)
     }
 }

@@ -319,10 +319,8 @@ pub struct NonlinearParams {
     #[serde(default)]
     pub current: Option<Current>,
     /// Contact with the seabed (its nodes define the touchdown point).
-    #[serde(default)]
     pub contact: Option<NodalContact>,
     /// Contact with a stinger (rollers), not counted for touchdown.
-    #[serde(default)]
     pub stinger: Option<NodalContact>,
     /// Start from the static equilibrium under the loads at t = 0.
     #[serde(default)]
@@ -332,6 +330,8 @@ pub struct NonlinearParams {
     pub linear: bool,
     /// Step the section on N modes of its tangent at the start (see `reduced`).
     pub reduced_modes: Option<usize>,
+    /// With `reduced_modes`: forces through sampled elements (see `reduced`).
+    pub reduced_sampling: Option<super::reduced::Sampling>,
     #[serde(default)]
     pub start_shape: StartShape,
     /// The polyline (x, z in m) of `start_shape = "points"`.

@@ -167,7 +167,7 @@ impl SampledForce {
 /// active set, stopped once |G w - b| <= tolerance |b|. It works on the Gram
 /// matrix G^T G and G^T b (formed once): each least-squares subproblem is a
 /// Cholesky solve of the active block, whatever the number of rows of G.
-fn nnls(
+pub(crate) fn nnls(
     g: &DMatrix<f64>,
     b: &DVector<f64>,
     tolerance: f64,

@@ -16,14 +16,17 @@ use toml::{Table, Value};
 /// The `reduced` fidelity.
 pub(super) struct Reduced;
 
-/// The keys of `{ kind = "reduced", ... }`: the `reduced` unit's basis.
-const KEYS: [&str; 6] = [
+/// The keys of `{ kind = "reduced", ... }`: the `reduced` unit's basis, and
+/// about the static state the sampling of its forces.
+const KEYS: [&str; 8] = [
     "kind",
     "elements",
     "modes",
     "derivatives",
     "attachments",
     "integrator",
+    "training",
+    "tolerance",
 ];
 
 impl SectionModel for Reduced {
@@ -88,8 +91,12 @@ const DEFAULT_MODES: i64 = 6;
 
 /// The keys a section reduced about its static state takes besides `kind`
 /// and `elements` (seed 002's `derivatives`, `attachments` and `integrator`
-/// belong to the reduction about the stress-free state).
-const STATIC_KEYS: [&str; 1] = ["modes"];
+/// belong to the reduction about the stress-free state): its modes, and the
+/// training window (s) and tolerance of its sampled forces.
+const STATIC_KEYS: [&str; 3] = ["modes", "training", "tolerance"];
+
+/// The keys only a section reduced about its static state takes.
+const SAMPLING_KEYS: [&str; 2] = ["training", "tolerance"];
 
 /// The reduced unit of one section from its `nonlinear` unit: `modes`
 /// (default 6) and, about the stress-free state, `derivatives` (default
@@ -105,6 +112,11 @@ pub(super) fn reduced_unit(
     let options = cut.options.clone().unwrap_or_default();
     if static_start {
         return about_static_state(section, &key, &options);
+    }
+    if let Some(other) = options.keys().find(|k| SAMPLING_KEYS.contains(&k.as_str())) {
+        return Err(format!(
+            "`{key}.{other}`: sampled forces are for a section reduced about the structure's static equilibrium (a `[structure]` with a static start); seed 002's reduced section samples none"
+        ));
     }
     let parameters = section
         .remove("parameters")
@@ -127,7 +139,7 @@ pub(super) fn reduced_unit(
 fn about_static_state(mut section: Table, key: &str, options: &Table) -> Result<Table, String> {
     if let Some(other) = options.keys().find(|k| !STATIC_KEYS.contains(&k.as_str())) {
         return Err(format!(
-            "`{key}.{other}`: a section reduced about the structure's static equilibrium takes `modes` only (its basis: modes of the tangent there with attachment and constraint vectors, stepped by the section's own integrator)"
+            "`{key}.{other}`: a section reduced about the structure's static equilibrium takes `modes`, `training` and `tolerance` only (its basis: modes of the tangent there with attachment and constraint vectors, stepped by the section's own integrator; its forces sampled after `training` seconds)"
         ));
     }
     let modes = options
@@ -139,5 +151,17 @@ fn about_static_state(mut section: Table, key: &str, options: &Table) -> Result<
         .and_then(Value::as_table_mut)
         .ok_or(format!("`{key}`: the section has no parameters"))?;
     parameters.insert("reduced_modes".into(), modes);
+    if let Some(training) = options.get("training") {
+        let mut sampling = Table::new();
+        sampling.insert("training".into(), training.clone());
+        if let Some(tolerance) = options.get("tolerance") {
+            sampling.insert("tolerance".into(), tolerance.clone());
+        }
+        parameters.insert("reduced_sampling".into(), Value::Table(sampling));
+    } else if options.contains_key("tolerance") {
+        return Err(format!(
+            "`{key}.tolerance`: with `training` (the seconds the section runs on every element before its forces are sampled)"
+        ));
+    }
     Ok(section)
 }

@@ -6,7 +6,7 @@
 //! locking of linear bases), and a constraint mode per held DOF, last.
 
 use super::super::NonlinearSection;
-use super::dot;
+use super::products::dot;
 use crate::contract::UnitError;
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
 

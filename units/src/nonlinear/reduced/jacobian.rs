@@ -5,6 +5,7 @@
 //! basis. A coupled end motion drives its constraint coordinate; a coupled end
 //! force loads the coordinates through its row of the basis.
 
+use super::sampled::{Hyper, Sample};
 use super::{Reduction, project, times};
 use crate::contract::{Inputs, UnitError};
 use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
@@ -61,7 +62,10 @@ impl NonlinearSection {
 
     /// The full tangents at the step's end; projected, K_t + `damping_scale`
     /// C_t and C_t's columns at the held coordinates.
-    fn end_tangents(&self, r: &Reduction, b: &mut JacobianBuffers, damping_scale: f64) {
+    fn end_tangents(&self, r: &mut Reduction, b: &mut JacobianBuffers, damping_scale: f64) {
+        if let Some(Hyper::Sampled(sample)) = r.hyper.as_mut() {
+            return self.sampled_end_tangents(sample, (r.n, r.m - r.held.len()), b, damping_scale);
+        }
         let n = r.n;
         let s = &self.state;
         b.force.clear();
@@ -110,9 +114,33 @@ impl NonlinearSection {
             b.scratch.fill(0.0);
             c.mul_add(1.0, &r.basis[j * n..(j + 1) * n], &mut b.scratch);
             for i in 0..m {
-                b.reduced_drag[i * m + j] = super::dot(&r.basis[i * n..(i + 1) * n], &b.scratch);
+                b.reduced_drag[i * m + j] =
+                    super::products::dot(&r.basis[i * n..(i + 1) * n], &b.scratch);
             }
         }
+        (b.stiffness, b.drag) = (Some(k), Some(c));
+    }
+
+    /// [`Self::end_tangents`] through the sample (the tangent of the force
+    /// the step solved); the full bands hold the end terms only, all the
+    /// reactions read.
+    fn sampled_end_tangents(
+        &self,
+        sample: &mut Sample,
+        (n, free): (usize, usize),
+        b: &mut JacobianBuffers,
+        damping_scale: f64,
+    ) {
+        let mut k = b
+            .stiffness
+            .take()
+            .unwrap_or_else(|| SymmetricBand::zeros(n, crate::nonlinear::model::BAND));
+        let mut c = b.drag.take().unwrap_or_else(|| k.clone());
+        k.fill_zero();
+        c.fill_zero();
+        self.add_end_tangents(&mut k, &mut c);
+        let projected = (&mut b.reduced_stiffness, &mut b.reduced_drag);
+        sample.tangents(self, damping_scale, free, projected);
         (b.stiffness, b.drag) = (Some(k), Some(c));
     }
 

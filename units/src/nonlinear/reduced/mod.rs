@@ -26,16 +26,23 @@
 //! step Jacobian is exact at the step's end ([`jacobian`]).
 
 mod basis;
+mod checks;
 mod jacobian;
+mod products;
+mod sampled;
+
+pub(super) use checks::validate;
+pub use sampled::Sampling;
 
 use super::NonlinearSection;
-use super::params::{Integrator, NonlinearParams};
-use crate::contact::Law;
+use super::params::Integrator;
 use crate::contract::UnitError;
 use crate::integrators::hht::{
     HhtAlpha, Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales,
 };
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
+use products::{project, times, transpose_times};
+use sampled::Hyper;
 
 /// Newton iterations of a step on the tangent frozen at the start state
 /// before the tangent is formed at each iterate.
@@ -64,6 +71,9 @@ pub(super) struct Reduction {
     stiffness: Vec<f64>,
     drag_damping: Vec<f64>,
     hht: HhtAlpha,
+    /// The forces through sampled terms (`reduced_sampling`): training, or
+    /// trained.
+    hyper: Option<Hyper>,
     work: Work,
     jacobian: jacobian::JacobianBuffers,
 }
@@ -91,76 +101,7 @@ struct Work {
     correction: std::cell::RefCell<Vec<f64>>,
 }
 
-/// Refuses what the reduced section cannot take, naming the key.
-pub(super) fn validate(params: &NonlinearParams) -> Result<(), UnitError> {
-    let Some(modes) = params.reduced_modes else {
-        return Ok(());
-    };
-    let refuse = |key: &str, value: &str, why: &str| Err(UnitError::parameter(key, value, why));
-    if modes == 0 {
-        return refuse("reduced_modes", "0", "at least 1 mode");
-    }
-    if params.linear {
-        return refuse(
-            "linear",
-            "true",
-            "false with reduced_modes (a section is linearised or reduced, not both)",
-        );
-    }
-    if !matches!(params.integrator, Integrator::Hht { .. }) {
-        return refuse(
-            "integrator",
-            "not hht",
-            "kind = \"hht\" with reduced_modes (Newton on the reduced coordinates)",
-        );
-    }
-    for (key, contact) in [("contact", &params.contact), ("stinger", &params.stinger)] {
-        if let Some(c) = contact
-            && !matches!(c.method, Law::Penalty { .. })
-        {
-            return refuse(
-                &format!("{key}.method"),
-                "not penalty",
-                "kind = \"penalty\" with reduced_modes (its force a function of the reduced state)",
-            );
-        }
-    }
-    Ok(())
-}
-
-/// The most free DOFs a reduced section's basis is formed for: its modes
-/// come from a dense eigen-solve (O(n^3) time, 8 n^2 bytes), minutes and
-/// gigabytes beyond this.
-const MOST_FREE_DOFS: usize = 3000;
-
 impl NonlinearSection {
-    /// Refuses `reduced_modes` beyond the section's free DOFs, and a section
-    /// too large for the dense modal solve, when the unit is built (so that
-    /// `slender check` says so).
-    pub(super) fn check_reduced_size(&self) -> Result<(), UnitError> {
-        let Some(count) = self.params.reduced_modes else {
-            return Ok(());
-        };
-        let free = self.model.dofs() - self.held_dofs().len();
-        if count > free {
-            return Err(UnitError::parameter(
-                "reduced_modes",
-                count.to_string(),
-                &format!("at most {free}, the section's free DOFs"),
-            ));
-        }
-        if free > MOST_FREE_DOFS {
-            return Err(UnitError::parameter(
-                "reduced_modes",
-                count.to_string(),
-                &format!(
-                    "none on a section of {free} free DOFs: its modes are found by a dense eigen-solve, bounded to {MOST_FREE_DOFS} free DOFs (coarsen the section or cut it shorter)"
-                ),
-            ));
-        }
-        Ok(())
-    }
-
     /// Before a step of a reduced section: the basis about the start, formed
     /// the first time, and the reduced start where the state has none (the
     /// first step, or a step from a state saved before it).
@@ -233,6 +174,7 @@ impl NonlinearSection {
             stiffness,
             drag_damping,
             hht: HhtAlpha::new(alpha, m, m - 1),
+            hyper: (self.params.reduced_sampling.as_ref()).map(|p| Hyper::new(p, self.state.t)),
             work: Work::default(),
             jacobian: jacobian::JacobianBuffers::default(),
             basis,
@@ -277,6 +219,13 @@ impl NonlinearSection {
         Ok(true)
     }
 
+    /// With `reduced_sampling`, once trained: the terms in the sample and
+    /// the terms it was picked from (elements, and nodes on a contact
+    /// surface).
+    pub fn sample_size(&self) -> Option<(usize, usize)> {
+        self.reduction.as_ref()?.hyper.as_ref()?.size()
+    }
+
     /// The coordinates a step solves for: the reduced ones, or the
     /// displacements of the full section.
     pub(super) fn stepped_coordinates(&self) -> &[f64] {
@@ -301,6 +250,37 @@ impl NonlinearSection {
         times(&r.basis, (r.n, m), &z[2 * m..], &mut self.state.a);
     }
 
+    /// A step's loads projected, the reduced restoring force at its start
+    /// (t0, s; the sample's once trained), its held coordinates' motion and
+    /// its start motion, into `r`'s buffers.
+    fn reduced_loads(&self, r: &mut Reduction, (f0, f1, held): FullLoads<'_>, t0: f64) {
+        let (n, m, free) = (r.n, r.m, r.m - r.held.len());
+        let w = &mut r.work;
+        for (out, full) in [(&mut w.f0, f0), (&mut w.f1, f1)] {
+            out.resize(m, 0.0);
+            transpose_times(&r.basis, (n, m), full, out);
+        }
+        w.g0.resize(m, 0.0);
+        let z = &self.state.reduced;
+        match r.hyper.as_mut() {
+            Some(Hyper::Sampled(sample)) => {
+                sample.force(self, (&z[..m], &z[m..2 * m], t0), 1.0, None, &mut w.g0);
+            }
+            _ => transpose_times(&r.basis, (n, m), &self.state.force, &mut w.g0),
+        }
+        w.held.clear();
+        for &(d, [q, v, a]) in held {
+            if let Some(j) = r.held.iter().position(|&h| h == d) {
+                w.held.push((free + j, [q - r.start[d], v, a]));
+            }
+        }
+        for (k, part) in w.motion.iter_mut().enumerate() {
+            part.clear();
+            part.extend_from_slice(&z[k * m..(k + 1) * m]);
+        }
+        w.iteration = 0;
+    }
+
     /// One HHT-alpha step of the reduced coordinates under the full loads
     /// `f0`, `f1` and held motions `held` (absolute, per held DOF).
     pub(super) fn reduced_step(
@@ -314,28 +294,12 @@ impl NonlinearSection {
                 "reduced section stepped before its basis was formed".into(),
             ));
         };
-        let (n, m, free) = (r.n, r.m, r.m - r.held.len());
-        let w = &mut r.work;
-        for (out, full) in [
-            (&mut w.f0, f0),
-            (&mut w.f1, f1),
-            (&mut w.g0, self.state.force.as_slice()),
-        ] {
-            out.resize(m, 0.0);
-            transpose_times(&r.basis, (n, m), full, out);
+        if let Err(e) = self.advance_sampling(&mut r, t0, h) {
+            self.reduction = Some(r);
+            return Err(e);
         }
-        w.held.clear();
-        for &(d, [q, v, a]) in held {
-            if let Some(j) = r.held.iter().position(|&h| h == d) {
-                w.held.push((free + j, [q - r.start[d], v, a]));
-            }
-        }
-        let z = &self.state.reduced;
-        for (k, part) in w.motion.iter_mut().enumerate() {
-            part.clear();
-            part.extend_from_slice(&z[k * m..(k + 1) * m]);
-        }
-        w.iteration = 0;
+        self.reduced_loads(&mut r, (f0, f1, held), t0);
+        let m = r.m;
         let mut hht = std::mem::take(&mut r.hht);
         let (f0, f1, g0, held) = (
             std::mem::take(&mut r.work.f0),
@@ -437,8 +401,9 @@ impl SecondOrderSystem for ReducedSystem<'_> {
         factor
     }
 
-    /// The full force at q_s + T z, v = T z', projected; the tangent frozen
-    /// at the start for the first iterations, then formed at the iterate.
+    /// The reduced force at (z, z'): through the sample once trained, else
+    /// the full force at q_s + T z, v = T z' projected; the tangent frozen at
+    /// the start for the first iterations, then formed at the iterate.
     fn nonlinear_force(
         &mut self,
         z: &[f64],
@@ -448,21 +413,48 @@ impl SecondOrderSystem for ReducedSystem<'_> {
         force: &mut Vec<f64>,
     ) {
         let r = &mut *self.reduction;
-        let (n, m) = (r.n, r.m);
-        let s = self.section;
-        let w = &mut r.work;
-        w.q.clone_from(&r.start);
-        times(&r.basis, (n, m), z, &mut w.q);
-        w.v.clear();
-        w.v.resize(n, 0.0);
-        times(&r.basis, (n, m), zv, &mut w.v);
-        w.full.clear();
-        w.full.resize(n, 0.0);
         let scales = tangent.as_ref().map(|(_, s)| *s);
         let scale = scales.map_or(1.0, |s| s.stiffness);
-        w.iteration += u32::from(tangent.is_some());
-        let fresh = scales.filter(|_| w.iteration > FROZEN_ITERATIONS);
-        w.frozen = tangent.is_some() && fresh.is_none();
+        r.work.iteration += u32::from(tangent.is_some());
+        let fresh = scales.filter(|_| r.work.iteration > FROZEN_ITERATIONS);
+        r.work.frozen = tangent.is_some() && fresh.is_none();
+        force.resize(r.m, 0.0);
+        let formed = match r.hyper.as_mut() {
+            Some(Hyper::Sampled(sample)) => {
+                let projected = fresh.map(|f| (f, &mut r.work.projected));
+                sample.force(self.section, (z, zv, t), scale, projected, force);
+                fresh.map(|_| None)
+            }
+            _ => r
+                .full_force(self.section, (z, zv, t), (scale, fresh), force)
+                .map(Some),
+        };
+        if let Some((band, scales)) = tangent {
+            r.add_tangent(band, scales, formed);
+        }
+    }
+}
+
+impl Reduction {
+    /// `scale` times the full force at q_s + T z, v = T z' (time t, s)
+    /// projected into `force`; with `fresh`, the full tangent at the iterate
+    /// with its scales.
+    fn full_force(
+        &mut self,
+        s: &NonlinearSection,
+        (z, zv, t): (&[f64], &[f64], f64),
+        (scale, fresh): (f64, Option<TangentScales>),
+        force: &mut [f64],
+    ) -> Option<SymmetricBand> {
+        let (n, m) = (self.n, self.m);
+        let w = &mut self.work;
+        w.q.clone_from(&self.start);
+        times(&self.basis, (n, m), z, &mut w.q);
+        w.v.clear();
+        w.v.resize(n, 0.0);
+        times(&self.basis, (n, m), zv, &mut w.v);
+        w.full.clear();
+        w.full.resize(n, 0.0);
         let mut full_tangent = fresh.map(|_| {
             let mut k = w
                 .tangent
@@ -494,27 +486,24 @@ impl SecondOrderSystem for ReducedSystem<'_> {
                 &mut w.full,
             );
         }
-        force.resize(m, 0.0);
-        transpose_times(&r.basis, (n, m), &w.full, force);
-        if let Some((band, scales)) = tangent {
-            r.add_tangent(band, scales, full_tangent);
-        }
+        transpose_times(&self.basis, (n, m), &w.full, force);
+        full_tangent
     }
-}
 
-impl Reduction {
-    /// Adds the projected Newton tangent to `band`: the full tangent at the
-    /// iterate (`full`, already scaled) projected, else the frozen one.
+    /// Adds the projected Newton tangent to `band`: formed at the iterate
+    /// (`Some`: the full tangent, already scaled, to project, or `None`: the
+    /// sample's, already in `work.projected`), else the frozen one.
     fn add_tangent(
         &mut self,
         band: &mut SymmetricBand,
         scales: TangentScales,
-        full: Option<SymmetricBand>,
+        formed: Option<Option<SymmetricBand>>,
     ) {
         let (n, m) = (self.n, self.m);
         let w = &mut self.work;
-        match full {
-            Some(k) => {
+        match formed {
+            Some(None) => {}
+            Some(Some(k)) => {
                 project(
                     &self.basis,
                     (n, m),
@@ -535,51 +524,6 @@ impl Reduction {
             for j in i..m {
                 band.add(i, j, w.projected[i * m + j]);
             }
-        }
-    }
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-/// out += T z.
-fn times(basis: &[f64], (n, m): (usize, usize), z: &[f64], out: &mut [f64]) {
-    for (column, &zj) in basis.chunks_exact(n).take(m).zip(z) {
-        if zj != 0.0 {
-            out.iter_mut().zip(column).for_each(|(o, t)| *o += t * zj);
-        }
-    }
-}
-
-/// out = T^T x.
-fn transpose_times(basis: &[f64], (n, m): (usize, usize), x: &[f64], out: &mut [f64]) {
-    for (o, column) in out.iter_mut().zip(basis.chunks_exact(n).take(m)) {
-        *o = dot(column, x);
-    }
-}
-
-/// T^T B T into `projected` (m x m, row-major), with `scratch` for B T.
-fn project(
-    basis: &[f64],
-    (n, m): (usize, usize),
-    b: &SymmetricBand,
-    scratch: &mut Vec<f64>,
-    projected: &mut Vec<f64>,
-) {
-    scratch.clear();
-    scratch.resize(n * m, 0.0);
-    for (column, out) in basis.chunks_exact(n).zip(scratch.chunks_exact_mut(n)) {
-        b.mul_add(1.0, column, out);
-    }
-    projected.clear();
-    projected.resize(m * m, 0.0);
-    // B is symmetric: the upper triangle, mirrored.
-    for i in 0..m {
-        for j in i..m {
-            let value = dot(&basis[i * n..(i + 1) * n], &scratch[j * n..(j + 1) * n]);
-            projected[i * m + j] = value;
-            projected[j * m + i] = value;
         }
     }
 }
