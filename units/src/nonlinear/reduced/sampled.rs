@@ -9,19 +9,21 @@
 //! over a sample of terms k with positive weights w_k, T_k the basis rows at
 //! the term's DOFs and o the offset that makes it exact at the start state
 //! (the equilibrium is kept to round-off); the Newton tangent is the same sum.
-//! A Newton iteration then costs the sampled terms (6 m products each), not
-//! T z, T z' and T^T g (n m each) and the loop over every element.
+//! A Newton iteration then costs the sampled terms (18 m multiply-adds each
+//! for their basis rows), not T z, T z' and T^T g (n m each) and the loop over
+//! every element: it pays where the sample is under half the section.
 //!
 //! Training is online, so that it works wherever the section runs (a scene,
 //! a study, an exported FMU): for its first `training` seconds the section
 //! runs on every term and records its reduced state (z, z') at up to 100
-//! evenly spaced step starts; at the window's end non-negative least squares
-//! (`crate::reduced::ecsw`, the active set stopped at `tolerance`) picks the
-//! weights that reproduce the free coordinates' force change g(q, v) - g(q_s,
-//! 0) over those states. The records are the reduced section's own states:
-//! the ones the sample has to reproduce. A term idle in the window (a node
-//! that never touched the seabed) is not picked, so the window has to show the
-//! motions the section will see; a stinger's rollers (they meet whichever
+//! evenly spaced step starts (at least 3: a shorter window records on); at
+//! the window's end non-negative least squares (`crate::reduced::ecsw`, the
+//! active set stopped at `tolerance`) picks the weights that reproduce the
+//! free coordinates' force change g(q, v) - g(q_s, 0) over those states. The
+//! records are the reduced section's own states: the ones the sample has to
+//! reproduce. A term idle in the window (a node that never touched the
+//! seabed) is not picked, so the window has to show the motions the section
+//! will see; a stinger's rollers (they meet whichever
 //! element passes over them) cannot be sampled and stop the run if they press
 //! on the section. The step Jacobian ([`super::jacobian`]) is the sampled
 //! force's: its tangent through the sample, the reactions' rows through the
@@ -61,6 +63,9 @@ fn default_sampling_tolerance() -> f64 {
 
 /// Why a section over a stinger's rollers is not sampled.
 const ROLLERS: &str = "reduced section: a stinger's roller presses on it, and sampled forces cannot hold a roller's (it meets whichever element passes over it): remove `reduced_sampling` (the `training` of a `reduced` fidelity) from a section that reaches the stinger";
+
+/// The fewest recorded states a sample is trained on.
+const FEWEST_RECORDS: usize = 3;
 
 /// Most recorded states of the training window, evenly spaced over it.
 const SNAPSHOTS: f64 = 100.0;
@@ -181,7 +186,9 @@ impl NonlinearSection {
                 .push(self.state.reduced[..2 * r.m].to_vec());
             training.next = t0 + training.every;
         }
-        if t0 + slack < training.end {
+        // A window shorter than a few steps (or a state restored past it
+        // into a new instance) records on until it holds a few states.
+        if t0 + slack < training.end || training.snapshots.len() < FEWEST_RECORDS {
             return Ok(());
         }
         let mut sample = self.train(r)?;
