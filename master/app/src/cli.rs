@@ -248,10 +248,11 @@ pub enum Command {
         scene: PathBuf,
         /// NAME=CHOICE,CHOICE,...: a section and its fidelities (nonlinear,
         /// linear, cable, static, reduced, beam, span), each optionally with an element
-        /// count (for reduced: its modes; for span: the order of its fit) and
-        /// sub-steps per coupling step after a slash, e.g.
-        /// lower=nonlinear,cable,nonlinear:16,reduced:4,nonlinear:16/4 or
-        /// middle=beam:10,span:24. Repeat for several sections.
+        /// count (for reduced: its modes; for span: the order of its fit),
+        /// for reduced a training window in seconds after @ (its forces
+        /// sampled after it) and sub-steps per coupling step after a slash,
+        /// e.g. lower=nonlinear,cable,nonlinear:16,reduced:4,reduced:4@5,nonlinear:16/4
+        /// or middle=beam:10,span:24. Repeat for several sections.
         #[arg(long = "section", required = true)]
         sections: Vec<slender_app::fidelity::SectionChoices>,
         /// Run every combination of the sections' choices instead of one

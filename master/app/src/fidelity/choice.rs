@@ -8,12 +8,15 @@ use std::str::FromStr;
 /// (`nonlinear:16`; for `reduced` the number of modes, `reduced:4`; for `span`
 /// the order of its fit, `span:24`); without a count, the model's own mesh over
 /// the section (6 modes, order 24); and, optionally, its sub-steps per
-/// coupling step after a slash (`nonlinear:16/4`, `cable/2`: multi-rate).
+/// coupling step after a slash (`nonlinear:16/4`, `cable/2`: multi-rate);
+/// and for `reduced`, a training window in seconds after `@`, after which its
+/// forces go through sampled elements (`reduced:6@5`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Choice {
     pub fidelity: String,
     pub elements: Option<usize>,
     pub substeps: Option<u32>,
+    pub training: Option<f64>,
 }
 
 impl Choice {
@@ -23,6 +26,9 @@ impl Choice {
             Some(n) => format!("{}:{n}", self.fidelity),
             None => self.fidelity.clone(),
         };
+        if let Some(t) = self.training {
+            label += &format!("@{t}");
+        }
         if let Some(s) = self.substeps {
             label += &format!("/{s}");
         }
@@ -55,6 +61,10 @@ impl FromStr for SectionChoices {
                     ),
                     None => (c, None),
                 };
+                let (c, training) = match c.split_once('@') {
+                    Some((model, t)) => (model, Some(seconds(s, c, t)?)),
+                    None => (c, None),
+                };
                 let (fidelity, elements) = match c.split_once(':') {
                     Some((f, n)) => (
                         f,
@@ -70,10 +80,16 @@ impl FromStr for SectionChoices {
                         slender_scene::structure::FIDELITIES.join(", ")
                     ));
                 }
+                if training.is_some() && fidelity != "reduced" {
+                    return Err(format!(
+                        "`{s}`: `{c}@`: a training window is for `reduced` (its forces sampled after it)"
+                    ));
+                }
                 Ok(Choice {
                     fidelity: fidelity.to_owned(),
                     elements,
                     substeps,
+                    training,
                 })
             })
             .collect::<Result<Vec<_>, String>>()?;
@@ -97,15 +113,35 @@ impl FromStr for SectionChoices {
     }
 }
 
+/// The training window after `@` in choice `c` of `s`: seconds > 0.
+fn seconds(s: &str, c: &str, t: &str) -> Result<f64, String> {
+    t.parse::<f64>()
+        .ok()
+        .filter(|t| t.is_finite() && *t > 0.0)
+        .ok_or(format!(
+            "`{s}`: `{c}`: the training window after `@` must be a number of seconds > 0"
+        ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn a_choice_takes_a_count_and_sub_steps() {
-        let c: SectionChoices = "lower=nonlinear:16/4,cable/2,reduced:6".parse().unwrap();
+        let c: SectionChoices = "lower=nonlinear:16/4,cable/2,reduced:6,reduced:6@5/2"
+            .parse()
+            .unwrap();
         let labels: Vec<String> = c.choices.iter().map(Choice::label).collect();
-        assert_eq!(labels, ["nonlinear:16/4", "cable/2", "reduced:6"]);
+        assert_eq!(
+            labels,
+            ["nonlinear:16/4", "cable/2", "reduced:6", "reduced:6@5/2"]
+        );
+        assert_eq!(c.choices[3].training, Some(5.0));
+        let e = "lower=cable@5".parse::<SectionChoices>().unwrap_err();
+        assert!(e.contains("a training window is for `reduced`"), "{e}");
+        let e = "lower=reduced:6@0".parse::<SectionChoices>().unwrap_err();
+        assert!(e.contains("seconds > 0"), "{e}");
         assert_eq!(c.choices[0].substeps, Some(4));
         assert_eq!(c.choices[2].substeps, None);
         let e = "lower=nonlinear/0".parse::<SectionChoices>().unwrap_err();

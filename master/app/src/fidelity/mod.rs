@@ -278,6 +278,7 @@ fn own_choices(layout: &Layout) -> Vec<(String, Choice)> {
                 fidelity: s.choice.clone(),
                 elements: None,
                 substeps: None,
+                training: None,
             };
             (s.name.clone(), choice)
         })
@@ -379,6 +380,9 @@ fn run_table(
             choice.elements,
             choice.substeps,
         )?;
+        if let Some(t) = choice.training {
+            slender_scene::structure::write_training(section, t)?;
+        }
     }
     let mut units = run_sections(&table)?;
     let end_stations = add_end_stations(&mut table, &units)?;

@@ -143,6 +143,10 @@ fn choice_of(cut: &Cut) -> String {
         Some(n) => format!("{word}:{n}"),
         None => word.to_owned(),
     };
+    let training = (cut.options.as_ref()).and_then(|o| o.get("training"));
+    if let Some(t) = training.and_then(|t| t.as_float().or(t.as_integer().map(|i| i as f64))) {
+        choice += &format!("@{t}");
+    }
     if let Some(n) = cut.substeps {
         choice += &format!("/{n}");
     }
@@ -179,6 +183,27 @@ pub fn write_choice(
     if let Some(n) = substeps {
         section.insert("substeps".into(), Value::Integer(i64::from(n)));
     }
+    Ok(())
+}
+
+/// Writes a training window (s) onto a section written as `reduced` by
+/// [`write_choice`] (`reduced:6@5` on the command line): its forces sampled
+/// after `training` seconds.
+pub fn write_training(section: &mut Table, training: f64) -> Result<(), String> {
+    let mut table = match section.get("fidelity") {
+        Some(Value::String(w)) if w == "reduced" => Table::new(),
+        Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("reduced") => {
+            t.clone()
+        }
+        _ => {
+            return Err(format!(
+                "`@{training}`: a training window is for a `reduced` section (its forces sampled after it, e.g. reduced:6@5)"
+            ));
+        }
+    };
+    table.insert("kind".into(), Value::String("reduced".into()));
+    table.insert("training".into(), Value::Float(training));
+    section.insert("fidelity".into(), Value::Table(table));
     Ok(())
 }
 
@@ -223,6 +248,21 @@ mod tests {
             assert_eq!(a.plain, label == word, "{label}");
             assert_eq!((a.unit.as_str(), a.from, a.to), ("pipe_a", 0.0, 10.0));
         }
+        let mut table = scene(
+            "[[structure.sections]]\nname = \"a\"\nto = 10.0\n[[structure.sections]]\nname = \"b\"\n",
+        );
+        let sections = table["structure"]["sections"].as_array_mut().unwrap();
+        let a = sections[0].as_table_mut().unwrap();
+        write_choice(a, "reduced", Some(6), None).unwrap();
+        write_training(a, 5.0).unwrap();
+        assert_eq!(
+            layout(&table).unwrap().unwrap().sections[0].choice,
+            "reduced:6@5"
+        );
+        let mut section = Table::new();
+        write_choice(&mut section, "cable", None, None).unwrap();
+        let e = write_training(&mut section, 5.0).unwrap_err();
+        assert!(e.contains("for a `reduced` section"), "{e}");
         let mut section = Table::new();
         let e = write_choice(&mut section, "coarse", None, None).unwrap_err();
         assert!(e.contains("expected one of nonlinear, linear"), "{e}");

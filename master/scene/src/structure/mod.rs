@@ -37,6 +37,7 @@ mod statics;
 use cuts::{End, Side};
 pub use layout::{
     Layout, SectionLayout, SectionOutputs, layout, reference_name, unit_name, write_choice,
+    write_training,
 };
 use nonlinear::start_of;
 pub use sections::FIDELITIES;
