@@ -3,10 +3,9 @@
 //! the whole projection; at the default it follows the reduced section on the
 //! three flagships; what it cannot sample is refused with the reason.
 
-use slender_scene::Scene;
 use slender_tests::samples::NONLINEAR_SAMPLE;
 use slender_tests::seed002::section;
-use slender_tests::{Series, root, run};
+use slender_tests::{run_edited, worst_epsilon};
 use slender_units::Time;
 use slender_units::nonlinear::NonlinearSection;
 use slender_units::{Driver, UnitError};
@@ -132,37 +131,13 @@ fn sampling_needs_a_reduced_section_and_a_window() {
     );
 }
 
-/// An example with its text edited (`(from, to)` replacements), run.
-fn example(path: &str, edits: &[(&str, &str)]) -> Result<Series, String> {
-    let file = root().join(path);
-    let mut text = std::fs::read_to_string(&file).unwrap();
-    for (from, to) in edits {
-        assert!(text.contains(from), "{path}: {from}");
-        text = text.replacen(from, to, 1);
-    }
-    let scene = Scene::parse(&file, text).map_err(|e| e.to_string())?;
-    let s = run(&scene);
-    match s.error.clone() {
-        Some(e) => Err(e),
-        None => Ok(s),
-    }
-}
-
-/// The worst indicator epsilon against the monolithic twin, each printed.
-fn worst_epsilon(what: &str, s: &Series) -> f64 {
-    s.indicators.iter().fold(0.0f64, |worst, i| {
-        eprintln!("{what}: {} epsilon {:.2e}", i.name, i.relative_error);
-        worst.max(i.relative_error)
-    })
-}
-
 #[test]
 fn sampled_sections_follow_the_twin_on_the_mooring_line_the_s_lay_and_the_riser() {
     // The mooring line's lower section in a current (elements with drag),
     // the S-lay's laid pipe and the riser's laid section on the seabed
     // (elements and seabed nodes): within 1 % of the twin on every
     // indicator, as the reduced sections without sampling.
-    let mooring = example(
+    let mooring = run_edited(
         "examples/structure_mooring.toml",
         &[(
             "fidelity = \"cable\"",
@@ -172,7 +147,7 @@ fn sampled_sections_follow_the_twin_on_the_mooring_line_the_s_lay_and_the_riser(
     .unwrap();
     let worst = worst_epsilon("mooring lower reduced:6 sampled", &mooring);
     assert!(worst < 1e-2, "{worst}");
-    let slay = example(
+    let slay = run_edited(
         "examples/structure_slay.toml",
         &[(
             "name = \"laid\"\n",
@@ -182,7 +157,7 @@ fn sampled_sections_follow_the_twin_on_the_mooring_line_the_s_lay_and_the_riser(
     .unwrap();
     let worst = worst_epsilon("S-lay laid reduced:6 sampled", &slay);
     assert!(worst < 1e-2, "{worst}");
-    let riser = example(
+    let riser = run_edited(
         "examples/structure_riser.toml",
         &[
             ("duration = 200.0", "duration = 60.0"),
@@ -201,7 +176,7 @@ fn sampled_sections_follow_the_twin_on_the_mooring_line_the_s_lay_and_the_riser(
 fn a_section_the_stingers_rollers_press_on_is_not_sampled() {
     // The S-lay's stinger section rides the rollers: its sample would drop
     // their force, so the run stops at the window's end saying why.
-    let error = example(
+    let error = run_edited(
         "examples/structure_slay.toml",
         &[
             ("duration = 30.0", "duration = 3.0"),
@@ -221,7 +196,7 @@ fn a_section_the_stingers_rollers_press_on_is_not_sampled() {
 
 #[test]
 fn sampling_keys_are_for_a_section_reduced_about_its_static_state() {
-    let error = example(
+    let error = run_edited(
         "examples/structure_mooring.toml",
         &[(
             "fidelity = \"cable\"",

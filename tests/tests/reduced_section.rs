@@ -5,7 +5,7 @@
 use slender_scene::Scene;
 use slender_scene::export::ExportedUnit;
 use slender_tests::samples::{NONLINEAR_SAMPLE, inline, start_inputs};
-use slender_tests::{Series, root, run};
+use slender_tests::{root, run_edited, worst_epsilon};
 use slender_units::Time;
 
 /// The sample section's end outputs over `steps` steps of 10 ms under the
@@ -51,37 +51,13 @@ fn with_every_mode_the_reduced_section_is_the_full_section() {
     assert!(worst < 1e-6, "{worst}");
 }
 
-/// An example with its text edited (`(from, to)` replacements), run.
-fn example(path: &str, edits: &[(&str, &str)]) -> Result<Series, String> {
-    let file = root().join(path);
-    let mut text = std::fs::read_to_string(&file).unwrap();
-    for (from, to) in edits {
-        assert!(text.contains(from), "{path}: {from}");
-        text = text.replacen(from, to, 1);
-    }
-    let scene = Scene::parse(&file, text).map_err(|e| e.to_string())?;
-    let s = run(&scene);
-    match s.error.clone() {
-        Some(e) => Err(e),
-        None => Ok(s),
-    }
-}
-
-/// Every indicator's epsilon against the monolithic twin, printed.
-fn worst_epsilon(what: &str, s: &Series) -> f64 {
-    s.indicators.iter().fold(0.0f64, |worst, i| {
-        eprintln!("{what}: {} epsilon {:.2e}", i.name, i.relative_error);
-        worst.max(i.relative_error)
-    })
-}
-
 #[test]
 fn six_modes_follow_the_full_section_on_the_mooring_line_and_the_s_lay() {
     // The mooring line's lower section (about its catenary, under the
     // vessel's motion and a current) and the S-lay's laid pipe (on the
     // seabed): within 1 % of the twin on every indicator of the scenes
     // (measured worst 5.5e-6 and 1.7e-3).
-    let mooring = example(
+    let mooring = run_edited(
         "examples/structure_mooring.toml",
         &[(
             "fidelity = \"cable\"",
@@ -91,7 +67,7 @@ fn six_modes_follow_the_full_section_on_the_mooring_line_and_the_s_lay() {
     .unwrap();
     let worst = worst_epsilon("mooring lower reduced:6", &mooring);
     assert!(worst < 1e-2, "{worst}");
-    let slay = example(
+    let slay = run_edited(
         "examples/structure_slay.toml",
         &[(
             "name = \"laid\"\n",
@@ -110,7 +86,7 @@ fn six_modes_with_their_derivatives_carry_the_risers_top() {
     // without which it locked and diverged. Over 60 s within 1 % (measured
     // worst 6.5e-3 with the derivatives' principal directions; 3.5e-3 with
     // all 66 of them, at 4x the cost).
-    let riser = example(
+    let riser = run_edited(
         "examples/structure_riser.toml",
         &[
             ("duration = 200.0", "duration = 60.0"),
@@ -127,7 +103,7 @@ fn six_modes_with_their_derivatives_carry_the_risers_top() {
 
 #[test]
 fn a_section_reduced_about_its_static_state_takes_modes_only() {
-    let refused = example(
+    let refused = run_edited(
         "examples/structure_mooring.toml",
         &[(
             "fidelity = \"cable\"",

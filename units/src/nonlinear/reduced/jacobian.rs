@@ -39,6 +39,18 @@ pub(super) struct JacobianBuffers {
     full: [Vec<f64>; 3],
 }
 
+impl JacobianBuffers {
+    /// The full tangent stiffness and drag damping bands (n DOFs), zeroed.
+    fn zeroed_tangents(&mut self, n: usize) -> (SymmetricBand, SymmetricBand) {
+        let mut k = (self.stiffness.take())
+            .unwrap_or_else(|| SymmetricBand::zeros(n, crate::nonlinear::model::BAND));
+        let mut c = self.drag.take().unwrap_or_else(|| k.clone());
+        k.fill_zero();
+        c.fill_zero();
+        (k, c)
+    }
+}
+
 impl NonlinearSection {
     /// Fills `jacobian` (outputs x inputs, row-major): the end outputs' rows,
     /// the others NaN.
@@ -70,13 +82,7 @@ impl NonlinearSection {
         let s = &self.state;
         b.force.clear();
         b.force.resize(n, 0.0);
-        let mut k = b
-            .stiffness
-            .take()
-            .unwrap_or_else(|| SymmetricBand::zeros(n, crate::nonlinear::model::BAND));
-        let mut c = b.drag.take().unwrap_or_else(|| k.clone());
-        k.fill_zero();
-        c.fill_zero();
+        let (mut k, mut c) = b.zeroed_tangents(n);
         self.model
             .add_internal_force(&s.q, 1.0, Some((&mut k, 1.0)), &mut b.force);
         if !self.environment.is_empty() {
@@ -131,13 +137,7 @@ impl NonlinearSection {
         b: &mut JacobianBuffers,
         damping_scale: f64,
     ) {
-        let mut k = b
-            .stiffness
-            .take()
-            .unwrap_or_else(|| SymmetricBand::zeros(n, crate::nonlinear::model::BAND));
-        let mut c = b.drag.take().unwrap_or_else(|| k.clone());
-        k.fill_zero();
-        c.fill_zero();
+        let (mut k, mut c) = b.zeroed_tangents(n);
         self.add_end_tangents(&mut k, &mut c);
         let projected = (&mut b.reduced_stiffness, &mut b.reduced_drag);
         sample.tangents(self, damping_scale, free, projected);
