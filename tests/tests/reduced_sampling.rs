@@ -175,21 +175,34 @@ fn sampled_sections_follow_the_twin_on_the_mooring_line_the_s_lay_and_the_riser(
 #[test]
 fn a_section_the_stingers_rollers_press_on_is_not_sampled() {
     // The S-lay's stinger section rides the rollers: its sample would drop
-    // their force, so the run stops at the window's end saying why.
+    // their force, so `check` refuses it with the roller it passes over.
     let error = run_edited(
         "examples/structure_slay.toml",
-        &[
-            ("duration = 30.0", "duration = 3.0"),
-            (
-                "name = \"stinger\"\n",
-                "name = \"stinger\"\nfidelity = { kind = \"reduced\", modes = 6, training = 1.0 }\n",
-            ),
-        ],
+        &[(
+            "name = \"stinger\"\n",
+            "name = \"stinger\"\nfidelity = { kind = \"reduced\", modes = 6, training = 1.0 }\n",
+        )],
     )
     .err()
     .unwrap_or_default();
     assert!(
-        error.contains("roller") && error.contains("reduced_sampling"),
+        error.contains("stinger's roller at x =") && error.contains("leave `training` out"),
+        "{error}"
+    );
+    // The unit alone (the contract sample over its roller, a penalty law):
+    // the run stops when the window ends, saying why.
+    let text = NONLINEAR_SAMPLE.replace("augmented_lagrangian", "penalty")
+        + "reduced_modes = 4\nreduced_sampling = { training = 0.05 }\n";
+    let mut driver = section(&text);
+    let h = Time::from_secs(0.01).unwrap();
+    let inputs = vec![0.05; driver.description().inputs.len()];
+    driver.set_inputs(&inputs).unwrap();
+    let error = (0..20)
+        .find_map(|k| driver.do_step(h * k, h).err())
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        error.contains("roller presses on it") && error.contains("reduced_sampling"),
         "{error}"
     );
 }

@@ -39,6 +39,10 @@ impl SectionModel for Reduced {
     fn count_key(&self) -> &'static str {
         "modes"
     }
+    /// Sampled forces cannot hold a stinger's rollers.
+    fn refuse(&self, built: &Built, cut: &Cut) -> Result<(), String> {
+        built.refuse_sampling_on_stinger(cut)
+    }
     fn contact_state_kept(&self) -> Option<&'static str> {
         Some(
             "a reduced section follows poorly: its basis holds the nodes in contact where they lay",

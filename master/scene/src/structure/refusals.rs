@@ -1,7 +1,8 @@
 //! What a section's fidelity cannot model, refused when the scene is
 //! written out (`slender check`) with the reason, rather than at the start
 //! of a run: a model without seabed contact on a section lying on the
-//! seabed; a `linear` section over a stinger's rollers. And what it models
+//! seabed; a `linear` section, or a `reduced` one with sampled forces, over
+//! a stinger's rollers. And what it models
 //! poorly, said as an advisory (`slender check` and the run's warnings): a
 //! model that keeps its contact state on a section that holds the touchdown
 //! point.
@@ -63,17 +64,42 @@ impl Built {
         ))
     }
 
-    /// Refuses a `linear` section (its model's `refuse`) whose equilibrium passes over a stinger's
-    /// rollers (by x): the rollers move and the pipe lifts off them, which a
-    /// linear model cannot follow (the unit refuses it again at its start,
-    /// from its own contact state).
+    /// Refuses a `linear` section (its model's `refuse`) whose equilibrium
+    /// passes over a stinger's rollers (by x): the rollers move and the pipe
+    /// lifts off them, which a linear model cannot follow (the unit refuses
+    /// it again at its start, from its own contact state).
     pub(super) fn refuse_linear_on_stinger(&self, cut: &Cut) -> Result<(), String> {
+        match self.roller_over(cut) {
+            Some(x) => Err(format!(
+                "`structure.sections.{}.fidelity` = \"linear\": the section passes over the stinger's roller at x = {x} m in the static equilibrium, and a linear section cannot follow rollers that move and that the pipe lifts off; choose \"nonlinear\" there",
+                cut.name
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// Refuses a `reduced` section with sampled forces (`training`) whose
+    /// equilibrium passes over a stinger's rollers: a roller meets whichever
+    /// element passes over it, so no fixed sample holds its force (the unit
+    /// stops with the reason where a roller presses on it later).
+    pub(super) fn refuse_sampling_on_stinger(&self, cut: &Cut) -> Result<(), String> {
+        let sampled = (cut.options.as_ref()).is_some_and(|o| o.contains_key("training"));
+        match self.roller_over(cut).filter(|_| sampled) {
+            Some(x) => Err(format!(
+                "`structure.sections.{}.fidelity.training`: the section passes over the stinger's roller at x = {x} m in the static equilibrium, and sampled forces cannot hold a roller's (it meets whichever element passes over it); leave `training` out there",
+                cut.name
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// The x (m) of a stinger's roller the section passes over in the static
+    /// equilibrium, if any.
+    fn roller_over(&self, cut: &Cut) -> Option<f64> {
         let rollers = (self.model.get("stinger"))
             .and_then(|c| c.get("surface")?.get("shape")?.get("positions"))
-            .and_then(Value::as_array);
-        let (Some(rollers), Some(equilibrium)) = (rollers, &self.statics) else {
-            return Ok(());
-        };
+            .and_then(Value::as_array)?;
+        let equilibrium = self.statics.as_ref()?;
         let samples = 200;
         let xs = (0..=samples).map(|i| {
             let s = cut.from + (cut.to - cut.from) * f64::from(i) / f64::from(samples);
@@ -83,16 +109,9 @@ impl Built {
             (l.min(x), h.max(x))
         });
         let number = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
-        match rollers
+        rollers
             .iter()
             .filter_map(number)
             .find(|x| (low..=high).contains(x))
-        {
-            Some(x) => Err(format!(
-                "`structure.sections.{}.fidelity` = \"linear\": the section passes over the stinger's roller at x = {x} m in the static equilibrium, and a linear section cannot follow rollers that move and that the pipe lifts off; choose \"nonlinear\" there",
-                cut.name
-            )),
-            None => Ok(()),
-        }
     }
 }
