@@ -96,33 +96,6 @@ pub fn run(scene: &Scene) -> Series {
     }
 }
 
-/// An example with its text edited (`(from, to)` replacements, each of
-/// which must match), run in memory: its series, or the scene's or the
-/// run's error.
-pub fn run_edited(path: &str, edits: &[(&str, &str)]) -> Result<Series, String> {
-    let file = root().join(path);
-    let mut text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{path}: {e}"));
-    for (from, to) in edits {
-        assert!(text.contains(from), "{path}: {from}");
-        text = text.replacen(from, to, 1);
-    }
-    let scene = Scene::parse(&file, text).map_err(|e| e.to_string())?;
-    let s = run(&scene);
-    match s.error.clone() {
-        Some(e) => Err(e),
-        None => Ok(s),
-    }
-}
-
-/// The worst indicator epsilon of a run against its twin, each printed
-/// after `what`.
-pub fn worst_epsilon(what: &str, s: &Series) -> f64 {
-    s.indicators.iter().fold(0.0f64, |worst, i| {
-        eprintln!("{what}: {} epsilon {:.2e}", i.name, i.relative_error);
-        worst.max(i.relative_error)
-    })
-}
-
 /// Runs `scene` with another scheme, acceleration and step.
 pub fn run_with(scene: &mut Scene, scheme: Scheme, solver: impl Into<Solver>, step: f64) -> Series {
     scene.spec.master.scheme = scheme;
@@ -227,6 +200,7 @@ pub fn order(error_h: f64, error_half: f64) -> f64 {
 /// A scriptable test unit: integrates its input `u` (`y' = u`, exact for the
 /// hold it is given), echoes the input it saw on `u_seen` (direct feedthrough), and
 /// misbehaves on cue.
+pub mod edited;
 pub mod elf;
 pub mod exact;
 pub mod samples;

@@ -3,9 +3,9 @@
 //! the whole projection; at the default it follows the reduced section on the
 //! three flagships; what it cannot sample is refused with the reason.
 
+use slender_tests::edited::{run_edited, worst_epsilon};
 use slender_tests::samples::NONLINEAR_SAMPLE;
 use slender_tests::seed002::section;
-use slender_tests::{run_edited, worst_epsilon};
 use slender_units::Time;
 use slender_units::nonlinear::NonlinearSection;
 use slender_units::{Driver, UnitError};

@@ -4,8 +4,9 @@
 
 use slender_scene::Scene;
 use slender_scene::export::ExportedUnit;
+use slender_tests::edited::{run_edited, worst_epsilon};
+use slender_tests::root;
 use slender_tests::samples::{NONLINEAR_SAMPLE, inline, start_inputs};
-use slender_tests::{root, run_edited, worst_epsilon};
 use slender_units::Time;
 
 /// The sample section's end outputs over `steps` steps of 10 ms under the
