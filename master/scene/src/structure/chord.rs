@@ -82,7 +82,7 @@ impl SectionModel for Chord {
         CutNeeds::MOVING_START_LOADED_END
     }
     fn outputs(&self, _: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
-        outputs_of(["start", "end"], true, None, false, (seabed, stinger))
+        outputs_of(self.end_names(), true, None, false, (seabed, stinger))
     }
     fn unit(
         &self,

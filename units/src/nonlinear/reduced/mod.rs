@@ -48,6 +48,15 @@ use sampled::Hyper;
 /// before the tangent is formed at each iterate.
 const FROZEN_ITERATIONS: u32 = 8;
 
+/// The Newton tangent of an iterate: the full one formed there (already
+/// scaled, to project), the sample's (already projected into the work
+/// buffer), or the frozen one.
+enum Tangent {
+    Full(SymmetricBand),
+    Projected,
+    Frozen,
+}
+
 /// A step's full loads at its start and end, and its held DOFs' motion
 /// (DOF, [q, v, a]).
 type FullLoads<'a> = (&'a [f64], &'a [f64], &'a [(usize, [f64; 3])]);
@@ -423,11 +432,15 @@ impl SecondOrderSystem for ReducedSystem<'_> {
             Some(Hyper::Sampled(sample)) => {
                 let projected = fresh.map(|f| (f, &mut r.work.projected));
                 sample.force(self.section, (z, zv, t), scale, projected, force);
-                fresh.map(|_| None)
+                match fresh {
+                    Some(_) => Tangent::Projected,
+                    None => Tangent::Frozen,
+                }
             }
-            _ => r
-                .full_force(self.section, (z, zv, t), (scale, fresh), force)
-                .map(Some),
+            _ => match r.full_force(self.section, (z, zv, t), (scale, fresh), force) {
+                Some(k) => Tangent::Full(k),
+                None => Tangent::Frozen,
+            },
         };
         if let Some((band, scales)) = tangent {
             r.add_tangent(band, scales, formed);
@@ -490,20 +503,15 @@ impl Reduction {
         full_tangent
     }
 
-    /// Adds the projected Newton tangent to `band`: formed at the iterate
-    /// (`Some`: the full tangent, already scaled, to project, or `None`: the
-    /// sample's, already in `work.projected`), else the frozen one.
-    fn add_tangent(
-        &mut self,
-        band: &mut SymmetricBand,
-        scales: TangentScales,
-        formed: Option<Option<SymmetricBand>>,
-    ) {
+    /// Adds the projected Newton tangent to `band`: the full tangent formed
+    /// at the iterate, projected; the sample's, already in `work.projected`;
+    /// or the frozen one.
+    fn add_tangent(&mut self, band: &mut SymmetricBand, scales: TangentScales, formed: Tangent) {
         let (n, m) = (self.n, self.m);
         let w = &mut self.work;
         match formed {
-            Some(None) => {}
-            Some(Some(k)) => {
+            Tangent::Projected => {}
+            Tangent::Full(k) => {
                 project(
                     &self.basis,
                     (n, m),
@@ -513,7 +521,7 @@ impl Reduction {
                 );
                 w.tangent = Some(k);
             }
-            None => {
+            Tangent::Frozen => {
                 w.projected.clear();
                 let frozen = self.stiffness.iter().zip(&self.drag_damping);
                 (w.projected)

@@ -128,9 +128,8 @@ pub(super) struct Training {
 pub(super) struct Sample {
     terms: Vec<SampledTerm>,
     offset: Vec<f64>,
-    /// K R of one term (6 x m), for the tangent; a force not wanted.
+    /// K R of one term (6 x m), for the tangent.
     scratch: Vec<f64>,
-    scratch_force: Vec<f64>,
     /// Terms the sample could have picked from.
     candidates: usize,
 }
@@ -325,7 +324,6 @@ impl NonlinearSection {
             terms: sampled,
             offset,
             scratch: vec![0.0; 6 * m],
-            scratch_force: Vec::new(),
             candidates: terms.len(),
         })
     }
@@ -390,13 +388,7 @@ impl Sample {
         }
         for term in &self.terms {
             let dofs = term.term.dofs();
-            let (mut q, mut v) = (term.start, [0.0; 6]);
-            for a in 0..dofs {
-                let row = &term.rows[a * m..(a + 1) * m];
-                q[a] += dot(row, z);
-                v[a] = dot(row, zv);
-            }
-            let local = section.term_force(term.term, (&q, &v, t), tangent.is_some());
+            let local = term.at(section, (z, zv, t), tangent.is_some());
             for a in 0..dofs {
                 let f = scale * term.weight * local.force[a];
                 let row = &term.rows[a * m..(a + 1) * m];
@@ -413,7 +405,7 @@ impl Sample {
     /// The sampled tangents at the section's state, for its step Jacobian:
     /// K_r + `c` C_r into `combined` and the columns `from..m` of C_r (the
     /// drag's damping) into `damping` (both m x m, row-major; the rest of
-    /// `damping` zero).
+    /// `damping` zero). Each sampled term is evaluated once.
     pub(super) fn tangents(
         &mut self,
         section: &NonlinearSection,
@@ -423,31 +415,21 @@ impl Sample {
     ) {
         let m = self.offset.len();
         let s = &section.state;
-        let (z, zv) = (&s.reduced[..m], &s.reduced[m..2 * m]);
-        let mut force = std::mem::take(&mut self.scratch_force);
-        force.resize(m, 0.0);
+        let at = (&s.reduced[..m], &s.reduced[m..2 * m], s.t);
         let scales = TangentScales {
             stiffness: 1.0,
             damping: c,
         };
-        self.force(
-            section,
-            (z, zv, s.t),
-            1.0,
-            Some((scales, combined)),
-            &mut force,
-        );
-        self.scratch_force = force;
-        damping.clear();
-        damping.resize(m * m, 0.0);
-        for term in self
-            .terms
-            .iter()
-            .filter(|t| matches!(t.term, Term::Element(_)))
-        {
-            let q = gather(&s.q, term.term);
-            let v = gather(&s.v, term.term);
-            let local = section.term_force(term.term, (&q, &v, s.t), true);
+        for out in [&mut *combined, &mut *damping] {
+            out.clear();
+            out.resize(m * m, 0.0);
+        }
+        for term in &self.terms {
+            let local = term.at(section, at, true);
+            add_projected(term, &local, scales, &mut self.scratch, combined);
+            if !matches!(term.term, Term::Element(_)) {
+                continue;
+            }
             for j in from..m {
                 let mut cr = [0.0; 6];
                 for (a, out) in cr.iter_mut().enumerate() {
@@ -461,6 +443,26 @@ impl Sample {
                 }
             }
         }
+    }
+}
+
+impl SampledTerm {
+    /// The term's force (with its tangents when `tangent`) at the reduced
+    /// state (z, z') at time t (s): its DOFs' values q_s + T_k z, T_k z'.
+    fn at(
+        &self,
+        section: &NonlinearSection,
+        (z, zv, t): (&[f64], &[f64], f64),
+        tangent: bool,
+    ) -> Local {
+        let m = z.len();
+        let (mut q, mut v) = (self.start, [0.0; 6]);
+        for a in 0..self.term.dofs() {
+            let row = &self.rows[a * m..(a + 1) * m];
+            q[a] += dot(row, z);
+            v[a] = dot(row, zv);
+        }
+        section.term_force(self.term, (&q, &v, t), tangent)
     }
 }
 
