@@ -29,7 +29,8 @@ pub fn links_away_from(links: &[toml::Value], unit: &str) -> Vec<toml::Value> {
 /// A scene's units after `[structure]` is written out (by name, in order) and
 /// its connections.
 pub fn units_and_links(scene: &Scene) -> (Vec<(String, toml::Value)>, Vec<toml::Value>) {
-    let t: toml::Table = toml::from_str(scene.source()).expect("the expanded scene");
+    let t: toml::Table =
+        toml::from_str(scene.source().expect("the expanded scene")).expect("the expanded scene");
     let units = t["units"]
         .as_array()
         .expect("units")

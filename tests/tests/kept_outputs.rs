@@ -167,7 +167,7 @@ fn every_structure_expands_as_kept() {
             let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("{e}"));
             compare(
                 &format!("{}.expanded.toml", name_of(scene)),
-                loaded.source(),
+                loaded.source().expect("the expanded scene"),
             )
         })
         .collect();
@@ -195,7 +195,10 @@ fn fidelities_of(scene: &Path) -> String {
             match scene_with_overrides(scene, std::slice::from_ref(&set)) {
                 Err(e) => writeln!(out, "refused: {e}").expect("a string"),
                 Ok(edited) => {
-                    let diff = similar::TextDiff::from_lines(own.source(), edited.source());
+                    let diff = similar::TextDiff::from_lines(
+                        own.source().expect("the expanded scene"),
+                        edited.source().expect("the expanded scene"),
+                    );
                     let diff = diff.unified_diff().context_radius(0).to_string();
                     out.push_str(if diff.is_empty() {
                         "same expansion\n"

@@ -153,7 +153,7 @@ fn a_structure_started_in_its_static_shape_stays_on_its_twin() {
 fn changing_one_section_changes_only_its_unit() {
     let units = |text: &str| -> Vec<toml::Value> {
         let scene = parse(text).expect("scene");
-        let t: toml::Table = toml::from_str(scene.source()).unwrap();
+        let t: toml::Table = toml::from_str(scene.source().expect("the expanded scene")).unwrap();
         t["units"].as_array().unwrap().clone()
     };
     let (a, b) = (
@@ -186,7 +186,7 @@ fn a_sections_element_count_keeps_a_graded_mesh_graded() {
     );
     assert!(graded.contains("elements = 20"), "the model is graded");
     let scene = parse(&graded).expect("scene");
-    let t: toml::Table = toml::from_str(scene.source()).unwrap();
+    let t: toml::Table = toml::from_str(scene.source().expect("the expanded scene")).unwrap();
     let unit = t["units"]
         .as_array()
         .unwrap()
@@ -211,7 +211,7 @@ fn a_sections_element_count_keeps_a_graded_mesh_graded() {
 fn a_section_steps_in_sub_steps_of_its_own() {
     let text = scene(-90.0, &[10.0, 20.0], "substeps = 4");
     let scene = parse(&text).expect("scene");
-    let t: toml::Table = toml::from_str(scene.source()).unwrap();
+    let t: toml::Table = toml::from_str(scene.source().expect("the expanded scene")).unwrap();
     let unit = t["units"]
         .as_array()
         .unwrap()

@@ -173,7 +173,8 @@ fn a_static_touchdown_section_holds_the_slay_under_its_tensioner_also_under_a_sp
             "name = \"touchdown\"\nto = 175.03693181818184\nfidelity = \"static\"",
         )
         .replace("fidelity = \"beam\"", "fidelity = \"nonlinear\"");
-    let t: Table = toml::from_str(parse(&text).unwrap().source()).unwrap();
+    let t: Table =
+        toml::from_str(parse(&text).unwrap().source().expect("the expanded scene")).unwrap();
     let unit = |name: &str| {
         t["units"]
             .as_array()

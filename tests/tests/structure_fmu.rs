@@ -66,7 +66,7 @@ fn a_section_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
         (&mooring("\"nonlinear\""), "line_lower", "lower.fmu"),
         &mooring("{ kind = \"fmu\", file = \"lower.fmu\", ports = \"nonlinear\" }"),
     );
-    let t: toml::Table = toml::from_str(with_fmu.source()).unwrap();
+    let t: toml::Table = toml::from_str(with_fmu.source().expect("the expanded scene")).unwrap();
     let lower = t["units"]
         .as_array()
         .unwrap()

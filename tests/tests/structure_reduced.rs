@@ -125,7 +125,7 @@ fn a_reduced_half_carries_the_membrane_stiffening() {
 
 fn expanded(text: &str) -> Table {
     let scene = parse(text).expect("scene");
-    toml::from_str(scene.source()).expect("expanded scene")
+    toml::from_str(scene.source().expect("the expanded scene")).expect("expanded scene")
 }
 
 #[test]

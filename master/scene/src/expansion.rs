@@ -3,29 +3,56 @@
 //! typed here (`UnitSpec`, `ConnectionSpec`) and appended to the scene's own,
 //! so the scene is read once, from the user's text, and every span points
 //! into it (the units a structure writes out point at its `[structure]`
-//! header). The TOML text of the whole expanded scene is still made, for
-//! `slender expand` to print and for exporting a section's unit, but it is not
-//! read again.
+//! header). The TOML text of the whole expanded scene (`text`) is made only
+//! when asked for: by `slender expand`, which prints it, and by the export of
+//! a section's unit; it is never read back.
 
 use crate::spec::{ConnectionSpec, UnitSpec};
 use crate::{SceneError, structure, structure_lines};
 use serde::de::DeserializeOwned;
-use slender_units::Hold;
+use slender_units::{Hold, Time};
 use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::Path;
 use toml::{Spanned, Table, Value};
 
 /// What a `[structure]` writes out.
+#[derive(Debug)]
 pub(crate) struct Expansion {
     /// `structure.name`: the prefix of its units' names.
     pub name: String,
     pub units: Vec<UnitSpec>,
     pub connections: Vec<ConnectionSpec>,
-    /// The whole scene as TOML text with the structure written out.
-    pub text: String,
+    /// The same units and connections as the tables of the scene's text.
+    pub written: Written,
     /// What its sections' models follow poorly.
     pub advisories: Vec<String>,
+}
+
+/// The written-out units and connections as TOML tables, for the text.
+#[derive(Debug, Default)]
+pub(crate) struct Written {
+    units: Vec<Value>,
+    connections: Vec<Value>,
+}
+
+/// The scene text `source` as it runs: its `[structure]` replaced by the
+/// units and connections it writes out (what `slender expand` prints).
+pub(crate) fn expanded_text(source: &str, written: &Written) -> Result<String, String> {
+    let mut table: Table = toml::from_str(source).map_err(|e| e.to_string())?;
+    table.remove("structure");
+    for (key, items) in [
+        ("units", &written.units),
+        ("connections", &written.connections),
+    ] {
+        let list = table
+            .entry(key.to_owned())
+            .or_insert_with(|| Value::Array(Vec::new()))
+            .as_array_mut()
+            .ok_or(format!("`{key}`: expected a list"))?;
+        list.extend(items.iter().cloned());
+    }
+    toml::to_string(&table).map_err(|e| e.to_string())
 }
 
 /// An error about a unit the structure `name` writes out (its key names the
@@ -40,13 +67,15 @@ pub(crate) fn locate(source: &str, name: Option<&str>, mut e: SceneError) -> Sce
     e
 }
 
-/// The `[structure]` of the scene text `source` written out; None without
-/// one (or when the text does not parse: the spec parser reports that with
-/// its line). An error names the line of the key it is about in `source`.
-pub(crate) fn expand(path: &Path, source: &str) -> Result<Option<Expansion>, SceneError> {
-    if !source.contains("structure") {
-        return Ok(None);
-    }
+/// The `[structure]` table `structure` of the scene text `source` written
+/// out, its statics solved at the simulation's start `start` (s). An error
+/// names the line of the key it is about in `source`.
+pub(crate) fn expand(
+    path: &Path,
+    source: &str,
+    structure: &Value,
+    start: f64,
+) -> Result<Expansion, SceneError> {
     let error = |message: String| SceneError {
         file: path.to_owned(),
         line: structure_lines::model_parameter_line(source, &message)
@@ -58,17 +87,13 @@ pub(crate) fn expand(path: &Path, source: &str) -> Result<Option<Expansion>, Sce
         key: "structure".into(),
         message,
     };
-    let Ok(mut table) = toml::from_str::<Table>(source) else {
-        return Ok(None);
-    };
-    let name = (table.get("structure"))
-        .and_then(|s| s.get("name"))
+    let name = (structure.get("name"))
         .and_then(Value::as_str)
         .map(str::to_owned)
         .unwrap_or_default();
-    let Some(written) = structure::expand(&mut table).map_err(error)? else {
-        return Ok(None);
-    };
+    let t0 = Time::from_secs(start)
+        .ok_or_else(|| error("`simulation.start`: expected a time in seconds".into()))?;
+    let written = structure::expand(structure, t0).map_err(error)?;
     let span = structure_lines::structure_span(source).unwrap_or(0..0);
     let units = (written.units.iter())
         .map(|u| unit_spec(u, &span))
@@ -78,14 +103,16 @@ pub(crate) fn expand(path: &Path, source: &str) -> Result<Option<Expansion>, Sce
         .map(|c| connection_spec(c, &span))
         .collect::<Result<_, _>>()
         .map_err(error)?;
-    let text = toml::to_string(&table).map_err(|e| error(e.to_string()))?;
-    Ok(Some(Expansion {
+    Ok(Expansion {
         name,
         units,
         connections,
-        text,
+        written: Written {
+            units: written.units,
+            connections: written.connections,
+        },
         advisories: written.advisories,
-    }))
+    })
 }
 
 /// The keys a written-out unit may have.
@@ -148,4 +175,56 @@ fn typed<T: DeserializeOwned>(t: &Table, key: &str) -> Result<Option<T>, String>
         .map(|v| v.try_into::<T>())
         .transpose()
         .map_err(|e| format!("a written-out `{key}`: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::Scene;
+    use std::path::Path;
+
+    const HANGING_PIPE: &str = include_str!("../../../examples/structure_hanging_pipe.toml");
+
+    fn parse(text: &str) -> Result<Scene, crate::SceneError> {
+        Scene::parse(Path::new("pipe.toml"), text.to_owned())
+    }
+
+    #[test]
+    fn the_expanded_text_is_made_only_when_asked_for() {
+        let scene = parse(HANGING_PIPE).expect("the example");
+        assert!(scene.expanded.get().is_none(), "text made on load");
+        let text = scene.source().expect("the text");
+        assert!(scene.expanded.get().is_some());
+        let table: toml::Table = toml::from_str(text).expect("TOML");
+        assert!(!table.contains_key("structure"));
+        let units = table["units"].as_array().expect("units");
+        // Three sections and the twin, typed in the spec the same.
+        assert_eq!(units.len(), scene.spec.units.len());
+        assert_eq!(units.len(), 4);
+    }
+
+    #[test]
+    fn a_scene_without_structure_is_its_own_text() {
+        let text = HANGING_PIPE.replace("[structure", "[unused");
+        let plain = "[simulation]\nduration = 1.0\nstep = 0.5\n[master]\nscheme = \"jacobi\"\n\n[[units]]\nname = \"m\"\nkind = \"oscillator\"\nparameters = { mass = 1.0, stiffness = 1.0 }\n";
+        let scene = parse(plain).expect("an empty scene");
+        assert_eq!(scene.source().expect("the text"), plain);
+        let error = parse(&text).expect_err("unknown table").to_string();
+        assert!(error.contains("unused"), "{error}");
+    }
+
+    #[test]
+    fn a_structure_error_names_the_users_line() {
+        let text = HANGING_PIPE.replacen(
+            "[[structure.sections]]",
+            "[[structure.sections]]\nfidelity = \"wrong\"",
+            1,
+        );
+        let error = parse(&text).expect_err("a wrong fidelity").to_string();
+        let line = 1 + text
+            .lines()
+            .position(|l| l.contains("\"wrong\""))
+            .expect("the line");
+        assert!(error.starts_with(&format!("pipe.toml:{line}:")), "{error}");
+        assert!(error.contains("wrong"), "{error}");
+    }
 }

@@ -165,7 +165,7 @@ pub fn wrap_scene(
         problem,
     };
     // The scene as loaded: a `[structure]` already written out as units.
-    let mut table: toml::Table = toml::from_str(scene.source())
+    let mut table: toml::Table = toml::from_str(scene.source()?)
         .map_err(|e| file_error(&scene.path, e.message().to_owned()))?;
     std::fs::create_dir_all(dir).map_err(|e| file_error(dir, format!("cannot create ({e})")))?;
     let units = table

@@ -62,8 +62,11 @@ pub struct Scene {
     pub spec: SceneSpec,
     /// The text the scene was read from (errors name its lines).
     source: String,
-    /// With a `[structure]`: the scene's text with it written out.
-    expanded: Option<String>,
+    /// With a `[structure]`: the units and connections it writes out, as the
+    /// tables of the scene's text.
+    written: Option<expansion::Written>,
+    /// That text, made when first asked for (`source`).
+    expanded: std::sync::OnceLock<String>,
     pub start: Time,
     pub step: Time,
     pub steps: i64,
@@ -99,7 +102,6 @@ impl Scene {
     /// and connections appended to the scene's own (`expansion`): the text is
     /// read once, and every error names a line of it.
     pub fn parse(path: &Path, source: String) -> Result<Scene, SceneError> {
-        let expansion = expansion::expand(path, &source)?;
         let mut spec: SceneSpec = toml::from_str(&source).map_err(|e| {
             // A key missing from the whole file: no line or key to blame.
             let span = e
@@ -116,13 +118,15 @@ impl Scene {
                 message: migration_hint(e.message().trim()),
             }
         })?;
-        spec.structure = None;
+        let expansion = (spec.structure.take())
+            .map(|s| expansion::expand(path, &source, &s, spec.simulation.start))
+            .transpose()?;
         let structure = expansion.as_ref().map(|x| x.name.clone());
-        let (expanded, advisories) = match expansion {
+        let (written, advisories) = match expansion {
             Some(x) => {
                 spec.units.extend(x.units);
                 spec.connections.extend(x.connections);
-                (Some(x.text), x.advisories)
+                (Some(x.written), x.advisories)
             }
             None => (None, Vec::new()),
         };
@@ -130,7 +134,8 @@ impl Scene {
             path: path.to_owned(),
             spec,
             source,
-            expanded,
+            written,
+            expanded: std::sync::OnceLock::new(),
             start: Time::ZERO,
             step: Time::ZERO,
             steps: 0,
@@ -152,9 +157,18 @@ impl Scene {
 
     /// The scene as it runs, as TOML text: the file's, with a `[structure]`
     /// written out as plain units and connections (what `slender expand`
-    /// prints; that text is made for showing and exporting, not read again).
-    pub fn source(&self) -> &str {
-        self.expanded.as_deref().unwrap_or(&self.source)
+    /// prints; that text is made when first asked for, for showing and
+    /// exporting, and never read again).
+    pub fn source(&self) -> Result<&str, SceneError> {
+        let Some(written) = &self.written else {
+            return Ok(&self.source);
+        };
+        if let Some(text) = self.expanded.get() {
+            return Ok(text);
+        }
+        let text = expansion::expanded_text(&self.source, written)
+            .map_err(|message| self.error(None, "structure", message))?;
+        Ok(self.expanded.get_or_init(|| text))
     }
 
     fn error(

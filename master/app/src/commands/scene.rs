@@ -154,7 +154,10 @@ fn print_summary(result: &RunResult) {
 pub fn expand(scene: &SceneArg) -> Result<(), CliError> {
     let scene = load(scene)?;
     scene.build().map_err(|e| CliError::input(e.to_string()))?;
-    print!("{}", scene.source());
+    print!(
+        "{}",
+        scene.source().map_err(|e| CliError::input(e.to_string()))?
+    );
     Ok(())
 }
 

@@ -46,20 +46,6 @@ use slender_units::Time;
 use spec::Spec;
 use toml::{Table, Value};
 
-/// The simulation's start (`[simulation] start`, default 0): when a static
-/// start's equilibrium holds.
-fn start_time(scene: &Table) -> Result<Time, String> {
-    let start = scene
-        .get("simulation")
-        .and_then(|s| s.get("start"))
-        .map_or(Some(0.0), |v| {
-            v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
-        });
-    start
-        .and_then(Time::from_secs)
-        .ok_or("`simulation.start`: expected a time in seconds".into())
-}
-
 /// The keys of `[structure]`.
 const STRUCTURE_KEYS: [&str; 8] = [
     "name",
@@ -81,17 +67,13 @@ pub struct Written {
     pub advisories: Vec<String>,
 }
 
-/// Expands `[structure]` in `scene` into units and connections, appended to
-/// the scene's own and returned (None when the scene has no structure). The
-/// error names the key.
-pub fn expand(scene: &mut Table) -> Result<Option<Written>, String> {
-    let Some(structure) = scene.remove("structure") else {
-        return Ok(None);
-    };
+/// Writes out the `[structure]` table `structure` as units and connections
+/// (as tables of the scene's `[[units]]` and `[[connections]]`), its statics
+/// solved at the simulation's start `t0`. The error names the key.
+pub fn expand(structure: &Value, t0: Time) -> Result<Written, String> {
     let structure = structure
         .as_table()
-        .ok_or("`structure`: expected a table")?
-        .clone();
+        .ok_or("`structure`: expected a table")?;
     if let Some(key) = structure
         .keys()
         .find(|k| !STRUCTURE_KEYS.contains(&k.as_str()))
@@ -101,8 +83,7 @@ pub fn expand(scene: &mut Table) -> Result<Option<Written>, String> {
             STRUCTURE_KEYS.join(", ")
         ));
     }
-    let t0 = start_time(scene)?;
-    let spec = Spec::parse(&structure)?;
+    let spec = Spec::parse(structure)?;
     let (built, cuts) = Built::new(spec, t0)?;
     let force_on_upper = orientation(&cuts, built.statics.is_some(), built.holding_static)?;
     let mut units = Vec::new();
@@ -152,13 +133,11 @@ pub fn expand(scene: &mut Table) -> Result<Option<Written>, String> {
     {
         fmu_input_names(&built.side(cut).unit, &mut units, &mut connections);
     }
-    append(scene, "units", units.clone())?;
-    append(scene, "connections", connections.clone())?;
-    Ok(Some(Written {
+    Ok(Written {
         units,
         connections,
         advisories,
-    }))
+    })
 }
 
 /// Per cut, whether the upper section's end is the loaded side (it carries the
@@ -498,14 +477,4 @@ fn cut_is_plain(cuts: &[Cut], k: usize, holding_static: bool) -> bool {
         k + 1 < cuts.len() && (cuts[k].fidelity.is_chord() || cuts[k + 1].fidelity.is_chord());
     let held_below = k == 0 && holding_static;
     k + 1 < cuts.len() && !beside_chord && !held_below
-}
-
-fn append(scene: &mut Table, key: &str, items: Vec<Value>) -> Result<(), String> {
-    let list = scene
-        .entry(key.to_owned())
-        .or_insert_with(|| Value::Array(Vec::new()))
-        .as_array_mut()
-        .ok_or(format!("`{key}`: expected a list"))?;
-    list.extend(items);
-    Ok(())
 }
