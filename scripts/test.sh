@@ -82,6 +82,15 @@ else
 fi
 rm -f "$log"
 
+step "user guide (docs/, an mdBook; its tutorials ran with the tests above)"
+if ! command -v mdbook > /dev/null; then
+    cargo install --quiet --locked mdbook --version 0.4.52 --no-default-features --features search
+fi
+mdbook build docs > "$log" 2>&1 || { cat "$log"; exit 1; }
+test -s target/book/tutorials/first-scene.html
+echo "built target/book ($(find target/book -name '*.html' | wc -l) pages)"
+rm -f "$log"
+
 step "example scenes (their results are compared with tests/reference/examples/ by the kept_outputs test above)"
 for scene in examples/*.toml; do
     cargo run --quiet --release -- check "$scene" > /dev/null

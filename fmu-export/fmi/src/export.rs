@@ -539,6 +539,11 @@ pub fn package_version(
             ),
         )
     })?;
+    // The folder it goes in is made, as `slender fmu wrap` makes its own.
+    if let Some(folder) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(folder)
+            .map_err(|e| file_error(folder, format!("cannot create the FMU's folder ({e})")))?;
+    }
     let file = std::fs::File::create(out)
         .map_err(|e| file_error(out, format!("cannot create the FMU ({e})")))?;
     let mut zip = zip::ZipWriter::new(file);

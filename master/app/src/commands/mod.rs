@@ -1,6 +1,6 @@
 //! What each command does. Every command returns `Result<(), CliError>`: bad input
 //! (a scene, an argument, a path) exits with code 2, a failure on the way (a run,
-//! a write) with code 1, as the README promises.
+//! a write) with code 1, as the README and the user guide promise.
 
 mod analysis;
 mod fmu;
