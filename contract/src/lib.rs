@@ -26,5 +26,5 @@ pub use time::Time;
 pub use unit::{
     Capabilities, Field, HoldSupport, ModalAnalysis, Mode, StepReport, Unit, UnitDescription,
     UnitError, require_finite, require_finite_state, require_in_range, require_non_negative,
-    require_positive,
+    require_positive, require_step_jacobian_ready,
 };

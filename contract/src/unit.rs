@@ -363,6 +363,18 @@ pub fn require_finite_state(quantity: &str, values: &[f64]) -> Result<(), UnitEr
     }
 }
 
+/// Checks that a unit can give its step Jacobian now (`ready`: it has
+/// stepped and not been rolled back since); the error names the unit as
+/// `what` ("a beam").
+pub fn require_step_jacobian_ready(ready: bool, what: &str) -> Result<(), UnitError> {
+    match ready {
+        true => Ok(()),
+        false => Err(UnitError::Unsupported(format!(
+            "the step Jacobian of {what} before any step or after a rollback"
+        ))),
+    }
+}
+
 /// Checks that a parameter is finite.
 pub fn require_finite(name: &str, value: f64) -> Result<(), UnitError> {
     if value.is_finite() {

@@ -8,7 +8,7 @@
 
 use super::Beam;
 use super::boundary::Quantity;
-use crate::contract::{Hold, Inputs, UnitError};
+use crate::contract::{Hold, Inputs, UnitError, require_step_jacobian_ready};
 use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
 
 /// Buffers of the Jacobian; `ready` while the last step's factor is the
@@ -29,11 +29,7 @@ impl Beam {
         inputs: Inputs<'_>,
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
-        if !self.jacobian.ready {
-            return Err(UnitError::Unsupported(
-                "the step Jacobian of a beam before any step or after a rollback".into(),
-            ));
-        }
+        require_step_jacobian_ready(self.jacobian.ready, "a beam")?;
         let mut w = std::mem::take(&mut self.jacobian);
         w.held.clear();
         w.held.extend(self.held_dofs());

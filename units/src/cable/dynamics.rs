@@ -167,10 +167,9 @@ impl SecondOrderSystem for CableStep<'_> {
         [&self.state.q, &self.state.v, &self.state.a]
     }
 
-    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
-        self.state.q.copy_from_slice(q);
-        self.state.v.copy_from_slice(v);
-        self.state.a.copy_from_slice(a);
+    fn motion_mut(&mut self) -> [&mut [f64]; 3] {
+        let s = &mut self.state;
+        [&mut s.q[..], &mut s.v[..], &mut s.a[..]]
     }
 
     fn is_linear(&self) -> bool {

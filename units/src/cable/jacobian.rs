@@ -8,7 +8,7 @@
 
 use super::dynamics::{Dynamics, mat2};
 use super::{BOTTOM_VX, Cable, TOP_FX};
-use crate::contract::{Hold, Inputs, UnitError};
+use crate::contract::{Hold, Inputs, UnitError, require_step_jacobian_ready};
 
 /// Buffers of the Jacobian; `ready` while the last step's factor is the
 /// integrator's.
@@ -34,11 +34,7 @@ impl Cable {
         inputs: Inputs<'_>,
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
-        if !self.jacobian.ready {
-            return Err(UnitError::Unsupported(
-                "the step Jacobian of a cable before any step or after a rollback".into(),
-            ));
-        }
+        require_step_jacobian_ready(self.jacobian.ready, "a cable")?;
         let mut w = std::mem::take(&mut self.jacobian);
         let result = self.cable_columns(inputs, &mut w, jacobian);
         self.jacobian = w;

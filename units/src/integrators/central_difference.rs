@@ -193,10 +193,8 @@ mod tests {
         fn motion(&self) -> [&[f64]; 3] {
             [&self.q, &self.v, &self.a]
         }
-        fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
-            self.q.copy_from_slice(q);
-            self.v.copy_from_slice(v);
-            self.a.copy_from_slice(a);
+        fn motion_mut(&mut self) -> [&mut [f64]; 3] {
+            [&mut self.q[..], &mut self.v[..], &mut self.a[..]]
         }
         fn is_linear(&self) -> bool {
             true

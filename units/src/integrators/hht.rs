@@ -43,8 +43,16 @@ pub trait SecondOrderSystem {
     /// Displacements, velocities and accelerations at the step's start.
     fn motion(&self) -> [&[f64]; 3];
 
+    /// The same, to be overwritten (`set_motion`).
+    fn motion_mut(&mut self) -> [&mut [f64]; 3];
+
     /// Accepts the step's end state.
-    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]);
+    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
+        let [mq, mv, ma] = self.motion_mut();
+        mq.copy_from_slice(q);
+        mv.copy_from_slice(v);
+        ma.copy_from_slice(a);
+    }
 
     /// Whether `g` is absent (a linear step).
     fn is_linear(&self) -> bool;

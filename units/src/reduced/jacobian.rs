@@ -16,7 +16,7 @@
 
 use super::build::{Model, Stepper};
 use super::unit::{CRITICAL_STEP, EndForce, PER_END, ReducedUnit};
-use crate::contract::{Hold, Inputs, UnitError};
+use crate::contract::{Hold, Inputs, UnitError, require_step_jacobian_ready};
 use crate::integrators::hht::{SecondOrderSystem, TangentScales};
 use crate::nonlinear::model::element_dofs;
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
@@ -108,11 +108,7 @@ impl ReducedUnit {
         inputs: Inputs<'_>,
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
-        if !self.jacobian.ready {
-            return Err(UnitError::Unsupported(
-                "the step Jacobian of a reduced section before any step or after a rollback".into(),
-            ));
-        }
+        require_step_jacobian_ready(self.jacobian.ready, "a reduced section")?;
         let mut w = std::mem::take(&mut self.jacobian);
         let result = self.columns(inputs, &mut w);
         if result.is_ok() {

@@ -178,10 +178,8 @@ impl SecondOrderSystem for ReducedSection {
         [&self.q, &self.v, &self.a]
     }
 
-    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
-        self.q.copy_from_slice(q);
-        self.v.copy_from_slice(v);
-        self.a.copy_from_slice(a);
+    fn motion_mut(&mut self) -> [&mut [f64]; 3] {
+        [&mut self.q[..], &mut self.v[..], &mut self.a[..]]
     }
 
     fn is_linear(&self) -> bool {

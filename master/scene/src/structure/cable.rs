@@ -8,11 +8,9 @@
 //! `full` line), so it needs the structure's static start to place its anchor
 //! where the equilibrium puts the section's start.
 
-use super::cuts::End;
-use super::layout::SectionOutputs;
-use super::model::{CutNeeds, Place, SectionModel, outputs_of};
+use super::model::{CutNeeds, Place, SectionAt, SectionModel};
 use super::sections::{Cut, Segment};
-use super::{Built, cable_fits, statics};
+use super::{cable_fits, statics};
 use toml::{Table, Value};
 
 /// The `cable` fidelity.
@@ -35,17 +33,8 @@ impl SectionModel for Cable {
     fn cut_needs(&self, _: Place) -> CutNeeds {
         CutNeeds::MOVING_START_LOADED_END
     }
-    fn outputs(&self, _: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
-        outputs_of(self.end_names(), true, None, false, (seabed, stinger))
-    }
-    fn unit(
-        &self,
-        built: &Built,
-        cuts: &[Cut],
-        k: usize,
-        _: (Option<End>, Option<End>),
-    ) -> Result<Table, String> {
-        let cut = &cuts[k];
+    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+        let (built, cuts, k, cut) = (at.built, at.cuts, at.k, at.cut());
         cable_fits(&built.model, cuts, k, built.top_load.is_some())?;
         let anchor = built.statics.as_ref().map(|e| e.position_at(cut.from)).ok_or(format!(
             "`structure.sections.{}.fidelity` = \"cable\": a cable section takes its static state from its top force, so the structure needs `structure.model.static_start = true` to place it",

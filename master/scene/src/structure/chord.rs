@@ -10,10 +10,8 @@
 //! (`mod.rs::orientation`); below it may be a static first section that takes
 //! force (`statics::static_takes_force`).
 
-use super::Built;
 use super::cuts::{End, link};
-use super::layout::SectionOutputs;
-use super::model::{CutNeeds, Place, SectionModel, outputs_of};
+use super::model::{CutNeeds, Place, SectionAt, SectionModel};
 use super::nonlinear::section_unit;
 use super::sections::{Cut, Fidelity, Segment};
 use super::statics::Equilibrium;
@@ -81,18 +79,17 @@ impl SectionModel for Chord {
     fn cut_needs(&self, _: Place) -> CutNeeds {
         CutNeeds::MOVING_START_LOADED_END
     }
-    fn outputs(&self, _: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
-        outputs_of(self.end_names(), true, None, false, (seabed, stinger))
-    }
-    fn unit(
-        &self,
-        built: &Built,
-        cuts: &[Cut],
-        k: usize,
-        _: (Option<End>, Option<End>),
-    ) -> Result<Table, String> {
+    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+        let built = at.built;
         let statics = built.statics.as_ref();
-        chord_unit(&built.name, &built.model, &built.segments, cuts, k, statics)
+        chord_unit(
+            &built.name,
+            &built.model,
+            &built.segments,
+            at.cuts,
+            at.k,
+            statics,
+        )
     }
 }
 

@@ -268,52 +268,40 @@ struct Built {
 impl Built {
     /// The model as the units take it, with the top placed by its hang-off
     /// angle, and the equilibrium of a static start at `t0`; and the sections.
-    fn new(spec: Spec, t0: Time) -> Result<(Built, Vec<Cut>), String> {
-        let Spec {
-            name,
-            mut model,
-            segments,
-            sections,
-            length,
-            top_load,
-            static_start,
-            hang_off,
-            water,
-            reference,
-        } = spec;
-        let placed = match hang_off {
-            Some(angle) => Some(hang_off::place(&mut model, angle, t0)?.1),
+    fn new(mut spec: Spec, t0: Time) -> Result<(Built, Vec<Cut>), String> {
+        let placed = match spec.hang_off {
+            Some(angle) => Some(hang_off::place(&mut spec.model, angle, t0)?.1),
             None => None,
         };
-        let statics_model = match &top_load {
-            Some(load) => load.held_at_rest(&model),
-            None => model.clone(),
+        let statics_model = match &spec.top_load {
+            Some(load) => load.held_at_rest(&spec.model),
+            None => spec.model.clone(),
         };
-        if let Some(load) = &top_load {
-            load.take_input(&mut model);
+        if let Some(load) = &spec.top_load {
+            load.take_input(&mut spec.model);
         }
-        let statics = match (static_start, placed) {
+        let statics = match (spec.static_start, placed) {
             (_, Some(equilibrium)) => Some(equilibrium),
             (true, None) => Some(statics::Equilibrium::solve(&statics_model, t0)?),
             (false, None) => None,
         };
         // A chord section is loaded at its end and moves at its start, so the
         // section below it cannot hang from it: the static section holds.
-        let chord = sections.iter().any(|c| c.fidelity.is_chord());
-        let holding_static = sections[0].fidelity == Fidelity::Static
-            && (chord || statics::static_takes_force(&statics_model, top_load.is_some()));
+        let chord = spec.sections.iter().any(|c| c.fidelity.is_chord());
+        let holding_static = spec.sections[0].fidelity == Fidelity::Static
+            && (chord || statics::static_takes_force(&statics_model, spec.top_load.is_some()));
         let built = Built {
             holding_static,
-            water,
-            name,
-            model,
-            segments,
-            length,
+            water: spec.water,
+            name: spec.name,
+            model: spec.model,
+            segments: spec.segments,
+            length: spec.length,
             statics,
-            top_load,
-            reference,
+            top_load: spec.top_load,
+            reference: spec.reference,
         };
-        Ok((built, sections))
+        Ok((built, spec.sections))
     }
 
     /// Section `k`'s unit.
@@ -333,7 +321,13 @@ impl Built {
             pinned: !cuts[k + 1].fidelity.bends() || !cut.fidelity.bends(),
             by_displacement: cuts[k + 1].fidelity.is_chord(),
         });
-        let mut unit = cut.fidelity.model().unit(self, cuts, k, (start, end))?;
+        let at = model::SectionAt {
+            built: self,
+            cuts,
+            k,
+            ends: (start, end),
+        };
+        let mut unit = cut.fidelity.model().unit(&at)?;
         if let (Some(load), true) = (&self.top_load, k + 1 == cuts.len()) {
             load.first_guess(&mut unit, cut.fidelity);
         }

@@ -25,6 +25,23 @@ pub(super) struct Place {
     pub holding_static: bool,
 }
 
+/// The section a fidelity writes its unit for: the structure, its cuts,
+/// which section (`k`, first at the structure's start) and how its ends are
+/// coupled at its cuts (None at the structure's ends).
+pub(super) struct SectionAt<'a> {
+    pub built: &'a Built,
+    pub cuts: &'a [Cut],
+    pub k: usize,
+    pub ends: (Option<End>, Option<End>),
+}
+
+impl SectionAt<'_> {
+    /// The section's own cut (its name, range and fidelity).
+    pub fn cut(&self) -> &Cut {
+        &self.cuts[self.k]
+    }
+}
+
 /// How a fidelity needs its cuts coupled: per cut, whether the upper side
 /// is the loaded one (`true`) or the moving one; None: either way.
 #[derive(Copy, Clone, Debug, Default)]
@@ -99,19 +116,21 @@ pub(super) trait SectionModel: Sync {
     /// Where it reports what a study measures: its end forces (an end
     /// loaded by a coupled force reports none), and, in a model with a
     /// seabed or a stinger, its touchdown point and moments.
-    fn outputs(&self, fmu: bool, seabed: bool, stinger: bool, static_start: bool)
-    -> SectionOutputs;
-
-    /// Its unit for section `k` of `cuts`, coupled at its ends as `ends` says
-    /// (None at the structure's ends); refuses with the reason where it
-    /// cannot model the section.
-    fn unit(
+    /// The default: a model loaded at its end by the section above (no end
+    /// force there) without a touchdown point or moments (a cable, a chord).
+    fn outputs(
         &self,
-        built: &Built,
-        cuts: &[Cut],
-        k: usize,
-        ends: (Option<End>, Option<End>),
-    ) -> Result<Table, String>;
+        _fmu: bool,
+        seabed: bool,
+        stinger: bool,
+        _static_start: bool,
+    ) -> SectionOutputs {
+        outputs_of(self.end_names(), true, None, false, (seabed, stinger))
+    }
+
+    /// Its unit for the section `at`; refuses with the reason where it
+    /// cannot model the section.
+    fn unit(&self, at: &SectionAt) -> Result<Table, String>;
 
     /// How it keeps the contact state it starts with, in words, where it
     /// does (so it cannot follow a moving touchdown point); None: it follows

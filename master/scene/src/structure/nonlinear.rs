@@ -5,7 +5,7 @@
 use super::Built;
 use super::cuts::{End, coupled_displacement, coupled_load, coupled_motion};
 use super::layout::SectionOutputs;
-use super::model::{SectionModel, outputs_of};
+use super::model::{SectionAt, SectionModel, outputs_of};
 use super::sections::{Cut, Fidelity, Segment};
 use toml::{Table, Value};
 
@@ -42,14 +42,8 @@ impl SectionModel for Section {
     fn outputs(&self, fmu: bool, seabed: bool, stinger: bool, _: bool) -> SectionOutputs {
         section_outputs(fmu, seabed, stinger)
     }
-    fn unit(
-        &self,
-        built: &Built,
-        cuts: &[Cut],
-        k: usize,
-        ends: (Option<End>, Option<End>),
-    ) -> Result<Table, String> {
-        built.section_unit(&cuts[k], ends)
+    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+        at.built.section_unit(at.cut(), at.ends)
     }
     /// A linear section cannot follow a stinger's moving rollers.
     fn refuse(&self, built: &Built, cut: &Cut) -> Result<(), String> {

@@ -6,9 +6,8 @@
 //! so).
 
 use super::Built;
-use super::cuts::End;
 use super::layout::SectionOutputs;
-use super::model::{CutNeeds, Place, SectionModel, outputs_of};
+use super::model::{CutNeeds, Place, SectionAt, SectionModel, outputs_of};
 use super::nonlinear::{section_outputs, section_unit};
 use super::sections::Cut;
 use toml::{Table, Value};
@@ -74,18 +73,12 @@ impl SectionModel for Reduced {
             false => outputs_of(["start", "end"], false, None, false, (seabed, stinger)),
         }
     }
-    fn unit(
-        &self,
-        built: &Built,
-        cuts: &[Cut],
-        k: usize,
-        ends: (Option<End>, Option<End>),
-    ) -> Result<Table, String> {
-        let cut = &cuts[k];
+    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+        let (built, cut) = (at.built, at.cut());
         if built.statics.is_some() {
-            return reduced_unit(built.section_unit(cut, ends)?, cut, true);
+            return reduced_unit(built.section_unit(cut, at.ends)?, cut, true);
         }
-        let section = section_unit(&built.name, &built.model, &built.segments, cut, ends)?;
+        let section = section_unit(&built.name, &built.model, &built.segments, cut, at.ends)?;
         reduced_unit(section, cut, false)
     }
 }

@@ -7,7 +7,7 @@
 use super::Built;
 use super::cuts::End;
 use super::layout::SectionOutputs;
-use super::model::{CutNeeds, Place, SectionModel, outputs_of};
+use super::model::{CutNeeds, Place, SectionAt, SectionModel, outputs_of};
 use super::nonlinear::section_unit;
 use super::sections::Cut;
 use toml::{Table, Value};
@@ -48,14 +48,8 @@ impl SectionModel for Static {
             (seabed, stinger),
         )
     }
-    fn unit(
-        &self,
-        built: &Built,
-        cuts: &[Cut],
-        k: usize,
-        ends: (Option<End>, Option<End>),
-    ) -> Result<Table, String> {
-        built.static_unit(cuts, k, ends)
+    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+        at.built.static_unit(at.cuts, at.k, at.ends)
     }
 }
 

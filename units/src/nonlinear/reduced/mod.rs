@@ -380,11 +380,9 @@ impl SecondOrderSystem for ReducedSystem<'_> {
         [q, v, a]
     }
 
-    fn set_motion(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
-        let [zq, zv, za] = &mut self.reduction.work.motion;
-        zq.copy_from_slice(q);
-        zv.copy_from_slice(v);
-        za.copy_from_slice(a);
+    fn motion_mut(&mut self) -> [&mut [f64]; 3] {
+        let [q, v, a] = &mut self.reduction.work.motion;
+        [q, v, a]
     }
 
     fn is_linear(&self) -> bool {
