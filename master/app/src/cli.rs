@@ -1,7 +1,7 @@
 //! The command line: commands and their arguments (clap). What each command does
 //! is in `commands/`.
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
 /// Co-simulation of substructured slender marine structures.
@@ -129,6 +129,32 @@ pub enum FmuAction {
     },
 }
 
+/// How a study's runs are made, the same for `study` and `fidelity`.
+#[derive(Args, Debug)]
+pub struct StudyRuns {
+    /// Runs at once (default 1: each run times its cost alone; more finish
+    /// sooner but share the cores, so their costs are not comparable).
+    /// Results other than costs do not depend on it.
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// Times each run is timed (default 1): its cost is the median, the
+    /// spread (max - min) / median is reported, and a spread above 20 % is
+    /// warned about.
+    #[arg(long, default_value_t = 1)]
+    pub repeats: usize,
+    /// The most runs to start (default 10 000): a larger study is
+    /// refused before any run, naming its size.
+    #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
+    pub max_runs: usize,
+    /// Simulated time of each run (s); default: the scene's duration.
+    #[arg(long, allow_negative_numbers = true)]
+    pub duration: Option<f64>,
+    /// Run every run anew: the runs an earlier study kept in the results
+    /// folder (runs/) are removed first, e.g. to time costs again.
+    #[arg(long)]
+    pub fresh: bool,
+}
+
 #[derive(Subcommand)]
 pub enum Command {
     /// Run a scene: prints a summary, writes timeseries.csv, summary.json and SVG plots.
@@ -202,23 +228,8 @@ pub enum Command {
         /// time.
         #[arg(long)]
         grid: bool,
-        /// Runs at once (default 1: each run times its cost alone; more finish
-        /// sooner but share the cores, so their costs are not comparable).
-        /// Results other than costs do not depend on it.
-        #[arg(long)]
-        jobs: Option<usize>,
-        /// Times each run is timed (default 1): its cost is the median, the
-        /// spread (max - min) / median is reported, and a spread above 20 % is
-        /// warned about.
-        #[arg(long, default_value_t = 1)]
-        repeats: usize,
-        /// The most runs to start (default 10 000): a larger study is
-        /// refused before any run, naming its size.
-        #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
-        max_runs: usize,
-        /// Simulated time of each run (s); default: the scene's duration.
-        #[arg(long, allow_negative_numbers = true)]
-        duration: Option<f64>,
+        #[command(flatten)]
+        runs: StudyRuns,
         /// A scene whose run is every run's reference (its indicators matched by
         /// name), e.g. a fine FE model of what the studied scene approximates;
         /// a sweep may then have one value.
@@ -228,10 +239,6 @@ pub enum Command {
         /// e.g. the model under study, not its driver or an in-run reference.
         #[arg(long = "cost", value_delimiter = ',')]
         cost_units: Vec<String>,
-        /// Run every run anew: the runs an earlier study kept in the results
-        /// folder (runs/) are removed first, e.g. to time costs again.
-        #[arg(long)]
-        fresh: bool,
         /// Results folder (default: results/<scene name>-study).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -268,27 +275,8 @@ pub enum Command {
         /// top_force,touchdown,sagbend_moment; default: all of them.
         #[arg(long, value_delimiter = ',')]
         quantities: Vec<String>,
-        /// Runs at once (default 1: each run times its cost alone; more finish
-        /// sooner but share the cores, so their costs are not comparable).
-        /// Results other than costs do not depend on it.
-        #[arg(long)]
-        jobs: Option<usize>,
-        /// Times each run is timed (default 1): its cost is the median, the
-        /// spread (max - min) / median is reported, and a spread above 20 % is
-        /// warned about.
-        #[arg(long, default_value_t = 1)]
-        repeats: usize,
-        /// The most runs to start (default 10 000): a larger study is
-        /// refused before any run, naming its size.
-        #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
-        max_runs: usize,
-        /// Simulated time of each run (s); default: the scene's duration.
-        #[arg(long, allow_negative_numbers = true)]
-        duration: Option<f64>,
-        /// Run every run anew: the runs an earlier study kept in the results
-        /// folder (runs/) are removed first, e.g. to time costs again.
-        #[arg(long)]
-        fresh: bool,
+        #[command(flatten)]
+        runs: StudyRuns,
         /// Results folder (default: results/<scene name>-fidelity).
         #[arg(long)]
         out: Option<PathBuf>,

@@ -6,7 +6,7 @@ use super::{Beam, ContactValues};
 use crate::contact::Law;
 use crate::contract::{Inputs, ModalAnalysis, Mode, UnitError};
 use crate::integrators::hht::{
-    HhtAlpha, Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales,
+    HhtAlpha, Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales, motion_fields,
 };
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
@@ -243,14 +243,7 @@ impl SecondOrderSystem for Beam {
         }
     }
 
-    fn motion(&self) -> [&[f64]; 3] {
-        [&self.state.q, &self.state.v, &self.state.a]
-    }
-
-    fn motion_mut(&mut self) -> [&mut [f64]; 3] {
-        let s = &mut self.state;
-        [&mut s.q[..], &mut s.v[..], &mut s.a[..]]
-    }
+    motion_fields!(state);
 
     fn is_linear(&self) -> bool {
         self.points.is_empty()

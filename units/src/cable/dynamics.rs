@@ -3,7 +3,7 @@
 //! shared [`IteratedNewmark`] (the drag iterated on the fixed factorisation).
 
 use super::*;
-use crate::integrators::hht::{Matrices, SecondOrderSystem, TangentScales};
+use crate::integrators::hht::{Matrices, SecondOrderSystem, TangentScales, motion_fields};
 use crate::integrators::newmark_iterated::IteratedNewmark;
 
 /// Matrices and scratch of the linear dynamics about the static state.
@@ -163,14 +163,7 @@ impl SecondOrderSystem for CableStep<'_> {
         }
     }
 
-    fn motion(&self) -> [&[f64]; 3] {
-        [&self.state.q, &self.state.v, &self.state.a]
-    }
-
-    fn motion_mut(&mut self) -> [&mut [f64]; 3] {
-        let s = &mut self.state;
-        [&mut s.q[..], &mut s.v[..], &mut s.a[..]]
-    }
+    motion_fields!(state);
 
     fn is_linear(&self) -> bool {
         self.dynamics.drag.is_none()

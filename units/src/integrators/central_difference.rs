@@ -146,7 +146,7 @@ impl CentralDifference {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrators::hht::TangentScales;
+    use crate::integrators::hht::{TangentScales, motion_fields};
     use crate::numerics::banded::SymmetricBand;
 
     /// A chain of `n` unit masses on springs `k` (fixed at one end).
@@ -190,12 +190,7 @@ mod tests {
                 stiffness: Some(&self.k),
             }
         }
-        fn motion(&self) -> [&[f64]; 3] {
-            [&self.q, &self.v, &self.a]
-        }
-        fn motion_mut(&mut self) -> [&mut [f64]; 3] {
-            [&mut self.q[..], &mut self.v[..], &mut self.a[..]]
-        }
+        motion_fields!();
         fn is_linear(&self) -> bool {
             true
         }

@@ -32,6 +32,25 @@ pub struct TangentScales {
     pub damping: f64,
 }
 
+/// `SecondOrderSystem::motion` and `motion_mut` over the fields `q`, `v`
+/// and `a` of `self.PATH` (`motion_fields!(state)`) or of `self`
+/// (`motion_fields!()`): the accessors every system with its motion in
+/// three vectors would otherwise write again.
+macro_rules! motion_fields {
+    ($($field:ident).*) => {
+        fn motion(&self) -> [&[f64]; 3] {
+            let s = &(*self)$(.$field)*;
+            [&s.q[..], &s.v[..], &s.a[..]]
+        }
+
+        fn motion_mut(&mut self) -> [&mut [f64]; 3] {
+            let s = &mut (*self)$(.$field)*;
+            [&mut s.q[..], &mut s.v[..], &mut s.a[..]]
+        }
+    };
+}
+pub(crate) use motion_fields;
+
 /// A system `M a + C v + K q + g(q, v, t) = f(t)` as an integrator steps it.
 pub trait SecondOrderSystem {
     /// Name for messages, e.g. "beam".

@@ -8,7 +8,7 @@ use super::{NonlinearSection, contact};
 use crate::contract::{Inputs, UnitError};
 use crate::integrators::central_difference::CentralDifference;
 use crate::integrators::hht::{
-    Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales,
+    Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales, motion_fields,
 };
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
@@ -475,14 +475,7 @@ impl SecondOrderSystem for NonlinearSection {
         }
     }
 
-    fn motion(&self) -> [&[f64]; 3] {
-        [&self.state.q, &self.state.v, &self.state.a]
-    }
-
-    fn motion_mut(&mut self) -> [&mut [f64]; 3] {
-        let s = &mut self.state;
-        [&mut s.q[..], &mut s.v[..], &mut s.a[..]]
-    }
+    motion_fields!(state);
 
     fn is_linear(&self) -> bool {
         self.linear.is_some()

@@ -9,7 +9,7 @@ use super::ecsw::SampledForce;
 use super::lrbf::ReducedForce;
 use super::polynomial::CubicSection;
 use crate::contract::UnitError;
-use crate::integrators::hht::{Matrices, SecondOrderSystem, TangentScales};
+use crate::integrators::hht::{Matrices, SecondOrderSystem, TangentScales, motion_fields};
 use crate::numerics::banded::SymmetricBand;
 use nalgebra::{DMatrix, DVector};
 
@@ -174,13 +174,7 @@ impl SecondOrderSystem for ReducedSection {
         }
     }
 
-    fn motion(&self) -> [&[f64]; 3] {
-        [&self.q, &self.v, &self.a]
-    }
-
-    fn motion_mut(&mut self) -> [&mut [f64]; 3] {
-        [&mut self.q[..], &mut self.v[..], &mut self.a[..]]
-    }
+    motion_fields!();
 
     fn is_linear(&self) -> bool {
         false

@@ -62,27 +62,23 @@ fn studies(command: Command, set: &[String]) -> Result<(), CliError> {
             scene,
             sweeps,
             grid,
-            jobs,
-            repeats,
-            max_runs,
-            duration,
+            runs,
             reference,
             cost_units,
-            fresh,
             out,
         } => {
             let plan = slender_app::study::StudyPlan {
-                max_runs,
+                max_runs: runs.max_runs,
                 sweeps,
                 design: design(grid),
-                duration,
-                jobs: jobs.unwrap_or(1),
+                duration: runs.duration,
+                jobs: runs.jobs.unwrap_or(1),
                 cost_units,
                 reference,
-                repeats,
+                repeats: runs.repeats,
                 overrides,
             };
-            analysis::study(&scene, &plan, (out, fresh))
+            analysis::study(&scene, &plan, (out, runs.fresh))
         }
         Command::Fidelity {
             scene,
@@ -90,25 +86,21 @@ fn studies(command: Command, set: &[String]) -> Result<(), CliError> {
             grid,
             tolerance,
             quantities,
-            jobs,
-            repeats,
-            max_runs,
-            duration,
-            fresh,
+            runs,
             out,
         } => {
             let plan = slender_app::fidelity::FidelityPlan {
-                max_runs,
+                max_runs: runs.max_runs,
                 sections,
                 design: design(grid),
-                duration,
-                jobs: jobs.unwrap_or(1),
+                duration: runs.duration,
+                jobs: runs.jobs.unwrap_or(1),
                 tolerance,
                 judged: quantities,
-                repeats,
+                repeats: runs.repeats,
                 overrides,
             };
-            analysis::fidelity(&scene, &plan, (out, fresh))
+            analysis::fidelity(&scene, &plan, (out, runs.fresh))
         }
         Command::Uq {
             scene,
