@@ -209,7 +209,7 @@ fn a_structure_refuses_unknown_keys_and_an_unreachable_hang_off() {
     let e =
         parse(&text.replace("reference = true", "reference = true\nhangoff = 12.0")).unwrap_err();
     assert!(
-        e.contains("`structure.hangoff`: unknown key") && e.contains("hang_off"),
+        e.contains("`structure.hangoff`: unknown field") && e.contains("hang_off"),
         "{e}"
     );
     let e = parse(&text.replace("angle_deg = 12.0 }", "angle_deg = 95.0 }")).unwrap_err();

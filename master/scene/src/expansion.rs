@@ -227,4 +227,56 @@ mod tests {
         assert!(error.starts_with(&format!("pipe.toml:{line}:")), "{error}");
         assert!(error.contains("wrong"), "{error}");
     }
+
+    /// The line of the first line of `text` containing `needle` (1-based).
+    fn line_of(text: &str, needle: &str) -> usize {
+        1 + text
+            .lines()
+            .position(|l| l.contains(needle))
+            .expect("the line")
+    }
+
+    #[test]
+    fn a_section_key_it_does_not_take_is_refused_at_its_line() {
+        // It was silently ignored: a misspelt `elements` left the mesh as it was.
+        let text = HANGING_PIPE.replacen(
+            "[[structure.sections]]",
+            "[[structure.sections]]\nelemnts = 10",
+            1,
+        );
+        let error = parse(&text).expect_err("an unknown key").to_string();
+        let line = line_of(&text, "elemnts");
+        assert!(error.starts_with(&format!("pipe.toml:{line}:")), "{error}");
+        assert!(
+            error.contains("`structure.sections[0].elemnts`: unknown field"),
+            "{error}"
+        );
+        assert!(error.contains("`elements`"), "the keys it takes: {error}");
+    }
+
+    #[test]
+    fn a_structure_value_of_the_wrong_type_says_what_was_expected() {
+        let text = HANGING_PIPE.replacen(
+            "[[structure.sections]]",
+            "[[structure.sections]]\nsubsteps = 2.5",
+            1,
+        );
+        let error = parse(&text).expect_err("a fraction").to_string();
+        assert!(
+            error.contains("`structure.sections[0].substeps`"),
+            "{error}"
+        );
+        assert!(error.contains("expected a whole number"), "{error}");
+        assert!(!error.contains("i64"), "Rust words: {error}");
+        let text = HANGING_PIPE.replacen("\n[structure]\n", "\n[structure]\nnmae = \"x\"\n", 1);
+        let error = parse(&text).expect_err("an unknown key").to_string();
+        assert!(
+            error.starts_with(&format!("pipe.toml:{}:", line_of(&text, "nmae"))),
+            "{error}"
+        );
+        assert!(
+            error.contains("unknown field `nmae`, expected one of `name`"),
+            "{error}"
+        );
+    }
 }

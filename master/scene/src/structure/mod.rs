@@ -46,18 +46,6 @@ use slender_units::Time;
 use spec::Spec;
 use toml::{Table, Value};
 
-/// The keys of `[structure]`.
-const STRUCTURE_KEYS: [&str; 8] = [
-    "name",
-    "model",
-    "sections",
-    "reference",
-    "water_depth",
-    "seabed",
-    "top_load",
-    "hang_off",
-];
-
 /// What a `[structure]` writes out: its units and connections (as tables of
 /// the scene's `[[units]]` and `[[connections]]`), and the advisories on what
 /// its sections' models follow poorly.
@@ -74,15 +62,6 @@ pub fn expand(structure: &Value, t0: Time) -> Result<Written, String> {
     let structure = structure
         .as_table()
         .ok_or("`structure`: expected a table")?;
-    if let Some(key) = structure
-        .keys()
-        .find(|k| !STRUCTURE_KEYS.contains(&k.as_str()))
-    {
-        return Err(format!(
-            "`structure.{key}`: unknown key; a structure takes {}",
-            STRUCTURE_KEYS.join(", ")
-        ));
-    }
     let spec = Spec::parse(structure)?;
     let (built, cuts) = Built::new(spec, t0)?;
     let force_on_upper = orientation(&cuts, built.statics.is_some(), built.holding_static)?;

@@ -1,6 +1,7 @@
 //! The structure's description: its segments (the stress-free shape), its
 //! sections (cuts by arc length) and each section's fidelity.
 
+use serde::Deserialize;
 use toml::{Table, Value};
 
 /// A straight segment of the stress-free shape.
@@ -164,28 +165,33 @@ impl Fidelity {
     }
 }
 
-pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String> {
-    let list = structure
-        .get("sections")
-        .and_then(Value::as_array)
-        .filter(|l| !l.is_empty())
-        .ok_or("`structure.sections`: expected at least one section")?;
+/// A `[[structure.sections]]` entry as written (its keys checked by serde;
+/// its fidelity, a name or a table, read by `fidelity_of`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SectionFile {
+    name: String,
+    /// Where it ends (m of arc length); none for the last.
+    to: Option<f64>,
+    fidelity: Option<Value>,
+    elements: Option<i64>,
+    substeps: Option<i64>,
+    physical: Option<Value>,
+}
+
+/// The sections of `[structure]` as cuts of its `length` (m).
+pub(super) fn cuts_of(list: &[SectionFile], length: f64) -> Result<Vec<Cut>, String> {
+    if list.is_empty() {
+        return Err("`structure.sections`: expected at least one section".into());
+    }
     let mut cuts = Vec::new();
     let mut from = 0.0;
-    for (i, s) in list.iter().enumerate() {
+    for (i, t) in list.iter().enumerate() {
         let key = format!("structure.sections[{i}]");
-        let t = s.as_table().ok_or(format!("`{key}`: expected a table"))?;
-        let name = t
-            .get("name")
-            .and_then(Value::as_str)
-            .ok_or(format!("`{key}.name`: expected a name"))?;
-        let model = fidelity_of(&key, t.get("fidelity"))?;
+        let model = fidelity_of(&key, t.fidelity.as_ref())?;
         let (fidelity, fidelity_elements) = (model.fidelity, model.elements);
         let last = i + 1 == list.len();
-        let to = match t
-            .get("to")
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-        {
+        let to = match t.to {
             Some(to) if !last && to > from && to < length => to,
             None if last => length,
             Some(to) if last && (to - length).abs() <= 1e-9 * length => length,
@@ -196,9 +202,9 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
                 ));
             }
         };
-        let elements = match (t.get("elements"), fidelity_elements) {
+        let elements = match (t.elements, fidelity_elements) {
             (None, elements) => elements,
-            (Some(v), None) => Some(whole(&format!("{key}.elements"), v)?),
+            (Some(n), None) => Some(whole(&format!("{key}.elements"), &Value::Integer(n))?),
             (Some(_), Some(_)) => {
                 return Err(format!(
                     "`{key}`: the element count is given twice (`elements` and `fidelity.elements`)"
@@ -206,10 +212,10 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
             }
         };
         let substeps = t
-            .get("substeps")
-            .map(|v| whole(&format!("{key}.substeps"), v))
+            .substeps
+            .map(|n| whole(&format!("{key}.substeps"), &Value::Integer(n)))
             .transpose()?;
-        let physical = match t.get("physical") {
+        let physical = match &t.physical {
             None => None,
             Some(Value::Table(p)) => Some(p.clone()),
             Some(_) => {
@@ -219,7 +225,7 @@ pub(super) fn cuts_of(structure: &Table, length: f64) -> Result<Vec<Cut>, String
             }
         };
         cuts.push(Cut {
-            name: name.to_owned(),
+            name: t.name.clone(),
             from,
             to,
             fidelity,

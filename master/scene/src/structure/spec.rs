@@ -7,8 +7,43 @@
 use super::cable::Water;
 use super::hang_off;
 use super::load::TopLoad;
-use super::sections::{Cut, Fidelity, Segment, cuts_of, segments_of};
+use super::sections::{Cut, Fidelity, SectionFile, Segment, cuts_of, segments_of};
+use serde::Deserialize;
+use serde::de::{DeserializeOwned, IgnoredAny};
 use toml::{Table, Value};
+
+/// `[structure]` as written: its keys and their types, checked by serde (a
+/// key it does not take, or a value of the wrong type, is refused naming its
+/// path). The top load, hang-off and water are read by their own modules.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StructureFile {
+    name: String,
+    model: Table,
+    #[serde(default)]
+    sections: Vec<SectionFile>,
+    reference: Option<Value>,
+    #[serde(rename = "water_depth")]
+    _water_depth: Option<IgnoredAny>,
+    #[serde(rename = "seabed")]
+    _seabed: Option<IgnoredAny>,
+    #[serde(rename = "top_load")]
+    _top_load: Option<IgnoredAny>,
+    #[serde(rename = "hang_off")]
+    _hang_off: Option<IgnoredAny>,
+}
+
+/// `table`, found at `key`, as a `T`; an error names the key path where it
+/// went wrong and says what was expected in a scene author's words.
+pub(super) fn typed<T: DeserializeOwned>(key: &str, table: &Table) -> Result<T, String> {
+    serde_path_to_error::deserialize(Value::Table(table.clone())).map_err(|e| {
+        let message = slender_kinds::words::in_words(e.inner().message().trim());
+        match e.path().to_string().as_str() {
+            "" | "." => format!("`{key}`: {message}"),
+            path => format!("`{key}.{path}`: {message}"),
+        }
+    })
+}
 
 /// A `[structure]` as written, checked.
 pub(super) struct Spec {
@@ -36,16 +71,8 @@ pub(super) struct Spec {
 impl Spec {
     /// Reads `[structure]`; the error names the key.
     pub fn parse(structure: &Table) -> Result<Spec, String> {
-        let name = structure
-            .get("name")
-            .and_then(Value::as_str)
-            .ok_or("`structure.name`: expected the name the section units start with")?
-            .to_owned();
-        let model = structure
-            .get("model")
-            .and_then(Value::as_table)
-            .ok_or("`structure.model`: expected the parameters of a `nonlinear` unit")?
-            .clone();
+        let file: StructureFile = typed("structure", structure)?;
+        let (name, model) = (file.name, file.model);
         let top_load = TopLoad::of(structure, &model)?;
         let static_start = model.get("static_start").and_then(Value::as_bool) == Some(true);
         let hang_off = hang_off::angle_of(structure)?;
@@ -54,10 +81,10 @@ impl Spec {
         }
         let segments = segments_of(&model)?;
         let length: f64 = segments.iter().map(|s| s.length).sum();
-        let sections = cuts_of(structure, length)?;
+        let sections = cuts_of(&file.sections, length)?;
         Ok(Spec {
             water: Water::of(structure)?,
-            reference: reference_of(structure)?,
+            reference: reference_of(file.reference.as_ref())?,
             name,
             model,
             segments,
@@ -72,8 +99,8 @@ impl Spec {
 
 /// `structure.reference`: true or "nonlinear" (the model as one unit), or
 /// "cable" (the whole structure as one cable); None without a twin.
-fn reference_of(structure: &Table) -> Result<Option<Fidelity>, String> {
-    let fidelity = match structure.get("reference") {
+fn reference_of(reference: Option<&Value>) -> Result<Option<Fidelity>, String> {
+    let fidelity = match reference {
         None | Some(Value::Boolean(false)) => return Ok(None),
         Some(Value::Boolean(true)) => Fidelity::Nonlinear,
         Some(Value::String(word)) => Fidelity::parse("structure.reference", word)?,
