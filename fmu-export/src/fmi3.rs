@@ -22,7 +22,7 @@ type LogMessage = unsafe extern "C" fn(*mut c_void, c_int, *const c_char, *const
 
 /// An FMI 3.0 instance's logger: `logMessage(instanceEnvironment, status,
 /// category, message)`.
-pub struct Logger {
+pub(crate) struct Logger {
     environment: *mut c_void,
     callback: LogMessage,
 }
@@ -30,7 +30,7 @@ pub struct Logger {
 impl Logger {
     /// Sends `message` in the category of `status` (see the model
     /// description's `LogCategories`).
-    pub fn log(&self, status: Status, message: &str) {
+    pub(crate) fn log(&self, status: Status, message: &str) {
         let category = match status {
             FMI2_OK => c"logAll",
             FMI2_WARNING => c"logStatusWarning",
@@ -51,7 +51,7 @@ impl Logger {
 
 /// `fmi3GetVersion`.
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetVersion() -> *const c_char {
+pub(crate) extern "C" fn fmi3GetVersion() -> *const c_char {
     c"3.0".as_ptr()
 }
 
@@ -59,7 +59,7 @@ pub extern "C" fn fmi3GetVersion() -> *const c_char {
 /// resources and checks the instantiation token; null on failure (logged).
 /// Event mode and intermediate updates are refused (the FMU declares neither).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
+pub(crate) unsafe extern "C" fn fmi3InstantiateCoSimulation(
     instance_name: *const c_char,
     token: *const c_char,
     resource_path: *const c_char,
@@ -134,13 +134,13 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
 
 /// `fmi3InstantiateModelExchange`: not offered (co-simulation only).
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3InstantiateModelExchange() -> Instance3 {
+pub(crate) extern "C" fn fmi3InstantiateModelExchange() -> Instance3 {
     std::ptr::null_mut()
 }
 
 /// `fmi3FreeInstance`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3FreeInstance(c: Instance3) {
+pub(crate) unsafe extern "C" fn fmi3FreeInstance(c: Instance3) {
     if !c.is_null() {
         let _ = std::panic::catch_unwind(|| {
             // SAFETY: `c` came from fmi3InstantiateCoSimulation, freed once.
@@ -151,7 +151,7 @@ pub unsafe extern "C" fn fmi3FreeInstance(c: Instance3) {
 
 /// `fmi3SetDebugLogging` (categories ignored).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetDebugLogging(
+pub(crate) unsafe extern "C" fn fmi3SetDebugLogging(
     c: Instance3,
     logging_on: bool,
     _n: usize,
@@ -166,7 +166,7 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
 /// `fmi3EnterInitializationMode`: the start time (tolerance and stop time
 /// are not used), then initialisation mode.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3EnterInitializationMode(
+pub(crate) unsafe extern "C" fn fmi3EnterInitializationMode(
     c: Instance3,
     _tolerance_defined: bool,
     _tolerance: f64,
@@ -182,7 +182,7 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
 
 /// `fmi3ExitInitializationMode`: the unit finds its initial state; step mode.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3ExitInitializationMode(c: Instance3) -> Status {
+pub(crate) unsafe extern "C" fn fmi3ExitInitializationMode(c: Instance3) -> Status {
     guarded(
         c,
         "fmi3ExitInitializationMode",
@@ -192,25 +192,25 @@ pub unsafe extern "C" fn fmi3ExitInitializationMode(c: Instance3) -> Status {
 
 /// `fmi3EnterStepMode`: already there after initialisation (no event mode).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3EnterStepMode(c: Instance3) -> Status {
+pub(crate) unsafe extern "C" fn fmi3EnterStepMode(c: Instance3) -> Status {
     guarded(c, "fmi3EnterStepMode", |_| Ok(FMI2_OK))
 }
 
 /// `fmi3Terminate`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3Terminate(c: Instance3) -> Status {
+pub(crate) unsafe extern "C" fn fmi3Terminate(c: Instance3) -> Status {
     guarded(c, "fmi3Terminate", Instance::terminate)
 }
 
 /// `fmi3Reset`: back to the instantiated state with the exported parameters.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3Reset(c: Instance3) -> Status {
+pub(crate) unsafe extern "C" fn fmi3Reset(c: Instance3) -> Status {
     guarded(c, "fmi3Reset", Instance::reset)
 }
 
 /// `fmi3GetFloat64`: inputs, outputs, Float64 parameters and `time`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetFloat64(
+pub(crate) unsafe extern "C" fn fmi3GetFloat64(
     c: Instance3,
     vr: *const u32,
     n_vr: usize,
@@ -227,7 +227,7 @@ pub unsafe extern "C" fn fmi3GetFloat64(
 /// `fmi3SetFloat64`: inputs (any time) and Float64 parameters (before
 /// initialisation ends).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetFloat64(
+pub(crate) unsafe extern "C" fn fmi3SetFloat64(
     c: Instance3,
     vr: *const u32,
     n_vr: usize,
@@ -243,7 +243,7 @@ pub unsafe extern "C" fn fmi3SetFloat64(
 
 /// `fmi3GetInt32`: Int32 parameters.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetInt32(
+pub(crate) unsafe extern "C" fn fmi3GetInt32(
     c: Instance3,
     vr: *const u32,
     n_vr: usize,
@@ -259,7 +259,7 @@ pub unsafe extern "C" fn fmi3GetInt32(
 
 /// `fmi3SetInt32`: Int32 parameters.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetInt32(
+pub(crate) unsafe extern "C" fn fmi3SetInt32(
     c: Instance3,
     vr: *const u32,
     n_vr: usize,
@@ -275,7 +275,7 @@ pub unsafe extern "C" fn fmi3SetInt32(
 
 /// `fmi3GetBoolean`: Boolean parameters (`effects.<name>`; C `bool`s).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetBoolean(
+pub(crate) unsafe extern "C" fn fmi3GetBoolean(
     c: Instance3,
     vr: *const u32,
     n_vr: usize,
@@ -296,7 +296,7 @@ pub unsafe extern "C" fn fmi3GetBoolean(
 
 /// `fmi3SetBoolean`: Boolean parameters.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetBoolean(
+pub(crate) unsafe extern "C" fn fmi3SetBoolean(
     c: Instance3,
     vr: *const u32,
     n_vr: usize,
@@ -313,7 +313,7 @@ pub unsafe extern "C" fn fmi3SetBoolean(
 
 /// `fmi3GetString`: String parameters (pointers valid until the next call).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetString(
+pub(crate) unsafe extern "C" fn fmi3GetString(
     c: Instance3,
     vr: *const u32,
     n_vr: usize,
@@ -329,7 +329,7 @@ pub unsafe extern "C" fn fmi3GetString(
 
 /// `fmi3SetString`: String parameters.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetString(
+pub(crate) unsafe extern "C" fn fmi3SetString(
     c: Instance3,
     vr: *const u32,
     n_vr: usize,
@@ -353,7 +353,7 @@ pub unsafe extern "C" fn fmi3SetString(
 
 /// `fmi3DoStep`: one step, never ended early, no event, not terminating.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3DoStep(
+pub(crate) unsafe extern "C" fn fmi3DoStep(
     c: Instance3,
     t: f64,
     h: f64,
@@ -382,25 +382,25 @@ pub unsafe extern "C" fn fmi3DoStep(
 
 /// `fmi3GetFMUState`: a copy of the unit's state.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetFMUState(c: Instance3, state: *mut fmi2FMUstate) -> Status {
+pub(crate) unsafe extern "C" fn fmi3GetFMUState(c: Instance3, state: *mut fmi2FMUstate) -> Status {
     unsafe { states::get(c, "fmi3GetFMUState", state) }
 }
 
 /// `fmi3SetFMUState`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetFMUState(c: Instance3, state: fmi2FMUstate) -> Status {
+pub(crate) unsafe extern "C" fn fmi3SetFMUState(c: Instance3, state: fmi2FMUstate) -> Status {
     guarded(c, "fmi3SetFMUState", |i| i.set_state(state))
 }
 
 /// `fmi3FreeFMUState`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3FreeFMUState(c: Instance3, state: *mut fmi2FMUstate) -> Status {
+pub(crate) unsafe extern "C" fn fmi3FreeFMUState(c: Instance3, state: *mut fmi2FMUstate) -> Status {
     unsafe { states::free(c, "fmi3FreeFMUState", state) }
 }
 
 /// `fmi3SerializedFMUStateSize`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
+pub(crate) unsafe extern "C" fn fmi3SerializedFMUStateSize(
     c: Instance3,
     state: fmi2FMUstate,
     size: *mut usize,
@@ -410,7 +410,7 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
 
 /// `fmi3SerializeFMUState`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SerializeFMUState(
+pub(crate) unsafe extern "C" fn fmi3SerializeFMUState(
     c: Instance3,
     state: fmi2FMUstate,
     bytes: *mut u8,
@@ -421,7 +421,7 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
 
 /// `fmi3DeserializeFMUState`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3DeserializeFMUState(
+pub(crate) unsafe extern "C" fn fmi3DeserializeFMUState(
     c: Instance3,
     bytes: *const u8,
     size: usize,
@@ -432,7 +432,7 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
 
 /// `fmi3GetDirectionalDerivative`: the unit's step Jacobian times the seed.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
+pub(crate) unsafe extern "C" fn fmi3GetDirectionalDerivative(
     c: Instance3,
     unknowns: *const u32,
     n_unknowns: usize,

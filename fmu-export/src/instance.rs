@@ -24,7 +24,7 @@ enum Phase {
 }
 
 /// An exported unit behind the FMI 2.0 entry points.
-pub struct Instance {
+pub(crate) struct Instance {
     name: String,
     callbacks: fmi2CallbackFunctions,
     /// An FMI 3.0 instance's logger (its messages go there, not to `callbacks`).
@@ -64,7 +64,7 @@ pub struct Instance {
 }
 
 /// Sends a message to the environment's logger, whatever the instance state.
-pub fn log_with(
+pub(crate) fn log_with(
     callbacks: &fmi2CallbackFunctions,
     instance: &str,
     status: fmi2Status,
@@ -95,7 +95,7 @@ pub fn log_with(
 
 /// Runs an entry point's body on the instance behind `c`, catching panics;
 /// errors are logged with the call and returned as fmi2Error.
-pub fn guarded(
+pub(crate) fn guarded(
     c: fmi2Component,
     call: &str,
     body: impl FnOnce(&mut Instance) -> Result<fmi2Status, String>,
@@ -124,7 +124,7 @@ pub fn guarded(
 }
 
 /// Frees a state made by `fmi2GetFMUstate` or `fmi2DeSerializeFMUstate`.
-pub fn free_state(state: fmi2FMUstate) {
+pub(crate) fn free_state(state: fmi2FMUstate) {
     if !state.is_null() {
         // SAFETY: every non-null handle we return is a leaked Box<SavedInstance>.
         drop(unsafe { Box::from_raw(state.cast::<SavedInstance>()) });
@@ -132,7 +132,7 @@ pub fn free_state(state: fmi2FMUstate) {
 }
 
 /// The local path of a `file://` URI (percent-decoded).
-pub fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
+pub(crate) fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
     let rest = uri
         .strip_prefix("file://")
         .or_else(|| uri.strip_prefix("file:"))
@@ -162,7 +162,7 @@ pub fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
 impl Instance {
     /// The instance of the FMU whose resources are in `resources`, checking
     /// its GUID (FMI 3.0: instantiation token).
-    pub fn new(
+    pub(crate) fn new(
         name: String,
         guid: &str,
         resources: &std::path::Path,
@@ -226,7 +226,7 @@ impl Instance {
         })
     }
 
-    pub fn log(&self, status: fmi2Status, message: &str) {
+    pub(crate) fn log(&self, status: fmi2Status, message: &str) {
         if status != FMI2_OK || self.logging {
             let message = format!("unit `{}`: {message}", self.config.name);
             match &self.log3 {
@@ -236,11 +236,11 @@ impl Instance {
         }
     }
 
-    pub fn time_secs(&self) -> f64 {
+    pub(crate) fn time_secs(&self) -> f64 {
         self.time.as_secs()
     }
 
-    pub fn setup(&mut self, start_time: f64) -> Result<fmi2Status, String> {
+    pub(crate) fn setup(&mut self, start_time: f64) -> Result<fmi2Status, String> {
         if self.phase != Phase::Instantiated {
             return Err("only allowed after fmi2Instantiate or fmi2Reset".into());
         }
@@ -279,7 +279,7 @@ impl Instance {
         Ok(())
     }
 
-    pub fn enter_initialization(&mut self) -> Result<fmi2Status, String> {
+    pub(crate) fn enter_initialization(&mut self) -> Result<fmi2Status, String> {
         if self.phase != Phase::Instantiated {
             return Err("only allowed after fmi2Instantiate or fmi2Reset".into());
         }
@@ -288,7 +288,7 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn exit_initialization(&mut self) -> Result<fmi2Status, String> {
+    pub(crate) fn exit_initialization(&mut self) -> Result<fmi2Status, String> {
         if self.phase != Phase::Initialization {
             return Err("only allowed in initialisation mode".into());
         }
@@ -298,12 +298,12 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn terminate(&mut self) -> Result<fmi2Status, String> {
+    pub(crate) fn terminate(&mut self) -> Result<fmi2Status, String> {
         self.phase = Phase::Terminated;
         Ok(FMI2_OK)
     }
 
-    pub fn reset(&mut self) -> Result<fmi2Status, String> {
+    pub(crate) fn reset(&mut self) -> Result<fmi2Status, String> {
         self.generation += 1;
         self.config = self.exported.clone();
         self.parameters = self
@@ -369,7 +369,7 @@ impl Instance {
         Ok(())
     }
 
-    pub fn get_real(&mut self, vr: &[u32], out: &mut [f64]) -> Result<fmi2Status, String> {
+    pub(crate) fn get_real(&mut self, vr: &[u32], out: &mut [f64]) -> Result<fmi2Status, String> {
         if self.phase == Phase::Initialization {
             self.settle()?;
         } else if self.phase == Phase::Stepping && self.inputs_changed {
@@ -407,7 +407,7 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn set_real(&mut self, vr: &[u32], values: &[f64]) -> Result<fmi2Status, String> {
+    pub(crate) fn set_real(&mut self, vr: &[u32], values: &[f64]) -> Result<fmi2Status, String> {
         let n_in = self.n_in();
         for (r, v) in vr.iter().zip(values) {
             let r_us = *r as usize;
@@ -437,7 +437,7 @@ impl Instance {
     }
 
     /// Integers, or Booleans when `boolean` (FMI passes both as C ints).
-    pub fn get_integer(
+    pub(crate) fn get_integer(
         &mut self,
         vr: &[u32],
         out: &mut [i32],
@@ -458,7 +458,7 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn set_integer(
+    pub(crate) fn set_integer(
         &mut self,
         vr: &[u32],
         values: &[i32],
@@ -475,7 +475,11 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn get_string(&mut self, vr: &[u32], out: &mut [fmi2String]) -> Result<fmi2Status, String> {
+    pub(crate) fn get_string(
+        &mut self,
+        vr: &[u32],
+        out: &mut [fmi2String],
+    ) -> Result<fmi2Status, String> {
         self.strings.clear();
         for r in vr {
             match &self.parameters[self.parameter(*r)?] {
@@ -491,14 +495,18 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn set_string(&mut self, vr: &[u32], values: &[String]) -> Result<fmi2Status, String> {
+    pub(crate) fn set_string(
+        &mut self,
+        vr: &[u32],
+        values: &[String],
+    ) -> Result<fmi2Status, String> {
         for (r, v) in vr.iter().zip(values) {
             self.set_parameter(*r, Value::String(Some(v.clone())))?;
         }
         Ok(FMI2_OK)
     }
 
-    pub fn set_input_derivatives(
+    pub(crate) fn set_input_derivatives(
         &mut self,
         vr: &[u32],
         order: &[i32],
@@ -525,7 +533,7 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn do_step(&mut self, t: f64, h: f64) -> Result<fmi2Status, String> {
+    pub(crate) fn do_step(&mut self, t: f64, h: f64) -> Result<fmi2Status, String> {
         self.generation += 1;
         if self.phase != Phase::Stepping {
             return Err("only allowed after fmi2ExitInitializationMode".into());

@@ -12,6 +12,8 @@ macro_rules! unsupported {
         $(
             #[doc = concat!("`", stringify!($name), "`: not offered (fmi3Error).")]
             #[unsafe(no_mangle)]
+            // Reached by name through the library's symbol table, not as a path.
+            #[allow(unreachable_pub)]
             pub unsafe extern "C" fn $name(c: Instance3) -> std::ffi::c_int {
                 guarded(c, stringify!($name), |_| {
                     Err("not offered: this FMU is event-free co-simulation with Float64 ports and Int32, Boolean and String parameters".into())
@@ -74,6 +76,6 @@ unsupported!(
 
 /// `fmi3InstantiateScheduledExecution`: not offered (null).
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3InstantiateScheduledExecution() -> Instance3 {
+pub(super) extern "C" fn fmi3InstantiateScheduledExecution() -> Instance3 {
     std::ptr::null_mut()
 }

@@ -10,7 +10,7 @@ impl Instance {
     /// `dv_unknown = J[unknown, known] dv_known` after a step; an error before
     /// the first step, after `fmi2SetFMUstate`, or for an output the unit does
     /// not derive (named).
-    pub fn directional_derivative(
+    pub(crate) fn directional_derivative(
         &mut self,
         (unknown, known): (&[u32], &[u32]),
         dv_known: &[f64],

@@ -30,7 +30,7 @@ struct SerializedInstance {
 const MAGIC: &str = "slender-fmu-state-2";
 
 impl Instance {
-    pub fn get_state(&mut self, handle: &mut fmi2FMUstate) -> Result<fmi2Status, String> {
+    pub(crate) fn get_state(&mut self, handle: &mut fmi2FMUstate) -> Result<fmi2Status, String> {
         if self.phase == Phase::Initialization {
             self.settle()?;
         }
@@ -58,7 +58,7 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn set_state(&mut self, handle: fmi2FMUstate) -> Result<fmi2Status, String> {
+    pub(crate) fn set_state(&mut self, handle: fmi2FMUstate) -> Result<fmi2Status, String> {
         self.generation += 1;
         if handle.is_null() {
             return Err("null state".into());
@@ -77,7 +77,7 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    pub fn serialize(&self, handle: fmi2FMUstate) -> Result<Vec<u8>, String> {
+    pub(crate) fn serialize(&self, handle: fmi2FMUstate) -> Result<Vec<u8>, String> {
         if handle.is_null() {
             return Err("null state".into());
         }
@@ -95,7 +95,7 @@ impl Instance {
         postcard::to_stdvec(&state).map_err(|e| format!("serialising the state: {e}"))
     }
 
-    pub fn deserialize(
+    pub(crate) fn deserialize(
         &self,
         bytes: &[u8],
         handle: &mut fmi2FMUstate,

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 /// a file in examples/ and see docs/scene-reference.md.
 #[derive(Parser)]
 #[command(name = "slender", version, about, long_about)]
-pub struct Cli {
+pub(crate) struct Cli {
     #[command(subcommand)]
     pub command: Command,
     /// Set a scene key over the file, by its path as `study --vary` takes it
@@ -23,7 +23,7 @@ pub struct Cli {
 }
 
 #[derive(Subcommand)]
-pub enum SpanAction {
+pub(crate) enum SpanAction {
     /// Bode plot of H_{U2 -> U5}: analytic, Taylor, term and function Pade of one
     /// order, and the FE span (seed 004 Figs. 5.1-5.2). Writes bode.svg.
     Bode {
@@ -82,7 +82,7 @@ pub enum SpanAction {
 }
 
 #[derive(Subcommand)]
-pub enum FmuAction {
+pub(crate) enum FmuAction {
     /// Export one unit of a scene as an FMI 2.0 (or, with `--fmi 3`, FMI 3.0)
     /// co-simulation FMU (its parameters, effects, hold and start inputs; the
     /// scene's time window as default experiment).
@@ -131,7 +131,7 @@ pub enum FmuAction {
 
 /// How a study's runs are made, the same for `study` and `fidelity`.
 #[derive(Args, Debug)]
-pub struct StudyRuns {
+pub(crate) struct StudyRuns {
     /// Runs at once (default 1: each run times its cost alone; more finish
     /// sooner but share the cores, so their costs are not comparable).
     /// Results other than costs do not depend on it.
@@ -156,7 +156,7 @@ pub struct StudyRuns {
 }
 
 #[derive(Subcommand)]
-pub enum Command {
+pub(crate) enum Command {
     /// Run a scene: prints a summary, writes timeseries.csv, summary.json and SVG plots.
     Run {
         /// The scene file, e.g. examples/b1_two_masses.toml.

@@ -11,7 +11,7 @@ use toml::de::{DeTable, DeValue};
 /// `structure.model.rayleigh_stiffness`): of the deepest part of it the file
 /// writes (a section's own line where its `fidelity` is left to the default).
 /// A name after an array picks the element whose `name` it is.
-pub fn key_line(source: &str, path: &str) -> Option<usize> {
+pub(crate) fn key_line(source: &str, path: &str) -> Option<usize> {
     locate(source, path).map(|(line, _)| line)
 }
 
@@ -65,7 +65,7 @@ fn locate(source: &str, path: &str) -> Option<(usize, bool)> {
 /// The byte range of the `structure` key in `source` (the `[structure]`
 /// header), where the file writes it: what the units a structure writes out
 /// point at.
-pub fn structure_span(source: &str) -> Option<std::ops::Range<usize>> {
+pub(crate) fn structure_span(source: &str) -> Option<std::ops::Range<usize>> {
     let document = DeTable::parse(source).ok()?;
     let table = document.get_ref();
     (table.iter())
@@ -99,7 +99,7 @@ fn named(item: &Spanned<DeValue>, name: &str) -> bool {
 }
 
 /// The first `structure...` key a message names in backticks.
-pub fn structure_key(message: &str) -> Option<&str> {
+pub(crate) fn structure_key(message: &str) -> Option<&str> {
     message
         .split('`')
         .skip(1)
@@ -110,7 +110,7 @@ pub fn structure_key(message: &str) -> Option<&str> {
 
 /// The line of the `structure.model` parameter a message names
 /// (`parameter `x``), where the file writes it.
-pub fn model_parameter_line(source: &str, message: &str) -> Option<usize> {
+pub(crate) fn model_parameter_line(source: &str, message: &str) -> Option<usize> {
     let parameter = message
         .split("parameter `")
         .nth(1)
@@ -123,7 +123,7 @@ pub fn model_parameter_line(source: &str, message: &str) -> Option<usize> {
 /// writes out is about: a model parameter it names (`parameter `x``) in
 /// `structure.model`, else the section whose unit (`<name>_<section>`) it
 /// names, else the `[structure]` table.
-pub fn generated_unit_line(
+pub(crate) fn generated_unit_line(
     source: &str,
     structure: &str,
     key: &str,

@@ -5,7 +5,7 @@
 use crate::spec::{SceneSpec, UncertaintySpec};
 
 /// The first problem of `spec`'s `[uncertainty]` as (key, message), if any.
-pub fn problem(scene: &SceneSpec) -> Option<(String, String)> {
+pub(crate) fn problem(scene: &SceneSpec) -> Option<(String, String)> {
     let spec: &UncertaintySpec = scene.uncertainty.as_ref()?;
     let key = |k: &str| format!("uncertainty.{k}");
     if spec.samples < 4 {

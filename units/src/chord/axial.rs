@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 /// Displacement (m), velocity (m/s) and acceleration (m/s^2) of the loaded
 /// end along the chord, from the equilibrium.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Motion {
+pub(super) struct Motion {
     pub displacement: f64,
     pub velocity: f64,
     pub acceleration: f64,
@@ -26,7 +26,7 @@ pub struct Motion {
 /// The saved motion: at the start of the step last taken and at its end, and
 /// that step's size (s; zero before the first step).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct AxialState {
+pub(super) struct AxialState {
     start: Motion,
     end: Motion,
     step: f64,
@@ -34,7 +34,7 @@ pub struct AxialState {
 
 /// The axial model of a chord section.
 #[derive(Copy, Clone, Debug)]
-pub struct Axial {
+pub(super) struct Axial {
     stiffness: Option<f64>,
     mass: Option<f64>,
     beta: f64,
@@ -45,7 +45,11 @@ pub struct Axial {
 impl Axial {
     /// The model from the section's parameters; a mass needs a stiffness (a
     /// rigid link has no motion of its own along the chord).
-    pub fn new(stiffness: Option<f64>, mass: Option<f64>, alpha: f64) -> Result<Axial, UnitError> {
+    pub(super) fn new(
+        stiffness: Option<f64>,
+        mass: Option<f64>,
+        alpha: f64,
+    ) -> Result<Axial, UnitError> {
         if let Some(k) = stiffness {
             require_positive("axial_stiffness", k)?;
         }
@@ -69,24 +73,24 @@ impl Axial {
     }
 
     /// Whether the loaded end's displacement follows the axial force.
-    pub fn stretches(&self) -> bool {
+    pub(super) fn stretches(&self) -> bool {
         self.stiffness.is_some()
     }
 
     /// Whether the moving end's axial force lags the loaded end's (a mass
     /// between them): it then follows the moving end's slide too.
-    pub fn has_mass(&self) -> bool {
+    pub(super) fn has_mass(&self) -> bool {
         self.mass.is_some()
     }
 
     /// At rest in the equilibrium.
-    pub fn initialize(&mut self) {
+    pub(super) fn initialize(&mut self) {
         self.state = AxialState::default();
     }
 
     /// Takes a step of `h` to the end inputs: the moving end's slide (m) and
     /// the change of the loaded end's axial force (N, outward).
-    pub fn do_step(&mut self, h: Time, slide: f64, force: f64) {
+    pub(super) fn do_step(&mut self, h: Time, slide: f64, force: f64) {
         let step = h.as_secs();
         let start = self.state.end;
         self.state = AxialState {
@@ -101,7 +105,7 @@ impl Axial {
     /// pulling it along the chord, with the current end inputs `slide` and
     /// `force` (as in `do_step`): the spring's force, or without a mass the
     /// loaded end's change passing through.
-    pub fn response(&self, slide: f64, force: f64) -> (f64, f64) {
+    pub(super) fn response(&self, slide: f64, force: f64) -> (f64, f64) {
         let s = &self.state;
         let displacement = match (self.mass, s.step > 0.0) {
             (Some(_), true) => self.advance(s.start, s.step, slide, force).displacement,
@@ -120,7 +124,7 @@ impl Axial {
     }
 
     /// An error where the motion along the chord became non-finite.
-    pub fn require_finite(&self) -> Result<(), UnitError> {
+    pub(super) fn require_finite(&self) -> Result<(), UnitError> {
         let m = &self.state.end;
         require_finite_state(
             "the chord's motion along itself (displacement, velocity, acceleration)",

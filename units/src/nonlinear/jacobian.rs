@@ -215,14 +215,14 @@ impl NonlinearSection {
 impl JacobianWork {
     /// The last step's derivatives of the stepped coordinates with respect
     /// to each input (`n_in x coordinates`), for the warm start.
-    pub fn set_columns(&mut self, columns: &[f64]) {
+    pub(super) fn set_columns(&mut self, columns: &[f64]) {
         self.columns.clear();
         self.columns.extend_from_slice(columns);
         self.columns_valid = true;
     }
 
     /// Records a whole step from `t0` that ended at `q` with end `inputs`.
-    pub fn record_step(&mut self, t0: f64, inputs: &[f64], q: &[f64]) {
+    pub(super) fn record_step(&mut self, t0: f64, inputs: &[f64], q: &[f64]) {
         self.last_t0 = t0;
         self.last_inputs.clear();
         self.last_inputs.extend_from_slice(inputs);
@@ -235,7 +235,7 @@ impl JacobianWork {
     /// the last one (after `Unit::warm_repeat`): its end displacements moved
     /// by the Jacobian's columns where they are of that step; None when the
     /// step is another one. Clears the hint.
-    pub fn warm_guess(&mut self, t0: f64, inputs: &[f64]) -> Option<&[f64]> {
+    pub(super) fn warm_guess(&mut self, t0: f64, inputs: &[f64]) -> Option<&[f64]> {
         let warm = std::mem::take(&mut self.warm);
         if !warm
             || t0 != self.last_t0

@@ -26,7 +26,7 @@ pub(super) struct Catenary {
 
 impl Catenary {
     /// The catenary through `start` and `end` of arc length `length` (m).
-    pub fn through(start: [f64; 2], end: [f64; 2], length: f64) -> Catenary {
+    pub(super) fn through(start: [f64; 2], end: [f64; 2], length: f64) -> Catenary {
         let (dx, dz) = ((end[0] - start[0]).abs(), end[1] - start[1]);
         let span = (length * length - dz * dz).max(0.0).sqrt();
         if dx < 1e-9 || span <= dx * (1.0 + 1e-12) {
@@ -62,7 +62,7 @@ impl Catenary {
     }
 
     /// The lowest height (m) of the shape.
-    pub fn lowest(&self) -> f64 {
+    pub(super) fn lowest(&self) -> f64 {
         let ends = self.start[1].min(self.end[1]);
         if !self.a.is_finite() {
             return ends;
@@ -124,7 +124,7 @@ impl GroundedCatenary {
     /// height `seabed` (m), if one end lies on it (within `tolerance`, m)
     /// and the ends are far enough apart to lift the line off but not to
     /// pull it straight (0 < length - distance < height of the upper end).
-    pub fn through(
+    pub(super) fn through(
         start: [f64; 2],
         end: [f64; 2],
         length: f64,
@@ -170,7 +170,7 @@ impl GroundedCatenary {
 
     /// The laid length (m) from the lower end to the touchdown point.
     #[cfg(test)]
-    pub fn laid_length(&self) -> f64 {
+    pub(super) fn laid_length(&self) -> f64 {
         self.laid
     }
 }

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 /// Modes of a unit about its initial state: a table on screen, modes.csv and
 /// modes.svg.
-pub fn modes(
+pub(super) fn modes(
     arg: &SceneArg,
     unit: &str,
     count: usize,
@@ -70,7 +70,7 @@ pub fn modes(
 
 /// A convergence and cost study; the rows are written even when some runs fail
 /// (those are marked FAILED with their reason), and the command then exits 1.
-pub fn study(
+pub(super) fn study(
     path: &Path,
     plan: &StudyPlan,
     (out, fresh): (Option<PathBuf>, bool),
@@ -167,7 +167,7 @@ pub(super) fn study_folder(
 /// A fidelity study of a structure's sections; the rows are written even when
 /// some combinations fail (those are marked FAILED with their reason), and the
 /// command then exits 1.
-pub fn fidelity(
+pub(super) fn fidelity(
     path: &Path,
     plan: &FidelityPlan,
     (out, fresh): (Option<PathBuf>, bool),

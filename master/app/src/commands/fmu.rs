@@ -11,7 +11,7 @@ use slender_units::Unit;
 use std::path::{Path, PathBuf};
 
 /// Runs one FMU action (`set`: the scene keys of `--set`).
-pub fn fmu(action: FmuAction, set: &[String]) -> Result<(), CliError> {
+pub(super) fn fmu(action: FmuAction, set: &[String]) -> Result<(), CliError> {
     match action {
         FmuAction::Export {
             scene,

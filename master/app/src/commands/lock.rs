@@ -14,7 +14,7 @@ const LOCK: &str = ".slender.lock";
 
 /// A held results folder; the lock goes when it is dropped.
 #[must_use = "the folder is locked only while this lives"]
-pub struct FolderLock {
+pub(super) struct FolderLock {
     path: PathBuf,
 }
 
@@ -31,7 +31,7 @@ fn runs(pid: u32) -> bool {
 }
 
 /// Takes the lock of results folder `dir` (which exists).
-pub fn lock(dir: &Path) -> Result<FolderLock, CliError> {
+pub(super) fn lock(dir: &Path) -> Result<FolderLock, CliError> {
     let path = dir.join(LOCK);
     for _ in 0..2 {
         match std::fs::OpenOptions::new()

@@ -15,14 +15,14 @@ use std::path::{Path, PathBuf};
 
 /// Why a command stopped, and its exit code.
 #[derive(Debug)]
-pub struct CliError {
+pub(crate) struct CliError {
     pub code: u8,
     pub message: String,
 }
 
 impl CliError {
     /// Bad input: exit code 2.
-    pub fn input(message: impl std::fmt::Display) -> CliError {
+    pub(crate) fn input(message: impl std::fmt::Display) -> CliError {
         CliError {
             code: 2,
             message: message.to_string(),
@@ -30,7 +30,7 @@ impl CliError {
     }
 
     /// A failure on the way: exit code 1.
-    pub fn failure(message: impl std::fmt::Display) -> CliError {
+    pub(crate) fn failure(message: impl std::fmt::Display) -> CliError {
         CliError {
             code: 1,
             message: message.to_string(),
@@ -142,7 +142,7 @@ fn uq_mode(
 }
 
 /// Runs one command; `--set` on a command that reads no scene is bad input.
-pub fn dispatch(cli: Cli) -> Result<(), CliError> {
+pub(crate) fn dispatch(cli: Cli) -> Result<(), CliError> {
     let set = &cli.set;
     if !set.is_empty() && !reads_a_scene(&cli.command) {
         return Err(CliError::input(format!(

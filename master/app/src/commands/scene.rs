@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 /// Runs a scene and prints its summary; a run that stops early is a failure
 /// (exit 1) with its results up to then on disk.
-pub fn run(
+pub(super) fn run(
     scene: &SceneArg,
     out: Option<PathBuf>,
     (quiet, realtime): (bool, bool),
@@ -151,7 +151,7 @@ fn print_summary(result: &RunResult) {
 }
 
 /// Prints the scene as it runs (a `[structure]` expanded), after checking it.
-pub fn expand(scene: &SceneArg) -> Result<(), CliError> {
+pub(super) fn expand(scene: &SceneArg) -> Result<(), CliError> {
     let scene = load(scene)?;
     scene.build().map_err(|e| CliError::input(e.to_string()))?;
     print!(
@@ -162,7 +162,7 @@ pub fn expand(scene: &SceneArg) -> Result<(), CliError> {
 }
 
 /// Checks a scene and prints its units, ports, connections and schedule.
-pub fn check(arg: &SceneArg) -> Result<(), CliError> {
+pub(super) fn check(arg: &SceneArg) -> Result<(), CliError> {
     let path = &arg.path;
     let scene = load(arg)?;
     let master = scene.build().map_err(|e| CliError::input(e.to_string()))?;
@@ -198,7 +198,7 @@ pub fn check(arg: &SceneArg) -> Result<(), CliError> {
 }
 
 /// Measures a scene's cost per simulated second.
-pub fn bench(arg: &SceneArg, repeats: usize, json: bool) -> Result<(), CliError> {
+pub(super) fn bench(arg: &SceneArg, repeats: usize, json: bool) -> Result<(), CliError> {
     let repeats = count_in("--repeats", repeats, 1, 1000)?;
     let path = &arg.path;
     let scene = load(arg)?;
@@ -229,7 +229,7 @@ pub fn bench(arg: &SceneArg, repeats: usize, json: bool) -> Result<(), CliError>
 }
 
 /// Lists the unit kinds.
-pub fn kinds() {
+pub(super) fn kinds() {
     for k in kinds::KINDS {
         let effects = if k.effects.is_empty() {
             String::new()

@@ -8,7 +8,7 @@ use slender_units::span::transfer::Span;
 use std::path::{Path, PathBuf};
 
 /// Runs one span action and writes its report and figure into `out`.
-pub fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), CliError> {
+pub(super) fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), CliError> {
     span.validate()
         .map_err(|e| CliError::input(e.to_string()))?;
     let files = match action {

@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// How `slender uq` was asked to run.
-pub enum Mode {
+pub(super) enum Mode {
     /// Every run and the expansion (after a merge, the shards' runs reused).
     Whole { merge: bool },
     /// Shard K of N: its runs only, in `<out>/shard-K-of-N/runs.csv`.
@@ -22,7 +22,12 @@ pub enum Mode {
 /// sobol.svg (like seed 000's Fig. 11), convergence.svg (Fig. 9's moments
 /// against the design size), distribution.svg (Fig. 9's distribution: the runs'
 /// histogram and the expansion's density) and scatter.svg (like its Fig. 8).
-pub fn uq(path: &Path, plan: &UqPlan, out: Option<PathBuf>, mode: Mode) -> Result<(), CliError> {
+pub(super) fn uq(
+    path: &Path,
+    plan: &UqPlan,
+    out: Option<PathBuf>,
+    mode: Mode,
+) -> Result<(), CliError> {
     let arg = SceneArg::new(path.to_owned(), &plan.overrides);
     let (dir, scene) = study_folder(&arg, out, "-uq", (plan.duration, plan.jobs))?;
     let spec =

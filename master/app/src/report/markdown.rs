@@ -5,7 +5,7 @@
 use super::escape;
 
 /// Markdown text as HTML.
-pub fn to_html(text: &str) -> String {
+pub(super) fn to_html(text: &str) -> String {
     let mut html = String::new();
     let mut lines = text.lines().peekable();
     while let Some(line) = lines.next() {

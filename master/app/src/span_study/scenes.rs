@@ -45,7 +45,7 @@ pub(crate) fn number(x: f64) -> String {
 
 impl StudyScene<'_> {
     /// The scene as TOML text.
-    pub fn text(&self) -> String {
+    pub(crate) fn text(&self) -> String {
         let m = &self.model;
         let mut t = format!(
             "title = {:?}\n\n[simulation]\nduration = {}\nstep = {}\n\n[master]\nscheme = \"gauss_seidel\"\n",

@@ -43,7 +43,7 @@ impl Balance {
 }
 
 /// The watch on the sections' energy balances over a run.
-pub struct EnergyWatch {
+pub(super) struct EnergyWatch {
     sections: Vec<Balance>,
     fraction: f64,
     /// The largest energy any section exchanged so far (J).
@@ -52,7 +52,7 @@ pub struct EnergyWatch {
 
 impl EnergyWatch {
     /// Every unit with the balance's outputs, after `Master::initialize`.
-    pub fn new(master: &Master, spec: &WatchSpec) -> EnergyWatch {
+    pub(super) fn new(master: &Master, spec: &WatchSpec) -> EnergyWatch {
         let sections = (0..master.unit_names().count())
             .filter_map(|unit| {
                 let ports = &master.description(unit).outputs;
@@ -81,7 +81,7 @@ impl EnergyWatch {
     /// Checks the balances after a step at simulated time `t` (s), adding a
     /// warning to `warnings` per section the first time its energy error goes
     /// beyond the bound.
-    pub fn observe(&mut self, master: &Master, t: f64, warnings: &mut Vec<String>) {
+    pub(super) fn observe(&mut self, master: &Master, t: f64, warnings: &mut Vec<String>) {
         for b in &self.sections {
             self.scale = self.scale.max(b.exchanged(master.outputs(b.unit)));
         }

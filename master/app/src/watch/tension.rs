@@ -49,7 +49,7 @@ fn bound(spec: &WatchSpec, scale: f64) -> Option<(f64, &'static str)> {
 }
 
 /// The watch on the sections' tensions over a run.
-pub struct TensionWatch {
+pub(super) struct TensionWatch {
     watched: Vec<Watched>,
 }
 
@@ -57,7 +57,7 @@ impl TensionWatch {
     /// The watched outputs (after `Master::initialize`), each bounded by
     /// `spec.factor` times the largest start value of its name over all
     /// units.
-    pub fn new(master: &Master, spec: &WatchSpec) -> TensionWatch {
+    pub(super) fn new(master: &Master, spec: &WatchSpec) -> TensionWatch {
         let mut found = Vec::new();
         let mut scale = [0.0f64; WATCHED.len()];
         for unit in 0..master.unit_names().count() {
@@ -91,7 +91,7 @@ impl TensionWatch {
     /// Checks the outputs after a step at simulated time `t` (s), adding a
     /// warning to `warnings` per port the first time it goes beyond its
     /// bound.
-    pub fn observe(&mut self, master: &Master, t: f64, warnings: &mut Vec<String>) {
+    pub(super) fn observe(&mut self, master: &Master, t: f64, warnings: &mut Vec<String>) {
         for w in self.watched.iter_mut().filter(|w| !w.warned) {
             let value = master.outputs(w.unit)[w.port];
             if value.abs() > w.bound {

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Runs `slender` with `args` from the repository root.
-pub fn slender(args: &[&str]) -> Output {
+pub(crate) fn slender(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_slender"))
         .args(args)
         .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.."))
@@ -15,12 +15,12 @@ pub fn slender(args: &[&str]) -> Output {
 }
 
 /// Output bytes as text.
-pub fn text(bytes: &[u8]) -> String {
+pub(crate) fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
 /// An example scene with some text replaced, written into `dir`.
-pub fn variant_in(dir: &Path, example: &str, from: &[(&str, &str)]) -> PathBuf {
+pub(crate) fn variant_in(dir: &Path, example: &str, from: &[(&str, &str)]) -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let mut text = std::fs::read_to_string(root.join(example)).unwrap();
     for (a, b) in from {
@@ -33,6 +33,6 @@ pub fn variant_in(dir: &Path, example: &str, from: &[(&str, &str)]) -> PathBuf {
 }
 
 /// A run's summary.json.
-pub fn summary(out: &Path) -> serde_json::Value {
+pub(crate) fn summary(out: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
 }

@@ -74,7 +74,7 @@ const UNIFORM: [&str; 9] = [
 /// Where the structure's frame puts the water: the seabed height (m, in the
 /// structure's frame) and the water depth (m).
 #[derive(Copy, Clone, Debug)]
-pub struct Water {
+pub(super) struct Water {
     pub seabed: f64,
     pub depth: f64,
 }
@@ -82,7 +82,7 @@ pub struct Water {
 impl Water {
     /// `structure.seabed` (default 0) and `structure.water_depth` (needed by a
     /// cable section only: `None` when absent).
-    pub fn of(structure: &Table) -> Result<Option<Water>, String> {
+    pub(super) fn of(structure: &Table) -> Result<Option<Water>, String> {
         let number = |key: &str| -> Result<Option<f64>, String> {
             match structure.get(key) {
                 None => Ok(None),
@@ -126,7 +126,7 @@ fn carries_nothing_along(
 
 /// The `cable` unit of one section, anchored (its bottom node) at `anchor`
 /// (structure frame, m).
-pub fn cable_unit(
+pub(super) fn cable_unit(
     name: &str,
     model: &Table,
     segments: &[Segment],

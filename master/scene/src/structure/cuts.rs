@@ -11,7 +11,7 @@ use toml::{Table, Value};
 
 /// How a section's end at a cut is coupled.
 #[derive(Copy, Clone, Debug)]
-pub struct End {
+pub(super) struct End {
     /// It moves with the other side's velocity (else it carries its force).
     pub moving: bool,
     /// Rotation and moment do not cross the cut (one side does not bend).
@@ -24,7 +24,7 @@ pub struct End {
 /// A section as its cut sees it: unit name, fidelity, and the artefacts of a
 /// physical section (`sensor`, `actuator`: `artefact` parameters without
 /// `quantity`).
-pub struct Side<'a> {
+pub(super) struct Side<'a> {
     pub unit: String,
     pub fidelity: Fidelity,
     pub physical: Option<&'a Table>,
@@ -32,7 +32,7 @@ pub struct Side<'a> {
 
 /// The loaded side of a cut: the other side's force and moment (a pinned cut's
 /// rotation is free).
-pub fn coupled_load(pinned: bool) -> Value {
+pub(super) fn coupled_load(pinned: bool) -> Value {
     let force = || {
         let mut t = Table::new();
         t.insert("force".into(), Value::String("input".into()));
@@ -54,7 +54,7 @@ pub fn coupled_load(pinned: bool) -> Value {
 
 /// The moving side of a cut next to a chord section: the displacement it
 /// hands over (x, z from the stress-free position and rotation).
-pub fn coupled_displacement() -> Value {
+pub(super) fn coupled_displacement() -> Value {
     let mut t = Table::new();
     for dof in ["x", "z", "rotation"] {
         let mut condition = Table::new();
@@ -66,7 +66,7 @@ pub fn coupled_displacement() -> Value {
 
 /// The moving side of a cut: the other side's velocity (a pinned cut's rotation
 /// is free).
-pub fn coupled_motion(pinned: bool) -> Value {
+pub(super) fn coupled_motion(pinned: bool) -> Value {
     let mut t = Table::new();
     for dof in ["x", "z", "rotation"] {
         let free = pinned && dof == "rotation";
@@ -82,13 +82,13 @@ pub fn coupled_motion(pinned: bool) -> Value {
 /// a quantity `velocity_x`, `force_z`, `angular_velocity`, `moment`, ...: the
 /// `nonlinear` unit's `end_force_x`, the `cable` unit's `top_force_x` (its end
 /// is its top).
-pub fn port(unit: &str, fidelity: Fidelity, at_end: bool, quantity: &str) -> String {
+pub(super) fn port(unit: &str, fidelity: Fidelity, at_end: bool, quantity: &str) -> String {
     let side = fidelity.model().end_names()[usize::from(at_end)];
     format!("{unit}.{side}_{quantity}")
 }
 
 /// A connection from an output to an input.
-pub fn link(from: String, to: String) -> Value {
+pub(super) fn link(from: String, to: String) -> Value {
     let mut t = Table::new();
     t.insert("from".into(), Value::String(from));
     t.insert("to".into(), Value::String(to));
@@ -99,7 +99,7 @@ pub fn link(from: String, to: String) -> Value {
 /// from the loaded side to the moving side and force back (`force_on_upper`:
 /// the upper section's end is the loaded side); rotation and moment too unless
 /// one side does not bend.
-pub fn cut_connections(
+pub(super) fn cut_connections(
     upper: &Side<'_>,
     lower: &Side<'_>,
     force_on_upper: bool,

@@ -210,7 +210,7 @@ pub fn write_training(section: &mut Table, training: f64) -> Result<(), String> 
 impl Fidelity {
     /// The key a count after `:` sets: `elements`, or a `reduced` section's
     /// `modes` and a `span` fit's `order`.
-    pub fn count_key(self) -> &'static str {
+    pub(super) fn count_key(self) -> &'static str {
         self.model().count_key()
     }
 }

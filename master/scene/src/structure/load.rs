@@ -9,7 +9,7 @@ use toml::{Table, Value};
 
 /// The top load: the outputs driving x and z, and the force at rest.
 #[derive(Clone, Debug)]
-pub struct TopLoad {
+pub(super) struct TopLoad {
     x: String,
     z: String,
     at_rest: [f64; 2],
@@ -18,7 +18,7 @@ pub struct TopLoad {
 impl TopLoad {
     /// `structure.top_load`, None when absent; the model's own end must leave x
     /// and z to it.
-    pub fn of(structure: &Table, model: &Table) -> Result<Option<TopLoad>, String> {
+    pub(super) fn of(structure: &Table, model: &Table) -> Result<Option<TopLoad>, String> {
         let Some(t) = structure.get("top_load") else {
             return Ok(None);
         };
@@ -63,14 +63,14 @@ impl TopLoad {
     }
 
     /// The model loaded at its top by the force at rest (for its equilibrium).
-    pub fn held_at_rest(&self, model: &Table) -> Table {
+    pub(super) fn held_at_rest(&self, model: &Table) -> Table {
         let mut model = model.clone();
         self.set_end(&mut model, Value::Float, self.at_rest);
         model
     }
 
     /// The model as the units take it: the top force a coupled input.
-    pub fn take_input(&self, model: &mut Table) {
+    pub(super) fn take_input(&self, model: &mut Table) {
         self.set_end(model, |_| Value::String("input".into()), self.at_rest);
     }
 
@@ -94,7 +94,7 @@ impl TopLoad {
     }
 
     /// The connections from the load to a unit's top.
-    pub fn links(&self, unit: &str, fidelity: Fidelity) -> Vec<Value> {
+    pub(super) fn links(&self, unit: &str, fidelity: Fidelity) -> Vec<Value> {
         vec![
             link(self.x.clone(), port(unit, fidelity, true, "force_x")),
             link(self.z.clone(), port(unit, fidelity, true, "force_z")),
@@ -102,7 +102,7 @@ impl TopLoad {
     }
 
     /// The force at rest as the first guess of the unit's top-force inputs.
-    pub fn first_guess(&self, unit: &mut Table, fidelity: Fidelity) {
+    pub(super) fn first_guess(&self, unit: &mut Table, fidelity: Fidelity) {
         let side = fidelity.model().end_names()[1];
         super::statics::first_guess_force(unit, side, self.at_rest);
     }

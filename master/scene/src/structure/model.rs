@@ -37,7 +37,7 @@ pub(super) struct SectionAt<'a> {
 
 impl SectionAt<'_> {
     /// The section's own cut (its name, range and fidelity).
-    pub fn cut(&self) -> &Cut {
+    pub(super) fn cut(&self) -> &Cut {
         &self.cuts[self.k]
     }
 }
@@ -58,7 +58,7 @@ pub(super) struct CutNeeds {
 impl CutNeeds {
     /// A section that moves with the section below at its start and is
     /// loaded by the section above at its end (a cable, a chord).
-    pub const MOVING_START_LOADED_END: CutNeeds = CutNeeds {
+    pub(super) const MOVING_START_LOADED_END: CutNeeds = CutNeeds {
         below: Some(true),
         above: Some(true),
         all: None,

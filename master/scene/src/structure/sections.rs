@@ -18,7 +18,7 @@ pub(crate) struct Segment {
 
 impl Segment {
     /// Length (m) of the segment inside [from, to].
-    pub fn overlap(&self, from: f64, to: f64) -> f64 {
+    pub(super) fn overlap(&self, from: f64, to: f64) -> f64 {
         ((self.from + self.length).min(to) - self.from.max(from)).max(0.0)
     }
 }
@@ -105,7 +105,7 @@ pub(crate) enum Fidelity {
 
 impl Fidelity {
     /// The fidelities' names as written in scenes (each its model's `name`).
-    pub const NAMES: [&'static str; 7] = [
+    pub(super) const NAMES: [&'static str; 7] = [
         "nonlinear",
         "linear",
         "cable",
@@ -116,7 +116,7 @@ impl Fidelity {
     ];
 
     /// Every fidelity, in the order of `NAMES`.
-    pub const ALL: [Fidelity; 7] = [
+    pub(super) const ALL: [Fidelity; 7] = [
         Fidelity::Nonlinear,
         Fidelity::Linear,
         Fidelity::Cable,
@@ -127,7 +127,7 @@ impl Fidelity {
     ];
 
     /// The fidelity written `word` at `key`.
-    pub fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
+    pub(super) fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
         Fidelity::ALL
             .into_iter()
             .find(|f| f.name() == word)
@@ -138,29 +138,29 @@ impl Fidelity {
     }
 
     /// The name as written in scenes.
-    pub fn name(self) -> &'static str {
+    pub(super) fn name(self) -> &'static str {
         self.model().name()
     }
 
     /// Whether the section is a `nonlinear` unit (stepped whole or linear):
     /// the same ports, stations and outputs.
-    pub fn is_section_unit(self) -> bool {
+    pub(super) fn is_section_unit(self) -> bool {
         self.model().is_section_unit()
     }
 
     /// Whether the model carries bending (rotation and moment at its cuts).
-    pub fn bends(self) -> bool {
+    pub(super) fn bends(self) -> bool {
         self.model().bends()
     }
 
     /// Whether the section is a small-deflection model about its chord.
-    pub fn is_chord(self) -> bool {
+    pub(super) fn is_chord(self) -> bool {
         self.model().is_chord()
     }
 
     /// Whether the model has no seabed contact (a section lying on the
     /// seabed in the equilibrium cannot be it).
-    pub fn lacks_seabed(self) -> bool {
+    pub(super) fn lacks_seabed(self) -> bool {
         !self.model().has_seabed()
     }
 }

@@ -70,7 +70,7 @@ pub(super) struct Spec {
 
 impl Spec {
     /// Reads `[structure]`; the error names the key.
-    pub fn parse(structure: &Table) -> Result<Spec, String> {
+    pub(super) fn parse(structure: &Table) -> Result<Spec, String> {
         let file: StructureFile = typed("structure", structure)?;
         let (name, model) = (file.name, file.model);
         let top_load = TopLoad::of(structure, &model)?;

@@ -8,7 +8,7 @@ use slender_units::{Driver, Time, Unit};
 use toml::{Table, Value};
 
 /// The whole structure at rest in equilibrium.
-pub struct Equilibrium {
+pub(super) struct Equilibrium {
     section: Driver<NonlinearSection>,
     /// When it holds: the simulation's start.
     t0: Time,
@@ -20,7 +20,7 @@ const POINTS_PER_METRE: f64 = 2.0;
 impl Equilibrium {
     /// Solves the model's statics at `t0` (the simulation's start: the ends'
     /// positions and the loads there); the error says why it cannot.
-    pub fn solve(model: &Table, t0: Time) -> Result<Equilibrium, String> {
+    pub(super) fn solve(model: &Table, t0: Time) -> Result<Equilibrium, String> {
         // The key path inside the model where it does not read.
         let params: NonlinearParams = serde_path_to_error::deserialize(Value::Table(model.clone()))
             .map_err(|e| {
@@ -44,7 +44,11 @@ impl Equilibrium {
     /// Sets a section's static start: the equilibrium shape over [from, to] as its
     /// start polyline, and its moving cut ends (each DOF coupled by `velocity`)
     /// where the equilibrium puts them.
-    pub fn start_section(&self, unit: &mut Table, (from, to): (f64, f64)) -> Result<(), String> {
+    pub(super) fn start_section(
+        &self,
+        unit: &mut Table,
+        (from, to): (f64, f64),
+    ) -> Result<(), String> {
         let section = self.section.unit();
         let points = ((to - from) * POINTS_PER_METRE).ceil().max(20.0) as usize;
         let shape: Vec<Value> = (0..=points)
@@ -83,7 +87,7 @@ impl Equilibrium {
     /// The force (N) the structure beyond arc length `s` exerts on the part
     /// before it in the equilibrium: the tension along the tangent (the shear of
     /// the bending is left out; it serves as a first guess of a cut's force).
-    pub fn force_at(&self, s: f64) -> [f64; 2] {
+    pub(super) fn force_at(&self, s: f64) -> [f64; 2] {
         let section = self.section.unit();
         let h = 1e-6 * section.model().arc.last().copied().unwrap_or(1.0);
         let (p0, p1) = (section.position_at(s - h), section.position_at(s + h));
@@ -99,7 +103,7 @@ impl Equilibrium {
     /// force there as the first guess of their force inputs, so each section's
     /// static solve in the master's first initial iterate hangs as the whole
     /// structure does (the master iterates the moment and the rest).
-    pub fn first_guess_loads(
+    pub(super) fn first_guess_loads(
         &self,
         unit: &mut Table,
         (from, to): (f64, f64),
@@ -117,7 +121,7 @@ impl Equilibrium {
 
     /// The angle (deg) between the vertical and the pipe's tangent line at
     /// the structure's end (0 hanging straight down or standing straight up).
-    pub fn end_angle_from_vertical(&self) -> f64 {
+    pub(super) fn end_angle_from_vertical(&self) -> f64 {
         let section = self.section.unit();
         let angle = section.tangent_angle_at_node(section.model().reference.len() - 1);
         angle.cos().abs().atan2(angle.sin().abs()).to_degrees()
@@ -126,7 +130,7 @@ impl Equilibrium {
     /// The first and last arc lengths (m) in [from, to] where a node of the
     /// equilibrium lies on a flat seabed at `height` (m; pressed into it, as
     /// contact presses), None where none does.
-    pub fn on_seabed(&self, (from, to): (f64, f64), height: f64) -> Option<(f64, f64)> {
+    pub(super) fn on_seabed(&self, (from, to): (f64, f64), height: f64) -> Option<(f64, f64)> {
         let section = self.section.unit();
         let arcs = section.model().arc.iter().copied();
         let lying: Vec<f64> = arcs
@@ -137,7 +141,7 @@ impl Equilibrium {
     }
 
     /// Position (m) at arc length `s` in the equilibrium.
-    pub fn position_at(&self, s: f64) -> [f64; 2] {
+    pub(super) fn position_at(&self, s: f64) -> [f64; 2] {
         self.section.unit().position_at(s)
     }
 
@@ -150,7 +154,7 @@ impl Equilibrium {
     /// touchdown point (where the gap crosses zero, continuous in the state)
     /// and its largest sag-bend moment: the static touchdown estimate. The
     /// error names `key`.
-    pub fn static_section(
+    pub(super) fn static_section(
         &self,
         key: &str,
         section: &Table,
@@ -227,7 +231,7 @@ impl Equilibrium {
     /// about the equilibrium, its start held there: what a chord section's
     /// neighbour feels when it moves the section's end slowly. Sag and seabed
     /// contact make it far softer along the chord than EA over the length.
-    pub fn end_stiffness(
+    pub(super) fn end_stiffness(
         &self,
         section: &Table,
         (from, to): (f64, f64),
@@ -239,13 +243,13 @@ impl Equilibrium {
     }
 
     /// The axial force (N, tension positive) at arc length `s`.
-    pub fn tension_at(&self, s: f64) -> f64 {
+    pub(super) fn tension_at(&self, s: f64) -> f64 {
         self.section.unit().section_forces(s)[0]
     }
 
     /// Displacement (x, z from the stress-free position, m; rotation, rad) at arc
     /// length `s`, linear between the nodes.
-    pub fn displacement_at(&self, s: f64) -> [f64; 3] {
+    pub(super) fn displacement_at(&self, s: f64) -> [f64; 3] {
         let section = self.section.unit();
         let model = section.model();
         let (e, xi) = model.locate(s);
@@ -260,7 +264,7 @@ impl Equilibrium {
 /// a force in x or z (a tensioner, a top load), the sections above cannot all
 /// be held at their ends, so the static section holds them (`Built::new` also
 /// makes it hold under a chord section, for the same reason).
-pub fn static_takes_force(model: &Table, top_load: bool) -> bool {
+pub(super) fn static_takes_force(model: &Table, top_load: bool) -> bool {
     let end = model
         .get("ends")
         .and_then(|e| e.get("end"))
@@ -277,7 +281,7 @@ pub fn static_takes_force(model: &Table, top_load: bool) -> bool {
 /// (`static_unit`): the force and moment of the section above's start in, its
 /// displacement out (`offsets`: the equilibrium's values the neighbour's ports
 /// count from; `ports`: the neighbour's x, z and rotation port names).
-pub fn holding_links(
+pub(super) fn holding_links(
     static_unit: &str,
     above: &str,
     ports: [&str; 3],
@@ -305,7 +309,7 @@ pub fn holding_links(
 
 /// Sets `<side>_force_x` and `<side>_force_z` (N) in the unit's `inputs`: the
 /// first guess of force inputs fed through the master's loops.
-pub fn first_guess_force(unit: &mut Table, side: &str, force: [f64; 2]) {
+pub(super) fn first_guess_force(unit: &mut Table, side: &str, force: [f64; 2]) {
     if let Some(inputs) = unit
         .entry("inputs")
         .or_insert_with(|| Value::Table(Table::new()))

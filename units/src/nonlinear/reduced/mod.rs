@@ -32,7 +32,7 @@ mod products;
 mod sampled;
 
 pub(super) use checks::validate;
-pub use sampled::Sampling;
+pub(super) use sampled::Sampling;
 
 use super::NonlinearSection;
 use super::params::Integrator;
