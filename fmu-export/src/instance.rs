@@ -8,7 +8,6 @@ use slender_kinds::exported::ExportedUnit;
 use slender_units::{Driver, DriverSlot, Hold, Time};
 use std::ffi::{CString, c_void};
 use std::panic::AssertUnwindSafe;
-use std::path::PathBuf;
 
 mod derivative;
 mod fields;
@@ -129,34 +128,6 @@ pub(crate) fn free_state(state: fmi2FMUstate) {
         // SAFETY: every non-null handle we return is a leaked Box<SavedInstance>.
         drop(unsafe { Box::from_raw(state.cast::<SavedInstance>()) });
     }
-}
-
-/// The local path of a `file://` URI (percent-decoded).
-pub(crate) fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
-    let rest = uri
-        .strip_prefix("file://")
-        .or_else(|| uri.strip_prefix("file:"))
-        .ok_or_else(|| format!("fmuResourceLocation `{uri}`: expected a file:// URI"))?;
-    let rest = rest.strip_prefix("localhost").unwrap_or(rest);
-    let bytes = rest.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i] == b'%'
-            && i + 2 < bytes.len()
-            && let Ok(b) = u8::from_str_radix(
-                std::str::from_utf8(&bytes[i + 1..i + 3]).unwrap_or("zz"),
-                16,
-            )
-        {
-            out.push(b);
-            i += 3;
-        } else {
-            out.push(bytes[i]);
-            i += 1;
-        }
-    }
-    Ok(PathBuf::from(String::from_utf8_lossy(&out).into_owned()))
 }
 
 impl Instance {

@@ -17,6 +17,7 @@
 mod fmi3;
 mod instance;
 mod states;
+mod uri;
 
 use instance::{Instance, guarded};
 use slender_fmi::ffi::*;
@@ -69,7 +70,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
         Instance::new(
             name.clone(),
             &text(guid),
-            &instance::path_of_uri(&text(resource_location))?,
+            &uri::path_of_uri(&text(resource_location))?,
             callbacks,
             logging_on != FMI2_FALSE,
         )

@@ -77,33 +77,46 @@ pub(super) fn uq(
             }
             let (report, runs) = run_appending((path, &inputs), plan, &csv, &header, earlier)?;
             let report = report.ok_or_else(|| CliError::failure("no report from a whole study"))?;
-            let write = |name: &str, text: String| super::write_in(&dir, name, text);
-            // runs.csv is already complete and in index order.
-            let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
-            let markdown = uq::report::to_markdown(&report);
-            let mut files = vec![
-                csv.clone(),
-                write("uq.json", json)?,
-                write("uq.md", markdown.clone())?,
-            ];
-            let drawn = figures(&dir, &report, &runs)?;
-            let mut parts = vec![slender_app::report::Part::Markdown(markdown.clone())];
-            parts.extend(
-                drawn
-                    .iter()
-                    .map(|f| slender_app::report::Part::figure(f, Vec::new())),
-            );
-            files.extend(drawn);
-            let title = format!("Uncertainty study of {}", path.display());
-            files.push(super::write_report(&dir, &title, &parts)?);
-            print!("{markdown}");
-            for caution in report.outputs.iter().filter_map(uq::report::poor_fit) {
-                eprintln!("warning: {caution}");
-            }
-            report_written(&files);
-            Ok(())
+            write_study(&dir, path, csv, &report, &runs)
         }
     }
+}
+
+/// Writes a whole study's files into `dir` beside its complete `csv` (in
+/// index order): uq.json, uq.md, the figures and report.html; prints the
+/// Markdown and any caution on a poor fit.
+fn write_study(
+    dir: &Path,
+    path: &Path,
+    csv: PathBuf,
+    report: &uq::UqReport,
+    runs: &[uq::Run],
+) -> Result<(), CliError> {
+    let write = |name: &str, text: String| super::write_in(dir, name, text);
+    // runs.csv is already complete and in index order.
+    let json = serde_json::to_string_pretty(report).map_err(CliError::failure)?;
+    let markdown = uq::report::to_markdown(report);
+    let mut files = vec![
+        csv,
+        write("uq.json", json)?,
+        write("uq.md", markdown.clone())?,
+    ];
+    let drawn = figures(dir, report, runs)?;
+    let mut parts = vec![slender_app::report::Part::Markdown(markdown.clone())];
+    parts.extend(
+        drawn
+            .iter()
+            .map(|f| slender_app::report::Part::figure(f, Vec::new())),
+    );
+    files.extend(drawn);
+    let title = format!("Uncertainty study of {}", path.display());
+    files.push(super::write_report(dir, &title, &parts)?);
+    print!("{markdown}");
+    for caution in report.outputs.iter().filter_map(uq::report::poor_fit) {
+        eprintln!("warning: {caution}");
+    }
+    report_written(&files);
+    Ok(())
 }
 
 /// The study's figures, drawn into `dir`; their paths.
