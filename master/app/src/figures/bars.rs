@@ -93,15 +93,7 @@ pub(super) fn names(
             .filter(|(_, e)| e.1 > 0.0 && e.1.is_finite());
         chart.draw_series(shown.map(|(j, e)| bar(k, j, names.len(), lo, e.1, colours[j])))?;
     }
-    let mut entries: Vec<Entry> = names
-        .iter()
-        .zip(&colours)
-        .map(|(n, c)| Entry {
-            text: n.clone(),
-            colour: *c,
-            marker: true,
-        })
-        .collect();
+    let mut entries = Entry::each(&names, &colours, true);
     if numbered {
         entries.extend(values.iter().enumerate().map(|(k, v)| Entry {
             text: format!("{} = {v}", k + 1),
@@ -126,17 +118,7 @@ fn note(r: &StudyRow) -> Option<&'static str> {
 
 /// One cost bar per value, log axis.
 fn cost_bars(area: &Area<'_>, key: &str, labels: &[String], group: &Group<'_>) -> DrawResult {
-    let costs: Vec<f64> = group
-        .rows
-        .iter()
-        .map(|r| {
-            if r.error.is_none() {
-                r.cost_per_simulated_second
-            } else {
-                f64::NAN
-            }
-        })
-        .collect();
+    let costs = group.costs();
     let (lo, hi) = positive_range(costs.iter().copied());
     let mut chart = ChartBuilder::on(area)
         .margin(12)

@@ -66,17 +66,7 @@ pub(super) fn grid(
         titled(&first[1].0, &unit_of(&first[1].0)),
     ];
     let errors: Vec<f64> = group.rows.iter().map(|r| worst(r)).collect();
-    let costs: Vec<f64> = group
-        .rows
-        .iter()
-        .map(|r| {
-            if r.error.is_none() {
-                r.cost_per_simulated_second
-            } else {
-                f64::NAN
-            }
-        })
-        .collect();
+    let costs = group.costs();
     let scale = bounds(&errors);
     heat_map(
         chart_area,

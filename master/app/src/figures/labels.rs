@@ -24,6 +24,18 @@ pub struct Entry {
     pub marker: bool,
 }
 
+impl Entry {
+    /// One entry per name in its colour (with a marker or a line).
+    pub fn each(names: &[String], colours: &[RGBAColor], marker: bool) -> Vec<Entry> {
+        let entry = |(text, colour): (&String, &RGBAColor)| Entry {
+            text: text.clone(),
+            colour: *colour,
+            marker,
+        };
+        names.iter().zip(colours).map(entry).collect()
+    }
+}
+
 /// Draws `entries` one per row from the top left of `area` (a column beside
 /// the chart), under an optional heading.
 pub fn side_legend(area: &Area<'_>, heading: &str, entries: &[Entry]) -> DrawResult {

@@ -35,6 +35,17 @@ pub(super) struct Group<'a> {
     pub shape: Shape,
 }
 
+impl Group<'_> {
+    /// Each row's cost per simulated second (s/s); NaN for a failed run.
+    pub(super) fn costs(&self) -> Vec<f64> {
+        let cost = |r: &&StudyRow| match r.error {
+            None => r.cost_per_simulated_second,
+            Some(_) => f64::NAN,
+        };
+        self.rows.iter().map(cost).collect()
+    }
+}
+
 /// The study's groups in their order, each with its shape.
 pub(super) fn groups(rows: &[StudyRow]) -> Vec<Group<'_>> {
     let mut groups: Vec<Group<'_>> = Vec::new();
@@ -148,15 +159,7 @@ fn numbers(
         &series,
         &colours,
     )?;
-    let mut entries: Vec<Entry> = names
-        .iter()
-        .zip(&colours)
-        .map(|(n, c)| Entry {
-            text: n.clone(),
-            colour: *c,
-            marker: false,
-        })
-        .collect();
+    let mut entries = Entry::each(&names, &colours, false);
     if let Some(r) = group.rows.iter().find(|r| r.reference) {
         entries.push(Entry {
             text: format!(
