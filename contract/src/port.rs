@@ -7,7 +7,9 @@ use std::fmt;
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Causality {
+    /// The unit reads it (set by the master or a host before a step).
     Input,
+    /// The unit writes it (read after a step).
     Output,
 }
 
@@ -91,7 +93,9 @@ pub enum Hold {
 pub struct Port {
     /// Name, unique among the unit's ports of the same causality (e.g. "top_force_x").
     pub name: String,
+    /// Whether the unit reads or writes it.
     pub causality: Causality,
+    /// The physical quantity it carries, which sets its coupling tolerance.
     pub kind: PortKind,
     /// SI unit of measure, e.g. "N" or "m/s" ("" for dimensionless).
     pub unit: String,

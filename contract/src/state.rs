@@ -45,7 +45,9 @@ enum Saved {
 /// The inner unit's slot of a nested state ([`StateSlot::load_nested`]):
 /// borrowed when the outer unit saved it, decoded when it came from bytes.
 pub enum NestedSlot<'a> {
+    /// The outer unit's own slot of it, as saved.
     Borrowed(&'a StateSlot),
+    /// Decoded from the outer state's bytes (an FMU state read back).
     Owned(StateSlot),
 }
 

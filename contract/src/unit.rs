@@ -72,6 +72,7 @@ pub struct UnitDescription {
     pub inputs: Vec<Port>,
     /// Output ports, in the order of `outputs` values.
     pub outputs: Vec<Port>,
+    /// What the unit offers beyond stepping (rollback, holds, Jacobians).
     pub capabilities: Capabilities,
 }
 
@@ -122,15 +123,21 @@ pub enum UnitError {
     /// A parameter is out of its admissible range.
     #[error("parameter `{name}` = {value}: {expected}")]
     InvalidParameter {
+        /// The parameter's key, as the scene names it.
         name: String,
+        /// Its value as written.
         value: String,
+        /// What was expected, in the scene author's words.
         expected: String,
     },
     /// An input value cannot be used (e.g. NaN or outside the model's domain).
     #[error("input `{port}` = {value}: {reason}")]
     InvalidInput {
+        /// The input port's name.
         port: String,
+        /// The value it was given.
         value: f64,
+        /// Why it cannot be used.
         reason: String,
     },
     /// A numerical solve failed (no equilibrium, singular matrix, NaN produced).
@@ -144,7 +151,12 @@ pub enum UnitError {
     Unsupported(String),
     /// The driver was given the wrong number of input values.
     #[error("expected {expected} input values, got {got}")]
-    InputCount { expected: usize, got: usize },
+    InputCount {
+        /// The unit's input ports.
+        expected: usize,
+        /// The values given.
+        got: usize,
+    },
 }
 
 impl UnitError {
@@ -197,6 +209,7 @@ impl Field {
 /// Modes of a structural unit and the node positions (m) they refer to.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModalAnalysis {
+    /// The nodes' positions (x, z; m) the mode shapes are given at.
     pub positions: Vec<[f64; 2]>,
     /// Longest period first.
     pub modes: Vec<Mode>,

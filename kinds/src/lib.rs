@@ -2,6 +2,7 @@
 //! the registry on its own (below the scene crate), so an exported FMU, which
 //! builds its one unit from a kind and a parameter table, links the units and
 //! this registry but no scene, coupling, study or command-line code.
+#![warn(missing_docs)]
 
 pub mod exported;
 pub mod fields;
@@ -47,12 +48,22 @@ type Builder = fn(toml::Table, &BuildContext) -> Result<Box<dyn Unit>, BuildErro
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum BuildError {
+    /// An effect asked of a kind that switches none.
     #[error("effect `{effect}`: kind `{kind}` has no switchable effects")]
-    NoEffects { effect: String, kind: &'static str },
+    NoEffects {
+        /// The effect as the scene names it.
+        effect: String,
+        /// The unit's kind.
+        kind: &'static str,
+    },
+    /// An effect the kind does not offer.
     #[error("effect `{effect}`: kind `{kind}` offers {offered}")]
     UnknownEffect {
+        /// The effect as the scene names it.
         effect: String,
+        /// The unit's kind.
         kind: &'static str,
+        /// The effects it offers, listed.
         offered: String,
     },
     /// The parameter table does not fit the kind's parameters (serde's message:
@@ -62,6 +73,7 @@ pub enum BuildError {
     /// The unit refused a parameter value.
     #[error(transparent)]
     Unit(#[from] UnitError),
+    /// An external FMU that could not be loaded.
     #[error(transparent)]
     Fmu(#[from] LoadError),
     /// No kind of this name (an FMU's configuration names one).
@@ -71,10 +83,13 @@ pub enum BuildError {
 
 /// A unit kind: its scene name, what it is, and the effects it can switch.
 pub struct Kind {
+    /// Its name in scenes (`kind = "cable"`).
     pub name: &'static str,
     /// The top-level keys of its parameter table, from the parameter struct.
     pub parameters: fn() -> &'static [&'static str],
+    /// What it models, in a line (`slender kinds`).
     pub summary: &'static str,
+    /// The effects a scene may switch on (`effects = [...]`).
     pub effects: &'static [&'static str],
     build: Builder,
 }

@@ -12,9 +12,13 @@ use rand_chacha::ChaCha8Rng;
 /// Central intervals (low, high) of each quantity.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Intervals {
+    /// Of the output's mean.
     pub mean: (f64, f64),
+    /// Of its variance.
     pub variance: (f64, f64),
+    /// Of each input's first-order Sobol' index.
     pub first_order: Vec<(f64, f64)>,
+    /// Of each input's total Sobol' index.
     pub total: Vec<(f64, f64)>,
 }
 

@@ -17,6 +17,7 @@ pub struct Distribution {
     pub quantiles: [f64; 3],
     /// Bins' lower edges; the last bin ends at `upper`.
     pub edges: Vec<f64>,
+    /// The last bin's upper edge.
     pub upper: f64,
     /// Probability density in each bin (integrates to 1 over the bins).
     pub density: Vec<f64>,

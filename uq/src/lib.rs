@@ -11,6 +11,7 @@
 //!   coefficients;
 //! - [`distribution`]: an expansion's output distribution (quantiles, density)
 //!   from the surrogate on a large Sobol' sample.
+#![warn(missing_docs)]
 
 pub mod basis;
 pub mod bootstrap;
@@ -25,7 +26,12 @@ pub mod pce;
 pub enum UqError {
     /// A parameter or data set that cannot be used: which and why.
     #[error("{what}: {why}")]
-    Input { what: String, why: String },
+    Input {
+        /// The parameter or data set.
+        what: String,
+        /// Why it cannot be used.
+        why: String,
+    },
     /// A least-squares fit that has no unique solution.
     #[error("the regression is singular: {0}")]
     Singular(String),

@@ -13,24 +13,36 @@ use statrs::distribution::{ContinuousCDF, Normal};
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Marginal {
+    /// Uniform on [low, high].
     Uniform {
+        /// Lower bound.
         low: f64,
+        /// Upper bound.
         high: f64,
     },
+    /// Normal.
     Normal {
+        /// Mean.
         mean: f64,
+        /// Standard deviation (> 0).
         sd: f64,
     },
     /// ln X is normal with mean `mu` and standard deviation `sigma`.
     Lognormal {
+        /// Mean of ln X.
         mu: f64,
+        /// Standard deviation of ln X (> 0).
         sigma: f64,
     },
     /// A normal (`mean`, `sd`) restricted to [low, high].
     TruncatedNormal {
+        /// Mean of the normal before truncation.
         mean: f64,
+        /// Its standard deviation (> 0).
         sd: f64,
+        /// Lower bound.
         low: f64,
+        /// Upper bound.
         high: f64,
     },
 }

@@ -34,9 +34,11 @@ impl Default for Settings {
 /// A fitted expansion.
 #[derive(Clone, Debug)]
 pub struct Pce {
+    /// Each input's polynomial family (Legendre or Hermite).
     pub families: Vec<Family>,
     /// Multi-index of each basis function (the first is all zeros).
     pub indices: Vec<Vec<usize>>,
+    /// Each basis function's coefficient.
     pub coefficients: Vec<f64>,
     /// The total degree whose basis won.
     pub degree: usize,
