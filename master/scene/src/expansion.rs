@@ -279,4 +279,28 @@ mod tests {
             "{error}"
         );
     }
+
+    #[test]
+    fn an_end_motion_fade_in_that_is_not_a_time_is_refused() {
+        // It was taken: inf removed the motion, NaN and -1 left it unfaded.
+        let motion = "amplitude = 0.5, angular_frequency = 1.5";
+        for fade in ["inf", "nan", "-1.0"] {
+            let text = HANGING_PIPE.replacen(motion, &format!("{motion}, fade_in = {fade}"), 1);
+            let error = parse(&text).expect_err(fade).to_string();
+            assert!(
+                error.contains("ends.start.x.displacement.fade_in"),
+                "{fade}: {error}"
+            );
+            assert!(error.contains("fade_in >= 0 (s)"), "{fade}: {error}");
+        }
+    }
+
+    #[test]
+    fn a_duration_shorter_than_a_step_is_refused() {
+        // 1e-12 s rounded to no step at all, and the run "completed".
+        let text = HANGING_PIPE.replacen("duration = ", "duration = 1e-12 # ", 1);
+        let error = parse(&text).expect_err("no step").to_string();
+        assert!(error.contains("simulation.duration"), "{error}");
+        assert!(error.contains("shorter than one step"), "{error}");
+    }
 }

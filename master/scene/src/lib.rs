@@ -238,6 +238,18 @@ impl Scene {
                     ),
                 )
             })?;
+        if duration < step {
+            // A duration under 1 ns rounds to none: no step, and a run that
+            // "completed" with nothing in it.
+            return Err(self.error(
+                None,
+                "simulation.duration",
+                format!(
+                    "{} s is shorter than one step of {} s",
+                    sim.duration, sim.step
+                ),
+            ));
+        }
         if duration.as_nanos() % step.as_nanos() != 0 {
             return Err(self.error(
                 None,

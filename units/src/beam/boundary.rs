@@ -191,7 +191,9 @@ impl TimeFunction {
         }
     }
 
-    fn validate(&self, key: &str) -> Result<(), UnitError> {
+    /// Checks its values (finite, `fade_in` and decays >= 0), naming the
+    /// first bad one under `key`.
+    pub(crate) fn validate(&self, key: &str) -> Result<(), UnitError> {
         if let TimeFunction::Expression(Expression { sea: Some(sea), .. }) = self {
             sea.validate(&format!("{key}.sea"))?;
         }

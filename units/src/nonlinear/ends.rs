@@ -1,9 +1,9 @@
 //! The ends of a nonlinear section resolved to DOFs, their prescribed motion and
 //! loads at a time, and the unit's ports.
 
-use super::params::{DofCondition, NonlinearParams};
+use super::params::{DofCondition, Ends, NonlinearParams};
 use crate::beam::boundary::TimeFunction;
-use crate::contract::{Inputs, Port, PortKind};
+use crate::contract::{Inputs, Port, PortKind, UnitError, require_finite};
 
 /// Names of the three DOFs of a node, as in port names.
 const DOF_NAMES: [&str; 3] = ["x", "z", "rotation"];
@@ -237,4 +237,26 @@ pub fn output_ports(resolved: &[Resolved], stations: usize) -> Vec<Port> {
         out.push(Port::output(&format!("force_{i}"), PortKind::Force));
     }
     out
+}
+
+impl Ends {
+    /// Checks every end's conditions: a prescribed motion's or load's values
+    /// (finite, `fade_in` >= 0: an infinite one removed the motion, a NaN or
+    /// negative one left it unfaded) and a starting displacement.
+    pub(crate) fn validate(&self) -> Result<(), UnitError> {
+        for (side, end) in [("start", &self.start), ("end", &self.end)] {
+            for (dof, c) in ["x", "z", "rotation"].iter().zip(end.conditions()) {
+                let key = format!("ends.{side}.{dof}");
+                match c {
+                    DofCondition::VelocityFrom(d) => {
+                        require_finite(&format!("{key}.velocity_from"), d)?
+                    }
+                    DofCondition::Displacement(f) => f.validate(&format!("{key}.displacement"))?,
+                    DofCondition::Force(f) => f.validate(&format!("{key}.force"))?,
+                    _ => {}
+                }
+            }
+        }
+        Ok(())
+    }
 }

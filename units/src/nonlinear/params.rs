@@ -431,19 +431,15 @@ impl NonlinearParams {
                     "expected from <= to",
                 ));
             }
+            l.x.validate(&format!("loads[{i}].x"))?;
+            l.z.validate(&format!("loads[{i}].z"))?;
         }
         if let Some(c) = &self.current {
             validate_current(c)?;
         }
         super::contact::validate(self)?;
         self.validate_start_points()?;
-        for (side, end) in [("start", &self.ends.start), ("end", &self.ends.end)] {
-            for (dof, c) in ["x", "z", "rotation"].iter().zip(end.conditions()) {
-                if let DofCondition::VelocityFrom(d) = c {
-                    require_finite(&format!("ends.{side}.{dof}.velocity_from"), d)?;
-                }
-            }
-        }
+        self.ends.validate()?;
         let hydro = self.segments.iter().any(|s| {
             s.drag_normal + s.drag_tangential + s.added_mass_normal + s.added_mass_tangential > 0.0
         });
