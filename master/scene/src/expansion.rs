@@ -303,4 +303,21 @@ mod tests {
         assert!(error.contains("simulation.duration"), "{error}");
         assert!(error.contains("shorter than one step"), "{error}");
     }
+
+    #[test]
+    fn a_structure_without_segments_or_with_an_angle_past_a_turn_is_refused() {
+        let segments = HANGING_PIPE
+            .lines()
+            .find(|l| l.starts_with("segments = "))
+            .expect("segments");
+        let text = HANGING_PIPE.replacen(segments, "segments = []", 1);
+        let error = parse(&text).expect_err("no segment").to_string();
+        assert!(error.contains("at least one segment"), "{error}");
+        let text = HANGING_PIPE.replacen("angle_deg = -90.0", "angle_deg = 1e308", 1);
+        let error = parse(&text).expect_err("1e308 deg").to_string();
+        assert!(
+            error.contains("segments[0].angle_deg") && error.contains("-360 to 360 deg"),
+            "{error}"
+        );
+    }
 }

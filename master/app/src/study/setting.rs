@@ -210,9 +210,11 @@ impl FromStr for Setting {
                 path,
             });
         }
-        // An array's entry as `segments[1]` or `segments.1`.
-        let dotted = name.replace('[', ".").replace(']', "");
-        let path: Vec<String> = dotted.split('.').map(str::to_owned).collect();
+        let path = key_parts(name).ok_or_else(|| {
+            format!(
+                "`{name}`: a bracket holds a whole index and closes, as in segments[0].elements"
+            )
+        })?;
         let known = [
             "simulation",
             "master",
@@ -235,6 +237,23 @@ impl FromStr for Setting {
             path,
         })
     }
+}
+
+/// The parts of a key path, an array's entry written `segments[1]` or
+/// `segments.1`; None where a bracket does not hold a whole index and close
+/// (`segments[0.elements` was read as `segments.0.elements`).
+fn key_parts(name: &str) -> Option<Vec<String>> {
+    let mut parts = Vec::new();
+    for dotted in name.split('.') {
+        let mut pieces = dotted.split('[');
+        parts.push(pieces.next()?.to_owned());
+        for piece in pieces {
+            let index = piece.strip_suffix(']')?;
+            let whole = !index.is_empty() && index.bytes().all(|b| b.is_ascii_digit());
+            parts.push(whole.then(|| index.to_owned())?);
+        }
+    }
+    (!parts.iter().any(|p| p.contains(']'))).then_some(parts)
 }
 
 impl fmt::Display for Setting {
@@ -401,5 +420,32 @@ segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
         assert!(t["master"].get("acceleration").is_some());
         set(&mut t, "master.scheme", "jacobi");
         assert!(t["master"].get("acceleration").is_none() && t["master"].get("newton").is_none());
+    }
+
+    #[test]
+    fn a_bracket_that_is_not_a_whole_index_is_refused() {
+        for bad in [
+            "structure.model.segments[0.elements",
+            "units.a[x].b",
+            "units.a]0.b",
+            "units.a[].b",
+        ] {
+            let error = bad.parse::<Setting>().expect_err(bad);
+            assert!(
+                error.contains("a bracket holds a whole index"),
+                "{bad}: {error}"
+            );
+        }
+        let good: Setting = "structure.model.segments[1].elements"
+            .parse()
+            .expect("a path");
+        assert_eq!(
+            good.path,
+            ["structure", "model", "segments", "1", "elements"]
+        );
+        let dotted: Setting = "structure.model.segments.1.elements"
+            .parse()
+            .expect("a path");
+        assert_eq!(dotted.path, good.path);
     }
 }

@@ -27,7 +27,8 @@ pub(super) fn segments_of(model: &Table) -> Result<Vec<Segment>, String> {
     let list = model
         .get("segments")
         .and_then(Value::as_array)
-        .ok_or("`structure.model.segments`: expected a list of segments")?;
+        .filter(|list| !list.is_empty())
+        .ok_or("`structure.model.segments`: expected a list of at least one segment")?;
     let mut from = 0.0;
     list.iter()
         .enumerate()
