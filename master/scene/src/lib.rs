@@ -238,6 +238,17 @@ impl Scene {
                     ),
                 )
             })?;
+        let steps = self.steps_in(duration, step)?;
+        self.start = start;
+        self.step = step;
+        self.steps = steps;
+        Ok(())
+    }
+
+    /// The steps of `step` in `duration`: at least one, a whole number, and
+    /// within `simulation.max_steps`.
+    fn steps_in(&self, duration: Time, step: Time) -> Result<i64, SceneError> {
+        let sim = &self.spec.simulation;
         if duration < step {
             // A duration under 1 ns rounds to none: no step, and a run that
             // "completed" with nothing in it.
@@ -272,10 +283,7 @@ impl Scene {
                 ),
             ));
         }
-        self.start = start;
-        self.step = step;
-        self.steps = steps;
-        Ok(())
+        Ok(steps)
     }
 
     /// Changes the synchronisation step (s), e.g. for a convergence study; the

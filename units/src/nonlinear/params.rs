@@ -511,13 +511,8 @@ impl Integrator {
 
 fn validate_segment(key: &str, s: &Segment) -> Result<(), UnitError> {
     require_in_range(&format!("{key}.length"), s.length, 1e-3, 1e6, "m")?;
-    require_in_range(
-        &format!("{key}.angle_deg"),
-        s.angle_deg,
-        -360.0,
-        360.0,
-        "deg",
-    )?;
+    let angle = format!("{key}.angle_deg");
+    require_in_range(&angle, s.angle_deg, -360.0, 360.0, "deg")?;
     require_in_range(
         &format!("{key}.elements"),
         s.elements as f64,
