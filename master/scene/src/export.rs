@@ -18,21 +18,31 @@ use std::path::Path;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ExportError {
+    /// The scene has no unit of that name.
     #[error("{scene}: no unit `{unit}`; its units are: {units}")]
     NoUnit {
+        /// The scene file.
         scene: String,
+        /// The unit asked for.
         unit: String,
+        /// The units it has, listed.
         units: String,
     },
+    /// The scene does not read or build.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The scene's start could not be settled before export.
     #[error("{scene}: initialisation: {source}")]
     Initialization {
+        /// The scene file.
         scene: String,
+        /// Why the master's initialisation failed.
         source: Box<MasterError>,
     },
+    /// A unit could not be built from its parameters.
     #[error(transparent)]
     Build(#[from] BuildError),
+    /// A unit refused a call while settling.
     #[error(transparent)]
     Unit(#[from] UnitError),
     /// Writing the FMU.
@@ -40,7 +50,12 @@ pub enum ExportError {
     Write(#[from] PackageError),
     /// The scene file cannot be read or rewritten as a wrapped scene.
     #[error("{path}: {problem}")]
-    SceneFile { path: String, problem: String },
+    SceneFile {
+        /// The file or folder.
+        path: String,
+        /// What went wrong.
+        problem: String,
+    },
 }
 
 /// An exported unit's configuration from a scene (building the unit from it is
@@ -219,8 +234,11 @@ pub fn wrap_scene(
 
 /// One unit exported as an FMU: its name, the file written, its layout.
 pub struct ExportedFmu {
+    /// The unit's name in the scene.
     pub name: String,
+    /// The FMU file written.
     pub file: std::path::PathBuf,
+    /// Its variables and model description.
     pub layout: Layout,
 }
 

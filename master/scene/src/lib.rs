@@ -2,6 +2,7 @@
 //! scheme and tolerances, time window, outputs), turned into a ready [`Master`].
 //!
 //! Errors name the file, the line where known, the key and what was expected.
+#![warn(missing_docs)]
 
 mod expansion;
 pub mod export;
@@ -29,11 +30,13 @@ use thiserror::Error;
 /// A problem in a scene file.
 #[derive(Debug, Error)]
 pub struct SceneError {
+    /// The scene file (or SSP) named in the message.
     pub file: PathBuf,
     /// 1-based line, where known.
     pub line: Option<usize>,
     /// Dotted key, e.g. `units[1].parameters`; empty for whole-file problems.
     pub key: String,
+    /// What was wrong and what was expected.
     pub message: String,
 }
 
@@ -58,7 +61,9 @@ impl fmt::Display for SceneError {
 /// A parsed and checked scene.
 #[derive(Debug)]
 pub struct Scene {
+    /// The scene file: names it in messages and anchors relative output folders.
     pub path: PathBuf,
+    /// The scene as read and checked (with a `[structure]` written out as units and connections).
     pub spec: SceneSpec,
     /// The text the scene was read from (errors name its lines).
     source: String,
@@ -67,8 +72,11 @@ pub struct Scene {
     written: Option<expansion::Written>,
     /// That text, made when first asked for (`source`).
     expanded: std::sync::OnceLock<String>,
+    /// The simulation's start.
     pub start: Time,
+    /// The synchronisation step.
     pub step: Time,
+    /// The synchronisation steps of the run.
     pub steps: i64,
     /// Keys set on the command line over the file (`slender run --set
     /// KEY=VALUE`), as given; empty for a scene as written.

@@ -14,12 +14,17 @@ pub struct SceneSpec {
     /// One line saying what the scene is (printed in summaries and plots).
     #[serde(default)]
     pub title: String,
+    /// The time window and step (`[simulation]`).
     pub simulation: SimulationSpec,
+    /// The coupling scheme and its tolerances (`[master]`).
     pub master: MasterSettings,
+    /// The units (`[[units]]`).
     #[serde(default)]
     pub units: Vec<UnitSpec>,
+    /// The connections between their ports (`[[connections]]`).
     #[serde(default)]
     pub connections: Vec<ConnectionSpec>,
+    /// What is recorded, judged and drawn (`[output]`).
     #[serde(default)]
     pub output: OutputSpec,
     /// Uncertain inputs for `slender uq` (a run ignores it).
@@ -50,6 +55,7 @@ pub struct UncertaintySpec {
     /// Optional note on scale, e.g. model to full scale by Froude.
     #[serde(default)]
     pub scale: String,
+    /// The uncertain inputs, each a distribution given to a scene key.
     pub inputs: Vec<UncertainInput>,
 }
 
@@ -78,6 +84,7 @@ pub struct UncertainInput {
     pub name: String,
     /// The scene key, e.g. `units.sensor.parameters.scale.0`.
     pub key: String,
+    /// Its distribution (SI units of the key).
     pub distribution: slender_uq::marginal::Marginal,
     /// Unit of measure of the input, e.g. `N` or `s`.
     #[serde(default)]
@@ -147,8 +154,10 @@ pub struct ConnectionSpec {
     pub from: Spanned<String>,
     /// Destination input, "unit.port".
     pub to: Spanned<String>,
+    /// Factor applied to the value on its way (default 1).
     #[serde(default = "one")]
     pub gain: f64,
+    /// Added to the value after the gain (default 0).
     #[serde(default)]
     pub offset: f64,
     /// Absolute convergence tolerance of this connection (destination's unit);
@@ -271,6 +280,7 @@ pub const DEFAULT_MAX_OUTPUT_BYTES: u64 = 2_000_000_000;
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct IndicatorSpec {
+    /// Its name in summaries and studies.
     pub name: String,
     /// Recorded signals, "unit.port".
     pub signals: Vec<String>,
@@ -318,6 +328,7 @@ impl Default for OutputSpec {
 pub struct PlotSpec {
     /// File name without extension.
     pub name: String,
+    /// The figure's title.
     #[serde(default)]
     pub title: String,
     /// Panels, top to bottom; each panel overlays the listed recorded signals.

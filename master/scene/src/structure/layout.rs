@@ -14,6 +14,7 @@ use toml::{Table, Value};
 pub struct Layout {
     /// `structure.name`: the prefix of its units' names.
     pub name: String,
+    /// Its sections, from the structure's start.
     pub sections: Vec<SectionLayout>,
     /// The model has seabed contact (a touchdown point, a sag bend).
     pub seabed: bool,
@@ -24,6 +25,7 @@ pub struct Layout {
 /// One section as its runs show it.
 #[derive(Clone, Debug)]
 pub struct SectionLayout {
+    /// The section's name (`[[structure.sections]] name`).
     pub name: String,
     /// The unit the expansion writes for it.
     pub unit: String,
@@ -37,6 +39,7 @@ pub struct SectionLayout {
     pub choice: String,
     /// Written as a bare fidelity word: no count, sub-steps or options.
     pub plain: bool,
+    /// Which of its unit's outputs carry what a study measures.
     pub outputs: SectionOutputs,
 }
 

@@ -50,8 +50,11 @@ use toml::{Table, Value};
 /// the scene's `[[units]]` and `[[connections]]`), and the advisories on what
 /// its sections' models follow poorly.
 pub struct Written {
+    /// The units, as tables of `[[units]]`.
     pub units: Vec<Value>,
+    /// The connections, as tables of `[[connections]]`.
     pub connections: Vec<Value>,
+    /// What its sections' models follow poorly (said by `check` and a run).
     pub advisories: Vec<String>,
 }
 
