@@ -129,22 +129,36 @@ pub(crate) enum FmuAction {
     },
 }
 
+/// A count on the command line: a whole number >= 0, said in a user's
+/// words (clap's own parser said `unexpected argument '-1'` or `invalid
+/// digit found in string`); each command checks its own range after.
+fn whole_number(text: &str) -> Result<usize, String> {
+    text.trim()
+        .parse()
+        .map_err(|_| format!("`{text}`: expected a whole number >= 0"))
+}
+
 /// How a study's runs are made, the same for `study` and `fidelity`.
 #[derive(Args, Debug)]
 pub(crate) struct StudyRuns {
     /// Runs at once (default 1: each run times its cost alone; more finish
     /// sooner but share the cores, so their costs are not comparable).
     /// Results other than costs do not depend on it.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = whole_number)]
     pub jobs: Option<usize>,
     /// Times each run is timed (default 1): its cost is the median, the
     /// spread (max - min) / median is reported, and a spread above 20 % is
     /// warned about.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = whole_number)]
     pub repeats: usize,
     /// The most runs to start (default 10 000): a larger study is
     /// refused before any run, naming its size.
-    #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
+    #[arg(
+        long,
+        default_value_t = slender_app::DEFAULT_MAX_RUNS,
+        allow_negative_numbers = true,
+        value_parser = whole_number
+    )]
     pub max_runs: usize,
     /// Simulated time of each run (s); default: the scene's duration.
     #[arg(long, allow_negative_numbers = true)]
@@ -186,7 +200,7 @@ pub(crate) enum Command {
     Bench {
         scene: PathBuf,
         /// Timed runs after one warm-up run (at least 1).
-        #[arg(long, default_value_t = 5)]
+        #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = whole_number)]
         repeats: usize,
         /// Print the figures as JSON.
         #[arg(long)]

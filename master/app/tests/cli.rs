@@ -389,7 +389,7 @@ fn a_key_that_does_not_apply_is_refused_before_anything_runs() {
             "units.n.parameters.elemnts=10,20",
             "unknown field `elemnts`",
         ),
-        ("mastr.scheme=a,b", "unknown study setting"),
+        ("mastr.scheme=a,b", "unknown setting"),
     ] {
         let out = slender(&["study", "examples/truncation_study.toml", "--vary", key]);
         assert_eq!(out.status.code(), Some(2), "{key}");
@@ -440,4 +440,52 @@ fn run_takes_a_duration_and_fmu_export_takes_out() {
     let help = text(&slender(&["fmu", "export", "--help"]).stdout);
     assert!(help.contains("--out"), "{help}");
     std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn a_count_or_a_key_given_wrong_is_refused_in_a_users_words() {
+    // `--repeats -1` was "unexpected argument '-1'", `--jobs x` "invalid digit
+    // found in string", `--set master=5` an "unknown study setting".
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &[
+                "study",
+                "examples/b1_two_masses.toml",
+                "--vary",
+                "step=0.01",
+                "--repeats",
+                "-1",
+            ],
+            "`-1`: expected a whole number >= 0",
+        ),
+        (
+            &[
+                "fidelity",
+                "examples/structure_mooring.toml",
+                "--section",
+                "lower=cable",
+                "--jobs",
+                "x",
+            ],
+            "`x`: expected a whole number >= 0",
+        ),
+        (
+            &["bench", "examples/b1_two_masses.toml", "--repeats", "0"],
+            "--repeats 0: expected 1 to 1000",
+        ),
+        (
+            &["check", "examples/b1_two_masses.toml", "--set", "master=5"],
+            "master.scheme, not master",
+        ),
+    ];
+    for (args, expected) in cases {
+        let output = slender(args);
+        let stderr = text(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+        assert!(
+            !stderr.contains("digit") && !stderr.contains("unexpected argument"),
+            "{stderr}"
+        );
+    }
 }

@@ -228,7 +228,7 @@ impl FromStr for Setting {
         {
             let shorts = SHORT.iter().map(|(s, _)| *s);
             return Err(format!(
-                "unknown study setting `{name}`{}: expected elements, step, velocity_tolerance, force_tolerance or a scene key path under simulation, master, units, connections, output, structure or uncertainty, such as master.scheme or units.<name>.parameters.<key>",
+                "unknown setting `{name}`{}: expected a scene key path under simulation, master, units, connections, output, structure or uncertainty, down to a value (master.scheme, not master; units.<name>.parameters.<key>), or a short name: elements, step, velocity_tolerance, force_tolerance",
                 slender_coupling::error::did_you_mean(name, shorts)
             ));
         }
@@ -385,7 +385,7 @@ segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
         assert!(
             set("nonsense", "1")
                 .unwrap_err()
-                .contains("unknown study setting")
+                .contains("unknown setting")
         );
     }
 
