@@ -275,6 +275,17 @@ fn uq_shards_merged_give_the_local_files_byte_for_byte() {
         "--duration",
         "2",
     ]);
+    // The report page shows the study's Markdown as HTML (it showed "## phi1"
+    // and "**Caution:**" raw).
+    let page = std::fs::read_to_string(local.join("report.html")).unwrap();
+    assert!(
+        page.contains("<h2>phi1</h2>"),
+        "no heading in the UQ report"
+    );
+    assert!(
+        !page.contains("## phi") && !page.contains("**"),
+        "raw Markdown in the UQ report"
+    );
     let array = std::fs::read_to_string(sharded.join("uq-shards.sbatch")).unwrap();
     assert!(
         array.contains("#SBATCH --array=1-4")

@@ -1,70 +1,18 @@
-//! The study commands' Markdown (pipe tables, paragraphs) as HTML: a run of
-//! lines starting with `|` is a table (its second line the separator), any
-//! other block of lines a paragraph.
+//! The study commands' Markdown as HTML, by pulldown-cmark (CommonMark with
+//! pipe tables): headings, emphasis, lists, code and tables. Anything that
+//! looks like HTML in it (`<errors>`, `x<y`) is shown as text: the reports
+//! write no markup of their own through Markdown.
 
-use super::escape;
+use pulldown_cmark::{Event, Options, Parser, html};
 
 /// Markdown text as HTML.
 pub(super) fn to_html(text: &str) -> String {
-    let mut html = String::new();
-    let mut lines = text.lines().peekable();
-    while let Some(line) = lines.next() {
-        if line.trim().is_empty() {
-            continue;
-        }
-        if line.starts_with('|') {
-            let mut rows = vec![line];
-            while let Some(next) = lines.next_if(|l| l.starts_with('|')) {
-                rows.push(next);
-            }
-            html += &table(&rows);
-        } else {
-            let mut block = vec![line];
-            while let Some(next) = lines.next_if(|l| !l.trim().is_empty() && !l.starts_with('|')) {
-                block.push(next);
-            }
-            html += &format!("<p>{}</p>\n", inline(&block.join(" ")));
-        }
-    }
-    html
-}
-
-/// A pipe table: header, separator, body.
-fn table(rows: &[&str]) -> String {
-    let cells = |row: &str| -> Vec<String> {
-        let inner = row.trim().trim_start_matches('|').trim_end_matches('|');
-        inner.split('|').map(|c| inline(c.trim())).collect()
-    };
-    let mut html = String::from("<table>\n<thead><tr>");
-    for c in cells(rows[0]) {
-        html += &format!("<th>{c}</th>");
-    }
-    html += "</tr></thead>\n<tbody>\n";
-    for row in rows
-        .iter()
-        .skip(1)
-        .filter(|r| !r.starts_with("|---") && !r.starts_with("| ---"))
-    {
-        html += "<tr>";
-        for c in cells(row) {
-            html += &format!("<td>{c}</td>");
-        }
-        html += "</tr>\n";
-    }
-    html + "</tbody></table>\n"
-}
-
-/// Inline text: escaped, `code` spans kept as code.
-fn inline(text: &str) -> String {
-    let escaped = escape(text);
+    let events = Parser::new_ext(text, Options::ENABLE_TABLES).map(|event| match event {
+        Event::Html(raw) | Event::InlineHtml(raw) => Event::Text(raw),
+        other => other,
+    });
     let mut out = String::new();
-    for (i, piece) in escaped.split('`').enumerate() {
-        if i % 2 == 1 {
-            out += &format!("<code>{piece}</code>");
-        } else {
-            out += piece;
-        }
-    }
+    html::push_html(&mut out, events);
     out
 }
 
@@ -73,23 +21,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn tables_and_paragraphs_become_html() {
-        let md =
-            "Study of `b3`: <errors>.\n\n| a | b |\n|---|---|\n| 1 | x<y |\n| 2 | z |\n\nDone.";
+    fn tables_paragraphs_headings_and_emphasis_become_html() {
+        let md = "## phi1\n\nStudy of `b3`: <errors>.\n\n| a | b |\n|---|---|\n| 1 | x<y |\n| 2 | z |\n\n**Caution:** done.";
         let html = to_html(md);
+        assert!(html.contains("<h2>phi1</h2>"), "{html}");
         assert!(
             html.contains("<p>Study of <code>b3</code>: &lt;errors&gt;.</p>"),
             "{html}"
         );
-        assert!(
-            html.contains("<thead><tr><th>a</th><th>b</th></tr></thead>"),
-            "{html}"
-        );
-        assert!(
-            html.contains("<tr><td>1</td><td>x&lt;y</td></tr>"),
-            "{html}"
-        );
-        assert_eq!(html.matches("<tr>").count(), 3);
-        assert!(html.ends_with("<p>Done.</p>\n"));
+        assert!(html.contains("<th>a</th><th>b</th>"), "{html}");
+        assert!(html.contains("<td>1</td><td>x&lt;y</td>"), "{html}");
+        assert_eq!(html.matches("<tr>").count(), 3, "{html}");
+        assert!(html.contains("<strong>Caution:</strong> done."), "{html}");
+        assert!(!html.contains("**") && !html.contains("##"), "{html}");
     }
 }
