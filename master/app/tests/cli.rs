@@ -243,19 +243,7 @@ fn uq_shards_merged_give_the_local_files_byte_for_byte() {
         &common[..],
     ]
     .concat());
-    for figure in [
-        "sobol.svg",
-        "convergence.svg",
-        "distribution.svg",
-        "scatter.svg",
-    ] {
-        assert!(local.join(figure).exists(), "{figure}");
-    }
-    let summary = std::fs::read_to_string(local.join("uq.md")).unwrap();
-    assert!(
-        summary.contains("maximin Latin hypercube") && summary.contains("90 % of outcomes in"),
-        "{summary}"
-    );
+    assert_uq_files(&local);
     for file in ["runs.csv", "uq.json", "uq.md"] {
         let a = std::fs::read(local.join(file)).unwrap();
         let b = std::fs::read(sharded.join(file)).unwrap();
@@ -275,17 +263,6 @@ fn uq_shards_merged_give_the_local_files_byte_for_byte() {
         "--duration",
         "2",
     ]);
-    // The report page shows the study's Markdown as HTML (it showed "## phi1"
-    // and "**Caution:**" raw).
-    let page = std::fs::read_to_string(local.join("report.html")).unwrap();
-    assert!(
-        page.contains("<h2>phi1</h2>"),
-        "no heading in the UQ report"
-    );
-    assert!(
-        !page.contains("## phi") && !page.contains("**"),
-        "raw Markdown in the UQ report"
-    );
     let array = std::fs::read_to_string(sharded.join("uq-shards.sbatch")).unwrap();
     assert!(
         array.contains("#SBATCH --array=1-4")
@@ -296,6 +273,34 @@ fn uq_shards_merged_give_the_local_files_byte_for_byte() {
     let out = slender(&["uq", s, "--shard", "5/4"]);
     assert_eq!(out.status.code(), Some(2));
     std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// A whole UQ study's files in `out`: its figures, its Markdown summary, and
+/// its report page showing that Markdown as HTML (it showed "## phi1" and
+/// "**Caution:**" raw).
+fn assert_uq_files(out: &Path) {
+    for figure in [
+        "sobol.svg",
+        "convergence.svg",
+        "distribution.svg",
+        "scatter.svg",
+    ] {
+        assert!(out.join(figure).exists(), "{figure}");
+    }
+    let summary = std::fs::read_to_string(out.join("uq.md")).unwrap();
+    assert!(
+        summary.contains("maximin Latin hypercube") && summary.contains("90 % of outcomes in"),
+        "{summary}"
+    );
+    let page = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(
+        page.contains("<h2>phi1</h2>"),
+        "no heading in the UQ report"
+    );
+    assert!(
+        !page.contains("## phi") && !page.contains("**"),
+        "raw Markdown in the UQ report"
+    );
 }
 
 // `slender study` as the one study engine (issue 13): any scene key by its path,
