@@ -9,7 +9,7 @@
 use super::Built;
 use super::cuts::End;
 use super::layout::SectionOutputs;
-use super::sections::{Cut, Fidelity};
+use super::sections::Cut;
 use toml::Table;
 
 /// Where a section is and how the structure starts, for a fidelity's needs
@@ -169,24 +169,9 @@ pub(super) fn outputs_of(
     }
 }
 
-impl Fidelity {
-    /// The fidelity's model: its registration.
-    pub(super) fn model(self) -> &'static dyn SectionModel {
-        match self {
-            Fidelity::Nonlinear => &super::nonlinear::NONLINEAR,
-            Fidelity::Linear => &super::nonlinear::LINEAR,
-            Fidelity::Cable => &super::cable::Cable,
-            Fidelity::Static => &super::static_fidelity::Static,
-            Fidelity::Reduced => &super::reduced::Reduced,
-            Fidelity::Beam => &super::chord::BEAM,
-            Fidelity::Span => &super::chord::SPAN,
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use super::super::sections::Fidelity;
 
     #[test]
     fn every_fidelity_is_registered_under_its_name() {
@@ -201,5 +186,19 @@ mod tests {
                 "{name}: {count}"
             );
         }
+    }
+
+    /// Adding a fidelity is its own file and one line in `fidelities!`: each
+    /// name is registered once, and the enum, the names, the list and the
+    /// models all come from that line.
+    #[test]
+    fn a_fidelity_is_registered_on_one_line() {
+        let registry = include_str!("sections.rs");
+        for name in Fidelity::NAMES {
+            let line = format!("= \"{name}\" =>");
+            assert_eq!(registry.matches(&line).count(), 1, "{name}");
+        }
+        assert_eq!(registry.matches("fidelities! {").count(), 1);
+        assert_eq!(Fidelity::ALL.len(), Fidelity::NAMES.len());
     }
 }

@@ -1,6 +1,7 @@
 //! The structure's description: its segments (the stress-free shape), its
 //! sections (cuts by arc length) and each section's fidelity.
 
+use super::model::SectionModel;
 use serde::Deserialize;
 use toml::{Table, Value};
 
@@ -78,55 +79,62 @@ pub(crate) struct Cut {
 }
 
 /// The fidelities a section can take, as written in scenes.
-pub const FIDELITIES: [&str; 7] = Fidelity::NAMES;
+pub const FIDELITIES: [&str; COUNT] = Fidelity::NAMES;
 
-/// Which model a section is.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub(crate) enum Fidelity {
+/// Declares the fidelities: the enum `Fidelity` (which model a section is),
+/// their names as written in scenes (`NAMES`), every one of them (`ALL`) and
+/// each one's model (`model`). A fidelity is one line here and its own file.
+macro_rules! fidelities {
+    ($($(#[doc = $doc:literal])* $variant:ident = $name:literal => $model:expr,)+) => {
+        /// Which model a section is.
+        #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+        pub(crate) enum Fidelity {
+            $($(#[doc = $doc])* $variant,)+
+        }
+
+        /// How many fidelities there are.
+        const COUNT: usize = [$($name),+].len();
+
+        impl Fidelity {
+            /// The fidelities' names as written in scenes (each its model's `name`).
+            pub(super) const NAMES: [&'static str; COUNT] = [$($name),+];
+
+            /// Every fidelity, in the order of `NAMES`.
+            pub(super) const ALL: [Fidelity; COUNT] = [$(Fidelity::$variant),+];
+
+            /// The fidelity's model: what it writes, refuses and reports.
+            pub(super) fn model(self) -> &'static dyn SectionModel {
+                match self {
+                    $(Fidelity::$variant => &$model,)+
+                }
+            }
+        }
+    };
+}
+
+fidelities! {
     /// The geometrically nonlinear section (`nonlinear` unit).
-    Nonlinear,
+    Nonlinear = "nonlinear" => super::nonlinear::NONLINEAR,
     /// The same section linearised about its start (`nonlinear` unit with
     /// `linear = true`): the seabed as springs where it lies, one
     /// back-substitution a step.
-    Linear,
+    Linear = "linear" => super::nonlinear::LINEAR,
     /// Seed 000's cable, linear about its static state, no bending (`cable` unit).
-    Cable,
+    Cable = "cable" => super::cable::Cable,
     /// The section's linearised static response at its end (`static_section`
     /// unit): a laid pipe below the touchdown region.
-    Static,
+    Static = "static" => super::static_fidelity::Static,
     /// The section reduced about its stress-free state (`reduced` unit, seed
     /// 002): loaded at its cuts.
-    Reduced,
+    Reduced = "reduced" => super::reduced::Reduced,
     /// Seed 004's FE beam with tension about the section's chord in the
     /// equilibrium (`chord` unit).
-    Beam,
+    Beam = "beam" => super::chord::BEAM,
     /// The span's transfer matrix with tension about the chord (`chord` unit).
-    Span,
+    Span = "span" => super::chord::SPAN,
 }
 
 impl Fidelity {
-    /// The fidelities' names as written in scenes (each its model's `name`).
-    pub(super) const NAMES: [&'static str; 7] = [
-        "nonlinear",
-        "linear",
-        "cable",
-        "static",
-        "reduced",
-        "beam",
-        "span",
-    ];
-
-    /// Every fidelity, in the order of `NAMES`.
-    pub(super) const ALL: [Fidelity; 7] = [
-        Fidelity::Nonlinear,
-        Fidelity::Linear,
-        Fidelity::Cable,
-        Fidelity::Static,
-        Fidelity::Reduced,
-        Fidelity::Beam,
-        Fidelity::Span,
-    ];
-
     /// The fidelity written `word` at `key`.
     pub(super) fn parse(key: &str, word: &str) -> Result<Fidelity, String> {
         Fidelity::ALL
