@@ -70,6 +70,23 @@ fn compare(file: &str, now: &str) -> Option<String> {
     })
 }
 
+/// The examples with a `[structure]`.
+fn structures() -> Vec<PathBuf> {
+    examples()
+        .into_iter()
+        .filter(|s| has_structure(s))
+        .collect()
+}
+
+/// For each of `scenes`, the difference of its kept file `NAME.SUFFIX` from
+/// what `now` makes of it (or the file written, under `SLENDER_KEEP`).
+fn differences(scenes: &[PathBuf], suffix: &str, now: impl Fn(&Path) -> String) -> Vec<String> {
+    scenes
+        .iter()
+        .filter_map(|scene| compare(&format!("{}.{suffix}", name_of(scene)), &now(scene)))
+        .collect()
+}
+
 /// Fails with every difference found, and how to keep a meant change.
 fn report(differences: Vec<String>) {
     assert!(
@@ -146,32 +163,16 @@ fn outputs_of(scene: &Path) -> String {
 
 #[test]
 fn every_example_runs_as_kept() {
-    let differences = examples()
-        .iter()
-        .filter_map(|scene| {
-            compare(
-                &format!("{}.outputs.txt", name_of(scene)),
-                &outputs_of(scene),
-            )
-        })
-        .collect();
-    report(differences);
+    report(differences(&examples(), "outputs.txt", outputs_of));
 }
 
 #[test]
 fn every_structure_expands_as_kept() {
-    let differences = examples()
-        .iter()
-        .filter(|scene| has_structure(scene))
-        .filter_map(|scene| {
-            let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("{e}"));
-            compare(
-                &format!("{}.expanded.toml", name_of(scene)),
-                loaded.source().expect("the expanded scene"),
-            )
-        })
-        .collect();
-    report(differences);
+    let expansion = |scene: &Path| {
+        let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("{e}"));
+        loaded.source().expect("the expanded scene").to_owned()
+    };
+    report(differences(&structures(), "expanded.toml", expansion));
 }
 
 /// Every fidelity on every section of `scene`, as `--set` writes it: the
@@ -214,15 +215,5 @@ fn fidelities_of(scene: &Path) -> String {
 
 #[test]
 fn every_fidelity_on_every_section_expands_as_kept() {
-    let differences = examples()
-        .iter()
-        .filter(|scene| has_structure(scene))
-        .filter_map(|scene| {
-            compare(
-                &format!("{}.fidelities.txt", name_of(scene)),
-                &fidelities_of(scene),
-            )
-        })
-        .collect();
-    report(differences);
+    report(differences(&structures(), "fidelities.txt", fidelities_of));
 }

@@ -10,6 +10,8 @@ pub mod spec;
 pub mod ssp;
 pub mod structure;
 mod structure_lines;
+#[cfg(test)]
+mod tests;
 mod uncertainty_check;
 
 /// The unit-kind registry (its own crate, `slender-kinds`, so the FMU library
@@ -69,7 +71,7 @@ pub struct Scene {
     source: String,
     /// With a `[structure]`: the units and connections it writes out, as the
     /// tables of the scene's text.
-    written: Option<expansion::Written>,
+    written: Option<structure::Written>,
     /// That text, made when first asked for (`source`).
     expanded: std::sync::OnceLock<String>,
     /// The simulation's start.
@@ -131,10 +133,11 @@ impl Scene {
             .transpose()?;
         let structure = expansion.as_ref().map(|x| x.name.clone());
         let (written, advisories) = match expansion {
-            Some(x) => {
+            Some(mut x) => {
                 spec.units.extend(x.units);
                 spec.connections.extend(x.connections);
-                (Some(x.written), x.advisories)
+                let advisories = std::mem::take(&mut x.written.advisories);
+                (Some(x.written), advisories)
             }
             None => (None, Vec::new()),
         };

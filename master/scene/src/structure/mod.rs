@@ -49,6 +49,7 @@ use toml::{Table, Value};
 /// What a `[structure]` writes out: its units and connections (as tables of
 /// the scene's `[[units]]` and `[[connections]]`), and the advisories on what
 /// its sections' models follow poorly.
+#[derive(Debug)]
 pub struct Written {
     /// The units, as tables of `[[units]]`.
     pub units: Vec<Value>,

@@ -213,7 +213,7 @@ pub(super) fn cuts_of(list: &[SectionFile], length: f64) -> Result<Vec<Cut>, Str
         };
         let elements = match (t.elements, fidelity_elements) {
             (None, elements) => elements,
-            (Some(n), None) => Some(whole(&format!("{key}.elements"), &Value::Integer(n))?),
+            (Some(n), None) => Some(at_least_one(&format!("{key}.elements"), Some(n))?),
             (Some(_), Some(_)) => {
                 return Err(format!(
                     "`{key}`: the element count is given twice (`elements` and `fidelity.elements`)"
@@ -222,7 +222,7 @@ pub(super) fn cuts_of(list: &[SectionFile], length: f64) -> Result<Vec<Cut>, Str
         };
         let substeps = t
             .substeps
-            .map(|n| whole(&format!("{key}.substeps"), &Value::Integer(n)))
+            .map(|n| at_least_one(&format!("{key}.substeps"), Some(n)))
             .transpose()?;
         let physical = match &t.physical {
             None => None,
@@ -373,8 +373,12 @@ fn fmu_of(key: &str, t: &Table) -> Result<WrittenModel, String> {
 
 /// A whole number >= 1 at `key`.
 fn whole(key: &str, v: &Value) -> Result<usize, String> {
-    v.as_integer()
-        .filter(|&n| n >= 1)
+    at_least_one(key, v.as_integer())
+}
+
+/// `n`, read at `key`, as a count >= 1.
+fn at_least_one(key: &str, n: Option<i64>) -> Result<usize, String> {
+    n.filter(|&n| n >= 1)
         .map(|n| n as usize)
         .ok_or(format!("`{key}`: expected a whole number >= 1"))
 }

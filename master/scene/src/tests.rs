@@ -1,0 +1,107 @@
+//! Refusals of a scene as a user writes it, read through `Scene::parse`
+//! (its spec, its `[structure]` and the units it writes out), and the
+//! helpers the crate's tests share.
+
+use crate::{Scene, SceneError};
+use std::path::Path;
+
+/// A structure example the tests edit: a hanging pipe in three sections.
+pub(crate) const HANGING_PIPE: &str = include_str!("../../../examples/structure_hanging_pipe.toml");
+
+/// The scene `text`, named `pipe.toml` in messages.
+pub(crate) fn parse(text: &str) -> Result<Scene, SceneError> {
+    Scene::parse(Path::new("pipe.toml"), text.to_owned())
+}
+
+/// The 1-based number of the first line of `text` containing `needle`.
+pub(crate) fn line_of(text: &str, needle: &str) -> usize {
+    1 + text
+        .lines()
+        .position(|l| l.contains(needle))
+        .expect("the line")
+}
+
+#[test]
+fn a_section_key_it_does_not_take_is_refused_at_its_line() {
+    // It was silently ignored: a misspelt `elements` left the mesh as it was.
+    let text = HANGING_PIPE.replacen(
+        "[[structure.sections]]",
+        "[[structure.sections]]\nelemnts = 10",
+        1,
+    );
+    let error = parse(&text).expect_err("an unknown key").to_string();
+    let line = line_of(&text, "elemnts");
+    assert!(error.starts_with(&format!("pipe.toml:{line}:")), "{error}");
+    assert!(
+        error.contains("`structure.sections[0].elemnts`: unknown field"),
+        "{error}"
+    );
+    assert!(error.contains("`elements`"), "the keys it takes: {error}");
+}
+
+#[test]
+fn a_structure_value_of_the_wrong_type_says_what_was_expected() {
+    let text = HANGING_PIPE.replacen(
+        "[[structure.sections]]",
+        "[[structure.sections]]\nsubsteps = 2.5",
+        1,
+    );
+    let error = parse(&text).expect_err("a fraction").to_string();
+    assert!(
+        error.contains("`structure.sections[0].substeps`"),
+        "{error}"
+    );
+    assert!(error.contains("expected a whole number"), "{error}");
+    assert!(!error.contains("i64"), "Rust words: {error}");
+    let text = HANGING_PIPE.replacen("\n[structure]\n", "\n[structure]\nnmae = \"x\"\n", 1);
+    let error = parse(&text).expect_err("an unknown key").to_string();
+    assert!(
+        error.starts_with(&format!("pipe.toml:{}:", line_of(&text, "nmae"))),
+        "{error}"
+    );
+    assert!(
+        error.contains("unknown field `nmae`, expected one of `name`"),
+        "{error}"
+    );
+}
+
+#[test]
+fn an_end_motion_fade_in_that_is_not_a_time_is_refused() {
+    // It was taken: inf removed the motion, NaN and -1 left it unfaded.
+    let motion = "amplitude = 0.5, angular_frequency = 1.5";
+    for fade in ["inf", "nan", "-1.0"] {
+        let text = HANGING_PIPE.replacen(motion, &format!("{motion}, fade_in = {fade}"), 1);
+        let error = parse(&text).expect_err(fade).to_string();
+        assert!(
+            error.contains("ends.start.x.displacement.fade_in"),
+            "{fade}: {error}"
+        );
+        assert!(error.contains("fade_in >= 0 (s)"), "{fade}: {error}");
+    }
+}
+
+#[test]
+fn a_duration_shorter_than_a_step_is_refused() {
+    // 1e-12 s rounded to no step at all, and the run "completed".
+    let text = HANGING_PIPE.replacen("duration = ", "duration = 1e-12 # ", 1);
+    let error = parse(&text).expect_err("no step").to_string();
+    assert!(error.contains("simulation.duration"), "{error}");
+    assert!(error.contains("shorter than one step"), "{error}");
+}
+
+#[test]
+fn a_structure_without_segments_or_with_an_angle_past_a_turn_is_refused() {
+    let segments = HANGING_PIPE
+        .lines()
+        .find(|l| l.starts_with("segments = "))
+        .expect("segments");
+    let text = HANGING_PIPE.replacen(segments, "segments = []", 1);
+    let error = parse(&text).expect_err("no segment").to_string();
+    assert!(error.contains("at least one segment"), "{error}");
+    let text = HANGING_PIPE.replacen("angle_deg = -90.0", "angle_deg = 1e308", 1);
+    let error = parse(&text).expect_err("1e308 deg").to_string();
+    assert!(
+        error.contains("segments[0].angle_deg") && error.contains("-360 to 360 deg"),
+        "{error}"
+    );
+}
