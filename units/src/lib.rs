@@ -22,6 +22,7 @@ pub mod cable;
 pub mod chord;
 pub mod contact;
 pub mod integrators;
+pub mod line3d;
 pub mod nonlinear;
 pub mod numerics;
 pub mod reduced;

@@ -1,0 +1,347 @@
+//! What the surroundings do to each node of the 3D line: Morison drag on the
+//! velocity relative to the water (current by depth plus Airy waves), the
+//! waves' inertia force, and the seabed (penalty contact normal to its plane,
+//! Coulomb friction along and across the line regularised by a stick
+//! velocity). Each is skipped when the scene does not ask for it. Forces are
+//! lumped at the nodes over their tributary length.
+
+use super::mechanics::{Tangent, add_block, add_node, node, normal_projector};
+use super::params::{Line3dParams, Seabed};
+use super::waves::AiryWaves;
+use crate::numerics::banded::SymmetricBand;
+use nalgebra::{Matrix3, Vector3};
+
+/// Penetration (m) over which the seabed's spring stiffens from 0 to its
+/// stiffness.
+pub const SMOOTHING: f64 = 1e-2;
+
+/// The seabed plane and its laws.
+#[derive(Clone, Debug)]
+pub struct SeabedPlane {
+    /// A point of the plane (m) and its upward unit normal.
+    pub point: Vector3<f64>,
+    pub normal: Vector3<f64>,
+    /// Per unit length of line: stiffness (N/m^2), damping (N s/m^2).
+    stiffness: f64,
+    damping: f64,
+    friction: [f64; 2],
+    stick_velocity: f64,
+}
+
+impl SeabedPlane {
+    fn new(s: &Seabed) -> SeabedPlane {
+        let normal = Vector3::new(-s.slope[0], -s.slope[1], 1.0).normalize();
+        SeabedPlane {
+            point: Vector3::new(0.0, 0.0, -s.depth),
+            normal,
+            stiffness: s.stiffness,
+            damping: s.damping,
+            friction: [s.friction_axial, s.friction_lateral],
+            stick_velocity: s.stick_velocity,
+        }
+    }
+
+    /// Contact pressure per unit length (N/m) at penetration `d` (m) and
+    /// its slope: the penalty spring with its first `SMOOTHING` metres
+    /// quadratic (a force with a continuous derivative, so Newton does not
+    /// cycle on a node at the surface), linear beyond.
+    pub fn penalty(&self, d: f64) -> (f64, f64) {
+        if d <= 0.0 {
+            (0.0, 0.0)
+        } else if d < SMOOTHING {
+            (
+                self.stiffness * d * d / (2.0 * SMOOTHING),
+                self.stiffness * d / SMOOTHING,
+            )
+        } else {
+            (self.stiffness * (d - 0.5 * SMOOTHING), self.stiffness)
+        }
+    }
+
+    /// The spring's energy per unit length (J/m) at penetration `d` (m).
+    pub fn penalty_energy(&self, d: f64) -> f64 {
+        if d <= 0.0 {
+            0.0
+        } else if d < SMOOTHING {
+            self.stiffness * d.powi(3) / (6.0 * SMOOTHING)
+        } else {
+            let d0 = SMOOTHING;
+            self.stiffness * (d0 * d0 / 6.0 + 0.5 * (d - 0.5 * d0).powi(2) - d0 * d0 / 8.0)
+        }
+    }
+
+    /// Signed height of `p` above the plane (m; negative inside).
+    pub fn height(&self, p: &Vector3<f64>) -> f64 {
+        self.normal.dot(&(p - self.point))
+    }
+}
+
+/// The forces on one node (N), by cause.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct NodeForces {
+    /// Drag and the waves' inertia force.
+    pub hydrodynamic: Vector3<f64>,
+    /// The seabed's spring (conservative) and its damper.
+    pub seabed_spring: Vector3<f64>,
+    pub seabed_damper: Vector3<f64>,
+    pub friction: Vector3<f64>,
+}
+
+/// The surroundings of a line.
+#[derive(Clone, Debug)]
+pub struct Environment {
+    /// 1/2 rho D Cn and 1/2 rho pi D Ct (kg/m^2).
+    drag: [f64; 2],
+    /// rho A (1 + Ca_n) and rho A Ca_t (kg/m): the waves' inertia per length.
+    inertia: [f64; 2],
+    /// Depth (m) and current velocity (m/s), by depth.
+    current: Vec<(f64, Vector3<f64>)>,
+    waves: Option<AiryWaves>,
+    pub seabed: Option<SeabedPlane>,
+    /// Tributary length per node (m).
+    tributary: Vec<f64>,
+}
+
+impl Environment {
+    /// From the parameters (checked) and the mesh.
+    pub fn new(p: &Line3dParams, tributary: Vec<f64>) -> Environment {
+        let area = std::f64::consts::PI * p.diameter * p.diameter / 4.0;
+        let rho = p.water_density;
+        let current = p
+            .current
+            .iter()
+            .map(|c| {
+                let (s, co) = c.heading_deg.to_radians().sin_cos();
+                (c.depth, Vector3::new(c.speed * co, c.speed * s, 0.0))
+            })
+            .collect();
+        Environment {
+            drag: [
+                0.5 * rho * p.diameter * p.drag_normal,
+                0.5 * rho * std::f64::consts::PI * p.diameter * p.drag_tangential,
+            ],
+            inertia: [
+                rho * area * (1.0 + p.added_mass_normal),
+                rho * area * p.added_mass_tangential,
+            ],
+            current,
+            waves: p.waves.as_ref().map(AiryWaves::new),
+            seabed: p.seabed.as_ref().map(SeabedPlane::new),
+            tributary,
+        }
+    }
+
+    /// Tributary length of node `i` (m).
+    pub fn tributary(&self, i: usize) -> f64 {
+        self.tributary[i]
+    }
+
+    /// Energy stored in the seabed's spring (J): 1/2 k l d^2 per node
+    /// inside the plane.
+    pub fn seabed_energy(&self, seabed: &SeabedPlane, q: &[f64]) -> f64 {
+        (0..self.tributary.len())
+            .map(|i| seabed.penalty_energy(-seabed.height(&node(q, i))) * self.tributary[i])
+            .sum()
+    }
+
+    /// The same surroundings without waves (for the statics).
+    pub fn without_waves(&self) -> Environment {
+        Environment {
+            waves: None,
+            ..self.clone()
+        }
+    }
+
+    /// The current's velocity at height z (m/s): linear in depth between the
+    /// table's rows, the end rows' values beyond them.
+    pub fn current_at(&self, z: f64) -> Vector3<f64> {
+        let depth = -z;
+        let c = &self.current;
+        match c.iter().position(|(d, _)| *d >= depth) {
+            None => c.last().map_or(Vector3::zeros(), |r| r.1),
+            Some(0) => c[0].1,
+            Some(i) => {
+                let ((d0, u0), (d1, u1)) = (c[i - 1], c[i]);
+                let s = (depth - d0) / (d1 - d0);
+                u0 + (u1 - u0) * s
+            }
+        }
+    }
+
+    /// Whether the water moves or drags (else drag is skipped).
+    fn hydrodynamic(&self) -> bool {
+        self.drag[0] + self.drag[1] > 0.0 || self.waves.is_some()
+    }
+
+    /// Adds `scale` times minus the surroundings' forces to `force` (they
+    /// enter as `M a + g = f`, g holding minus the forces), and their tangent
+    /// (position derivatives of the contact spring; velocity derivatives of
+    /// drag, seabed damping and friction) to the band.
+    pub fn add_force(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        scale: f64,
+        mut tangent: Tangent<'_>,
+        force: &mut [f64],
+    ) {
+        if !self.hydrodynamic() && self.seabed.is_none() {
+            return;
+        }
+        for i in 0..self.tributary.len() {
+            let band = tangent.as_mut().map(|(b, k, c)| (&mut **b, *k, *c));
+            let f = self.node_forces(q, v, t, i, band);
+            let total = f.hydrodynamic + f.seabed_spring + f.seabed_damper + f.friction;
+            add_node(force, i, &total, -scale);
+        }
+    }
+
+    /// The forces on node `i`, and with `tangent` minus their derivatives
+    /// added to the band (scaled by its factors).
+    pub fn node_forces(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        i: usize,
+        mut tangent: Tangent<'_>,
+    ) -> NodeForces {
+        let at = At {
+            x: node(q, i),
+            velocity: node(v, i),
+            axis: tangent_at(q, i, self.tributary.len()),
+            t,
+            length: self.tributary[i],
+            node: i,
+        };
+        let mut out = NodeForces::default();
+        if self.hydrodynamic() {
+            let band = tangent.as_mut().map(|(b, _, c)| (&mut **b, *c));
+            out.hydrodynamic = self.hydrodynamics(&at, band);
+        }
+        if let Some(seabed) = &self.seabed {
+            seabed_forces(seabed, &at, tangent, &mut out);
+        }
+        out
+    }
+
+    /// Drag on the velocity relative to the water and the waves' inertia
+    /// (none on a node above the surface); with `band`, the drag's velocity
+    /// derivative times the damping factor.
+    fn hydrodynamics(&self, at: &At, band: Option<(&mut SymmetricBand, f64)>) -> Vector3<f64> {
+        let mut water = self.current_at(at.x.z);
+        let mut inertia = Vector3::zeros();
+        match &self.waves {
+            Some(waves) => {
+                let Some(k) = waves.at(&at.x, at.t) else {
+                    return Vector3::zeros();
+                };
+                water += k.velocity;
+                let (along, normal) = split(&k.acceleration, &at.axis);
+                inertia =
+                    (normal * self.inertia[0] + at.axis * (along * self.inertia[1])) * at.length;
+            }
+            None if at.x.z > 0.0 => return Vector3::zeros(),
+            None => {}
+        }
+        let (along, normal) = split(&(water - at.velocity), &at.axis);
+        let normal_speed = normal.norm();
+        let [kn, kt] = self.drag.map(|k| k * at.length);
+        let drag = normal * (kn * normal_speed) + at.axis * (kt * along.abs() * along);
+        if let Some((band, c)) = band {
+            let mut m = at.axis * at.axis.transpose() * (2.0 * kt * along.abs());
+            if normal_speed > 0.0 {
+                m += (normal_projector(&at.axis) * normal_speed
+                    + normal * normal.transpose() / normal_speed)
+                    * kn;
+            }
+            add_block(band, at.node, at.node, &m, c);
+        }
+        drag + inertia
+    }
+}
+
+/// A node's position (m), velocity (m/s), unit tangent, the time (s), its
+/// tributary length (m) and index.
+struct At {
+    x: Vector3<f64>,
+    velocity: Vector3<f64>,
+    axis: Vector3<f64>,
+    t: f64,
+    length: f64,
+    node: usize,
+}
+
+/// Unit tangent at node `i` of `nodes`: along the chord of its neighbours.
+pub fn tangent_at(q: &[f64], i: usize, nodes: usize) -> Vector3<f64> {
+    let (a, b) = match i {
+        0 => (0, 1),
+        i if i + 1 == nodes => (i - 1, i),
+        i => (i - 1, i + 1),
+    };
+    (node(q, b) - node(q, a)).normalize()
+}
+
+/// Split of `u` into its parts along the unit `axis` and normal to it.
+fn split(u: &Vector3<f64>, axis: &Vector3<f64>) -> (f64, Vector3<f64>) {
+    let along = u.dot(axis);
+    (along, u - axis * along)
+}
+
+/// The seabed's spring, damper and friction on a node (zero off the seabed).
+fn seabed_forces(s: &SeabedPlane, at: &At, tangent: Tangent<'_>, out: &mut NodeForces) {
+    let (vel, axis, length) = (&at.velocity, &at.axis, at.length);
+    let height = s.height(&at.x);
+    if height >= 0.0 {
+        return;
+    }
+    let n = s.normal;
+    let (pressure, slope) = s.penalty(-height);
+    let normal_force = pressure * length;
+    out.seabed_spring = n * normal_force;
+    // The damper engages with the spring, so no force jumps at the surface.
+    let damping_rate = s.damping * length * (-height / SMOOTHING).min(1.0);
+    out.seabed_damper = -n * (damping_rate * vel.dot(&n));
+    // Sliding directions: the line's axis in the plane, and across it.
+    let along = (axis - n * axis.dot(&n))
+        .try_normalize(1e-12)
+        .unwrap_or_else(|| any_normal(&n));
+    let across = n.cross(&along);
+    let mut damping = Matrix3::zeros();
+    for (dir, mu) in [(along, s.friction[0]), (across, s.friction[1])] {
+        if mu == 0.0 {
+            continue;
+        }
+        // mu N tanh(v / v_stick): smooth, so Newton does not cycle at the
+        // stick velocity; its slope at rest is mu N / v_stick.
+        let limit = mu * normal_force;
+        let slip = vel.dot(&dir) / s.stick_velocity;
+        let ratio = slip.tanh();
+        out.friction -= dir * (limit * ratio);
+        // Newton's slope: the tangent while sticking, the secant (force over
+        // velocity) while sliding, where the tangent vanishes and Newton would
+        // overshoot into the other regime and cycle.
+        let slope = if slip.abs() < 1e-3 {
+            1.0
+        } else {
+            (1.0 - ratio * ratio).max(ratio / slip)
+        };
+        damping += dir * dir.transpose() * (limit * slope / s.stick_velocity);
+    }
+    if let Some((band, k, c)) = tangent {
+        let nn = n * n.transpose();
+        let m = nn * (k * slope * length + c * damping_rate) + damping * c;
+        add_block(band, at.node, at.node, &m, 1.0);
+    }
+}
+
+/// Some unit vector normal to `n`.
+fn any_normal(n: &Vector3<f64>) -> Vector3<f64> {
+    let trial = if n.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    normal_projector(n) * trial / (normal_projector(n) * trial).norm()
+}

@@ -1,0 +1,333 @@
+//! The 3D line's dynamics: a coupling step cut into internal steps, each an
+//! HHT-alpha step with Newton; the ends' prescribed motion and loads; the
+//! force at each step's end, which gives the ends' reactions, the next step's
+//! start force and the energy ledger (work by the trapezoidal rule).
+
+use super::Line3d;
+use super::mechanics::BAND;
+use super::mechanics::{DOF, node};
+use super::params::{EndCondition, EndSpec};
+use crate::contract::{Inputs, UnitError, require_finite_state};
+use crate::integrators::hht::{
+    Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales, motion_fields,
+};
+use crate::numerics::banded::SymmetricBand;
+
+/// Step buffers, sized once.
+#[derive(Default)]
+pub(super) struct Work {
+    f0: Vec<f64>,
+    f1: Vec<f64>,
+    g0: Vec<f64>,
+    held: Vec<(usize, [f64; 3])>,
+}
+
+/// The energy ledger (J).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
+pub(super) struct Ledger {
+    /// Kinetic, strain and potential energy at the start of the dynamics.
+    pub initial: f64,
+    /// Work done on the line since by its ends, the water (drag and wave
+    /// inertia), seabed friction, the seabed's damper and the axial damper.
+    pub work: [f64; 5],
+    /// The powers (W) of the same at the current time.
+    pub power: [f64; 5],
+}
+
+/// How many times an internal step is halved before Newton's failure is
+/// reported (down to 1/64 of it).
+const HALVINGS: u32 = 6;
+
+/// Where each power goes in the ledger.
+const ENDS: usize = 0;
+const WATER: usize = 1;
+pub(super) const FRICTION: usize = 2;
+const SEABED_DAMPER: usize = 3;
+const AXIAL_DAMPER: usize = 4;
+
+/// Position, velocity and acceleration (m, m/s, m/s^2) of a fixed or moved end at `t`.
+pub(super) fn end_motion(end: &EndSpec, t: f64) -> [[f64; 3]; 3] {
+    let mut out = [end.position, [0.0; 3], [0.0; 3]];
+    for (axis, sines) in end.motion.iter().enumerate() {
+        for s in sines {
+            let [x, v, a] = s.eval(t);
+            out[0][axis] += x;
+            out[1][axis] += v;
+            out[2][axis] += a;
+        }
+    }
+    out
+}
+
+impl Line3d {
+    /// Sets the start of the dynamics at the static shape `q`.
+    pub(super) fn start_dynamics(&mut self, q: Vec<f64>, inputs: &Inputs<'_>, t0: f64) {
+        let n = q.len();
+        self.state.q = q;
+        self.state.v = vec![0.0; n];
+        self.state.a = vec![0.0; n];
+        self.state.t = t0;
+        self.state.newton_iterations = 0;
+        for (k, end) in [&self.params.start, &self.params.end].iter().enumerate() {
+            let node = if k == 0 { 0 } else { self.mechanics.nodes - 1 };
+            let velocity = match (end.condition, self.first_input[k]) {
+                (EndCondition::Velocity, Some(first)) => {
+                    [0, 1, 2].map(|c| inputs.at(first + c, 1.0))
+                }
+                _ => end_motion(end, t0)[1],
+            };
+            if end.condition != EndCondition::Force {
+                self.state.v[DOF * node..DOF * node + DOF].copy_from_slice(&velocity);
+            }
+        }
+        let mut loads = vec![0.0; n];
+        self.end_loads(inputs, 1.0, &mut loads);
+        let q = std::mem::take(&mut self.state.q);
+        let v = std::mem::take(&mut self.state.v);
+        self.evaluate_end(&q, &v, t0, &loads);
+        self.state.q = q;
+        self.state.v = v;
+        self.state.ledger = Ledger {
+            initial: self.energies().iter().sum(),
+            ..Ledger::default()
+        };
+        self.evaluate_end_powers();
+    }
+
+    /// One coupling step from `t` of length `h` (s); returns Newton's iterations.
+    pub(super) fn step_coupling(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: &Inputs<'_>,
+    ) -> Result<u32, UnitError> {
+        let max = self.params.max_step;
+        let count = if max > 0.0 {
+            (h / max - 1e-9).ceil().max(1.0) as usize
+        } else {
+            1
+        };
+        let mut iterations = 0;
+        for k in 0..count {
+            let (s0, s1) = (k as f64 / count as f64, (k + 1) as f64 / count as f64);
+            iterations += self.halving_step(t, h, inputs, [s0, s1], 0)?;
+        }
+        self.state.newton_iterations = iterations;
+        Ok(iterations)
+    }
+
+    /// The internal step over fractions `s` of the coupling step [t, t + h];
+    /// where Newton fails (a snap, a contact or a slack part changing state
+    /// within the step), the step is repeated as two halves, down to
+    /// 1/2^HALVINGS of it, before the failure is reported.
+    fn halving_step(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: &Inputs<'_>,
+        s: [f64; 2],
+        depth: u32,
+    ) -> Result<u32, UnitError> {
+        let t0 = t + s[0] * h;
+        let length = (s[1] - s[0]) * h;
+        match self.internal_step(t0, length, inputs, s) {
+            Ok(iterations) => Ok(iterations),
+            Err(error) if depth >= HALVINGS => Err(error),
+            Err(_) => {
+                let middle = 0.5 * (s[0] + s[1]);
+                let first = self.halving_step(t, h, inputs, [s[0], middle], depth + 1)?;
+                Ok(first + self.halving_step(t, h, inputs, [middle, s[1]], depth + 1)?)
+            }
+        }
+    }
+
+    /// One HHT-alpha step from `t0` of length `h`, the inputs at fractions `s`
+    /// of the coupling step.
+    fn internal_step(
+        &mut self,
+        t0: f64,
+        h: f64,
+        inputs: &Inputs<'_>,
+        s: [f64; 2],
+    ) -> Result<u32, UnitError> {
+        let t1 = t0 + h;
+        let n = self.state.q.len();
+        let mut w = std::mem::take(&mut self.work);
+        w.f0.resize(n, 0.0);
+        w.f1.resize(n, 0.0);
+        self.end_loads(inputs, s[0], &mut w.f0);
+        self.end_loads(inputs, s[1], &mut w.f1);
+        let loads1 = w.f1.clone();
+        for (f, g) in
+            w.f0.iter_mut()
+                .chain(w.f1.iter_mut())
+                .zip(self.weight.iter().cycle())
+        {
+            *f += g;
+        }
+        w.g0.clone_from(&self.state.force);
+        self.held_motion(inputs, (t1, h), s, &mut w.held);
+        let mut hht = std::mem::take(&mut self.hht);
+        let loads = StepLoads {
+            t0,
+            t1,
+            h,
+            f0: &w.f0,
+            f1: &w.f1,
+            g0: Some(&w.g0),
+            held: &w.held,
+        };
+        let newton = NewtonSettings {
+            tolerance: self.params.tolerance,
+            max_iterations: self.params.max_iterations,
+        };
+        let result = hht.step(self, &loads, newton);
+        self.hht = hht;
+        self.work = w;
+        let iterations = result?;
+        require_finite_state("line3d positions", &self.state.q)?;
+        self.state.t = t1;
+        let before = self.state.ledger.power;
+        let (q, v) = (
+            std::mem::take(&mut self.state.q),
+            std::mem::take(&mut self.state.v),
+        );
+        self.evaluate_end(&q, &v, t1, &loads1);
+        self.state.q = q;
+        self.state.v = v;
+        self.evaluate_end_powers();
+        let ledger = &mut self.state.ledger;
+        for ((work, start), end) in ledger.work.iter_mut().zip(before).zip(ledger.power) {
+            *work += 0.5 * h * (start + end);
+        }
+        Ok(iterations)
+    }
+
+    /// The prescribed motion of the held DOFs at the step's end.
+    fn held_motion(
+        &self,
+        inputs: &Inputs<'_>,
+        (t1, h): (f64, f64),
+        s: [f64; 2],
+        held: &mut Vec<(usize, [f64; 3])>,
+    ) {
+        held.clear();
+        for (k, end) in [&self.params.start, &self.params.end].iter().enumerate() {
+            let node = if k == 0 { 0 } else { self.mechanics.nodes - 1 };
+            for c in 0..DOF {
+                let d = DOF * node + c;
+                let motion = match (end.condition, self.first_input[k]) {
+                    (EndCondition::Force, _) => continue,
+                    (EndCondition::Velocity, Some(first)) => {
+                        let (v0, v1) = (inputs.at(first + c, s[0]), inputs.at(first + c, s[1]));
+                        [self.state.q[d] + 0.5 * h * (v0 + v1), v1, (v1 - v0) / h]
+                    }
+                    _ => {
+                        let m = end_motion(end, t1);
+                        [m[0][c], m[1][c], m[2][c]]
+                    }
+                };
+                held.push((d, motion));
+            }
+        }
+    }
+
+    /// The force g at (q, v, t) into the state, the reactions of the held
+    /// ends (M a + g - f, reversed) and the loaded ends' loads (reversed).
+    fn evaluate_end(&mut self, q: &[f64], v: &[f64], t: f64, loads: &[f64]) {
+        let mut force = std::mem::take(&mut self.state.force);
+        force.resize(q.len(), 0.0);
+        force.fill(0.0);
+        self.mechanics.add_force(q, v, 1.0, None, &mut force);
+        self.environment.add_force(q, v, t, 1.0, None, &mut force);
+        let n = q.len();
+        for (k, end) in [&self.params.start, &self.params.end].iter().enumerate() {
+            let node = if k == 0 { 0 } else { self.mechanics.nodes - 1 };
+            for c in 0..DOF {
+                let d = DOF * node + c;
+                let columns = d.saturating_sub(BAND)..(d + BAND + 1).min(n);
+                let ma: f64 = columns.map(|j| self.mass.get(d, j) * self.state.a[j]).sum();
+                self.state.reaction[DOF * k + c] = match end.condition {
+                    EndCondition::Force => -loads[d],
+                    _ => -(ma + force[d] - self.weight[d]),
+                };
+            }
+        }
+        self.state.force = force;
+    }
+
+    /// The powers (W) at the current state into the ledger.
+    fn evaluate_end_powers(&mut self) {
+        let (q, v, t) = (&self.state.q, &self.state.v, self.state.t);
+        let mut power = [0.0; 5];
+        let last = self.mechanics.nodes - 1;
+        for (k, node_index) in [0, last].into_iter().enumerate() {
+            let on_line: nalgebra::Vector3<f64> =
+                -nalgebra::Vector3::from_column_slice(&self.state.reaction[DOF * k..DOF * k + DOF]);
+            power[ENDS] += on_line.dot(&node(v, node_index));
+        }
+        for i in 0..self.mechanics.nodes {
+            let f = self.environment.node_forces(q, v, t, i, None);
+            let vel = node(v, i);
+            power[WATER] += f.hydrodynamic.dot(&vel);
+            power[FRICTION] += f.friction.dot(&vel);
+            power[SEABED_DAMPER] += f.seabed_damper.dot(&vel);
+        }
+        power[AXIAL_DAMPER] = self.mechanics.damper_power(q, v);
+        self.state.ledger.power = power;
+    }
+
+    /// Kinetic, strain and potential energy (J; potential of the weight and
+    /// of the seabed's spring).
+    pub(super) fn energies(&self) -> [f64; 3] {
+        let q = &self.state.q;
+        let kinetic = 0.5 * self.mass.quadratic_form(&self.state.v);
+        let strain = self.mechanics.strain_energy(q);
+        let mut potential: f64 = -self.weight.iter().zip(q).map(|(w, x)| w * x).sum::<f64>();
+        if let Some(seabed) = &self.environment.seabed {
+            potential += self.environment.seabed_energy(seabed, q);
+        }
+        [kinetic, strain, potential]
+    }
+}
+
+impl SecondOrderSystem for Line3d {
+    fn label(&self) -> &str {
+        "line3d"
+    }
+
+    fn matrices(&self) -> Matrices<'_> {
+        Matrices {
+            mass: &self.mass,
+            damping: None,
+            stiffness: None,
+        }
+    }
+
+    motion_fields!(state);
+
+    fn is_linear(&self) -> bool {
+        false
+    }
+
+    fn nonlinear_force(
+        &mut self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        tangent: Option<(&mut SymmetricBand, TangentScales)>,
+        force: &mut Vec<f64>,
+    ) {
+        force.resize(q.len(), 0.0);
+        force.fill(0.0);
+        let (mut band, k, c) = match tangent {
+            Some((band, s)) => (Some(band), s.stiffness, s.damping),
+            None => (None, 1.0, 0.0),
+        };
+        let mechanics_tangent = band.as_mut().map(|b| (&mut **b, k, c));
+        self.mechanics.add_force(q, v, k, mechanics_tangent, force);
+        let environment_tangent = band.map(|b| (b, k, c));
+        self.environment
+            .add_force(q, v, t, k, environment_tangent, force);
+    }
+}
