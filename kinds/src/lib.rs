@@ -20,6 +20,7 @@ use slender_units::benchmark::algebraic_loop::{
 use slender_units::benchmark::oscillator::{Oscillator, OscillatorParams};
 use slender_units::cable::{Cable, CableParams, Effects};
 use slender_units::chord::{Chord, ChordParams};
+use slender_units::line3d::{Line3d, Line3dParams};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::reduced::unit::{ReducedParams, ReducedUnit};
 use slender_units::signal::artefact::{Artefact, ArtefactParams};
@@ -119,6 +120,13 @@ pub const KINDS: &[Kind] = &[
         summary: "geometrically nonlinear planar section: co-rotational or seed 002 beam-columns (EA, EI), weight, drag, added mass, contact; static Newton, HHT-alpha, energy-conserving or central differences",
         effects: &[],
         build: |p, _| Ok(Box::new(NonlinearSection::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "line3d",
+        parameters: field_names::<Line3dParams>,
+        summary: "a slender line in 3D (mooring line, riser): rotation-free nodes, EA and EI (no torsion), Morison drag and added mass, current by depth and heading, Airy waves, sloped seabed with axial and lateral friction; static Newton from the elastic catenary, HHT-alpha",
+        effects: &[],
+        build: |p, _| Ok(Box::new(Line3d::new(parameters(p)?)?)),
     },
     Kind {
         name: "span",

@@ -30,6 +30,26 @@ pub fn inline(kind: &str, parameters: &str) -> ExportConfig {
     }
 }
 
+/// A 3D line with a coupled velocity end, seabed friction, a current and
+/// waves: every switch of `line3d` on.
+pub const LINE3D_SAMPLE: &str = r#"
+length = 60.0
+elements = 12
+axial_stiffness = 1e8
+bending_stiffness = 1e4
+mass_per_length = 20.0
+submerged_weight = 150.0
+diameter = 0.1
+drag_normal = 1.2
+drag_tangential = 0.01
+added_mass_normal = 1.0
+start = { position = [0.0, 0.0, -30.0] }
+end = { position = [40.0, 5.0, -2.0], condition = "velocity" }
+seabed = { depth = 30.0, stiffness = 1e6, damping = 1e3, friction_axial = 0.5, friction_lateral = 0.8 }
+current = [{ depth = 0.0, speed = 0.5, heading_deg = 60.0 }, { depth = 30.0, speed = 0.1, heading_deg = 20.0 }]
+waves = { sines = [{ amplitude = 1.0, angular_frequency = 0.8 }], heading_deg = 30.0, water_depth = 30.0 }
+"#;
+
 /// A hanging line with every effect on: weight, drag in a current, added mass,
 /// Rayleigh damping, contact, a coupled velocity and a coupled force.
 pub const NONLINEAR_SAMPLE: &str = r#"
@@ -89,6 +109,8 @@ pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
             from_scene("examples/pipe_span_coupling.toml", "upper"),
         ),
         ("nonlinear", inline("nonlinear", NONLINEAR_SAMPLE)),
+        ("line3d", from_scene("examples/riser_3d.toml", "riser")),
+        ("line3d coupled", inline("line3d", LINE3D_SAMPLE)),
         ("nonlinear linear", inline("nonlinear", &linear_sample())),
         ("nonlinear reduced", inline("nonlinear", &reduced_sample())),
         ("nonlinear sampled", inline("nonlinear", &sampled_sample())),

@@ -232,4 +232,6 @@ impl Unit for Line3d {
 }
 
 #[cfg(test)]
+mod planar_tests;
+#[cfg(test)]
 mod tests;

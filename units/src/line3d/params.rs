@@ -92,6 +92,10 @@ pub struct EndSpec {
     /// With `condition = "motion"`: sines added to the position per axis (m).
     #[serde(default)]
     pub motion: [Vec<Sine>; 3],
+    /// Seconds over which the motion's sines grow from nothing (a half
+    /// cosine), so a run does not start with a jump in velocity; 0: none.
+    #[serde(default)]
+    pub fade_in: f64,
 }
 
 /// How an end is held or loaded.
@@ -301,6 +305,7 @@ impl EndSpec {
         for (axis, &p) in ["x", "y", "z"].iter().zip(&self.position) {
             require_finite(&format!("{side}.position.{axis}"), p)?;
         }
+        require_non_negative(&format!("{side}.fade_in"), self.fade_in)?;
         let has_motion = self.motion.iter().any(|m| !m.is_empty());
         if has_motion != (self.condition == EndCondition::Motion) {
             return Err(UnitError::parameter(

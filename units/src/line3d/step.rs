@@ -45,18 +45,31 @@ pub(super) const FRICTION: usize = 2;
 const SEABED_DAMPER: usize = 3;
 const AXIAL_DAMPER: usize = 4;
 
-/// Position, velocity and acceleration (m, m/s, m/s^2) of a fixed or moved end at `t`.
+/// Position, velocity and acceleration (m, m/s, m/s^2) of a fixed or moved
+/// end at `t` (s from the start of the run), the sines faded in.
 pub(super) fn end_motion(end: &EndSpec, t: f64) -> [[f64; 3]; 3] {
+    let [r, dr, ddr] = fade(end.fade_in, t);
     let mut out = [end.position, [0.0; 3], [0.0; 3]];
     for (axis, sines) in end.motion.iter().enumerate() {
         for s in sines {
             let [x, v, a] = s.eval(t);
-            out[0][axis] += x;
-            out[1][axis] += v;
-            out[2][axis] += a;
+            out[0][axis] += r * x;
+            out[1][axis] += dr * x + r * v;
+            out[2][axis] += ddr * x + 2.0 * dr * v + r * a;
         }
     }
     out
+}
+
+/// The fade-in factor over `duration` (s) at `t` and its two derivatives:
+/// (1 - cos(pi t / duration)) / 2, then 1.
+fn fade(duration: f64, t: f64) -> [f64; 3] {
+    if duration <= 0.0 || t >= duration {
+        return [1.0, 0.0, 0.0];
+    }
+    let w = std::f64::consts::PI / duration;
+    let (s, c) = (w * t.max(0.0)).sin_cos();
+    [0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c]
 }
 
 impl Line3d {
@@ -80,11 +93,14 @@ impl Line3d {
                 self.state.v[DOF * node..DOF * node + DOF].copy_from_slice(&velocity);
             }
         }
-        let mut loads = vec![0.0; n];
-        self.end_loads(inputs, 1.0, &mut loads);
+        let mut external = vec![0.0; n];
+        self.end_loads(inputs, 1.0, &mut external);
+        for (f, w) in external.iter_mut().zip(&self.weight) {
+            *f += w;
+        }
         let q = std::mem::take(&mut self.state.q);
         let v = std::mem::take(&mut self.state.v);
-        self.evaluate_end(&q, &v, t0, &loads);
+        self.evaluate_end(&q, &v, t0, &external);
         self.state.q = q;
         self.state.v = v;
         self.state.ledger = Ledger {
@@ -157,7 +173,6 @@ impl Line3d {
         w.f1.resize(n, 0.0);
         self.end_loads(inputs, s[0], &mut w.f0);
         self.end_loads(inputs, s[1], &mut w.f1);
-        let loads1 = w.f1.clone();
         for (f, g) in
             w.f0.iter_mut()
                 .chain(w.f1.iter_mut())
@@ -183,16 +198,25 @@ impl Line3d {
         };
         let result = hht.step(self, &loads, newton);
         self.hht = hht;
-        self.work = w;
-        let iterations = result?;
-        require_finite_state("line3d positions", &self.state.q)?;
+        let iterations = match result {
+            Ok(iterations) => iterations,
+            Err(error) => {
+                self.work = w;
+                return Err(error);
+            }
+        };
+        if let Err(error) = require_finite_state("line3d positions", &self.state.q) {
+            self.work = w;
+            return Err(error);
+        }
         self.state.t = t1;
         let before = self.state.ledger.power;
         let (q, v) = (
             std::mem::take(&mut self.state.q),
             std::mem::take(&mut self.state.v),
         );
-        self.evaluate_end(&q, &v, t1, &loads1);
+        self.evaluate_end(&q, &v, t1, &w.f1);
+        self.work = w;
         self.state.q = q;
         self.state.v = v;
         self.evaluate_end_powers();
@@ -233,8 +257,9 @@ impl Line3d {
     }
 
     /// The force g at (q, v, t) into the state, the reactions of the held
-    /// ends (M a + g - f, reversed) and the loaded ends' loads (reversed).
-    fn evaluate_end(&mut self, q: &[f64], v: &[f64], t: f64, loads: &[f64]) {
+    /// ends (M a + g - f, reversed) and the loaded ends' loads (reversed);
+    /// `external` is f: the weight and the loads on loaded ends (N).
+    fn evaluate_end(&mut self, q: &[f64], v: &[f64], t: f64, external: &[f64]) {
         let mut force = std::mem::take(&mut self.state.force);
         force.resize(q.len(), 0.0);
         force.fill(0.0);
@@ -248,8 +273,8 @@ impl Line3d {
                 let columns = d.saturating_sub(BAND)..(d + BAND + 1).min(n);
                 let ma: f64 = columns.map(|j| self.mass.get(d, j) * self.state.a[j]).sum();
                 self.state.reaction[DOF * k + c] = match end.condition {
-                    EndCondition::Force => -loads[d],
-                    _ => -(ma + force[d] - self.weight[d]),
+                    EndCondition::Force => -(external[d] - self.weight[d]),
+                    _ => -(ma + force[d] - external[d]),
                 };
             }
         }

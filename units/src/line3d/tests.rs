@@ -36,7 +36,7 @@ fn started(p: Line3dParams) -> Driver<Line3d> {
 }
 
 /// Output `name` now.
-fn output(d: &Driver<Line3d>, name: &str) -> f64 {
+pub(super) fn output(d: &Driver<Line3d>, name: &str) -> f64 {
     let i = d.description().output_index(name).expect(name);
     let mut out = vec![0.0; d.description().outputs.len()];
     d.outputs(&mut out).expect("outputs");
@@ -124,7 +124,7 @@ fn a_line_lying_on_the_seabed_approaches_the_catenary_with_its_touchdown_node() 
 }
 
 /// Rotates (x, y) by `azimuth` (deg).
-fn rotated(v: [f64; 2], azimuth: f64) -> [f64; 2] {
+pub(super) fn rotated(v: [f64; 2], azimuth: f64) -> [f64; 2] {
     let (s, c) = azimuth.to_radians().sin_cos();
     [c * v[0] - s * v[1], s * v[0] + c * v[1]]
 }
@@ -523,4 +523,22 @@ fn what_the_line_cannot_model_is_refused_by_name() {
             .to_string()
             .contains("elemnts")
     );
+}
+
+#[test]
+fn a_faded_motion_starts_at_rest_and_its_rates_are_its_derivatives() {
+    let end: super::params::EndSpec = toml::from_str(
+        "position = [1.0, 2.0, 3.0]\ncondition = \"motion\"\nmotion = [[{ amplitude = 2.0, angular_frequency = 0.7, phase = 0.4 }], [], []]\nfade_in = 10.0",
+    )
+    .unwrap();
+    let at = |t: f64| step::end_motion(&end, t);
+    assert_eq!(at(0.0)[0], [1.0, 2.0, 3.0]);
+    assert_eq!(at(0.0)[1], [0.0; 3]);
+    let h = 1e-5;
+    for t in [0.5, 4.0, 9.99, 12.0] {
+        let rate = (at(t + h)[0][0] - at(t - h)[0][0]) / (2.0 * h);
+        let acceleration = (at(t + h)[1][0] - at(t - h)[1][0]) / (2.0 * h);
+        assert!((rate - at(t)[1][0]).abs() < 1e-7, "{t}");
+        assert!((acceleration - at(t)[2][0]).abs() < 1e-6, "{t}");
+    }
 }
