@@ -20,6 +20,7 @@ pub mod mechanics;
 pub mod params;
 pub mod waves;
 
+mod jacobian;
 mod outputs;
 mod statics;
 mod step;
@@ -69,6 +70,7 @@ pub struct Line3d {
     work: step::Work,
     /// The first input of each end that takes coupled inputs.
     first_input: [Option<usize>; 2],
+    jacobian: jacobian::JacobianWork,
 }
 
 /// The ends' names in ports: the start (anchor) and the end (fairlead).
@@ -103,15 +105,23 @@ impl Line3d {
                 next += DOF;
             }
         }
+        let coupled = first_input.iter().any(Option::is_some);
         let description = UnitDescription {
             kind: "line3d".into(),
             inputs: outputs::input_ports(&params),
             outputs: outputs::output_ports(&params, &first_input),
-            capabilities: Capabilities::default(),
+            capabilities: Capabilities {
+                step_jacobian: coupled,
+                ..Capabilities::default()
+            },
         };
         let n = DOF * nodes;
+        let mut hht = HhtAlpha::new(params.alpha, n, BAND);
+        if coupled {
+            hht.keep_newton_matrix();
+        }
         Ok(Line3d {
-            hht: HhtAlpha::new(params.alpha, n, BAND),
+            hht,
             params,
             description,
             mechanics,
@@ -130,6 +140,7 @@ impl Line3d {
             },
             work: step::Work::default(),
             first_input,
+            jacobian: jacobian::JacobianWork::default(),
         })
     }
 
@@ -198,6 +209,7 @@ impl Unit for Line3d {
         self.form_mass(&q);
         self.hht.forget_matrices();
         self.start_dynamics(q, &inputs, t0);
+        self.jacobian.ready = false;
         Ok(())
     }
 
@@ -219,7 +231,12 @@ impl Unit for Line3d {
 
     fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
         self.state.clone_from(&*slot.load::<Line3dState>()?);
+        self.jacobian.ready = false;
         Ok(())
+    }
+
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        self.interface_jacobian(inputs, jacobian)
     }
 
     fn fields(&self) -> Vec<Field> {
@@ -231,6 +248,8 @@ impl Unit for Line3d {
     }
 }
 
+#[cfg(test)]
+mod coupling_tests;
 #[cfg(test)]
 mod planar_tests;
 #[cfg(test)]

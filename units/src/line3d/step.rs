@@ -124,10 +124,16 @@ impl Line3d {
             1
         };
         let mut iterations = 0;
+        self.jacobian.ready = false;
+        self.jacobian.h = h;
+        let mut whole = count == 1;
         for k in 0..count {
             let (s0, s1) = (k as f64 / count as f64, (k + 1) as f64 / count as f64);
-            iterations += self.halving_step(t, h, inputs, [s0, s1], 0)?;
+            let (taken, steps) = self.halving_step(t, h, inputs, [s0, s1], 0)?;
+            iterations += taken;
+            whole &= steps == 1;
         }
+        self.jacobian.ready = whole;
         self.state.newton_iterations = iterations;
         Ok(iterations)
     }
@@ -135,7 +141,8 @@ impl Line3d {
     /// The internal step over fractions `s` of the coupling step [t, t + h];
     /// where Newton fails (a snap, a contact or a slack part changing state
     /// within the step), the step is repeated as two halves, down to
-    /// 1/2^HALVINGS of it, before the failure is reported.
+    /// 1/2^HALVINGS of it, before the failure is reported. Returns Newton's
+    /// iterations and the internal steps taken.
     fn halving_step(
         &mut self,
         t: f64,
@@ -143,16 +150,17 @@ impl Line3d {
         inputs: &Inputs<'_>,
         s: [f64; 2],
         depth: u32,
-    ) -> Result<u32, UnitError> {
+    ) -> Result<(u32, u32), UnitError> {
         let t0 = t + s[0] * h;
         let length = (s[1] - s[0]) * h;
         match self.internal_step(t0, length, inputs, s) {
-            Ok(iterations) => Ok(iterations),
+            Ok(iterations) => Ok((iterations, 1)),
             Err(error) if depth >= HALVINGS => Err(error),
             Err(_) => {
                 let middle = 0.5 * (s[0] + s[1]);
-                let first = self.halving_step(t, h, inputs, [s[0], middle], depth + 1)?;
-                Ok(first + self.halving_step(t, h, inputs, [middle, s[1]], depth + 1)?)
+                let (a, m) = self.halving_step(t, h, inputs, [s[0], middle], depth + 1)?;
+                let (b, n) = self.halving_step(t, h, inputs, [middle, s[1]], depth + 1)?;
+                Ok((a + b, m + n))
             }
         }
     }

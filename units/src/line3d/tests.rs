@@ -28,7 +28,7 @@ end = {{ position = [{x}, {y}, 0.0] }}
 }
 
 /// A driver around a line, initialised at t = 0.
-fn started(p: Line3dParams) -> Driver<Line3d> {
+pub(super) fn started(p: Line3dParams) -> Driver<Line3d> {
     let mut d = Driver::new(Line3d::new(p).expect("valid parameters"));
     d.initialize(Time::from_secs(0.0).unwrap())
         .expect("statics");
@@ -81,7 +81,7 @@ fn a_hanging_line_converges_to_the_elastic_catenary_at_second_order() {
 
 /// The line of [`line`] 380 m long: 271 m of it lie on a seabed at the
 /// anchor's depth.
-fn laid_line(elements: usize, azimuth: f64, extra: &str) -> Line3dParams {
+pub(super) fn laid_line(elements: usize, azimuth: f64, extra: &str) -> Line3dParams {
     let mut p = line(
         elements,
         azimuth,

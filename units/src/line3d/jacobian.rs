@@ -1,0 +1,170 @@
+//! The 3D line's interface Jacobian over its last step (`Unit::step_jacobian`):
+//! the derivative of its end outputs (positions, velocities, forces) with
+//! respect to its coupled end inputs (velocities or forces), by one
+//! back-substitution per input with the step's factorised HHT-alpha Newton
+//! matrix (`integrators::hht_sensitivity`); no new factorisation. The other
+//! outputs are NaN: a master that needs one takes it by finite differences.
+//!
+//! Offered after a coupling step taken as one internal step (not cut by
+//! `max_step`, not halved). Exact where the Newton matrix is (bars, bending,
+//! the seabed's spring, mass); drag, the seabed's damper and the axial damper
+//! enter through their velocity tangent only (their position derivatives are
+//! left out of Newton's matrix too: 1e-4 of the derivative with drag in a
+//! current in the tests), and sliding friction through the secant slope
+//! Newton uses (force over speed): where the line slides on the seabed the
+//! Jacobian is that of the iteration, not the exact derivative.
+
+use super::Line3d;
+use super::mechanics::{BAND, DOF};
+use super::params::EndCondition;
+use crate::contract::{Hold, Inputs, UnitError, require_step_jacobian_ready};
+use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
+use crate::numerics::banded::SymmetricBand;
+
+/// Buffers of the Jacobian, kept between calls.
+#[derive(Default)]
+pub(super) struct JacobianWork {
+    /// The last coupling step was one internal step and nothing was restored
+    /// since.
+    pub ready: bool,
+    /// The last step's length (s).
+    pub h: f64,
+    /// The velocity tangent of the line's forces at the step's end.
+    damping: Option<SymmetricBand>,
+    force: Vec<f64>,
+    held: Vec<usize>,
+    change: Change,
+}
+
+impl Line3d {
+    /// Fills `jacobian` (outputs x inputs, row-major): the end outputs' rows,
+    /// the others NaN.
+    pub(super) fn interface_jacobian(
+        &mut self,
+        inputs: Inputs<'_>,
+        jacobian: &mut [f64],
+    ) -> Result<(), UnitError> {
+        require_step_jacobian_ready(
+            self.jacobian.ready,
+            "a 3D line after a step taken in internal steps, after a rollback, or before any step",
+        )?;
+        let mut w = std::mem::take(&mut self.jacobian);
+        self.velocity_tangent(&mut w);
+        w.held = self.held_dofs();
+        let n_in = inputs.len();
+        jacobian.fill(f64::NAN);
+        let mut result = Ok(());
+        for j in 0..n_in {
+            if let Err(e) = self.input_column(&inputs, &mut w, j, jacobian) {
+                result = Err(e);
+                break;
+            }
+        }
+        self.jacobian = w;
+        result
+    }
+
+    /// The velocity tangent of the line's forces at the current state.
+    fn velocity_tangent(&self, w: &mut JacobianWork) {
+        let n = self.state.q.len();
+        let band = w
+            .damping
+            .get_or_insert_with(|| SymmetricBand::zeros(n, BAND));
+        band.fill_zero();
+        w.force.clear();
+        w.force.resize(n, 0.0);
+        let s = &self.state;
+        self.mechanics
+            .add_force(&s.q, &s.v, 1.0, Some((band, 0.0, 1.0)), &mut w.force);
+        let band = w.damping.as_mut().expect("formed above");
+        self.environment
+            .add_force(&s.q, &s.v, s.t, 1.0, Some((band, 0.0, 1.0)), &mut w.force);
+    }
+
+    /// The end (0 start, 1 end), its node and its condition, for input `j`.
+    fn input_end(&self, j: usize) -> Option<(usize, usize, EndCondition)> {
+        let last = self.mechanics.nodes - 1;
+        (0..2).find_map(|k| {
+            let first = self.first_input[k]?;
+            let end = if k == 0 {
+                &self.params.start
+            } else {
+                &self.params.end
+            };
+            (first..first + DOF).contains(&j).then_some((
+                k,
+                if k == 0 { 0 } else { last },
+                end.condition,
+            ))
+        })
+    }
+
+    /// Column `j` of the end outputs' rows.
+    fn input_column(
+        &self,
+        inputs: &Inputs<'_>,
+        w: &mut JacobianWork,
+        j: usize,
+        jacobian: &mut [f64],
+    ) -> Result<(), UnitError> {
+        let n_in = inputs.len();
+        let (newton, factor) = self
+            .hht
+            .last_newton()
+            .ok_or_else(|| UnitError::Numerical("line3d: no Newton matrix kept".into()))?;
+        let damping = w.damping.as_ref();
+        let damping_at = |i: usize, k: usize| damping.map_or(0.0, |c| c.get(i, k));
+        let h = w.h;
+        let sensitivity = StepSensitivity {
+            newton,
+            factor,
+            mass: &self.mass,
+            damping: &damping_at,
+            parameters: self.hht.parameters(),
+            h,
+        };
+        let (alpha, _, _) = self.hht.parameters();
+        let ramp = inputs.hold(j) == Hold::Ramp;
+        let Some((end, node, condition)) = self.input_end(j) else {
+            return Ok(());
+        };
+        let dof = DOF * node + (j - self.first_input[end].unwrap_or(0));
+        let drive = match condition {
+            // q1 = q0 + h (v0 + v1) / 2, v1, a1 = (v1 - v0) / h; under a
+            // zero-order hold v0 is the end value too.
+            EndCondition::Velocity if ramp => Drive::Motion {
+                dof,
+                change: [0.5 * h, 1.0, 1.0 / h],
+            },
+            EndCondition::Velocity => Drive::Motion {
+                dof,
+                change: [h, 1.0, 0.0],
+            },
+            _ => Drive::Load {
+                dof,
+                weight: if ramp { 1.0 - alpha } else { 1.0 },
+            },
+        };
+        sensitivity.solve(drive, &w.held, &mut w.change);
+        let last = self.mechanics.nodes - 1;
+        for (k, i) in [0, last].into_iter().enumerate() {
+            let condition = if k == 0 {
+                self.params.start.condition
+            } else {
+                self.params.end.condition
+            };
+            for c in 0..DOF {
+                let d = DOF * i + c;
+                let base = 9 * k;
+                jacobian[(base + c) * n_in + j] = w.change.dq[d];
+                jacobian[(base + 3 + c) * n_in + j] = w.change.dv[d];
+                jacobian[(base + 6 + c) * n_in + j] = match condition {
+                    EndCondition::Force if d == dof => -1.0,
+                    EndCondition::Force => 0.0,
+                    _ => -sensitivity.reaction_change(&w.change, d),
+                };
+            }
+        }
+        Ok(())
+    }
+}
