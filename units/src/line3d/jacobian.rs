@@ -123,22 +123,19 @@ impl Line3d {
             parameters: self.hht.parameters(),
             h,
         };
-        let (alpha, _, _) = self.hht.parameters();
+        let (alpha, beta, gamma) = self.hht.parameters();
         let ramp = inputs.hold(j) == Hold::Ramp;
         let Some((end, node, condition)) = self.input_end(j) else {
             return Ok(());
         };
         let dof = DOF * node + (j - self.first_input[end].unwrap_or(0));
         let drive = match condition {
-            // q1 = q0 + h (v0 + v1) / 2, v1, a1 = (v1 - v0) / h; under a
-            // zero-order hold v0 is the end value too.
-            EndCondition::Velocity if ramp => Drive::Motion {
-                dof,
-                change: [0.5 * h, 1.0, 1.0 / h],
-            },
+            // Newmark from the node's start motion (`step::held_motion`):
+            // v1 the input, a1 = (v1 - v0) / (gamma h) - ..., q1 = ... +
+            // beta h^2 a1; the same under either hold.
             EndCondition::Velocity => Drive::Motion {
                 dof,
-                change: [h, 1.0, 0.0],
+                change: [beta * h / gamma, 1.0, 1.0 / (gamma * h)],
             },
             _ => Drive::Load {
                 dof,

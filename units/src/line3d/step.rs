@@ -251,8 +251,16 @@ impl Line3d {
                 let motion = match (end.condition, self.first_input[k]) {
                     (EndCondition::Force, _) => continue,
                     (EndCondition::Velocity, Some(first)) => {
-                        let (v0, v1) = (inputs.at(first + c, s[0]), inputs.at(first + c, s[1]));
-                        [self.state.q[d] + 0.5 * h * (v0 + v1), v1, (v1 - v0) / h]
+                        // Newmark from the node's own start motion, as the
+                        // integrator moves the neighbour that drives it: a
+                        // cut between two sections stays closed and its
+                        // reaction's inertia is the integrator's.
+                        let (_, beta, gamma) = self.hht.parameters();
+                        let (q0, v0, a0) = (self.state.q[d], self.state.v[d], self.state.a[d]);
+                        let v1 = inputs.at(first + c, s[1]);
+                        let a1 = (v1 - v0) / (gamma * h) - (1.0 - gamma) / gamma * a0;
+                        let q1 = q0 + h * v0 + h * h * ((0.5 - beta) * a0 + beta * a1);
+                        [q1, v1, a1]
                     }
                     _ => {
                         let m = end_motion(end, t1);
