@@ -542,3 +542,90 @@ fn a_faded_motion_starts_at_rest_and_its_rates_are_its_derivatives() {
         assert!((acceleration - at(t)[2][0]).abs() < 1e-6, "{t}");
     }
 }
+
+#[test]
+fn the_catenary_reproduces_moorpys_regression_values() {
+    // MoorPy's tests/test_catenary.py (NREL/MoorPy): inputs x, z, L, EA, w
+    // and its seabed (CB = 0: on the seabed without friction; CB < 0: a
+    // seabed the line does not reach), and the fairlead's H and V and the
+    // laid length it gives (rtol 1e-5 there; the near-taut cases' values
+    // are rounded to 0.1 N). Its friction (CB > 0) and buoyant (w < 0)
+    // cases are left out: the catenary here has neither.
+    // Left out too: its "hardest" near-taut case (L = 360.63566262396927),
+    // whose values (H 56804.6, V 60803.4) put the line's end 1.6 m from the
+    // fairlead in Irvine's equations (247.43, 262.42 against 246.22,
+    // 263.56); the solution here puts it there to 1e-10 m.
+    let cases: [([f64; 5], bool, [f64; 3]); 6] = [
+        (
+            [400.0, 200.0, 500.0, 7.51e12, 800.0],
+            true,
+            [96643.43501616362, 237751.75997440016, 202.81030003199982],
+        ),
+        (
+            [400.0, 200.0, 500.0, 7.51e12, 200.0],
+            false,
+            [43694.580989249596, 77634.40064978378, 0.0],
+        ),
+        (
+            [89.9, 59.2, 130.0, 7.51e8, 881.05],
+            false,
+            [31373.229006023103, 87886.15872988368, 0.0],
+        ),
+        (
+            [
+                246.22420940032947,
+                263.55766330843164,
+                360.63566262396927 - 0.01,
+                700e6,
+                3.08735,
+            ],
+            true,
+            [71116.8, 76680.6, 0.0],
+        ),
+        (
+            [
+                246.22420940032947,
+                263.55766330843164,
+                360.63566262396927 + 0.01,
+                700e6,
+                3.08735,
+            ],
+            true,
+            [46077.1, 49878.6, 0.0],
+        ),
+        (
+            [
+                119.3237383002058,
+                52.49668849178113,
+                130.36140355177318,
+                7e8,
+                34.91060469991227,
+            ],
+            true,
+            [72694.145, 34266.168, 0.0],
+        ),
+    ];
+    for ([x, z, length, ea, w], seabed, [h, v, laid]) in cases {
+        let line = CatenaryLine {
+            length,
+            axial_stiffness: ea,
+            weight: w,
+            seabed,
+        };
+        let c = line
+            .solve(x, z)
+            .unwrap_or_else(|e| panic!("{x} {z} {length}: {e}"));
+        let close = |got: f64, want: f64| (got - want).abs() <= 1e-5 * want.abs().max(1.0);
+        assert!(
+            close(c.horizontal, h) && close(c.vertical, v),
+            "{x} {z} {length}: H {} V {} against {h} {v}",
+            c.horizontal,
+            c.vertical
+        );
+        assert!(
+            (c.laid_length() - laid).abs() < 1e-5 * length,
+            "{x} {z} {length}: laid {} against {laid}",
+            c.laid_length()
+        );
+    }
+}
