@@ -253,4 +253,6 @@ mod coupling_tests;
 #[cfg(test)]
 mod planar_tests;
 #[cfg(test)]
+mod statics_tests;
+#[cfg(test)]
 mod tests;
