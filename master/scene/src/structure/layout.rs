@@ -97,6 +97,9 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
     let structure = structure
         .as_table()
         .ok_or("`structure`: expected a table")?;
+    if super::line3d::is_3d(structure) {
+        return Err("`structure.model.kind` = \"line3d\": `slender fidelity` studies planar structures so far; run each combination with `--set structure.sections[k].fidelity=...` and compare with the twin (`reference = true`)".into());
+    }
     let spec = Spec::parse(structure)?;
     let name = &spec.name;
     let seabed = spec.model.contains_key("contact");

@@ -13,6 +13,8 @@
 //! `reference` adds the whole structure as one unit (`<name>_reference`), the
 //! monolithic twin; `top_load` loads the top from other units (`load`).
 //!
+//! A model of `kind = "line3d"` is a 3D line, written out by [`line3d`].
+//!
 //! With `static_start`, the whole structure's equilibrium is solved once here
 //! (`statics`); each section starts its own static solve from that shape, each
 //! moving cut end is placed where the equilibrium puts it (`velocity_from`) and
@@ -24,6 +26,7 @@ mod chord;
 mod cuts;
 mod hang_off;
 mod layout;
+mod line3d;
 mod load;
 mod model;
 mod nonlinear;
@@ -66,6 +69,9 @@ pub fn expand(structure: &Value, t0: Time) -> Result<Written, String> {
     let structure = structure
         .as_table()
         .ok_or("`structure`: expected a table")?;
+    if line3d::is_3d(structure) {
+        return line3d::expand(structure, t0);
+    }
     let spec = Spec::parse(structure)?;
     let (built, cuts) = Built::new(spec, t0)?;
     let force_on_upper = orientation(&cuts, built.statics.is_some(), built.holding_static)?;

@@ -1,0 +1,207 @@
+//! A `[structure]` whose model is a 3D line (`structure.model.kind =
+//! "line3d"`, the rest of the model a `line3d` unit's parameters): its
+//! statics are solved once as the whole line, each section becomes a
+//! `line3d` unit between the equilibrium's points at its cuts, and each cut
+//! couples the lower section's end (moved by the upper start's velocity) with
+//! the upper section's start (loaded by the lower end's pull), x, y and z.
+//! A section's fidelity is the 3D line (`nonlinear`) at the model's mesh or
+//! at its own (`elements`); `reference = true` adds the
+//! whole line as one unit, the twin. The other fidelities (cable, static,
+//! linear, reduced, chords), physical sections, FMUs, sub-steps, a top load
+//! and a hang-off angle are planar so far and are refused here by name.
+
+use super::sections::{Cut, Fidelity, SectionFile, cuts_of};
+use super::spec::typed;
+use super::{Written, reference_name, unit_name};
+use serde::Deserialize;
+use slender_units::line3d::{EndCondition, Line3d, Line3dParams};
+use slender_units::{Driver, Time, Unit};
+use toml::{Table, Value};
+
+/// `[structure]` with a 3D line as its model, as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Structure3dFile {
+    name: String,
+    model: Table,
+    #[serde(default)]
+    sections: Vec<SectionFile>,
+    #[serde(default)]
+    reference: bool,
+}
+
+/// Whether `[structure]` describes a 3D line.
+pub(super) fn is_3d(structure: &Table) -> bool {
+    let kind = structure.get("model").and_then(|m| m.get("kind"));
+    kind.and_then(Value::as_str) == Some("line3d")
+}
+
+/// The model's parameters without `kind`, and the line they make.
+fn model_of(model: &Table) -> Result<(Table, Line3dParams), String> {
+    let mut parameters = model.clone();
+    parameters.remove("kind");
+    let params: Line3dParams = typed("structure.model", &parameters)?;
+    params
+        .validate()
+        .map_err(|e| format!("`structure.model`: {e}"))?;
+    for (side, end) in [("start", &params.start), ("end", &params.end)] {
+        if matches!(end.condition, EndCondition::Velocity | EndCondition::Force) {
+            return Err(format!(
+                "`structure.model.{side}.condition`: a 3D structure's ends are fixed or moved (`fixed`, `motion`); coupled ends are the sections' cuts"
+            ));
+        }
+    }
+    Ok((parameters, params))
+}
+
+/// Writes out a 3D line's `[structure]` at `t0` (its statics solved there).
+pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
+    let file: Structure3dFile = typed("structure", structure)?;
+    let (parameters, params) = model_of(&file.model)?;
+    let cuts = cuts_of(&file.sections, params.length)?;
+    for cut in &cuts {
+        refuse_planar(cut)?;
+    }
+    let shape = static_shape(&params, t0)?;
+    let mut units = Vec::new();
+    let mut connections = Vec::new();
+    for (k, cut) in cuts.iter().enumerate() {
+        let elements = cut.elements.unwrap_or_else(|| {
+            let share = (cut.to - cut.from) / params.length * params.elements as f64;
+            (share.round() as usize).max(2)
+        });
+        let mut section = parameters.clone();
+        section.insert("length".into(), Value::Float(cut.to - cut.from));
+        section.insert("elements".into(), Value::Integer(elements as i64));
+        if k > 0 {
+            section.insert("start".into(), cut_end(shape.at(cut.from), "force"));
+        }
+        if k + 1 < cuts.len() {
+            section.insert("end".into(), cut_end(shape.at(cut.to), "velocity"));
+        }
+        let name = unit_name(&file.name, &cut.name);
+        if k > 0 {
+            let lower = unit_name(&file.name, &cuts[k - 1].name);
+            connections.extend(cut_links(&lower, &name));
+        }
+        units.push(unit_table(&name, section));
+    }
+    if file.reference {
+        units.push(unit_table(&reference_name(&file.name), parameters));
+    }
+    Ok(Written {
+        units,
+        connections,
+        advisories: Vec::new(),
+    })
+}
+
+/// Refuses what a 3D section cannot be yet.
+fn refuse_planar(cut: &Cut) -> Result<(), String> {
+    let key = format!("structure.sections.{}", cut.name);
+    if cut.fidelity != Fidelity::Nonlinear {
+        return Err(format!(
+            "`{key}.fidelity` = \"{}\": a 3D line's section is `nonlinear` (the 3D line, at the model's mesh or at the section's own `elements`); the other fidelities are planar so far",
+            cut.fidelity.name()
+        ));
+    }
+    let planar = [
+        ("physical", cut.physical.is_some()),
+        ("fmu", cut.fmu.is_some()),
+        ("substeps", cut.substeps.is_some()),
+        ("options", cut.options.is_some()),
+    ];
+    match planar.iter().find(|(_, given)| *given) {
+        Some((what, _)) => Err(format!(
+            "`{key}`: `{what}` is not offered on a 3D line's section yet"
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The whole line's static node positions (m), by unstretched arc length.
+struct Shape {
+    element: f64,
+    nodes: Vec<[f64; 3]>,
+}
+
+impl Shape {
+    /// The point at arc `s` (m), linear between the nodes.
+    fn at(&self, s: f64) -> [f64; 3] {
+        let last = self.nodes.len() - 1;
+        let x = (s / self.element).clamp(0.0, last as f64);
+        let i = (x.floor() as usize).min(last - 1);
+        let f = x - i as f64;
+        let (a, b) = (self.nodes[i], self.nodes[i + 1]);
+        [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
+    }
+}
+
+/// Solves the whole line's statics at `t0`.
+fn static_shape(params: &Line3dParams, t0: Time) -> Result<Shape, String> {
+    let unit = Line3d::new(params.clone()).map_err(|e| format!("`structure.model`: {e}"))?;
+    let mut driver = Driver::new(unit);
+    driver
+        .initialize(t0)
+        .map_err(|e| format!("`structure.model`: the whole line's statics: {e}"))?;
+    let nodes = params.elements + 1;
+    let mut axes = vec![vec![0.0; nodes]; 3];
+    for (index, values) in axes.iter_mut().enumerate() {
+        driver
+            .unit()
+            .field_values(index, values)
+            .map_err(|e| format!("`structure.model`: {e}"))?;
+    }
+    Ok(Shape {
+        element: params.length / params.elements as f64,
+        nodes: (0..nodes)
+            .map(|i| [axes[0][i], axes[1][i], axes[2][i]])
+            .collect(),
+    })
+}
+
+/// A cut end at `position`, coupled by `condition`.
+fn cut_end(position: [f64; 3], condition: &str) -> Value {
+    let mut end = Table::new();
+    end.insert(
+        "position".into(),
+        Value::Array(position.iter().map(|&x| Value::Float(x)).collect()),
+    );
+    end.insert("condition".into(), Value::String(condition.into()));
+    Value::Table(end)
+}
+
+/// The cut between `lower` and `upper`: the lower end follows the upper
+/// start's velocity, the upper start carries the lower end's pull.
+fn cut_links(lower: &str, upper: &str) -> Vec<Value> {
+    let link = |from: String, to: String| {
+        let mut t = Table::new();
+        t.insert("from".into(), Value::String(from));
+        t.insert("to".into(), Value::String(to));
+        Value::Table(t)
+    };
+    ["x", "y", "z"]
+        .iter()
+        .flat_map(|c| {
+            [
+                link(
+                    format!("{upper}.start_velocity_{c}"),
+                    format!("{lower}.end_velocity_{c}"),
+                ),
+                link(
+                    format!("{lower}.end_force_{c}"),
+                    format!("{upper}.start_force_{c}"),
+                ),
+            ]
+        })
+        .collect()
+}
+
+/// A `[[units]]` table of kind `line3d`.
+fn unit_table(name: &str, parameters: Table) -> Value {
+    let mut unit = Table::new();
+    unit.insert("name".into(), Value::String(name.into()));
+    unit.insert("kind".into(), Value::String("line3d".into()));
+    unit.insert("parameters".into(), Value::Table(parameters));
+    Value::Table(unit)
+}

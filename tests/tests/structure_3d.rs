@@ -1,0 +1,105 @@
+//! A `[structure]` whose model is a 3D line (`kind = "line3d"`): written out
+//! as `line3d` sections between the whole line's static points and coupled
+//! at their cuts by velocity and force, against the twin; what a 3D section
+//! cannot be yet is refused by name.
+
+use slender_tests::edited::run_edited;
+use slender_tests::{Series, load, units_and_links};
+
+const SCENE: &str = "examples/structure_mooring_3d.toml";
+
+/// The largest difference (N) between the sections' and the twin's fairlead
+/// force components over the run.
+fn top_force_difference(s: &Series) -> f64 {
+    ["x", "y", "z"]
+        .iter()
+        .flat_map(|c| {
+            let a = s.get(&format!("line_upper.end_force_{c}"));
+            let b = s.get(&format!("line_reference.end_force_{c}"));
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (x - y).abs())
+                .collect::<Vec<_>>()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_3d_structure_is_written_as_line3d_sections_meeting_at_their_cuts() {
+    let scene = load(SCENE);
+    let (units, links) = units_and_links(&scene);
+    let names: Vec<&str> = units.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["line_lower", "line_upper", "line_reference"]);
+    let parameters = |k: usize| units[k].1["parameters"].as_table().unwrap().clone();
+    let (lower, upper) = (parameters(0), parameters(1));
+    assert_eq!(lower["end"]["position"], upper["start"]["position"]);
+    assert_eq!(lower["end"]["condition"].as_str(), Some("velocity"));
+    assert_eq!(upper["start"]["condition"].as_str(), Some("force"));
+    // Elements shared by arc length: 1200 of 1934 m of 80 elements.
+    assert_eq!(lower["elements"].as_integer(), Some(50));
+    assert_eq!(upper["elements"].as_integer(), Some(30));
+    assert_eq!(links.len(), 6);
+    // The cut lies on the line between the anchor (z -1200.11) and the top.
+    let z = lower["end"]["position"][2].as_float().unwrap();
+    assert!(z > -1200.11 && z < 0.0, "{z}");
+}
+
+#[test]
+fn the_3d_sections_follow_their_twin() {
+    // Cut at a node of the twin (50 of its 80 elements of 24.175 m), the
+    // trapezoidal rule (alpha 0): the sections are the twin to the coupling
+    // tolerance (1e-3 N here, on a tension of 2.5 MN).
+    let exact = run_edited(
+        SCENE,
+        &[
+            ("kind = \"line3d\"", "kind = \"line3d\"\nalpha = 0.0"),
+            ("force = 1.0", "force = 1e-3"),
+            ("to = 1200.0", "to = 1208.75"),
+        ],
+    )
+    .unwrap();
+    let difference = top_force_difference(&exact);
+    eprintln!("alpha 0, cut at a node: {difference:.3e} N");
+    assert!(difference < 1e-2, "{difference:e} N");
+    // The example as shipped (alpha 0.3, the cut between nodes, so each
+    // section's mesh is its own): the cut node's inertia enters the loaded
+    // side alpha-weighted, 1e-4 of the tension at most.
+    let shipped = run_edited(SCENE, &[]).unwrap();
+    let difference = top_force_difference(&shipped);
+    eprintln!("as shipped: {difference:.3e} N");
+    assert!(difference < 1e-4 * 2.5e6, "{difference:e} N");
+    // A coarser lower section: a discretisation difference, still small.
+    let coarse = run_edited(SCENE, &[("to = 1200.0", "to = 1200.0\nelements = 16")]).unwrap();
+    let difference = top_force_difference(&coarse);
+    eprintln!("lower at 16 elements: {difference:.3e} N");
+    assert!(difference < 1e-2 * 2.5e6, "{difference:e} N");
+}
+
+#[test]
+fn what_a_3d_section_cannot_be_yet_is_refused_by_name() {
+    let refused = |from: &str, to: &str, expected: &str| {
+        let error = run_edited(SCENE, &[(from, to)]).err().expect(to);
+        assert!(error.contains(expected), "{to}: {error}");
+    };
+    refused(
+        "to = 1200.0",
+        "to = 1200.0\nfidelity = \"cable\"",
+        "the other fidelities are planar so far",
+    );
+    refused(
+        "to = 1200.0",
+        "to = 1200.0\nsubsteps = 2",
+        "`substeps` is not offered",
+    );
+    refused(
+        "start = { position = [0.0, 0.0, -1200.11] }",
+        "start = { position = [0.0, 0.0, -1200.11], condition = \"velocity\" }",
+        "coupled ends are the sections' cuts",
+    );
+    refused("to = 1200.0", "to = 2000.0", "structure.sections[0].to");
+    refused(
+        "bending_stiffness = 100.0",
+        "bending_stiffnes = 100.0",
+        "bending_stiffnes",
+    );
+}
