@@ -105,3 +105,40 @@ fn a_structure_without_segments_or_with_an_angle_past_a_turn_is_refused() {
         "{error}"
     );
 }
+
+#[test]
+fn a_fidelity_is_written_in_a_scene_as_on_the_command_line() {
+    // `name:count` as `slender fidelity --section` takes it: the same
+    // expansion as the fidelity and its count written apart.
+    let with = |section: &str| {
+        let text = HANGING_PIPE.replacen(
+            "name = \"middle\"",
+            &format!("name = \"middle\"\n{section}"),
+            1,
+        );
+        parse(&text).map(|scene| scene.source().expect("the expansion").to_owned())
+    };
+    let short = with("fidelity = \"nonlinear:4\"").unwrap();
+    assert_eq!(
+        short,
+        with("fidelity = \"nonlinear\"\nelements = 4").unwrap()
+    );
+    assert_ne!(short, with("fidelity = \"nonlinear\"").unwrap());
+    for (written, expected) in [
+        (
+            "fidelity = \"nonlinear:0\"",
+            "the count after `:` is a whole number of at least 1",
+        ),
+        (
+            "fidelity = \"nonlinear:4/2\"",
+            "sub-steps are the section's `substeps` key",
+        ),
+        (
+            "fidelity = \"nonlinear:4\"\nelements = 4",
+            "the element count is given twice",
+        ),
+    ] {
+        let error = with(written).expect_err(written).to_string();
+        assert!(error.contains(expected), "{written}: {error}");
+    }
+}

@@ -254,8 +254,8 @@ pub(super) fn cuts_of(list: &[SectionFile], length: f64) -> Result<Vec<Cut>, Str
 /// `{ kind = "fmu", file, ports, ... }`: an external FMU in place of the unit,
 /// with the ports of the `ports` fidelity (default nonlinear) and the `fmu`
 /// kind's parameters.
-fn fidelity_of(key: &str, value: Option<&Value>) -> Result<WrittenModel, String> {
-    let key = format!("{key}.fidelity");
+fn fidelity_of(section: &str, value: Option<&Value>) -> Result<WrittenModel, String> {
+    let key = format!("{section}.fidelity");
     let native = |fidelity, elements| WrittenModel {
         fidelity,
         elements,
@@ -264,7 +264,22 @@ fn fidelity_of(key: &str, value: Option<&Value>) -> Result<WrittenModel, String>
     };
     match value {
         None => Ok(native(Fidelity::Nonlinear, None)),
-        Some(Value::String(word)) => Ok(native(Fidelity::parse(&key, word)?, None)),
+        Some(Value::String(written)) => {
+            let (word, count) = short_form(&key, written)?;
+            let fidelity = Fidelity::parse(&key, word)?;
+            match (count, fidelity.count_key()) {
+                (None, _) => Ok(native(fidelity, None)),
+                (Some(n), "elements") => Ok(native(fidelity, Some(n))),
+                // A count with its own key (a reduced section's modes, a
+                // span's order): as the table the command line writes.
+                (Some(n), count_key) => {
+                    let mut table = Table::new();
+                    table.insert("kind".into(), Value::String(word.into()));
+                    table.insert(count_key.into(), Value::Integer(n as i64));
+                    fidelity_of(section, Some(&Value::Table(table)))
+                }
+            }
+        }
         Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("fmu") => {
             fmu_of(&key, t)
         }
@@ -291,6 +306,26 @@ fn fidelity_of(key: &str, value: Option<&Value>) -> Result<WrittenModel, String>
         Some(_) => Err(format!(
             "`{key}`: expected a name ({}) or a table {{ kind, elements }}",
             Fidelity::NAMES.join(", ")
+        )),
+    }
+}
+
+/// A fidelity written as the command line writes a choice, `name:count`
+/// (e.g. `"nonlinear:16"`): the name and the count; a bare name has none.
+/// Sub-steps (`/k`) have their own key in a scene, `substeps`.
+fn short_form<'a>(key: &str, word: &'a str) -> Result<(&'a str, Option<usize>), String> {
+    if word.contains('/') || word.contains('@') {
+        return Err(format!(
+            "`{key}` = \"{word}\": in a scene, sub-steps are the section's `substeps` key and a reduced section's options a table; write the fidelity as `name` or `name:count`"
+        ));
+    }
+    let Some((name, count)) = word.split_once(':') else {
+        return Ok((word, None));
+    };
+    match count.parse::<usize>() {
+        Ok(n) if n >= 1 => Ok((name, Some(n))),
+        _ => Err(format!(
+            "`{key}` = \"{word}\": the count after `:` is a whole number of at least 1"
         )),
     }
 }
