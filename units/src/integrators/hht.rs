@@ -32,6 +32,25 @@ pub struct TangentScales {
     pub damping: f64,
 }
 
+impl TangentScales {
+    /// The band and scales of a `nonlinear_force` call: without a tangent the
+    /// force enters unweighted (stiffness scale 1) and nothing is assembled.
+    pub fn split(
+        tangent: Option<(&mut SymmetricBand, TangentScales)>,
+    ) -> (Option<&mut SymmetricBand>, TangentScales) {
+        match tangent {
+            Some((band, scales)) => (Some(band), scales),
+            None => (
+                None,
+                TangentScales {
+                    stiffness: 1.0,
+                    damping: 0.0,
+                },
+            ),
+        }
+    }
+}
+
 /// `SecondOrderSystem::motion` and `motion_mut` over the fields `q`, `v`
 /// and `a` of `self.PATH` (`motion_fields!(state)`) or of `self`
 /// (`motion_fields!()`): the accessors every system with its motion in

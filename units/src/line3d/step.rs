@@ -361,10 +361,8 @@ impl SecondOrderSystem for Line3d {
     ) {
         force.resize(q.len(), 0.0);
         force.fill(0.0);
-        let (mut band, k, c) = match tangent {
-            Some((band, s)) => (Some(band), s.stiffness, s.damping),
-            None => (None, 1.0, 0.0),
-        };
+        let (mut band, scales) = TangentScales::split(tangent);
+        let (k, c) = (scales.stiffness, scales.damping);
         let mechanics_tangent = band.as_mut().map(|b| (&mut **b, k, c));
         self.mechanics.add_force(q, v, k, mechanics_tangent, force);
         let environment_tangent = band.map(|b| (b, k, c));

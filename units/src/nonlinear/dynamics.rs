@@ -507,17 +507,7 @@ impl SecondOrderSystem for NonlinearSection {
     ) {
         force.resize(q.len(), 0.0);
         force.fill(0.0);
-        // Without a tangent the force enters unweighted.
-        let (mut band, scales) = match tangent {
-            Some((band, scales)) => (Some(band), scales),
-            None => (
-                None,
-                TangentScales {
-                    stiffness: 1.0,
-                    damping: 0.0,
-                },
-            ),
-        };
+        let (mut band, scales) = TangentScales::split(tangent);
         let stiffness = scales.stiffness;
         let elastic_tangent = band.as_mut().map(|b| (&mut **b, stiffness));
         self.add_elastic(q, stiffness, elastic_tangent, force);
