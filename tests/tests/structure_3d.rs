@@ -93,8 +93,8 @@ fn what_a_3d_section_cannot_be_yet_is_refused_by_name() {
     );
     refused(
         "start = { position = [0.0, 0.0, -1200.11] }",
-        "start = { position = [0.0, 0.0, -1200.11], condition = \"velocity\" }",
-        "coupled ends are the sections' cuts",
+        "start = { position = [0.0, 0.0, -1200.11], condition = \"force\" }",
+        "a loaded end needs its force at the start",
     );
     refused("to = 1200.0", "to = 2000.0", "structure.sections[0].to");
     refused(
@@ -102,4 +102,47 @@ fn what_a_3d_section_cannot_be_yet_is_refused_by_name() {
         "bending_stiffnes = 100.0",
         "bending_stiffnes",
     );
+}
+
+/// The example's fairlead moved by a coupled velocity from a `signal` unit
+/// (a vessel's or a body's fairlead) instead of its own sines.
+const VESSEL: &str = r#"[[units]]
+name = "vessel"
+kind = "signal"
+[units.parameters]
+quantity = "velocity"
+sines = [{ amplitude = 1.8, angular_frequency = 0.6, phase = 1.5707963267948966 }]
+fade_in = { shape = "smoothstep", time = 20.0 }
+
+[[connections]]
+from = "vessel.value"
+to = "line_upper.end_velocity_x"
+
+[[connections]]
+from = "vessel.value"
+to = "line_reference.end_velocity_x"
+
+[[structure.sections]]
+name = "lower""#;
+
+#[test]
+fn a_3d_structure_s_fairlead_follows_a_coupled_velocity() {
+    let moved = "end = { position = [1529.11, 0.0, 0.0], condition = \"motion\", motion = [[{ amplitude = 3.0, angular_frequency = 0.6 }], [{ amplitude = 2.0, angular_frequency = 0.3 }], []], fade_in = 20.0 }";
+    let coupled = "end = { position = [1529.11, 0.0, 0.0], condition = \"velocity\" }";
+    let series = run_edited(
+        SCENE,
+        &[
+            (moved, coupled),
+            ("[[structure.sections]]\nname = \"lower\"", VESSEL),
+        ],
+    )
+    .unwrap();
+    // The fairlead surges: the top force swings by hundreds of kN, and the
+    // sections follow the twin as with the fairlead's own sines.
+    let force = series.get("line_upper.end_force_x");
+    let swing = force.iter().cloned().fold(f64::MIN, f64::max)
+        - force.iter().cloned().fold(f64::MAX, f64::min);
+    assert!(swing > 1e5, "{swing} N");
+    let difference = top_force_difference(&series);
+    assert!(difference < 1e-4 * 2.5e6, "{difference:e} N");
 }

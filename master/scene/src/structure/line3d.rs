@@ -1,6 +1,8 @@
 //! A `[structure]` whose model is a 3D line (`structure.model.kind =
-//! "line3d"`, the rest of the model a `line3d` unit's parameters): its
-//! statics are solved once as the whole line, each section becomes a
+//! "line3d"`, the rest of the model a `line3d` unit's parameters; its ends
+//! fixed, moved or moved by coupled velocities, which the first and last
+//! sections and the twin then take as inputs): its statics are solved once
+//! as the whole line (a coupled end held where it is), each section becomes a
 //! `line3d` unit between the equilibrium's points at its cuts, and each cut
 //! couples the lower section's end (moved by the upper start's velocity) with
 //! the upper section's start (loaded by the lower end's pull), x, y and z.
@@ -45,9 +47,9 @@ fn model_of(model: &Table) -> Result<(Table, Line3dParams), String> {
         .validate()
         .map_err(|e| format!("`structure.model`: {e}"))?;
     for (side, end) in [("start", &params.start), ("end", &params.end)] {
-        if matches!(end.condition, EndCondition::Velocity | EndCondition::Force) {
+        if end.condition == EndCondition::Force {
             return Err(format!(
-                "`structure.model.{side}.condition`: a 3D structure's ends are fixed or moved (`fixed`, `motion`); coupled ends are the sections' cuts"
+                "`structure.model.{side}.condition` = \"force\": a 3D structure's ends are fixed, moved (`motion`) or moved by coupled velocities (`velocity`: a vessel's or a body's fairlead); a loaded end needs its force at the start, which the structure's statics do not know"
             ));
         }
     }
