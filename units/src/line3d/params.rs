@@ -173,6 +173,11 @@ pub struct Waves {
     /// Water depth for the dispersion relation (m); 0: deep water.
     #[serde(default)]
     pub water_depth: f64,
+    /// Seconds over which the waves grow from calm (a half cosine on their
+    /// velocity and elevation), so a run does not start with the full wave
+    /// force on a line at rest; 0: none.
+    #[serde(default)]
+    pub fade_in: f64,
 }
 
 fn default_water_density() -> f64 {
@@ -365,6 +370,7 @@ impl Waves {
             )?;
         }
         require_finite("waves.heading_deg", self.heading_deg)?;
+        require_non_negative("waves.fade_in", self.fade_in)?;
         require_non_negative("waves.water_depth", self.water_depth)
     }
 }

@@ -63,7 +63,7 @@ pub(super) fn end_motion(end: &EndSpec, t: f64) -> [[f64; 3]; 3] {
 
 /// The fade-in factor over `duration` (s) at `t` and its two derivatives:
 /// (1 - cos(pi t / duration)) / 2, then 1.
-fn fade(duration: f64, t: f64) -> [f64; 3] {
+pub(super) fn fade(duration: f64, t: f64) -> [f64; 3] {
     if duration <= 0.0 || t >= duration {
         return [1.0, 0.0, 0.0];
     }

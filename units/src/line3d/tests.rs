@@ -440,3 +440,29 @@ fn a_faded_motion_starts_at_rest_and_its_rates_are_its_derivatives() {
         assert!((acceleration - at(t)[2][0]).abs() < 1e-6, "{t}");
     }
 }
+
+#[test]
+fn faded_waves_start_calm_and_their_acceleration_is_their_velocity_s_rate() {
+    use super::waves::AiryWaves;
+    // Small waves (k A ~ 4e-4): Wheeler's stretch barely moves the profile,
+    // so the water's acceleration at a point is its velocity's rate there.
+    let waves: super::params::Waves = toml::from_str(
+        "sines = [{ amplitude = 0.01, angular_frequency = 0.6, phase = 0.4 }]\nheading_deg = 20.0\nfade_in = 10.0",
+    )
+    .unwrap();
+    let airy = AiryWaves::new(&waves);
+    let p = nalgebra::Vector3::new(3.0, -4.0, -8.0);
+    let at = |t: f64| airy.at(&p, t).unwrap();
+    assert_eq!(at(0.0).velocity, nalgebra::Vector3::zeros());
+    assert_eq!(airy.elevation(p.x, p.y, 0.0), 0.0);
+    let h = 1e-4;
+    for t in [1.0, 5.0, 9.9, 14.0] {
+        let rate = (at(t + h).velocity - at(t - h).velocity) / (2.0 * h);
+        let scale = at(t).acceleration.norm().max(1e-6);
+        assert!(
+            (rate - at(t).acceleration).norm() < 1e-3 * scale,
+            "{t}: {rate:?} against {:?}",
+            at(t).acceleration
+        );
+    }
+}

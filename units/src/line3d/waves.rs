@@ -29,6 +29,8 @@ pub struct AiryWaves {
     direction: [f64; 2],
     /// Water depth (m); infinite for deep water.
     depth: f64,
+    /// Seconds over which the waves grow from calm.
+    fade_in: f64,
 }
 
 /// The water's motion at a point and time.
@@ -89,16 +91,19 @@ impl AiryWaves {
             components,
             direction: [heading.cos(), heading.sin()],
             depth,
+            fade_in: waves.fade_in,
         }
     }
 
-    /// Elevation (m) at plan position (x, y) and time t (s).
+    /// Elevation (m) at plan position (x, y) and time t (s), faded in.
     pub fn elevation(&self, x: f64, y: f64, t: f64) -> f64 {
         let along = x * self.direction[0] + y * self.direction[1];
-        self.components
+        let full: f64 = self
+            .components
             .iter()
             .map(|c| c.amplitude * (c.omega * t + c.phase - c.wavenumber * along).sin())
-            .sum()
+            .sum();
+        super::step::fade(self.fade_in, t)[0] * full
     }
 
     /// The water's kinematics at `p` and `t`; `None` above the surface.
@@ -126,10 +131,14 @@ impl AiryWaves {
             vertical[1] -= aw * c.omega * vertical_shape * sin;
         }
         let [dx, dy] = self.direction;
+        // Faded in: r u, and r a + r' u for the acceleration.
+        let [r, rate, _] = super::step::fade(self.fade_in, t);
+        let velocity = Vector3::new(horizontal[0] * dx, horizontal[0] * dy, vertical[0]);
+        let acceleration = Vector3::new(horizontal[1] * dx, horizontal[1] * dy, vertical[1]);
         Some(Kinematics {
             elevation: eta,
-            velocity: Vector3::new(horizontal[0] * dx, horizontal[0] * dy, vertical[0]),
-            acceleration: Vector3::new(horizontal[1] * dx, horizontal[1] * dy, vertical[1]),
+            velocity: velocity * r,
+            acceleration: acceleration * r + velocity * rate,
         })
     }
 }
