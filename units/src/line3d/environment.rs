@@ -197,6 +197,32 @@ impl Environment {
         }
     }
 
+    /// As [`Environment::add_force`] at scale 1 without a tangent, and the
+    /// powers (W) of the water, friction and the seabed's damper on the
+    /// nodes' velocities, in the same pass.
+    pub fn add_force_and_powers(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        force: &mut [f64],
+    ) -> [f64; 3] {
+        let mut powers = [0.0; 3];
+        if !self.hydrodynamic() && self.seabed.is_none() {
+            return powers;
+        }
+        for i in 0..self.tributary.len() {
+            let f = self.node_forces(q, v, t, i, None);
+            let total = f.hydrodynamic + f.seabed_spring + f.seabed_damper + f.friction;
+            add_node(force, i, &total, -1.0);
+            let velocity = node(v, i);
+            powers[0] += f.hydrodynamic.dot(&velocity);
+            powers[1] += f.friction.dot(&velocity);
+            powers[2] += f.seabed_damper.dot(&velocity);
+        }
+        powers
+    }
+
     /// The forces on node `i`, and with `tangent` minus their derivatives
     /// added to the band (scaled by its factors).
     pub fn node_forces(

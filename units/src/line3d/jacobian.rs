@@ -67,18 +67,21 @@ impl Line3d {
     /// The velocity tangent of the line's forces at the current state.
     fn velocity_tangent(&self, w: &mut JacobianWork) {
         let n = self.state.q.len();
-        let band = w
+        let mut band = w
             .damping
-            .get_or_insert_with(|| SymmetricBand::zeros(n, BAND));
+            .take()
+            .unwrap_or_else(|| SymmetricBand::zeros(n, BAND));
         band.fill_zero();
         w.force.clear();
         w.force.resize(n, 0.0);
         let s = &self.state;
+        let tangent = Some((&mut band, 0.0, 1.0));
         self.mechanics
-            .add_force(&s.q, &s.v, 1.0, Some((band, 0.0, 1.0)), &mut w.force);
-        let band = w.damping.as_mut().expect("formed above");
+            .add_force(&s.q, &s.v, 1.0, tangent, &mut w.force);
+        let tangent = Some((&mut band, 0.0, 1.0));
         self.environment
-            .add_force(&s.q, &s.v, s.t, 1.0, Some((band, 0.0, 1.0)), &mut w.force);
+            .add_force(&s.q, &s.v, s.t, 1.0, tangent, &mut w.force);
+        w.damping = Some(band);
     }
 
     /// The end (0 start, 1 end), its node and its condition, for input `j`.

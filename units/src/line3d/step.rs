@@ -100,14 +100,14 @@ impl Line3d {
         }
         let q = std::mem::take(&mut self.state.q);
         let v = std::mem::take(&mut self.state.v);
-        self.evaluate_end(&q, &v, t0, &external);
+        let surroundings = self.evaluate_end(&q, &v, t0, &external);
         self.state.q = q;
         self.state.v = v;
         self.state.ledger = Ledger {
             initial: self.energies().iter().sum(),
             ..Ledger::default()
         };
-        self.evaluate_end_powers();
+        self.evaluate_end_powers(surroundings);
     }
 
     /// One coupling step from `t` of length `h` (s); returns Newton's iterations.
@@ -223,11 +223,11 @@ impl Line3d {
             std::mem::take(&mut self.state.q),
             std::mem::take(&mut self.state.v),
         );
-        self.evaluate_end(&q, &v, t1, &w.f1);
+        let surroundings = self.evaluate_end(&q, &v, t1, &w.f1);
         self.work = w;
         self.state.q = q;
         self.state.v = v;
-        self.evaluate_end_powers();
+        self.evaluate_end_powers(surroundings);
         let ledger = &mut self.state.ledger;
         for ((work, start), end) in ledger.work.iter_mut().zip(before).zip(ledger.power) {
             *work += 0.5 * h * (start + end);
@@ -274,13 +274,15 @@ impl Line3d {
 
     /// The force g at (q, v, t) into the state, the reactions of the held
     /// ends (M a + g - f, reversed) and the loaded ends' loads (reversed);
-    /// `external` is f: the weight and the loads on loaded ends (N).
-    fn evaluate_end(&mut self, q: &[f64], v: &[f64], t: f64, external: &[f64]) {
+    /// `external` is f: the weight and the loads on loaded ends (N). Returns
+    /// the powers (W) of the water, friction and the seabed's damper, from the
+    /// same pass over the nodes.
+    fn evaluate_end(&mut self, q: &[f64], v: &[f64], t: f64, external: &[f64]) -> [f64; 3] {
         let mut force = std::mem::take(&mut self.state.force);
         force.resize(q.len(), 0.0);
         force.fill(0.0);
         self.mechanics.add_force(q, v, 1.0, None, &mut force);
-        self.environment.add_force(q, v, t, 1.0, None, &mut force);
+        let surroundings = self.environment.add_force_and_powers(q, v, t, &mut force);
         let n = q.len();
         for (k, end) in [&self.params.start, &self.params.end].iter().enumerate() {
             let node = if k == 0 { 0 } else { self.mechanics.nodes - 1 };
@@ -295,11 +297,14 @@ impl Line3d {
             }
         }
         self.state.force = force;
+        surroundings
     }
 
-    /// The powers (W) at the current state into the ledger.
-    fn evaluate_end_powers(&mut self) {
-        let (q, v, t) = (&self.state.q, &self.state.v, self.state.t);
+    /// The powers (W) at the current state into the ledger: the ends' from
+    /// their reactions, the axial damper's, and `surroundings` (water,
+    /// friction, seabed damper) as `evaluate_end` found them.
+    fn evaluate_end_powers(&mut self, surroundings: [f64; 3]) {
+        let (q, v) = (&self.state.q, &self.state.v);
         let mut power = [0.0; 5];
         let last = self.mechanics.nodes - 1;
         for (k, node_index) in [0, last].into_iter().enumerate() {
@@ -307,13 +312,7 @@ impl Line3d {
                 -nalgebra::Vector3::from_column_slice(&self.state.reaction[DOF * k..DOF * k + DOF]);
             power[ENDS] += on_line.dot(&node(v, node_index));
         }
-        for i in 0..self.mechanics.nodes {
-            let f = self.environment.node_forces(q, v, t, i, None);
-            let vel = node(v, i);
-            power[WATER] += f.hydrodynamic.dot(&vel);
-            power[FRICTION] += f.friction.dot(&vel);
-            power[SEABED_DAMPER] += f.seabed_damper.dot(&vel);
-        }
+        [power[WATER], power[FRICTION], power[SEABED_DAMPER]] = surroundings;
         power[AXIAL_DAMPER] = self.mechanics.damper_power(q, v);
         self.state.ledger.power = power;
     }
