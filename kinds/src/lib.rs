@@ -20,6 +20,7 @@ use slender_units::benchmark::algebraic_loop::{
 use slender_units::benchmark::oscillator::{Oscillator, OscillatorParams};
 use slender_units::cable::{Cable, CableParams, Effects};
 use slender_units::chord::{Chord, ChordParams};
+use slender_units::line3d::catenary_section::CatenarySection;
 use slender_units::line3d::{Line3d, Line3dParams};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::reduced::unit::{ReducedParams, ReducedUnit};
@@ -127,6 +128,13 @@ pub const KINDS: &[Kind] = &[
         summary: "a slender line in 3D (mooring line, riser): rotation-free nodes, EA and EI (no torsion), Morison drag and added mass, current by depth and heading, Airy waves, sloped seabed with axial and lateral friction; static Newton from the elastic catenary, HHT-alpha",
         effects: &[],
         build: |p, _| Ok(Box::new(Line3d::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "catenary3d",
+        parameters: field_names::<Line3dParams>,
+        summary: "a 3D line as its elastic catenary from an anchor (flat seabed at the anchor or none): quasi-static, the end force each step from the closed form (a 3D structure's `static` section)",
+        effects: &[],
+        build: |p, _| Ok(Box::new(CatenarySection::new(parameters(p)?)?)),
     },
     Kind {
         name: "span",

@@ -43,11 +43,16 @@ fn the_step_jacobian_matches_finite_differences() {
     // spring, added mass, the axial damper); with drag in a current to the
     // drag's position derivative, which the Newton matrix leaves out.
     let drag = "drag_normal = 1.2\ncurrent = [{ depth = 0.0, speed = 0.5, heading_deg = 70.0 }]";
+    let linear_drag = format!("linear = true\n{drag}");
     for (condition, extra, tolerance) in [
         ("velocity", "", 1e-5),
         ("force", "", 1e-5),
         ("velocity", drag, 1e-3),
         ("force", drag, 1e-3),
+        // Linear: drag held from the step's start, so as exact with it.
+        ("velocity", "linear = true", 1e-5),
+        ("force", "linear = true", 1e-5),
+        ("velocity", &linear_drag, 1e-5),
     ] {
         let (mut d, inputs) = coupled(condition, extra);
         let (n_out, n_in) = (d.description().outputs.len(), inputs.len());

@@ -252,6 +252,44 @@ impl Environment {
         out
     }
 
+    /// The seabed's force on node `i` at rest at `q` (N) and its
+    /// derivatives there; `None` off the seabed or without one.
+    pub fn seabed_at_rest(&self, q: &[f64], i: usize) -> Option<(NodeForces, SeabedTangent)> {
+        let seabed = self.seabed.as_ref()?;
+        let at = At {
+            x: node(q, i),
+            velocity: Vector3::zeros(),
+            axis: tangent_at(q, i, self.tributary.len()),
+            t: 0.0,
+            length: self.tributary[i],
+            node: i,
+        };
+        let mut out = NodeForces::default();
+        let tangent = seabed_node(seabed, &at, &mut out)?;
+        Some((out, tangent))
+    }
+
+    /// Adds the water's force (drag on the velocity relative to the water
+    /// and the waves' inertia, N) at (q, v, t) to `force`; returns whether
+    /// there is any.
+    pub fn add_hydrodynamic_force(&self, q: &[f64], v: &[f64], t: f64, force: &mut [f64]) -> bool {
+        if !self.hydrodynamic() {
+            return false;
+        }
+        for i in 0..self.tributary.len() {
+            let at = At {
+                x: node(q, i),
+                velocity: node(v, i),
+                axis: tangent_at(q, i, self.tributary.len()),
+                t,
+                length: self.tributary[i],
+                node: i,
+            };
+            add_node(force, i, &self.hydrodynamics(&at, None), 1.0);
+        }
+        true
+    }
+
     /// Drag on the velocity relative to the water and the waves' inertia
     /// (none on a node above the surface); with `band`, the drag's velocity
     /// derivative times the damping factor.
@@ -315,12 +353,35 @@ fn split(u: &Vector3<f64>, axis: &Vector3<f64>) -> (f64, Vector3<f64>) {
     (along, u - axis * along)
 }
 
-/// The seabed's spring, damper and friction on a node (zero off the seabed).
+/// The seabed's derivatives at a node in contact: the spring's stiffness
+/// (N/m), the damper's and the friction's velocity slopes (N s/m), as Newton
+/// takes them (friction's secant while sliding).
+#[derive(Copy, Clone, Debug)]
+pub struct SeabedTangent {
+    pub stiffness: Matrix3<f64>,
+    pub damper: Matrix3<f64>,
+    pub friction: Matrix3<f64>,
+}
+
+/// The seabed's spring, damper and friction on a node (zero off the seabed),
+/// with their tangent added to the band.
 fn seabed_forces(s: &SeabedPlane, at: &At, tangent: Tangent<'_>, out: &mut NodeForces) {
+    let Some(d) = seabed_node(s, at, out) else {
+        return;
+    };
+    if let Some((band, k, c)) = tangent {
+        let m = d.stiffness * k + (d.damper + d.friction) * c;
+        add_block(band, at.node, at.node, &m, 1.0);
+    }
+}
+
+/// The seabed's forces on a node into `out`, and their derivatives; `None`
+/// off the seabed.
+fn seabed_node(s: &SeabedPlane, at: &At, out: &mut NodeForces) -> Option<SeabedTangent> {
     let (vel, axis, length) = (&at.velocity, &at.axis, at.length);
     let height = s.height(&at.x);
     if height >= 0.0 {
-        return;
+        return None;
     }
     let n = s.normal;
     let (pressure, slope) = s.penalty(-height);
@@ -334,7 +395,7 @@ fn seabed_forces(s: &SeabedPlane, at: &At, tangent: Tangent<'_>, out: &mut NodeF
         .try_normalize(1e-12)
         .unwrap_or_else(|| any_normal(&n));
     let across = n.cross(&along);
-    let mut damping = Matrix3::zeros();
+    let mut friction = Matrix3::zeros();
     for (dir, mu) in [(along, s.friction[0]), (across, s.friction[1])] {
         if mu == 0.0 {
             continue;
@@ -353,13 +414,14 @@ fn seabed_forces(s: &SeabedPlane, at: &At, tangent: Tangent<'_>, out: &mut NodeF
         } else {
             (1.0 - ratio * ratio).max(ratio / slip)
         };
-        damping += dir * dir.transpose() * (limit * slope / s.stick_velocity);
+        friction += dir * dir.transpose() * (limit * slope / s.stick_velocity);
     }
-    if let Some((band, k, c)) = tangent {
-        let nn = n * n.transpose();
-        let m = nn * (k * slope * length + c * damping_rate) + damping * c;
-        add_block(band, at.node, at.node, &m, 1.0);
-    }
+    let nn = n * n.transpose();
+    Some(SeabedTangent {
+        stiffness: nn * (slope * length),
+        damper: nn * damping_rate,
+        friction,
+    })
 }
 
 /// Some unit vector normal to `n`.

@@ -72,6 +72,11 @@ impl Line3d {
             .take()
             .unwrap_or_else(|| SymmetricBand::zeros(n, BAND));
         band.fill_zero();
+        if let Some(l) = &self.linear {
+            band.copy_from(&l.damping);
+            w.damping = Some(band);
+            return;
+        }
         w.force.clear();
         w.force.resize(n, 0.0);
         let s = &self.state;

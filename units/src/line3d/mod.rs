@@ -15,12 +15,14 @@
 //! is refused.
 
 pub mod catenary;
+pub mod catenary_section;
 pub mod environment;
 pub mod mechanics;
 pub mod params;
 pub mod waves;
 
 mod jacobian;
+mod linear;
 mod outputs;
 mod statics;
 mod step;
@@ -52,6 +54,8 @@ crate::state_struct! {
         /// damper and the axial damper.
         ledger: step::Ledger,
         newton_iterations: u32,
+        /// The linear model's strain and seabed-spring energies (J).
+        linear_energy: [f64; 2],
     }
 }
 
@@ -71,6 +75,8 @@ pub struct Line3d {
     /// The first input of each end that takes coupled inputs.
     first_input: [Option<usize>; 2],
     jacobian: jacobian::JacobianWork,
+    /// The linear model about the static state, with `linear = true`.
+    linear: Option<linear::Linearised>,
 }
 
 /// The ends' names in ports: the start (anchor) and the end (fairlead).
@@ -137,10 +143,12 @@ impl Line3d {
                 reaction: [0.0; 6],
                 ledger: step::Ledger::default(),
                 newton_iterations: 0,
+                linear_energy: [0.0; 2],
             },
             work: step::Work::default(),
             first_input,
             jacobian: jacobian::JacobianWork::default(),
+            linear: None,
         })
     }
 
@@ -207,6 +215,7 @@ impl Unit for Line3d {
         self.end_loads(&inputs, 1.0, &mut loads);
         self.solve_statics(&mut q, &loads, t0)?;
         self.form_mass(&q);
+        self.linearise(&q);
         self.hht.forget_matrices();
         self.start_dynamics(q, &inputs, t0);
         self.jacobian.ready = false;
@@ -249,7 +258,11 @@ impl Unit for Line3d {
 }
 
 #[cfg(test)]
+mod catenary_section_tests;
+#[cfg(test)]
 mod coupling_tests;
+#[cfg(test)]
+mod linear_tests;
 #[cfg(test)]
 mod planar_tests;
 #[cfg(test)]

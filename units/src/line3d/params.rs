@@ -68,6 +68,10 @@ pub struct Line3dParams {
     /// HHT-alpha numerical damping in [0, 1/3].
     #[serde(default = "default_alpha")]
     pub alpha: f64,
+    /// Step the line linearised about its static state (see
+    /// `line3d::linear`): one back-substitution a step, for small motion.
+    #[serde(default)]
+    pub linear: bool,
     /// Largest internal step (s); a coupling step is cut into equal steps no
     /// longer than this (0: one internal step per coupling step).
     #[serde(default)]

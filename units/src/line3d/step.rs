@@ -20,6 +20,12 @@ pub(super) struct Work {
     f1: Vec<f64>,
     g0: Vec<f64>,
     held: Vec<(usize, [f64; 3])>,
+    /// A linear line's water force at the step's start and end (N), and its
+    /// step's loads.
+    water0: Vec<f64>,
+    water1: Vec<f64>,
+    linear_f0: Vec<f64>,
+    linear_f1: Vec<f64>,
 }
 
 /// The energy ledger (J).
@@ -100,9 +106,13 @@ impl Line3d {
         }
         let q = std::mem::take(&mut self.state.q);
         let v = std::mem::take(&mut self.state.v);
-        let surroundings = self.evaluate_end(&q, &v, t0, &external);
+        let mut w = std::mem::take(&mut self.work);
+        self.water(&q, &v, t0, &mut w.water1);
+        let surroundings = self.evaluate_end(&q, &v, t0, (&external, &w.water1));
+        self.work = w;
         self.state.q = q;
         self.state.v = v;
+        self.update_linear_energy();
         self.state.ledger = Ledger {
             initial: self.energies().iter().sum(),
             ..Ledger::default()
@@ -190,14 +200,16 @@ impl Line3d {
         }
         w.g0.clone_from(&self.state.force);
         self.held_motion(inputs, (t1, h), s, &mut w.held);
+        self.linear_loads(t0, t1, &mut w);
         let mut hht = std::mem::take(&mut self.hht);
+        let linear = self.linear.is_some();
         let loads = StepLoads {
             t0,
             t1,
             h,
-            f0: &w.f0,
-            f1: &w.f1,
-            g0: Some(&w.g0),
+            f0: if linear { &w.linear_f0 } else { &w.f0 },
+            f1: if linear { &w.linear_f1 } else { &w.f1 },
+            g0: (!linear).then_some(w.g0.as_slice()),
             held: &w.held,
         };
         let newton = NewtonSettings {
@@ -223,10 +235,11 @@ impl Line3d {
             std::mem::take(&mut self.state.q),
             std::mem::take(&mut self.state.v),
         );
-        let surroundings = self.evaluate_end(&q, &v, t1, &w.f1);
+        let surroundings = self.evaluate_end(&q, &v, t1, (&w.f1, &w.water1));
         self.work = w;
         self.state.q = q;
         self.state.v = v;
+        self.update_linear_energy();
         self.evaluate_end_powers(surroundings);
         let ledger = &mut self.state.ledger;
         for ((work, start), end) in ledger.work.iter_mut().zip(before).zip(ledger.power) {
@@ -274,15 +287,32 @@ impl Line3d {
 
     /// The force g at (q, v, t) into the state, the reactions of the held
     /// ends (M a + g - f, reversed) and the loaded ends' loads (reversed);
-    /// `external` is f: the weight and the loads on loaded ends (N). Returns
-    /// the powers (W) of the water, friction and the seabed's damper, from the
-    /// same pass over the nodes.
-    fn evaluate_end(&mut self, q: &[f64], v: &[f64], t: f64, external: &[f64]) -> [f64; 3] {
+    /// `external` is f: the weight and the loads on loaded ends (N), and
+    /// `water` the water's force a linear line's step held. Returns the powers
+    /// (W) of the water, friction and the seabed's damper, from the same pass
+    /// over the nodes.
+    fn evaluate_end(
+        &mut self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        (external, water): (&[f64], &[f64]),
+    ) -> [f64; 3] {
         let mut force = std::mem::take(&mut self.state.force);
         force.resize(q.len(), 0.0);
         force.fill(0.0);
-        self.mechanics.add_force(q, v, 1.0, None, &mut force);
-        let surroundings = self.environment.add_force_and_powers(q, v, t, &mut force);
+        let surroundings = match &self.linear {
+            Some(l) => {
+                l.force(q, v, water, &mut force);
+                let [friction, damper, _] = l.dissipation(v);
+                let water_power = water.iter().zip(v).map(|(f, u)| f * u).sum();
+                [water_power, friction, damper]
+            }
+            None => {
+                self.mechanics.add_force(q, v, 1.0, None, &mut force);
+                self.environment.add_force_and_powers(q, v, t, &mut force)
+            }
+        };
         let n = q.len();
         for (k, end) in [&self.params.start, &self.params.end].iter().enumerate() {
             let node = if k == 0 { 0 } else { self.mechanics.nodes - 1 };
@@ -313,21 +343,59 @@ impl Line3d {
             power[ENDS] += on_line.dot(&node(v, node_index));
         }
         [power[WATER], power[FRICTION], power[SEABED_DAMPER]] = surroundings;
-        power[AXIAL_DAMPER] = self.mechanics.damper_power(q, v);
+        power[AXIAL_DAMPER] = match &self.linear {
+            Some(l) => l.dissipation(v)[2],
+            None => self.mechanics.damper_power(q, v),
+        };
         self.state.ledger.power = power;
     }
 
     /// Kinetic, strain and potential energy (J; potential of the weight and
     /// of the seabed's spring).
+    /// (The linear model's own where the line is linear.)
     pub(super) fn energies(&self) -> [f64; 3] {
         let q = &self.state.q;
         let kinetic = 0.5 * self.mass.quadratic_form(&self.state.v);
-        let strain = self.mechanics.strain_energy(q);
         let mut potential: f64 = -self.weight.iter().zip(q).map(|(w, x)| w * x).sum::<f64>();
+        if self.linear.is_some() {
+            let [strain, seabed] = self.state.linear_energy;
+            return [kinetic, strain, potential + seabed];
+        }
+        let strain = self.mechanics.strain_energy(q);
         if let Some(seabed) = &self.environment.seabed {
             potential += self.environment.seabed_energy(seabed, q);
         }
         [kinetic, strain, potential]
+    }
+
+    /// A linear line's energies at the current state into the state.
+    fn update_linear_energy(&mut self) {
+        if let Some(l) = &mut self.linear {
+            self.state.linear_energy = l.energies(&self.state.q);
+        }
+    }
+
+    /// The water's force (N) at (q, v, t) into `out` (zeros without water).
+    fn water(&self, q: &[f64], v: &[f64], t: f64, out: &mut Vec<f64>) {
+        out.clear();
+        out.resize(q.len(), 0.0);
+        if self.linear.is_some() {
+            self.environment.add_hydrodynamic_force(q, v, t, out);
+        }
+    }
+
+    /// A linear line's step loads: f + water - offset at the step's start
+    /// and end, the water's force at the start state with the water's motion
+    /// at `t0` and `t1` (no-op on a nonlinear line).
+    fn linear_loads(&self, t0: f64, t1: f64, w: &mut Work) {
+        let Some(l) = &self.linear else {
+            return;
+        };
+        let (q, v) = (&self.state.q, &self.state.v);
+        self.water(q, v, t0, &mut w.water0);
+        self.water(q, v, t1, &mut w.water1);
+        l.step_loads(&w.f0, &w.water0, &mut w.linear_f0);
+        l.step_loads(&w.f1, &w.water1, &mut w.linear_f1);
     }
 }
 
@@ -339,15 +407,15 @@ impl SecondOrderSystem for Line3d {
     fn matrices(&self) -> Matrices<'_> {
         Matrices {
             mass: &self.mass,
-            damping: None,
-            stiffness: None,
+            damping: self.linear.as_ref().map(|l| &l.damping),
+            stiffness: self.linear.as_ref().map(|l| &l.stiffness),
         }
     }
 
     motion_fields!(state);
 
     fn is_linear(&self) -> bool {
-        false
+        self.linear.is_some()
     }
 
     fn nonlinear_force(

@@ -1,0 +1,338 @@
+//! A 3D line as its elastic catenary (scene kind `catenary3d`): the static
+//! section of a 3D structure, the cheapest fidelity of a mooring line's lower
+//! part. Its start is an anchor held in place, on a flat seabed at the
+//! anchor's level or hanging free; its end is held, moved by sines or moved
+//! by coupled velocities; each step the line is in static equilibrium through
+//! its ends (the closed form of [`super::catenary`], MoorPy's `catenary`
+//! without seabed friction), and the forces its ends exert follow from it.
+//!
+//! What it leaves out, by design: the line's inertia, drag, added mass and
+//! waves (a quasi-static line), bending, the seabed's friction and a sloped
+//! seabed (refused). It takes the same parameters as `line3d` (`elements` and
+//! the dynamic coefficients are not used), so a structure's section changes
+//! fidelity by one word.
+//!
+//! A coupled end follows its velocity inputs by Newmark's rule with the
+//! `alpha` of the 3D line (from its own start motion), as the dynamic line
+//! beside it moves the node that drives it: the cut stays closed.
+
+use super::catenary::{Catenary, CatenaryLine};
+use super::params::{EndCondition, Line3dParams};
+use super::step::end_motion;
+use crate::contract::{
+    Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
+    UnitError,
+};
+use nalgebra::Vector3;
+
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// The outputs after the ends' (name, unit of measure).
+const EXTRA_OUTPUTS: [(&str, &str); 8] = [
+    ("end_tension", "N"),
+    ("end_angle_from_vertical", "deg"),
+    ("end_azimuth", "deg"),
+    ("start_tension", "N"),
+    ("touchdown_arc", "m"),
+    ("touchdown_x", "m"),
+    ("touchdown_y", "m"),
+    ("largest_tension", "N"),
+];
+
+crate::state_struct! {
+    /// The end's motion and the catenary's tensions.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct CatenaryState {
+        /// The end's position (m), velocity (m/s) and acceleration (m/s^2).
+        end: [[f64; 3]; 3],
+        /// Horizontal tension and the end's vertical force (N).
+        tensions: [f64; 2],
+    }
+}
+
+/// The unit.
+pub struct CatenarySection {
+    params: Line3dParams,
+    line: CatenaryLine,
+    description: UnitDescription,
+    state: CatenaryState,
+    /// Newmark's (beta, gamma) and the last step's length (s).
+    newmark: [f64; 2],
+    last_step: f64,
+}
+
+impl CatenarySection {
+    /// Builds the unit, refusing what the catenary cannot represent.
+    pub fn new(params: Line3dParams) -> Result<CatenarySection, UnitError> {
+        params.validate()?;
+        let refuse = |key: &str, value: &str, why: &str| UnitError::parameter(key, value, why);
+        if params.start.condition != EndCondition::Fixed {
+            return Err(refuse(
+                "start.condition",
+                "not fixed",
+                "\"fixed\": the catenary's start is its anchor",
+            ));
+        }
+        if params.end.condition == EndCondition::Force {
+            return Err(refuse(
+                "end.condition",
+                "force",
+                "\"fixed\", \"motion\" or \"velocity\": a static line's end is moved; its force is an output",
+            ));
+        }
+        if params.submerged_weight <= 0.0 {
+            return Err(refuse(
+                "submerged_weight",
+                "0",
+                "> 0: the catenary hangs by its weight",
+            ));
+        }
+        if let Some(s) = &params.seabed {
+            let level = (params.start.position[2] + s.depth).abs();
+            if s.slope != [0.0, 0.0] || level > 1e-6 * params.length.max(1.0) {
+                return Err(refuse(
+                    "seabed",
+                    "sloped or below the anchor",
+                    "a flat seabed at the anchor's level (z = -depth), as the elastic catenary with seabed contact has it",
+                ));
+            }
+        }
+        let line = CatenaryLine {
+            length: params.length,
+            axial_stiffness: params.axial_stiffness,
+            weight: params.submerged_weight,
+            seabed: params.seabed.is_some(),
+        };
+        let alpha = params.alpha;
+        let newmark = [0.25 * (1.0 + alpha).powi(2), 0.5 + alpha];
+        let coupled = params.end.condition == EndCondition::Velocity;
+        let description = UnitDescription {
+            kind: "catenary3d".into(),
+            inputs: if coupled {
+                AXES.iter()
+                    .map(|a| Port::input(&format!("end_velocity_{a}"), PortKind::Velocity))
+                    .collect()
+            } else {
+                Vec::new()
+            },
+            outputs: output_ports(),
+            capabilities: Capabilities {
+                step_jacobian: coupled,
+                ..Capabilities::default()
+            },
+        };
+        Ok(CatenarySection {
+            state: CatenaryState {
+                end: [params.end.position, [0.0; 3], [0.0; 3]],
+                tensions: [0.0; 2],
+            },
+            params,
+            line,
+            description,
+            newmark,
+            last_step: 0.0,
+        })
+    }
+
+    /// The plan direction from the anchor to an end at `end` (m) and the
+    /// horizontal span (m).
+    fn plan(&self, end: &[f64; 3]) -> ([f64; 2], f64) {
+        let a = &self.params.start.position;
+        let (dx, dy) = (end[0] - a[0], end[1] - a[1]);
+        let across = dx.hypot(dy);
+        if across > 0.0 {
+            ([dx / across, dy / across], across)
+        } else {
+            ([1.0, 0.0], across)
+        }
+    }
+
+    /// The catenary through the anchor and an end at `end` (m). A line
+    /// lying on the seabed (its end at the anchor's level or below) is a bar
+    /// stretched along it.
+    fn solve(&self, end: &[f64; 3]) -> Result<Catenary, UnitError> {
+        let (_, across) = self.plan(end);
+        let up = end[2] - self.params.start.position[2];
+        let l = self.line.length;
+        if self.line.seabed && up <= 1e-9 * l {
+            return Ok(Catenary {
+                line: self.line,
+                horizontal: self.line.axial_stiffness * (across / l - 1.0).max(0.0),
+                vertical: 0.0,
+            });
+        }
+        self.line.solve(across.max(1e-9 * l), up)
+    }
+
+    /// The forces (N) the end and the start exert on what holds them, for
+    /// the catenary `c` in the plan direction `u`.
+    fn forces_of(&self, c: &Catenary, [ux, uy]: [f64; 2]) -> [[f64; 3]; 2] {
+        let (h, vf) = (c.horizontal, c.vertical);
+        let va = if c.laid_length() > 0.0 {
+            0.0
+        } else {
+            vf - self.line.weight * self.line.length
+        };
+        [[-h * ux, -h * uy, -vf], [h * ux, h * uy, va]]
+    }
+
+    /// The same for an end at `end` (m).
+    fn forces(&self, end: &[f64; 3]) -> Result<[[f64; 3]; 2], UnitError> {
+        Ok(self.forces_of(&self.solve(end)?, self.plan(end).0))
+    }
+
+    /// d(end force, start force) / d(end position) by central differences.
+    fn stiffness(&self) -> Result<[[[f64; 3]; 3]; 2], UnitError> {
+        let delta = 1e-6 * self.params.length;
+        let mut k = [[[0.0; 3]; 3]; 2];
+        for j in 0..3 {
+            let (mut plus, mut minus) = (self.state.end[0], self.state.end[0]);
+            plus[j] += delta;
+            minus[j] -= delta;
+            let (fp, fm) = (self.forces(&plus)?, self.forces(&minus)?);
+            for (side, rows) in k.iter_mut().enumerate() {
+                for (i, row) in rows.iter_mut().enumerate() {
+                    row[j] = (fp[side][i] - fm[side][i]) / (2.0 * delta);
+                }
+            }
+        }
+        Ok(k)
+    }
+
+    /// The end's motion at the step's end: prescribed, or by Newmark from
+    /// its start motion and the velocity input at the step's end.
+    fn moved(&self, t1: f64, h: f64, inputs: &Inputs<'_>) -> [[f64; 3]; 3] {
+        if self.params.end.condition != EndCondition::Velocity {
+            return end_motion(&self.params.end, t1);
+        }
+        let [beta, gamma] = self.newmark;
+        let [q0, v0, a0] = self.state.end;
+        let mut out = [[0.0; 3]; 3];
+        for c in 0..3 {
+            let v1 = inputs.at(c, 1.0);
+            let a1 = (v1 - v0[c]) / (gamma * h) - (1.0 - gamma) / gamma * a0[c];
+            out[0][c] = q0[c] + h * v0[c] + h * h * ((0.5 - beta) * a0[c] + beta * a1);
+            out[1][c] = v1;
+            out[2][c] = a1;
+        }
+        out
+    }
+}
+
+/// Per end its position, velocity and force (x, y, z), then the extras.
+fn output_ports() -> Vec<Port> {
+    let mut out = Vec::new();
+    for side in super::SIDES {
+        for (quantity, kind) in [
+            ("position", PortKind::Displacement),
+            ("velocity", PortKind::Velocity),
+            ("force", PortKind::Force),
+        ] {
+            for a in AXES {
+                out.push(Port::output(&format!("{side}_{quantity}_{a}"), kind));
+            }
+        }
+    }
+    for (name, unit) in EXTRA_OUTPUTS {
+        out.push(Port::output(name, PortKind::Generic).with_unit(unit));
+    }
+    out
+}
+
+impl Unit for CatenarySection {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let mut end = end_motion(&self.params.end, t0.as_secs());
+        if self.params.end.condition == EndCondition::Velocity {
+            end[0] = self.params.end.position;
+            end[1] = std::array::from_fn(|c| inputs.at(c, 1.0));
+            end[2] = [0.0; 3];
+        }
+        let c = self.solve(&end[0])?;
+        self.state = CatenaryState {
+            end,
+            tensions: [c.horizontal, c.vertical],
+        };
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        let h = h.as_secs();
+        let end = self.moved(t.as_secs() + h, h, &inputs);
+        let c = self.solve(&end[0])?;
+        self.state = CatenaryState {
+            end,
+            tensions: [c.horizontal, c.vertical],
+        };
+        self.last_step = h;
+        Ok(StepReport::default())
+    }
+
+    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
+        let end = &self.state.end;
+        let c = Catenary {
+            line: self.line,
+            horizontal: self.state.tensions[0],
+            vertical: self.state.tensions[1],
+        };
+        let (u, _) = self.plan(&end[0]);
+        let forces = self.forces_of(&c, u);
+        let start = &self.params.start.position;
+        out[0..3].copy_from_slice(start);
+        out[3..6].fill(0.0);
+        out[6..9].copy_from_slice(&forces[1]);
+        out[9..12].copy_from_slice(&end[0]);
+        out[12..15].copy_from_slice(&end[1]);
+        out[15..18].copy_from_slice(&forces[0]);
+        let top = Vector3::from(forces[0]);
+        let tension = top.norm();
+        let laid = c.laid_length();
+        let stretched = laid * (1.0 + c.horizontal / self.line.axial_stiffness);
+        out[18..26].copy_from_slice(&[
+            tension,
+            (-top.z / tension).clamp(-1.0, 1.0).acos().to_degrees(),
+            top.y.atan2(top.x).to_degrees(),
+            Vector3::from(forces[1]).norm(),
+            laid,
+            start[0] + u[0] * stretched,
+            start[1] + u[1] * stretched,
+            tension,
+        ]);
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.state);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.state.clone_from(&*slot.load::<CatenaryState>()?);
+        Ok(())
+    }
+
+    /// The end's position moves by beta h / gamma per unit velocity input
+    /// (Newmark), its velocity by one; the forces through the catenary's
+    /// stiffness (central differences). The other outputs are NaN.
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        let n_in = inputs.len();
+        jacobian.fill(f64::NAN);
+        let [beta, gamma] = self.newmark;
+        let dq = beta * self.last_step / gamma;
+        let k = self.stiffness()?;
+        for j in 0..n_in {
+            for i in 0..3 {
+                let d = f64::from(u8::from(i == j));
+                jacobian[i * n_in + j] = 0.0;
+                jacobian[(3 + i) * n_in + j] = 0.0;
+                jacobian[(6 + i) * n_in + j] = k[1][i][j] * dq;
+                jacobian[(9 + i) * n_in + j] = d * dq;
+                jacobian[(12 + i) * n_in + j] = d;
+                jacobian[(15 + i) * n_in + j] = k[0][i][j] * dq;
+            }
+        }
+        Ok(())
+    }
+}
