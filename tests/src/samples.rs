@@ -111,6 +111,11 @@ pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
         ("nonlinear", inline("nonlinear", NONLINEAR_SAMPLE)),
         ("line3d", from_scene("examples/riser_3d.toml", "riser")),
         ("line3d coupled", inline("line3d", LINE3D_SAMPLE)),
+        (
+            "line3d linear",
+            inline("line3d", &format!("{LINE3D_SAMPLE}linear = true\n")),
+        ),
+        ("catenary3d", inline("catenary3d", LINE3D_SAMPLE)),
         ("nonlinear linear", inline("nonlinear", &linear_sample())),
         ("nonlinear reduced", inline("nonlinear", &reduced_sample())),
         ("nonlinear sampled", inline("nonlinear", &sampled_sample())),

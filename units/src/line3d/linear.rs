@@ -49,6 +49,8 @@ pub(super) struct Linearised {
     axial: SymmetricBand,
     /// g_s - K q_s: the line's force is K q + C v + offset (N).
     offset: Vec<f64>,
+    /// g_s: the bars', bending's and seabed springs' force at the start (N).
+    start_force: Vec<f64>,
     /// The start state q_s (m) and the bars' and bending's force there (N).
     start: Vec<f64>,
     elastic_start: Vec<f64>,
@@ -100,6 +102,7 @@ impl Line3d {
                 friction: t.friction,
             });
         }
+        let start_force = offset.clone();
         stiffness.mul_add(-1.0, q, &mut offset);
         let seabed_energy = self
             .environment
@@ -111,6 +114,7 @@ impl Line3d {
             damping,
             axial,
             offset,
+            start_force,
             start: q.to_vec(),
             elastic_start,
             energy_start: [self.mechanics.strain_energy(q), seabed_energy],
@@ -122,11 +126,15 @@ impl Line3d {
 }
 
 impl Linearised {
-    /// The line's force at (q, v) into `force`: K q + C v + offset, less the
+    /// The line's force at (q, v) into `force`: g_s + K (q - q_s) + C v
+    /// (the displacement first, so the force keeps its digits), less the
     /// water's force `water` (N) the step held.
-    pub(super) fn force(&self, q: &[f64], v: &[f64], water: &[f64], force: &mut [f64]) {
-        force.copy_from_slice(&self.offset);
-        self.stiffness.mul_add(1.0, q, force);
+    pub(super) fn force(&mut self, q: &[f64], v: &[f64], water: &[f64], force: &mut [f64]) {
+        for ((d, x), s) in self.dq.iter_mut().zip(q).zip(&self.start) {
+            *d = x - s;
+        }
+        force.copy_from_slice(&self.start_force);
+        self.stiffness.mul_add(1.0, &self.dq, force);
         self.damping.mul_add(1.0, v, force);
         for (f, w) in force.iter_mut().zip(water) {
             *f -= w;

@@ -301,7 +301,7 @@ impl Line3d {
         let mut force = std::mem::take(&mut self.state.force);
         force.resize(q.len(), 0.0);
         force.fill(0.0);
-        let surroundings = match &self.linear {
+        let surroundings = match self.linear.as_mut() {
             Some(l) => {
                 l.force(q, v, water, &mut force);
                 let [friction, damper, _] = l.dissipation(v);
