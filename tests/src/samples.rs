@@ -63,6 +63,11 @@ rayleigh_stiffness = 0.001
 stations = [5.0]
 "#;
 
+/// The 3D line sample linearised about its statics.
+fn line3d_linear() -> String {
+    format!("{LINE3D_SAMPLE}linear = true\n")
+}
+
 /// The nonlinear sample linearised about its start (`linear = true`; no
 /// stinger, which a linear section refuses).
 pub fn linear_sample() -> String {
@@ -111,10 +116,7 @@ pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
         ("nonlinear", inline("nonlinear", NONLINEAR_SAMPLE)),
         ("line3d", from_scene("examples/riser_3d.toml", "riser")),
         ("line3d coupled", inline("line3d", LINE3D_SAMPLE)),
-        (
-            "line3d linear",
-            inline("line3d", &format!("{LINE3D_SAMPLE}linear = true\n")),
-        ),
+        ("line3d linear", inline("line3d", &line3d_linear())),
         ("catenary3d", inline("catenary3d", LINE3D_SAMPLE)),
         ("nonlinear linear", inline("nonlinear", &linear_sample())),
         ("nonlinear reduced", inline("nonlinear", &reduced_sample())),

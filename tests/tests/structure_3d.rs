@@ -87,6 +87,11 @@ fn what_a_3d_section_cannot_be_yet_is_refused_by_name() {
         "the other fidelities are planar so far",
     );
     refused(
+        "name = \"upper\"",
+        "name = \"upper\"\nfidelity = \"static\"",
+        "the first of several sections",
+    );
+    refused(
         "to = 1200.0",
         "to = 1200.0\nsubsteps = 2",
         "`substeps` is not offered",
@@ -102,6 +107,28 @@ fn what_a_3d_section_cannot_be_yet_is_refused_by_name() {
         "bending_stiffnes = 100.0",
         "bending_stiffnes",
     );
+}
+
+#[test]
+fn a_3d_lower_section_linearised_or_as_its_catenary_follows_the_twin() {
+    // The polyester line's lower 1200 m hang clear of any seabed: linear
+    // about its statics (the fairlead moves 3 m; 8e-5 of the 2.5 MN tension
+    // measured) or quasi-static (its inertia and drag left out; 3.8e-3).
+    for (fidelity, tolerance) in [("linear", 5e-4), ("static", 6e-3)] {
+        let edit = format!("to = 1200.0\nfidelity = \"{fidelity}\"");
+        let run = run_edited(SCENE, &[("to = 1200.0", edit.as_str())]).unwrap();
+        let difference = top_force_difference(&run);
+        eprintln!("lower {fidelity}: {difference:.3e} N");
+        assert!(
+            difference < tolerance * 2.5e6,
+            "{fidelity}: {difference:e} N"
+        );
+        assert!(
+            run.get("line_upper.end_tension")
+                .iter()
+                .all(|t| t.is_finite())
+        );
+    }
 }
 
 /// The example's fairlead moved by a coupled velocity from a `signal` unit

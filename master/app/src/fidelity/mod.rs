@@ -261,7 +261,9 @@ fn structure_of(table: &Table) -> Result<Structure, String> {
     let features = Features {
         seabed: layout.seabed,
         stinger: layout.stinger,
+        // A 3D line has no stations to read its twin's force at a cut.
         cuts: (layout.sections.windows(2))
+            .filter(|_| layout.planar)
             .map(|w| format!("cut_{}_{}", w[0].name, w[1].name))
             .collect(),
     };
@@ -361,10 +363,13 @@ fn run_table(
         let mut whole = Table::new();
         whole.insert("name".into(), Value::String("monolithic".into()));
         *sections = vec![Value::Table(whole)];
-        let first = add_cut_stations(s, &structure.layout)?;
+        let planar = structure.layout.planar;
+        let first = planar
+            .then(|| add_cut_stations(s, &structure.layout))
+            .transpose()?;
         let mut units = run_sections(&table)?;
         if let [whole] = units.as_mut_slice() {
-            whole.cut_stations = Some(first);
+            whole.cut_stations = first;
         }
         return finish(table, units, &structure.features);
     };
@@ -434,6 +439,9 @@ fn add_end_stations(
 ) -> Result<Vec<[Option<usize>; 2]>, String> {
     let n = sections.len();
     let mut ends = vec![[None, None]; n];
+    if !sections.iter().any(|s| s.outputs.stations) {
+        return Ok(ends);
+    }
     let structure_table = table
         .get_mut("structure")
         .and_then(Value::as_table_mut)

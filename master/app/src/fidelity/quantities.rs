@@ -54,7 +54,7 @@ pub fn names(features: &Features) -> Vec<String> {
 enum CutReading {
     /// The mean of these internal-force magnitudes (N).
     Mean(Vec<String>),
-    /// The magnitude of a force's x and z components (N).
+    /// The magnitude of a force's components (N).
     Components(Vec<String>),
 }
 
@@ -115,16 +115,20 @@ fn signal_of(section: &SectionUnit, output: &Option<String>) -> Option<String> {
     (output.as_ref()).map(|output| format!("{}.{output}", section.unit))
 }
 
-/// The two force components (x, z) at a section's end (`top`) or start;
-/// none where that force is the section's input.
-fn end_force(section: &SectionUnit, top: bool) -> Option<[String; 2]> {
+/// The force's components (x, z; x, y, z in 3D) at a section's end (`top`)
+/// or start; none where that force is the section's input.
+fn end_force(section: &SectionUnit, top: bool) -> Option<Vec<String>> {
     let o = &section.outputs;
     let ports = if top {
         o.end_force.as_ref()
     } else {
         Some(&o.start_force)
     };
-    ports.map(|ports| ports.clone().map(|p| format!("{}.{p}", section.unit)))
+    ports.map(|ports| {
+        (ports.iter())
+            .map(|p| format!("{}.{p}", section.unit))
+            .collect()
+    })
 }
 
 /// The quantity `name`'s time series from a run's recording; the error names a
@@ -142,10 +146,14 @@ pub fn series(
     };
     let magnitude = |section: Option<&SectionUnit>, top: bool| -> Result<Vec<f64>, String> {
         let section = section.ok_or("a structure without sections")?;
-        let [x, z] = end_force(section, top)
+        let components = end_force(section, top)
             .ok_or(format!("`{}`'s force there is its input", section.unit))?;
-        let (x, z) = (column(&x)?, column(&z)?);
-        Ok(x.iter().zip(z).map(|(x, z)| x.hypot(*z)).collect())
+        let columns: Vec<&[f64]> = (components.iter())
+            .map(|c| column(c))
+            .collect::<Result<_, String>>()?;
+        Ok((0..recorder.time.len())
+            .map(|i| columns.iter().map(|c| c[i] * c[i]).sum::<f64>().sqrt())
+            .collect())
     };
     // The largest magnitude over the sections that report an output.
     let largest = |output: fn(&SectionOutputs) -> &Option<String>| {

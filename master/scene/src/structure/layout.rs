@@ -20,6 +20,8 @@ pub struct Layout {
     pub seabed: bool,
     /// The model has a stinger (an overbend).
     pub stinger: bool,
+    /// The model is planar (x, z): its cuts' forces are read from stations.
+    pub planar: bool,
 }
 
 /// One section as its runs show it.
@@ -47,12 +49,12 @@ pub struct SectionLayout {
 /// without the unit's).
 #[derive(Clone, Debug)]
 pub struct SectionOutputs {
-    /// The force (x, z; N) at its start.
-    pub start_force: [String; 2],
-    /// The force (x, z; N) at its end; none where that force is a coupled
-    /// input (a cable's top, a chord's loaded end), so the force at the cut
-    /// above is read from the section above.
-    pub end_force: Option<[String; 2]>,
+    /// The force's components (x, z; x, y, z in 3D; N) at its start.
+    pub start_force: Vec<String>,
+    /// The same at its end; none where that force is a coupled input (a
+    /// cable's top, a chord's loaded end), so the force at the cut above is
+    /// read from the section above.
+    pub end_force: Option<Vec<String>>,
     /// Its touchdown point (m of arc from its start), interpolated where the
     /// seabed gap crosses zero; none where the model has no seabed contact.
     pub touchdown: Option<String>,
@@ -98,7 +100,7 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
         .as_table()
         .ok_or("`structure`: expected a table")?;
     if super::line3d::is_3d(structure) {
-        return Err("`structure.model.kind` = \"line3d\": `slender fidelity` studies planar structures so far; run each combination with `--set structure.sections[k].fidelity=...` and compare with the twin (`reference = true`)".into());
+        return super::line3d::layout(structure).map(Some);
     }
     let spec = Spec::parse(structure)?;
     let name = &spec.name;
@@ -128,11 +130,12 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
         sections,
         seabed,
         stinger,
+        planar: true,
     }))
 }
 
 /// A section's fidelity in the command line's form (`nonlinear:16/4`).
-fn choice_of(cut: &Cut) -> String {
+pub(super) fn choice_of(cut: &Cut) -> String {
     let word = if cut.fmu.is_some() {
         "fmu"
     } else {

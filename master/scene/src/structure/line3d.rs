@@ -7,11 +7,14 @@
 //! couples the lower section's end (moved by the upper start's velocity) with
 //! the upper section's start (loaded by the lower end's pull), x, y and z.
 //! A section's fidelity is the 3D line (`nonlinear`) at the model's mesh or
-//! at its own (`elements`); `reference = true` adds the
-//! whole line as one unit, the twin. The other fidelities (cable, static,
-//! linear, reduced, chords), physical sections, FMUs, sub-steps, a top load
-//! and a hang-off angle are planar so far and are refused here by name.
+//! at its own (`elements`), the same linearised about its static state
+//! (`linear`), or, for the first section from a fixed anchor, the elastic
+//! catenary (`static`, kind `catenary3d`); `reference = true` adds the whole
+//! line as one unit, the twin. The other fidelities (cable, reduced, chords),
+//! physical sections, FMUs, sub-steps, a top load and a hang-off angle are
+//! planar so far and are refused here by name.
 
+use super::layout::{Layout, SectionLayout, SectionOutputs, choice_of};
 use super::sections::{Cut, Fidelity, SectionFile, cuts_of};
 use super::spec::typed;
 use super::{Written, reference_name, unit_name};
@@ -61,8 +64,8 @@ pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
     let file: Structure3dFile = typed("structure", structure)?;
     let (parameters, params) = model_of(&file.model)?;
     let cuts = cuts_of(&file.sections, params.length)?;
-    for cut in &cuts {
-        refuse_planar(cut)?;
+    for (k, cut) in cuts.iter().enumerate() {
+        refuse_planar(cut, k, cuts.len(), &params)?;
     }
     let shape = static_shape(&params, t0)?;
     let mut units = Vec::new();
@@ -81,15 +84,22 @@ pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
         if k + 1 < cuts.len() {
             section.insert("end".into(), cut_end(shape.at(cut.to), "velocity"));
         }
+        if cut.fidelity == Fidelity::Linear {
+            section.insert("linear".into(), Value::Boolean(true));
+        }
         let name = unit_name(&file.name, &cut.name);
         if k > 0 {
             let lower = unit_name(&file.name, &cuts[k - 1].name);
             connections.extend(cut_links(&lower, &name));
         }
-        units.push(unit_table(&name, section));
+        units.push(unit_table(&name, kind_of(cut.fidelity), section));
     }
     if file.reference {
-        units.push(unit_table(&reference_name(&file.name), parameters));
+        units.push(unit_table(
+            &reference_name(&file.name),
+            "line3d",
+            parameters,
+        ));
     }
     Ok(Written {
         units,
@@ -98,14 +108,76 @@ pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
     })
 }
 
-/// Refuses what a 3D section cannot be yet.
-fn refuse_planar(cut: &Cut) -> Result<(), String> {
+/// The unit kind of a 3D section at `fidelity`.
+fn kind_of(fidelity: Fidelity) -> &'static str {
+    if fidelity == Fidelity::Static {
+        "catenary3d"
+    } else {
+        "line3d"
+    }
+}
+
+/// What a 3D structure's runs show (for `slender fidelity`): each section's
+/// unit and the outputs carrying its end forces (x, y, z), its touchdown
+/// point and its largest bending moment (a catenary section has none).
+pub(super) fn layout(structure: &Table) -> Result<Layout, String> {
+    let file: Structure3dFile = typed("structure", structure)?;
+    let (_, params) = model_of(&file.model)?;
+    let cuts = cuts_of(&file.sections, params.length)?;
+    let seabed = params.seabed.is_some();
+    let forces = |side: &str| {
+        ["x", "y", "z"]
+            .map(|c| format!("{side}_force_{c}"))
+            .to_vec()
+    };
+    let sections = cuts
+        .iter()
+        .map(|cut| SectionLayout {
+            name: cut.name.clone(),
+            unit: unit_name(&file.name, &cut.name),
+            from: cut.from,
+            to: cut.to,
+            choice: choice_of(cut),
+            plain: cut.elements.is_none() && cut.substeps.is_none() && cut.options.is_none(),
+            outputs: SectionOutputs {
+                start_force: forces("start"),
+                end_force: Some(forces("end")),
+                touchdown: seabed.then(|| "touchdown_arc".to_owned()),
+                sagbend_moment: (cut.fidelity != Fidelity::Static)
+                    .then(|| "largest_moment".to_owned()),
+                overbend_moment: None,
+                stations: false,
+            },
+        })
+        .collect();
+    Ok(Layout {
+        name: file.name,
+        sections,
+        seabed,
+        stinger: false,
+        planar: false,
+    })
+}
+
+/// Refuses what a 3D section cannot be yet: section `k` of `count` of the
+/// line `params`.
+fn refuse_planar(cut: &Cut, k: usize, count: usize, params: &Line3dParams) -> Result<(), String> {
     let key = format!("structure.sections.{}", cut.name);
-    if cut.fidelity != Fidelity::Nonlinear {
-        return Err(format!(
-            "`{key}.fidelity` = \"{}\": a 3D line's section is `nonlinear` (the 3D line, at the model's mesh or at the section's own `elements`); the other fidelities are planar so far",
-            cut.fidelity.name()
-        ));
+    match cut.fidelity {
+        Fidelity::Nonlinear | Fidelity::Linear => {}
+        Fidelity::Static
+            if k == 0 && count > 1 && params.start.condition == EndCondition::Fixed => {}
+        Fidelity::Static => {
+            return Err(format!(
+                "`{key}.fidelity` = \"static\": a 3D line's static section is its elastic catenary from a fixed anchor: the first of several sections, the model's start fixed"
+            ));
+        }
+        other => {
+            return Err(format!(
+                "`{key}.fidelity` = \"{}\": a 3D line's section is `nonlinear` (the 3D line, at the model's mesh or at the section's own `elements`), `linear` (the same linearised about its statics) or `static` (the elastic catenary, the first section); the other fidelities are planar so far",
+                other.name()
+            ));
+        }
     }
     let planar = [
         ("physical", cut.physical.is_some()),
@@ -199,11 +271,11 @@ fn cut_links(lower: &str, upper: &str) -> Vec<Value> {
         .collect()
 }
 
-/// A `[[units]]` table of kind `line3d`.
-fn unit_table(name: &str, parameters: Table) -> Value {
+/// A `[[units]]` table of `kind`.
+fn unit_table(name: &str, kind: &str, parameters: Table) -> Value {
     let mut unit = Table::new();
     unit.insert("name".into(), Value::String(name.into()));
-    unit.insert("kind".into(), Value::String("line3d".into()));
+    unit.insert("kind".into(), Value::String(kind.into()));
     unit.insert("parameters".into(), Value::Table(parameters));
     Value::Table(unit)
 }

@@ -157,7 +157,7 @@ pub(super) fn outputs_of(
     overbend: bool,
     (seabed, stinger): (bool, bool),
 ) -> SectionOutputs {
-    let forces = |side: &str| [format!("{side}_force_x"), format!("{side}_force_z")];
+    let forces = |side: &str| vec![format!("{side}_force_x"), format!("{side}_force_z")];
     let touches = seabed && touchdown.is_some();
     SectionOutputs {
         start_force: forces(ends[0]),
