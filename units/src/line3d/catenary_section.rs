@@ -17,6 +17,7 @@
 //! beside it moves the node that drives it: the cut stays closed.
 
 use super::catenary::{Catenary, CatenaryLine};
+use super::outputs::{AXES, CATENARY_OUTPUTS, EXTRA_OUTPUTS};
 use super::params::{EndCondition, Line3dParams};
 use super::step::end_motion;
 use crate::contract::{
@@ -24,20 +25,6 @@ use crate::contract::{
     UnitError,
 };
 use nalgebra::Vector3;
-
-const AXES: [&str; 3] = ["x", "y", "z"];
-
-/// The outputs after the ends' (name, unit of measure).
-const EXTRA_OUTPUTS: [(&str, &str); 8] = [
-    ("end_tension", "N"),
-    ("end_angle_from_vertical", "deg"),
-    ("end_azimuth", "deg"),
-    ("start_tension", "N"),
-    ("touchdown_arc", "m"),
-    ("touchdown_x", "m"),
-    ("touchdown_y", "m"),
-    ("largest_tension", "N"),
-];
 
 crate::state_struct! {
     /// The end's motion and the catenary's tensions.
@@ -233,7 +220,8 @@ fn output_ports() -> Vec<Port> {
             }
         }
     }
-    for (name, unit) in EXTRA_OUTPUTS {
+    // Tensions, the top's angle and azimuth, the touchdown, the largest tension.
+    for (name, unit) in &EXTRA_OUTPUTS[..CATENARY_OUTPUTS] {
         out.push(Port::output(name, PortKind::Generic).with_unit(unit));
     }
     out

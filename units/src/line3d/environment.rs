@@ -233,14 +233,7 @@ impl Environment {
         i: usize,
         mut tangent: Tangent<'_>,
     ) -> NodeForces {
-        let at = At {
-            x: node(q, i),
-            velocity: node(v, i),
-            axis: tangent_at(q, i, self.tributary.len()),
-            t,
-            length: self.tributary[i],
-            node: i,
-        };
+        let at = self.at(q, node(v, i), t, i);
         let mut out = NodeForces::default();
         if self.hydrodynamic() {
             let band = tangent.as_mut().map(|(b, _, c)| (&mut **b, *c));
@@ -256,14 +249,7 @@ impl Environment {
     /// derivatives there; `None` off the seabed or without one.
     pub fn seabed_at_rest(&self, q: &[f64], i: usize) -> Option<(NodeForces, SeabedTangent)> {
         let seabed = self.seabed.as_ref()?;
-        let at = At {
-            x: node(q, i),
-            velocity: Vector3::zeros(),
-            axis: tangent_at(q, i, self.tributary.len()),
-            t: 0.0,
-            length: self.tributary[i],
-            node: i,
-        };
+        let at = self.at(q, Vector3::zeros(), 0.0, i);
         let mut out = NodeForces::default();
         let tangent = seabed_node(seabed, &at, &mut out)?;
         Some((out, tangent))
@@ -277,17 +263,22 @@ impl Environment {
             return false;
         }
         for i in 0..self.tributary.len() {
-            let at = At {
-                x: node(q, i),
-                velocity: node(v, i),
-                axis: tangent_at(q, i, self.tributary.len()),
-                t,
-                length: self.tributary[i],
-                node: i,
-            };
+            let at = self.at(q, node(v, i), t, i);
             add_node(force, i, &self.hydrodynamics(&at, None), 1.0);
         }
         true
+    }
+
+    /// Node `i` of the shape `q` moving at `velocity` (m/s) at `t` (s).
+    fn at(&self, q: &[f64], velocity: Vector3<f64>, t: f64, i: usize) -> At {
+        At {
+            x: node(q, i),
+            velocity,
+            axis: tangent_at(q, i, self.tributary.len()),
+            t,
+            length: self.tributary[i],
+            node: i,
+        }
     }
 
     /// Drag on the velocity relative to the water and the waves' inertia

@@ -11,10 +11,13 @@ use super::step::FRICTION;
 use super::{Line3d, SIDES};
 use crate::contract::{Field, Inputs, Port, PortKind, UnitError};
 
-const AXES: [&str; 3] = ["x", "y", "z"];
+pub(super) const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// How many of [`EXTRA_OUTPUTS`] the catenary section has too (its first).
+pub(super) const CATENARY_OUTPUTS: usize = 8;
 
 /// The outputs after the ends' (name, unit of measure).
-const EXTRA_OUTPUTS: [(&str, &str); 17] = [
+pub(super) const EXTRA_OUTPUTS: [(&str, &str); 17] = [
     ("end_tension", "N"),
     ("end_angle_from_vertical", "deg"),
     ("end_azimuth", "deg"),
