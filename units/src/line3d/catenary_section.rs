@@ -75,11 +75,13 @@ impl CatenarySection {
             ));
         }
         if let Some(s) = &params.seabed {
-            let level = (params.start.position[2] + s.depth).abs();
-            if s.slope != [0.0, 0.0] || level > 1e-6 * params.length.max(1.0) {
+            let at_anchor = s.depth.is_some_and(|depth| {
+                (params.start.position[2] + depth).abs() <= 1e-6 * params.length.max(1.0)
+            });
+            if s.slope != [0.0, 0.0] || !at_anchor {
                 return Err(refuse(
                     "seabed",
-                    "sloped or below the anchor",
+                    "sloped, a grid or below the anchor",
                     "a flat seabed at the anchor's level (z = -depth), as the elastic catenary with seabed contact has it",
                 ));
             }

@@ -129,7 +129,7 @@ fn what_the_catenary_cannot_represent_is_refused_by_name() {
     let mut sloped = laid_line(10, 0.0, "");
     sloped.seabed.as_mut().unwrap().slope = [0.05, 0.0];
     let mut raised = laid_line(10, 0.0, "");
-    raised.seabed.as_mut().unwrap().depth = 120.0;
+    raised.seabed.as_mut().unwrap().depth = Some(120.0);
     let mut loaded = line(10, 0.0, "");
     loaded.end.condition = EndCondition::Force;
     let mut moving_anchor = line(10, 0.0, "");

@@ -5,6 +5,7 @@
 //! velocity). Each is skipped when the scene does not ask for it. Forces are
 //! lumped at the nodes over their tributary length.
 
+use super::bathymetry::Bathymetry;
 use super::mechanics::{Tangent, add_block, add_node, node, normal_projector};
 use super::params::{Line3dParams, Seabed};
 use super::waves::AiryWaves;
@@ -15,12 +16,14 @@ use nalgebra::{Matrix3, Vector3};
 /// stiffness.
 pub const SMOOTHING: f64 = 1e-2;
 
-/// The seabed plane and its laws.
+/// The seabed (a plane or a bathymetry grid) and its laws.
 #[derive(Clone, Debug)]
 pub struct SeabedPlane {
     /// A point of the plane (m) and its upward unit normal.
-    pub point: Vector3<f64>,
-    pub normal: Vector3<f64>,
+    point: Vector3<f64>,
+    normal: Vector3<f64>,
+    /// The grid, in place of the plane.
+    grid: Option<Bathymetry>,
     /// Per unit length of line: stiffness (N/m^2), damping (N s/m^2).
     stiffness: f64,
     damping: f64,
@@ -32,8 +35,9 @@ impl SeabedPlane {
     fn new(s: &Seabed) -> SeabedPlane {
         let normal = Vector3::new(-s.slope[0], -s.slope[1], 1.0).normalize();
         SeabedPlane {
-            point: Vector3::new(0.0, 0.0, -s.depth),
+            point: Vector3::new(0.0, 0.0, -s.depth.unwrap_or(0.0)),
             normal,
+            grid: s.bathymetry.clone(),
             stiffness: s.stiffness,
             damping: s.damping,
             friction: [s.friction_axial, s.friction_lateral],
@@ -70,9 +74,24 @@ impl SeabedPlane {
         }
     }
 
-    /// Signed height of `p` above the plane (m; negative inside).
+    /// Signed height of `p` above the seabed (m; negative inside).
     pub fn height(&self, p: &Vector3<f64>) -> f64 {
-        self.normal.dot(&(p - self.point))
+        self.surface(p).0
+    }
+
+    /// Signed height of `p` above the seabed (m, along the normal) and the
+    /// seabed's upward unit normal there: the plane's, or the grid's cell's
+    /// (the vertical gap times the normal's z, which is the plane's distance
+    /// where the grid is a plane).
+    pub fn surface(&self, p: &Vector3<f64>) -> (f64, Vector3<f64>) {
+        match &self.grid {
+            None => (self.normal.dot(&(p - self.point)), self.normal),
+            Some(grid) => {
+                let (z, [sx, sy]) = grid.at(p.x, p.y);
+                let normal = Vector3::new(-sx, -sy, 1.0).normalize();
+                ((p.z - z) * normal.z, normal)
+            }
+        }
     }
 }
 
@@ -370,11 +389,10 @@ fn seabed_forces(s: &SeabedPlane, at: &At, tangent: Tangent<'_>, out: &mut NodeF
 /// off the seabed.
 fn seabed_node(s: &SeabedPlane, at: &At, out: &mut NodeForces) -> Option<SeabedTangent> {
     let (vel, axis, length) = (&at.velocity, &at.axis, at.length);
-    let height = s.height(&at.x);
+    let (height, n) = s.surface(&at.x);
     if height >= 0.0 {
         return None;
     }
-    let n = s.normal;
     let (pressure, slope) = s.penalty(-height);
     let normal_force = pressure * length;
     out.seabed_spring = n * normal_force;

@@ -14,6 +14,7 @@
 //! output). Torsion is not modelled: a scene that gives a torsional stiffness
 //! is refused.
 
+pub mod bathymetry;
 pub mod catenary;
 pub mod catenary_section;
 pub mod environment;
@@ -265,6 +266,8 @@ mod coupling_tests;
 mod linear_tests;
 #[cfg(test)]
 mod planar_tests;
+#[cfg(test)]
+mod seabed_tests;
 #[cfg(test)]
 mod statics_tests;
 #[cfg(test)]

@@ -120,16 +120,20 @@ pub enum EndCondition {
 }
 
 /// The seabed: a plane through (0, 0, -depth) with slopes dz/dx and dz/dy,
-/// normal contact by a penalty spring and damper per unit length, and Coulomb
-/// friction regularised by a stick velocity.
+/// or a bathymetry grid; normal contact by a penalty spring and damper per
+/// unit length, and Coulomb friction regularised by a stick velocity.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Seabed {
-    /// Depth of the seabed below z = 0 at x = y = 0 (m).
-    pub depth: f64,
+    /// Depth of the seabed plane below z = 0 at x = y = 0 (m).
+    #[serde(default)]
+    pub depth: Option<f64>,
     /// dz/dx and dz/dy of the plane.
     #[serde(default)]
     pub slope: [f64; 2],
+    /// The seabed's depth on a grid, bilinear, in place of the plane.
+    #[serde(default)]
+    pub bathymetry: Option<super::bathymetry::Bathymetry>,
     /// Normal stiffness per unit length of line (N/m per m of penetration).
     pub stiffness: f64,
     /// Normal damping per unit length of line (N s/m^2), while in contact.
@@ -334,7 +338,17 @@ impl EndSpec {
 
 impl Seabed {
     fn validate(&self) -> Result<(), UnitError> {
-        require_finite("seabed.depth", self.depth)?;
+        match (&self.depth, &self.bathymetry) {
+            (Some(depth), None) => require_finite("seabed.depth", *depth)?,
+            (None, Some(grid)) if self.slope == [0.0, 0.0] => grid.validate()?,
+            _ => {
+                return Err(UnitError::parameter(
+                    "seabed",
+                    "depth, slope and bathymetry",
+                    "`depth` (with `slope`: a plane) or `bathymetry` (a grid), one of them",
+                ));
+            }
+        }
         for (k, s) in ["seabed.slope.x", "seabed.slope.y"].iter().zip(self.slope) {
             require_finite(k, s)?;
         }
