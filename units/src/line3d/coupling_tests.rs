@@ -93,3 +93,62 @@ fn the_step_jacobian_matches_finite_differences() {
         }
     }
 }
+
+#[test]
+fn a_sliding_line_s_step_jacobian_takes_friction_s_tangent() {
+    // A pipe dragged sideways over the seabed at 5 and 50 times the stick
+    // velocity: every node slides, where Newton's matrix holds friction's
+    // secant (force over speed); the Jacobian puts the tanh's tangent back.
+    // Measured: 4.4e-3 and 5.8e-2 of each end force's scale (with Newton's
+    // secant 1.2 and 0.25); what is left is friction's change with the
+    // line's direction, a position derivative left out as drag's is.
+    for (speed, tolerance) in [(0.05, 1e-2), (0.5, 1e-1)] {
+        let mut d = super::tests::dragged([0.0, speed, 0.0]);
+        let inputs = [0.0, speed, 0.0, 0.0, speed, 0.0];
+        let h = Time::from_secs(0.1).unwrap();
+        let mut t = Time::ZERO;
+        for _ in 0..20 {
+            d.do_step(t, h).unwrap();
+            t += h;
+        }
+        let n_out = d.description().outputs.len();
+        let mut slot = crate::contract::DriverSlot::new();
+        d.save(&mut slot).unwrap();
+        let step = |d: &mut Driver<Line3d>, u: &[f64]| {
+            d.restore(&slot).unwrap();
+            d.set_inputs(u).unwrap();
+            d.do_step(t, h).unwrap();
+            let mut out = vec![0.0; n_out];
+            d.outputs(&mut out).unwrap();
+            out
+        };
+        step(&mut d, &inputs);
+        let mut jacobian = vec![0.0; n_out * 6];
+        d.step_jacobian(&mut jacobian).unwrap();
+        let mut worst = 0.0f64;
+        // The horizontal inputs: a vertical one changes friction through the
+        // normal force, a derivative the symmetric band cannot hold.
+        for j in [0, 1, 3, 4] {
+            let (mut up, mut down) = (inputs, inputs);
+            up[j] += 1e-6;
+            down[j] -= 1e-6;
+            let (plus, minus) = (step(&mut d, &up), step(&mut d, &down));
+            let fd = |row: usize| (plus[row] - minus[row]) / 2e-6;
+            // Each end's force rows on their own scale.
+            for rows in [6..9, 15..18] {
+                let scale = rows.clone().map(|r| fd(r).abs()).fold(0.0, f64::max);
+                for row in rows {
+                    let exact = jacobian[row * 6 + j];
+                    let e = (fd(row) - exact).abs() / scale;
+                    worst = worst.max(e);
+                    assert!(
+                        (fd(row) - exact).abs() <= tolerance * scale,
+                        "{speed} m/s: output {row}, input {j}: {exact} against {} (scale {scale})",
+                        fd(row)
+                    );
+                }
+            }
+        }
+        assert!(worst > 0.0, "the ends' forces moved with the inputs");
+    }
+}

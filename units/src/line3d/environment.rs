@@ -274,6 +274,23 @@ impl Environment {
         Some((out, tangent))
     }
 
+    /// The true velocity derivative of friction on node `i` at (q, v, t)
+    /// less the slope Newton takes (N s/m); `None` where they agree (off
+    /// the seabed, sticking, or no friction).
+    pub fn friction_correction(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        i: usize,
+    ) -> Option<Matrix3<f64>> {
+        let seabed = self.seabed.as_ref()?;
+        let at = self.at(q, node(v, i), t, i);
+        let tangent = seabed_node(seabed, &at, &mut NodeForces::default())?;
+        let correction = tangent.friction_exact - tangent.friction;
+        (correction.abs().max() > 0.0).then_some(correction)
+    }
+
     /// Adds the water's force (drag on the velocity relative to the water
     /// and the waves' inertia, N) at (q, v, t) to `force`; returns whether
     /// there is any.
@@ -371,6 +388,9 @@ pub struct SeabedTangent {
     pub stiffness: Matrix3<f64>,
     pub damper: Matrix3<f64>,
     pub friction: Matrix3<f64>,
+    /// Friction's true velocity derivative (the tangent of the tanh also
+    /// while sliding), for the step's sensitivity.
+    pub friction_exact: Matrix3<f64>,
 }
 
 /// The seabed's spring, damper and friction on a node (zero off the seabed),
@@ -405,6 +425,7 @@ fn seabed_node(s: &SeabedPlane, at: &At, out: &mut NodeForces) -> Option<SeabedT
         .unwrap_or_else(|| any_normal(&n));
     let across = n.cross(&along);
     let mut friction = Matrix3::zeros();
+    let mut friction_exact = Matrix3::zeros();
     for (dir, mu) in [(along, s.friction[0]), (across, s.friction[1])] {
         if mu == 0.0 {
             continue;
@@ -424,12 +445,15 @@ fn seabed_node(s: &SeabedPlane, at: &At, out: &mut NodeForces) -> Option<SeabedT
             (1.0 - ratio * ratio).max(ratio / slip)
         };
         friction += dir * dir.transpose() * (limit * slope / s.stick_velocity);
+        friction_exact +=
+            dir * dir.transpose() * (limit * (1.0 - ratio * ratio) / s.stick_velocity);
     }
     let nn = n * n.transpose();
     Some(SeabedTangent {
         stiffness: nn * (slope * length),
         damper: nn * damping_rate,
         friction,
+        friction_exact,
     })
 }
 

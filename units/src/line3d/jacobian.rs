@@ -15,11 +15,11 @@
 //! Jacobian is that of the iteration, not the exact derivative.
 
 use super::Line3d;
-use super::mechanics::{BAND, DOF};
+use super::mechanics::{BAND, DOF, add_block};
 use super::params::EndCondition;
 use crate::contract::{Hold, Inputs, UnitError, require_step_jacobian_ready};
 use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
-use crate::numerics::banded::SymmetricBand;
+use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
 /// Buffers of the Jacobian, kept between calls.
 #[derive(Default)]
@@ -34,6 +34,19 @@ pub(super) struct JacobianWork {
     force: Vec<f64>,
     held: Vec<usize>,
     change: Change,
+    /// The Newton matrix with friction's true tangent in place of Newton's
+    /// secant, and its factor (buffers kept between calls), and whether the
+    /// last Jacobian used them (the line slid).
+    corrected: Option<Corrected>,
+    sliding: bool,
+}
+
+/// The Newton matrix with friction's true tangent: with its held rows (for
+/// the reactions), with them as identity rows, and the latter's factor.
+struct Corrected {
+    newton: SymmetricBand,
+    held: SymmetricBand,
+    factor: BandLdlt,
 }
 
 impl Line3d {
@@ -51,6 +64,10 @@ impl Line3d {
         let mut w = std::mem::take(&mut self.jacobian);
         self.velocity_tangent(&mut w);
         w.held = self.held_dofs();
+        if let Err(e) = self.correct_friction(&mut w) {
+            self.jacobian = w;
+            return Err(e);
+        }
         let n_in = inputs.len();
         jacobian.fill(f64::NAN);
         let mut result = Ok(());
@@ -89,6 +106,51 @@ impl Line3d {
         w.damping = Some(band);
     }
 
+    /// Where the line slides on the seabed, Newton took friction's secant
+    /// (force over speed) for its tangent, so the step's sensitivity through
+    /// its matrix is the iteration's, not the derivative: puts the true
+    /// tangent of mu N tanh(v / v_stick) in the damping and in a copy of the
+    /// Newton matrix, factorised once (`w.corrected`, `w.sliding`).
+    fn correct_friction(&self, w: &mut JacobianWork) -> Result<(), UnitError> {
+        let s = &self.state;
+        let (alpha, beta, gamma) = self.hht.parameters();
+        let scale = (1.0 - alpha) * gamma / (beta * w.h);
+        w.sliding = false;
+        for i in 0..self.mechanics.nodes {
+            let Some(m) = self.environment.friction_correction(&s.q, &s.v, s.t, i) else {
+                continue;
+            };
+            let (newton, factor) = self.hht.last_newton().ok_or_else(no_matrix)?;
+            let c = w.corrected.get_or_insert_with(|| Corrected {
+                newton: newton.clone(),
+                held: newton.clone(),
+                factor: factor.clone(),
+            });
+            if !w.sliding {
+                c.newton.copy_from(newton);
+                w.sliding = true;
+            }
+            add_block(&mut c.newton, i, i, &m, scale);
+            if let Some(damping) = w.damping.as_mut() {
+                add_block(damping, i, i, &m, 1.0);
+            }
+        }
+        let Some(c) = w.corrected.as_mut().filter(|_| w.sliding) else {
+            return Ok(());
+        };
+        c.held.copy_from(&c.newton);
+        for &d in &w.held {
+            c.held.set_identity_row(d);
+        }
+        if c.factor.refactorise(&c.held) {
+            Ok(())
+        } else {
+            Err(UnitError::Numerical(
+                "line3d: the step's matrix with friction's tangent is singular".into(),
+            ))
+        }
+    }
+
     /// The end (0 start, 1 end), its node and its condition, for input `j`.
     fn input_end(&self, j: usize) -> Option<(usize, usize, EndCondition)> {
         let last = self.mechanics.nodes - 1;
@@ -116,10 +178,10 @@ impl Line3d {
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
         let n_in = inputs.len();
-        let (newton, factor) = self
-            .hht
-            .last_newton()
-            .ok_or_else(|| UnitError::Numerical("line3d: no Newton matrix kept".into()))?;
+        let (newton, factor) = match (&w.corrected, w.sliding) {
+            (Some(c), true) => (&c.newton, &c.factor),
+            _ => self.hht.last_newton().ok_or_else(no_matrix)?,
+        };
         let damping = w.damping.as_ref();
         let damping_at = |i: usize, k: usize| damping.map_or(0.0, |c| c.get(i, k));
         let h = w.h;
@@ -172,4 +234,9 @@ impl Line3d {
         }
         Ok(())
     }
+}
+
+/// The error where no Newton matrix was kept.
+fn no_matrix() -> UnitError {
+    UnitError::Numerical("line3d: no Newton matrix kept".into())
 }

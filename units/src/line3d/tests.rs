@@ -169,7 +169,7 @@ fn a_line_answers_the_same_in_every_vertical_plane() {
 
 /// A 20 m pipe (EI 1e7 N m^2: it bows by millimetres; 50 N/m in water) lying straight along x on a
 /// flat seabed, both ends dragged at `velocity` (m/s) by coupled inputs.
-fn dragged(velocity: [f64; 3]) -> Driver<Line3d> {
+pub(super) fn dragged(velocity: [f64; 3]) -> Driver<Line3d> {
     let text = r#"
 length = 20.0
 elements = 20
