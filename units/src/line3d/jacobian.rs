@@ -120,6 +120,10 @@ impl Line3d {
         let (alpha, beta, gamma) = self.hht.parameters();
         let scale = (1.0 - alpha) * gamma / (beta * w.h);
         w.sliding = false;
+        if self.linear.is_some() {
+            // The linear line's friction is its damping at rest: exact.
+            return Ok(());
+        }
         for i in 0..self.mechanics.nodes {
             let Some(m) = self.environment.friction_correction(&s.q, &s.v, s.t, i) else {
                 continue;
