@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """MoorDyn side by side with the 3D line on seed 000's polyester line (not in
-CI): the fairlead surging 3 m at 0.6 rad/s (faded in over 20 s), no current,
-the fairlead tension's mean, standard deviation, maximum and minimum over
+CI): the fairlead surging 3 m at 0.6 rad/s (faded in over 20 s), without a
+current or, with --current, with polyester_line_3d.toml's current across the
+line's plane (0.5 m/s along +y at the surface, none at the anchor, linear
+between: MoorDyn's steady current grid, `Currents = 1`), the fairlead tension's mean, standard deviation, maximum and minimum over
 40-120 s, and the cost per simulated second (median of 3 runs, MoorDyn driven
 from Python every 0.1 s). MoorDyn's line type maps slender's parameters: its
 volume diameter from the weight in water (0.2091 m), its drag and added-mass
@@ -9,7 +11,7 @@ coefficients rescaled to the hydrodynamic diameter 0.264 m; axial damping at
 80 % of critical (MoorDyn needs it; slender's line has none).
 
 Usage: python -m venv /tmp/md && /tmp/md/bin/pip install moordyn &&
-       /tmp/md/bin/python scripts/moordyn-polyester.py SEGMENTS DT [SEGMENTS DT ...]"""
+       /tmp/md/bin/python scripts/moordyn-polyester.py [--current] SEGMENTS DT [SEGMENTS DT ...]"""
 
 import math, os, statistics, sys, tempfile, time
 
@@ -39,9 +41,20 @@ ID    LineType   AttachA  AttachB  UnstrLen  NumSegs  Outputs
 3.0e5    cBot      - bottom damping (Pa-s/m)
 0.5      dtIC      - time interval for analyzing convergence during IC gen (s)
 200      TmaxIC    - max time for ic gen (s)
-4.0      CdScaleIC - factor by which to scale drag coefficients during dynamic relaxation (-)
+{cd_scale}      CdScaleIC - factor by which to scale drag coefficients during dynamic relaxation (-)
 0.0001   threshIC  - threshold for IC convergence (-)
+{currents}
 ------------------------- need this line --------------------------------------
+"""
+
+# MoorDyn's steady current grid (read from current_profile.txt beside the
+# input file): z (m), ux, uy, uz (m/s), linear between the rows.
+CURRENT = """--------------------- MoorDyn steady currents File ----------------------------------
+The current of slender's examples/polyester_line_3d.toml: along +y, 0.5 m/s at the surface, none at the anchor
+z (m), ux (m/s), uy (m/s), uz (m/s)
+-1250.0 0 0 0
+-1200.0 0 0 0
+0.0 0 0.5 0
 """
 
 
@@ -53,11 +66,15 @@ def fairlead(t):
     return [1529.11 + fade * 3 * s, 0.0, 0.0], [rate * 3 * s + fade * 1.8 * c, 0.0, 0.0]
 
 
-def run(segments, dt):
+def run(segments, dt, current):
     folder = tempfile.mkdtemp()
     path = os.path.join(folder, "line.txt")
+    currents = "1        Currents  - steady current grid from current_profile.txt" if current else ""
     with open(path, "w") as f:
-        f.write(LINE.format(segments=segments, dt=dt))
+        f.write(LINE.format(segments=segments, dt=dt, currents=currents, cd_scale=1.5 if current else 4.0))
+    if current:
+        with open(os.path.join(folder, "current_profile.txt"), "w") as f:
+            f.write(CURRENT)
     system = moordyn.Create(path)
     moordyn.Init(system, *fairlead(0.0))
     tensions, t, wall = [], 0.0, time.perf_counter()
@@ -75,8 +92,10 @@ def run(segments, dt):
 
 def main():
     args = sys.argv[1:]
+    current = "--current" in args
+    args = [a for a in args if a != "--current"]
     for segments, dt in zip(args[::2], args[1::2]):
-        runs = [run(int(segments), float(dt)) for _ in range(3)]
+        runs = [run(int(segments), float(dt), current) for _ in range(3)]
         stats = runs[0][0]
         cost = statistics.median(c for _, c in runs)
         print(f"\nRESULT {segments} {dt} mean {stats[0]:.1f} sd {stats[1]:.1f} max {stats[2]:.1f} min {stats[3]:.1f} cost {cost:.3e}")
