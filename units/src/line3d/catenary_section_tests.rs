@@ -3,7 +3,7 @@
 
 use super::catenary_section::CatenarySection;
 use super::params::EndCondition;
-use super::tests::{laid_line, line, output, started};
+use super::tests::{laid_line, line, output, started, step_from};
 use crate::contract::{Driver, DriverSlot, Time, Unit};
 
 /// A driver around a catenary section, initialised at t = 0 with `inputs`.
@@ -97,14 +97,7 @@ fn a_moved_catenary_section_follows_its_velocity_and_its_jacobian_is_exact() {
     let mut slot = DriverSlot::new();
     d.save(&mut slot).unwrap();
     let n_out = d.description().outputs.len();
-    let step = |d: &mut Driver<CatenarySection>, u: &[f64]| {
-        d.restore(&slot).unwrap();
-        d.set_inputs(u).unwrap();
-        d.do_step(t, h).unwrap();
-        let mut out = vec![0.0; n_out];
-        d.outputs(&mut out).unwrap();
-        out
-    };
+    let step = |d: &mut Driver<CatenarySection>, u: &[f64]| step_from(d, &slot, (t, h), u);
     step(&mut d, &inputs);
     let mut jacobian = vec![0.0; n_out * 3];
     d.step_jacobian(&mut jacobian).unwrap();

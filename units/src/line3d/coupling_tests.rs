@@ -3,7 +3,7 @@
 
 use super::Line3d;
 use super::params::EndCondition;
-use super::tests::{laid_line, output, started};
+use super::tests::{laid_line, output, started, step_from};
 use crate::contract::{Driver, Time};
 
 /// The laid line with its fairlead coupled by velocity or force and the
@@ -59,14 +59,7 @@ fn the_step_jacobian_matches_finite_differences() {
         let mut slot = crate::contract::DriverSlot::new();
         d.save(&mut slot).unwrap();
         let (t, h) = (Time::from_secs(2.0).unwrap(), Time::from_secs(0.1).unwrap());
-        let step = |d: &mut Driver<Line3d>, u: &[f64]| {
-            d.restore(&slot).unwrap();
-            d.set_inputs(u).unwrap();
-            d.do_step(t, h).unwrap();
-            let mut out = vec![0.0; n_out];
-            d.outputs(&mut out).unwrap();
-            out
-        };
+        let step = |d: &mut Driver<Line3d>, u: &[f64]| step_from(d, &slot, (t, h), u);
         step(&mut d, &inputs);
         let mut jacobian = vec![0.0; n_out * n_in];
         d.step_jacobian(&mut jacobian).unwrap();
@@ -114,14 +107,7 @@ fn a_sliding_line_s_step_jacobian_takes_friction_s_tangent() {
         let n_out = d.description().outputs.len();
         let mut slot = crate::contract::DriverSlot::new();
         d.save(&mut slot).unwrap();
-        let step = |d: &mut Driver<Line3d>, u: &[f64]| {
-            d.restore(&slot).unwrap();
-            d.set_inputs(u).unwrap();
-            d.do_step(t, h).unwrap();
-            let mut out = vec![0.0; n_out];
-            d.outputs(&mut out).unwrap();
-            out
-        };
+        let step = |d: &mut Driver<Line3d>, u: &[f64]| step_from(d, &slot, (t, h), u);
         step(&mut d, &inputs);
         let mut jacobian = vec![0.0; n_out * 6];
         d.step_jacobian(&mut jacobian).unwrap();

@@ -34,6 +34,22 @@ pub(super) fn started(p: Line3dParams) -> Driver<Line3d> {
     d
 }
 
+/// Restores `slot` into `d`, steps it from `t` by `h` under `inputs` and
+/// returns its outputs: one step of a Jacobian check, repeatable.
+pub(super) fn step_from<U: crate::contract::Unit>(
+    d: &mut Driver<U>,
+    slot: &crate::contract::DriverSlot,
+    (t, h): (Time, Time),
+    inputs: &[f64],
+) -> Vec<f64> {
+    d.restore(slot).unwrap();
+    d.set_inputs(inputs).unwrap();
+    d.do_step(t, h).unwrap();
+    let mut out = vec![0.0; d.description().outputs.len()];
+    d.outputs(&mut out).unwrap();
+    out
+}
+
 /// Output `name` now.
 pub(super) fn output(d: &Driver<Line3d>, name: &str) -> f64 {
     let i = d.description().output_index(name).expect(name);
