@@ -197,6 +197,12 @@ impl Default for HhtAlpha {
     }
 }
 
+/// HHT-alpha's (alpha, beta, gamma) for numerical damping `alpha`: Newmark's
+/// beta = (1 + alpha)^2 / 4 and gamma = 1/2 + alpha.
+pub fn parameters_of(alpha: f64) -> (f64, f64, f64) {
+    (alpha, 0.25 * (1.0 + alpha).powi(2), 0.5 + alpha)
+}
+
 impl HhtAlpha {
     /// HHT-alpha with numerical damping `alpha` (0: the trapezoidal rule) for `n`
     /// DOFs whose matrices have half-bandwidth `w`.
@@ -227,8 +233,7 @@ impl HhtAlpha {
 
     /// (alpha, beta, gamma).
     pub fn parameters(&self) -> (f64, f64, f64) {
-        let alpha = self.alpha;
-        (alpha, 0.25 * (1.0 + alpha).powi(2), 0.5 + alpha)
+        parameters_of(self.alpha)
     }
 
     /// Keeps a copy of every Newton matrix before the held DOFs become identity

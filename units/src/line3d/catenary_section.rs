@@ -19,11 +19,12 @@
 use super::catenary::{Catenary, CatenaryLine};
 use super::outputs::{AXES, CATENARY_OUTPUTS, EXTRA_OUTPUTS};
 use super::params::{EndCondition, Line3dParams};
-use super::step::end_motion;
+use super::step::{end_motion, follow_velocity};
 use crate::contract::{
     Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
     UnitError,
 };
+use crate::integrators::hht::parameters_of;
 use nalgebra::Vector3;
 
 crate::state_struct! {
@@ -43,8 +44,8 @@ pub struct CatenarySection {
     line: CatenaryLine,
     description: UnitDescription,
     state: CatenaryState,
-    /// Newmark's (beta, gamma) and the last step's length (s).
-    newmark: [f64; 2],
+    /// HHT-alpha's (alpha, beta, gamma) and the last step's length (s).
+    newmark: (f64, f64, f64),
     last_step: f64,
 }
 
@@ -92,8 +93,7 @@ impl CatenarySection {
             weight: params.submerged_weight,
             seabed: params.seabed.is_some(),
         };
-        let alpha = params.alpha;
-        let newmark = [0.25 * (1.0 + alpha).powi(2), 0.5 + alpha];
+        let newmark = parameters_of(params.alpha);
         let coupled = params.end.condition == EndCondition::Velocity;
         let description = UnitDescription {
             kind: "catenary3d".into(),
@@ -194,15 +194,12 @@ impl CatenarySection {
         if self.params.end.condition != EndCondition::Velocity {
             return end_motion(&self.params.end, t1);
         }
-        let [beta, gamma] = self.newmark;
         let [q0, v0, a0] = self.state.end;
         let mut out = [[0.0; 3]; 3];
         for c in 0..3 {
-            let v1 = inputs.at(c, 1.0);
-            let a1 = (v1 - v0[c]) / (gamma * h) - (1.0 - gamma) / gamma * a0[c];
-            out[0][c] = q0[c] + h * v0[c] + h * h * ((0.5 - beta) * a0[c] + beta * a1);
-            out[1][c] = v1;
-            out[2][c] = a1;
+            let [q, v, a] =
+                follow_velocity([q0[c], v0[c], a0[c]], inputs.at(c, 1.0), h, self.newmark);
+            [out[0][c], out[1][c], out[2][c]] = [q, v, a];
         }
         out
     }
@@ -309,7 +306,7 @@ impl Unit for CatenarySection {
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
         let n_in = inputs.len();
         jacobian.fill(f64::NAN);
-        let [beta, gamma] = self.newmark;
+        let (_, beta, gamma) = self.newmark;
         let dq = beta * self.last_step / gamma;
         let k = self.stiffness()?;
         for j in 0..n_in {

@@ -187,6 +187,11 @@ impl Environment {
         }
     }
 
+    /// Whether waves move the water (else it changes with depth only).
+    pub fn has_waves(&self) -> bool {
+        self.waves.is_some()
+    }
+
     /// Whether the water moves or drags (else drag is skipped).
     fn hydrodynamic(&self) -> bool {
         self.drag[0] + self.drag[1] > 0.0 || self.waves.is_some()

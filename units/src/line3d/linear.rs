@@ -148,17 +148,20 @@ impl Linearised {
         out.extend(shifted.map(|((f, w), o)| f + w - o));
     }
 
-    /// The powers (W) of friction, the seabed's dampers and the axial damper
-    /// at velocity `v`.
-    pub(super) fn dissipation(&self, v: &[f64]) -> [f64; 3] {
-        let mut out = [0.0; 3];
+    /// The powers (W) of friction and the seabed's dampers at velocity `v`.
+    pub(super) fn seabed_dissipation(&self, v: &[f64]) -> [f64; 2] {
+        let mut out = [0.0; 2];
         for s in &self.seabed {
             let u = node(v, s.node);
             out[0] -= u.dot(&(s.friction * u));
             out[1] -= u.dot(&(s.damper * u));
         }
-        out[2] = -self.axial.quadratic_form(v);
         out
+    }
+
+    /// The axial damper's power (W) at velocity `v`.
+    pub(super) fn axial_dissipation(&self, v: &[f64]) -> f64 {
+        -self.axial.quadratic_form(v)
     }
 
     /// Strain energy and the seabed spring's energy (J) of the linear model

@@ -67,6 +67,21 @@ pub(super) fn end_motion(end: &EndSpec, t: f64) -> [[f64; 3]; 3] {
     out
 }
 
+/// Position, velocity and acceleration at a step's end of a DOF moved to
+/// velocity `v1` (m/s) over `h` (s) from its `start` motion, by Newmark with
+/// HHT-alpha's `(alpha, beta, gamma)`: as the integrator moves every other
+/// node, so a cut driven by the neighbour's velocity stays closed.
+pub(super) fn follow_velocity(
+    [q0, v0, a0]: [f64; 3],
+    v1: f64,
+    h: f64,
+    (_, beta, gamma): (f64, f64, f64),
+) -> [f64; 3] {
+    let a1 = (v1 - v0) / (gamma * h) - (1.0 - gamma) / gamma * a0;
+    let q1 = q0 + h * v0 + h * h * ((0.5 - beta) * a0 + beta * a1);
+    [q1, v1, a1]
+}
+
 /// The fade-in factor over `duration` (s) at `t` and its two derivatives:
 /// (1 - cos(pi t / duration)) / 2, then 1.
 pub(super) fn fade(duration: f64, t: f64) -> [f64; 3] {
@@ -268,12 +283,9 @@ impl Line3d {
                         // integrator moves the neighbour that drives it: a
                         // cut between two sections stays closed and its
                         // reaction's inertia is the integrator's.
-                        let (_, beta, gamma) = self.hht.parameters();
-                        let (q0, v0, a0) = (self.state.q[d], self.state.v[d], self.state.a[d]);
+                        let start = [self.state.q[d], self.state.v[d], self.state.a[d]];
                         let v1 = inputs.at(first + c, s[1]);
-                        let a1 = (v1 - v0) / (gamma * h) - (1.0 - gamma) / gamma * a0;
-                        let q1 = q0 + h * v0 + h * h * ((0.5 - beta) * a0 + beta * a1);
-                        [q1, v1, a1]
+                        follow_velocity(start, v1, h, self.hht.parameters())
                     }
                     _ => {
                         let m = end_motion(end, t1);
@@ -304,7 +316,7 @@ impl Line3d {
         let surroundings = match self.linear.as_mut() {
             Some(l) => {
                 l.force(q, v, water, &mut force);
-                let [friction, damper, _] = l.dissipation(v);
+                let [friction, damper] = l.seabed_dissipation(v);
                 let water_power = water.iter().zip(v).map(|(f, u)| f * u).sum();
                 [water_power, friction, damper]
             }
@@ -344,7 +356,7 @@ impl Line3d {
         }
         [power[WATER], power[FRICTION], power[SEABED_DAMPER]] = surroundings;
         power[AXIAL_DAMPER] = match &self.linear {
-            Some(l) => l.dissipation(v)[2],
+            Some(l) => l.axial_dissipation(v),
             None => self.mechanics.damper_power(q, v),
         };
         self.state.ledger.power = power;
@@ -393,7 +405,12 @@ impl Line3d {
         };
         let (q, v) = (&self.state.q, &self.state.v);
         self.water(q, v, t0, &mut w.water0);
-        self.water(q, v, t1, &mut w.water1);
+        if self.environment.has_waves() {
+            self.water(q, v, t1, &mut w.water1);
+        } else {
+            // A current alone does not change over the step.
+            w.water1.clone_from(&w.water0);
+        }
         l.step_loads(&w.f0, &w.water0, &mut w.linear_f0);
         l.step_loads(&w.f1, &w.water1, &mut w.linear_f1);
     }
