@@ -18,6 +18,7 @@ use slender_units::benchmark::algebraic_loop::{
     LinearPair, LinearPairParams, SphereClosure, SphereParams,
 };
 use slender_units::benchmark::oscillator::{Oscillator, OscillatorParams};
+use slender_units::body::{Body, BodyParams};
 use slender_units::cable::{Cable, CableParams, Effects};
 use slender_units::chord::{Chord, ChordParams};
 use slender_units::line3d::catenary_section::CatenarySection;
@@ -135,6 +136,13 @@ pub const KINDS: &[Kind] = &[
         summary: "a 3D line as its elastic catenary from an anchor (flat seabed at the anchor or none): quasi-static, the end force each step from the closed form (a 3D structure's `static` section)",
         effects: &[],
         build: |p, _| Ok(Box::new(CatenarySection::new(parameters(p)?)?)),
+    },
+    Kind {
+        name: "body",
+        parameters: field_names::<BodyParams>,
+        summary: "a rigid body in 6 DOF (a floater): quaternion rotations, mass and inertia, added mass, linear hydrostatics, linear and quadratic damping, fairleads whose motion is an output and whose force an input; or a prescribed 6-DOF motion",
+        effects: &[],
+        build: |p, _| Ok(Box::new(Body::new(parameters(p)?)?)),
     },
     Kind {
         name: "span",

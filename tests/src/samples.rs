@@ -63,6 +63,23 @@ rayleigh_stiffness = 0.001
 stations = [5.0]
 "#;
 
+/// A floater on two fairleads, its centre of gravity off the reference,
+/// moving and damped (linear and quadratic).
+pub const BODY_SAMPLE: &str = r#"
+mass = 2e6
+inertia = [3e8, 4e8, 1e8]
+centre_of_gravity = [0.5, 0.0, -20.0]
+displaced_volume = 2100.0
+hydrostatic_stiffness = [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 3e5, 0, 0, 0], [0, 0, 0, 2e8, 0, 0], [0, 0, 0, 0, 2e8, 0], [0, 0, 0, 0, 0, 0]]
+additional_stiffness = [[5e4, 0, 0, 0, 0, 0], [0, 5e4, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 1e7]]
+added_mass = [[1e6, 0, 0, 0, -5e6, 0], [0, 1e6, 0, 5e6, 0, 0], [0, 0, 1e5, 0, 0, 0], [0, 5e6, 0, 1e8, 0, 0], [-5e6, 0, 0, 0, 1e8, 0], [0, 0, 0, 0, 0, 1e6]]
+damping_linear = [[1e4, 0, 0, 0, 0, 0], [0, 1e4, 0, 0, 0, 0], [0, 0, 1e4, 0, 0, 0], [0, 0, 0, 1e6, 0, 0], [0, 0, 0, 0, 1e6, 0], [0, 0, 0, 0, 0, 1e6]]
+damping_quadratic = [[1e5, 0, 0, 0, 0, 0], [0, 1e5, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0]]
+initial_offset = [2.0, -1.0, 0.3, 0.02, 0.03, 0.1]
+initial_velocity = [0.1, 0.0, 0.0, 0.0, 0.01, 0.0]
+fairleads = [{ name = "a", position = [5.0, 0.0, -30.0] }, { name = "b", position = [-2.5, 4.3, -30.0] }]
+"#;
+
 /// The 3D line sample linearised about its statics.
 fn line3d_linear() -> String {
     format!("{LINE3D_SAMPLE}linear = true\n")
@@ -118,6 +135,7 @@ pub fn samples(dir: &Path) -> Vec<(&'static str, ExportConfig)> {
         ("line3d coupled", inline("line3d", LINE3D_SAMPLE)),
         ("line3d linear", inline("line3d", &line3d_linear())),
         ("catenary3d", inline("catenary3d", LINE3D_SAMPLE)),
+        ("body", inline("body", BODY_SAMPLE)),
         ("nonlinear linear", inline("nonlinear", &linear_sample())),
         ("nonlinear reduced", inline("nonlinear", &reduced_sample())),
         ("nonlinear sampled", inline("nonlinear", &sampled_sample())),

@@ -9,6 +9,7 @@
 //! - [`integrators`], [`numerics`]: time integration and linear algebra shared by units;
 //! - physics: [`cable`], [`beam`], [`nonlinear`], [`contact`], [`span`], [`signal`],
 //!   [`chord`] (a small-deflection section in its chord frame);
+//! - [`body`]: a rigid body in six degrees of freedom with fairleads (a floater);
 //! - [`benchmark`]: the coupling benchmark units (oscillator, algebraic loops).
 
 /// The unit contract, in its own crate (`slender-contract`) so that the master
@@ -18,6 +19,7 @@ pub use slender_contract::state_struct;
 
 pub mod beam;
 pub mod benchmark;
+pub mod body;
 pub mod cable;
 pub mod chord;
 pub mod contact;

@@ -12,6 +12,7 @@ use crate::integrators::hht::{
     Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales, motion_fields,
 };
 use crate::numerics::banded::SymmetricBand;
+use crate::signal::sine::faded_sum;
 
 /// Step buffers, sized once.
 #[derive(Default)]
@@ -54,15 +55,10 @@ const AXIAL_DAMPER: usize = 4;
 /// Position, velocity and acceleration (m, m/s, m/s^2) of a fixed or moved
 /// end at `t` (s from the start of the run), the sines faded in.
 pub(super) fn end_motion(end: &EndSpec, t: f64) -> [[f64; 3]; 3] {
-    let [r, dr, ddr] = fade(end.fade_in, t);
-    let mut out = [end.position, [0.0; 3], [0.0; 3]];
+    let mut out = [[0.0; 3]; 3];
     for (axis, sines) in end.motion.iter().enumerate() {
-        for s in sines {
-            let [x, v, a] = s.eval(t);
-            out[0][axis] += r * x;
-            out[1][axis] += dr * x + r * v;
-            out[2][axis] += ddr * x + 2.0 * dr * v + r * a;
-        }
+        let [x, v, a] = faded_sum(end.position[axis], sines, end.fade_in, t);
+        [out[0][axis], out[1][axis], out[2][axis]] = [x, v, a];
     }
     out
 }
@@ -80,17 +76,6 @@ pub(super) fn follow_velocity(
     let a1 = (v1 - v0) / (gamma * h) - (1.0 - gamma) / gamma * a0;
     let q1 = q0 + h * v0 + h * h * ((0.5 - beta) * a0 + beta * a1);
     [q1, v1, a1]
-}
-
-/// The fade-in factor over `duration` (s) at `t` and its two derivatives:
-/// (1 - cos(pi t / duration)) / 2, then 1.
-pub(super) fn fade(duration: f64, t: f64) -> [f64; 3] {
-    if duration <= 0.0 || t >= duration {
-        return [1.0, 0.0, 0.0];
-    }
-    let w = std::f64::consts::PI / duration;
-    let (s, c) = (w * t.max(0.0)).sin_cos();
-    [0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c]
 }
 
 impl Line3d {

@@ -103,7 +103,7 @@ impl AiryWaves {
             .iter()
             .map(|c| c.amplitude * (c.omega * t + c.phase - c.wavenumber * along).sin())
             .sum();
-        super::step::fade(self.fade_in, t)[0] * full
+        crate::signal::sine::fade(self.fade_in, t)[0] * full
     }
 
     /// The water's kinematics at `p` and `t`; `None` above the surface.
@@ -132,7 +132,7 @@ impl AiryWaves {
         }
         let [dx, dy] = self.direction;
         // Faded in: r u, and r a + r' u for the acceleration.
-        let [r, rate, _] = super::step::fade(self.fade_in, t);
+        let [r, rate, _] = crate::signal::sine::fade(self.fade_in, t);
         let velocity = Vector3::new(horizontal[0] * dx, horizontal[0] * dy, vertical[0]);
         let acceleration = Vector3::new(horizontal[1] * dx, horizontal[1] * dy, vertical[1]);
         Some(Kinematics {

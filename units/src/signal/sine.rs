@@ -48,6 +48,32 @@ impl Sine {
     }
 }
 
+/// The fade-in factor over `duration` (s) at `t` and its two derivatives:
+/// (1 - cos(pi t / duration)) / 2, then 1.
+pub fn fade(duration: f64, t: f64) -> [f64; 3] {
+    if duration <= 0.0 || t >= duration {
+        return [1.0, 0.0, 0.0];
+    }
+    let w = std::f64::consts::PI / duration;
+    let (s, c) = (w * t.max(0.0)).sin_cos();
+    [0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c]
+}
+
+/// `base` plus the sum of `sines` faded in over `fade_in` (s) at `t`, and
+/// its two time derivatives: a prescribed motion's position, velocity and
+/// acceleration.
+pub fn faded_sum(base: f64, sines: &[Sine], fade_in: f64, t: f64) -> [f64; 3] {
+    let [r, dr, ddr] = fade(fade_in, t);
+    let mut out = [base, 0.0, 0.0];
+    for s in sines {
+        let [x, v, a] = s.eval(t);
+        out[0] += r * x;
+        out[1] += dr * x + r * v;
+        out[2] += ddr * x + 2.0 * dr * v + r * a;
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

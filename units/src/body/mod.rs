@@ -1,0 +1,305 @@
+//! A rigid body in six degrees of freedom (scene kind `body`): a floating
+//! platform, a vessel, the physical half of a truncated test. Finite
+//! rotations on a unit quaternion; mass and inertia about the centre of
+//! gravity, a constant added mass, linear hydrostatic restoring, linear and
+//! quadratic damping, a mean load and an external load ([`dynamics`]),
+//! stepped by the trapezoidal rule ([`step`]). Named attachment points
+//! (fairleads) give their global position, velocity and acceleration as
+//! outputs and take the force they receive as inputs, so 3D lines
+//! (`line3d`, `catenary3d`) hang from them through the master.
+//!
+//! Instead of its dynamics a body may follow a prescribed motion (sines per
+//! degree of freedom): the fairleads then move the lines as a vessel's
+//! motion would, whatever the lines pull.
+//!
+//! The step Jacobian (outputs after a step by the step's end inputs) is
+//! taken by central differences of the step from its start: the body's step
+//! is a 6x6 solve, cheap beside the lines it carries.
+
+pub mod dynamics;
+pub mod params;
+mod ports;
+mod step;
+
+#[cfg(test)]
+mod tests;
+
+use crate::contract::{
+    Capabilities, HoldSupport, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription,
+    UnitError, require_step_jacobian_ready,
+};
+use crate::signal::sine::faded_sum;
+use dynamics::{Model, Motion, rate_map, rate_map_derivative};
+use nalgebra::{UnitQuaternion, Vector3, Vector6};
+pub use params::{BodyParams, Fairlead};
+use step::{EndLoads, Kinematics, advance};
+
+crate::state_struct! {
+    /// Everything that changes while stepping.
+    #[derive(Debug, serde::Serialize, serde::Deserialize)]
+    struct BodyState {
+        t: f64,
+        /// Reference point (m), rotation quaternion (w, i, j, k), velocity
+        /// and angular velocity, acceleration and angular acceleration.
+        position: [f64; 3],
+        rotation: [f64; 4],
+        velocity: [f64; 6],
+        acceleration: [f64; 6],
+        /// Work done on the body by the loads that do work (J), and its
+        /// energy at the start (J).
+        work: f64,
+        initial_energy: f64,
+        /// The power of the loads that do work at the current time (W).
+        power: f64,
+        newton_iterations: u32,
+    }
+}
+
+/// The unit.
+pub struct Body {
+    params: BodyParams,
+    model: Model,
+    description: UnitDescription,
+    state: BodyState,
+    /// The last step's start, length (s) and end inputs, for its Jacobian.
+    last_start: Option<(Kinematics, f64, f64)>,
+    end_inputs: Vec<f64>,
+    /// Output buffers of the Jacobian's differences.
+    plus: Vec<f64>,
+    minus: Vec<f64>,
+}
+
+impl Body {
+    /// Builds the body, refusing parameters it cannot use (the error names the key).
+    pub fn new(params: BodyParams) -> Result<Body, UnitError> {
+        params.validate()?;
+        let model = Model::new(&params);
+        let description = UnitDescription {
+            kind: "body".into(),
+            inputs: ports::inputs(&params),
+            outputs: ports::outputs(&params),
+            capabilities: Capabilities {
+                step_jacobian: true,
+                // The trapezoidal rule reads the loads at the step's ends
+                // only: its start's are the last step's end.
+                hold: HoldSupport::Fixed,
+                ..Capabilities::default()
+            },
+        };
+        let outputs = description.outputs.len();
+        let state = BodyState {
+            t: 0.0,
+            position: params.reference,
+            rotation: [1.0, 0.0, 0.0, 0.0],
+            velocity: [0.0; 6],
+            acceleration: [0.0; 6],
+            work: 0.0,
+            initial_energy: 0.0,
+            power: 0.0,
+            newton_iterations: 0,
+        };
+        Ok(Body {
+            params,
+            model,
+            description,
+            state,
+            last_start: None,
+            end_inputs: Vec::new(),
+            plus: vec![0.0; outputs],
+            minus: vec![0.0; outputs],
+        })
+    }
+
+    /// The body's parameters.
+    pub fn params(&self) -> &BodyParams {
+        &self.params
+    }
+
+    fn kinematics(&self) -> Kinematics {
+        let s = &self.state;
+        let [w, i, j, k] = s.rotation;
+        Kinematics {
+            motion: Motion {
+                position: Vector3::from(s.position),
+                rotation: UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(w, i, j, k)),
+                velocity: Vector6::from(s.velocity),
+            },
+            acceleration: Vector6::from(s.acceleration),
+        }
+    }
+
+    fn set_kinematics(&mut self, k: &Kinematics) {
+        let q = k.motion.rotation.quaternion();
+        self.state.position = k.motion.position.into();
+        self.state.rotation = [q.w, q.i, q.j, q.k];
+        self.state.velocity = k.motion.velocity.into();
+        self.state.acceleration = k.acceleration.into();
+    }
+
+    /// The prescribed motion at `t` (s).
+    fn prescribed(&self, motion: &[Vec<crate::signal::sine::Sine>; 6], t: f64) -> Kinematics {
+        let p = &self.params;
+        let mut dof = [[0.0; 3]; 6];
+        for (i, sines) in motion.iter().enumerate() {
+            dof[i] = faded_sum(p.initial_offset[i], sines, p.fade_in, t);
+        }
+        let column = |k: usize| Vector3::new(dof[3][k], dof[4][k], dof[5][k]);
+        let (angles, rates, second) = (column(0), column(1), column(2));
+        let map = rate_map(angles.y, angles.z);
+        let spin = map * rates;
+        let spin_rate = map * second + rate_map_derivative(angles.y, angles.z, &rates) * rates;
+        let mut velocity = Vector6::zeros();
+        let mut acceleration = Vector6::zeros();
+        for k in 0..3 {
+            velocity[k] = dof[k][1];
+            velocity[3 + k] = spin[k];
+            acceleration[k] = dof[k][2];
+            acceleration[3 + k] = spin_rate[k];
+        }
+        Kinematics {
+            motion: Motion {
+                position: self.model.reference + Vector3::new(dof[0][0], dof[1][0], dof[2][0]),
+                rotation: UnitQuaternion::from_euler_angles(angles.x, angles.y, angles.z),
+                velocity,
+            },
+            acceleration,
+        }
+    }
+
+    /// The fairleads' forces and the external load among `values` (the
+    /// inputs in port order).
+    fn end_loads<'a>(&self, values: &'a [f64]) -> EndLoads<'a> {
+        let n = 3 * self.model.fairleads.len();
+        EndLoads {
+            forces: &values[..n],
+            external: Vector6::from_column_slice(&values[n..n + 6]),
+        }
+    }
+
+    /// The power (W) of the loads that do work at kinematics `k` under `values`.
+    fn power(&self, k: &Kinematics, values: &[f64]) -> f64 {
+        let loads = self.end_loads(values);
+        self.model
+            .applied(&k.motion, loads.forces, &loads.external)
+            .dot(&k.motion.velocity)
+    }
+
+    fn energy(&self, k: &Kinematics) -> f64 {
+        let [kinetic, potential] = self.model.energies(&k.motion);
+        kinetic + potential
+    }
+}
+
+impl Unit for Body {
+    fn description(&self) -> &UnitDescription {
+        &self.description
+    }
+
+    fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
+        let t0 = t0.as_secs();
+        let p = &self.params;
+        let start = match &p.motion {
+            Some(motion) => self.prescribed(motion, t0),
+            None => {
+                let o = &p.initial_offset;
+                let motion = Motion {
+                    position: self.model.reference + Vector3::new(o[0], o[1], o[2]),
+                    rotation: UnitQuaternion::from_euler_angles(o[3], o[4], o[5]),
+                    velocity: Vector6::from(p.initial_velocity),
+                };
+                let loads = self.end_loads(inputs.end());
+                let acceleration =
+                    self.model
+                        .acceleration(&motion, loads.forces, &loads.external)?;
+                Kinematics {
+                    motion,
+                    acceleration,
+                }
+            }
+        };
+        self.set_kinematics(&start);
+        self.state.t = t0;
+        self.state.work = 0.0;
+        self.state.initial_energy = self.energy(&start);
+        self.state.power = self.power(&start, inputs.end());
+        self.state.newton_iterations = 0;
+        self.last_start = None;
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
+        let (t0, h) = (t.as_secs(), h.as_secs());
+        let start = self.kinematics();
+        let (end, iterations) = match &self.params.motion {
+            Some(motion) => (self.prescribed(motion, t0 + h), 0),
+            None => advance(
+                &self.model,
+                &start,
+                h,
+                &self.end_loads(inputs.end()),
+                self.params.max_iterations,
+            )?,
+        };
+        let power = self.power(&end, inputs.end());
+        self.state.work += 0.5 * h * (self.state.power + power);
+        self.state.power = power;
+        self.set_kinematics(&end);
+        self.state.t = t0 + h;
+        self.state.newton_iterations = iterations;
+        self.last_start = Some((start, t0, h));
+        self.end_inputs.clear();
+        self.end_inputs.extend_from_slice(inputs.end());
+        Ok(StepReport {
+            solver_iterations: iterations,
+        })
+    }
+
+    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
+        ports::write_outputs(self, &self.kinematics(), out);
+    }
+
+    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
+        slot.store(&self.state);
+        Ok(())
+    }
+
+    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
+        self.state.clone_from(&*slot.load::<BodyState>()?);
+        self.last_start = None;
+        Ok(())
+    }
+
+    fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
+        let Some((start, _, h)) = self.last_start else {
+            return require_step_jacobian_ready(false, "a body");
+        };
+        let n_in = inputs.len();
+        jacobian.fill(0.0);
+        if self.params.motion.is_some() {
+            return Ok(());
+        }
+        let scale = self.params.mass * self.params.gravity.max(1.0);
+        let mut values = self.end_inputs.clone();
+        let (mut plus, mut minus) = (
+            std::mem::take(&mut self.plus),
+            std::mem::take(&mut self.minus),
+        );
+        for j in 0..n_in {
+            let delta = 1e-4 * (values[j].abs().max(scale));
+            let base = values[j];
+            for (sign, out) in [(1.0, &mut plus), (-1.0, &mut minus)] {
+                values[j] = base + sign * delta;
+                let loads = self.end_loads(&values);
+                let (end, _) = advance(&self.model, &start, h, &loads, self.params.max_iterations)?;
+                ports::write_outputs(self, &end, out);
+            }
+            values[j] = base;
+            for (i, (p, m)) in plus.iter().zip(&minus).enumerate() {
+                jacobian[i * n_in + j] = (p - m) / (2.0 * delta);
+            }
+        }
+        ports::clear_energy_rows(self, jacobian, n_in);
+        (self.plus, self.minus) = (plus, minus);
+        Ok(())
+    }
+}
