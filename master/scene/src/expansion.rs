@@ -29,11 +29,35 @@ pub(crate) struct Expansion {
     pub written: Written,
 }
 
+/// Appends what the `expansions` write out to the scene `spec`'s units and
+/// connections; returns them together and their advisories.
+pub(crate) fn append(
+    spec: &mut crate::spec::SceneSpec,
+    expansions: impl Iterator<Item = Expansion>,
+) -> (Option<Written>, Vec<String>) {
+    let mut written: Option<Written> = None;
+    let mut advisories = Vec::new();
+    for mut x in expansions {
+        spec.units.extend(x.units);
+        spec.connections.extend(x.connections);
+        advisories.append(&mut x.written.advisories);
+        match &mut written {
+            Some(w) => {
+                w.units.append(&mut x.written.units);
+                w.connections.append(&mut x.written.connections);
+            }
+            None => written = Some(x.written),
+        }
+    }
+    (written, advisories)
+}
+
 /// The scene text `source` as it runs: its `[structure]` replaced by the
 /// units and connections it writes out (what `slender expand` prints).
 pub(crate) fn expanded_text(source: &str, written: &Written) -> Result<String, String> {
     let mut table: Table = toml::from_str(source).map_err(|e| e.to_string())?;
     table.remove("structure");
+    table.remove("mooring");
     for (key, items) in [
         ("units", &written.units),
         ("connections", &written.connections),
@@ -69,25 +93,52 @@ pub(crate) fn expand(
     structure: &Value,
     start: f64,
 ) -> Result<Expansion, SceneError> {
-    let error = |message: String| SceneError {
-        file: path.to_owned(),
-        line: structure_lines::model_parameter_line(source, &message)
-            .or_else(|| {
-                structure_lines::structure_key(&message)
-                    .and_then(|key| structure_lines::key_line(source, key))
-            })
-            .or_else(|| structure_lines::key_line(source, "structure")),
-        key: "structure".into(),
-        message,
-    };
     let name = (structure.get("name"))
         .and_then(Value::as_str)
         .map(str::to_owned)
         .unwrap_or_default();
+    written_out(path, source, "structure", name, start, |t0| {
+        structure::expand(structure, t0)
+    })
+}
+
+/// The `[mooring]` table `mooring` of `source` written out at `start` (s).
+pub(crate) fn expand_mooring(
+    path: &Path,
+    source: &str,
+    mooring: &Value,
+    start: f64,
+) -> Result<Expansion, SceneError> {
+    written_out(path, source, "mooring", String::new(), start, |t0| {
+        crate::mooring::Mooring::parse(mooring)?.expand(t0)
+    })
+}
+
+/// What the table `key` (named `name`) of `source` writes out by `write`
+/// at `start` (s), typed; an error names the line of the key it is about.
+fn written_out(
+    path: &Path,
+    source: &str,
+    key: &str,
+    name: String,
+    start: f64,
+    write: impl FnOnce(Time) -> Result<Written, String>,
+) -> Result<Expansion, SceneError> {
+    let error = |message: String| SceneError {
+        file: path.to_owned(),
+        line: structure_lines::model_parameter_line(source, &message)
+            .or_else(|| {
+                structure_lines::named_key(&message, key)
+                    .and_then(|k| structure_lines::key_line(source, k))
+            })
+            .or_else(|| structure_lines::key_line(source, key)),
+        key: key.into(),
+        message,
+    };
     let t0 = Time::from_secs(start)
         .ok_or_else(|| error("`simulation.start`: expected a time in seconds".into()))?;
-    let written = structure::expand(structure, t0).map_err(error)?;
-    let span = structure_lines::structure_span(source).unwrap_or(0..0);
+    let written = write(t0).map_err(error)?;
+    let span = structure_lines::key_span(source, key).unwrap_or(0..0);
     let units = (written.units.iter())
         .map(|u| unit_spec(u, &span))
         .collect::<Result<_, _>>()

@@ -6,6 +6,7 @@
 
 mod expansion;
 pub mod export;
+pub mod mooring;
 pub mod spec;
 pub mod ssp;
 pub mod structure;
@@ -132,15 +133,11 @@ impl Scene {
             .map(|s| expansion::expand(path, &source, &s, spec.simulation.start))
             .transpose()?;
         let structure = expansion.as_ref().map(|x| x.name.clone());
-        let (written, advisories) = match expansion {
-            Some(mut x) => {
-                spec.units.extend(x.units);
-                spec.connections.extend(x.connections);
-                let advisories = std::mem::take(&mut x.written.advisories);
-                (Some(x.written), advisories)
-            }
-            None => (None, Vec::new()),
-        };
+        let mooring = (spec.mooring.take())
+            .map(|m| expansion::expand_mooring(path, &source, &m, spec.simulation.start))
+            .transpose()?;
+        let (written, advisories) =
+            expansion::append(&mut spec, expansion.into_iter().chain(mooring));
         let mut scene = Scene {
             path: path.to_owned(),
             spec,

@@ -34,6 +34,9 @@ pub struct SceneSpec {
     /// read (`Scene::parse`), which append them to `units` and `connections`.
     #[serde(default)]
     pub structure: Option<toml::Value>,
+    /// `[mooring]`: a body and its lines, written out the same way.
+    #[serde(default)]
+    pub mooring: Option<toml::Value>,
 }
 
 /// `[uncertainty]`: distributions given to scene keys, and the indicators whose

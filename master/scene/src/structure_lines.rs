@@ -62,14 +62,14 @@ fn locate(source: &str, path: &str) -> Option<(usize, bool)> {
     found.map(|offset| (line(offset), reached == parts.len()))
 }
 
-/// The byte range of the `structure` key in `source` (the `[structure]`
-/// header), where the file writes it: what the units a structure writes out
-/// point at.
-pub(crate) fn structure_span(source: &str) -> Option<std::ops::Range<usize>> {
+/// The byte range of the top-level `key` in `source` (the `[structure]` or
+/// `[mooring]` header), where the file writes it: what the units it writes
+/// out point at.
+pub(crate) fn key_span(source: &str, key: &str) -> Option<std::ops::Range<usize>> {
     let document = DeTable::parse(source).ok()?;
     let table = document.get_ref();
     (table.iter())
-        .find(|(k, _)| k.get_ref() == "structure")
+        .find(|(k, _)| k.get_ref() == key)
         .map(|(k, _)| k.span())
 }
 
@@ -98,13 +98,13 @@ fn named(item: &Spanned<DeValue>, name: &str) -> bool {
     })
 }
 
-/// The first `structure...` key a message names in backticks.
-pub(crate) fn structure_key(message: &str) -> Option<&str> {
+/// The first key under the top-level `top` a message names in backticks.
+pub(crate) fn named_key<'a>(message: &'a str, top: &str) -> Option<&'a str> {
     message
         .split('`')
         .skip(1)
         .step_by(2)
-        .find(|k| k.starts_with("structure"))
+        .find(|k| k.starts_with(top))
         .map(|k| k.split(" = ").next().unwrap_or(k))
 }
 
@@ -165,7 +165,10 @@ mod tests {
             Some(10)
         );
         assert_eq!(
-            structure_key("`structure.sections.upper.fidelity` = \"beam\": no"),
+            named_key(
+                "`structure.sections.upper.fidelity` = \"beam\": no",
+                "structure"
+            ),
             Some("structure.sections.upper.fidelity")
         );
         let message = "parameter `rayleigh_stiffness` = -1: expected a finite value >= 0";

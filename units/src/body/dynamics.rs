@@ -188,15 +188,22 @@ impl Model {
         forces: &[f64],
         external: &Vector6<f64>,
     ) -> Vector6<f64> {
+        let q = self.mean_force + external + self.fairlead_loads(m, forces);
+        let u = &m.velocity;
+        let quadratic = u.map(|x| x.abs() * x);
+        q - self.damping_linear * u - self.damping_quadratic * quadratic
+    }
+
+    /// The fairleads' `forces` (x, y, z each, global) as a load at the
+    /// reference point (N, N m).
+    pub(crate) fn fairlead_loads(&self, m: &Motion, forces: &[f64]) -> Vector6<f64> {
         let r = m.rotation.to_rotation_matrix();
-        let mut q = self.mean_force + external;
+        let mut q = Vector6::zeros();
         for (k, p) in self.fairleads.iter().enumerate() {
             let f = Vector3::new(forces[3 * k], forces[3 * k + 1], forces[3 * k + 2]);
             add_point_load(&mut q, &(r * p), &f);
         }
-        let u = &m.velocity;
-        let quadratic = u.map(|x| x.abs() * x);
-        q - self.damping_linear * u - self.damping_quadratic * quadratic
+        q
     }
 
     /// The velocity-dependent inertial loads: the centripetal force of an

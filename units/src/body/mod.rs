@@ -17,6 +17,7 @@
 //! is a 6x6 solve, cheap beside the lines it carries.
 
 pub mod dynamics;
+pub mod mooring;
 pub mod params;
 mod ports;
 mod step;

@@ -165,7 +165,13 @@ impl CatenarySection {
         [[-h * ux, -h * uy, -vf], [h * ux, h * uy, va]]
     }
 
-    /// The same for an end at `end` (m).
+    /// The force (N) the end at `end` (m) exerts on what holds it: a
+    /// fairlead's pull for a mooring system's statics.
+    pub fn end_force(&self, end: &[f64; 3]) -> Result<[f64; 3], UnitError> {
+        Ok(self.forces(end)?[0])
+    }
+
+    /// The forces the end at `end` (m) and the start exert (N).
     fn forces(&self, end: &[f64; 3]) -> Result<[[f64; 3]; 2], UnitError> {
         Ok(self.forces_of(&self.solve(end)?, self.plan(end).0))
     }

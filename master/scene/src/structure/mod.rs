@@ -47,6 +47,7 @@ pub use sections::FIDELITIES;
 use sections::{Cut, Fidelity, Segment};
 use slender_units::Time;
 use spec::Spec;
+pub(crate) use spec::typed;
 use toml::{Table, Value};
 
 /// What a `[structure]` writes out: its units and connections (as tables of

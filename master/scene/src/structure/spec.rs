@@ -35,7 +35,7 @@ struct StructureFile {
 
 /// `table`, found at `key`, as a `T`; an error names the key path where it
 /// went wrong and says what was expected in a scene author's words.
-pub(super) fn typed<T: DeserializeOwned>(key: &str, table: &Table) -> Result<T, String> {
+pub(crate) fn typed<T: DeserializeOwned>(key: &str, table: &Table) -> Result<T, String> {
     serde_path_to_error::deserialize(Value::Table(table.clone())).map_err(|e| {
         let message = slender_kinds::words::in_words(e.inner().message().trim());
         match e.path().to_string().as_str() {

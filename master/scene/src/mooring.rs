@@ -1,0 +1,312 @@
+//! `[mooring]`: a body and the 3D lines that hold it, described once and
+//! written out as units and connections when the scene is read (as
+//! `[structure]` is; `slender expand` prints them).
+//!
+//! `[mooring.body]` is a `body` unit's parameters and its `name`;
+//! `[mooring.line]` the lines' shared model (`kind = "line3d"` and a 3D
+//! line's parameters but its ends); each `[[mooring.lines]]` names its
+//! fairlead on the body, its anchor, its own changes to the model (`model`),
+//! its sections with their fidelities and whether it has a twin, exactly as
+//! a 3D `[structure]` (its units are `<line>_<section>`). Each line's upper
+//! end moves with its fairlead's velocity and its pull is the fairlead's
+//! force, x, y and z (the master iterates them, by Newton on the units'
+//! Jacobians when the scene asks); a twin moves with the fairlead and pulls
+//! nothing.
+//!
+//! With `statics = true` (the default) the body starts at its equilibrium on
+//! the lines' catenaries ([`slender_units::body::mooring`]), its
+//! `initial_offset` counted from there, and each line solves its statics
+//! with its end at the fairlead so placed.
+
+use crate::structure;
+use serde::Deserialize;
+use slender_units::Time;
+use slender_units::body::mooring::{MooredLine, MooringStatics, equilibrium, fairlead_position};
+use slender_units::body::{Body, BodyParams};
+use slender_units::line3d::Line3dParams;
+use slender_units::line3d::catenary_section::CatenarySection;
+use toml::{Table, Value};
+
+/// `[mooring]` as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MooringFile {
+    body: Table,
+    line: Table,
+    lines: Vec<LineFile>,
+    #[serde(default = "yes")]
+    statics: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// One `[[mooring.lines]]`.
+#[derive(Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LineFile {
+    name: String,
+    fairlead: String,
+    anchor: [f64; 3],
+    #[serde(default)]
+    model: Table,
+    #[serde(default)]
+    sections: Vec<Value>,
+    #[serde(default)]
+    reference: bool,
+}
+
+/// A mooring system read and checked: the body and its lines.
+pub struct Mooring {
+    /// The body unit's name.
+    pub name: String,
+    /// The body's parameters as written.
+    pub body: BodyParams,
+    body_table: Table,
+    lines: Vec<Line>,
+    statics: bool,
+}
+
+/// A line of the system.
+struct Line {
+    file: LineFile,
+    /// The index of its fairlead among the body's.
+    fairlead: usize,
+    /// Its model (`kind` left out) with the anchor as its start.
+    model: Table,
+    params: Line3dParams,
+}
+
+impl Mooring {
+    /// Reads `[mooring]`; an error names the key.
+    pub fn parse(mooring: &Value) -> Result<Mooring, String> {
+        let table = mooring.as_table().ok_or("`mooring`: expected a table")?;
+        let file: MooringFile = structure::typed("mooring", table)?;
+        let mut body_table = file.body.clone();
+        let name = match body_table.remove("name") {
+            Some(Value::String(name)) => name,
+            _ => {
+                return Err("`mooring.body.name`: expected the body unit's name (a string)".into());
+            }
+        };
+        let body: BodyParams = structure::typed("mooring.body", &body_table)?;
+        Body::new(body.clone()).map_err(|e| format!("`mooring.body`: {e}"))?;
+        if file.lines.is_empty() {
+            return Err("`mooring.lines`: expected at least one line".into());
+        }
+        let lines = (file.lines.iter())
+            .map(|l| Line::new(l, &file.line, &body))
+            .collect::<Result<Vec<_>, _>>()?;
+        for (k, l) in lines.iter().enumerate() {
+            if l.file.name == name || lines[..k].iter().any(|m| m.file.name == l.file.name) {
+                return Err(format!(
+                    "`mooring.lines[{k}].name` = \"{}\": a name neither the body nor another line has (it prefixes the line's units)",
+                    l.file.name
+                ));
+            }
+        }
+        Ok(Mooring {
+            name,
+            body,
+            body_table,
+            lines,
+            statics: file.statics,
+        })
+    }
+
+    /// The lines as catenaries from their anchors, for the statics; the
+    /// error names the line whose model a catenary cannot stand for.
+    pub fn catenaries(&self) -> Result<Vec<MooredLine>, String> {
+        (self.lines.iter())
+            .map(|l| {
+                let mut params = l.params.clone();
+                params.end.condition = slender_units::line3d::EndCondition::Fixed;
+                let line = CatenarySection::new(params).map_err(|e| {
+                    format!(
+                        "`mooring.lines.{}`: the system's statics take each line as its elastic catenary: {e} (or set `mooring.statics = false`)",
+                        l.file.name
+                    )
+                })?;
+                Ok(MooredLine {
+                    fairlead: l.fairlead,
+                    line,
+                })
+            })
+            .collect()
+    }
+
+    /// The body's equilibrium on its lines.
+    pub fn equilibrium(&self) -> Result<MooringStatics, String> {
+        equilibrium(&self.body, &self.catenaries()?).map_err(|e| format!("`mooring`: {e}"))
+    }
+
+    /// The lines' names and their fairleads' names.
+    pub fn line_names(&self) -> Vec<(String, String)> {
+        (self.lines.iter())
+            .map(|l| (l.file.name.clone(), l.file.fairlead.clone()))
+            .collect()
+    }
+
+    /// Writes the system out at `t0`: the body (at its equilibrium with
+    /// `statics`), each line as a 3D structure from its anchor to its
+    /// fairlead, and the connections between them.
+    pub fn expand(&self, t0: Time) -> Result<structure::Written, String> {
+        let mut offset = self.body.initial_offset;
+        if self.statics {
+            let eq = self.equilibrium()?;
+            for (o, e) in offset.iter_mut().zip(eq.offset) {
+                *o += e;
+            }
+        }
+        let mut body = self.body_table.clone();
+        body.insert("initial_offset".into(), floats(&offset));
+        let mut units = vec![unit_table(&self.name, "body", body)];
+        let mut connections = Vec::new();
+        let mut advisories = Vec::new();
+        for line in &self.lines {
+            let at = fairlead_position(&self.body, line.fairlead, &offset);
+            let written = line.expand(at, t0)?;
+            units.extend(written.units);
+            connections.extend(written.connections);
+            advisories.extend(written.advisories);
+            connections.extend(line.links(&self.name));
+        }
+        Ok(structure::Written {
+            units,
+            connections,
+            advisories,
+        })
+    }
+}
+
+impl Line {
+    /// The line `file` of the shared model `shared` on `body`.
+    fn new(file: &LineFile, shared: &Table, body: &BodyParams) -> Result<Line, String> {
+        let key = format!("mooring.lines.{}", file.name);
+        let fairlead = (body.fairleads.iter())
+            .position(|f| f.name == file.fairlead)
+            .ok_or_else(|| {
+                let names: Vec<&str> = body.fairleads.iter().map(|f| f.name.as_str()).collect();
+                format!(
+                    "`{key}.fairlead` = \"{}\": one of the body's fairleads ({})",
+                    file.fairlead,
+                    names.join(", ")
+                )
+            })?;
+        let mut model = shared.clone();
+        for (k, v) in &file.model {
+            model.insert(k.clone(), v.clone());
+        }
+        if model.get("kind").and_then(Value::as_str) != Some("line3d") {
+            return Err(format!(
+                "`{key}`: the lines' model needs `kind = \"line3d\"` (in `mooring.line` or the line's `model`)"
+            ));
+        }
+        for end in ["start", "end"] {
+            if model.contains_key(end) {
+                return Err(format!(
+                    "`{key}.model.{end}`: a mooring line's ends are its `anchor` and its `fairlead`, not given in its model"
+                ));
+            }
+        }
+        let mut start = Table::new();
+        start.insert("position".into(), floats(&file.anchor));
+        model.insert("start".into(), Value::Table(start));
+        model.insert("end".into(), end_table([0.0; 3]));
+        let mut parameters = model.clone();
+        parameters.remove("kind");
+        let params: Line3dParams = structure::typed(&format!("{key}.model"), &parameters)?;
+        Ok(Line {
+            file: file.clone(),
+            fairlead,
+            model,
+            params,
+        })
+    }
+
+    /// The line as a 3D `[structure]` with its end at `fairlead` (m), written out.
+    fn expand(&self, fairlead: [f64; 3], t0: Time) -> Result<structure::Written, String> {
+        let mut model = self.model.clone();
+        model.insert("end".into(), end_table(fairlead));
+        let mut table = Table::new();
+        table.insert("name".into(), Value::String(self.file.name.clone()));
+        table.insert("model".into(), Value::Table(model));
+        let sections = if self.file.sections.is_empty() {
+            let mut whole = Table::new();
+            whole.insert("name".into(), Value::String("full".into()));
+            vec![Value::Table(whole)]
+        } else {
+            self.file.sections.clone()
+        };
+        table.insert("sections".into(), Value::Array(sections));
+        table.insert("reference".into(), Value::Boolean(self.file.reference));
+        let key = format!("`mooring.lines.{}", self.file.name);
+        structure::expand(&Value::Table(table), t0).map_err(|e| e.replace("`structure", &key))
+    }
+
+    /// The unit of its top section.
+    fn top_unit(&self) -> String {
+        let last = (self.file.sections.last())
+            .and_then(|s| s.get("name"))
+            .and_then(Value::as_str)
+            .unwrap_or("full");
+        structure::unit_name(&self.file.name, last)
+    }
+
+    /// Its top moves with the fairlead of `body` and pulls it; its twin
+    /// moves with it too.
+    fn links(&self, body: &str) -> Vec<Value> {
+        let f = &self.file.fairlead;
+        let top = self.top_unit();
+        let mut out = Vec::new();
+        for c in ["x", "y", "z"] {
+            out.push(link(
+                format!("{body}.{f}_velocity_{c}"),
+                format!("{top}.end_velocity_{c}"),
+            ));
+            out.push(link(
+                format!("{top}.end_force_{c}"),
+                format!("{body}.{f}_force_{c}"),
+            ));
+            if self.file.reference {
+                out.push(link(
+                    format!("{body}.{f}_velocity_{c}"),
+                    format!(
+                        "{}.end_velocity_{c}",
+                        structure::reference_name(&self.file.name)
+                    ),
+                ));
+            }
+        }
+        out
+    }
+}
+
+fn floats(values: &[f64]) -> Value {
+    Value::Array(values.iter().map(|&x| Value::Float(x)).collect())
+}
+
+/// A line's end at `position` moved by coupled velocities.
+fn end_table(position: [f64; 3]) -> Value {
+    let mut end = Table::new();
+    end.insert("position".into(), floats(&position));
+    end.insert("condition".into(), Value::String("velocity".into()));
+    Value::Table(end)
+}
+
+fn link(from: String, to: String) -> Value {
+    let mut t = Table::new();
+    t.insert("from".into(), Value::String(from));
+    t.insert("to".into(), Value::String(to));
+    Value::Table(t)
+}
+
+/// A `[[units]]` table of `kind`.
+fn unit_table(name: &str, kind: &str, parameters: Table) -> Value {
+    let mut unit = Table::new();
+    unit.insert("name".into(), Value::String(name.into()));
+    unit.insert("kind".into(), Value::String(kind.into()));
+    unit.insert("parameters".into(), Value::Table(parameters));
+    Value::Table(unit)
+}
