@@ -223,6 +223,25 @@ pub(crate) enum Command {
         #[arg(long, default_value_t = 6)]
         plot: usize,
     },
+    /// Statics of a scene's moored body (`[mooring]`): its equilibrium on the
+    /// lines' catenaries, each fairlead's tension, the 6x6 mooring stiffness,
+    /// the undamped natural periods and the offset-restoring curves (surge,
+    /// sway, yaw); writes statics.json, offsets.csv and statics.svg.
+    Statics {
+        scene: PathBuf,
+        /// Folder for the files (default: results/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Surge and sway offsets from -RANGE to RANGE (m).
+        #[arg(long, default_value_t = 30.0)]
+        range: f64,
+        /// Yaw from -YAW to YAW (degrees).
+        #[arg(long, default_value_t = 10.0)]
+        yaw: f64,
+        /// Points per curve (3 to 1001).
+        #[arg(long, default_value_t = 21)]
+        points: usize,
+    },
     /// Convergence and cost study (seed 000 Appendix B): vary one setting at a time
     /// and report, per run, the relative error of the scene's indicator signals
     /// against the finest value, iterations per step and cost per simulated second.

@@ -310,3 +310,9 @@ fn unit_table(name: &str, kind: &str, parameters: Table) -> Value {
     unit.insert("parameters".into(), Value::Table(parameters));
     Value::Table(unit)
 }
+
+/// The scene's `[mooring]` read and checked; None when it has none.
+pub fn of_scene(scene: &crate::Scene) -> Result<Option<Mooring>, String> {
+    let table: Table = toml::from_str(&scene.source).map_err(|e| e.to_string())?;
+    table.get("mooring").map(Mooring::parse).transpose()
+}

@@ -161,3 +161,77 @@ pub fn equilibrium(body: &BodyParams, lines: &[MooredLine]) -> Result<MooringSta
         "the moored body's statics did not converge in 100 Newton iterations".into(),
     ))
 }
+
+/// The lines' load on the body at the reference point (N, N m) and each
+/// line's tension at its fairlead (N), the body at `offset` (m, rad).
+pub fn mooring_state(
+    body: &BodyParams,
+    lines: &[MooredLine],
+    offset: &[f64; 6],
+) -> Result<([f64; 6], Vec<f64>), UnitError> {
+    let model = Model::new(body);
+    let offset = Vector6::from(*offset);
+    let mut forces = vec![0.0; 3 * body.fairleads.len()];
+    let load = mooring_load(&model, lines, &offset, &mut forces)?;
+    let tensions = line_forces(&model, lines, &offset)?
+        .iter()
+        .map(|f| Vector3::from(*f).norm())
+        .collect();
+    Ok((load.into(), tensions))
+}
+
+/// A mode of the moored body about its equilibrium.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidMode {
+    /// Undamped natural period (s); infinite where nothing restores it.
+    pub period: f64,
+    /// The degree of freedom it moves most (0-5: surge to yaw): the largest
+    /// `x_d^2 M_dd` of its shape `x`.
+    pub dominant: usize,
+}
+
+/// The moored body's undamped modes about `offset`, longest period first:
+/// the generalised eigenproblem of the whole restoring (weight, buoyancy,
+/// hydrostatics, springs and lines; its symmetric part) and the mass with
+/// the added mass.
+pub fn natural_modes(
+    body: &BodyParams,
+    lines: &[MooredLine],
+    offset: &[f64; 6],
+) -> Result<Vec<RigidMode>, UnitError> {
+    let model = Model::new(body);
+    let mut forces = vec![0.0; 3 * body.fairleads.len()];
+    let at = Vector6::from(*offset);
+    let k = -derivative(&at, |o| residual(&model, lines, o, &mut forces))?;
+    let k = (k + k.transpose()) * 0.5;
+    let mass = model.mass_matrix(&pose(&model, &at).rotation);
+    let l = nalgebra::Cholesky::new(mass)
+        .ok_or_else(|| {
+            UnitError::Numerical("the body's mass matrix is not positive definite".into())
+        })?
+        .l();
+    let l_inv = l
+        .try_inverse()
+        .ok_or_else(|| UnitError::Numerical("the body's mass matrix is singular".into()))?;
+    let eigen = nalgebra::SymmetricEigen::new(l_inv * k * l_inv.transpose());
+    let mut modes: Vec<RigidMode> = (0..6)
+        .map(|i| {
+            let x = l_inv.transpose() * eigen.eigenvectors.column(i);
+            let shares: Vec<f64> = (0..6).map(|d| x[d] * x[d] * mass[(d, d)]).collect();
+            let dominant = (0..6)
+                .max_by(|&a, &b| shares[a].total_cmp(&shares[b]))
+                .unwrap_or(0);
+            let w2 = eigen.eigenvalues[i];
+            RigidMode {
+                period: if w2 > 0.0 {
+                    2.0 * std::f64::consts::PI / w2.sqrt()
+                } else {
+                    f64::INFINITY
+                },
+                dominant,
+            }
+        })
+        .collect();
+    modes.sort_by(|a, b| b.period.total_cmp(&a.period));
+    Ok(modes)
+}

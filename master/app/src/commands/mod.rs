@@ -7,6 +7,7 @@ mod fmu;
 mod lock;
 mod scene;
 mod span;
+mod statics;
 mod uq;
 
 use crate::cli::{Cli, Command};
@@ -172,6 +173,17 @@ pub(crate) fn dispatch(cli: Cli) -> Result<(), CliError> {
             out,
             plot,
         } => analysis::modes(&SceneArg::new(scene, set), &unit, count, out, plot),
+        Command::Statics {
+            scene,
+            out,
+            range,
+            yaw,
+            points,
+        } => statics::statics(
+            &SceneArg::new(scene, set),
+            out,
+            statics::Sweep { range, yaw, points },
+        ),
         c @ (Command::Study { .. } | Command::Fidelity { .. } | Command::Uq { .. }) => {
             studies(c, set)
         }

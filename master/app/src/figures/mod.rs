@@ -8,10 +8,12 @@
 //!   settings allow (lines, grouped bars, heat maps);
 //! - [`tradeoff`]: error against cost with the Pareto front (`error_cost.svg`
 //!   of a study, `fidelity.svg`);
-//! - [`units`]: a setting's unit for its axis.
+//! - [`units`]: a setting's unit for its axis;
+//! - [`curves`]: curves against one abscissa (a moored body's statics).
 
 pub mod axes;
 mod bars;
+pub mod curves;
 mod heat;
 pub mod labels;
 pub mod study;
