@@ -170,3 +170,28 @@ fn the_light_buoy_under_newton_converges_with_the_step() {
     eprintln!("buoy surge, step 0.1 vs 0.05 s: {e1:.3e} m; 0.05 vs 0.025 s: {e2:.3e} m");
     assert!(e1 < 0.05 && e2 < 0.5 * e1, "{e1:e} {e2:e}");
 }
+
+#[test]
+fn the_oc3_spar_s_surge_decay_has_its_statics_period() {
+    use slender_app::decay::decay;
+    use slender_scene::mooring;
+    use slender_units::body::mooring::natural_modes;
+    let scene = slender_tests::load("examples/oc3_hywind.toml");
+    let system = mooring::of_scene(&scene).unwrap().unwrap();
+    let lines = system.catenaries().unwrap();
+    let eq = system.equilibrium().unwrap();
+    let modes = natural_modes(&system.body, &lines, &eq.offset).unwrap();
+    let surge = modes.iter().find(|m| m.dominant == 0).unwrap().period;
+    let s = run(&scene);
+    assert!(s.error.is_none(), "{:?}", s.error);
+    assert_eq!(s.counters.non_converged_steps, 0);
+    let d = decay(&s.time, s.get("spar.x"), eq.offset[0]).unwrap();
+    eprintln!(
+        "OC3 surge decay: {:.2} s (linear {surge:.2} s), damping ratio {:.3}, {} cycles",
+        d.period, d.damping_ratio, d.cycles
+    );
+    // The linear period about the equilibrium against the decay from 10 m,
+    // whose quadratic drag and catenary stiffen and damp it a little.
+    assert!((d.period - surge).abs() < 0.02 * surge, "{d:?} vs {surge}");
+    assert!(d.cycles >= 3 && d.damping_ratio > 0.0, "{d:?}");
+}

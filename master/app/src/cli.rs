@@ -223,6 +223,16 @@ pub(crate) enum Command {
         #[arg(long, default_value_t = 6)]
         plot: usize,
     },
+    /// A decay test: runs a scene with one body (let go from its
+    /// `initial_offset`) and reads each motion's natural period and damping
+    /// ratio from the record, beside the moored statics' undamped periods;
+    /// writes decay.json with the run's files.
+    Decay {
+        scene: PathBuf,
+        /// Folder for the run's files and decay.json (default: results/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Statics of a scene's moored body (`[mooring]`): its equilibrium on the
     /// lines' catenaries, each fairlead's tension, the 6x6 mooring stiffness,
     /// the undamped natural periods and the offset-restoring curves (surge,

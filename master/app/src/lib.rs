@@ -12,6 +12,7 @@
 
 pub mod costs;
 pub mod coupling_study;
+pub mod decay;
 pub mod fidelity;
 pub mod figures;
 pub mod indicators;

@@ -141,6 +141,11 @@ impl Mooring {
         equilibrium(&self.body, &self.catenaries()?).map_err(|e| format!("`mooring`: {e}"))
     }
 
+    /// Whether the body starts at its equilibrium (`mooring.statics`).
+    pub fn statics(&self) -> bool {
+        self.statics
+    }
+
     /// The lines' names and their fairleads' names.
     pub fn line_names(&self) -> Vec<(String, String)> {
         (self.lines.iter())

@@ -3,6 +3,7 @@
 //! a write) with code 1, as the README and the user guide promise.
 
 mod analysis;
+mod decay;
 mod fmu;
 mod lock;
 mod scene;
@@ -173,6 +174,7 @@ pub(crate) fn dispatch(cli: Cli) -> Result<(), CliError> {
             out,
             plot,
         } => analysis::modes(&SceneArg::new(scene, set), &unit, count, out, plot),
+        Command::Decay { scene, out } => decay::decay_test(&SceneArg::new(scene, set), out),
         Command::Statics {
             scene,
             out,
