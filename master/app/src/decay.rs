@@ -74,7 +74,7 @@ mod tests {
 
     #[test]
     fn a_damped_oscillator_s_period_and_damping_come_back() {
-        let (zeta, period) = (0.05, 30.0);
+        let (zeta, period): (f64, f64) = (0.05, 30.0);
         let omega = 2.0 * std::f64::consts::PI / period;
         let wd = omega * (1.0 - zeta * zeta).sqrt();
         let time: Vec<f64> = (0..20_000).map(|k| k as f64 * 0.01).collect();
