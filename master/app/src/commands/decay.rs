@@ -89,13 +89,16 @@ pub(super) fn decay_test(arg: &SceneArg, out: Option<PathBuf>) -> Result<(), Cli
     Ok(())
 }
 
+/// Per DOF where the motion settles and the linear period of its mode.
+type Settling = ([f64; 6], [f64; 6]);
+
 /// Where each motion settles (the reference point at the moored
 /// equilibrium, the angles there) and the undamped period of the mode each
 /// DOF leads, from the scene's `[mooring]` statics; None without one.
 fn settling_values(
     scene: &slender_scene::Scene,
     body: &str,
-) -> Result<Option<([f64; 6], [f64; 6])>, CliError> {
+) -> Result<Option<Settling>, CliError> {
     let Some(system) = mooring::of_scene(scene).map_err(CliError::input)? else {
         return Ok(None);
     };
