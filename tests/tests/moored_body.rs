@@ -195,3 +195,86 @@ fn the_oc3_spar_s_surge_decay_has_its_statics_period() {
     assert!((d.period - surge).abs() < 0.02 * surge, "{d:?} vs {surge}");
     assert!(d.cycles >= 3 && d.damping_ratio > 0.0, "{d:?}");
 }
+
+/// The buoy at rest at its equilibrium, heavily damped, `l1` breaking at 5 s
+/// (its line stepped at 0.02 s inside the coupling step: it falls onto the
+/// seabed's penalty springs), at coupling step `step` (s).
+fn broken(duration: f64, step: f64) -> String {
+    let volume = (2e5 * 9.80665 + 3.0 * 30_000.0) / (1025.0 * 9.80665);
+    BUOY.replace("SCHEME", "iterative_jacobi")
+        .replace("MASS", "2e5")
+        .replace("INERTIA", "8e5")
+        .replace("VOLUME", &format!("{volume}"))
+        .replace("STEP", &format!("{step}"))
+        .replace("DURATION", &format!("{duration}"))
+        .replace("NEWTON", "newton = { derivatives = \"units\" }")
+        .replace(
+            "initial_offset = [2.0, 0.0, 0.0, 0.0, 0.0, 0.0]",
+            "initial_offset = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]\ndamping_linear = [[5e4, 0, 0, 0, 0, 0], [0, 5e4, 0, 0, 0, 0], [0, 0, 5e4, 0, 0, 0], [0, 0, 0, 1e5, 0, 0], [0, 0, 0, 0, 1e5, 0], [0, 0, 0, 0, 0, 1e5]]",
+        )
+        .replace(
+            "anchor = [100.0, 0.0, -50.0]",
+            "anchor = [100.0, 0.0, -50.0]\nbreak_at = 5.0\nmodel = { max_step = 0.02 }",
+        )
+}
+
+/// The buoy's drift over 60 s after `l1` breaks (m), and the largest gap
+/// (m) to the same body without `l1` let go at rest from the three lines'
+/// equilibrium (its lines' statics solved there, not the body's), at
+/// coupling step `step` (s).
+fn break_against_absence(step: f64) -> (f64, f64) {
+    let with_break = broken(65.0, step);
+    let scene = Scene::parse(Path::new("broken.toml"), with_break.clone()).unwrap();
+    let eq = slender_scene::mooring::of_scene(&scene)
+        .unwrap()
+        .unwrap()
+        .equilibrium()
+        .unwrap();
+    let a = run(&scene);
+    assert!(a.error.is_none(), "{:?}", a.error);
+    let l1 = with_break.find("[[mooring.lines]]\nname = \"l1\"").unwrap();
+    let l2 = with_break.find("[[mooring.lines]]\nname = \"l2\"").unwrap();
+    let without = format!("{}{}", &with_break[..l1], &with_break[l2..])
+        .replace("duration = 65", "duration = 60")
+        .replace(
+            "initial_offset = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]",
+            &format!("initial_offset = {:?}", eq.offset),
+        )
+        .replace(
+            "[mooring.body]",
+            "[mooring]\nstatics = false\n\n[mooring.body]",
+        )
+        .replace("\"l1_full.end_tension\"", "\"l2_full.end_tension\"");
+    let b = run(&Scene::parse(Path::new("without.toml"), without).unwrap());
+    assert!(b.error.is_none(), "{:?}", b.error);
+    // A at 5 s + tau against B at tau.
+    let shift = (5.0 / step).round() as usize;
+    let mut gap = 0.0_f64;
+    for name in ["buoy.x", "buoy.z"] {
+        let (x, y) = (a.get(name), b.get(name));
+        for (p, q) in x[shift..].iter().zip(y) {
+            gap = gap.max((p - q).abs());
+        }
+    }
+    // The broken line pulls nothing from the break on.
+    assert!(
+        a.get("l1_full.end_tension")[shift + 1..]
+            .iter()
+            .all(|&t| t == 0.0)
+    );
+    ((a.last("buoy.x") - a.get("buoy.x")[shift]).abs(), gap)
+}
+
+#[test]
+fn after_a_line_breaks_the_body_drifts_as_if_the_line_had_never_been_there() {
+    let (drift, gap) = break_against_absence(0.1);
+    let (_, finer) = break_against_absence(0.05);
+    eprintln!(
+        "after the break: drift {drift:.3} m in 60 s; largest gap to the run without the line {gap:.3e} m at 0.1 s, {finer:.3e} m at 0.05 s"
+    );
+    assert!(drift > 1.0, "{drift}");
+    // The break falls inside a step, whose trapezoidal rule spreads the
+    // lost pull over it: an impulse of half a step's pull, first order in h.
+    assert!(gap < 2e-3 * drift, "{gap:e} of {drift}");
+    assert!(finer < 0.6 * gap, "{finer:e} vs {gap:e}");
+}

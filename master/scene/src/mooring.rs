@@ -13,6 +13,9 @@
 //! Jacobians when the scene asks); a twin moves with the fairlead and pulls
 //! nothing.
 //!
+//! A line with `break_at` lets go of its fairlead then (its top section's
+//! end is released: free, pulling nothing), an accidental limit state.
+//!
 //! With `statics = true` (the default) the body starts at its equilibrium on
 //! the lines' catenaries ([`slender_units::body::mooring`]), its
 //! `initial_offset` counted from there, and each line solves its statics
@@ -55,6 +58,9 @@ struct LineFile {
     sections: Vec<Value>,
     #[serde(default)]
     reference: bool,
+    /// The time (s) the line breaks at its fairlead.
+    #[serde(default)]
+    break_at: Option<f64>,
 }
 
 /// A mooring system read and checked: the body and its lines.
@@ -233,7 +239,11 @@ impl Line {
     /// The line as a 3D `[structure]` with its end at `fairlead` (m), written out.
     fn expand(&self, fairlead: [f64; 3], t0: Time) -> Result<structure::Written, String> {
         let mut model = self.model.clone();
-        model.insert("end".into(), end_table(fairlead));
+        let mut end = end_table(fairlead);
+        if let (Some(at), Value::Table(t)) = (self.file.break_at, &mut end) {
+            t.insert("released_at".into(), Value::Float(at));
+        }
+        model.insert("end".into(), end);
         let mut table = Table::new();
         table.insert("name".into(), Value::String(self.file.name.clone()));
         table.insert("model".into(), Value::Table(model));

@@ -42,6 +42,9 @@ impl CatenaryLine {
     /// iterations, halving a step that leaves H > 0).
     pub fn solve(&self, xf: f64, zf: f64) -> Result<Catenary, UnitError> {
         let (l, w) = (self.length, self.weight);
+        if let Some(slack) = self.slack(xf, zf) {
+            return Ok(slack);
+        }
         let chord = (xf * xf + zf * zf).sqrt();
         let lambda = if l <= chord {
             0.2
@@ -75,6 +78,24 @@ impl CatenaryLine {
         Err(UnitError::Numerical(format!(
             "elastic catenary: no solution found for a fairlead {xf} m across and {zf} m above the anchor (length {l} m)"
         )))
+    }
+
+    /// With a seabed, a line long enough to lie along the whole span and
+    /// hang straight up to the fairlead: no horizontal tension, the hanging
+    /// part's weight at the top (its elastic stretch counted). None when
+    /// the line is taut enough to need the catenary.
+    fn slack(&self, xf: f64, zf: f64) -> Option<Catenary> {
+        if !self.seabed || zf <= 0.0 {
+            return None;
+        }
+        let (w, ea) = (self.weight, self.axial_stiffness);
+        // zf = L_h + w L_h^2 / (2 EA), for the hanging length L_h.
+        let hanging = 2.0 * zf / (1.0 + (1.0 + 2.0 * w * zf / ea).sqrt());
+        (self.length - hanging >= xf).then_some(Catenary {
+            line: *self,
+            horizontal: 0.0,
+            vertical: w * hanging,
+        })
     }
 
     fn residual(&self, x: [f64; 2], xf: f64, zf: f64) -> [f64; 2] {
@@ -115,6 +136,15 @@ impl Catenary {
         let l = self.line;
         let (h, w, ea) = (self.horizontal, l.weight, l.axial_stiffness);
         let laid = self.laid_length();
+        if h <= 0.0 && laid > 0.0 {
+            // Slack: lying (straight, so a span shorter than the laid
+            // length is overshot), then hanging straight up.
+            if s <= laid {
+                return [s, 0.0];
+            }
+            let hanging = s - laid;
+            return [laid, hanging + w * hanging * hanging / (2.0 * ea)];
+        }
         if laid > 0.0 {
             if s <= laid {
                 return [s * (1.0 + h / ea), 0.0];

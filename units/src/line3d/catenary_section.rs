@@ -68,6 +68,13 @@ impl CatenarySection {
                 "\"fixed\", \"motion\" or \"velocity\": a static line's end is moved; its force is an output",
             ));
         }
+        if params.end.released_at.is_some() {
+            return Err(refuse(
+                "end.released_at",
+                "given",
+                "no release on a catenary (a quasi-static line has no free end): model the line's top section as `line3d`",
+            ));
+        }
         if params.submerged_weight <= 0.0 {
             return Err(refuse(
                 "submerged_weight",

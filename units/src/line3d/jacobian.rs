@@ -206,6 +206,13 @@ impl Line3d {
         let Some((end, node, condition)) = self.input_end(j) else {
             return Ok(());
         };
+        if self.state.released[end] {
+            // A released end's velocity inputs move nothing any more.
+            for i in 0..18 {
+                jacobian[i * n_in + j] = 0.0;
+            }
+            return Ok(());
+        }
         let dof = DOF * node + (j - self.first_input[end].unwrap_or(0));
         let drive = match condition {
             // Newmark from the node's start motion (`step::held_motion`):
@@ -234,6 +241,7 @@ impl Line3d {
                 jacobian[(base + c) * n_in + j] = w.change.dq[d];
                 jacobian[(base + 3 + c) * n_in + j] = w.change.dv[d];
                 jacobian[(base + 6 + c) * n_in + j] = match condition {
+                    _ if self.state.released[k] => 0.0,
                     EndCondition::Force if d == dof => -1.0,
                     EndCondition::Force => 0.0,
                     _ => -sensitivity.reaction_change(&w.change, d),

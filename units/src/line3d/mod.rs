@@ -57,6 +57,8 @@ crate::state_struct! {
         newton_iterations: u32,
         /// The linear model's strain and seabed-spring energies (J).
         linear_energy: [f64; 2],
+        /// Whether the start and the end have let go (`released_at`).
+        released: [bool; 2],
     }
 }
 
@@ -142,6 +144,7 @@ impl Line3d {
                 a: vec![0.0; n],
                 force: vec![0.0; n],
                 reaction: [0.0; 6],
+                released: [false; 2],
                 ledger: step::Ledger::default(),
                 newton_iterations: 0,
                 linear_energy: [0.0; 2],
@@ -153,13 +156,15 @@ impl Line3d {
         })
     }
 
-    /// The DOFs whose motion is prescribed (fixed, moved or velocity ends).
+    /// The DOFs whose motion is prescribed (fixed, moved or velocity ends
+    /// that have not let go).
     fn held_dofs(&self) -> Vec<usize> {
         let last = self.mechanics.nodes - 1;
         [(&self.params.start, 0), (&self.params.end, last)]
             .iter()
-            .filter(|(e, _)| e.condition != EndCondition::Force)
-            .flat_map(|(_, i)| DOF * i..DOF * i + DOF)
+            .zip(self.state.released)
+            .filter(|((e, _), released)| e.condition != EndCondition::Force && !released)
+            .flat_map(|((_, i), _)| DOF * i..DOF * i + DOF)
             .collect()
     }
 
@@ -266,6 +271,8 @@ mod coupling_tests;
 mod linear_tests;
 #[cfg(test)]
 mod planar_tests;
+#[cfg(test)]
+mod release_tests;
 #[cfg(test)]
 mod seabed_tests;
 #[cfg(test)]

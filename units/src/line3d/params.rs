@@ -100,6 +100,18 @@ pub struct EndSpec {
     /// cosine), so a run does not start with a jump in velocity; 0: none.
     #[serde(default)]
     pub fade_in: f64,
+    /// The time (s) the end lets go (a line that breaks at its fairlead):
+    /// from the first step starting then, it is free and exerts no force.
+    #[serde(default)]
+    pub released_at: Option<f64>,
+}
+
+impl EndSpec {
+    /// Whether the end has let go for a step starting at `t` (s).
+    pub fn released(&self, t: f64) -> bool {
+        self.released_at
+            .is_some_and(|at| t >= at - 1e-9 * at.abs().max(1.0))
+    }
 }
 
 /// How an end is held or loaded.
@@ -246,6 +258,13 @@ impl Line3dParams {
         self.validate_hydrodynamics()?;
         for (side, end) in [("start", &self.start), ("end", &self.end)] {
             end.validate(side)?;
+            if self.linear && end.released_at.is_some() {
+                return Err(UnitError::parameter(
+                    &format!("{side}.released_at"),
+                    "given",
+                    "no release on a linear line (linearised about its held ends); use the nonlinear line",
+                ));
+            }
         }
         let span = distance(self.start.position, self.end.position);
         if span > self.length * (1.0 + 0.5) {
@@ -319,6 +338,16 @@ impl EndSpec {
             require_finite(&format!("{side}.position.{axis}"), p)?;
         }
         require_non_negative(&format!("{side}.fade_in"), self.fade_in)?;
+        if let Some(at) = self.released_at {
+            require_finite(&format!("{side}.released_at"), at)?;
+            if self.condition == EndCondition::Force {
+                return Err(UnitError::parameter(
+                    &format!("{side}.released_at"),
+                    at,
+                    "a held or moved end (a loaded end is free already)",
+                ));
+            }
+        }
         let has_motion = self.motion.iter().any(|m| !m.is_empty());
         if has_motion != (self.condition == EndCondition::Motion) {
             return Err(UnitError::parameter(

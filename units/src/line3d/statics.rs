@@ -15,6 +15,10 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 /// Newton's iteration bound for the statics.
 const STATIC_ITERATIONS: usize = 400;
 
+/// The iterations after which a correction that does not shrink shortens
+/// Newton's steps.
+const CYCLING_AFTER: usize = 100;
+
 impl Line3d {
     /// The first shape: node positions (m) from the catenary through the
     /// ends, or the straight line between them.
@@ -76,6 +80,7 @@ impl Line3d {
         let held = self.held_dofs();
         let limit = 0.2 * self.mechanics.element_length;
         let statics = self.environment.without_waves();
+        let (mut trust, mut previous) = (1.0_f64, f64::INFINITY);
         for iteration in 1..=STATIC_ITERATIONS {
             band.fill_zero();
             residual.fill(0.0);
@@ -109,17 +114,32 @@ impl Line3d {
             if !largest.is_finite() {
                 return Err(self.static_failure(iteration, "a correction became non-finite"));
             }
-            let damp = if largest > limit {
-                limit / largest
-            } else {
-                1.0
-            };
+            let size = q.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            if largest < 1e-11 * size && (largest <= limit) {
+                for (x, dx) in q.iter_mut().zip(&residual) {
+                    *x += dx;
+                }
+                return Ok(iteration);
+            }
+            // Past the iterations a solve usually takes, a correction that
+            // does not shrink is Newton cycling between contact states at
+            // the touchdown: its steps are shortened until it settles.
+            if iteration > CYCLING_AFTER {
+                trust = if largest > 0.9 * previous {
+                    (0.5 * trust).max(1.0 / 1024.0)
+                } else {
+                    (2.0 * trust).min(1.0)
+                };
+            }
+            previous = largest;
+            let damp = trust
+                * if largest > limit {
+                    limit / largest
+                } else {
+                    1.0
+                };
             for (x, dx) in q.iter_mut().zip(&residual) {
                 *x += damp * dx;
-            }
-            let size = q.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-            if damp == 1.0 && largest < 1e-11 * size {
-                return Ok(iteration);
             }
         }
         Err(self.static_failure(STATIC_ITERATIONS, "Newton did not converge"))

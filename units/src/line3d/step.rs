@@ -87,6 +87,7 @@ impl Line3d {
         self.state.a = vec![0.0; n];
         self.state.t = t0;
         self.state.newton_iterations = 0;
+        self.state.released = [false; 2];
         for (k, end) in [&self.params.start, &self.params.end].iter().enumerate() {
             let node = if k == 0 { 0 } else { self.mechanics.nodes - 1 };
             let velocity = match (end.condition, self.first_input[k]) {
@@ -136,6 +137,12 @@ impl Line3d {
         let mut iterations = 0;
         self.jacobian.ready = false;
         self.jacobian.h = h;
+        let released = [self.params.start.released(t), self.params.end.released(t)];
+        if released != self.state.released {
+            // The held set changed: the Newton matrices are formed anew.
+            self.state.released = released;
+            self.hht.forget_matrices();
+        }
         let mut whole = count == 1;
         for k in 0..count {
             let (s0, s1) = (k as f64 / count as f64, (k + 1) as f64 / count as f64);
@@ -261,6 +268,9 @@ impl Line3d {
             let node = if k == 0 { 0 } else { self.mechanics.nodes - 1 };
             for c in 0..DOF {
                 let d = DOF * node + c;
+                if self.state.released[k] {
+                    continue;
+                }
                 let motion = match (end.condition, self.first_input[k]) {
                     (EndCondition::Force, _) => continue,
                     (EndCondition::Velocity, Some(first)) => {
@@ -318,6 +328,7 @@ impl Line3d {
                 let columns = d.saturating_sub(BAND)..(d + BAND + 1).min(n);
                 let ma: f64 = columns.map(|j| self.mass.get(d, j) * self.state.a[j]).sum();
                 self.state.reaction[DOF * k + c] = match end.condition {
+                    _ if self.state.released[k] => 0.0,
                     EndCondition::Force => -(external[d] - self.weight[d]),
                     _ => -(ma + force[d] - external[d]),
                 };

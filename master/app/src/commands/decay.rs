@@ -95,10 +95,7 @@ type Settling = ([f64; 6], [f64; 6]);
 /// Where each motion settles (the reference point at the moored
 /// equilibrium, the angles there) and the undamped period of the mode each
 /// DOF leads, from the scene's `[mooring]` statics; None without one.
-fn settling_values(
-    scene: &slender_scene::Scene,
-    body: &str,
-) -> Result<Option<Settling>, CliError> {
+fn settling_values(scene: &slender_scene::Scene, body: &str) -> Result<Option<Settling>, CliError> {
     let Some(system) = mooring::of_scene(scene).map_err(CliError::input)? else {
         return Ok(None);
     };
