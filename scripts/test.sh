@@ -43,7 +43,7 @@ failed=$(count failed)
 ignored=$(count ignored)
 
 step "cross-checks with FMPy, pythonfmu, libcosim, chaospy, MoorPy and the Python reader (ignored above: they need .venv)"
-cargo test --release -p slender-tests --test fmi_python --test uq_python --test ssp --test python_reader --test moorpy -- --ignored 2>&1 | tee "$log"
+cargo test --release -p slender-tests --test fmi_python --test uq_python --test ssp --test python_reader --test moorpy --test body_pythonfmu -- --ignored 2>&1 | tee "$log"
 python_passed=$(count passed)
 passed=$((passed + python_passed))
 ignored=$((ignored - python_passed))

@@ -374,6 +374,42 @@ pub mod fmu {
         Scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
     }
 
+    /// The shared libpython and the site-packages folder of the test
+    /// environment's Python (a pythonfmu FMU needs libpython preloaded and
+    /// its packages on PYTHONPATH).
+    pub fn python_paths() -> (PathBuf, String) {
+        let query = |code: &str| {
+            let out = std::process::Command::new(python())
+                .args(["-c", code])
+                .output()
+                .unwrap();
+            String::from_utf8(out.stdout).unwrap().trim().to_owned()
+        };
+        let libdir = query("import sysconfig; print(sysconfig.get_config_var('LIBDIR'))");
+        let library = query("import sysconfig; print(sysconfig.get_config_var('LDLIBRARY'))");
+        let site = query("import site; print(site.getsitepackages()[0])");
+        (Path::new(&libdir).join(library), site)
+    }
+
+    /// Runs the `slender` command line (built beside the FMU library) with
+    /// `args` and PYTHONPATH `site`, echoing its output.
+    pub fn slender(args: &[&str], site: &str) -> std::process::Output {
+        let cli = library().with_file_name("slender");
+        assert!(
+            cli.exists(),
+            "{} is missing: cargo build --release",
+            cli.display()
+        );
+        let out = std::process::Command::new(cli)
+            .args(args)
+            .env("PYTHONPATH", site)
+            .output()
+            .unwrap();
+        println!("{}", String::from_utf8_lossy(&out.stdout));
+        eprintln!("{}", String::from_utf8_lossy(&out.stderr));
+        out
+    }
+
     /// The Python of the test environment (SLENDER_PYTHON, else .venv/bin/python).
     pub fn python() -> PathBuf {
         let python = std::env::var_os("SLENDER_PYTHON")

@@ -8,6 +8,7 @@
 
 use slender_fmi::export::ExportConfig;
 use slender_scene::export::{ExportedUnit, FmiVersion, SceneExport, package_version};
+use slender_tests::fmu::{python_paths, slender};
 use slender_tests::{fmu, load, root};
 use slender_units::{Hold, Time};
 use std::path::{Path, PathBuf};
@@ -214,32 +215,6 @@ fn fmpy_directional_derivatives_match_differences_of_the_step() {
         let text = String::from_utf8_lossy(&out.stdout);
         assert!(text.contains("directional derivatives of"), "{text}");
     }
-}
-
-/// The directory holding libpython, and the virtual environment's packages.
-fn python_paths() -> (PathBuf, String) {
-    let query = |code: &str| {
-        let out = Command::new(fmu::python())
-            .args(["-c", code])
-            .output()
-            .unwrap();
-        String::from_utf8(out.stdout).unwrap().trim().to_owned()
-    };
-    let libdir = query("import sysconfig; print(sysconfig.get_config_var('LIBDIR'))");
-    let library = query("import sysconfig; print(sysconfig.get_config_var('LDLIBRARY'))");
-    let site = query("import site; print(site.getsitepackages()[0])");
-    (Path::new(&libdir).join(library), site)
-}
-
-fn slender(args: &[&str], site: &str) -> Output {
-    let out = Command::new(slender_cli())
-        .args(args)
-        .env("PYTHONPATH", site)
-        .output()
-        .unwrap();
-    println!("{}", String::from_utf8_lossy(&out.stdout));
-    eprintln!("{}", String::from_utf8_lossy(&out.stderr));
-    out
 }
 
 /// A scene coupling a native oscillator (force input) with the pythonfmu spring.

@@ -278,3 +278,50 @@ fn after_a_line_breaks_the_body_drifts_as_if_the_line_had_never_been_there() {
     assert!(gap < 2e-3 * drift, "{gap:e} of {drift}");
     assert!(finer < 0.6 * gap, "{finer:e} vs {gap:e}");
 }
+
+#[test]
+fn the_body_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
+    use slender_fmi::export::ExportConfig;
+    use slender_scene::export::{FmiVersion, SceneExport, package_version};
+    let dir = tempfile::tempdir().unwrap();
+    let volume = (2e4 * 9.80665 + 3.0 * 30_000.0) / (1025.0 * 9.80665);
+    let native_text = BUOY
+        .replace("SCHEME", "iterative_jacobi")
+        .replace("MASS", "2e4")
+        .replace("INERTIA", "8e4")
+        .replace("VOLUME", &format!("{volume}"))
+        .replace("STEP", "0.1")
+        .replace("DURATION", "20.0")
+        .replace("NEWTON", "newton = { derivatives = \"units\" }");
+    let native_path = dir.path().join("native.toml");
+    std::fs::write(&native_path, &native_text).unwrap();
+    let native = Scene::load(&native_path).unwrap();
+    for (fmi, version) in [(2, FmiVersion::Two), (3, FmiVersion::Three)] {
+        let config = ExportConfig::from_scene(&native, "buoy").unwrap();
+        let file = format!("buoy{fmi}.fmu");
+        let library = slender_tests::fmu::library();
+        package_version(&config, &library, &dir.path().join(&file), version).unwrap();
+        let with_fmu = native_text.replace(
+            "name = \"buoy\"\n",
+            &format!("name = \"buoy\"\nfmu = {{ file = \"{file}\" }}\n"),
+        );
+        let fmu_path = dir.path().join(format!("fmu{fmi}.toml"));
+        std::fs::write(&fmu_path, with_fmu).unwrap();
+        let with_fmu = Scene::load(&fmu_path).unwrap_or_else(|e| panic!("{e}"));
+        let (units, _) = units_and_links(&with_fmu);
+        assert_eq!(units[0].1["kind"].as_str(), Some("fmu"));
+        let (a, b) = (run(&native), run(&with_fmu));
+        assert!(
+            a.error.is_none() && b.error.is_none(),
+            "{:?} {:?}",
+            a.error,
+            b.error
+        );
+        assert_eq!(
+            a.columns, b.columns,
+            "FMI {fmi}: the FMU body differs from the native one"
+        );
+        assert_eq!(a.counters.iterations, b.counters.iterations);
+        assert!(b.counters.jacobian_evaluations > 0);
+    }
+}

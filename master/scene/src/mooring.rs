@@ -16,6 +16,11 @@
 //! A line with `break_at` lets go of its fairlead then (its top section's
 //! end is released: free, pulling nothing), an accidental limit state.
 //!
+//! `mooring.body.fmu = { file, start, ... }` puts an external FMU (FMI 2.0
+//! or 3.0: slender's own body exported, or another tool's) in the body's
+//! place, with the body's ports; the body's parameters then describe it for
+//! the statics and the fairleads, and the FMU must start where they put it.
+//!
 //! With `statics = true` (the default) the body starts at its equilibrium on
 //! the lines' catenaries ([`slender_units::body::mooring`]), its
 //! `initial_offset` counted from there, and each line solves its statics
@@ -70,6 +75,9 @@ pub struct Mooring {
     /// The body's parameters as written.
     pub body: BodyParams,
     body_table: Table,
+    /// An external FMU in the body's place (`mooring.body.fmu`: the `fmu`
+    /// kind's parameters), the parameters then describing it for the statics.
+    fmu: Option<Table>,
     lines: Vec<Line>,
     statics: bool,
 }
@@ -96,6 +104,13 @@ impl Mooring {
                 return Err("`mooring.body.name`: expected the body unit's name (a string)".into());
             }
         };
+        let fmu = match body_table.remove("fmu") {
+            None => None,
+            Some(Value::Table(t)) => Some(t),
+            Some(_) => {
+                return Err("`mooring.body.fmu`: expected a table of the `fmu` kind's parameters (`{ file = \"body.fmu\", start = { ... } }`)".into());
+            }
+        };
         let body: BodyParams = structure::typed("mooring.body", &body_table)?;
         Body::new(body.clone()).map_err(|e| format!("`mooring.body`: {e}"))?;
         if file.lines.is_empty() {
@@ -116,6 +131,7 @@ impl Mooring {
             name,
             body,
             body_table,
+            fmu,
             lines,
             statics: file.statics,
         })
@@ -172,7 +188,11 @@ impl Mooring {
         }
         let mut body = self.body_table.clone();
         body.insert("initial_offset".into(), floats(&offset));
-        let mut units = vec![unit_table(&self.name, "body", body)];
+        let body_unit = match &self.fmu {
+            Some(fmu) => unit_table(&self.name, "fmu", fmu.clone()),
+            None => unit_table(&self.name, "body", body),
+        };
+        let mut units = vec![body_unit];
         let mut connections = Vec::new();
         let mut advisories = Vec::new();
         for line in &self.lines {
