@@ -160,7 +160,12 @@ fn every_tutorial_is_listed_in_the_guide() {
         assert!(summary.contains(&format!("(tutorials/{name})")), "{name}");
         count += 1;
     }
-    assert_eq!(count, 5);
+    assert_eq!(count, 6);
+}
+
+#[test]
+fn moored_body() {
+    run_tutorial("moored-body.md");
 }
 
 #[test]

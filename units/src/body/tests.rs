@@ -84,6 +84,9 @@ fn free_decay_in_each_degree_of_freedom_matches_the_closed_form_to_second_order(
         // periods at 50 steps a period, a phase of 0.025 rad.
         assert!(coarse < 0.03, "dof {dof}: {coarse:e}");
         let order = (coarse / fine).log2();
+        eprintln!(
+            "free decay, dof {dof}: {coarse:.3e} at T/50, {fine:.3e} at T/100 (order {order:.2})"
+        );
         assert!(
             (1.8..2.2).contains(&order),
             "dof {dof}: {coarse:e} -> {fine:e}"
@@ -130,6 +133,9 @@ const POSE_KINETIC: usize = 12;
 fn a_body_spinning_about_a_tilted_axis_keeps_its_energy_and_momentum_to_second_order() {
     let (e1, l1) = spin_drift(0.02);
     let (e2, l2) = spin_drift(0.01);
+    eprintln!(
+        "spinning body over 20 s: energy {e1:.2e} / {e2:.2e}, momentum {l1:.2e} / {l2:.2e} at 0.02 / 0.01 s"
+    );
     assert!(e1 < 1e-3 && l1 < 1e-3, "{e1:e} {l1:e}");
     assert!((e1 / e2).log2() > 1.8, "energy {e1:e} -> {e2:e}");
     assert!((l1 / l2).log2() > 1.8, "momentum {l1:e} -> {l2:e}");
@@ -154,6 +160,7 @@ fn a_free_body_with_its_centre_of_gravity_off_the_reference_keeps_its_momentum()
         driver.do_step(secs(k as f64 * 0.01), secs(0.01)).unwrap();
     }
     let drift = (cg_velocity(driver.unit()) - v0).norm() / v0.norm();
+    eprintln!("offset centre of gravity: momentum drift {drift:.2e} over 5 s");
     assert!(drift < 1e-3, "{drift:e}");
 }
 
@@ -224,6 +231,7 @@ fn the_energy_balance_closes_under_damping_and_a_fairlead_s_pull() {
         largest_work = largest_work.max(outs(&driver)[n_out - 3].abs());
     }
     let error = outs(&driver)[n_out - 2].abs();
+    eprintln!("energy balance over 100 s: error {error:.2e} J of {largest_work:.2e} J of work");
     assert!(largest_work > 1e4, "{largest_work}");
     assert!(error < 1e-3 * largest_work, "{error:e} of {largest_work:e}");
 }

@@ -291,9 +291,15 @@ impl Unit for CatenarySection {
         let tension = top.norm();
         let laid = c.laid_length();
         let stretched = laid * (1.0 + c.horizontal / self.line.axial_stiffness);
+        // A slack line lying on the seabed pulls nothing: no angle.
+        let angle = if tension > 0.0 {
+            (-top.z / tension).clamp(-1.0, 1.0).acos().to_degrees()
+        } else {
+            0.0
+        };
         out[18..26].copy_from_slice(&[
             tension,
-            (-top.z / tension).clamp(-1.0, 1.0).acos().to_degrees(),
+            angle,
             top.y.atan2(top.x).to_degrees(),
             Vector3::from(forces[1]).norm(),
             laid,

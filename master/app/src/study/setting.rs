@@ -222,13 +222,14 @@ impl FromStr for Setting {
             "connections",
             "output",
             "structure",
+            "mooring",
             "uncertainty",
         ];
         if path.len() < 2 || path.iter().any(String::is_empty) || !known.contains(&path[0].as_str())
         {
             let shorts = SHORT.iter().map(|(s, _)| *s);
             return Err(format!(
-                "unknown setting `{name}`{}: expected a scene key path under simulation, master, units, connections, output, structure or uncertainty, down to a value (master.scheme, not master; units.<name>.parameters.<key>), or a short name: elements, step, velocity_tolerance, force_tolerance",
+                "unknown setting `{name}`{}: expected a scene key path under simulation, master, units, connections, output, structure, mooring or uncertainty, down to a value (master.scheme, not master; units.<name>.parameters.<key>), or a short name: elements, step, velocity_tolerance, force_tolerance",
                 slender_coupling::error::did_you_mean(name, shorts)
             ));
         }
