@@ -12,24 +12,27 @@
 //! degree of freedom): the fairleads then move the lines as a vessel's
 //! motion would, whatever the lines pull.
 //!
-//! The step Jacobian (outputs after a step by the step's end inputs) is
-//! taken by central differences of the step from its start: the body's step
-//! is a 6x6 solve, cheap beside the lines it carries.
+//! The step Jacobian (outputs after a step by the step's end inputs) comes
+//! from the converged step by the implicit function theorem ([`jacobian`]).
 
 pub mod dynamics;
+mod jacobian;
 pub mod mooring;
 pub mod params;
 mod ports;
 mod step;
+pub mod waves;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod waves_tests;
 
 use crate::contract::{
     Capabilities, HoldSupport, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription,
     UnitError, require_step_jacobian_ready,
 };
-use crate::signal::sine::faded_sum;
+use crate::signal::sine::{Sine, faded_sum};
 use dynamics::{Model, Motion, rate_map, rate_map_derivative};
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 pub use params::{BodyParams, Fairlead};
@@ -65,9 +68,45 @@ pub struct Body {
     /// The last step's start, length (s) and end inputs, for its Jacobian.
     last_start: Option<(Kinematics, f64, f64)>,
     end_inputs: Vec<f64>,
-    /// Output buffers of the Jacobian's differences.
+    /// Output buffers of the Jacobian's differences, and its factors
+    /// `du1/df` (6 x inputs) and `dy/du1` (outputs x 6).
     plus: Vec<f64>,
     minus: Vec<f64>,
+    velocity_by_input: nalgebra::DMatrix<f64>,
+    output_by_velocity: nalgebra::DMatrix<f64>,
+    /// What the waves do to the body (made once).
+    sea: Sea,
+}
+
+/// The waves' excitation (N, N m) or motion (m, rad) per degree of freedom
+/// as sines, faded in over `fade_in` (s).
+#[derive(Default)]
+struct Sea {
+    excitation: Option<[Vec<Sine>; 6]>,
+    motion: Option<[Vec<Sine>; 6]>,
+    fade_in: f64,
+}
+
+impl Sea {
+    fn of(p: &BodyParams) -> Sea {
+        let Some(waves) = &p.waves else {
+            return Sea::default();
+        };
+        let sines = |t: &Option<waves::RaoTable>| t.as_ref().map(|t| t.sines(waves, p.reference));
+        Sea {
+            excitation: sines(&p.force_rao),
+            motion: sines(&p.motion_rao),
+            fade_in: waves.fade_in,
+        }
+    }
+
+    /// The excitation at `t` (s): force and moment at the reference point.
+    fn excitation(&self, t: f64) -> Vector6<f64> {
+        match &self.excitation {
+            Some(dofs) => Vector6::from_fn(|i, _| faded_sum(0.0, &dofs[i], self.fade_in, t)[0]),
+            None => Vector6::zeros(),
+        }
+    }
 }
 
 impl Body {
@@ -88,6 +127,7 @@ impl Body {
             },
         };
         let outputs = description.outputs.len();
+        let inputs = description.inputs.len();
         let state = BodyState {
             t: 0.0,
             position: params.reference,
@@ -99,6 +139,7 @@ impl Body {
             power: 0.0,
             newton_iterations: 0,
         };
+        let sea = Sea::of(&params);
         Ok(Body {
             params,
             model,
@@ -108,6 +149,9 @@ impl Body {
             end_inputs: Vec::new(),
             plus: vec![0.0; outputs],
             minus: vec![0.0; outputs],
+            velocity_by_input: nalgebra::DMatrix::zeros(6, inputs),
+            output_by_velocity: nalgebra::DMatrix::zeros(outputs, 6),
+            sea,
         })
     }
 
@@ -137,12 +181,25 @@ impl Body {
         self.state.acceleration = k.acceleration.into();
     }
 
-    /// The prescribed motion at `t` (s).
-    fn prescribed(&self, motion: &[Vec<crate::signal::sine::Sine>; 6], t: f64) -> Kinematics {
+    /// Whether the body follows a prescribed motion (sines or a motion RAO).
+    fn is_prescribed(&self) -> bool {
+        self.params.motion.is_some() || self.sea.motion.is_some()
+    }
+
+    /// The prescribed motion at `t` (s): the initial offset, the sines faded
+    /// in over `fade_in`, the waves' motion over theirs.
+    fn prescribed(&self, t: f64) -> Kinematics {
         let p = &self.params;
         let mut dof = [[0.0; 3]; 6];
-        for (i, sines) in motion.iter().enumerate() {
-            dof[i] = faded_sum(p.initial_offset[i], sines, p.fade_in, t);
+        for (i, d) in dof.iter_mut().enumerate() {
+            let sines = p.motion.as_ref().map_or(&[][..], |m| &m[i]);
+            *d = faded_sum(p.initial_offset[i], sines, p.fade_in, t);
+            if let Some(sea) = &self.sea.motion {
+                let waves = faded_sum(0.0, &sea[i], self.sea.fade_in, t);
+                for (x, w) in d.iter_mut().zip(waves) {
+                    *x += w;
+                }
+            }
         }
         let column = |k: usize| Vector3::new(dof[3][k], dof[4][k], dof[5][k]);
         let (angles, rates, second) = (column(0), column(1), column(2));
@@ -167,19 +224,20 @@ impl Body {
         }
     }
 
-    /// The fairleads' forces and the external load among `values` (the
-    /// inputs in port order).
-    fn end_loads<'a>(&self, values: &'a [f64]) -> EndLoads<'a> {
+    /// The fairleads' forces among `values` (the inputs in port order) and
+    /// the external load: the inputs' and the waves' at `t` (s).
+    fn end_loads<'a>(&self, values: &'a [f64], t: f64) -> EndLoads<'a> {
         let n = 3 * self.model.fairleads.len();
         EndLoads {
             forces: &values[..n],
-            external: Vector6::from_column_slice(&values[n..n + 6]),
+            external: Vector6::from_column_slice(&values[n..n + 6]) + self.sea.excitation(t),
         }
     }
 
-    /// The power (W) of the loads that do work at kinematics `k` under `values`.
-    fn power(&self, k: &Kinematics, values: &[f64]) -> f64 {
-        let loads = self.end_loads(values);
+    /// The power (W) of the loads that do work at kinematics `k` under
+    /// `values` at `t` (s).
+    fn power(&self, k: &Kinematics, values: &[f64], t: f64) -> f64 {
+        let loads = self.end_loads(values, t);
         self.model
             .applied(&k.motion, loads.forces, &loads.external)
             .dot(&k.motion.velocity)
@@ -199,16 +257,17 @@ impl Unit for Body {
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         let t0 = t0.as_secs();
         let p = &self.params;
-        let start = match &p.motion {
-            Some(motion) => self.prescribed(motion, t0),
-            None => {
+        let start = if self.is_prescribed() {
+            self.prescribed(t0)
+        } else {
+            {
                 let o = &p.initial_offset;
                 let motion = Motion {
                     position: self.model.reference + Vector3::new(o[0], o[1], o[2]),
                     rotation: UnitQuaternion::from_euler_angles(o[3], o[4], o[5]),
                     velocity: Vector6::from(p.initial_velocity),
                 };
-                let loads = self.end_loads(inputs.end());
+                let loads = self.end_loads(inputs.end(), t0);
                 let acceleration =
                     self.model
                         .acceleration(&motion, loads.forces, &loads.external)?;
@@ -222,7 +281,7 @@ impl Unit for Body {
         self.state.t = t0;
         self.state.work = 0.0;
         self.state.initial_energy = self.energy(&start);
-        self.state.power = self.power(&start, inputs.end());
+        self.state.power = self.power(&start, inputs.end(), t0);
         self.state.newton_iterations = 0;
         self.last_start = None;
         Ok(())
@@ -231,17 +290,18 @@ impl Unit for Body {
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let (t0, h) = (t.as_secs(), h.as_secs());
         let start = self.kinematics();
-        let (end, iterations) = match &self.params.motion {
-            Some(motion) => (self.prescribed(motion, t0 + h), 0),
-            None => advance(
+        let (end, iterations) = if self.is_prescribed() {
+            (self.prescribed(t0 + h), 0)
+        } else {
+            advance(
                 &self.model,
                 &start,
                 h,
-                &self.end_loads(inputs.end()),
+                &self.end_loads(inputs.end(), t0 + h),
                 self.params.max_iterations,
-            )?,
+            )?
         };
-        let power = self.power(&end, inputs.end());
+        let power = self.power(&end, inputs.end(), t0 + h);
         self.state.work += 0.5 * h * (self.state.power + power);
         self.state.power = power;
         self.set_kinematics(&end);
@@ -271,36 +331,14 @@ impl Unit for Body {
     }
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
-        let Some((start, _, h)) = self.last_start else {
+        let Some((start, t0, h)) = self.last_start else {
             return require_step_jacobian_ready(false, "a body");
         };
-        let n_in = inputs.len();
+        let _ = inputs;
         jacobian.fill(0.0);
-        if self.params.motion.is_some() {
+        if self.is_prescribed() {
             return Ok(());
         }
-        let scale = self.params.mass * self.params.gravity.max(1.0);
-        let mut values = self.end_inputs.clone();
-        let (mut plus, mut minus) = (
-            std::mem::take(&mut self.plus),
-            std::mem::take(&mut self.minus),
-        );
-        for j in 0..n_in {
-            let delta = 1e-4 * (values[j].abs().max(scale));
-            let base = values[j];
-            for (sign, out) in [(1.0, &mut plus), (-1.0, &mut minus)] {
-                values[j] = base + sign * delta;
-                let loads = self.end_loads(&values);
-                let (end, _) = advance(&self.model, &start, h, &loads, self.params.max_iterations)?;
-                ports::write_outputs(self, &end, out);
-            }
-            values[j] = base;
-            for (i, (p, m)) in plus.iter().zip(&minus).enumerate() {
-                jacobian[i * n_in + j] = (p - m) / (2.0 * delta);
-            }
-        }
-        ports::clear_energy_rows(self, jacobian, n_in);
-        (self.plus, self.minus) = (plus, minus);
-        Ok(())
+        self.implicit_jacobian(&start, (t0, h), jacobian)
     }
 }

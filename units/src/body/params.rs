@@ -6,7 +6,9 @@
 //! the global ones at rest. Every table is checked once by
 //! [`BodyParams::validate`]; a refusal names the key.
 
+use super::waves::RaoTable;
 use crate::contract::{UnitError, require_finite, require_non_negative, require_positive};
+use crate::line3d::params::Waves;
 use crate::signal::sine::Sine;
 use serde::Deserialize;
 
@@ -86,6 +88,18 @@ pub struct BodyParams {
     /// Seconds over which the prescribed sines grow from nothing.
     #[serde(default)]
     pub fade_in: f64,
+    /// The sea (a 3D line's `waves` table: a spectrum or sines, a heading,
+    /// a water depth, a fade-in), acting through `force_rao` or `motion_rao`.
+    #[serde(default)]
+    pub waves: Option<Waves>,
+    /// First-order wave excitation: force and moment per metre of wave
+    /// amplitude at the reference point.
+    #[serde(default)]
+    pub force_rao: Option<RaoTable>,
+    /// Instead of the dynamics, the motion the waves give the body, per
+    /// metre of wave amplitude (added to `motion` and `initial_offset`).
+    #[serde(default)]
+    pub motion_rao: Option<RaoTable>,
     /// Bound on the Newton iterations of a step.
     #[serde(default = "default_max_iterations")]
     pub max_iterations: u32,
@@ -153,6 +167,7 @@ impl BodyParams {
         if self.max_iterations == 0 {
             return Err(UnitError::parameter("max_iterations", 0, "at least 1"));
         }
+        self.validate_waves()?;
         if let Some(motion) = &self.motion {
             for (dof, sines) in DOFS.iter().zip(motion) {
                 for (i, s) in sines.iter().enumerate() {
@@ -206,6 +221,43 @@ impl BodyParams {
                 }
             }
             require_non_negative(&format!("added_mass[{i}][{i}]"), row[i])?;
+        }
+        Ok(())
+    }
+
+    fn validate_waves(&self) -> Result<(), UnitError> {
+        let tables = [
+            ("force_rao", &self.force_rao),
+            ("motion_rao", &self.motion_rao),
+        ];
+        for (key, table) in tables {
+            let Some(table) = table else { continue };
+            table.validate(key)?;
+            let Some(waves) = &self.waves else {
+                return Err(UnitError::parameter(
+                    key,
+                    "given",
+                    "a `waves` table (the sea it answers to)",
+                ));
+            };
+            table.check_heading(key, waves.heading_deg)?;
+        }
+        if self.force_rao.is_some() && self.motion_rao.is_some() {
+            return Err(UnitError::parameter(
+                "force_rao",
+                "given with motion_rao",
+                "one of them: a motion RAO prescribes the motion, which the excitation would not move",
+            ));
+        }
+        if let Some(waves) = &self.waves {
+            waves.validate()?;
+            if self.force_rao.is_none() && self.motion_rao.is_none() {
+                return Err(UnitError::parameter(
+                    "waves",
+                    "given",
+                    "a `force_rao` or a `motion_rao` through which the waves act on the body",
+                ));
+            }
         }
         Ok(())
     }

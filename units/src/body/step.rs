@@ -25,7 +25,7 @@ pub(crate) struct EndLoads<'a> {
 }
 
 /// The motion at the step's end for an end velocity `u1` from `start` over `h` (s).
-fn moved(start: &Motion, u1: &Vector6<f64>, h: f64) -> Motion {
+pub(super) fn moved(start: &Motion, u1: &Vector6<f64>, h: f64) -> Motion {
     let mean = (start.velocity + u1) * 0.5;
     let spin = Vector3::new(mean[3], mean[4], mean[5]) * h;
     Motion {
@@ -37,7 +37,7 @@ fn moved(start: &Motion, u1: &Vector6<f64>, h: f64) -> Motion {
 
 /// The trapezoidal rule's residual at the end velocity `u1`, and the end's
 /// motion and acceleration.
-fn residual(
+pub(super) fn residual(
     model: &Model,
     start: &Kinematics,
     u1: &Vector6<f64>,

@@ -10,7 +10,7 @@ use nalgebra::Matrix3;
 
 /// A body at rest in equilibrium (buoyancy = weight, centre of gravity at
 /// the reference point) with principal inertia `inertia`.
-fn body_params(inertia: [f64; 3]) -> BodyParams {
+pub(super) fn body_params(inertia: [f64; 3]) -> BodyParams {
     let mass: f64 = 2.0e5;
     toml::from_str::<BodyParams>(&format!(
         "mass = {mass}\ninertia = {inertia:?}\ndisplaced_volume = {}",
@@ -20,12 +20,12 @@ fn body_params(inertia: [f64; 3]) -> BodyParams {
 }
 
 /// `x` seconds as a time.
-fn secs(x: f64) -> Time {
+pub(super) fn secs(x: f64) -> Time {
     Time::from_secs(x).unwrap()
 }
 
 /// The outputs of the body `driver` drives.
-fn outs(driver: &Driver<Body>) -> Vec<f64> {
+pub(super) fn outs(driver: &Driver<Body>) -> Vec<f64> {
     let mut out = vec![0.0; driver.description().outputs.len()];
     driver.outputs(&mut out).unwrap();
     out
@@ -188,9 +188,8 @@ fn a_prescribed_motion_s_fairlead_velocity_and_acceleration_are_its_position_s_r
         position: [5.0, -3.0, -70.0],
     }];
     let body = Body::new(p).unwrap();
-    let motion = body.params.motion.clone().unwrap();
     let at = |t: f64| {
-        let k = body.prescribed(&motion, t);
+        let k = body.prescribed(t);
         body.model
             .point(&k.motion, &k.acceleration, &body.model.fairleads[0])
     };

@@ -394,7 +394,9 @@ impl Seabed {
 }
 
 impl Waves {
-    fn validate(&self) -> Result<(), UnitError> {
+    /// Refuses a sea with neither or both of a spectrum and sines, or a
+    /// bad component, naming the key.
+    pub fn validate(&self) -> Result<(), UnitError> {
         if self.spectrum.is_some() != self.sines.is_empty() {
             return Err(UnitError::parameter(
                 "waves",
