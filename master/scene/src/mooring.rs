@@ -13,6 +13,9 @@
 //! Jacobians when the scene asks); a twin moves with the fairlead and pulls
 //! nothing.
 //!
+//! `mooring.waves` is the sea (a 3D line's `waves` table), given to every
+//! line and to the body where it has a force or motion RAO.
+//!
 //! A line with `break_at` lets go of its fairlead then (its top section's
 //! end is released: free, pulling nothing), an accidental limit state.
 //!
@@ -44,6 +47,8 @@ struct MooringFile {
     lines: Vec<LineFile>,
     #[serde(default = "yes")]
     statics: bool,
+    #[serde(default)]
+    waves: Option<Table>,
 }
 
 fn yes() -> bool {
@@ -104,6 +109,11 @@ impl Mooring {
                 return Err("`mooring.body.name`: expected the body unit's name (a string)".into());
             }
         };
+        if let Some(waves) = &file.waves {
+            if body_table.contains_key("force_rao") || body_table.contains_key("motion_rao") {
+                body_table.insert("waves".into(), Value::Table(waves.clone()));
+            }
+        }
         let fmu = match body_table.remove("fmu") {
             None => None,
             Some(Value::Table(t)) => Some(t),
@@ -111,13 +121,24 @@ impl Mooring {
                 return Err("`mooring.body.fmu`: expected a table of the `fmu` kind's parameters (`{ file = \"body.fmu\", start = { ... } }`)".into());
             }
         };
+        for (key, table) in [("body", &file.body), ("line", &file.line)] {
+            if file.waves.is_some() && table.contains_key("waves") {
+                return Err(format!(
+                    "`mooring.{key}.waves`: the sea is `mooring.waves`, shared by the body and the lines; give it once"
+                ));
+            }
+        }
         let body: BodyParams = structure::typed("mooring.body", &body_table)?;
         Body::new(body.clone()).map_err(|e| format!("`mooring.body`: {e}"))?;
         if file.lines.is_empty() {
             return Err("`mooring.lines`: expected at least one line".into());
         }
+        let mut shared = file.line.clone();
+        if let Some(waves) = &file.waves {
+            shared.insert("waves".into(), Value::Table(waves.clone()));
+        }
         let lines = (file.lines.iter())
-            .map(|l| Line::new(l, &file.line, &body))
+            .map(|l| Line::new(l, &shared, &body))
             .collect::<Result<Vec<_>, _>>()?;
         for (k, l) in lines.iter().enumerate() {
             if l.file.name == name || lines[..k].iter().any(|m| m.file.name == l.file.name) {
