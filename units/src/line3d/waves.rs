@@ -9,16 +9,24 @@
 use super::params::Waves;
 use nalgebra::Vector3;
 
+thread_local! {
+    /// The components' (sin, cos) of their phase at one point: a buffer that
+    /// grows once per thread.
+    static PHASES: std::cell::RefCell<Vec<(f64, f64)>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
 /// Gravity (m/s^2) for the dispersion relation.
 pub const GRAVITY: f64 = 9.81;
 
-/// One component: elevation `amplitude sin(omega t + phase - k . x)` (m).
+/// One component: elevation `amplitude sin(omega t + phase - k . x)` (m),
+/// and `1 / sinh(k h)` of its depth profile (0 where it is deep water's).
 #[derive(Clone, Debug)]
 struct Component {
     amplitude: f64,
     omega: f64,
     phase: f64,
     wavenumber: f64,
+    inverse_sinh: f64,
 }
 
 /// The waves of a line.
@@ -79,11 +87,19 @@ impl AiryWaves {
         };
         let components = sines
             .iter()
-            .map(|s| Component {
-                amplitude: s.amplitude,
-                omega: s.angular_frequency,
-                phase: s.phase,
-                wavenumber: wavenumber(s.angular_frequency, depth),
+            .map(|s| {
+                let k = wavenumber(s.angular_frequency, depth);
+                Component {
+                    amplitude: s.amplitude,
+                    omega: s.angular_frequency,
+                    phase: s.phase,
+                    wavenumber: k,
+                    inverse_sinh: if deep(k, depth) {
+                        0.0
+                    } else {
+                        1.0 / (k * depth).sinh()
+                    },
+                }
             })
             .collect();
         let heading = waves.heading_deg.to_radians();
@@ -107,23 +123,40 @@ impl AiryWaves {
     }
 
     /// The water's kinematics at `p` and `t`; `None` above the surface.
+    /// Each component's phase is taken once for the elevation and the
+    /// kinematics (kept in a per-thread buffer: evaluated at every node in
+    /// every Newton iteration).
     pub fn at(&self, p: &Vector3<f64>, t: f64) -> Option<Kinematics> {
-        let eta = self.elevation(p.x, p.y, t);
-        if p.z > eta {
-            return None;
-        }
+        let along = p.x * self.direction[0] + p.y * self.direction[1];
+        PHASES.with_borrow_mut(|phases| {
+            phases.clear();
+            phases.extend(
+                (self.components.iter())
+                    .map(|c| (c.omega * t + c.phase - c.wavenumber * along).sin_cos()),
+            );
+            let full: f64 = (self.components.iter().zip(phases.iter()))
+                .map(|(c, (sin, _))| c.amplitude * sin)
+                .sum();
+            let eta = crate::signal::sine::fade(self.fade_in, t)[0] * full;
+            if p.z > eta {
+                return None;
+            }
+            Some(self.kinematics_below(p.z, eta, t, phases))
+        })
+    }
+
+    /// The kinematics at height `z` under the elevation `eta` at `t`, the
+    /// components' phases' (sin, cos) given.
+    fn kinematics_below(&self, z: f64, eta: f64, t: f64, phases: &[(f64, f64)]) -> Kinematics {
         let h = self.depth;
         let z = if h.is_finite() {
-            (p.z - eta) * h / (h + eta)
+            (z - eta) * h / (h + eta)
         } else {
-            p.z - eta
+            z - eta
         };
-        let along = p.x * self.direction[0] + p.y * self.direction[1];
         let (mut horizontal, mut vertical) = ([0.0; 2], [0.0; 2]);
-        for c in &self.components {
-            let (horizontal_shape, vertical_shape) = shapes(c.wavenumber, z, h);
-            let theta = c.omega * t + c.phase - c.wavenumber * along;
-            let (sin, cos) = theta.sin_cos();
+        for (c, &(sin, cos)) in self.components.iter().zip(phases) {
+            let (horizontal_shape, vertical_shape) = shapes(c, z, h);
             let aw = c.amplitude * c.omega;
             horizontal[0] += aw * horizontal_shape * sin;
             horizontal[1] += aw * c.omega * horizontal_shape * cos;
@@ -135,22 +168,34 @@ impl AiryWaves {
         let [r, rate, _] = crate::signal::sine::fade(self.fade_in, t);
         let velocity = Vector3::new(horizontal[0] * dx, horizontal[0] * dy, vertical[0]);
         let acceleration = Vector3::new(horizontal[1] * dx, horizontal[1] * dy, vertical[1]);
-        Some(Kinematics {
+        Kinematics {
             elevation: eta,
             velocity: velocity * r,
             acceleration: acceleration * r + velocity * rate,
-        })
+        }
     }
 }
 
-/// cosh(k (z + h)) / sinh(k h) and sinh(k (z + h)) / sinh(k h), both
-/// exp(k z) in deep water (z <= 0 below the still water line).
-fn shapes(k: f64, z: f64, h: f64) -> (f64, f64) {
-    if !h.is_finite() || k * h > 20.0 {
+/// Whether a component of wavenumber `k` (1/m) sees water of depth `h` (m)
+/// as deep (its profile then `exp(k z)`).
+fn deep(k: f64, h: f64) -> bool {
+    !h.is_finite() || k * h > 20.0
+}
+
+/// cosh(k (z + h)) / sinh(k h) and sinh(k (z + h)) / sinh(k h) of component
+/// `c`, both exp(k z) in deep water (z <= 0 below the still water line): one
+/// exponential each (the kinematics are evaluated at every node in every
+/// Newton iteration).
+fn shapes(c: &Component, z: f64, h: f64) -> (f64, f64) {
+    let k = c.wavenumber;
+    if deep(k, h) {
         let e = (k * z).exp();
         return (e, e);
     }
-    let depth = (z + h).max(0.0);
-    let s = (k * h).sinh();
-    ((k * depth).cosh() / s, (k * depth).sinh() / s)
+    let e = (k * (z + h).max(0.0)).exp();
+    let inverse = 1.0 / e;
+    (
+        0.5 * (e + inverse) * c.inverse_sinh,
+        0.5 * (e - inverse) * c.inverse_sinh,
+    )
 }
