@@ -325,3 +325,23 @@ fn the_body_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
         assert!(b.counters.jacobian_evaluations > 0);
     }
 }
+
+#[test]
+fn one_sea_reaches_the_lines_and_the_body() {
+    let scene = slender_tests::load("examples/oc3_hywind_jonswap.toml");
+    let (units, _) = units_and_links(&scene);
+    for (name, unit) in &units {
+        let waves = &unit["parameters"]["waves"]["spectrum"]["significant_height"];
+        assert_eq!(waves.as_float(), Some(6.0), "{name}");
+    }
+    // The sea moves the spar: over the first 60 s it surges and pitches.
+    let mut short = scene;
+    short.set_duration(60.0).unwrap();
+    let s = run(&short);
+    assert!(s.error.is_none(), "{:?}", s.error);
+    assert!(
+        largest(&s, "spar.pitch") > 1e-3,
+        "{}",
+        largest(&s, "spar.pitch")
+    );
+}
