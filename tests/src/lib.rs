@@ -201,6 +201,7 @@ pub fn order(error_h: f64, error_half: f64) -> f64 {
 /// A scriptable test unit: integrates its input `u` (`y' = u`, exact for the
 /// hold it is given), echoes the input it saw on `u_seen` (direct feedthrough), and
 /// misbehaves on cue.
+pub mod buoy;
 pub mod edited;
 pub mod elf;
 pub mod exact;

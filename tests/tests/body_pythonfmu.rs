@@ -11,6 +11,7 @@
 
 use slender_scene::Scene;
 use slender_scene::mooring;
+use slender_tests::buoy::{FAIRLEADS, LINES};
 use slender_tests::fmu::{python, python_paths, slender};
 use slender_tests::root;
 use std::path::Path;
@@ -41,37 +42,16 @@ hydrostatic_stiffness = [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 2e5, 0, 
 additional_stiffness = [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 1e14, 0, 0], [0, 0, 0, 0, 1e14, 0], [0, 0, 0, 0, 0, 1e14]]
 damping_linear = [[1e3, 0, 0, 0, 0, 0], [0, 1e3, 0, 0, 0, 0], [0, 0, 2e3, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0]]
 initial_offset = [2.0, 0.0, 0.0, 0.0, 0.0, 0.0]
-fairleads = [
-    { name = "f1", position = [2.0, 0.0, -2.0] },
-    { name = "f2", position = [-1.0, 1.732051, -2.0] },
-    { name = "f3", position = [-1.0, -1.732051, -2.0] },
-]
-[mooring.line]
-kind = "line3d"
-length = 120.0
-elements = 20
-axial_stiffness = 5e8
-mass_per_length = 60.0
-submerged_weight = 500.0
-diameter = 0.1
-drag_normal = 1.2
-added_mass_normal = 1.0
-seabed = { depth = 50.0, stiffness = 3.0e6, damping = 3.0e5 }
-[[mooring.lines]]
-name = "l1"
-fairlead = "f1"
-anchor = [100.0, 0.0, -50.0]
-[[mooring.lines]]
-name = "l2"
-fairlead = "f2"
-anchor = [-50.0, 86.60254, -50.0]
-[[mooring.lines]]
-name = "l3"
-fairlead = "f3"
-anchor = [-50.0, -86.60254, -50.0]
-[output]
-signals = ["buoy.x", "buoy.z", "l1_full.end_tension"]
+FAIRLEADS
+LINES
 "#;
+
+/// [`SCENE`] with the buoy's fairleads and lines.
+fn scene_text() -> String {
+    SCENE
+        .replace("FAIRLEADS", FAIRLEADS)
+        .replace("LINES", LINES)
+}
 
 /// The pythonfmu body's start values for the native scene's body: its mass
 /// and restoring per axis, its net load, fairleads, and start position.
@@ -129,7 +109,7 @@ fn a_pythonfmu_body_holds_the_lines_as_slender_s_body_does() {
         String::from_utf8_lossy(&build.stderr)
     );
     let (libpython, site) = python_paths();
-    let native_text = SCENE.replace("BODY_EXTRA", "");
+    let native_text = scene_text().replace("BODY_EXTRA", "");
     let native = Scene::parse(Path::new("native.toml"), native_text.clone()).unwrap();
     let fmu = format!(
         "fmu = {{ file = \"PointBody.fmu\", preload = [{:?}], start = {} }}",
@@ -138,7 +118,7 @@ fn a_pythonfmu_body_holds_the_lines_as_slender_s_body_does() {
     );
     let files = [
         ("native", native_text),
-        ("python", SCENE.replace("BODY_EXTRA", &fmu)),
+        ("python", scene_text().replace("BODY_EXTRA", &fmu)),
     ];
     let mut runs = Vec::new();
     for (name, text) in files {

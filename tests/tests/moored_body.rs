@@ -5,6 +5,7 @@
 //! against its statics' natural period, and bad input refused by key.
 
 use slender_scene::Scene;
+use slender_tests::buoy::{FAIRLEADS, LINES};
 use slender_tests::{Series, run, units_and_links};
 use std::path::Path;
 
@@ -31,37 +32,14 @@ displaced_volume = VOLUME
 hydrostatic_stiffness = [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 2e5, 0, 0, 0], [0, 0, 0, 2e6, 0, 0], [0, 0, 0, 0, 2e6, 0], [0, 0, 0, 0, 0, 0]]
 additional_stiffness = [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 1e5]]
 initial_offset = [2.0, 0.0, 0.0, 0.0, 0.0, 0.0]
-fairleads = [
-    { name = "f1", position = [2.0, 0.0, -2.0] },
-    { name = "f2", position = [-1.0, 1.732051, -2.0] },
-    { name = "f3", position = [-1.0, -1.732051, -2.0] },
-]
-[mooring.line]
-kind = "line3d"
-length = 120.0
-elements = 20
-axial_stiffness = 5e8
-mass_per_length = 60.0
-submerged_weight = 500.0
-diameter = 0.1
-drag_normal = 1.2
-added_mass_normal = 1.0
-seabed = { depth = 50.0, stiffness = 3.0e6, damping = 3.0e5 }
-[[mooring.lines]]
-name = "l1"
-fairlead = "f1"
-anchor = [100.0, 0.0, -50.0]
-[[mooring.lines]]
-name = "l2"
-fairlead = "f2"
-anchor = [-50.0, 86.60254, -50.0]
-[[mooring.lines]]
-name = "l3"
-fairlead = "f3"
-anchor = [-50.0, -86.60254, -50.0]
-[output]
-signals = ["buoy.x", "buoy.z", "l1_full.end_tension"]
+FAIRLEADS
+LINES
 "#;
+
+/// [`BUOY`] with its fairleads and lines.
+fn buoy_text() -> String {
+    BUOY.replace("FAIRLEADS", FAIRLEADS).replace("LINES", LINES)
+}
 
 /// The lines' mass with their normal added mass (kg): 3 x 120 m x (60 +
 /// 1025 pi 0.1^2 / 4).
@@ -72,7 +50,7 @@ const LINES_MASS: f64 = 3.0 * 120.0 * (60.0 + 1025.0 * std::f64::consts::PI * 0.
 fn buoy(mass: f64, scheme: &str, newton: bool, step: f64, duration: f64) -> Scene {
     // Buoyancy carries the weight and about 30 kN of the lines' pull each.
     let volume = (mass * 9.80665 + 3.0 * 30_000.0) / (1025.0 * 9.80665);
-    let text = BUOY
+    let text = buoy_text()
         .replace("SCHEME", scheme)
         .replace("MASS", &format!("{mass:e}"))
         .replace("INERTIA", &format!("{:e}", 4.0 * mass))
@@ -201,7 +179,7 @@ fn the_oc3_spar_s_surge_decay_has_its_statics_period() {
 /// seabed's penalty springs), at coupling step `step` (s).
 fn broken(duration: f64, step: f64) -> String {
     let volume = (2e5 * 9.80665 + 3.0 * 30_000.0) / (1025.0 * 9.80665);
-    BUOY.replace("SCHEME", "iterative_jacobi")
+    buoy_text().replace("SCHEME", "iterative_jacobi")
         .replace("MASS", "2e5")
         .replace("INERTIA", "8e5")
         .replace("VOLUME", &format!("{volume}"))
@@ -285,7 +263,7 @@ fn the_body_exported_as_an_fmu_and_coupled_back_gives_the_native_results() {
     use slender_scene::export::{FmiVersion, SceneExport, package_version};
     let dir = tempfile::tempdir().unwrap();
     let volume = (2e4 * 9.80665 + 3.0 * 30_000.0) / (1025.0 * 9.80665);
-    let native_text = BUOY
+    let native_text = buoy_text()
         .replace("SCHEME", "iterative_jacobi")
         .replace("MASS", "2e4")
         .replace("INERTIA", "8e4")

@@ -29,7 +29,7 @@
 //! `initial_offset` counted from there, and each line solves its statics
 //! with its end at the fairlead so placed.
 
-use crate::structure;
+use crate::structure::{self, link, unit_table};
 use serde::Deserialize;
 use slender_units::Time;
 use slender_units::body::mooring::{MooredLine, MooringStatics, equilibrium, fairlead_position};
@@ -349,22 +349,6 @@ fn end_table(position: [f64; 3]) -> Value {
     end.insert("position".into(), floats(&position));
     end.insert("condition".into(), Value::String("velocity".into()));
     Value::Table(end)
-}
-
-fn link(from: String, to: String) -> Value {
-    let mut t = Table::new();
-    t.insert("from".into(), Value::String(from));
-    t.insert("to".into(), Value::String(to));
-    Value::Table(t)
-}
-
-/// A `[[units]]` table of `kind`.
-fn unit_table(name: &str, kind: &str, parameters: Table) -> Value {
-    let mut unit = Table::new();
-    unit.insert("name".into(), Value::String(name.into()));
-    unit.insert("kind".into(), Value::String(kind.into()));
-    unit.insert("parameters".into(), Value::Table(parameters));
-    Value::Table(unit)
 }
 
 /// The scene's `[mooring]` read and checked; None when it has none.

@@ -88,7 +88,7 @@ pub(super) fn port(unit: &str, fidelity: Fidelity, at_end: bool, quantity: &str)
 }
 
 /// A connection from an output to an input.
-pub(super) fn link(from: String, to: String) -> Value {
+pub(crate) fn link(from: String, to: String) -> Value {
     let mut t = Table::new();
     t.insert("from".into(), Value::String(from));
     t.insert("to".into(), Value::String(to));

@@ -272,7 +272,7 @@ fn cut_links(lower: &str, upper: &str) -> Vec<Value> {
 }
 
 /// A `[[units]]` table of `kind`.
-fn unit_table(name: &str, kind: &str, parameters: Table) -> Value {
+pub(crate) fn unit_table(name: &str, kind: &str, parameters: Table) -> Value {
     let mut unit = Table::new();
     unit.insert("name".into(), Value::String(name.into()));
     unit.insert("kind".into(), Value::String(kind.into()));

@@ -37,11 +37,13 @@ mod spec;
 mod static_fidelity;
 mod statics;
 
+pub(crate) use cuts::link;
 use cuts::{End, Side};
 pub use layout::{
     Layout, SectionLayout, SectionOutputs, layout, reference_name, unit_name, write_choice,
     write_training,
 };
+pub(crate) use line3d::unit_table;
 use nonlinear::start_of;
 pub use sections::FIDELITIES;
 use sections::{Cut, Fidelity, Segment};
