@@ -224,11 +224,11 @@ impl Line3dParams {
     /// Checks every value; the error names the key.
     pub fn validate(&self) -> Result<(), UnitError> {
         require_positive("length", self.length)?;
-        if self.elements < 2 {
+        if !(2..=100_000).contains(&self.elements) {
             return Err(UnitError::parameter(
                 "elements",
                 self.elements,
-                "at least 2 elements",
+                "2 to 100 000 elements",
             ));
         }
         require_positive("axial_stiffness", self.axial_stiffness)?;
