@@ -119,6 +119,16 @@ pub struct Environment {
     pub seabed: Option<SeabedPlane>,
     /// Tributary length per node (m).
     tributary: Vec<f64>,
+    /// The waves' kinematics at each node for one time, taken once per step
+    /// at the nodes' predicted positions ([`Environment::hold_waves`]).
+    held: Option<HeldWaves>,
+}
+
+/// The water's motion at every node at time `t` (s); None above the surface.
+#[derive(Clone, Debug)]
+struct HeldWaves {
+    t: f64,
+    at_nodes: Vec<Option<super::waves::Kinematics>>,
 }
 
 impl Environment {
@@ -147,7 +157,25 @@ impl Environment {
             waves: p.waves.as_ref().map(AiryWaves::new),
             seabed: p.seabed.as_ref().map(SeabedPlane::new),
             tributary,
+            held: None,
         }
+    }
+
+    /// Takes the waves' kinematics at `t` (s) once, at the node positions
+    /// `q` (m: a step's predicted end), for every evaluation at `t` until the
+    /// next call: Newton's iterations then cost no wave sums. The positions
+    /// differ from the converged ones by the predictor's error, O(h^3).
+    pub fn hold_waves(&mut self, q: &[f64], t: f64) {
+        let Some(waves) = &self.waves else { return };
+        let mut held = self.held.take().unwrap_or(HeldWaves {
+            t,
+            at_nodes: Vec::new(),
+        });
+        held.t = t;
+        held.at_nodes.clear();
+        held.at_nodes
+            .extend((0..self.tributary.len()).map(|i| waves.at(&node(q, i), t)));
+        self.held = Some(held);
     }
 
     /// Tributary length of node `i` (m).
@@ -167,6 +195,7 @@ impl Environment {
     pub fn without_waves(&self) -> Environment {
         Environment {
             waves: None,
+            held: None,
             ..self.clone()
         }
     }
@@ -330,7 +359,11 @@ impl Environment {
         let mut inertia = Vector3::zeros();
         match &self.waves {
             Some(waves) => {
-                let Some(k) = waves.at(&at.x, at.t) else {
+                let kinematics = match &self.held {
+                    Some(held) if held.t == at.t => held.at_nodes[at.node],
+                    _ => waves.at(&at.x, at.t),
+                };
+                let Some(k) = kinematics else {
                     return Vector3::zeros();
                 };
                 water += k.velocity;

@@ -27,6 +27,9 @@ pub(super) struct Work {
     water1: Vec<f64>,
     linear_f0: Vec<f64>,
     linear_f1: Vec<f64>,
+    /// The nodes' predicted positions at the step's end (m), where the
+    /// waves' kinematics are taken.
+    predicted: Vec<f64>,
 }
 
 /// The energy ledger (J).
@@ -207,6 +210,7 @@ impl Line3d {
         }
         w.g0.clone_from(&self.state.force);
         self.held_motion(inputs, (t1, h), s, &mut w.held);
+        self.hold_waves((t1, h), &w.held, &mut w.predicted);
         self.linear_loads(t0, t1, &mut w);
         let mut hht = std::mem::take(&mut self.hht);
         let linear = self.linear.is_some();
@@ -253,6 +257,30 @@ impl Line3d {
             *work += 0.5 * h * (start + end);
         }
         Ok(iterations)
+    }
+
+    /// The waves' kinematics for the step ending at `t1` (s), `h` long, taken
+    /// once at the nodes' predicted end positions `q + h v + h^2 a / 2` (the
+    /// `held` DOFs' at their prescribed ones; `predicted`: a buffer), unless
+    /// the line is linear (it holds its water's force itself) or has no waves.
+    fn hold_waves(
+        &mut self,
+        (t1, h): (f64, f64),
+        held: &[(usize, [f64; 3])],
+        predicted: &mut Vec<f64>,
+    ) {
+        if self.linear.is_some() || !self.environment.has_waves() {
+            return;
+        }
+        let s = &self.state;
+        predicted.clear();
+        predicted.extend(
+            (s.q.iter().zip(&s.v).zip(&s.a)).map(|((q, v), a)| q + h * v + 0.5 * h * h * a),
+        );
+        for &(d, [q, _, _]) in held {
+            predicted[d] = q;
+        }
+        self.environment.hold_waves(predicted, t1);
     }
 
     /// The prescribed motion of the held DOFs at the step's end.

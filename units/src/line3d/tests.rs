@@ -482,3 +482,28 @@ fn faded_waves_start_calm_and_their_acceleration_is_their_velocity_s_rate() {
         );
     }
 }
+
+#[test]
+fn held_wave_kinematics_give_the_force_of_the_positions_they_were_taken_at() {
+    // A wavy line's water force with the kinematics held at q equals the
+    // one evaluated afresh at q; at another time they are not used.
+    let p = line(
+        20,
+        30.0,
+        "drag_normal = 1.2\nadded_mass_normal = 1.0\nwaves = { sines = [{ amplitude = 2.0, angular_frequency = 0.6 }, { amplitude = 1.0, angular_frequency = 1.1, phase = 0.3 }], heading_deg = 10.0, water_depth = 150.0 }",
+    );
+    let d = started(p);
+    let line = d.unit();
+    let (q, v) = (&line.state.q, &line.state.v);
+    let mut environment = line.environment.clone();
+    let fresh = |e: &environment::Environment, t: f64| {
+        let mut f = vec![0.0; q.len()];
+        e.add_hydrodynamic_force(q, v, t, &mut f);
+        f
+    };
+    let (before, other) = (fresh(&environment, 7.3), fresh(&environment, 7.4));
+    environment.hold_waves(q, 7.3);
+    assert_eq!(fresh(&environment, 7.3), before);
+    assert_eq!(fresh(&environment, 7.4), other);
+    assert!(before.iter().any(|f| f.abs() > 1.0));
+}
