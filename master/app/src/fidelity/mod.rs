@@ -256,8 +256,11 @@ fn sections_asked(plan: &FidelityPlan, structure: &Structure) -> Result<(), Stri
 
 /// The scene's `[structure]`: its layout and what its model has.
 fn structure_of(table: &Table) -> Result<Structure, String> {
-    let layout = slender_scene::structure::layout(table)?
-        .ok_or("a fidelity study needs a scene with a `[structure]`")?;
+    let layout = slender_scene::structure::layout(table)?.ok_or(if table.contains_key("mooring") {
+        "a fidelity study needs a scene with a `[structure]`: a `[mooring]`'s lines are not studied yet (run each choice with `--set 'mooring.lines[k].sections=[...]'` and compare against a run with every line `nonlinear`)"
+    } else {
+        "a fidelity study needs a scene with a `[structure]`"
+    })?;
     let features = Features {
         seabed: layout.seabed,
         stinger: layout.stinger,
