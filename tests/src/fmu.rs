@@ -73,6 +73,26 @@ pub fn python_paths() -> (PathBuf, String) {
     (Path::new(&libdir).join(library), site)
 }
 
+/// Builds the pythonfmu script `script` (under tests/python/) into an FMU
+/// in `dir` with pythonfmu's `options` (e.g. `--handle-state`), asserting
+/// that the build succeeds.
+pub fn pythonfmu_build(script: &str, options: &[&str], dir: &Path) {
+    let build = std::process::Command::new(python())
+        .args(["-m", "pythonfmu", "build"])
+        .args(options)
+        .arg("-f")
+        .arg(root().join("tests/python").join(script))
+        .arg("-d")
+        .arg(dir)
+        .output()
+        .unwrap();
+    assert!(
+        build.status.success(),
+        "{}",
+        String::from_utf8_lossy(&build.stderr)
+    );
+}
+
 /// Runs the `slender` command line (built beside the FMU library) with
 /// `args` and PYTHONPATH `site`, echoing its output.
 pub fn slender(args: &[&str], site: &str) -> std::process::Output {

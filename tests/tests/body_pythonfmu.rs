@@ -12,10 +12,8 @@
 use slender_scene::Scene;
 use slender_scene::mooring;
 use slender_tests::buoy::{FAIRLEADS, LINES};
-use slender_tests::fmu::{python, python_paths, slender};
-use slender_tests::root;
+use slender_tests::fmu::{python_paths, pythonfmu_build, slender};
 use std::path::Path;
-use std::process::Command;
 
 /// A buoy of 2e4 kg on three chains in 50 m of water, rotations held by
 /// springs of 1e14 N m/rad, moved 2 m in surge; BODY_EXTRA goes in
@@ -96,18 +94,7 @@ fn column(results: &Path, name: &str) -> Vec<f64> {
 #[ignore = "needs pythonfmu in .venv: ./scripts/test.sh runs it"]
 fn a_pythonfmu_body_holds_the_lines_as_slender_s_body_does() {
     let dir = tempfile::tempdir().unwrap();
-    let build = Command::new(python())
-        .args(["-m", "pythonfmu", "build", "--handle-state", "-f"])
-        .arg(root().join("tests/python/point_body.py"))
-        .arg("-d")
-        .arg(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        build.status.success(),
-        "{}",
-        String::from_utf8_lossy(&build.stderr)
-    );
+    pythonfmu_build("point_body.py", &["--handle-state"], dir.path());
     let (libpython, site) = python_paths();
     let native_text = scene_text().replace("BODY_EXTRA", "");
     let native = Scene::parse(Path::new("native.toml"), native_text.clone()).unwrap();

@@ -279,18 +279,7 @@ fn error_against_exact(results: &Path) -> f64 {
 #[ignore = "needs FMPy and pythonfmu in .venv: ./scripts/test.sh runs it"]
 fn a_pythonfmu_fmu_couples_with_native_units_and_iterative_schemes_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let build = Command::new(fmu::python())
-        .args(["-m", "pythonfmu", "build", "-f"])
-        .arg(root().join("tests/python/spring_damper.py"))
-        .arg("-d")
-        .arg(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        build.status.success(),
-        "{}",
-        String::from_utf8_lossy(&build.stderr)
-    );
+    fmu::pythonfmu_build("spring_damper.py", &[], dir.path());
     let (libpython, site) = python_paths();
 
     // Without libpython loaded, the importer says what to do.

@@ -157,7 +157,7 @@ fn the_oc3_spar_s_surge_decay_has_its_statics_period() {
     let scene = slender_tests::load("examples/oc3_hywind.toml");
     let system = mooring::of_scene(&scene).unwrap().unwrap();
     let lines = system.catenaries().unwrap();
-    let eq = system.equilibrium().unwrap();
+    let eq = system.equilibrium_on(&lines).unwrap();
     let modes = natural_modes(&system.body, &lines, &eq.offset).unwrap();
     let surge = modes.iter().find(|m| m.dominant == 0).unwrap().period;
     let s = run(&scene);

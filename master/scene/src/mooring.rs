@@ -181,7 +181,13 @@ impl Mooring {
 
     /// The body's equilibrium on its lines.
     pub fn equilibrium(&self) -> Result<MooringStatics, String> {
-        equilibrium(&self.body, &self.catenaries()?).map_err(|e| format!("`mooring`: {e}"))
+        self.equilibrium_on(&self.catenaries()?)
+    }
+
+    /// The body's equilibrium on `lines` (its [`Mooring::catenaries`]), for
+    /// a caller that keeps them for more statics.
+    pub fn equilibrium_on(&self, lines: &[MooredLine]) -> Result<MooringStatics, String> {
+        equilibrium(&self.body, lines).map_err(|e| format!("`mooring`: {e}"))
     }
 
     /// Whether the body starts at its equilibrium (`mooring.statics`).

@@ -30,7 +30,6 @@ impl Body {
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
         let n_in = self.end_inputs.len();
-        let n_out = self.description.outputs.len();
         let end = self.kinematics();
         let inputs = std::mem::take(&mut self.end_inputs);
         let loads = self.end_loads(&inputs, t0 + h);
@@ -42,8 +41,8 @@ impl Body {
             return Err(e);
         }
         let mut dy = std::mem::take(&mut self.output_by_velocity);
-        self.output_sensitivity(start, &end, h, &mut dy);
-        for i in 0..n_out {
+        let rows = self.output_sensitivity(start, &end, h, &mut dy);
+        for i in 0..rows {
             for j in 0..n_in {
                 jacobian[i * n_in + j] = (0..6).map(|k| dy[(i, k)] * du[(k, j)]).sum();
             }
@@ -97,16 +96,17 @@ impl Body {
         Ok(())
     }
 
-    /// `dy/du1` (outputs x 6) into `dy`: the outputs at the step's end as
-    /// functions of the end velocity alone.
+    /// `dy/du1` into `dy` for the motion outputs (pose, velocity,
+    /// fairleads: the first rows, whose count it returns) as functions of
+    /// the end velocity alone; the energy rows are left out (unknown).
     fn output_sensitivity(
         &mut self,
         start: &Kinematics,
         end: &Kinematics,
         h: f64,
         dy: &mut DMatrix<f64>,
-    ) {
-        let n_out = self.description.outputs.len();
+    ) -> usize {
+        let mut rows = 0;
         let (mut plus, mut minus) = (
             std::mem::take(&mut self.plus),
             std::mem::take(&mut self.minus),
@@ -121,12 +121,13 @@ impl Body {
             let (mut up, mut down) = (u1, u1);
             up[k] += delta;
             down[k] -= delta;
-            ports::write_outputs(self, &at(up), &mut plus);
-            ports::write_outputs(self, &at(down), &mut minus);
-            for i in 0..n_out {
+            rows = ports::write_motion(self, &at(up), &mut plus);
+            ports::write_motion(self, &at(down), &mut minus);
+            for i in 0..rows {
                 dy[(i, k)] = (plus[i] - minus[i]) / (2.0 * delta);
             }
         }
         (self.plus, self.minus) = (plus, minus);
+        rows
     }
 }

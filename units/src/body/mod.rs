@@ -65,7 +65,8 @@ pub struct Body {
     model: Model,
     description: UnitDescription,
     state: BodyState,
-    /// The last step's start, length (s) and end inputs, for its Jacobian.
+    /// The last step's start kinematics, start time and length (s), and its
+    /// end inputs: what its Jacobian is taken from.
     last_start: Option<(Kinematics, f64, f64)>,
     end_inputs: Vec<f64>,
     /// Output buffers of the Jacobian's differences, and its factors
@@ -234,10 +235,8 @@ impl Body {
         }
     }
 
-    /// The power (W) of the loads that do work at kinematics `k` under
-    /// `values` at `t` (s).
-    fn power(&self, k: &Kinematics, values: &[f64], t: f64) -> f64 {
-        let loads = self.end_loads(values, t);
+    /// The power (W) of the loads that do work at kinematics `k` under `loads`.
+    fn power(&self, k: &Kinematics, loads: &EndLoads<'_>) -> f64 {
         self.model
             .applied(&k.motion, loads.forces, &loads.external)
             .dot(&k.motion.velocity)
@@ -257,31 +256,29 @@ impl Unit for Body {
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
         let t0 = t0.as_secs();
         let p = &self.params;
+        let loads = self.end_loads(inputs.end(), t0);
         let start = if self.is_prescribed() {
             self.prescribed(t0)
         } else {
-            {
-                let o = &p.initial_offset;
-                let motion = Motion {
-                    position: self.model.reference + Vector3::new(o[0], o[1], o[2]),
-                    rotation: UnitQuaternion::from_euler_angles(o[3], o[4], o[5]),
-                    velocity: Vector6::from(p.initial_velocity),
-                };
-                let loads = self.end_loads(inputs.end(), t0);
-                let acceleration =
-                    self.model
-                        .acceleration(&motion, loads.forces, &loads.external)?;
-                Kinematics {
-                    motion,
-                    acceleration,
-                }
+            let o = &p.initial_offset;
+            let motion = Motion {
+                position: self.model.reference + Vector3::new(o[0], o[1], o[2]),
+                rotation: UnitQuaternion::from_euler_angles(o[3], o[4], o[5]),
+                velocity: Vector6::from(p.initial_velocity),
+            };
+            let acceleration = self
+                .model
+                .acceleration(&motion, loads.forces, &loads.external)?;
+            Kinematics {
+                motion,
+                acceleration,
             }
         };
+        self.state.power = self.power(&start, &loads);
         self.set_kinematics(&start);
         self.state.t = t0;
         self.state.work = 0.0;
         self.state.initial_energy = self.energy(&start);
-        self.state.power = self.power(&start, inputs.end(), t0);
         self.state.newton_iterations = 0;
         self.last_start = None;
         Ok(())
@@ -290,18 +287,14 @@ impl Unit for Body {
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         let (t0, h) = (t.as_secs(), h.as_secs());
         let start = self.kinematics();
+        // The loads at the step's end (the waves' excitation summed once).
+        let loads = self.end_loads(inputs.end(), t0 + h);
         let (end, iterations) = if self.is_prescribed() {
             (self.prescribed(t0 + h), 0)
         } else {
-            advance(
-                &self.model,
-                &start,
-                h,
-                &self.end_loads(inputs.end(), t0 + h),
-                self.params.max_iterations,
-            )?
+            advance(&self.model, &start, h, &loads, self.params.max_iterations)?
         };
-        let power = self.power(&end, inputs.end(), t0 + h);
+        let power = self.power(&end, &loads);
         self.state.work += 0.5 * h * (self.state.power + power);
         self.state.power = power;
         self.set_kinematics(&end);

@@ -88,6 +88,23 @@ pub(super) fn outputs(p: &BodyParams) -> Vec<Port> {
 
 /// The outputs of `body` at kinematics `k` into `out`.
 pub(super) fn write_outputs(body: &Body, k: &Kinematics, out: &mut [f64]) {
+    let i = write_motion(body, k, out);
+    let [kinetic, potential] = body.model.energies(&k.motion);
+    let s = &body.state;
+    let error = kinetic + potential - s.initial_energy - s.work;
+    out[i..i + 5].copy_from_slice(&[
+        kinetic,
+        potential,
+        s.work,
+        error,
+        f64::from(s.newton_iterations),
+    ]);
+}
+
+/// The pose, velocity and fairlead outputs at kinematics `k` into `out`
+/// (what the step Jacobian differentiates); returns the index of the first
+/// output after them.
+pub(super) fn write_motion(body: &Body, k: &Kinematics, out: &mut [f64]) -> usize {
     let model = &body.model;
     let m = &k.motion;
     let eta = model.displacement(m);
@@ -101,16 +118,7 @@ pub(super) fn write_outputs(body: &Body, k: &Kinematics, out: &mut [f64]) {
             i += 3;
         }
     }
-    let [kinetic, potential] = model.energies(m);
-    let s = &body.state;
-    let error = kinetic + potential - s.initial_energy - s.work;
-    out[i..i + 5].copy_from_slice(&[
-        kinetic,
-        potential,
-        s.work,
-        error,
-        f64::from(s.newton_iterations),
-    ]);
+    i
 }
 
 /// Marks the energy and iteration rows of a step Jacobian unknown (NaN):

@@ -103,7 +103,7 @@ fn settling_values(scene: &slender_scene::Scene, body: &str) -> Result<Option<Se
         return Ok(None);
     }
     let lines = system.catenaries().map_err(CliError::input)?;
-    let eq = system.equilibrium().map_err(CliError::failure)?;
+    let eq = system.equilibrium_on(&lines).map_err(CliError::failure)?;
     let modes = natural_modes(&system.body, &lines, &eq.offset)
         .map_err(|e| CliError::failure(e.to_string()))?;
     let mut settle = eq.offset;

@@ -38,7 +38,7 @@ pub(super) fn statics(arg: &SceneArg, out: Option<PathBuf>, sweep: Sweep) -> Res
             ))
         })?;
     let lines = system.catenaries().map_err(CliError::input)?;
-    let eq = system.equilibrium().map_err(CliError::failure)?;
+    let eq = system.equilibrium_on(&lines).map_err(CliError::failure)?;
     let fail = |e: slender_units::UnitError| CliError::failure(e.to_string());
     let modes = natural_modes(&system.body, &lines, &eq.offset).map_err(fail)?;
     print_statics(&system, &eq, &modes, &arg.path);
@@ -166,14 +166,13 @@ fn panels(system: &Mooring, rows: &[OffsetRow]) -> Vec<CurvePanel> {
     let mut panels = Vec::new();
     for (dof, unit, load_unit) in [(0, "m", "N"), (1, "m", "N"), (5, "deg", "N m")] {
         let of = || rows.iter().filter(move |r| r.dof == dof);
-        let mut series = vec![(
-            "restoring".to_owned(),
-            of().map(|r| (r.offset, r.restoring)).collect(),
-        )];
         panels.push(CurvePanel {
             x_label: format!("{} offset ({unit})", DOFS[dof]),
             y_label: format!("mooring restoring ({load_unit})"),
-            series: std::mem::take(&mut series),
+            series: vec![(
+                "restoring".to_owned(),
+                of().map(|r| (r.offset, r.restoring)).collect(),
+            )],
         });
         let tensions = names
             .iter()
