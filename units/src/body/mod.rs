@@ -9,7 +9,7 @@
 //! (`line3d`, `catenary3d`) hang from them through the master.
 //!
 //! Instead of its dynamics a body may follow a prescribed motion (sines per
-//! degree of freedom): the fairleads then move the lines as a vessel's
+//! degree of freedom, a time table, a sea through motion RAOs): the fairleads then move the lines as a vessel's
 //! motion would, whatever the lines pull.
 //!
 //! The step Jacobian (outputs after a step by the step's end inputs) comes
@@ -18,6 +18,7 @@
 pub mod dynamics;
 mod jacobian;
 pub mod mooring;
+pub mod motion_table;
 pub mod params;
 mod ports;
 mod step;
@@ -34,6 +35,7 @@ use crate::contract::{
 };
 use crate::signal::sine::{Sine, faded_sum};
 use dynamics::{Model, Motion, rate_map, rate_map_derivative};
+use motion_table::TableMotion;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 pub use params::{BodyParams, Fairlead};
 use step::{EndLoads, Kinematics, advance};
@@ -77,6 +79,8 @@ pub struct Body {
     output_by_velocity: nalgebra::DMatrix<f64>,
     /// What the waves do to the body (made once).
     sea: Sea,
+    /// The splines of a prescribed motion table.
+    table: Option<TableMotion>,
 }
 
 /// The waves' excitation (N, N m) or motion (m, rad) per degree of freedom
@@ -141,6 +145,7 @@ impl Body {
             newton_iterations: 0,
         };
         let sea = Sea::of(&params);
+        let table = params.motion_table.as_ref().map(|t| t.splines());
         Ok(Body {
             params,
             model,
@@ -153,6 +158,7 @@ impl Body {
             velocity_by_input: nalgebra::DMatrix::zeros(6, inputs),
             output_by_velocity: nalgebra::DMatrix::zeros(outputs, 6),
             sea,
+            table,
         })
     }
 
@@ -182,24 +188,32 @@ impl Body {
         self.state.acceleration = k.acceleration.into();
     }
 
-    /// Whether the body follows a prescribed motion (sines or a motion RAO).
+    /// Whether the body follows a prescribed motion (sines, a table or a
+    /// motion RAO).
     fn is_prescribed(&self) -> bool {
-        self.params.motion.is_some() || self.sea.motion.is_some()
+        self.params.motion.is_some() || self.sea.motion.is_some() || self.table.is_some()
     }
 
     /// The prescribed motion at `t` (s): the initial offset, the sines faded
-    /// in over `fade_in`, the waves' motion over theirs.
+    /// in over `fade_in`, the table's motion, the waves' motion faded in over
+    /// theirs.
     fn prescribed(&self, t: f64) -> Kinematics {
         let p = &self.params;
         let mut dof = [[0.0; 3]; 6];
+        let add = |d: &mut [f64; 3], more: [f64; 3]| {
+            for (x, w) in d.iter_mut().zip(more) {
+                *x += w;
+            }
+        };
+        let table = self.table.as_ref().map(|m| m.eval(t));
         for (i, d) in dof.iter_mut().enumerate() {
             let sines = p.motion.as_ref().map_or(&[][..], |m| &m[i]);
             *d = faded_sum(p.initial_offset[i], sines, p.fade_in, t);
             if let Some(sea) = &self.sea.motion {
-                let waves = faded_sum(0.0, &sea[i], self.sea.fade_in, t);
-                for (x, w) in d.iter_mut().zip(waves) {
-                    *x += w;
-                }
+                add(d, faded_sum(0.0, &sea[i], self.sea.fade_in, t));
+            }
+            if let Some(table) = &table {
+                add(d, table[i]);
             }
         }
         let column = |k: usize| Vector3::new(dof[3][k], dof[4][k], dof[5][k]);
@@ -258,6 +272,9 @@ impl Unit for Body {
         let p = &self.params;
         let loads = self.end_loads(inputs.end(), t0);
         let start = if self.is_prescribed() {
+            if let Some(table) = &self.table {
+                table.require_within(t0, "the start")?;
+            }
             self.prescribed(t0)
         } else {
             let o = &p.initial_offset;
@@ -290,6 +307,9 @@ impl Unit for Body {
         // The loads at the step's end (the waves' excitation summed once).
         let loads = self.end_loads(inputs.end(), t0 + h);
         let (end, iterations) = if self.is_prescribed() {
+            if let Some(table) = &self.table {
+                table.require_within(t0 + h, "the step's end")?;
+            }
             (self.prescribed(t0 + h), 0)
         } else {
             advance(&self.model, &start, h, &loads, self.params.max_iterations)?

@@ -6,6 +6,7 @@
 //! the global ones at rest. Every table is checked once by
 //! [`BodyParams::validate`]; a refusal names the key.
 
+use super::motion_table::MotionTable;
 use super::waves::RaoTable;
 use crate::contract::{UnitError, require_finite, require_non_negative, require_positive};
 use crate::line3d::params::Waves;
@@ -85,6 +86,11 @@ pub struct BodyParams {
     /// initial offset.
     #[serde(default)]
     pub motion: Option<[Vec<Sine>; 6]>,
+    /// Instead of the dynamics, a prescribed motion from a time table (a
+    /// natural cubic spline per degree of freedom; added to `motion` and
+    /// `initial_offset`); a run must stay within its times.
+    #[serde(default)]
+    pub motion_table: Option<MotionTable>,
     /// Seconds over which the prescribed sines grow from nothing.
     #[serde(default)]
     pub fade_in: f64,
@@ -168,6 +174,9 @@ impl BodyParams {
             return Err(UnitError::parameter("max_iterations", 0, "at least 1"));
         }
         self.validate_waves()?;
+        if let Some(table) = &self.motion_table {
+            table.validate("motion_table")?;
+        }
         if let Some(motion) = &self.motion {
             for (dof, sines) in DOFS.iter().zip(motion) {
                 for (i, s) in sines.iter().enumerate() {

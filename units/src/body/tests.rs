@@ -313,3 +313,67 @@ fn bad_parameters_are_refused_by_key() {
     let e = Body::new(r).err().unwrap().to_string();
     assert!(e.contains("fairleads[1].name"), "{e}");
 }
+
+/// A motion table sampled from sines every 0.1 s moves the fairlead as the
+/// sines do (away from the natural spline's ends), and a run past its last
+/// time stops with an error that says so.
+#[test]
+fn a_motion_table_follows_the_motion_it_samples() {
+    let sines = |a: f64, w: f64| {
+        vec![crate::signal::sine::Sine {
+            amplitude: a,
+            angular_frequency: w,
+            phase: 0.3,
+            decay: 0.0,
+        }]
+    };
+    let mut by_sines = body_params([3.0e7, 4.0e7, 5.0e7]);
+    by_sines.motion = Some([
+        sines(2.0, 0.5),
+        vec![],
+        sines(0.5, 0.7),
+        vec![],
+        sines(0.08, 0.6),
+        sines(0.2, 0.2),
+    ]);
+    by_sines.fairleads = vec![Fairlead {
+        name: "f".into(),
+        position: [5.0, -3.0, -70.0],
+    }];
+    let time: Vec<f64> = (0..=300).map(|i| 0.1 * i as f64).collect();
+    let column = |dof: usize| {
+        let m = by_sines.motion.as_ref().unwrap();
+        let s = time.iter().map(|&t| faded_sum(0.0, &m[dof], 0.0, t)[0]);
+        Some(s.collect::<Vec<f64>>())
+    };
+    let table = motion_table::MotionTable {
+        time: time.clone(),
+        surge: column(0),
+        sway: None,
+        heave: column(2),
+        roll: None,
+        pitch: column(4),
+        yaw: column(5),
+    };
+    let mut by_table = by_sines.clone();
+    by_table.motion = None;
+    by_table.motion_table = Some(table);
+    let (a, b) = (Body::new(by_sines).unwrap(), Body::new(by_table).unwrap());
+    let fairlead = |body: &Body, t: f64| {
+        let k = body.prescribed(t);
+        body.model
+            .point(&k.motion, &k.acceleration, &body.model.fairleads[0])
+    };
+    for t in [5.03, 12.71, 20.0, 24.96] {
+        let (want, got) = (fairlead(&a, t), fairlead(&b, t));
+        for (d, tolerance) in [(0, 1e-8), (1, 1e-5), (2, 1e-3)] {
+            let error = (got[d] - want[d]).norm() / want[d].norm();
+            assert!(error < tolerance, "t {t}, derivative {d}: {error:.2e}");
+        }
+    }
+    let mut driver = Driver::new(b);
+    driver.initialize(secs(29.5)).unwrap();
+    driver.do_step(secs(29.5), secs(0.5)).unwrap();
+    let late = driver.do_step(secs(30.0), secs(0.5)).unwrap_err();
+    assert!(late.to_string().contains("covers 0 s to 30"), "{late}");
+}
