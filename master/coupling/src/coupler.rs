@@ -64,9 +64,11 @@ pub struct Master {
     pub(crate) value: Vec<f64>,
     /// Connection values of the sweep before (convergence check of untorn ones).
     pub(crate) previous: Vec<f64>,
-    /// Accepted values at the start of the current step, and of the step before.
+    /// Accepted values at the start of the current step, of the step before,
+    /// and of the one before that.
     accepted: Vec<f64>,
     accepted_before: Vec<f64>,
+    accepted_earlier: Vec<f64>,
     /// The torn iterate `x` (physical units), the sweep result `G(x)`, scaled copies.
     pub(crate) x: Vec<f64>,
     pub(crate) gx: Vec<f64>,
@@ -152,6 +154,7 @@ impl Master {
             previous: vec![0.0; n_conn],
             accepted: vec![0.0; n_conn],
             accepted_before: vec![0.0; n_conn],
+            accepted_earlier: vec![0.0; n_conn],
             x: vec![0.0; n_torn],
             gx: vec![0.0; n_torn],
             scaled_x: vec![0.0; n_torn],
@@ -206,6 +209,7 @@ impl Master {
             self.step_fixed_point()?
         };
         self.counters.record_step(iterations, residual, converged);
+        self.accepted_earlier.copy_from_slice(&self.accepted_before);
         self.accepted_before.copy_from_slice(&self.accepted);
         self.accepted.copy_from_slice(&self.value);
         self.time += self.step_size;
@@ -234,6 +238,9 @@ impl Master {
             self.x[i] = match self.settings.extrapolation {
                 Extrapolation::Constant => self.accepted[c],
                 Extrapolation::Linear => 2.0 * self.accepted[c] - self.accepted_before[c],
+                Extrapolation::Quadratic => {
+                    3.0 * (self.accepted[c] - self.accepted_before[c]) + self.accepted_earlier[c]
+                }
             };
         }
         self.previous.copy_from_slice(&self.accepted);

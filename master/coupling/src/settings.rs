@@ -273,6 +273,10 @@ pub enum Extrapolation {
     Constant,
     /// Linear through the values at the start of this step and of the previous one.
     Linear,
+    /// Quadratic through the values at the start of this step and of the two
+    /// before (error third order in the step where the values are smooth: a
+    /// first iterate close enough that an iterative scheme may accept it).
+    Quadratic,
 }
 
 /// A master setting out of range (the key and what was expected).

@@ -10,7 +10,9 @@ use slender_contract::{
     Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
     UnitError,
 };
-use slender_coupling::settings::{Acceleration, MasterSettings, NewtonSettings, Scheme};
+use slender_coupling::settings::{
+    Acceleration, Extrapolation, MasterSettings, NewtonSettings, Scheme,
+};
 use slender_coupling::{Link, Master, MasterError, System};
 
 /// `y = gain * u + offset * c(t)` at the step's end; its state is the time
@@ -81,7 +83,18 @@ fn exact(a: [f64; 2]) -> f64 {
 
 /// A master over the loop with gains `a`, tolerances of 1e-12.
 /// (Errors as text: the tests read their message.)
-fn master(a: [f64; 2], mut settings: MasterSettings) -> Result<Master, String> {
+fn master(a: [f64; 2], settings: MasterSettings) -> Result<Master, String> {
+    master_within(a, settings, 1e-12, 10_000_000)
+}
+
+/// The same with absolute tolerances `tolerance` on the coupled values and
+/// a step of `step` ns.
+fn master_within(
+    a: [f64; 2],
+    mut settings: MasterSettings,
+    tolerance: f64,
+    step: i64,
+) -> Result<Master, String> {
     let mut system = System::new();
     // Building the system cannot fail for these names and ports.
     let built = system.add_unit("one", Box::new(Affine::new(a[0], B[0])));
@@ -90,11 +103,11 @@ fn master(a: [f64; 2], mut settings: MasterSettings) -> Result<Master, String> {
         .and(system.connect("two.y", "one.u", Link::default()))
         .and(system.connect("one.y", "two.u", Link::default()))
         .expect("the loop");
-    settings.tolerances.generic = 1e-12;
+    settings.tolerances.generic = tolerance;
     settings.tolerances.generic_relative = 1e-12;
     settings.max_iterations = 200;
     let text = |e: MasterError| e.to_string();
-    let mut master = Master::new(system, settings, Time::from_nanos(10_000_000)).map_err(text)?;
+    let mut master = Master::new(system, settings, Time::from_nanos(step)).map_err(text)?;
     master.initialize(Time::ZERO).map_err(text)?;
     Ok(master)
 }
@@ -219,4 +232,46 @@ fn non_iterative_schemes_trail_the_moving_fixed_point_as_their_recursion_says() 
             "{scheme:?}: {x} on the fixed point"
         );
     }
+}
+
+/// The first iterate of a step is the fixed point extrapolated from the
+/// accepted values; its error is of order h^2 x'' when linear and h^3 x'''
+/// when quadratic (x = K cos(10 t): 8.9e-4 and 2.2e-5 at 2.5 ms). With a
+/// tolerance between the two, Newton accepts the quadratic prediction after
+/// one sweep (the first steps have fewer values to extrapolate from) and the
+/// linear one after two (one only where x'' passes zero); both answers are
+/// the fixed point within the tolerance. The loop gain is small here (0.02,
+/// a heavy body on its lines): a value accepted after one sweep is off by the
+/// loop gain times the prediction's error, and the quadratic extrapolation
+/// weighs the last three values by 3, 3 and 1, so at a loop gain of 0.4 these
+/// errors grow until a second sweep clears them (1.5 sweeps a step).
+#[test]
+fn a_quadratic_prediction_is_accepted_after_one_sweep_where_a_linear_one_is_not() {
+    let a = [0.1, -0.2];
+    let sweeps = |extrapolation: Extrapolation| {
+        let settings = MasterSettings {
+            newton: Some(NewtonSettings::default()),
+            extrapolation,
+            ..MasterSettings::new(Scheme::IterativeJacobi)
+        };
+        let (tolerance, steps) = (3e-4, 240);
+        let mut master = master_within(a, settings, tolerance, 2_500_000).unwrap();
+        for _ in 0..steps {
+            master.step().unwrap();
+        }
+        let x1 = master.output("one.y").unwrap();
+        let fixed_point = exact(a) / c(0.05) * c(0.0025 * f64::from(steps));
+        assert!(
+            (x1 - fixed_point).abs() < tolerance,
+            "{extrapolation:?}: {x1} against {fixed_point}"
+        );
+        let counters = master.counters();
+        counters.iterations as f64 / counters.steps as f64
+    };
+    let (linear, quadratic) = (
+        sweeps(Extrapolation::Linear),
+        sweeps(Extrapolation::Quadratic),
+    );
+    assert!(linear > 1.7, "linear: {linear} sweeps per step");
+    assert!(quadratic < 1.05, "quadratic: {quadratic} sweeps per step");
 }

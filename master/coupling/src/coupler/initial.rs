@@ -26,6 +26,7 @@ impl Master {
         }
         self.accepted.copy_from_slice(&self.value);
         self.accepted_before.copy_from_slice(&self.value);
+        self.accepted_earlier.copy_from_slice(&self.value);
         self.record_static_loads();
         self.initialized = true;
         Ok(())
