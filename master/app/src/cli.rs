@@ -286,9 +286,10 @@ pub(crate) enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Fidelity study of a scene's `[structure]`: run its sections at chosen
-    /// fidelities (full grid or one section at a time), each combination against
-    /// the monolithic reference (the whole structure as one nonlinear unit): epsilon
+    /// Fidelity study of a scene's `[structure]` or of a `[mooring]`'s lines: run
+    /// their sections at chosen fidelities (full grid or one section at a time),
+    /// each combination against the monolithic reference (the whole structure as
+    /// one nonlinear unit; a mooring with every line whole): epsilon
     /// of each quantity of interest, cost, speed-up, iterations, non-converged
     /// steps, the Pareto front and the cheapest combination within --tolerance.
     /// Writes fidelity.csv, fidelity.json, fidelity.md, fidelity.svg and
@@ -302,7 +303,8 @@ pub(crate) enum Command {
         /// for reduced a training window in seconds after @ (its forces
         /// sampled after it) and sub-steps per coupling step after a slash,
         /// e.g. lower=nonlinear,cable,nonlinear:16,reduced:4,reduced:4@5,nonlinear:16/4
-        /// or middle=beam:10,span:24. Repeat for several sections.
+        /// or middle=beam:10,span:24. Repeat for several sections. A mooring's
+        /// section is LINE.SECTION (one line's) or SECTION (in every line).
         #[arg(long = "section", required = true)]
         sections: Vec<slender_app::fidelity::SectionChoices>,
         /// Run every combination of the sections' choices instead of one
@@ -315,7 +317,8 @@ pub(crate) enum Command {
         tolerance: f64,
         /// The quantities that judge a combination (its worst epsilon, the
         /// Pareto front, the tolerance), comma-separated, e.g.
-        /// top_force,touchdown,sagbend_moment; default: all of them.
+        /// top_force,touchdown,sagbend_moment; default: all of them (a
+        /// mooring: the lines' tensions).
         #[arg(long, value_delimiter = ',')]
         quantities: Vec<String>,
         #[command(flatten)]

@@ -202,6 +202,19 @@ impl Mooring {
             .collect()
     }
 
+    /// Each line's name and the `[structure]` table it is written out as
+    /// (its fairlead where the body's initial offset puts it, without the
+    /// statics): what a study reads the line's sections and units from.
+    pub fn line_structures(&self) -> Vec<(String, Table)> {
+        let offset = self.body.initial_offset;
+        (self.lines.iter())
+            .map(|l| {
+                let at = fairlead_position(&self.body, l.fairlead, &offset);
+                (l.file.name.clone(), l.structure(at))
+            })
+            .collect()
+    }
+
     /// Writes the system out at `t0`: the body (at its equilibrium with
     /// `statics`), each line as a 3D structure from its anchor to its
     /// fairlead, and the connections between them.
@@ -285,6 +298,14 @@ impl Line {
 
     /// The line as a 3D `[structure]` with its end at `fairlead` (m), written out.
     fn expand(&self, fairlead: [f64; 3], t0: Time) -> Result<structure::Written, String> {
+        let table = self.structure(fairlead);
+        let key = format!("`mooring.lines.{}", self.file.name);
+        structure::expand(&Value::Table(table), t0).map_err(|e| e.replace("`structure", &key))
+    }
+
+    /// The line as the `[structure]` table it is written out as, its end at
+    /// `fairlead` (m).
+    fn structure(&self, fairlead: [f64; 3]) -> Table {
         let mut model = self.model.clone();
         let mut end = end_table(fairlead);
         if let (Some(at), Value::Table(t)) = (self.file.break_at, &mut end) {
@@ -303,8 +324,7 @@ impl Line {
         };
         table.insert("sections".into(), Value::Array(sections));
         table.insert("reference".into(), Value::Boolean(self.file.reference));
-        let key = format!("`mooring.lines.{}", self.file.name);
-        structure::expand(&Value::Table(table), t0).map_err(|e| e.replace("`structure", &key))
+        table
     }
 
     /// The unit of its top section.

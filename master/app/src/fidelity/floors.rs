@@ -22,10 +22,14 @@ pub struct Floor {
     pub unit: &'static str,
 }
 
-/// A quantity's unit, by its name.
+/// A quantity's unit, by its name (a body's motions end in the degree of
+/// freedom's name).
 fn unit_of(name: &str) -> &'static str {
-    if name == "touchdown" {
+    let ends = |suffixes: &[&str]| suffixes.iter().any(|s| name.ends_with(s));
+    if name == "touchdown" || ends(&["_surge", "_sway", "_heave"]) {
         "m"
+    } else if ends(&["_roll", "_pitch", "_yaw"]) {
+        "rad"
     } else if name.ends_with("_moment") {
         "N m"
     } else {

@@ -5,16 +5,21 @@
 //! quantity of interest, cost per simulated second, speed-up, iterations per
 //! step and non-converged steps; the Pareto front of worst error against cost,
 //! and the cheapest combination within a tolerance. A combination that cannot
-//! be set up or fails is reported with its reason and the study goes on.
+//! be set up or fails is reported with its reason and the study goes on. A
+//! `[mooring]`'s lines are studied the same way ([`mooring`]), against a run
+//! with every line whole.
 
 mod choice;
 pub mod floors;
+mod mooring;
 pub mod quantities;
 pub mod report;
 mod rows;
 mod run;
+mod subject;
 
 pub use choice::{Choice, SectionChoices};
+use subject::{SectionName, Subject};
 
 use crate::study::Design;
 use quantities::{Features, SectionUnit};
@@ -145,22 +150,26 @@ pub fn run_fidelity_kept(
     let mut table = crate::study::scene_table(path, &plan.overrides)?;
     // The scene must load as written.
     crate::study::scene_with(path, &table, plan.duration)?;
-    let structure = structure_of(&table)?;
-    sections_asked(plan, &structure)?;
+    let subject: Box<dyn Subject> = if table.contains_key("mooring") {
+        Box::new(mooring::MooringLines::of(&table)?)
+    } else {
+        Box::new(structure_of(&table)?)
+    };
+    let subject = subject.as_ref();
+    let sections = subject.sections();
+    sections_asked(plan, &sections)?;
     // Runs record only what the study reads, and carry no twin.
-    if let Some(s) = table.get_mut("structure").and_then(Value::as_table_mut) {
-        s.remove("reference");
-    }
+    subject.prepare(&mut table);
     table.remove("output");
-    let names = quantities::names(&structure.features);
+    let names = subject.quantities();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
     // Before any run (a misspelt quantity was refused after them all), and
     // the bound last, so that a study refused for its size was otherwise valid.
-    let judged = judged_of(plan, &names)?;
+    let judged = judged_of(plan, &names, subject)?;
     within_bound(plan)?;
     let mut tasks: Vec<Task> = vec![None];
     tasks.extend(
-        combinations(plan, &own_choices(&structure.layout))
+        combinations(plan, &own_choices(&sections))
             .into_iter()
             .map(Some),
     );
@@ -173,7 +182,7 @@ pub fn run_fidelity_kept(
             kept,
             &what,
             |o: &Outcome| o.error.is_none(),
-            || run::run_one(path, &table, &structure, task.as_deref(), plan),
+            || run::run_one(path, &table, subject, task.as_deref(), plan),
         );
         let (outcome, reused) = (fetched.outcome, fetched.note);
         let k = counter.tick(!fetched.reused);
@@ -183,7 +192,7 @@ pub fn run_fidelity_kept(
     });
     let (scales, floors) = floors::floors(&names, &outcomes[0]);
     let rows = rows::rows_of(
-        &structure,
+        subject,
         (&tasks, &outcomes),
         (&names, &scales),
         (plan.tolerance, &judged),
@@ -229,7 +238,7 @@ fn within_bound(plan: &FidelityPlan) -> Result<(), String> {
 }
 
 /// Refuses a section given twice or not in the structure, naming them.
-fn sections_asked(plan: &FidelityPlan, structure: &Structure) -> Result<(), String> {
+fn sections_asked(plan: &FidelityPlan, sections: &[SectionName]) -> Result<(), String> {
     for (k, s) in plan.sections.iter().enumerate() {
         if plan.sections[..k]
             .iter()
@@ -240,7 +249,6 @@ fn sections_asked(plan: &FidelityPlan, structure: &Structure) -> Result<(), Stri
                 s.section
             ));
         }
-        let sections = &structure.layout.sections;
         if !sections.iter().any(|section| section.name == s.section) {
             let names: Vec<&str> = sections.iter().map(|s| s.name.as_str()).collect();
             return Err(format!(
@@ -256,11 +264,8 @@ fn sections_asked(plan: &FidelityPlan, structure: &Structure) -> Result<(), Stri
 
 /// The scene's `[structure]`: its layout and what its model has.
 fn structure_of(table: &Table) -> Result<Structure, String> {
-    let layout = slender_scene::structure::layout(table)?.ok_or(if table.contains_key("mooring") {
-        "a fidelity study needs a scene with a `[structure]`: a `[mooring]`'s lines are not studied yet (run each choice with `--set 'mooring.lines[k].sections=[...]'` and compare against a run with every line `nonlinear`)"
-    } else {
-        "a fidelity study needs a scene with a `[structure]`"
-    })?;
+    let layout = slender_scene::structure::layout(table)?
+        .ok_or("a fidelity study needs a scene with a `[structure]` or a `[mooring]`")?;
     let features = Features {
         seabed: layout.seabed,
         stinger: layout.stinger,
@@ -275,8 +280,8 @@ fn structure_of(table: &Table) -> Result<Structure, String> {
 
 /// Each section's choice as the scene writes it, where it is a plain one (a
 /// fidelity word, no count, sub-steps or options): (section, choice).
-fn own_choices(layout: &Layout) -> Vec<(String, Choice)> {
-    (layout.sections.iter())
+fn own_choices(sections: &[SectionName]) -> Vec<(String, Choice)> {
+    (sections.iter())
         .filter(|s| s.plain)
         .map(|s| {
             let choice = Choice {
@@ -499,8 +504,13 @@ fn finish(
     Ok((table, units))
 }
 
-/// The judged quantities: the plan's, each one the structure has, or all.
-fn judged_of(plan: &FidelityPlan, names: &[&str]) -> Result<Vec<String>, String> {
+/// The judged quantities: the plan's, each one the structure has, or the
+/// subject's default.
+fn judged_of(
+    plan: &FidelityPlan,
+    names: &[&str],
+    subject: &dyn Subject,
+) -> Result<Vec<String>, String> {
     if let Some(unknown) = plan.judged.iter().find(|q| !names.contains(&q.as_str())) {
         return Err(format!(
             "--quantities: `{unknown}` is not a quantity of this structure; it has {}",
@@ -508,7 +518,7 @@ fn judged_of(plan: &FidelityPlan, names: &[&str]) -> Result<Vec<String>, String>
         ));
     }
     Ok(if plan.judged.is_empty() {
-        names.iter().map(|n| (*n).to_owned()).collect()
+        subject.default_judged()
     } else {
         plan.judged.clone()
     })

@@ -2,13 +2,13 @@
 //! reference, the worst over the judged quantities, the speed-up, the Pareto
 //! front and the tolerance; and each row's combination as labels.
 
-use super::{Choice, FidelityRow, Outcome, Structure, Task};
+use super::{Choice, FidelityRow, Outcome, Structure, Subject, Task};
 use crate::indicators::{indicator, interpolate, normalized_error};
 
 /// The report's rows: errors against the reference (task 0), speed-ups, the
 /// Pareto front and the tolerance.
 pub(super) fn rows_of(
-    structure: &Structure,
+    subject: &dyn Subject,
     (tasks, outcomes): (&[Task], &[Outcome]),
     (names, scales): (&[&str], &[Option<f64>]),
     (tolerance, judged): (f64, &[String]),
@@ -39,7 +39,7 @@ pub(super) fn rows_of(
                 }
             });
             FidelityRow {
-                combination: combination_of(structure, task.as_deref()),
+                combination: subject.labels(task.as_deref()),
                 reference: task.is_none(),
                 worst_error: worst,
                 errors,
@@ -100,7 +100,7 @@ fn epsilon(o: &Outcome, reference: &Outcome, i: usize, scale: Option<f64>) -> f6
 }
 
 /// Every section's choice in a run: the combination's, else the scene's.
-fn combination_of(
+pub(super) fn combination_of(
     structure: &Structure,
     combination: Option<&[(String, Choice)]>,
 ) -> Vec<(String, String)> {

@@ -1,7 +1,7 @@
 //! One run of a fidelity study: a combination's scene built, run (timed
 //! `--repeats` times) and reduced to the quantities.
 
-use super::{Choice, FidelityPlan, Outcome, Structure, quantities, run_table};
+use super::{Choice, FidelityPlan, Outcome, Subject};
 use crate::costs::repeated;
 use crate::run::{RunOptions, run_scene};
 use std::path::Path;
@@ -13,7 +13,7 @@ use toml::Table;
 pub(super) fn run_one(
     path: &Path,
     table: &Table,
-    structure: &Structure,
+    subject: &dyn Subject,
     combination: Option<&[(String, Choice)]>,
     plan: &FidelityPlan,
 ) -> Outcome {
@@ -28,7 +28,7 @@ pub(super) fn run_one(
         error: Some(error),
         warnings: Vec::new(),
     };
-    let (table, units) = match run_table(table, structure, combination) {
+    let (table, reader) = match subject.run_table(table, combination) {
         Ok(t) => t,
         Err(e) => return failed(e),
     };
@@ -45,10 +45,7 @@ pub(super) fn run_one(
         Ok(r) => r,
         Err(e) => return failed(e.to_string()),
     };
-    let series: Result<Vec<Vec<f64>>, String> = quantities::names(&structure.features)
-        .iter()
-        .map(|n| quantities::series(n, &units, &structure.features, &result.recorder))
-        .collect();
+    let series = reader(&result.recorder);
     let counters = &result.summary.counters;
     let again =
         || run_scene(&scene, &options).map_or(f64::NAN, |r| r.summary.cost_per_simulated_second);

@@ -42,7 +42,10 @@ name = "upper"
         "upper=nonlinear,nonlinear:8",
     ]);
     let layout = slender_scene::structure::layout(&table).unwrap().unwrap();
-    let labels: Vec<String> = combinations(&plan, &own_choices(&layout))
+    let sections: Vec<SectionName> = (layout.sections.iter())
+        .map(|s| SectionName::of(s.name.clone(), s))
+        .collect();
+    let labels: Vec<String> = combinations(&plan, &own_choices(&sections))
         .iter()
         .map(|run| format!("{}={}", run[0].0, run[0].1.label()))
         .collect();
@@ -68,5 +71,50 @@ fn a_section_given_twice_is_refused() {
     assert!(
         e.contains("--section lower: the section is given twice"),
         "{e}"
+    );
+}
+
+/// The OC3 spar's mooring (20 s, 10-element lines): a section named alone
+/// is studied in every line, `LINE.SECTION` in that line only, each against
+/// a run with every line whole; the lines' tensions judge, the body's
+/// motions are reported; a section no line has is refused with the names.
+#[test]
+fn a_mooring_s_line_sections_are_studied_against_every_line_whole() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/oc3_hywind_jonswap.toml");
+    let mut plan = one_at_a_time(&["lower=nonlinear", "line1.upper=nonlinear:4"]);
+    plan.duration = Some(20.0);
+    plan.overrides = vec!["mooring.line.elements=10".into()];
+    let report = run_fidelity(&path, &plan, |_| {}).unwrap();
+    assert_eq!(
+        report.judged,
+        ["line1_tension", "line2_tension", "line3_tension"]
+    );
+    assert_eq!(report.quantities.len(), 9, "{:?}", report.quantities);
+    assert_eq!(report.rows.len(), 3);
+    for row in &report.rows {
+        assert!(row.error.is_none(), "{:?}", row.error);
+    }
+    let label = |row: &FidelityRow, section: &str| {
+        let found = row.combination.iter().find(|(s, _)| s == section);
+        found.map(|(_, c)| c.clone()).unwrap_or_default()
+    };
+    let (all_lower, one_upper) = (&report.rows[1], &report.rows[2]);
+    for line in ["line1", "line2", "line3"] {
+        assert_eq!(label(all_lower, &format!("{line}.lower")), "nonlinear");
+        assert_eq!(label(one_upper, &format!("{line}.lower")), "static");
+    }
+    assert_eq!(label(one_upper, "line1.upper"), "nonlinear:4");
+    assert_eq!(label(one_upper, "line2.upper"), "nonlinear");
+    // The lower halves as the line's own mesh: the whole line cut in two.
+    assert!(all_lower.worst_error < 1e-3, "{}", all_lower.worst_error);
+    // Four elements on line 1's upper half: that line's tension moves most.
+    let error = |row: &FidelityRow, q: &str| row.errors.iter().find(|e| e.0 == q).unwrap().1;
+    assert!(error(one_upper, "line1_tension") > error(one_upper, "line2_tension"));
+    plan.sections = vec!["line4.lower=static".parse().unwrap()];
+    let refused = run_fidelity(&path, &plan, |_| {}).expect_err("no line4");
+    assert!(
+        refused.contains("line1.lower") && refused.contains("line4.lower"),
+        "{refused}"
     );
 }
