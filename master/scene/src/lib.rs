@@ -225,6 +225,20 @@ impl Scene {
                 ),
             )
         })?;
+        // Time is kept in whole nanoseconds: a step between two (1/3 ms) was
+        // rounded, and a unit or an FMU counting its own time fell behind.
+        let nanos = sim.step * 1e9;
+        if (nanos - nanos.round()).abs() > 1e-3 {
+            return Err(self.error(
+                None,
+                "simulation.step",
+                format!(
+                    "{} s is not a whole number of nanoseconds (slender keeps time in integer ns, and a rounded step lets the units' clocks drift): give e.g. {:e} s",
+                    sim.step,
+                    nanos.round().max(1.0) * 1e-9
+                ),
+            ));
+        }
         let step = Time::from_secs(sim.step)
             .filter(|s| *s > Time::ZERO)
             .ok_or_else(|| {

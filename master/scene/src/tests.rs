@@ -142,3 +142,27 @@ fn a_fidelity_is_written_in_a_scene_as_on_the_command_line() {
         assert!(error.contains(expected), "{written}: {error}");
     }
 }
+
+#[test]
+fn a_step_that_is_not_a_whole_number_of_nanoseconds_is_refused() {
+    // 1/3 ms was rounded to 333 333 ns: an FMU's own clock fell behind and
+    // its fmi2DoStep failed after 500 000 steps.
+    let step = HANGING_PIPE
+        .lines()
+        .find(|l| l.starts_with("step = "))
+        .expect("step");
+    let text = HANGING_PIPE.replacen(step, "step = 0.0003333333333333333", 1);
+    let error = parse(&text).expect_err("1/3 ms").to_string();
+    assert!(error.contains("simulation.step"), "{error}");
+    assert!(error.contains("not a whole number of nanoseconds"), "{error}");
+    assert!(error.contains("3.33333e-4 s"), "{error}");
+    // Steps written in decimals stay whole: 0.1 s, 1 ms, 2 ns.
+    for fine in ["0.1", "0.001", "0.000000002"] {
+        let text = HANGING_PIPE
+            .replacen(step, &format!("step = {fine}"), 1)
+            .replacen("duration = ", "duration = 0.2 # ", 1);
+        if let Err(e) = parse(&text) {
+            assert!(!e.to_string().contains("nanoseconds"), "{fine}: {e}");
+        }
+    }
+}
