@@ -132,6 +132,42 @@ fn an_ssp_slender_cannot_run_is_refused_naming_the_file_and_the_reason() {
     assert!(e.contains("../outside.fmu") && e.contains("inside"), "{e}");
 }
 
+/// An SSP unpacked into a folder runs from its `.ssd` given by a relative
+/// path (the folder was joined twice: `d/d/resources/left.fmu`), and an FMU
+/// or an SSP written where a link was planted replaces the link instead of
+/// writing through it to the file it points to.
+#[test]
+fn an_unpacked_ssp_runs_by_a_relative_path_and_archives_replace_planted_links() {
+    let dir = tempfile::tempdir().unwrap();
+    let b1 = root().join("examples/b1_two_masses.toml");
+    let cli = fmu::library().with_file_name("slender");
+    let slender = |args: &[&str]| {
+        let out = Command::new(&cli)
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stderr).into_owned();
+        (out.status.success(), text)
+    };
+    let victim = dir.path().join("victim.txt");
+    std::fs::write(&victim, "keep").unwrap();
+    std::os::unix::fs::symlink(&victim, dir.path().join("b1.ssp")).unwrap();
+    let wrapped = slender(&["fmu", "wrap", b1.to_str().unwrap(), "--out", "b1.ssp"]);
+    assert!(wrapped.0, "{}", wrapped.1);
+    std::fs::create_dir(dir.path().join("e")).unwrap();
+    std::os::unix::fs::symlink(&victim, dir.path().join("e/left.fmu")).unwrap();
+    let b1_text = b1.to_str().unwrap();
+    let exported = slender(&["fmu", "export", b1_text, "--unit", "left", "--out", "e/left.fmu"]);
+    assert!(exported.0, "{}", exported.1);
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
+    let unpacked = dir.path().join("d");
+    slender_fmi::ssp::archive::open(&dir.path().join("b1.ssp"), &unpacked).unwrap();
+    let ran = slender(&["run", "d/SystemStructure.ssd", "--out", "o"]);
+    assert!(ran.0, "{}", ran.1);
+    assert!(dir.path().join("o/summary.json").exists());
+}
+
 /// libcosim's run of `file` (its OSP annotation's step) for `steps` steps:
 /// the values of `signals` after each step.
 fn libcosim(file: &Path, steps: usize, signals: &[String]) -> Vec<Vec<f64>> {

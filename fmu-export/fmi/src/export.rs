@@ -544,7 +544,7 @@ pub fn package_version(
         std::fs::create_dir_all(folder)
             .map_err(|e| file_error(folder, format!("cannot create the FMU's folder ({e})")))?;
     }
-    let file = std::fs::File::create(out)
+    let (file, partial) = crate::whole_file::create(out)
         .map_err(|e| file_error(out, format!("cannot create the FMU ({e})")))?;
     let mut zip = zip::ZipWriter::new(file);
     let options = zip::write::SimpleFileOptions::default()
@@ -576,5 +576,5 @@ pub fn package_version(
         zip.write_all(&bytes).map_err(|e| failed(&e))?;
     }
     zip.finish().map_err(|e| failed(&e))?;
-    Ok(())
+    crate::whole_file::finish(&partial, out).map_err(|e| failed(&e))
 }

@@ -14,3 +14,4 @@ pub mod import;
 pub mod measure;
 pub mod model_description;
 pub mod ssp;
+mod whole_file;

@@ -23,7 +23,7 @@ pub fn package(
     fmus: &[(String, PathBuf)],
     out: &Path,
 ) -> Result<(), PackageError> {
-    let file = std::fs::File::create(out)
+    let (file, partial) = crate::whole_file::create(out)
         .map_err(|e| file_error(out, format!("cannot create the SSP ({e})")))?;
     let failed = |e: &dyn std::fmt::Display| file_error(out, format!("writing the SSP: {e}"));
     let mut zip = zip::ZipWriter::new(file);
@@ -43,7 +43,7 @@ pub fn package(
         zip.write_all(&bytes).map_err(|e| failed(&e))?;
     }
     zip.finish().map_err(|e| failed(&e))?;
-    Ok(())
+    crate::whole_file::finish(&partial, out).map_err(|e| failed(&e))
 }
 
 /// Why an SSP cannot be opened.
@@ -65,7 +65,10 @@ pub fn open(path: &Path, dir: &Path) -> Result<(SystemStructure, PathBuf), OpenE
         problem,
     };
     let root = if path.extension().is_some_and(|e| e == "ssd") {
-        path.parent().unwrap_or(Path::new(".")).to_owned()
+        // Absolute: the scene made of it resolves its units' files from the
+        // `.ssd`'s own folder, which would join a relative folder twice.
+        let folder = path.parent().unwrap_or(Path::new("."));
+        std::path::absolute(folder).map_err(|e| fail(format!("no folder ({e})")))?
     } else {
         let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot open ({e})")))?;
         let mut zip = zip::ZipArchive::new(file).map_err(|e| fail(format!("not a zip ({e})")))?;
