@@ -158,7 +158,15 @@ fn an_unpacked_ssp_runs_by_a_relative_path_and_archives_replace_planted_links() 
     std::fs::create_dir(dir.path().join("e")).unwrap();
     std::os::unix::fs::symlink(&victim, dir.path().join("e/left.fmu")).unwrap();
     let b1_text = b1.to_str().unwrap();
-    let exported = slender(&["fmu", "export", b1_text, "--unit", "left", "--out", "e/left.fmu"]);
+    let exported = slender(&[
+        "fmu",
+        "export",
+        b1_text,
+        "--unit",
+        "left",
+        "--out",
+        "e/left.fmu",
+    ]);
     assert!(exported.0, "{}", exported.1);
     assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
     let unpacked = dir.path().join("d");

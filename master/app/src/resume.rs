@@ -18,6 +18,9 @@ pub struct Kept {
     dir: PathBuf,
     /// The hash of the scene's text and the study's options.
     study: u64,
+    /// The study as asked, in words, and whether it may replace another
+    /// study the folder holds (`--fresh`): see [`Kept::claim`].
+    request: Option<(String, bool)>,
 }
 
 /// What a kept run's file holds: its settings in words (to tell a hash
@@ -37,7 +40,44 @@ impl Kept {
         let dir = folder.join("runs");
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let study = fnv1a(fnv1a(FNV_OFFSET, &text), options.as_bytes());
-        Ok(Kept { dir, study })
+        Ok(Kept {
+            dir,
+            study,
+            request: None,
+        })
+    }
+
+    /// The same, for the study asked as `request` (in words; `fresh`: it may
+    /// replace another study the folder holds).
+    pub fn asking(self, request: String, fresh: bool) -> Kept {
+        Kept {
+            request: Some((request, fresh)),
+            ..self
+        }
+    }
+
+    /// Claims the folder for the study asked, once it is known to be valid
+    /// (called before its first run): a folder holding another study asked
+    /// differently is refused unless `fresh`, rather than have its tables and
+    /// figures overwritten; `request.txt` then says what it holds.
+    pub fn claim(&self) -> Result<(), String> {
+        let Some((request, fresh)) = &self.request else {
+            return Ok(());
+        };
+        let folder = self.dir.parent().unwrap_or(Path::new("."));
+        let asked = folder.join("request.txt");
+        if let Ok(held) = std::fs::read_to_string(&asked)
+            && held.trim_end() != request
+            && !fresh
+        {
+            return Err(format!(
+                "{} holds another study ({}); this one asks {request}: give --out to keep both, or --fresh to replace it",
+                folder.display(),
+                held.trim_end()
+            ));
+        }
+        crate::whole::write(&asked, format!("{request}\n"))
+            .map_err(|e| format!("{}: {e}", asked.display()))
     }
 
     fn file(&self, run: &str) -> PathBuf {

@@ -173,3 +173,51 @@ fn a_fidelity_study_reads_back_its_finished_runs_but_not_failed_ones() {
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// A second fidelity study asked differently into the same folder is refused
+/// (it overwrote the first one's tables and figures, issue 49 #3), naming
+/// both requests and `--out`; the same request resumes, and `--fresh`
+/// replaces the folder's study.
+#[test]
+fn a_different_study_into_the_same_folder_is_refused_unless_fresh() {
+    let dir = scratch("another");
+    let out = dir.join("o").to_str().unwrap().to_owned();
+    let asked = |choices: &str, fresh: bool| {
+        let mut args = vec![
+            "fidelity",
+            "examples/structure_hanging_pipe.toml",
+            "--section",
+            choices,
+            "--duration",
+            "1",
+            "--out",
+            &out,
+        ];
+        if fresh {
+            args.push("--fresh");
+        }
+        slender(&args)
+    };
+    let first = asked("middle=nonlinear:5", false);
+    assert!(first.status.success(), "{}", text(&first.stderr));
+    let table = std::fs::read_to_string(dir.join("o/fidelity.csv")).unwrap();
+    let other = asked("middle=nonlinear:3", false);
+    assert_eq!(other.status.code(), Some(2), "{}", text(&other.stderr));
+    let message = text(&other.stderr);
+    assert!(
+        message.contains("holds another study") && message.contains("--out"),
+        "{message}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("o/fidelity.csv")).unwrap(),
+        table
+    );
+    assert!(asked("middle=nonlinear:5", false).status.success());
+    let replaced = asked("middle=nonlinear:3", true);
+    assert!(replaced.status.success(), "{}", text(&replaced.stderr));
+    assert_ne!(
+        std::fs::read_to_string(dir.join("o/fidelity.csv")).unwrap(),
+        table
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -154,7 +154,10 @@ fn a_step_that_is_not_a_whole_number_of_nanoseconds_is_refused() {
     let text = HANGING_PIPE.replacen(step, "step = 0.0003333333333333333", 1);
     let error = parse(&text).expect_err("1/3 ms").to_string();
     assert!(error.contains("simulation.step"), "{error}");
-    assert!(error.contains("not a whole number of nanoseconds"), "{error}");
+    assert!(
+        error.contains("not a whole number of nanoseconds"),
+        "{error}"
+    );
     assert!(error.contains("3.33333e-4 s"), "{error}");
     // Steps written in decimals stay whole: 0.1 s, 1 ms, 2 ns.
     for fine in ["0.1", "0.001", "0.000000002"] {

@@ -84,7 +84,12 @@ pub(super) fn study(
         "duration {:?}, repeats {}, cost units {:?}, set {:?}",
         plan.duration, plan.repeats, plan.cost_units, plan.overrides
     );
-    let kept = kept_runs(&dir, path, &options, fresh)?;
+    let request = {
+        let mut asked = plan.clone();
+        (asked.jobs, asked.max_runs) = (0, 0);
+        format!("study of {}: {asked:?}", path.display())
+    };
+    let kept = kept_runs(&dir, path, (&options, &request), fresh)?;
     let rows = study::run_study_resuming(path, plan, Some(&kept), |line| println!("{line}"))
         .map_err(CliError::input)?;
     println!(
@@ -181,7 +186,12 @@ pub(super) fn fidelity(
         "duration {:?}, repeats {}, set {:?}",
         plan.duration, plan.repeats, plan.overrides
     );
-    let kept = kept_runs(&dir, path, &options, fresh)?;
+    let request = {
+        let mut asked = plan.clone();
+        (asked.jobs, asked.max_runs) = (0, 0);
+        format!("fidelity study of {}: {asked:?}", path.display())
+    };
+    let kept = kept_runs(&dir, path, (&options, &request), fresh)?;
     let report = fidelity::run_fidelity_kept(path, plan, Some(&kept), |line| println!("{line}"))
         .map_err(CliError::input)?;
     let write = |name: &str, text: String| super::write_in(&dir, name, text);
@@ -224,10 +234,13 @@ pub(super) fn fidelity(
 
 /// The runs a study keeps in `dir/runs` to resume (emptied first when
 /// `fresh`), keyed by the scene's text, this build's version and `options`.
+/// The folder holds one study: the study claims it before its first run
+/// (`Kept::claim`), and another one asked differently (`request`, in words)
+/// is refused then unless `fresh`.
 fn kept_runs(
     dir: &Path,
     scene: &Path,
-    options: &str,
+    (options, request): (&str, &str),
     fresh: bool,
 ) -> Result<slender_app::resume::Kept, CliError> {
     let runs = dir.join("runs");
@@ -236,7 +249,8 @@ fn kept_runs(
             .map_err(|e| CliError::failure(format!("{}: {e}", runs.display())))?;
     }
     let options = format!("slender {}, {options}", env!("CARGO_PKG_VERSION"));
-    slender_app::resume::Kept::new(dir, scene, &options).map_err(CliError::failure)
+    let kept = slender_app::resume::Kept::new(dir, scene, &options).map_err(CliError::failure)?;
+    Ok(kept.asking(request.to_owned(), fresh))
 }
 
 /// One finished run (groups print when all their runs are done).

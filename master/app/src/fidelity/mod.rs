@@ -167,6 +167,9 @@ pub fn run_fidelity_kept(
     // the bound last, so that a study refused for its size was otherwise valid.
     let judged = judged_of(plan, &names, subject)?;
     within_bound(plan)?;
+    if let Some(kept) = kept {
+        kept.claim()?;
+    }
     let mut tasks: Vec<Task> = vec![None];
     tasks.extend(
         combinations(plan, &own_choices(&sections))

@@ -282,6 +282,9 @@ fn run_study_kept(
             ));
         }
     }
+    if let Some(kept) = kept {
+        kept.claim()?;
+    }
     let external = reference.map(|r| &r.outcome);
     let groups = groups(plan);
     let all: Vec<&Vec<Assignment>> = groups.iter().flat_map(|(_, runs)| runs).collect();
