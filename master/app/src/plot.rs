@@ -129,10 +129,8 @@ fn panel_chart(
         .draw()?;
     for (i, (_, column)) in series.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
-        chart.draw_series(LineSeries::new(
-            time.iter().copied().zip(column.iter().copied()),
-            color.stroke_width(2),
-        ))?;
+        let points = crate::figures::thin::thinned(time, column, crate::figures::thin::COLUMNS);
+        chart.draw_series(LineSeries::new(points, color.stroke_width(2)))?;
     }
     Ok(())
 }

@@ -17,6 +17,7 @@ pub mod curves;
 mod heat;
 pub mod labels;
 pub mod study;
+pub(crate) mod thin;
 pub mod ticks;
 pub mod tradeoff;
 pub mod units;
