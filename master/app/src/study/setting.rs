@@ -99,13 +99,21 @@ impl Setting {
 /// comparing schemes runs each at its defaults: a new acceleration kind
 /// starts from its own defaults (an IQN-ILS `reuse_steps` would be refused by
 /// Aitken), and a non-iterative scheme drops the acceleration and Newton it
-/// cannot take.
+/// cannot take. The kind the scene has already keeps the scene's settings (a
+/// sweep over kinds that includes the scene's own ran it at other settings).
 fn scheme_preset(path: &[String], scene: &mut toml::Table, value: &toml::Value) {
     let Some(toml::Value::Table(master)) = scene.get_mut("master") else {
         return;
     };
+    let kind = |m: &toml::Table| {
+        let acceleration = m.get("acceleration");
+        acceleration.and_then(|a| a.get("kind")).cloned()
+    };
     match path {
         [m, a, k] if m == "master" && a == "acceleration" && k == "kind" => {
+            if kind(master).as_ref() == Some(value) {
+                return;
+            }
             master.remove("acceleration");
             master.remove("newton");
         }
@@ -412,6 +420,9 @@ segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
             let s: Setting = key.parse().unwrap();
             s.apply(t, &toml::Value::String(value.into())).unwrap();
         };
+        // The scene's own kind keeps its settings.
+        set(&mut t, "master.acceleration.kind", "iqn_ils");
+        assert_eq!(t["master"]["acceleration"]["reuse_steps"].as_integer(), Some(8));
         set(&mut t, "master.acceleration.kind", "aitken");
         assert_eq!(
             t["master"]["acceleration"].to_string(),
