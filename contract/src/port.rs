@@ -104,6 +104,9 @@ pub struct Port {
     pub depends_on: Vec<usize>,
     /// For inputs: how the unit holds it inside a step. Unused for outputs.
     pub hold: Hold,
+    /// For inputs: the value it takes where nothing drives it and the scene
+    /// gives none (an imported FMU's declared start value); `None`: 0.
+    pub start: Option<f64>,
 }
 
 impl Port {
@@ -116,6 +119,7 @@ impl Port {
             unit: kind.si_unit().to_owned(),
             depends_on: Vec::new(),
             hold: Hold::Ramp,
+            start: None,
         }
     }
 
@@ -128,6 +132,7 @@ impl Port {
             unit: kind.si_unit().to_owned(),
             depends_on: Vec::new(),
             hold: Hold::Ramp,
+            start: None,
         }
     }
 

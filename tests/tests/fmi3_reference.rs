@@ -173,3 +173,44 @@ fn the_feedthrough_reference_fmu_passes_its_float64s_and_takes_every_start_type(
         "{error}"
     );
 }
+
+/// An input nothing drives takes its start value (the scene's, else the
+/// FMU's declared one), not 0: the master sent 0 over a start value of 2.5
+/// given to the Feedthrough FMU, which then put out 0 (issue 49 #10).
+#[test]
+fn an_undriven_input_of_an_imported_fmu_takes_its_start_value() {
+    let dir = tempfile::tempdir().unwrap();
+    let fmu = build("Feedthrough", dir.path());
+    let scene = format!(
+        r#"
+[simulation]
+duration = 0.3
+step = 0.1
+
+[master]
+scheme = "jacobi"
+
+[[units]]
+name = "through"
+kind = "fmu"
+parameters = {{ file = "{}", start = {{ Float64_continuous_input = 2.5 }} }}
+
+[output]
+signals = ["through.Float64_continuous_output", "through.Float64_discrete_output"]
+"#,
+        fmu.display()
+    );
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, scene).unwrap();
+    let scene = slender_scene::Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let series = slender_tests::run(&scene);
+    assert!(series.error.is_none(), "{:?}", series.error);
+    // The scene's start value on the continuous input, the FMU's declared
+    // one (0) on the discrete input.
+    for y in series.get("through.Float64_continuous_output") {
+        assert_eq!(*y, 2.5);
+    }
+    for y in series.get("through.Float64_discrete_output") {
+        assert_eq!(*y, 0.0);
+    }
+}

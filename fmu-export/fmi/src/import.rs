@@ -166,8 +166,9 @@ impl FmuUnit {
         } else {
             Calls::Two(Api::bind(&library, states, derivatives).map_err(library_error)?)
         };
-        let description = describe(&model, &label)?;
+        let mut description = describe(&model, &label)?;
         let starts = start_values(&model, &params.start, &label)?;
+        given_input_starts(&mut description, &params.start);
         let (input_refs, _) = real_refs(&model, VariableCausality::Input);
         let (output_refs, output_sizes) = real_refs(&model, VariableCausality::Output);
         let (n_in, n_out) = (description.inputs.len(), description.outputs.len());
@@ -574,4 +575,15 @@ pub fn file_uri(path: &Path) -> String {
         }
     }
     uri
+}
+
+/// A start value the scene gives an input is its value where nothing drives
+/// it (the master sent 0 over it before).
+fn given_input_starts(description: &mut UnitDescription, given: &BTreeMap<String, toml::Value>) {
+    for port in description.inputs.iter_mut() {
+        let value = given.get(&port.name);
+        if let Some(x) = value.and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))) {
+            port.start = Some(x);
+        }
+    }
 }

@@ -153,7 +153,10 @@ impl System {
         if self.unit_index(name).is_some() {
             return Err(SystemError::DuplicateUnit(name.to_owned()));
         }
-        let start_inputs = vec![0.0; unit.description().inputs.len()];
+        // An input nothing drives takes its declared start value, else 0.
+        let start_inputs = (unit.description().inputs.iter())
+            .map(|p| p.start.filter(|v| v.is_finite()).unwrap_or(0.0))
+            .collect();
         self.by_name.insert(name.to_owned(), self.units.len());
         self.units.push(NamedUnit {
             name: name.to_owned(),

@@ -25,7 +25,12 @@ pub(super) fn describe(
                     format!("{}[{}]", v.name, k + 1)
                 };
                 let port = if causality == VariableCausality::Input {
-                    Port::input(&name, kind)
+                    // Its declared start value, where nothing drives it.
+                    let mut input = Port::input(&name, kind);
+                    if let (Value::Real(Some(start)), true) = (&v.value, v.dimensions.is_empty()) {
+                        input.start = Some(*start);
+                    }
+                    input
                 } else {
                     Port::output(&name, kind)
                 };
@@ -163,4 +168,28 @@ pub(super) fn start_values(
         });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A Real input's declared start value is its port's start (what it
+    /// takes where nothing drives it); other ports have none.
+    #[test]
+    fn an_input_s_declared_start_is_its_port_s_start() {
+        let xml = include_str!(
+            "../../../../tests/fuzz/model_description/fmi3_reference_feedthrough.xml"
+        )
+        .replacen(
+            r#"name="Float64_continuous_input" valueReference="7" causality="input" start="0""#,
+            r#"name="Float64_continuous_input" valueReference="7" causality="input" start="2.5""#,
+            1,
+        );
+        let model = ModelDescription::parse(&xml).unwrap();
+        let d = describe(&model, "feedthrough").unwrap();
+        let starts: Vec<Option<f64>> = d.inputs.iter().map(|p| p.start).collect();
+        assert_eq!(starts, [Some(2.5), Some(0.0)]);
+        assert!(d.outputs.iter().all(|p| p.start.is_none()));
+    }
 }

@@ -422,7 +422,10 @@ segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
         };
         // The scene's own kind keeps its settings.
         set(&mut t, "master.acceleration.kind", "iqn_ils");
-        assert_eq!(t["master"]["acceleration"]["reuse_steps"].as_integer(), Some(8));
+        assert_eq!(
+            t["master"]["acceleration"]["reuse_steps"].as_integer(),
+            Some(8)
+        );
         set(&mut t, "master.acceleration.kind", "aitken");
         assert_eq!(
             t["master"]["acceleration"].to_string(),
