@@ -139,6 +139,8 @@ pub struct System {
     /// constant time, so a system of 100 000 units builds in linear time.
     by_name: HashMap<String, usize>,
     driven: HashMap<PortRef, usize>,
+    /// Inputs whose start value the scene gave (`set_start_input`).
+    given: std::collections::HashSet<PortRef>,
 }
 
 impl System {
@@ -153,7 +155,8 @@ impl System {
         if self.unit_index(name).is_some() {
             return Err(SystemError::DuplicateUnit(name.to_owned()));
         }
-        // An input nothing drives takes its declared start value, else 0.
+        // An input takes its declared start value (an FMU's), else 0, while
+        // nothing drives it (see `connect`).
         let start_inputs = (unit.description().inputs.iter())
             .map(|p| p.start.filter(|v| v.is_finite()).unwrap_or(0.0))
             .collect();
@@ -293,6 +296,11 @@ impl System {
             });
         }
         self.driven.insert(target, self.connections.len());
+        // A driven input's first guess is the scene's, else 0 as a native
+        // unit's (a declared start is for an input nothing drives).
+        if !self.given.contains(&target) {
+            self.units[target.unit].start_inputs[target.port] = 0.0;
+        }
         self.connections.push(Connection {
             from: source,
             to: target,
@@ -314,6 +322,7 @@ impl System {
         }
         let r = self.resolve(to, Causality::Input)?;
         self.units[r.unit].start_inputs[r.port] = value;
+        self.given.insert(r);
         Ok(())
     }
 }
