@@ -12,7 +12,9 @@ here is the result the command wrote::
                          vary={"step": [0.001, 0.002, 0.005]})
 
 The binary is ``$SLENDER_BINARY``, else ``slender`` on the ``PATH``, else
-``target/release/slender`` in the current folder or one above it.
+``target/release/slender`` in the current folder or one above it. Without
+``out``, a command writes into a temporary folder that is removed once read
+(``Run.folder`` is then ``None``).
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ __all__ = [
     "run",
     "study",
     "fidelity",
+    "uq",
     "read_run",
     "read_study",
     "read_fidelity",
@@ -58,7 +61,8 @@ class SlenderError(RuntimeError):
 class Run:
     """A run's results folder read back."""
 
-    folder: Path
+    #: Where the results are (``None``: a temporary folder, read and removed).
+    folder: Optional[Path]
     #: The recorded signals, one column each, indexed by time (s).
     timeseries: pd.DataFrame
     #: summary.json as a dictionary (status, error, counters, indicators...).
@@ -118,6 +122,15 @@ def _folder(out: Optional[PathLike], name: str) -> Path:
     return Path(out) if out is not None else Path(tempfile.mkdtemp(prefix=f"slender-{name}-"))
 
 
+def _read_then_tidy(folder: Path, out: Optional[PathLike], read):
+    """``read(folder)``; a temporary folder (no ``out``) is removed after."""
+    try:
+        return read(folder)
+    finally:
+        if out is None:
+            shutil.rmtree(folder, ignore_errors=True)
+
+
 def run(scene: PathLike, out: Optional[PathLike] = None, duration: Optional[float] = None,
         set: Optional[Mapping[str, object]] = None) -> Run:
     """Runs ``scene`` (``slender run``) into ``out`` (a new temporary folder when
@@ -129,7 +142,10 @@ def run(scene: PathLike, out: Optional[PathLike] = None, duration: Optional[floa
     if duration is not None:
         args += ["--duration", repr(float(duration))]
     _call(args, accept_failed_runs=True)
-    return read_run(folder)
+    result = _read_then_tidy(folder, out, read_run)
+    if out is None:
+        result.folder = None
+    return result
 
 
 def _name_and_unit(column: str) -> tuple:
@@ -141,14 +157,44 @@ def _name_and_unit(column: str) -> tuple:
     return column, ""
 
 
+def _summary(folder: Path) -> dict:
+    """summary.json, or an error that says why there is none."""
+    path = folder / "summary.json"
+    if path.exists():
+        return json.loads(path.read_text())
+    partial = sorted(p.name for p in folder.glob("*.partial"))
+    if partial:
+        raise FileNotFoundError(f"{folder}: the run did not finish (only {', '.join(partial)}; no summary.json)")
+    raise FileNotFoundError(f"{folder}: no summary.json: not a slender run's results folder")
+
+
+def _series(folder: Path, summary: dict) -> pd.DataFrame:
+    """timeseries.csv, refused when torn (cut mid-row, or ending before the
+    time the summary says the run reached) or missing where signals were
+    recorded."""
+    path = folder / "timeseries.csv"
+    if not path.exists():
+        if summary.get("units"):
+            raise FileNotFoundError(f"{path}: missing, though the run recorded {len(summary['units'])} signals")
+        return pd.DataFrame()
+    text = path.read_text()
+    if text and not text.endswith("\n"):
+        raise ValueError(f"{path}: torn (its last row is cut off); run the scene again")
+    frame = pd.read_csv(path, float_precision="round_trip")
+    end = summary.get("start_s", 0.0) + summary.get("simulated_s", 0.0)
+    if summary.get("status") == "completed" and len(frame) and abs(frame.iloc[-1, 0] - end) > 1e-9 * max(1.0, abs(end)):
+        raise ValueError(f"{path}: torn (it ends at t = {frame.iloc[-1, 0]} s, the run at {end} s)")
+    return frame
+
+
 def read_run(folder: PathLike) -> Run:
     """A run's folder: timeseries.csv (indexed by time, its columns the signals'
     names; the units its header gives in brackets), summary.json and the
-    columns' units."""
+    columns' units. A torn or missing file raises (``ValueError``,
+    ``FileNotFoundError``) saying which."""
     folder = Path(folder)
-    summary = json.loads((folder / "summary.json").read_text())
-    series = folder / "timeseries.csv"
-    frame = pd.read_csv(series, float_precision="round_trip") if series.exists() else pd.DataFrame()
+    summary = _summary(folder)
+    frame = _series(folder, summary)
     units = dict(summary.get("units", {}))
     if not frame.empty:
         named = [_name_and_unit(c) for c in frame.columns]
@@ -180,7 +226,7 @@ def study(scene: PathLike, vary: Mapping[str, Iterable[object]], grid: bool = Fa
     if reference is not None:
         args += ["--reference", str(reference)]
     _call(args, accept_failed_runs=True)
-    return read_study(folder)
+    return _read_then_tidy(folder, out, read_study)
 
 
 def fidelity(scene: PathLike, sections: Mapping[str, Iterable[str]], grid: bool = False,
@@ -201,17 +247,53 @@ def fidelity(scene: PathLike, sections: Mapping[str, Iterable[str]], grid: bool 
     if tolerance is not None:
         args += ["--tolerance", repr(float(tolerance))]
     _call(args, accept_failed_runs=True)
-    return read_fidelity(folder)
+    return _read_then_tidy(folder, out, read_fidelity)
+
+
+def uq(scene: PathLike, samples: Optional[int] = None, out: Optional[PathLike] = None,
+       duration: Optional[float] = None, jobs: Optional[int] = None,
+       set: Optional[Mapping[str, object]] = None) -> tuple:
+    """An uncertainty study (``slender uq``) of the scene's ``[uncertainty]``:
+    (uq.json as a dictionary, runs.csv as a data frame), as :func:`read_uq`."""
+    folder = _folder(out, "uq")
+    args = ["uq", str(scene), "--out", str(folder), *_settings(set)]
+    if samples is not None:
+        args += ["--samples", str(int(samples))]
+    if duration is not None:
+        args += ["--duration", repr(float(duration))]
+    if jobs is not None:
+        args += ["--jobs", str(int(jobs))]
+    _call(args, accept_failed_runs=True)
+    return _read_then_tidy(folder, out, read_uq)
+
+
+def _table(path: Path, text_columns: Sequence[str]) -> pd.DataFrame:
+    """A study's CSV: its text columns as written, ``true``/``false`` columns as
+    booleans, every other one a number (an empty cell NaN)."""
+    frame = pd.read_csv(path, keep_default_na=False, na_values=["NaN", "nan"], float_precision="round_trip",
+                        dtype=str)
+    for column in frame.columns:
+        values = frame[column]
+        if column in text_columns:
+            continue
+        if values.isin(["true", "false"]).all() and len(values):
+            frame[column] = values == "true"
+        else:
+            numbers = pd.to_numeric(values.replace("", "nan"), errors="coerce")
+            # A column of words stays words.
+            if numbers.notna().sum() >= (values.replace("", pd.NA).notna()).sum():
+                frame[column] = numbers
+    return frame
 
 
 def read_study(folder: PathLike) -> pd.DataFrame:
     """study.csv of a study's folder."""
-    return pd.read_csv(Path(folder) / "study.csv", keep_default_na=False, na_values=["NaN", "nan"], float_precision="round_trip")
+    return _table(Path(folder) / "study.csv", ["group", "setting", "settings", "error", "warnings"])
 
 
 def read_fidelity(folder: PathLike) -> pd.DataFrame:
     """fidelity.csv of a fidelity study's folder."""
-    return pd.read_csv(Path(folder) / "fidelity.csv", keep_default_na=False, na_values=["NaN", "nan"], float_precision="round_trip")
+    return _table(Path(folder) / "fidelity.csv", ["combination", "error", "warnings"])
 
 
 def read_uq(folder: PathLike) -> tuple:

@@ -72,3 +72,66 @@ except slender.SlenderError as e:
     print("bad input: SlenderError, exit 2")
 else:
     raise AssertionError("a missing scene did not raise")
+
+# Numbers are numbers: an empty cell (the reference's start_change) is NaN,
+# true/false columns are booleans (issue 49 #9: they came back as strings).
+assert table["start_change"].dtype.kind == "f" and table["cost_spread"].dtype.kind == "f", table.dtypes
+assert table["reference"].dtype == bool and table["pareto"].dtype == bool, table.dtypes
+assert rows["start_change"].dtype.kind == "f" and rows["value"].dtype.kind == "f", rows.dtypes
+print("tables: numeric columns as numbers, flags as booleans")
+
+# A torn timeseries.csv, a missing one and a run that never finished raise,
+# saying which (a cut last row was read as a number; a missing file as empty).
+import shutil
+torn = work / "torn"
+shutil.copytree(work / "b1", torn)
+text = (torn / "timeseries.csv").read_text()
+(torn / "timeseries.csv").write_text(text[:-7])
+try:
+    slender.read_run(torn)
+except ValueError as e:
+    assert "torn" in str(e), e
+else:
+    raise AssertionError("a torn timeseries.csv was read")
+short_csv = work / "short_csv"
+shutil.copytree(work / "b1", short_csv)
+lines = (short_csv / "timeseries.csv").read_text().splitlines(keepends=True)
+(short_csv / "timeseries.csv").write_text("".join(lines[:-3]))
+try:
+    slender.read_run(short_csv)
+except ValueError as e:
+    assert "ends at t" in str(e), e
+else:
+    raise AssertionError("a timeseries.csv ending early was read")
+(short_csv / "timeseries.csv").unlink()
+try:
+    slender.read_run(short_csv)
+except FileNotFoundError as e:
+    assert "missing" in str(e), e
+else:
+    raise AssertionError("a missing timeseries.csv was read as empty")
+unfinished = work / "unfinished"
+unfinished.mkdir()
+(unfinished / "timeseries.csv.partial").write_text("time [s]\n0\n")
+try:
+    slender.read_run(unfinished)
+except FileNotFoundError as e:
+    assert "did not finish" in str(e) and "timeseries.csv.partial" in str(e), e
+else:
+    raise AssertionError("an unfinished run was read")
+print("reader: torn, short, missing and unfinished results raise")
+
+# Without `out` the temporary folder is removed once read.
+import glob
+import os
+before = set(glob.glob(os.path.join(tempfile.gettempdir(), "slender-run-*")))
+quick = slender.run(root / "examples/b1_two_masses.toml", duration=0.1)
+after = set(glob.glob(os.path.join(tempfile.gettempdir(), "slender-run-*")))
+assert quick.folder is None and after <= before and len(quick.timeseries) > 0, (quick.folder, after - before)
+print("reader: temporary folders removed")
+
+# An uncertainty study from Python.
+report, runs = slender.uq(root / "examples/truncation_uq.toml", samples=4, duration=2.0, jobs=2,
+                          out=work / "uq")
+assert len(runs) == 4 and "inputs" in report and "design" in report, (len(runs), sorted(report))
+print(f"uq: {len(runs)} runs, uq.json keys {sorted(report)[:4]}")
