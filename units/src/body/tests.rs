@@ -31,6 +31,17 @@ pub(super) fn outs(driver: &Driver<Body>) -> Vec<f64> {
     out
 }
 
+/// One sine of amplitude `a` at `w` rad/s, phase 0.3 rad: a prescribed
+/// motion's component.
+fn phased_sine(a: f64, w: f64) -> Vec<crate::signal::sine::Sine> {
+    vec![crate::signal::sine::Sine {
+        amplitude: a,
+        angular_frequency: w,
+        phase: 0.3,
+        decay: 0.0,
+    }]
+}
+
 /// Runs `body` for `duration` (s) at step `h` with no inputs; the outputs
 /// at every step.
 fn run(params: BodyParams, h: f64, duration: f64) -> Vec<Vec<f64>> {
@@ -167,21 +178,13 @@ fn a_free_body_with_its_centre_of_gravity_off_the_reference_keeps_its_momentum()
 #[test]
 fn a_prescribed_motion_s_fairlead_velocity_and_acceleration_are_its_position_s_rates() {
     let mut p = body_params([2.0e6, 3.0e6, 5.0e6]);
-    let sine = |a: f64, w: f64| {
-        vec![crate::signal::sine::Sine {
-            amplitude: a,
-            angular_frequency: w,
-            phase: 0.3,
-            decay: 0.0,
-        }]
-    };
     p.motion = Some([
-        sine(2.0, 0.5),
-        sine(1.0, 0.3),
-        sine(0.5, 0.7),
-        sine(0.05, 0.4),
-        sine(0.08, 0.6),
-        sine(0.2, 0.2),
+        phased_sine(2.0, 0.5),
+        phased_sine(1.0, 0.3),
+        phased_sine(0.5, 0.7),
+        phased_sine(0.05, 0.4),
+        phased_sine(0.08, 0.6),
+        phased_sine(0.2, 0.2),
     ]);
     p.fairleads = vec![Fairlead {
         name: "f".into(),
@@ -319,22 +322,14 @@ fn bad_parameters_are_refused_by_key() {
 /// time stops with an error that says so.
 #[test]
 fn a_motion_table_follows_the_motion_it_samples() {
-    let sines = |a: f64, w: f64| {
-        vec![crate::signal::sine::Sine {
-            amplitude: a,
-            angular_frequency: w,
-            phase: 0.3,
-            decay: 0.0,
-        }]
-    };
     let mut by_sines = body_params([3.0e7, 4.0e7, 5.0e7]);
     by_sines.motion = Some([
-        sines(2.0, 0.5),
+        phased_sine(2.0, 0.5),
         vec![],
-        sines(0.5, 0.7),
+        phased_sine(0.5, 0.7),
         vec![],
-        sines(0.08, 0.6),
-        sines(0.2, 0.2),
+        phased_sine(0.08, 0.6),
+        phased_sine(0.2, 0.2),
     ]);
     by_sines.fairleads = vec![Fairlead {
         name: "f".into(),
