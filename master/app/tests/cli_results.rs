@@ -91,6 +91,30 @@ fn a_results_folder_has_one_writer_at_a_time() {
     let stale = slender(&args);
     assert!(stale.status.success(), "{}", text(&stale.stderr));
     assert!(out.join("summary.json").exists() && !lock.exists());
+    // A lock holding no process id: refused while fresh (its holder may not
+    // have written its id yet), taken over once old (it was never taken).
+    std::fs::write(&lock, "garbage").unwrap();
+    let fresh = slender(&args);
+    assert_eq!(fresh.status.code(), Some(2), "{}", text(&fresh.stderr));
+    let old = std::time::SystemTime::now() - std::time::Duration::from_secs(60);
+    std::fs::File::options()
+        .write(true)
+        .open(&lock)
+        .unwrap()
+        .set_modified(old)
+        .unwrap();
+    let garbage = slender(&args);
+    assert!(garbage.status.success(), "{}", text(&garbage.stderr));
+    assert!(!lock.exists());
+    // A folder that cannot be made is the user's input: exit 2.
+    let unmakeable = slender(&["run", "examples/b1_two_masses.toml", "--out", "/proc/x"]);
+    assert_eq!(
+        unmakeable.status.code(),
+        Some(2),
+        "{}",
+        text(&unmakeable.stderr)
+    );
+    assert!(text(&unmakeable.stderr).contains("/proc/x"));
     std::fs::remove_dir_all(out).unwrap();
 }
 

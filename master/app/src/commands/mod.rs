@@ -263,8 +263,10 @@ fn made_folder(dir: &Path) -> Result<(), CliError> {
             dir.display()
         )));
     }
+    // A folder the user named that cannot be made (`--out /proc/x`) is bad
+    // input: exit 2, as a misspelt scene.
     std::fs::create_dir_all(dir).map_err(|e| {
-        CliError::failure(format!("{}: cannot create the folder ({e})", dir.display()))
+        CliError::input(format!("{}: cannot create the folder ({e})", dir.display()))
     })?;
     refuse_links(dir, 0)
 }
