@@ -58,10 +58,16 @@ impl Default for CharacteristicLoadParams {
 impl CharacteristicLoadParams {
     fn validate(&self) -> Result<(), UnitError> {
         require_non_negative("static_tension", self.static_tension)?;
-        require_finite(
-            "static_angle_from_vertical_deg",
-            self.static_angle_from_vertical_deg,
-        )?;
+        let angle = self.static_angle_from_vertical_deg;
+        require_finite("static_angle_from_vertical_deg", angle)?;
+        // 400 deg was taken as 40: an angle past a half-turn is a slip.
+        if angle.abs() > 180.0 {
+            return Err(UnitError::parameter(
+                "static_angle_from_vertical_deg",
+                angle,
+                "an angle from the vertical within +-180 deg",
+            ));
+        }
         require_non_negative("lf_amplitude", self.lf_amplitude)?;
         require_non_negative("lf_max_frequency", self.lf_max_frequency)?;
         require_non_negative("wf_amplitude", self.wf_amplitude)?;
@@ -139,5 +145,25 @@ mod tests {
             let dev = ((f[0] - f0[0]).powi(2) + (f[1] - f0[1]).powi(2)).sqrt();
             assert!(dev <= 1.25e6 + 1e-6);
         }
+    }
+
+    #[test]
+    fn an_angle_past_a_half_turn_is_refused() {
+        for angle in [400.0, -181.0] {
+            let p = CharacteristicLoadParams {
+                static_angle_from_vertical_deg: angle,
+                ..CharacteristicLoadParams::default()
+            };
+            let e = p.validate().unwrap_err().to_string();
+            assert!(
+                e.contains("static_angle_from_vertical_deg") && e.contains("180"),
+                "{e}"
+            );
+        }
+        let p = CharacteristicLoadParams {
+            static_angle_from_vertical_deg: -30.0,
+            ..CharacteristicLoadParams::default()
+        };
+        assert!(p.validate().is_ok());
     }
 }
