@@ -214,3 +214,40 @@ signals = ["through.Float64_continuous_output", "through.Float64_discrete_output
         assert_eq!(*y, 0.0);
     }
 }
+
+/// An FMU with clocks is refused by name when loaded (its clocks were
+/// ignored without a word: issue 49 #14), before its binary is looked for.
+#[test]
+fn a_clocked_fmu_is_refused_naming_its_clocks() {
+    let dir = tempfile::tempdir().unwrap();
+    let xml = std::fs::read_to_string(root().join("tests/reference-fmus/Feedthrough/FMI3.xml"))
+        .unwrap()
+        .replacen(
+            "<ModelVariables>",
+            "<ModelVariables>\n    <Clock name=\"tick\" valueReference=\"999\" causality=\"input\"/>",
+            1,
+        );
+    let fmu = dir.path().join("clocked.fmu");
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(&fmu).unwrap());
+    zip.start_file(
+        "modelDescription.xml",
+        zip::write::SimpleFileOptions::default(),
+    )
+    .unwrap();
+    zip.write_all(xml.as_bytes()).unwrap();
+    zip.finish().unwrap();
+    let params = FmuParams {
+        file: fmu,
+        start: Default::default(),
+        preload: Vec::new(),
+        logging: false,
+    };
+    let error = FmuUnit::load(&params, Path::new("."))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        error.contains("clocks") && error.contains("tick"),
+        "{error}"
+    );
+}

@@ -292,6 +292,7 @@ impl Layout {
                 tolerance: None,
                 step_size: Some(config.step),
             }),
+            clocks: Vec::new(),
         };
         let first_field_reference = (n_in + n_out + parameters.len()) as u32;
         arrays::add(&mut model, &fields, first_field_reference);

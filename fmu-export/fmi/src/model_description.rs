@@ -204,6 +204,9 @@ pub struct ModelDescription {
     pub outputs: Vec<Unknown>,
     pub initial_unknowns: Vec<Unknown>,
     pub default_experiment: Option<DefaultExperiment>,
+    /// FMI 3.0 clocks and the variables they tick (`name`, or `name (clocked
+    /// by ...)`): slender does not run clocked FMUs, and refuses them by these.
+    pub clocks: Vec<String>,
 }
 
 impl ModelDescription {

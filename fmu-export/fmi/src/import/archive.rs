@@ -41,6 +41,12 @@ pub(super) fn unpack(
         .ok_or_else(|| LoadError::NotCoSimulation {
             fmu: label.to_owned(),
         })?;
+    if !model.clocks.is_empty() {
+        return Err(LoadError::Clocked {
+            fmu: label.to_owned(),
+            names: model.clocks.join(", "),
+        });
+    }
     Ok((folder, model, cs))
 }
 

@@ -25,6 +25,11 @@ pub enum LoadError {
         "{fmu}: the FMU does not offer co-simulation (no <CoSimulation> element); only co-simulation FMUs (FMI 2.0 or 3.0) can be units"
     )]
     NotCoSimulation { fmu: String },
+    /// FMI 3.0 clocks: slender's master has no clock or event mode.
+    #[error(
+        "{fmu}: the FMU declares clocks or clocked variables ({names}); slender does not run clocked FMUs (no clock or event mode in its master)"
+    )]
+    Clocked { fmu: String, names: String },
     /// No binary for 64-bit Linux; `found` says what the FMU has instead.
     #[error(
         "{fmu}: no binary for this platform: expected binaries/{identifier}.so; the FMU has {found}"

@@ -380,6 +380,7 @@ impl<'a> Parser<'a> {
             outputs: Vec::new(),
             initial_unknowns: Vec::new(),
             default_experiment: None,
+            clocks: Vec::new(),
         })
     }
 

@@ -50,6 +50,7 @@ fn sample() -> ModelDescription {
             tolerance: None,
             step_size: Some(0.01),
         }),
+        clocks: Vec::new(),
     }
 }
 
@@ -188,6 +189,23 @@ fn fmi3_arrays_are_sized_and_unread_types_left_out() {
     assert_eq!(md.outputs[0].dependencies, Some(vec![3]));
     assert_eq!(md.initial_unknowns[0].dependencies, Some(vec![]));
     assert!(md.co_simulation.unwrap().can_get_and_set_fmu_state);
+    // Its clock is listed, for the importer to refuse the FMU by it.
+    assert_eq!(md.clocks, ["tick"]);
+    let clocked = FMI3.replacen(
+        r#"<Clock name="tick""#,
+        r#"<Float64 name="sampled" valueReference="70" causality="output" clocks="7"/>
+    <Clock name="tick""#,
+        1,
+    );
+    let md = ModelDescription::parse(&clocked).unwrap();
+    assert_eq!(md.clocks, ["sampled (clocked by 7)", "tick"]);
+    // FMI 2.0 has none.
+    assert!(
+        ModelDescription::parse(&sample().to_xml())
+            .unwrap()
+            .clocks
+            .is_empty()
+    );
 }
 
 #[test]

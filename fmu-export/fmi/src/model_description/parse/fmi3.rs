@@ -121,6 +121,18 @@ impl Parser<'_> {
                 }
             }
             ("ModelVariables", _) => {
+                // Clocks and clocked variables: refused by the importer.
+                let clocked = attrs.optional("clocks");
+                if name == "Clock" || clocked.is_some() {
+                    let variable = attrs.optional("name").unwrap_or("?");
+                    let entry = match clocked {
+                        Some(c) => format!("{variable} (clocked by {c})"),
+                        None => variable.to_owned(),
+                    };
+                    if let Some(m) = state.md.as_mut() {
+                        m.clocks.push(entry);
+                    }
+                }
                 if INTEGERS.contains(&name)
                     && let Some(start) = attrs.optional("start")
                     && let Some(vr) =
