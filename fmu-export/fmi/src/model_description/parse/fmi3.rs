@@ -121,18 +121,7 @@ impl Parser<'_> {
                 }
             }
             ("ModelVariables", _) => {
-                // Clocks and clocked variables: refused by the importer.
-                let clocked = attrs.optional("clocks");
-                if name == "Clock" || clocked.is_some() {
-                    let variable = attrs.optional("name").unwrap_or("?");
-                    let entry = match clocked {
-                        Some(c) => format!("{variable} (clocked by {c})"),
-                        None => variable.to_owned(),
-                    };
-                    if let Some(m) = state.md.as_mut() {
-                        m.clocks.push(entry);
-                    }
-                }
+                note_clock(&attrs, state.md.as_mut());
                 if INTEGERS.contains(&name)
                     && let Some(start) = attrs.optional("start")
                     && let Some(vr) =
@@ -227,5 +216,22 @@ impl Parser<'_> {
             .ok_or_else(|| attrs.error("missing required attribute `valueReference`".into()))?;
         let dependencies = attrs.list("dependencies", "a value reference")?;
         Ok((output, vr, dependencies, attrs.line))
+    }
+}
+
+/// A clock or a clocked variable into the description's `clocks` (the
+/// importer refuses an FMU that has any).
+fn note_clock(attrs: &Attributes, md: Option<&mut ModelDescription>) {
+    let clocked = attrs.optional("clocks");
+    if attrs.element != "Clock" && clocked.is_none() {
+        return;
+    }
+    let variable = attrs.optional("name").unwrap_or("?");
+    let entry = match clocked {
+        Some(c) => format!("{variable} (clocked by {c})"),
+        None => variable.to_owned(),
+    };
+    if let Some(m) = md {
+        m.clocks.push(entry);
     }
 }
