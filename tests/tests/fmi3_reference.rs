@@ -54,14 +54,24 @@ fn build(model: &str, dir: &Path) -> PathBuf {
     fmu
 }
 
-fn load(fmu: &Path, start: &str) -> Driver<FmuUnit> {
+/// The FMU at `fmu` loaded with start values `start` (TOML).
+fn loaded(fmu: &Path, start: &str) -> Result<FmuUnit, slender_fmi::import::LoadError> {
     let params = FmuParams {
         file: fmu.to_owned(),
         start: toml::from_str(start).unwrap(),
         preload: Vec::new(),
         logging: false,
     };
-    Driver::new(FmuUnit::load(&params, Path::new(".")).unwrap_or_else(|e| panic!("{e}")))
+    FmuUnit::load(&params, Path::new("."))
+}
+
+/// Why the FMU at `fmu` does not load with start values `start`.
+fn load_error(fmu: &Path, start: &str) -> String {
+    loaded(fmu, start).err().expect("refused").to_string()
+}
+
+fn load(fmu: &Path, start: &str) -> Driver<FmuUnit> {
+    Driver::new(loaded(fmu, start).unwrap_or_else(|e| panic!("{e}")))
 }
 
 fn names(ports: &[slender_units::Port]) -> Vec<&str> {
@@ -158,16 +168,7 @@ fn the_feedthrough_reference_fmu_passes_its_float64s_and_takes_every_start_type(
         assert_eq!(y[0], x, "step {n}: continuous output follows its input");
     }
     // A start value of the wrong type is refused with the variable's name.
-    let params = FmuParams {
-        file: fmu,
-        start: toml::from_str("Int32_input = 1.5").unwrap(),
-        preload: Vec::new(),
-        logging: false,
-    };
-    let error = FmuUnit::load(&params, Path::new("."))
-        .err()
-        .unwrap()
-        .to_string();
+    let error = load_error(&fmu, "Int32_input = 1.5");
     assert!(
         error.contains("Int32_input") && error.contains("Integer"),
         "{error}"
@@ -236,16 +237,7 @@ fn a_clocked_fmu_is_refused_naming_its_clocks() {
     .unwrap();
     zip.write_all(xml.as_bytes()).unwrap();
     zip.finish().unwrap();
-    let params = FmuParams {
-        file: fmu,
-        start: Default::default(),
-        preload: Vec::new(),
-        logging: false,
-    };
-    let error = FmuUnit::load(&params, Path::new("."))
-        .err()
-        .unwrap()
-        .to_string();
+    let error = load_error(&fmu, "");
     assert!(
         error.contains("clocks") && error.contains("tick"),
         "{error}"

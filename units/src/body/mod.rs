@@ -9,8 +9,8 @@
 //! (`line3d`, `catenary3d`) hang from them through the master.
 //!
 //! Instead of its dynamics a body may follow a prescribed motion (sines per
-//! degree of freedom, a time table, a sea through motion RAOs): the fairleads then move the lines as a vessel's
-//! motion would, whatever the lines pull.
+//! degree of freedom, a time table, a sea through motion RAOs): the fairleads
+//! then move the lines as a vessel's motion would, whatever the lines pull.
 //!
 //! The step Jacobian (outputs after a step by the step's end inputs) comes
 //! from the converged step by the implicit function theorem ([`jacobian`]).
