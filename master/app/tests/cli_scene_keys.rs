@@ -42,9 +42,9 @@ fn run_sets_scene_keys_over_the_file() {
     }
 }
 
-/// An error in a scene changed by `--set` names the file and the key, not a
-/// line: the text checked is the changed table written out again, whose lines
-/// are not the file's (it named line 90 of the 62-line mooring example).
+/// An error about a value `--set` changed names the file, the key and the
+/// change, not a line (the value is not on the user's line; it once named
+/// line 90 of the 62-line mooring example).
 #[test]
 fn an_error_under_set_names_no_line_of_another_text() {
     let set = "structure.sections[0].fidelity={ kind = \"span\", elements = 3 }";
@@ -53,6 +53,10 @@ fn an_error_under_set_names_no_line_of_another_text() {
     let err = text(&check.stderr);
     assert!(
         err.contains("examples/structure_mooring.toml: structure: `structure.sections[0].fidelity.elements`: unknown key"),
+        "{err}"
+    );
+    assert!(
+        err.contains(&format!("(the scene as changed by --set {set})")),
         "{err}"
     );
 }
@@ -241,4 +245,43 @@ fn set_on_an_ssp_says_why_it_cannot() {
     assert_eq!(run.status.code(), Some(2));
     let err = text(&run.stderr);
     assert!(err.contains("an SSP is a packaged system"), "{err}");
+}
+
+/// Issue 45: a change is made on the keys as read, not on TOML text written
+/// again, so an error about a changed value names the change and one about a
+/// key the user wrote names its line.
+#[test]
+fn errors_of_a_change_name_it_and_others_the_users_line() {
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/structure_hanging_pipe.toml");
+    let error =
+        slender_app::study::scene_with_overrides(&scene, &["simulation.step=fast".to_owned()])
+            .expect_err("a step in words");
+    assert!(
+        error.contains("`simulation.step`: --set simulation.step=fast: "),
+        "{error}"
+    );
+    let error = slender_app::study::scene_with_overrides(
+        &scene,
+        &["structure.sections[0].fidelity=wrong".to_owned()],
+    )
+    .expect_err("no such fidelity");
+    assert!(
+        error.contains("(the scene as changed by --set structure.sections[0].fidelity=wrong)"),
+        "{error}"
+    );
+    // A key the user wrote, wrong where a change made no difference: its line.
+    let dir = tempfile::tempdir().expect("a folder");
+    let text = std::fs::read_to_string(&scene).expect("the example");
+    let text = text.replacen("to = 10.0", "to = 10.0\nelemnts = 4", 1);
+    let written = dir.path().join("pipe.toml");
+    std::fs::write(&written, &text).expect("the scene");
+    let error =
+        slender_app::study::scene_with_overrides(&written, &["simulation.duration=1".to_owned()])
+            .expect_err("a misspelt key");
+    let line = 1 + text
+        .lines()
+        .position(|l| l.contains("elemnts"))
+        .expect("the line");
+    assert!(error.contains(&format!("pipe.toml:{line}:")), "{error}");
 }

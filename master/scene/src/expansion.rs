@@ -52,10 +52,21 @@ pub(crate) fn append(
     (written, advisories)
 }
 
-/// The scene text `source` as it runs: its `[structure]` replaced by the
-/// units and connections it writes out (what `slender expand` prints).
-pub(crate) fn expanded_text(source: &str, written: &Written) -> Result<String, String> {
-    let mut table: Table = toml::from_str(source).map_err(|e| e.to_string())?;
+/// The scene text `source` (its keys as `edited`, where changed) as it
+/// runs: its `[structure]` and `[mooring]` replaced by the units and
+/// connections they write out, when they do (what `slender expand` prints).
+pub(crate) fn expanded_text(
+    source: &str,
+    edited: Option<&Table>,
+    written: Option<&Written>,
+) -> Result<String, String> {
+    let mut table: Table = match edited {
+        Some(table) => table.clone(),
+        None => toml::from_str(source).map_err(|e| e.to_string())?,
+    };
+    let Some(written) = written else {
+        return toml::to_string(&table).map_err(|e| e.to_string());
+    };
     table.remove("structure");
     table.remove("mooring");
     for (key, items) in [

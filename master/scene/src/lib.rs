@@ -4,6 +4,7 @@
 //! Errors name the file, the line where known, the key and what was expected.
 #![warn(missing_docs)]
 
+mod draft;
 mod expansion;
 pub mod export;
 pub mod mooring;
@@ -21,6 +22,7 @@ mod uncertainty_check;
 pub use slender_kinds as kinds;
 pub use slender_kinds::{fields, words};
 
+pub use draft::{Draft, texts_parsed};
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;
 use slender_coupling::system::{Link, System};
@@ -71,6 +73,9 @@ pub struct Scene {
     pub spec: SceneSpec,
     /// The text the scene was read from (errors name its lines).
     source: String,
+    /// The changes made to that text (`Draft`), named by an error about a
+    /// changed value.
+    changes: draft::Changes,
     /// With a `[structure]`: the units and connections it writes out, as the
     /// tables of the scene's text.
     written: Option<structure::Written>,
@@ -100,13 +105,7 @@ impl Scene {
         if ssp::is_ssp(path) {
             return ssp::load(path);
         }
-        let source = std::fs::read_to_string(path).map_err(|e| SceneError {
-            file: path.to_owned(),
-            line: None,
-            key: String::new(),
-            message: format!("cannot read the file: {e}"),
-        })?;
-        Scene::parse(path, source)
+        Draft::read(path)?.scene()
     }
 
     /// Checks a scene given as text; `path` names it in messages and anchors
@@ -114,35 +113,49 @@ impl Scene {
     /// and connections appended to the scene's own (`expansion`): the text is
     /// read once, and every error names a line of it.
     pub fn parse(path: &Path, source: String) -> Result<Scene, SceneError> {
-        let mut spec: SceneSpec = toml::from_str(&source).map_err(|e| {
-            // A key missing from the whole file: no line or key to blame.
-            let span = e
-                .span()
-                .filter(|s| !(s.start == 0 && (s.end == 0 || s.end >= source.trim_end().len())));
-            SceneError {
-                file: path.to_owned(),
-                line: span.clone().map(|s| line_of(&source, s.start)),
-                key: span
-                    .map(|s| key_at(&source, s.start))
-                    .filter(|key| !key.starts_with("`{"))
-                    .or_else(|| key_path::<SceneSpec>(&source))
-                    .unwrap_or_default(),
-                message: migration_hint(e.message().trim()),
+        Draft::parse(path, source)?.scene()
+    }
+
+    /// The scene typed from `document`, the spanned keys of the text
+    /// `source` with the changes `origins` made (`Draft`; spans past the
+    /// text's end mark a change's values) and the keys as changed
+    /// (`edited`, None for the file as written).
+    fn from_document(
+        path: &Path,
+        source: &str,
+        document: toml::Spanned<toml::de::DeTable<'_>>,
+        changes: draft::Changes,
+    ) -> Result<Scene, SceneError> {
+        let deserializer = toml::de::Deserializer::from(document.clone());
+        let mut spec = <SceneSpec as serde::Deserialize>::deserialize(deserializer)
+            .map_err(|e| spec_error(path, source, &changes.origins, document, e))?;
+        // An error about a key a change made names the change.
+        let named = |mut e: SceneError, top: &str| {
+            let about = (structure_lines::named_keys(&e.message, top))
+                .find(|k| !changes.origins_of(k).is_empty())
+                .map(str::to_owned);
+            // A changed value is not on the user's line.
+            if about.is_some() {
+                e.line = None;
             }
-        })?;
+            changes.name_in(e, about.as_deref().unwrap_or(top))
+        };
         let expansion = (spec.structure.take())
-            .map(|s| expansion::expand(path, &source, &s, spec.simulation.start))
-            .transpose()?;
+            .map(|s| expansion::expand(path, source, &s, spec.simulation.start))
+            .transpose()
+            .map_err(|e| named(e, "structure"))?;
         let structure = expansion.as_ref().map(|x| x.name.clone());
         let mooring = (spec.mooring.take())
-            .map(|m| expansion::expand_mooring(path, &source, &m, spec.simulation.start))
-            .transpose()?;
+            .map(|m| expansion::expand_mooring(path, source, &m, spec.simulation.start))
+            .transpose()
+            .map_err(|e| named(e, "mooring"))?;
         let (written, advisories) =
             expansion::append(&mut spec, expansion.into_iter().chain(mooring));
         let mut scene = Scene {
             path: path.to_owned(),
             spec,
-            source,
+            source: source.to_owned(),
+            changes,
             written,
             expanded: std::sync::OnceLock::new(),
             start: Time::ZERO,
@@ -158,9 +171,14 @@ impl Scene {
         if let Err(e) = scene.check_time() {
             return Err(expansion::locate(&scene.source, name, e));
         }
-        scene
-            .build()
-            .map_err(|e| expansion::locate(&scene.source, name, e))?;
+        scene.build().map_err(|e| {
+            let generated = name.is_some_and(|n| e.key.contains(&format!("(\"{n}_")));
+            let e = expansion::locate(&scene.source, name, e);
+            match generated {
+                true => scene.changes.name_in(e, "structure"),
+                false => e,
+            }
+        })?;
         Ok(scene)
     }
 
@@ -169,28 +187,47 @@ impl Scene {
     /// prints; that text is made when first asked for, for showing and
     /// exporting, and never read again).
     pub fn source(&self) -> Result<&str, SceneError> {
-        let Some(written) = &self.written else {
+        if self.written.is_none() && self.changes.table.is_none() {
             return Ok(&self.source);
-        };
+        }
         if let Some(text) = self.expanded.get() {
             return Ok(text);
         }
-        let text = expansion::expanded_text(&self.source, written)
-            .map_err(|message| self.error(None, "structure", message))?;
+        let text = expansion::expanded_text(
+            &self.source,
+            self.changes.table.as_ref(),
+            self.written.as_ref(),
+        )
+        .map_err(|message| self.error(None, "structure", message))?;
         Ok(self.expanded.get_or_init(|| text))
     }
 
+    /// An error about `key`, at `span` of the text or of a change's values
+    /// (then named by what made the change, without a line); in a changed
+    /// scene, any other says which changes it was made with.
     fn error(
         &self,
         span: Option<std::ops::Range<usize>>,
         key: &str,
         message: impl fmt::Display,
     ) -> SceneError {
-        SceneError {
+        let origin = (span.as_ref())
+            .and_then(|s| draft::origin_of(&self.source, s))
+            .and_then(|k| self.changes.origins.get(k));
+        let e = SceneError {
             file: self.path.clone(),
-            line: span.map(|s| line_of(&self.source, s.start)),
+            line: span
+                .filter(|_| origin.is_none())
+                .map(|s| line_of(&self.source, s.start)),
             key: key.to_owned(),
-            message: message.to_string(),
+            message: match origin {
+                Some(origin) => format!("{origin}: {message}"),
+                None => message.to_string(),
+            },
+        };
+        match origin {
+            Some(_) => e,
+            None => self.changes.name_in(e, key),
         }
     }
 
@@ -451,6 +488,51 @@ impl Scene {
     }
 }
 
+/// A scene that does not type as `SceneSpec`: the error at the line of the
+/// text `source` it points at, or naming the change (of `origins`) whose
+/// value it is about; the key from the spanned `document` where the line
+/// does not start with it.
+fn spec_error(
+    path: &Path,
+    source: &str,
+    origins: &[String],
+    document: toml::Spanned<toml::de::DeTable<'_>>,
+    e: toml::de::Error,
+) -> SceneError {
+    // A key missing from the whole file: no line or key to blame.
+    let span = e
+        .span()
+        .filter(|s| !(s.start == 0 && (s.end == 0 || s.end >= source.trim_end().len())));
+    let origin = (span.as_ref())
+        .and_then(|s| draft::origin_of(source, s))
+        .and_then(|k| origins.get(k));
+    let key_path = || {
+        let deserializer = toml::de::Deserializer::from(document);
+        let error = serde_path_to_error::deserialize::<_, SceneSpec>(deserializer).err()?;
+        let path = error.path().to_string();
+        (!path.is_empty() && path != ".").then(|| format!("`{path}`"))
+    };
+    let message = migration_hint(e.message().trim());
+    match origin {
+        Some(origin) => SceneError {
+            file: path.to_owned(),
+            line: None,
+            key: key_path().unwrap_or_default(),
+            message: format!("{origin}: {message}"),
+        },
+        None => SceneError {
+            file: path.to_owned(),
+            line: span.clone().map(|s| line_of(source, s.start)),
+            key: span
+                .map(|s| key_at(source, s.start))
+                .filter(|key| !key.starts_with("`{"))
+                .or_else(key_path)
+                .unwrap_or_default(),
+            message,
+        },
+    }
+}
+
 /// A message with a hint where a scene uses a form slender no longer reads.
 fn migration_hint(message: &str) -> String {
     let message = &words::in_words(message);
@@ -476,16 +558,6 @@ fn key_at(source: &str, offset: usize) -> String {
     } else {
         format!("`{}`", key.chars().take(80).collect::<String>())
     }
-}
-
-/// The key path where deserialising `source` as `T` fails
-/// (`uncertainty.inputs[0].distribution`), for an error inside an inline table
-/// or array, whose line does not start with its key.
-fn key_path<T: serde::de::DeserializeOwned>(source: &str) -> Option<String> {
-    let deserializer = toml::Deserializer::parse(source).ok()?;
-    let error = serde_path_to_error::deserialize::<_, T>(deserializer).err()?;
-    let path = error.path().to_string();
-    (!path.is_empty() && path != ".").then(|| format!("`{path}`"))
 }
 
 fn line_of(source: &str, offset: usize) -> usize {

@@ -100,11 +100,13 @@ fn named(item: &Spanned<DeValue>, name: &str) -> bool {
 
 /// The first key under the top-level `top` a message names in backticks.
 pub(crate) fn named_key<'a>(message: &'a str, top: &str) -> Option<&'a str> {
-    message
-        .split('`')
-        .skip(1)
-        .step_by(2)
-        .find(|k| k.starts_with(top))
+    named_keys(message, top).next()
+}
+
+/// Every key under `top` that `message` names in backticks, in order.
+pub(crate) fn named_keys<'a>(message: &'a str, top: &str) -> impl Iterator<Item = &'a str> {
+    (message.split('`').skip(1).step_by(2))
+        .filter(move |k| k.starts_with(top))
         .map(|k| k.split(" = ").next().unwrap_or(k))
 }
 

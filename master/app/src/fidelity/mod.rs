@@ -147,20 +147,19 @@ pub fn run_fidelity_kept(
     kept: Option<&crate::resume::Kept>,
     progress: impl Fn(&str) + Sync,
 ) -> Result<FidelityReport, String> {
-    let mut table = crate::study::scene_table(path, &plan.overrides)?;
+    let mut draft = crate::study::draft_of(path, &plan.overrides)?;
     // The scene must load as written.
-    crate::study::scene_with(path, &table, plan.duration)?;
-    let subject: Box<dyn Subject> = if table.contains_key("mooring") {
-        Box::new(mooring::MooringLines::of(&table)?)
-    } else {
-        Box::new(structure_of(&table)?)
-    };
+    crate::study::scene_of(&draft, plan.duration)?;
+    let subject = subject_of(draft.table())?;
     let subject = subject.as_ref();
     let sections = subject.sections();
     sections_asked(plan, &sections)?;
     // Runs record only what the study reads, and carry no twin.
-    subject.prepare(&mut table);
-    table.remove("output");
+    draft.edit("the fidelity study (no twin, its own [output])", |table| {
+        subject.prepare(table);
+        table.remove("output");
+        Ok(())
+    })?;
     let names = subject.quantities();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
     // Before any run (a misspelt quantity was refused after them all), and
@@ -185,7 +184,7 @@ pub fn run_fidelity_kept(
             kept,
             &what,
             |o: &Outcome| o.error.is_none(),
-            || run::run_one(path, &table, subject, task.as_deref(), plan),
+            || run::run_one(&draft, subject, task.as_deref(), plan),
         );
         let (outcome, reused) = (fetched.outcome, fetched.note);
         let k = counter.tick(!fetched.reused);
@@ -263,6 +262,16 @@ fn sections_asked(plan: &FidelityPlan, sections: &[SectionName]) -> Result<(), S
         }
     }
     Ok(())
+}
+
+/// What the scene's study varies: its `[mooring]`'s lines, else its
+/// `[structure]`.
+fn subject_of(table: &Table) -> Result<Box<dyn Subject>, String> {
+    Ok(if table.contains_key("mooring") {
+        Box::new(mooring::MooringLines::of(table)?)
+    } else {
+        Box::new(structure_of(table)?)
+    })
 }
 
 /// The scene's `[structure]`: its layout and what its model has.

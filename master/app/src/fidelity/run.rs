@@ -4,15 +4,13 @@
 use super::{Choice, FidelityPlan, Outcome, Subject};
 use crate::costs::repeated;
 use crate::run::{RunOptions, run_scene};
-use std::path::Path;
-use toml::Table;
+use slender_scene::Draft;
 
 /// Runs one combination (the reference for `None`) and reduces its
 /// recording to the quantities; its cost is the median of `plan.repeats`
 /// timed runs.
 pub(super) fn run_one(
-    path: &Path,
-    table: &Table,
+    draft: &Draft,
     subject: &dyn Subject,
     combination: Option<&[(String, Choice)]>,
     plan: &FidelityPlan,
@@ -28,11 +26,16 @@ pub(super) fn run_one(
         error: Some(error),
         warnings: Vec::new(),
     };
-    let (table, reader) = match subject.run_table(table, combination) {
+    let (table, reader) = match subject.run_table(draft.table(), combination) {
         Ok(t) => t,
         Err(e) => return failed(e),
     };
-    let scene = match crate::study::scene_with(path, &table, plan.duration) {
+    let mut draft = draft.clone();
+    draft.change(
+        format!("the fidelity study's {}", combination_label(combination)),
+        table,
+    );
+    let scene = match crate::study::scene_of(&draft, plan.duration) {
         Ok(s) => s,
         Err(e) => return failed(e),
     };

@@ -2,8 +2,8 @@
 //! to the scene, each sweep can be compared, and its size is within its
 //! bound (counted, not built: a grid of many sweeps would not fit in memory).
 
-use super::{Design, StudyPlan, label, scene_with};
-use slender_scene::Scene;
+use super::{Design, StudyPlan, label, scene_of};
+use slender_scene::{Draft, Scene};
 use std::path::Path;
 
 /// Refuses what does not apply to the scene: a key (a typo, a unit that is not
@@ -12,7 +12,7 @@ use std::path::Path;
 pub(super) fn check_plan(
     path: &Path,
     base: &Scene,
-    table: &toml::Table,
+    draft: &Draft,
     plan: &StudyPlan,
     has_reference: bool,
 ) -> Result<(), String> {
@@ -31,13 +31,12 @@ pub(super) fn check_plan(
                 sweep.setting
             ));
         }
-        let mut probe = table.clone();
-        sweep
-            .setting
-            .apply(&mut probe, sweep.reference())
+        let mut probe = draft.clone();
+        let origin = format!("--vary {}={}", sweep.setting, label(sweep.reference()));
+        probe
+            .edit(origin, |t| sweep.setting.apply(t, sweep.reference()))
             .map_err(|e| format!("{}: {e}", sweep.setting))?;
-        scene_with(path, &probe, plan.duration)
-            .map_err(|e| format!("{} = {}: {e}", sweep.setting, label(sweep.reference())))?;
+        scene_of(&probe, plan.duration)?;
     }
     // Last, so that a study refused for its size was otherwise valid.
     let runs = run_count(plan);

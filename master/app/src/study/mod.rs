@@ -21,8 +21,8 @@ use crate::resume::Kept;
 use crate::run::{RunOptions, run_scene};
 use serde::Serialize;
 use setting::{Refinement, Setting, label, numeric, parse_value};
-use slender_scene::Scene;
 use slender_scene::spec::Norm;
+use slender_scene::{Draft, Scene};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use tasks::{Assignment, costliest_first, groups};
@@ -227,7 +227,7 @@ pub struct ReferenceRun {
 /// Runs the reference scene at `path` (for `duration` when given); `Err` when it
 /// does not load or its run fails.
 pub fn run_reference(path: &Path, duration: Option<f64>) -> Result<ReferenceRun, String> {
-    let scene = scene_with(path, &scene_table(path, &[])?, duration)?;
+    let scene = scene_of(&draft_of(path, &[])?, duration)?;
     let outcome = outcome_of(&scene, &[]);
     if let Some(e) = &outcome.error {
         return Err(format!("reference {}: {e}", path.display()));
@@ -266,10 +266,10 @@ fn run_study_kept(
 ) -> Result<Vec<StudyRow>, String> {
     // The scene as written (a `[structure]` still a structure, so its keys
     // vary), with the user's `--set` over it.
-    let table = scene_table(path, &plan.overrides)?;
-    let base = scene_from(path, &table, &plan.overrides)?;
+    let draft = draft_of(path, &plan.overrides)?;
+    let base = scene_of(&draft, None)?;
     let judged = judged_of(path, &base)?;
-    check::check_plan(path, &base, &table, plan, reference.is_some())?;
+    check::check_plan(path, &base, &draft, plan, reference.is_some())?;
     if let Some(r) = reference {
         if let Some(j) = judged
             .iter()
@@ -301,7 +301,7 @@ fn run_study_kept(
             kept,
             &what,
             |o: &Outcome| o.error.is_none(),
-            || run_one(path, &table, assignments, plan, &judged),
+            || run_one(&draft, assignments, plan, &judged),
         );
         let (o, reused) = (fetched.outcome, fetched.note);
         let k = counter.tick(!fetched.reused);
@@ -347,62 +347,41 @@ fn judged_of(path: &Path, scene: &Scene) -> Result<Vec<Judged>, String> {
         .collect())
 }
 
-/// The scene file at `path` as written (a `[structure]` still a structure), as
-/// the TOML table the studies vary, with `overrides` (`KEY=VALUE`, `--set`)
-/// set over it; each error names the override.
-pub(crate) fn scene_table(path: &Path, overrides: &[String]) -> Result<toml::Table, String> {
+/// The scene file at `path` as written (a `[structure]` still a structure, so
+/// the studies vary its keys), read once, with `overrides` (`KEY=VALUE`,
+/// `--set`) set over it; an error names the override.
+pub(crate) fn draft_of(path: &Path, overrides: &[String]) -> Result<Draft, String> {
     if slender_scene::ssp::is_ssp(path) {
         return Err(format!(
             "{}: an SSP is a packaged system, not a scene file, so --set and studies cannot change its keys; set them in the scene it was wrapped from and wrap it again",
             path.display()
         ));
     }
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut table: toml::Table =
-        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut draft = Draft::read(path).map_err(|e| e.to_string())?;
     for text in overrides {
         let (setting, value) = setting::parse_override(text).map_err(|e| format!("--set {e}"))?;
-        setting
-            .apply(&mut table, &value)
+        draft
+            .edit(format!("--set {text}"), |t| setting.apply(t, &value))
             .map_err(|e| format!("--set {text}: {e}"))?;
     }
-    Ok(table)
+    Ok(draft)
 }
 
 /// The scene at `path` with `overrides` (`KEY=VALUE`, `--set`) set over the
-/// file; each error names the override.
+/// file; an error names the user's line, or the override it is about.
 pub fn scene_with_overrides(path: &Path, overrides: &[String]) -> Result<Scene, String> {
     if overrides.is_empty() {
         return Scene::load(path).map_err(|e| e.to_string());
     }
-    scene_from(path, &scene_table(path, overrides)?, overrides)
-}
-
-/// The scene of `table`, the file at `path` with `overrides` already set over
-/// it; without overrides the file itself, so that errors name its lines.
-fn scene_from(path: &Path, table: &toml::Table, overrides: &[String]) -> Result<Scene, String> {
-    if overrides.is_empty() {
-        return Scene::load(path).map_err(|e| e.to_string());
-    }
-    let mut scene = scene_with(path, table, None)
-        .map_err(|e| format!("--set {}: {e}", overrides.join(" --set ")))?;
+    let mut scene = scene_of(&draft_of(path, overrides)?, None)?;
     scene.overrides = overrides.to_vec();
     Ok(scene)
 }
 
-/// The scene of `table`, with `duration` when given. An error names the file
-/// and the key but no line: the text parsed is the table written out again,
-/// whose lines are not the file's.
-pub(crate) fn scene_with(
-    path: &Path,
-    table: &toml::Table,
-    duration: Option<f64>,
-) -> Result<Scene, String> {
-    let text = toml::to_string(table).map_err(|e| e.to_string())?;
-    let mut scene = Scene::parse(path, text).map_err(|mut e| {
-        e.line = None;
-        e.to_string()
-    })?;
+/// The scene of `draft`, for `duration` (s) when given. An error names the
+/// user's line, or the change it is about.
+pub(crate) fn scene_of(draft: &Draft, duration: Option<f64>) -> Result<Scene, String> {
+    let mut scene = draft.scene().map_err(|e| e.to_string())?;
     if let Some(d) = duration {
         scene.spec.simulation.duration = d;
         let step = scene.spec.simulation.step;
@@ -411,20 +390,28 @@ pub(crate) fn scene_with(
     Ok(scene)
 }
 
+/// A study's assignments as the changes they make: `--vary KEY=VALUE`.
+fn vary(assignments: &[Assignment]) -> String {
+    let with: Vec<String> = (assignments.iter())
+        .map(|(s, v)| format!("{s}={}", label(v)))
+        .collect();
+    format!("--vary {}", with.join(" "))
+}
+
 fn run_one(
-    path: &Path,
-    table: &toml::Table,
+    draft: &Draft,
     assignments: &[Assignment],
     plan: &StudyPlan,
     judged: &[Judged],
 ) -> Outcome {
-    let mut table = table.clone();
-    for (setting, value) in assignments {
-        if let Err(e) = setting.apply(&mut table, value) {
-            return failed(judged, e);
-        }
+    let mut draft = draft.clone();
+    let applied = draft.edit(vary(assignments), |table| {
+        (assignments.iter()).try_for_each(|(setting, value)| setting.apply(table, value))
+    });
+    if let Err(e) = applied {
+        return failed(judged, e);
     }
-    match scene_with(path, &table, plan.duration) {
+    match scene_of(&draft, plan.duration) {
         Ok(scene) => {
             let mut o = outcome_of(&scene, &plan.cost_units);
             if o.error.is_none() {
@@ -436,14 +423,7 @@ fn run_one(
             }
             o
         }
-        Err(e) => {
-            let with: Vec<String> = assignments
-                .iter()
-                .map(|(s, v)| format!("{s} = {}", label(v)))
-                .collect();
-            // Line numbers refer to the scene as the study rewrote it.
-            failed(judged, format!("with {}: {e}", with.join(", ")))
-        }
+        Err(e) => failed(judged, e),
     }
 }
 

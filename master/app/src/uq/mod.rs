@@ -79,7 +79,7 @@ pub type Run = (Vec<f64>, Vec<f64>);
 /// A study's scene checked before its first run: the table it varies, its
 /// `[uncertainty]` and each input's setting.
 pub struct CheckedInputs {
-    table: toml::Table,
+    draft: slender_scene::Draft,
     spec: UncertaintySpec,
     settings: Vec<Setting>,
 }
@@ -88,8 +88,8 @@ pub struct CheckedInputs {
 /// to the scene: a key that does not apply (a unit that is not there) is bad
 /// input, probed with its input's median.
 pub fn check_inputs(path: &Path, plan: &UqPlan) -> Result<CheckedInputs, String> {
-    let table = crate::study::scene_table(path, &plan.overrides)?;
-    let scene = crate::study::scene_with(path, &table, plan.duration)?;
+    let draft = crate::study::draft_of(path, &plan.overrides)?;
+    let scene = crate::study::scene_of(&draft, plan.duration)?;
     let spec = scene
         .spec
         .uncertainty
@@ -97,15 +97,16 @@ pub fn check_inputs(path: &Path, plan: &UqPlan) -> Result<CheckedInputs, String>
         .ok_or("a UQ study needs an `[uncertainty]` table in the scene")?;
     let settings = check(&scene, &spec)?;
     for (input, setting) in spec.inputs.iter().zip(&settings) {
-        let mut probe = table.clone();
+        let mut probe = draft.clone();
         let median = toml::Value::Float(input.distribution.from_unit(0.5));
-        setting
-            .apply(&mut probe, &median)
-            .and_then(|()| crate::study::scene_with(path, &probe, plan.duration).map(|_| ()))
+        let origin = format!("the median of `{}`", input.name);
+        probe
+            .edit(origin, |t| setting.apply(t, &median))
+            .and_then(|()| crate::study::scene_of(&probe, plan.duration).map(|_| ()))
             .map_err(|e| format!("`uncertainty.inputs` `{}` ({}): {e}", input.name, input.key))?;
     }
     Ok(CheckedInputs {
-        table,
+        draft,
         spec,
         settings,
     })
@@ -133,7 +134,7 @@ pub fn run_checked(
     done: impl Fn(usize, &Run, &str) + Sync,
 ) -> Result<(Option<UqReport>, Vec<Run>), String> {
     let CheckedInputs {
-        table,
+        draft,
         spec,
         settings,
     } = inputs;
@@ -160,14 +161,7 @@ pub fn run_checked(
         if let Some(run) = kept(k) {
             return (run.clone(), None);
         }
-        let outcome = run_one(
-            path,
-            table,
-            settings,
-            &points[k],
-            plan.duration,
-            &spec.outputs,
-        );
+        let outcome = run_one(draft, settings, &points[k], plan.duration, &spec.outputs);
         let (values, why) = match outcome {
             Ok(values) => (values, None),
             Err(why) => (vec![f64::NAN; spec.outputs.len()], Some((k, why))),
@@ -283,18 +277,20 @@ fn check(scene: &Scene, spec: &UncertaintySpec) -> Result<Vec<Setting>, String> 
 
 /// One run's outputs' phi; the error says why it cannot run or failed.
 fn run_one(
-    path: &Path,
-    table: &toml::Table,
+    draft: &slender_scene::Draft,
     settings: &[Setting],
     point: &[f64],
     duration: Option<f64>,
     outputs: &[String],
 ) -> Result<Vec<f64>, String> {
-    let mut table = table.clone();
-    for (s, &x) in settings.iter().zip(point) {
-        s.apply(&mut table, &toml::Value::Float(x))?;
-    }
-    let scene = crate::study::scene_with(path, &table, duration)?;
+    let mut draft = draft.clone();
+    let at: Vec<String> = (settings.iter().zip(point))
+        .map(|(s, x)| format!("{s}={x}"))
+        .collect();
+    draft.edit(format!("the design point {}", at.join(" ")), |table| {
+        (settings.iter().zip(point)).try_for_each(|(s, &x)| s.apply(table, &toml::Value::Float(x)))
+    })?;
+    let scene = crate::study::scene_of(&draft, duration)?;
     let options = RunOptions {
         output_dir: None,
         progress: false,
