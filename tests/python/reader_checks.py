@@ -55,7 +55,7 @@ print(f"study: {len(rows)} rows, epsilon {list(rows['epsilon_motion'])}")
 # A failed run is a row with its reason, not an exception.
 rows = slender.study(root / "examples/b3_force_displacement.toml", vary={"step": [0.001, 0.06]},
                      out=work / "failing")
-assert rows["error"].iloc[1].startswith("with step = 0.06"), rows["error"]
+assert "(the scene as changed by --vary step=0.06)" in rows["error"].iloc[1], rows["error"]
 print("study: a failed run is a row with its error")
 
 # A fidelity study.
