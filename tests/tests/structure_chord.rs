@@ -96,7 +96,9 @@ fn a_beam_or_span_suspended_span_follows_the_slay_twin() {
     assert!(top.rows[1].within_tolerance, "{:?}", top.rows[1]);
     assert_eq!(top.rows[1].worst_error, top.rows[1].errors[0].1);
     top_only.judged = vec!["tension".into()];
-    let e = run_fidelity(&root().join(SLAY), &top_only, |_| {}).unwrap_err();
+    let e = run_fidelity(&root().join(SLAY), &top_only, |_| {})
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("--quantities") && e.contains("top_force"), "{e}");
     // The FE beam and the span's fitted transfer matrix are two models of one
     // equation: they agree far better than either with the nonlinear section.

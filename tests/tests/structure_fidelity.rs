@@ -286,7 +286,9 @@ fn a_fidelity_grid_gives_the_same_errors_on_one_job_and_on_two() {
 #[test]
 fn a_fidelity_study_refuses_a_section_that_is_not_there() {
     let path = root().join("examples/structure_mooring.toml");
-    let e = run_fidelity(&path, &plan(&["middle=cable"], Design::Grid, 1), |_| {}).unwrap_err();
+    let e = run_fidelity(&path, &plan(&["middle=cable"], Design::Grid, 1), |_| {})
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("middle") && e.contains("lower, upper"), "{e}");
     let e = "lower=shell".parse::<SectionChoices>().unwrap_err();
     assert!(e.contains("static"), "{e}");

@@ -229,12 +229,15 @@ fn bad_uncertainty_tables_are_refused_with_the_key() {
         let path = scene(dir.path(), 16, Some(change));
         let e = run_uq(&path, &plan(None, 1), &[], |_, _, _| {});
         match e {
-            Err(e) => assert!(e.contains(says), "{change:?}: {e}"),
+            Err(e) => assert!(e.to_string().contains(says), "{change:?}: {e}"),
             Ok(_) => panic!("{change:?} accepted"),
         }
     }
     let path = scene(dir.path(), 16, None);
     // Any design size (issue 28), but not one too small to fit.
     let e = run_uq(&path, &plan(Some(3), 1), &[], |_, _, _| {}).unwrap_err();
-    assert!(e.contains("--samples 3: expected at least 4"), "{e}");
+    assert!(
+        e.to_string().contains("--samples 3: expected at least 4"),
+        "{e}"
+    );
 }

@@ -126,7 +126,7 @@ pub fn coupling_study(
 ) -> Result<CouplingReport, StudyError> {
     span.validate()?;
     let [reference, span_scene, fe_scene] = write_scenes(span, plan, scenes)?;
-    let against = study::run_reference(&reference, None).map_err(StudyError::Plan)?;
+    let against = study::run_reference(&reference, None)?;
     let engine =
         |path: &Path, sweeps, cost: &str| engine_rows(path, sweeps, Design::Grid, cost, &against);
     let counts = |v: &[usize]| v.iter().map(|&n| n as i64).collect::<Vec<i64>>();

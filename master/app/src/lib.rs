@@ -13,6 +13,7 @@
 pub mod costs;
 pub mod coupling_study;
 pub mod decay;
+pub mod error;
 pub mod fidelity;
 pub mod figures;
 pub mod indicators;
@@ -30,6 +31,8 @@ pub mod study;
 pub mod uq;
 pub mod watch;
 pub mod whole;
+
+pub use error::AppError;
 
 /// The most runs a study (`study`, `fidelity`, `uq`) starts unless its
 /// `--max-runs` says otherwise: a bound stated and checked before any run.

@@ -112,7 +112,7 @@ impl Pacer {
     /// Marks the end of step `index` (simulated time `time_s` at its end), then
     /// waits for its deadline if it is early. An error once more than
     /// `max_overruns` steps overran: the run cannot keep pace.
-    pub fn end(&mut self, index: usize, time_s: f64) -> Result<(), String> {
+    pub fn end(&mut self, index: usize, time_s: f64) -> Result<(), crate::run::RunError> {
         let done = Instant::now();
         let compute = done.duration_since(self.began).as_secs_f64();
         self.record(index, compute);
@@ -132,7 +132,7 @@ impl Pacer {
             }
             if self.overrun_count as u64 > self.max_overruns {
                 let first = &self.overruns[0];
-                return Err(format!(
+                return Err(crate::run::RunError::Pace(format!(
                     "the paced run cannot keep pace: {} of {} steps finished after their deadline (the first at t = {} s, {:.3e} s late; the step is {} s), more than simulation.max_overruns = {}; raise it to go on regardless",
                     self.overrun_count,
                     self.steps,
@@ -140,7 +140,7 @@ impl Pacer {
                     first.late_s,
                     self.step.as_secs_f64(),
                     self.max_overruns
-                ));
+                )));
             }
             return Ok(());
         }

@@ -9,6 +9,7 @@
 //! Its file (TOML, which keeps NaN and infinities as JSON does not) is written
 //! whole (`whole.rs`): a run killed while being kept leaves nothing half-read.
 
+use crate::AppError;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::path::{Path, PathBuf};
@@ -35,10 +36,10 @@ impl Kept {
     /// The kept runs in `folder/runs` of the study of `scene` with `options`
     /// (the options that shape every run, in words); `Err` when the scene
     /// cannot be read or the folder made.
-    pub fn new(folder: &Path, scene: &Path, options: &str) -> Result<Kept, String> {
-        let text = std::fs::read(scene).map_err(|e| format!("{}: {e}", scene.display()))?;
+    pub fn new(folder: &Path, scene: &Path, options: &str) -> Result<Kept, AppError> {
+        let text = std::fs::read(scene).map_err(|e| AppError::files(scene, e))?;
         let dir = folder.join("runs");
-        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        std::fs::create_dir_all(&dir).map_err(|e| AppError::files(&dir, e))?;
         let study = fnv1a(fnv1a(FNV_OFFSET, &text), options.as_bytes());
         Ok(Kept {
             dir,
@@ -60,7 +61,7 @@ impl Kept {
     /// (called before its first run): a folder holding another study asked
     /// differently is refused unless `fresh`, rather than have its tables and
     /// figures overwritten; `request.txt` then says what it holds.
-    pub fn claim(&self) -> Result<(), String> {
+    pub fn claim(&self) -> Result<(), AppError> {
         let Some((request, fresh)) = &self.request else {
             return Ok(());
         };
@@ -70,14 +71,13 @@ impl Kept {
             && held.trim_end() != request
             && !fresh
         {
-            return Err(format!(
+            return Err(AppError::Asked(format!(
                 "{} holds another study ({}); this one asks {request}: give --out to keep both, or --fresh to replace it",
                 folder.display(),
                 held.trim_end()
-            ));
+            )));
         }
-        crate::whole::write(&asked, format!("{request}\n"))
-            .map_err(|e| format!("{}: {e}", asked.display()))
+        crate::whole::write(&asked, format!("{request}\n")).map_err(|e| AppError::files(&asked, e))
     }
 
     fn file(&self, run: &str) -> PathBuf {
@@ -93,14 +93,14 @@ impl Kept {
     }
 
     /// Keeps `outcome` for `run`; `Err` says why it could not be written.
-    pub fn put<T: Serialize>(&self, run: &str, outcome: &T) -> Result<(), String> {
+    pub fn put<T: Serialize>(&self, run: &str, outcome: &T) -> Result<(), AppError> {
         let entry = Entry {
             run: run.to_owned(),
             outcome,
         };
-        let text = toml::to_string(&entry).map_err(|e| e.to_string())?;
         let file = self.file(run);
-        crate::whole::write(&file, text).map_err(|e| format!("{}: {e}", file.display()))
+        let text = toml::to_string(&entry).map_err(|e| AppError::files(&file, e))?;
+        crate::whole::write(&file, text).map_err(|e| AppError::files(&file, e))
     }
 }
 

@@ -351,13 +351,10 @@ fn step_all(
         master.step()?;
         recorder.observe(master)?;
         let t = master.time().as_secs();
-        watch
-            .observe(master, t, warnings)
-            .map_err(RunError::Bound)?;
+        watch.observe(master, t, warnings)?;
         if let Some(p) = pacer.as_deref_mut() {
             let index = usize::try_from(i).unwrap_or(usize::MAX);
-            p.end(index, (master.time() - scene.start).as_secs())
-                .map_err(RunError::Pace)?;
+            p.end(index, (master.time() - scene.start).as_secs())?;
         }
         if progress && i % 64 == 0 {
             update_progress(&mut bar, started.elapsed(), i as u64, scene.steps as u64);

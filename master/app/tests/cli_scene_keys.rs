@@ -252,22 +252,30 @@ fn set_on_an_ssp_says_why_it_cannot() {
 /// key the user wrote names its line.
 #[test]
 fn errors_of_a_change_name_it_and_others_the_users_line() {
+    use slender_app::AppError;
     let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/structure_hanging_pipe.toml");
-    let error =
-        slender_app::study::scene_with_overrides(&scene, &["simulation.step=fast".to_owned()])
-            .expect_err("a step in words");
+    let set = |scene: &std::path::Path, key: &str| match slender_app::study::scene_with_overrides(
+        scene,
+        &[key.to_owned()],
+    ) {
+        Err(AppError::Scene(e)) => e,
+        other => panic!("{key}: expected the scene refused, got {other:?}"),
+    };
+    let error = set(&scene, "simulation.step=fast");
+    assert_eq!(
+        (error.line, error.key.as_str()),
+        (None, "`simulation.step`")
+    );
     assert!(
-        error.contains("`simulation.step`: --set simulation.step=fast: "),
+        error.message.starts_with("--set simulation.step=fast: "),
         "{error}"
     );
-    let error = slender_app::study::scene_with_overrides(
-        &scene,
-        &["structure.sections[0].fidelity=wrong".to_owned()],
-    )
-    .expect_err("no such fidelity");
+    let error = set(&scene, "structure.sections[0].fidelity=wrong");
     assert!(
-        error.contains("(the scene as changed by --set structure.sections[0].fidelity=wrong)"),
+        error
+            .message
+            .ends_with("(the scene as changed by --set structure.sections[0].fidelity=wrong)"),
         "{error}"
     );
     // A key the user wrote, wrong where a change made no difference: its line.
@@ -276,12 +284,10 @@ fn errors_of_a_change_name_it_and_others_the_users_line() {
     let text = text.replacen("to = 10.0", "to = 10.0\nelemnts = 4", 1);
     let written = dir.path().join("pipe.toml");
     std::fs::write(&written, &text).expect("the scene");
-    let error =
-        slender_app::study::scene_with_overrides(&written, &["simulation.duration=1".to_owned()])
-            .expect_err("a misspelt key");
+    let error = set(&written, "simulation.duration=1");
     let line = 1 + text
         .lines()
         .position(|l| l.contains("elemnts"))
         .expect("the line");
-    assert!(error.contains(&format!("pipe.toml:{line}:")), "{error}");
+    assert_eq!(error.line, Some(line), "{error}");
 }

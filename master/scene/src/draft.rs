@@ -121,11 +121,11 @@ impl Draft {
 
     /// Changes the keys by `edit`, marked with `origin`; an error of `edit`
     /// leaves the draft as it was.
-    pub fn edit(
+    pub fn edit<E>(
         &mut self,
         origin: impl Into<String>,
-        edit: impl FnOnce(&mut Table) -> Result<(), String>,
-    ) -> Result<(), String> {
+        edit: impl FnOnce(&mut Table) -> Result<(), E>,
+    ) -> Result<(), E> {
         let mut table = self.table.clone();
         edit(&mut table)?;
         self.change(origin, table);

@@ -8,7 +8,7 @@
 //! a section's unit; it is never read back.
 
 use crate::spec::{ConnectionSpec, UnitSpec};
-use crate::structure::{self, Written};
+use crate::structure::{self, StructureError, Written};
 use crate::{SceneError, structure_lines};
 use serde::de::DeserializeOwned;
 use slender_units::{Hold, Time};
@@ -133,18 +133,17 @@ fn written_out(
     key: &str,
     name: String,
     start: f64,
-    write: impl FnOnce(Time) -> Result<Written, String>,
+    write: impl FnOnce(Time) -> Result<Written, StructureError>,
 ) -> Result<Expansion, SceneError> {
-    let error = |message: String| SceneError {
+    // The line of the model parameter the error names, else of its key,
+    // else of the table.
+    let error = |e: StructureError| SceneError {
         file: path.to_owned(),
-        line: structure_lines::model_parameter_line(source, &message)
-            .or_else(|| {
-                structure_lines::named_key(&message, key)
-                    .and_then(|k| structure_lines::key_line(source, k))
-            })
+        line: structure_lines::model_parameter_line(source, &e.message)
+            .or_else(|| (e.key.as_deref()).and_then(|k| structure_lines::key_line(source, k)))
             .or_else(|| structure_lines::key_line(source, key)),
         key: key.into(),
-        message,
+        message: e.message,
     };
     let t0 = Time::from_secs(start)
         .ok_or_else(|| error("`simulation.start`: expected a time in seconds".into()))?;
@@ -152,12 +151,12 @@ fn written_out(
     let span = structure_lines::key_span(source, key).unwrap_or(0..0);
     let units = (written.units.iter())
         .map(|u| unit_spec(u, &span))
-        .collect::<Result<_, _>>()
-        .map_err(error)?;
+        .collect::<Result<_, String>>()
+        .map_err(|m| error(m.into()))?;
     let connections = (written.connections.iter())
         .map(|c| connection_spec(c, &span))
         .collect::<Result<_, _>>()
-        .map_err(error)?;
+        .map_err(|m: String| error(m.into()))?;
     Ok(Expansion {
         name,
         units,

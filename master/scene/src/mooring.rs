@@ -29,6 +29,7 @@
 //! `initial_offset` counted from there, and each line solves its statics
 //! with its end at the fairlead so placed.
 
+use crate::structure::StructureError;
 use crate::structure::{self, link, unit_table};
 use serde::Deserialize;
 use slender_units::Time;
@@ -99,7 +100,7 @@ struct Line {
 
 impl Mooring {
     /// Reads `[mooring]`; an error names the key.
-    pub fn parse(mooring: &Value) -> Result<Mooring, String> {
+    pub fn parse(mooring: &Value) -> Result<Mooring, StructureError> {
         let table = mooring.as_table().ok_or("`mooring`: expected a table")?;
         let file: MooringFile = structure::typed("mooring", table)?;
         let mut body_table = file.body.clone();
@@ -125,7 +126,8 @@ impl Mooring {
             if file.waves.is_some() && table.contains_key("waves") {
                 return Err(format!(
                     "`mooring.{key}.waves`: the sea is `mooring.waves`, shared by the body and the lines; give it once"
-                ));
+                )
+                .into());
             }
         }
         let body: BodyParams = structure::typed("mooring.body", &body_table)?;
@@ -145,7 +147,8 @@ impl Mooring {
                 return Err(format!(
                     "`mooring.lines[{k}].name` = \"{}\": a name neither the body nor another line has (it prefixes the line's units)",
                     l.file.name
-                ));
+                )
+                .into());
             }
         }
         Ok(Mooring {
@@ -160,7 +163,7 @@ impl Mooring {
 
     /// The lines as catenaries from their anchors, for the statics; the
     /// error names the line whose model a catenary cannot stand for.
-    pub fn catenaries(&self) -> Result<Vec<MooredLine>, String> {
+    pub fn catenaries(&self) -> Result<Vec<MooredLine>, StructureError> {
         (self.lines.iter())
             .map(|l| {
                 let mut params = l.params.clone();
@@ -180,14 +183,14 @@ impl Mooring {
     }
 
     /// The body's equilibrium on its lines.
-    pub fn equilibrium(&self) -> Result<MooringStatics, String> {
+    pub fn equilibrium(&self) -> Result<MooringStatics, StructureError> {
         self.equilibrium_on(&self.catenaries()?)
     }
 
     /// The body's equilibrium on `lines` (its [`Mooring::catenaries`]), for
     /// a caller that keeps them for more statics.
-    pub fn equilibrium_on(&self, lines: &[MooredLine]) -> Result<MooringStatics, String> {
-        equilibrium(&self.body, lines).map_err(|e| format!("`mooring`: {e}"))
+    pub fn equilibrium_on(&self, lines: &[MooredLine]) -> Result<MooringStatics, StructureError> {
+        equilibrium(&self.body, lines).map_err(|e| format!("`mooring`: {e}").into())
     }
 
     /// Whether the body starts at its equilibrium (`mooring.statics`).
@@ -218,7 +221,7 @@ impl Mooring {
     /// Writes the system out at `t0`: the body (at its equilibrium with
     /// `statics`), each line as a 3D structure from its anchor to its
     /// fairlead, and the connections between them.
-    pub fn expand(&self, t0: Time) -> Result<structure::Written, String> {
+    pub fn expand(&self, t0: Time) -> Result<structure::Written, StructureError> {
         let mut offset = self.body.initial_offset;
         if self.statics {
             let eq = self.equilibrium()?;
@@ -300,7 +303,8 @@ impl Line {
     fn expand(&self, fairlead: [f64; 3], t0: Time) -> Result<structure::Written, String> {
         let table = self.structure(fairlead);
         let key = format!("`mooring.lines.{}", self.file.name);
-        structure::expand(&Value::Table(table), t0).map_err(|e| e.replace("`structure", &key))
+        structure::expand(&Value::Table(table), t0)
+            .map_err(|e| e.message.replace("`structure", &key))
     }
 
     /// The line as the `[structure]` table it is written out as, its end at
@@ -378,7 +382,7 @@ fn end_table(position: [f64; 3]) -> Value {
 }
 
 /// The scene's `[mooring]` read and checked; None when it has none.
-pub fn of_scene(scene: &crate::Scene) -> Result<Option<Mooring>, String> {
+pub fn of_scene(scene: &crate::Scene) -> Result<Option<Mooring>, StructureError> {
     let table: Table = toml::from_str(&scene.source).map_err(|e| e.to_string())?;
     table.get("mooring").map(Mooring::parse).transpose()
 }

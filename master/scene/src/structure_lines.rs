@@ -98,11 +98,6 @@ fn named(item: &Spanned<DeValue>, name: &str) -> bool {
     })
 }
 
-/// The first key under the top-level `top` a message names in backticks.
-pub(crate) fn named_key<'a>(message: &'a str, top: &str) -> Option<&'a str> {
-    named_keys(message, top).next()
-}
-
 /// Every key under `top` that `message` names in backticks, in order.
 pub(crate) fn named_keys<'a>(message: &'a str, top: &str) -> impl Iterator<Item = &'a str> {
     (message.split('`').skip(1).step_by(2))
@@ -167,11 +162,12 @@ mod tests {
             Some(10)
         );
         assert_eq!(
-            named_key(
-                "`structure.sections.upper.fidelity` = \"beam\": no",
+            named_keys(
+                "`structure.sections.upper.fidelity` = \"beam\": no, `mooring.x`",
                 "structure"
-            ),
-            Some("structure.sections.upper.fidelity")
+            )
+            .collect::<Vec<_>>(),
+            ["structure.sections.upper.fidelity"]
         );
         let message = "parameter `rayleigh_stiffness` = -1: expected a finite value >= 0";
         assert_eq!(

@@ -91,7 +91,7 @@ pub(super) fn study(
     };
     let kept = kept_runs(&dir, path, (&options, &request), fresh)?;
     let rows = study::run_study_resuming(path, plan, Some(&kept), |line| println!("{line}"))
-        .map_err(CliError::input)?;
+        .map_err(CliError::of)?;
     println!(
         "{:<28} {:>14}  epsilon vs reference       it/step   s per sim. s",
         "setting", "value"
@@ -193,7 +193,7 @@ pub(super) fn fidelity(
     };
     let kept = kept_runs(&dir, path, (&options, &request), fresh)?;
     let report = fidelity::run_fidelity_kept(path, plan, Some(&kept), |line| println!("{line}"))
-        .map_err(CliError::input)?;
+        .map_err(CliError::of)?;
     let write = |name: &str, text: String| super::write_in(&dir, name, text);
     let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
     let files = vec![
@@ -249,7 +249,7 @@ fn kept_runs(
             .map_err(|e| CliError::failure(format!("{}: {e}", runs.display())))?;
     }
     let options = format!("slender {}, {options}", env!("CARGO_PKG_VERSION"));
-    let kept = slender_app::resume::Kept::new(dir, scene, &options).map_err(CliError::failure)?;
+    let kept = slender_app::resume::Kept::new(dir, scene, &options).map_err(CliError::of)?;
     Ok(kept.asking(request.to_owned(), fresh))
 }
 

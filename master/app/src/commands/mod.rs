@@ -31,6 +31,15 @@ impl CliError {
         }
     }
 
+    /// The library's error: bad input (the scene, what was asked) exits 2,
+    /// a file that could not be read or written 1.
+    pub(crate) fn of(error: slender_app::AppError) -> CliError {
+        CliError {
+            code: if error.is_input() { 2 } else { 1 },
+            message: error.to_string(),
+        }
+    }
+
     /// A failure on the way: exit code 1.
     pub(crate) fn failure(message: impl std::fmt::Display) -> CliError {
         CliError {
@@ -243,7 +252,7 @@ impl SceneArg<'_> {
 
 /// Loads and checks a scene with its `--set` keys (bad input on failure).
 fn load(scene: &SceneArg) -> Result<Scene, CliError> {
-    slender_app::study::scene_with_overrides(&scene.path, scene.set).map_err(CliError::input)
+    slender_app::study::scene_with_overrides(&scene.path, scene.set).map_err(CliError::of)
 }
 
 /// Makes the results folder `dir` and holds it (one writer at a time,

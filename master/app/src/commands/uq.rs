@@ -36,7 +36,7 @@ pub(super) fn uq(
         })?;
     // The inputs' keys first, so that a design refused for its size was
     // otherwise valid.
-    let inputs = uq::check_inputs(path, plan).map_err(CliError::input)?;
+    let inputs = uq::check_inputs(path, plan).map_err(CliError::of)?;
     check_size(plan, spec.samples)?;
     let names: Vec<String> = spec.inputs.iter().map(|i| i.name.clone()).collect();
     let header = uq::report::header(&names, &spec.outputs);
@@ -187,7 +187,7 @@ fn run_appending(
         let outputs: Vec<String> = run.1.iter().map(|v| format!("{v:.4e}")).collect();
         println!("{progress} design point {k}: {}", outputs.join(", "));
     })
-    .map_err(CliError::input)?;
+    .map_err(CliError::of)?;
     // Only the earlier runs at this design's points count (a design of
     // another size may place its points elsewhere).
     let made = runs.iter().filter(|r| !r.0.is_empty()).count();

@@ -134,7 +134,7 @@ pub fn run_fidelity(
     path: &Path,
     plan: &FidelityPlan,
     progress: impl Fn(&str) + Sync,
-) -> Result<FidelityReport, String> {
+) -> Result<FidelityReport, crate::AppError> {
     run_fidelity_kept(path, plan, None, progress)
 }
 
@@ -146,7 +146,7 @@ pub fn run_fidelity_kept(
     plan: &FidelityPlan,
     kept: Option<&crate::resume::Kept>,
     progress: impl Fn(&str) + Sync,
-) -> Result<FidelityReport, String> {
+) -> Result<FidelityReport, crate::AppError> {
     let mut draft = crate::study::draft_of(path, &plan.overrides)?;
     // The scene must load as written.
     crate::study::scene_of(&draft, plan.duration)?;
@@ -155,11 +155,10 @@ pub fn run_fidelity_kept(
     let sections = subject.sections();
     sections_asked(plan, &sections)?;
     // Runs record only what the study reads, and carry no twin.
-    draft.edit("the fidelity study (no twin, its own [output])", |table| {
-        subject.prepare(table);
-        table.remove("output");
-        Ok(())
-    })?;
+    let mut table = draft.table().clone();
+    subject.prepare(&mut table);
+    table.remove("output");
+    draft.change("the fidelity study (no twin, its own [output])", table);
     let names = subject.quantities();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
     // Before any run (a misspelt quantity was refused after them all), and

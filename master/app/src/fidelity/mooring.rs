@@ -66,7 +66,10 @@ fn line_layouts(mooring: &Mooring) -> Result<Vec<(String, Layout)>, String> {
             let mut scene = Table::new();
             scene.insert("structure".into(), Value::Table(structure));
             let layout = layout(&scene)
-                .map_err(|e| e.replace("`structure", &format!("`mooring.lines.{name}")))?
+                .map_err(|e| {
+                    e.message
+                        .replace("`structure", &format!("`mooring.lines.{name}"))
+                })?
                 .ok_or("no line structure")?;
             Ok((name, layout))
         })
@@ -217,5 +220,10 @@ fn write_line_choice(
         .filter_map(Value::as_table_mut)
         .find(|t| t.get("name").and_then(Value::as_str) == Some(section))
         .ok_or(format!("no section `{line}.{section}`"))?;
-    write_choice(table, &choice.fidelity, choice.elements, choice.substeps)
+    Ok(write_choice(
+        table,
+        &choice.fidelity,
+        choice.elements,
+        choice.substeps,
+    )?)
 }

@@ -37,7 +37,7 @@ pub(super) fn run_one(
     );
     let scene = match crate::study::scene_of(&draft, plan.duration) {
         Ok(s) => s,
-        Err(e) => return failed(e),
+        Err(e) => return failed(e.to_string()),
     };
     let options = RunOptions {
         output_dir: None,

@@ -68,6 +68,8 @@ fn a_section_given_twice_is_refused() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/structure_mooring.toml");
     let e = run_fidelity(&path, &plan, |_| {}).expect_err("refused");
+    assert!(e.is_input(), "{e}");
+    let e = e.to_string();
     assert!(
         e.contains("--section lower: the section is given twice"),
         "{e}"
@@ -112,7 +114,9 @@ fn a_mooring_s_line_sections_are_studied_against_every_line_whole() {
     let error = |row: &FidelityRow, q: &str| row.errors.iter().find(|e| e.0 == q).unwrap().1;
     assert!(error(one_upper, "line1_tension") > error(one_upper, "line2_tension"));
     plan.sections = vec!["line4.lower=static".parse().unwrap()];
-    let refused = run_fidelity(&path, &plan, |_| {}).expect_err("no line4");
+    let refused = run_fidelity(&path, &plan, |_| {})
+        .expect_err("no line4")
+        .to_string();
     assert!(
         refused.contains("line1.lower") && refused.contains("line4.lower"),
         "{refused}"

@@ -52,6 +52,8 @@ pub enum StudyError {
     Unit(#[from] UnitError),
     #[error("{0}")]
     Plan(String),
+    #[error(transparent)]
+    App(#[from] crate::AppError),
 }
 
 /// One model of the study.
@@ -232,7 +234,7 @@ fn motion_runs(
     span_scene: &Path,
     fe_scene: &Path,
 ) -> Result<MotionRuns, StudyError> {
-    let against = study::run_reference(reference, None).map_err(StudyError::Plan)?;
+    let against = study::run_reference(reference, None)?;
     let engine =
         |path: &Path, sweeps, design, cost: &str| engine_rows(path, sweeps, design, cost, &against);
     let orders: Vec<i64> = plan.orders.iter().map(|&n| n as i64).collect();

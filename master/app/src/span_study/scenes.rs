@@ -129,7 +129,12 @@ pub(crate) fn engine_rows(
         reference: None,
         repeats: 1,
     };
-    study::run_study_against(path, &plan, Some(reference), |_| {}).map_err(StudyError::Plan)
+    Ok(study::run_study_against(
+        path,
+        &plan,
+        Some(reference),
+        |_| {},
+    )?)
 }
 
 /// The order rows of a span study are reported in: span units as the plan

@@ -15,13 +15,14 @@ pub(super) fn check_plan(
     draft: &Draft,
     plan: &StudyPlan,
     has_reference: bool,
-) -> Result<(), String> {
+) -> Result<(), crate::AppError> {
     for name in &plan.cost_units {
         if !base.spec.units.iter().any(|u| u.name.get_ref() == name) {
             return Err(format!(
                 "cost unit `{name}`: {} has no unit of that name",
                 path.display()
-            ));
+            )
+            .into());
         }
     }
     for sweep in &plan.sweeps {
@@ -29,7 +30,8 @@ pub(super) fn check_plan(
             return Err(format!(
                 "{}: a sweep needs at least two values (or a reference scene)",
                 sweep.setting
-            ));
+            )
+            .into());
         }
         let mut probe = draft.clone();
         let origin = format!("--vary {}={}", sweep.setting, label(sweep.reference()));
@@ -41,7 +43,7 @@ pub(super) fn check_plan(
     // Last, so that a study refused for its size was otherwise valid.
     let runs = run_count(plan);
     if runs > plan.max_runs {
-        return Err(crate::too_many_runs("the study", runs, plan.max_runs));
+        return Err(crate::too_many_runs("the study", runs, plan.max_runs).into());
     }
     Ok(())
 }

@@ -17,6 +17,7 @@ pub mod report;
 pub mod setting;
 mod tasks;
 
+use crate::AppError;
 use crate::resume::Kept;
 use crate::run::{RunOptions, run_scene};
 use serde::Serialize;
@@ -196,7 +197,7 @@ pub fn run_study(
     path: &Path,
     plan: &StudyPlan,
     progress: impl Fn(&str) + Sync,
-) -> Result<Vec<StudyRow>, String> {
+) -> Result<Vec<StudyRow>, AppError> {
     run_study_resuming(path, plan, None, progress)
 }
 
@@ -208,7 +209,7 @@ pub fn run_study_resuming(
     plan: &StudyPlan,
     kept: Option<&Kept>,
     progress: impl Fn(&str) + Sync,
-) -> Result<Vec<StudyRow>, String> {
+) -> Result<Vec<StudyRow>, AppError> {
     let reference = match &plan.reference {
         Some(r) => Some(run_reference(r, plan.duration)?),
         None => None,
@@ -226,11 +227,14 @@ pub struct ReferenceRun {
 
 /// Runs the reference scene at `path` (for `duration` when given); `Err` when it
 /// does not load or its run fails.
-pub fn run_reference(path: &Path, duration: Option<f64>) -> Result<ReferenceRun, String> {
+pub fn run_reference(path: &Path, duration: Option<f64>) -> Result<ReferenceRun, AppError> {
     let scene = scene_of(&draft_of(path, &[])?, duration)?;
     let outcome = outcome_of(&scene, &[]);
     if let Some(e) = &outcome.error {
-        return Err(format!("reference {}: {e}", path.display()));
+        return Err(AppError::Asked(format!(
+            "reference {}: {e}",
+            path.display()
+        )));
     }
     Ok(ReferenceRun {
         path: path.to_owned(),
@@ -252,7 +256,7 @@ pub fn run_study_against(
     plan: &StudyPlan,
     reference: Option<&ReferenceRun>,
     progress: impl Fn(&str) + Sync,
-) -> Result<Vec<StudyRow>, String> {
+) -> Result<Vec<StudyRow>, AppError> {
     run_study_kept(path, plan, (reference, None), progress)
 }
 
@@ -263,7 +267,7 @@ fn run_study_kept(
     plan: &StudyPlan,
     (reference, kept): (Option<&ReferenceRun>, Option<&Kept>),
     progress: impl Fn(&str) + Sync,
-) -> Result<Vec<StudyRow>, String> {
+) -> Result<Vec<StudyRow>, AppError> {
     // The scene as written (a `[structure]` still a structure, so its keys
     // vary), with the user's `--set` over it.
     let draft = draft_of(path, &plan.overrides)?;
@@ -275,11 +279,11 @@ fn run_study_kept(
             .iter()
             .find(|j| !j.in_run && !r.indicators.contains(&j.name))
         {
-            return Err(format!(
+            return Err(AppError::Asked(format!(
                 "reference {}: no indicator `{}` to compare the study's with",
                 r.path.display(),
                 j.name
-            ));
+            )));
         }
     }
     if let Some(kept) = kept {
@@ -350,14 +354,14 @@ fn judged_of(path: &Path, scene: &Scene) -> Result<Vec<Judged>, String> {
 /// The scene file at `path` as written (a `[structure]` still a structure, so
 /// the studies vary its keys), read once, with `overrides` (`KEY=VALUE`,
 /// `--set`) set over it; an error names the override.
-pub(crate) fn draft_of(path: &Path, overrides: &[String]) -> Result<Draft, String> {
+pub(crate) fn draft_of(path: &Path, overrides: &[String]) -> Result<Draft, AppError> {
     if slender_scene::ssp::is_ssp(path) {
-        return Err(format!(
+        return Err(AppError::Asked(format!(
             "{}: an SSP is a packaged system, not a scene file, so --set and studies cannot change its keys; set them in the scene it was wrapped from and wrap it again",
             path.display()
-        ));
+        )));
     }
-    let mut draft = Draft::read(path).map_err(|e| e.to_string())?;
+    let mut draft = Draft::read(path)?;
     for text in overrides {
         let (setting, value) = setting::parse_override(text).map_err(|e| format!("--set {e}"))?;
         draft
@@ -369,9 +373,9 @@ pub(crate) fn draft_of(path: &Path, overrides: &[String]) -> Result<Draft, Strin
 
 /// The scene at `path` with `overrides` (`KEY=VALUE`, `--set`) set over the
 /// file; an error names the user's line, or the override it is about.
-pub fn scene_with_overrides(path: &Path, overrides: &[String]) -> Result<Scene, String> {
+pub fn scene_with_overrides(path: &Path, overrides: &[String]) -> Result<Scene, AppError> {
     if overrides.is_empty() {
-        return Scene::load(path).map_err(|e| e.to_string());
+        return Ok(Scene::load(path)?);
     }
     let mut scene = scene_of(&draft_of(path, overrides)?, None)?;
     scene.overrides = overrides.to_vec();
@@ -380,12 +384,12 @@ pub fn scene_with_overrides(path: &Path, overrides: &[String]) -> Result<Scene, 
 
 /// The scene of `draft`, for `duration` (s) when given. An error names the
 /// user's line, or the change it is about.
-pub(crate) fn scene_of(draft: &Draft, duration: Option<f64>) -> Result<Scene, String> {
-    let mut scene = draft.scene().map_err(|e| e.to_string())?;
+pub(crate) fn scene_of(draft: &Draft, duration: Option<f64>) -> Result<Scene, AppError> {
+    let mut scene = draft.scene()?;
     if let Some(d) = duration {
         scene.spec.simulation.duration = d;
         let step = scene.spec.simulation.step;
-        scene.set_step(step).map_err(|e| e.to_string())?;
+        scene.set_step(step)?;
     }
     Ok(scene)
 }
@@ -409,7 +413,7 @@ fn run_one(
         (assignments.iter()).try_for_each(|(setting, value)| setting.apply(table, value))
     });
     if let Err(e) = applied {
-        return failed(judged, e);
+        return failed(judged, e.to_string());
     }
     match scene_of(&draft, plan.duration) {
         Ok(scene) => {
@@ -423,7 +427,7 @@ fn run_one(
             }
             o
         }
-        Err(e) => failed(judged, e),
+        Err(e) => failed(judged, e.to_string()),
     }
 }
 

@@ -5,6 +5,7 @@
 //! the scene's TOML before the scene is checked, so any key the scene reference
 //! documents can vary.
 
+use crate::AppError;
 use std::fmt;
 use std::str::FromStr;
 
@@ -53,10 +54,15 @@ impl Setting {
         }
     }
 
-    /// Sets `value` in the scene (its TOML, before the scene is checked).
+    /// Sets `value` in the scene (its keys, before the scene is checked).
     /// `units.<name>` finds a unit by its name, a number indexes an array, and
     /// missing tables are made (a parameter left at its default can vary).
-    pub fn apply(&self, scene: &mut toml::Table, value: &toml::Value) -> Result<(), String> {
+    /// An error says where the key path does not apply.
+    pub fn apply(&self, scene: &mut toml::Table, value: &toml::Value) -> Result<(), AppError> {
+        self.set(scene, value).map_err(AppError::Asked)
+    }
+
+    fn set(&self, scene: &mut toml::Table, value: &toml::Value) -> Result<(), String> {
         if self.path.is_empty() {
             return set_cable_elements(scene, value);
         }
@@ -288,7 +294,7 @@ pub fn parse_value(text: &str) -> toml::Value {
 /// `KEY=VALUE` of `slender run --set`: a scene key by its path (as a study
 /// varies it) and a TOML value (`0.5`, `true`, `[1, 2]`, `{ kind = "none" }`;
 /// a bare word is a string).
-pub fn parse_override(text: &str) -> Result<(Setting, toml::Value), String> {
+pub fn parse_override(text: &str) -> Result<(Setting, toml::Value), AppError> {
     let (key, value) = text.split_once('=').ok_or_else(|| {
         format!("`{text}`: expected KEY=VALUE, e.g. simulation.duration=10 or master.scheme=jacobi")
     })?;
@@ -345,7 +351,8 @@ segments = [{ length = 1.0, elements = 4 }, { length = 2.0, elements = 8 }]
 
     fn set(key: &str, value: &str) -> Result<toml::Table, String> {
         let mut t = scene();
-        key.parse::<Setting>()?.apply(&mut t, &parse_value(value))?;
+        let setting = key.parse::<Setting>()?;
+        setting.set(&mut t, &parse_value(value))?;
         Ok(t)
     }
 

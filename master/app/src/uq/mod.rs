@@ -87,7 +87,7 @@ pub struct CheckedInputs {
 /// Checks the scene's `[uncertainty]` table and that each input's key applies
 /// to the scene: a key that does not apply (a unit that is not there) is bad
 /// input, probed with its input's median.
-pub fn check_inputs(path: &Path, plan: &UqPlan) -> Result<CheckedInputs, String> {
+pub fn check_inputs(path: &Path, plan: &UqPlan) -> Result<CheckedInputs, crate::AppError> {
     let draft = crate::study::draft_of(path, &plan.overrides)?;
     let scene = crate::study::scene_of(&draft, plan.duration)?;
     let spec = scene
@@ -121,7 +121,7 @@ pub fn run_uq(
     plan: &UqPlan,
     earlier: &[Run],
     done: impl Fn(usize, &Run, &str) + Sync,
-) -> Result<(Option<UqReport>, Vec<Run>), String> {
+) -> Result<(Option<UqReport>, Vec<Run>), crate::AppError> {
     run_checked(path, plan, &check_inputs(path, plan)?, earlier, done)
 }
 
@@ -132,7 +132,7 @@ pub fn run_checked(
     inputs: &CheckedInputs,
     earlier: &[Run],
     done: impl Fn(usize, &Run, &str) + Sync,
-) -> Result<(Option<UqReport>, Vec<Run>), String> {
+) -> Result<(Option<UqReport>, Vec<Run>), crate::AppError> {
     let CheckedInputs {
         draft,
         spec,
@@ -140,12 +140,12 @@ pub fn run_checked(
     } = inputs;
     let samples = plan.samples.unwrap_or(spec.samples);
     if samples > plan.max_runs {
-        return Err(crate::too_many_runs("the design", samples, plan.max_runs));
+        return Err(crate::too_many_runs("the design", samples, plan.max_runs).into());
     }
     let points = points_of(spec, samples)?;
     let order: Vec<usize> = match plan.shard {
         Some((k, n)) if k >= 1 && k <= n => (k - 1..points.len()).step_by(n).collect(),
-        Some((k, n)) => return Err(format!("--shard {k}/{n}: expected K in 1..=N")),
+        Some((k, n)) => return Err(format!("--shard {k}/{n}: expected K in 1..=N").into()),
         None => (0..points.len()).collect(),
     };
     let fresh = Mutex::new(());
@@ -287,10 +287,13 @@ fn run_one(
     let at: Vec<String> = (settings.iter().zip(point))
         .map(|(s, x)| format!("{s}={x}"))
         .collect();
-    draft.edit(format!("the design point {}", at.join(" ")), |table| {
-        (settings.iter().zip(point)).try_for_each(|(s, &x)| s.apply(table, &toml::Value::Float(x)))
-    })?;
-    let scene = crate::study::scene_of(&draft, duration)?;
+    draft
+        .edit(format!("the design point {}", at.join(" ")), |table| {
+            (settings.iter().zip(point))
+                .try_for_each(|(s, &x)| s.apply(table, &toml::Value::Float(x)))
+        })
+        .map_err(|e| e.to_string())?;
+    let scene = crate::study::scene_of(&draft, duration).map_err(|e| e.to_string())?;
     let options = RunOptions {
         output_dir: None,
         progress: false,

@@ -37,14 +37,14 @@ impl Watch {
         master: &Master,
         t: f64,
         warnings: &mut Vec<String>,
-    ) -> Result<(), String> {
+    ) -> Result<(), crate::run::RunError> {
         let before = warnings.len();
         self.tension.observe(master, t, warnings);
         self.energy.observe(master, t, warnings);
         match warnings.get(before).cloned() {
             Some(first) if self.stop => {
                 warnings.truncate(before);
-                Err(first)
+                Err(crate::run::RunError::Bound(first))
             }
             _ => Ok(()),
         }

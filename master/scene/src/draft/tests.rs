@@ -14,7 +14,7 @@ fn a_change_reaches_the_typed_scene() {
     let mut d = draft(HANGING_PIPE);
     d.edit("--set simulation.duration=2", |t| {
         t["simulation"]["duration"] = toml::Value::Float(2.0);
-        Ok(())
+        Ok::<(), &str>(())
     })
     .expect("the edit");
     let scene = d.scene().expect("the scene");
@@ -36,7 +36,7 @@ fn an_error_about_a_key_the_user_wrote_names_its_line() {
     let mut d = draft(&text);
     d.edit("--set simulation.duration=2", |t| {
         t["simulation"]["duration"] = toml::Value::Float(2.0);
-        Ok(())
+        Ok::<(), &str>(())
     })
     .expect("the edit");
     let error = d.scene().expect_err("an unknown key").to_string();
@@ -49,7 +49,7 @@ fn an_error_about_a_changed_value_names_the_change() {
     let mut d = draft(HANGING_PIPE);
     d.edit("--set simulation.step=fast", |t| {
         t["simulation"]["step"] = toml::Value::String("fast".into());
-        Ok(())
+        Ok::<(), &str>(())
     })
     .expect("the edit");
     let error = d.scene().expect_err("a string step").to_string();
@@ -61,7 +61,7 @@ fn an_error_about_a_changed_value_names_the_change() {
     let mut d = draft(HANGING_PIPE);
     d.edit("--vary master.tolerances.velocity=-1", |t| {
         t["master"]["tolerances"]["velocity"] = toml::Value::Float(-1.0);
-        Ok(())
+        Ok::<(), &str>(())
     })
     .expect("the edit");
     let error = d.scene().expect_err("a negative tolerance").to_string();
@@ -78,7 +78,7 @@ fn a_removed_key_and_a_new_table_are_typed_as_changed() {
         let s = t["structure"].as_table_mut().ok_or("no structure")?;
         s.remove("reference");
         t.remove("output");
-        Ok(())
+        Ok::<(), &str>(())
     })
     .expect("the edit");
     let with = draft(HANGING_PIPE)
@@ -94,7 +94,7 @@ fn a_removed_key_and_a_new_table_are_typed_as_changed() {
             "acceleration".into(),
             toml::toml! { kind = "aitken" }.into(),
         );
-        Ok(())
+        Ok::<(), &str>(())
     })
     .expect("the edit");
     d.scene().expect("the scene with an acceleration");
@@ -103,7 +103,7 @@ fn a_removed_key_and_a_new_table_are_typed_as_changed() {
 #[test]
 fn an_edit_that_fails_leaves_the_draft_as_it_was() {
     let mut d = draft(HANGING_PIPE);
-    let error = d.edit("--set x=1", |_| Err("no such key".into()));
-    assert_eq!(error, Err("no such key".into()));
+    let error = d.edit("--set x=1", |_| Err("no such key"));
+    assert_eq!(error, Err("no such key"));
     assert!(!d.is_changed());
 }

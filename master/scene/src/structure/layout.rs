@@ -92,7 +92,7 @@ pub fn reference_name(structure: &str) -> String {
 
 /// The layout of the scene's `[structure]`; None when it has none. The error
 /// names the key, as the expansion's does.
-pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
+pub fn layout(scene: &Table) -> Result<Option<Layout>, super::StructureError> {
     let Some(structure) = scene.get("structure") else {
         return Ok(None);
     };
@@ -100,7 +100,7 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, String> {
         .as_table()
         .ok_or("`structure`: expected a table")?;
     if super::line3d::is_3d(structure) {
-        return super::line3d::layout(structure).map(Some);
+        return Ok(super::line3d::layout(structure).map(Some)?);
     }
     let spec = Spec::parse(structure)?;
     let name = &spec.name;
@@ -170,7 +170,7 @@ pub fn write_choice(
     word: &str,
     count: Option<usize>,
     substeps: Option<u32>,
-) -> Result<(), String> {
+) -> Result<(), super::StructureError> {
     let fidelity = Fidelity::parse("fidelity", word)?;
     section.remove("elements");
     section.remove("substeps");
@@ -198,7 +198,7 @@ pub fn write_choice(
 /// Writes a training window (s) onto a section written as `reduced` by
 /// [`write_choice`] (`reduced:6@5` on the command line): its forces sampled
 /// after `training` seconds.
-pub fn write_training(section: &mut Table, training: f64) -> Result<(), String> {
+pub fn write_training(section: &mut Table, training: f64) -> Result<(), super::StructureError> {
     let mut table = match section.get("fidelity") {
         Some(Value::String(w)) if w == "reduced" => Table::new(),
         Some(Value::Table(t)) if t.get("kind").and_then(Value::as_str) == Some("reduced") => {
@@ -207,7 +207,8 @@ pub fn write_training(section: &mut Table, training: f64) -> Result<(), String> 
         _ => {
             return Err(format!(
                 "`@{training}`: a training window is for a `reduced` section (its forces sampled after it, e.g. reduced:6@5)"
-            ));
+            )
+            .into());
         }
     };
     table.insert("kind".into(), Value::String("reduced".into()));
@@ -271,10 +272,13 @@ mod tests {
         let mut section = Table::new();
         write_choice(&mut section, "cable", None, None).unwrap();
         let e = write_training(&mut section, 5.0).unwrap_err();
-        assert!(e.contains("for a `reduced` section"), "{e}");
+        assert!(e.message.contains("for a `reduced` section"), "{e}");
         let mut section = Table::new();
         let e = write_choice(&mut section, "coarse", None, None).unwrap_err();
-        assert!(e.contains("expected one of nonlinear, linear"), "{e}");
+        assert!(
+            e.message.contains("expected one of nonlinear, linear"),
+            "{e}"
+        );
     }
 
     #[test]

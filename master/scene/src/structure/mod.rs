@@ -24,6 +24,7 @@
 mod cable;
 mod chord;
 mod cuts;
+mod error;
 mod hang_off;
 mod layout;
 mod line3d;
@@ -39,6 +40,7 @@ mod statics;
 
 pub(crate) use cuts::link;
 use cuts::{End, Side};
+pub use error::StructureError;
 pub use layout::{
     Layout, SectionLayout, SectionOutputs, layout, reference_name, unit_name, write_choice,
     write_training,
@@ -68,12 +70,12 @@ pub struct Written {
 /// Writes out the `[structure]` table `structure` as units and connections
 /// (as tables of the scene's `[[units]]` and `[[connections]]`), its statics
 /// solved at the simulation's start `t0`. The error names the key.
-pub fn expand(structure: &Value, t0: Time) -> Result<Written, String> {
+pub fn expand(structure: &Value, t0: Time) -> Result<Written, StructureError> {
     let structure = structure
         .as_table()
         .ok_or("`structure`: expected a table")?;
     if line3d::is_3d(structure) {
-        return line3d::expand(structure, t0);
+        return Ok(line3d::expand(structure, t0)?);
     }
     let spec = Spec::parse(structure)?;
     let (built, cuts) = Built::new(spec, t0)?;
