@@ -19,6 +19,18 @@ pub enum AppError {
     /// that holds another study): the message names the flag.
     #[error("{0}")]
     Asked(String),
+    /// Ctrl-C stopped the study before its last run: nothing is fitted or
+    /// tabled from part of a study; its finished runs are kept for the same
+    /// command to resume.
+    #[error(
+        "interrupted (Ctrl-C) after {finished} of {total} runs: nothing is fitted or tabled from part of a study; the finished runs are kept, and the same command resumes from them"
+    )]
+    Interrupted {
+        /// The runs that finished.
+        finished: usize,
+        /// The runs the study makes.
+        total: usize,
+    },
     /// A file or folder could not be read or written.
     #[error("{}: {message}", path.display())]
     Files {
@@ -41,7 +53,7 @@ impl AppError {
     /// Whether the error is the input's (the scene's or the command line's),
     /// not a failure on the way.
     pub fn is_input(&self) -> bool {
-        !matches!(self, AppError::Files { .. })
+        matches!(self, AppError::Scene(_) | AppError::Asked(_))
     }
 }
 

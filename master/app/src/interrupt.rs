@@ -20,6 +20,22 @@ pub fn request() {
     REQUESTED.store(true, Ordering::Relaxed);
 }
 
+/// `Err(AppError::Interrupted)` when Ctrl-C stopped a study whose runs'
+/// outcomes are `outcomes` (`finished` tells a run that finished): a study
+/// stopped part-way fits and tables nothing (its finished runs are kept).
+pub(crate) fn stop_if_requested<T>(
+    outcomes: &[T],
+    finished: impl Fn(&T) -> bool,
+) -> Result<(), crate::AppError> {
+    if !requested() {
+        return Ok(());
+    }
+    Err(crate::AppError::Interrupted {
+        finished: outcomes.iter().filter(|o| finished(o)).count(),
+        total: outcomes.len(),
+    })
+}
+
 /// Installs the SIGINT handler (Unix; elsewhere Ctrl-C keeps its default).
 pub fn install() {
     #[cfg(unix)]

@@ -32,10 +32,15 @@ impl CliError {
     }
 
     /// The library's error: bad input (the scene, what was asked) exits 2,
-    /// a file that could not be read or written 1.
+    /// a file that could not be read or written 1, Ctrl-C 130.
     pub(crate) fn of(error: slender_app::AppError) -> CliError {
+        let code = match error {
+            slender_app::AppError::Interrupted { .. } => 130,
+            _ if error.is_input() => 2,
+            _ => 1,
+        };
         CliError {
-            code: if error.is_input() { 2 } else { 1 },
+            code,
             message: error.to_string(),
         }
     }

@@ -191,6 +191,7 @@ pub fn run_fidelity_kept(
         progress(&format!("{k} {what}: {how}{reused}"));
         outcome
     });
+    crate::interrupt::stop_if_requested(&outcomes, |o: &Outcome| o.error.is_none())?;
     let (scales, floors) = floors::floors(&names, &outcomes[0]);
     let rows = rows::rows_of(
         subject,

@@ -320,6 +320,7 @@ fn run_study_kept(
         progress(&format!("{k} {what}: {how}"));
         o
     });
+    crate::interrupt::stop_if_requested(&outcomes, |o| o.error.is_none())?;
     let mut rows = Vec::new();
     for (group, runs) in &groups {
         let rest = outcomes.split_off(runs.len());

@@ -174,6 +174,7 @@ pub fn run_checked(
     });
     let failures: Vec<(usize, String)> = outcomes.iter().filter_map(|o| o.1.clone()).collect();
     let runs: Vec<Run> = outcomes.into_iter().map(|o| o.0).collect();
+    crate::interrupt::stop_if_requested(&runs, |r| r.1.iter().all(|v| v.is_finite()))?;
     if plan.shard.is_some() {
         let shard: Vec<Run> = order.iter().zip(runs).map(|(_, r)| r).collect();
         return Ok((None, shard_rows(&order, shard)));
