@@ -92,8 +92,8 @@ impl Recorder {
     }
 
     /// Records the master's current outputs, honouring `every` (the first call, at
-    /// the initial time, is always recorded).
-    pub fn observe(&mut self, master: &Master) -> std::io::Result<()> {
+    /// the initial time, is always recorded); an error names the CSV file.
+    pub fn observe(&mut self, master: &Master) -> Result<(), RunError> {
         let due = self.counter % self.every == 0;
         self.counter += 1;
         if !due {
@@ -104,12 +104,15 @@ impl Recorder {
         for (col, &(u, p)) in self.columns.iter_mut().zip(&self.ports) {
             col.push(master.outputs(u)[p]);
         }
-        if let Some((w, _)) = &mut self.csv {
-            write!(w, "{t}")?;
-            for col in &self.columns {
-                write!(w, ",{:e}", col.last().copied().unwrap_or(f64::NAN))?;
-            }
-            writeln!(w)?;
+        if let Some((w, path)) = &mut self.csv {
+            let row = |w: &mut BufWriter<File>| {
+                write!(w, "{t}")?;
+                for col in &self.columns {
+                    write!(w, ",{:e}", col.last().copied().unwrap_or(f64::NAN))?;
+                }
+                writeln!(w)
+            };
+            row(w).map_err(|e| RunError::file(&crate::whole::partial(path), &e))?;
         }
         Ok(())
     }
@@ -118,12 +121,13 @@ impl Recorder {
     /// `timeseries.csv.partial` while the run went, so a run killed outright
     /// leaves no CSV that looks finished. Called on every end of a run
     /// (completed, failed, interrupted).
-    pub fn finish(&mut self) -> std::io::Result<()> {
+    pub fn finish(&mut self) -> Result<(), RunError> {
         match self.csv.take() {
             Some((mut w, path)) => {
-                w.flush()?;
+                let partial = crate::whole::partial(&path);
+                w.flush().map_err(|e| RunError::file(&partial, &e))?;
                 drop(w);
-                std::fs::rename(crate::whole::partial(&path), path)
+                std::fs::rename(&partial, &path).map_err(|e| RunError::file(&path, &e))
             }
             None => Ok(()),
         }

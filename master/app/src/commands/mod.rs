@@ -45,6 +45,22 @@ impl CliError {
         }
     }
 
+    /// A run's error: the scene or a bound it states is bad input (2),
+    /// Ctrl-C 130, anything else a failure on the way (1: a unit, the
+    /// coupling, a results file that could not be written).
+    pub(crate) fn of_run(error: slender_app::run::RunError) -> CliError {
+        use slender_app::run::RunError;
+        let code = match error {
+            RunError::Scene(_) | RunError::Bound(_) => 2,
+            RunError::Interrupted(_) => 130,
+            _ => 1,
+        };
+        CliError {
+            code,
+            message: error.to_string(),
+        }
+    }
+
     /// A failure on the way: exit code 1.
     pub(crate) fn failure(message: impl std::fmt::Display) -> CliError {
         CliError {

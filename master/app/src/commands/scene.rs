@@ -27,7 +27,7 @@ pub(super) fn run(
         progress: !quiet,
         realtime,
     };
-    let result = run_scene(&scene, &options).map_err(CliError::input)?;
+    let result = run_scene(&scene, &options).map_err(CliError::of_run)?;
     print_summary(&result);
     let s = &result.summary;
     match &s.error {
