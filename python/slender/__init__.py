@@ -8,6 +8,7 @@ here is the result the command wrote::
     run.timeseries["left.displacement"]     # a Series indexed by time (s)
     run.units["left.displacement"]          # "m"
     run.summary["status"]                   # "completed"
+    run.statistics                          # with [output] statistics: a row per signal
     rows = slender.study("examples/b3_force_displacement.toml",
                          vary={"step": [0.001, 0.002, 0.005]})
 
@@ -75,6 +76,18 @@ class Run:
         """``completed``, ``failed`` or ``interrupted``."""
         return self.summary.get("status", "")
 
+    @property
+    def statistics(self) -> pd.DataFrame:
+        """Each recorded signal's statistics over the window the scene's
+        ``[output] statistics = { from = S }`` asks for: one row per signal
+        (mean, std_dev, skewness, kurtosis, min, max,
+        zero_up_crossing_period, samples); empty when the scene asks for none.
+        """
+        rows = self.summary.get("statistics", {})
+        frame = pd.DataFrame.from_dict(rows, orient="index", dtype=float)
+        frame.index.name = "signal"
+        return frame
+
 
 def binary() -> str:
     """The ``slender`` binary this package runs (see the module's help)."""
@@ -115,6 +128,8 @@ def _toml(value: object) -> str:
         return json.dumps(value)
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml(v) for v in value) + "]"
+    if isinstance(value, Mapping):
+        return "{ " + ", ".join(f"{k} = {_toml(v)}" for k, v in value.items()) + " }"
     return repr(value)
 
 

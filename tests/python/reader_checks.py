@@ -44,6 +44,21 @@ short = slender.run(root / "examples/b1_two_masses.toml", out=work / "short", du
 assert short.timeseries.index[-1] == 0.5 and short.summary["overrides"] == ['master.scheme="iterative_jacobi"'], short.summary
 print("run: --duration and --set passed through")
 
+# Statistics over a window without the build-up, as pandas and scipy compute
+# them from the recorded CSV.
+from scipy import stats
+sea = slender.run(root / "examples/sea_state.toml", duration=300.0,
+                  set={"output.statistics": {"from": 20.0}})
+wave = sea.timeseries.loc[sea.timeseries.index >= 20.0, "wave.value"]
+row = sea.statistics.loc["wave.value"]
+assert row["samples"] == len(wave), (row, len(wave))
+for name, value in [("mean", wave.mean()), ("std_dev", wave.std(ddof=0)),
+                    ("skewness", stats.skew(wave)), ("kurtosis", stats.kurtosis(wave, fisher=False)),
+                    ("min", wave.min()), ("max", wave.max())]:
+    assert abs(row[name] - value) <= 1e-9 * max(1.0, abs(value)), (name, row[name], value)
+assert slender.run(root / "examples/b1_two_masses.toml", duration=0.1).statistics.empty
+print(f"run: statistics as pandas and scipy compute them (sd {row['std_dev']:.4f} m)")
+
 # A study: one row per run, as study.csv.
 rows = slender.study(root / "examples/b3_force_displacement.toml", vary={"step": [0.001, 0.002, 0.005]},
                      out=work / "study")

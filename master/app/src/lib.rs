@@ -27,6 +27,7 @@ pub mod report;
 pub mod resume;
 pub mod run;
 pub mod span_study;
+pub mod statistics;
 pub mod study;
 pub mod uq;
 pub mod watch;

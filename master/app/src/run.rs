@@ -12,6 +12,7 @@ use slender_coupling::counters::Counters;
 use slender_coupling::coupler::Master;
 use slender_coupling::error::MasterError;
 use slender_scene::{Scene, SceneError};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -49,9 +50,13 @@ pub struct Summary {
     pub counters: Counters,
     /// Indicators of `[[output.indicators]]` over the recorded time.
     pub indicators: Vec<crate::indicators::Indicator>,
+    /// With `[output] statistics`: each recorded signal's statistics over
+    /// the window it asks for (the build-up left out).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub statistics: BTreeMap<String, crate::statistics::Statistics>,
     /// The unit of measure of each recorded signal (the timeseries.csv
     /// columns; `""` for a dimensionless one).
-    pub units: std::collections::BTreeMap<String, String>,
+    pub units: BTreeMap<String, String>,
     /// The computing time per step of a paced run (`--realtime`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub realtime: Option<RealtimeReport>,
@@ -59,6 +64,23 @@ pub struct Summary {
     /// watch's warnings (`crate::watch`), when any.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+}
+
+/// Each recorded signal's statistics over the window `[output] statistics`
+/// asks for (none unless it does; a window of under two samples is left out).
+fn statistics(
+    scene: &Scene,
+    recorder: &Recorder,
+) -> BTreeMap<String, crate::statistics::Statistics> {
+    let Some(asked) = scene.spec.output.statistics else {
+        return BTreeMap::new();
+    };
+    let from = asked.from.unwrap_or(scene.start.as_secs());
+    (recorder.names.iter().zip(&recorder.columns))
+        .filter_map(|(name, column)| {
+            crate::statistics::of(&recorder.time, column, from).map(|s| (name.clone(), s))
+        })
+        .collect()
 }
 
 /// The outcome of a run: the summary, the recording and the files written.
@@ -127,6 +149,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         settings: master.settings().clone(),
         counters: master.counters(),
         indicators: indicators(scene, &recorder),
+        statistics: statistics(scene, &recorder),
         units: (recorder.names.iter().cloned())
             .zip(recorder.units.iter().cloned())
             .collect(),

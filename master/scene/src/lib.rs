@@ -276,6 +276,16 @@ impl Scene {
         if self.spec.output.every == 0 {
             return Err(self.error(None, "output.every", "0: expected at least 1"));
         }
+        if let Some(from) = self.spec.output.statistics.and_then(|s| s.from) {
+            let (start, end) = (self.start.as_secs(), self.end().as_secs());
+            if !(from.is_finite() && from >= start && from < end) {
+                return Err(self.error(
+                    None,
+                    "output.statistics.from",
+                    format!("{from}: expected a time in the run (s), from its start {start} to before its end {end}"),
+                ));
+            }
+        }
         if let Err((key, message)) = self.spec.output.watch.check() {
             return Err(self.error(None, key, message));
         }

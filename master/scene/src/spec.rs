@@ -201,6 +201,21 @@ pub struct OutputSpec {
     /// The plausibility watch on the units' loads (see `slender_app::watch`).
     #[serde(default)]
     pub watch: WatchSpec,
+    /// Statistics of every recorded signal in `summary.json` (mean, standard
+    /// deviation, skewness, kurtosis, extremes, zero-up-crossing period),
+    /// over the time from `from` on; none unless asked for.
+    #[serde(default)]
+    pub statistics: Option<StatisticsSpec>,
+}
+
+/// `[output] statistics = { from = S }`: the window of the statistics.
+#[derive(Copy, Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StatisticsSpec {
+    /// The window's start (s): the build-up before it is left out; default
+    /// the simulation's start.
+    #[serde(default)]
+    pub from: Option<f64>,
 }
 
 /// `[output] watch = { factor, stop, breaking_load, energy_growth }`.
@@ -321,6 +336,7 @@ impl Default for OutputSpec {
             indicators: Vec::new(),
             max_bytes: None,
             watch: WatchSpec::default(),
+            statistics: None,
         }
     }
 }

@@ -169,3 +169,29 @@ fn a_step_that_is_not_a_whole_number_of_nanoseconds_is_refused() {
         }
     }
 }
+
+#[test]
+fn a_statistics_window_outside_the_run_is_refused() {
+    let scene = |statistics: &str| {
+        let text = format!(
+            "[simulation]\nduration = 10.0\nstep = 0.5\n[master]\nscheme = \"jacobi\"\n[[units]]\nname = \"m\"\nkind = \"oscillator\"\nparameters = {{ mass = 1.0, stiffness = 1.0 }}\n[output]\nstatistics = {statistics}\n"
+        );
+        parse(&text).map(|_| ()).map_err(|e| e.to_string())
+    };
+    assert_eq!(scene("{ from = 2.0 }"), Ok(()));
+    assert_eq!(scene("{}"), Ok(()));
+    for (bad, says) in [
+        (
+            "{ from = 10.0 }",
+            "output.statistics.from: 10: expected a time in the run",
+        ),
+        (
+            "{ from = -1.0 }",
+            "output.statistics.from: -1: expected a time in the run",
+        ),
+        ("{ form = 2.0 }", "unknown field `form`"),
+    ] {
+        let error = scene(bad).expect_err(bad);
+        assert!(error.contains(says), "{bad}: {error}");
+    }
+}

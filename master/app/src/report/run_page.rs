@@ -1,5 +1,6 @@
 //! A run's report page: its outcome, the coupling's counters, the indicators,
-//! the warnings and every figure.
+//! the warnings, each signal's unit (and statistics, when the scene asks for
+//! them) and every figure.
 
 use super::Part;
 use crate::run::Summary;
@@ -39,14 +40,39 @@ pub fn parts(summary: &Summary, figures: &[PathBuf]) -> Vec<Part> {
         }
         md += "\n";
     }
-    md += "| signal | unit |\n|---|---|\n";
-    for (signal, unit) in &summary.units {
-        md += &format!(
-            "| {signal} | {} |\n",
-            if unit.is_empty() { "-" } else { unit }
-        );
-    }
+    md += &units_and_statistics(summary);
     let mut parts = vec![Part::Heading(summary.title.clone()), Part::Markdown(md)];
     parts.extend(figures.iter().map(|f| Part::figure(f, Vec::new())));
     parts
+}
+
+/// A row per recorded signal: its unit, and with `[output] statistics` its
+/// statistics over the window asked for.
+fn units_and_statistics(summary: &Summary) -> String {
+    if summary.statistics.is_empty() {
+        let mut md = "| signal | unit |\n|---|---|\n".to_owned();
+        for (signal, unit) in &summary.units {
+            md += &format!(
+                "| {signal} | {} |\n",
+                if unit.is_empty() { "-" } else { unit }
+            );
+        }
+        return md;
+    }
+    let mut md = "| signal | unit | mean | standard deviation | skewness | kurtosis | min | max | zero-up-crossing period (s) |\n|---|---|---|---|---|---|---|---|---|\n".to_owned();
+    for (signal, unit) in &summary.units {
+        let unit = if unit.is_empty() { "-" } else { unit };
+        let Some(s) = summary.statistics.get(signal) else {
+            md += &format!("| {signal} | {unit} | | | | | | | |\n");
+            continue;
+        };
+        let period = s
+            .zero_up_crossing_period
+            .map_or("-".to_owned(), |t| format!("{t:.3}"));
+        md += &format!(
+            "| {signal} | {unit} | {:.4e} | {:.4e} | {:.3} | {:.3} | {:.4e} | {:.4e} | {period} |\n",
+            s.mean, s.std_dev, s.skewness, s.kurtosis, s.min, s.max
+        );
+    }
+    md
 }
