@@ -85,6 +85,18 @@ pub fn indicator(name: &str, s: f64) -> Indicator {
     }
 }
 
+/// The samples of `time` at or after `from` (s) and the same rows of each of
+/// `columns`: the window an indicator judges, the build-up before it left out.
+pub fn window<'a>(
+    time: &'a [f64],
+    columns: &[&'a [f64]],
+    from: Option<f64>,
+) -> (&'a [f64], Vec<&'a [f64]>) {
+    let first = from.map_or(0, |from| time.partition_point(|&t| t < from));
+    let rows = |c: &'a [f64]| &c[first.min(c.len())..];
+    (&time[first..], columns.iter().map(|c| rows(c)).collect())
+}
+
 /// The indicator called `name` of signals `x` (named `signals`) against
 /// references `r` (same times, one column each) under `norm`; under the RMS
 /// norm it names the signals judged against the largest component.
@@ -143,6 +155,25 @@ pub fn interpolate(time: &[f64], values: &[f64], t: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_window_leaves_out_the_build_up() {
+        // A start transient of 10 % that has died out by t = 2: the whole
+        // run's error shows it, the window from 2 s does not.
+        let t: Vec<f64> = (0..=1000).map(|k| k as f64 * 0.01).collect();
+        let r: Vec<f64> = t.iter().map(|t| t.sin()).collect();
+        let x: Vec<f64> = (t.iter().zip(&r))
+            .map(|(t, r)| r + if *t < 2.0 { 0.1 } else { 0.0 })
+            .collect();
+        let whole = normalized_error(&t, &[&x], &[&r]);
+        let (time, xs) = window(&t, &[&x], Some(2.0));
+        let (_, rs) = window(&t, &[&r], Some(2.0));
+        assert_eq!((time.len(), time[0]), (801, 2.0));
+        assert!(whole > 1e-3, "{whole}");
+        assert!(normalized_error(time, &xs, &rs) < 1e-15);
+        assert_eq!(window(&t, &[&x], None).0.len(), t.len());
+        assert!(window(&t, &[&x], Some(11.0)).0.is_empty());
+    }
 
     #[test]
     fn a_ten_percent_error_has_fidelity_one() {

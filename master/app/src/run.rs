@@ -71,11 +71,18 @@ pub struct Summary {
 fn statistics(
     scene: &Scene,
     recorder: &Recorder,
+    warnings: &mut Vec<String>,
 ) -> BTreeMap<String, crate::statistics::Statistics> {
     let Some(asked) = scene.spec.output.statistics else {
         return BTreeMap::new();
     };
     let from = asked.from.unwrap_or(scene.start.as_secs());
+    let end = recorder.time.last().copied().unwrap_or(f64::NAN);
+    if from >= end || end.is_nan() {
+        warnings.push(format!(
+            "output.statistics.from = {from} s is not before the recording's end ({end} s): no statistics"
+        ));
+    }
     (recorder.names.iter().zip(&recorder.columns))
         .filter_map(|(name, column)| {
             crate::statistics::of(&recorder.time, column, from).map(|s| (name.clone(), s))
@@ -149,7 +156,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         settings: master.settings().clone(),
         counters: master.counters(),
         indicators: indicators(scene, &recorder),
-        statistics: statistics(scene, &recorder),
+        statistics: statistics(scene, &recorder, &mut warnings),
         units: (recorder.names.iter().cloned())
             .zip(recorder.units.iter().cloned())
             .collect(),
@@ -212,13 +219,9 @@ fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indi
             };
             let (x, r) = (cols(&spec.signals)?, cols(&spec.reference)?);
             let named = (spec.name.as_str(), spec.signals.as_slice());
-            Some(crate::indicators::measure(
-                named,
-                spec.norm,
-                &recorder.time,
-                &x,
-                &r,
-            ))
+            let (time, x) = crate::indicators::window(&recorder.time, &x, spec.from);
+            let (_, r) = crate::indicators::window(&recorder.time, &r, spec.from);
+            Some(crate::indicators::measure(named, spec.norm, time, &x, &r))
         })
         .collect()
 }

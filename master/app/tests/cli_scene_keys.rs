@@ -291,3 +291,48 @@ fn errors_of_a_change_name_it_and_others_the_users_line() {
         .expect("the line");
     assert_eq!(error.line, Some(line), "{error}");
 }
+
+/// Issue 49, item 5: an indicator's `from` leaves the build-up out of its
+/// error, in a run's summary (the window's error, as the library measures it
+/// from the recorded columns), and is refused before the start.
+#[test]
+fn an_indicators_window_leaves_out_the_build_up() {
+    use slender_app::indicators::{measure, window};
+    use slender_app::run::{RunOptions, run_scene};
+    let b1 =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/b1_two_masses.toml");
+    let options = RunOptions {
+        output_dir: None,
+        progress: false,
+        realtime: false,
+    };
+    let run = |set: &[&str]| {
+        let set: Vec<String> = set.iter().map(|s| (*s).to_owned()).collect();
+        let scene = slender_app::study::scene_with_overrides(&b1, &set).expect("the scene");
+        let result = run_scene(&scene, &options).expect("the run");
+        (scene, result)
+    };
+    let (_, whole) = run(&[]);
+    let (scene, late) = run(&["output.indicators[0].from=0.5"]);
+    let spec = &scene.spec.output.indicators[0];
+    let column = |n: &String| late.recorder.column(n).expect("recorded");
+    let x: Vec<&[f64]> = spec.signals.iter().map(column).collect();
+    let r: Vec<&[f64]> = spec.reference.iter().map(column).collect();
+    let (time, x) = window(&late.recorder.time, &x, Some(0.5));
+    let (_, r) = window(&late.recorder.time, &r, Some(0.5));
+    let expected = measure((&spec.name, &spec.signals), spec.norm, time, &x, &r);
+    let got = &late.summary.indicators[0];
+    assert_eq!(got.relative_error, expected.relative_error);
+    assert_ne!(
+        got.relative_error,
+        whole.summary.indicators[0].relative_error
+    );
+    let refused =
+        slender_app::study::scene_with_overrides(&b1, &["output.indicators[0].from=-1".to_owned()])
+            .expect_err("before the start")
+            .to_string();
+    assert!(
+        refused.contains("output.indicators[0].from: -1: expected a time"),
+        "{refused}"
+    );
+}

@@ -276,13 +276,15 @@ impl Scene {
         if self.spec.output.every == 0 {
             return Err(self.error(None, "output.every", "0: expected at least 1"));
         }
+        // A window past the end (a run shortened by --duration) is said in
+        // the run's warnings, not refused.
         if let Some(from) = self.spec.output.statistics.and_then(|s| s.from) {
-            let (start, end) = (self.start.as_secs(), self.end().as_secs());
-            if !(from.is_finite() && from >= start && from < end) {
+            let start = self.start.as_secs();
+            if !(from.is_finite() && from >= start) {
                 return Err(self.error(
                     None,
                     "output.statistics.from",
-                    format!("{from}: expected a time in the run (s), from its start {start} to before its end {end}"),
+                    format!("{from}: expected a time (s) at or after the run's start, {start}"),
                 ));
             }
         }
@@ -380,6 +382,18 @@ impl Scene {
     fn check_indicators(&self, system: &System) -> Result<(), SceneError> {
         for (i, ind) in self.spec.output.indicators.iter().enumerate() {
             let key = format!("output.indicators[{i}]");
+            if let Some(from) = ind.from
+                && !(from.is_finite() && from >= self.start.as_secs())
+            {
+                return Err(self.error(
+                    None,
+                    &format!("{key}.from"),
+                    format!(
+                        "{from}: expected a time (s) at or after the run's start, {}",
+                        self.start.as_secs()
+                    ),
+                ));
+            }
             if ind.signals.is_empty()
                 || !(ind.reference.is_empty() || ind.signals.len() == ind.reference.len())
             {

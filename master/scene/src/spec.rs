@@ -308,6 +308,10 @@ pub struct IndicatorSpec {
     /// How a signal's difference from its reference is measured (default `rms`).
     #[serde(default)]
     pub norm: Norm,
+    /// The time (s) the error is measured from: the build-up before it is
+    /// left out; default the run's start.
+    #[serde(default)]
+    pub from: Option<f64>,
 }
 
 /// The measure of an indicator's error.

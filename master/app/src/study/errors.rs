@@ -37,7 +37,9 @@ fn against_reference(j: &Judged, run: &Outcome, reference: &Outcome) -> Indicato
         .collect();
     let x: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
     let r: Vec<&[f64]> = resampled.iter().map(Vec::as_slice).collect();
-    crate::indicators::measure((&j.name, &j.signals), j.norm, &run.time, &x, &r)
+    let (time, x) = crate::indicators::window(&run.time, &x, j.from);
+    let (_, r) = crate::indicators::window(&run.time, &r, j.from);
+    crate::indicators::measure((&j.name, &j.signals), j.norm, time, &x, &r)
 }
 
 /// epsilon of indicator `j` in `run`, and the signals judged against its

@@ -185,6 +185,8 @@ struct Judged {
     in_run: bool,
     /// The indicator's signals, to name a component judged against its largest.
     signals: Vec<String>,
+    /// The time (s) its error is measured from (`from`).
+    from: Option<f64>,
 }
 
 /// Runs the plan on the scene at `path` and reports one row per run, grouped and
@@ -348,6 +350,7 @@ fn judged_of(path: &Path, scene: &Scene) -> Result<Vec<Judged>, String> {
             norm: i.norm,
             in_run: !i.reference.is_empty(),
             signals: i.signals.clone(),
+            from: i.from,
         })
         .collect())
 }
