@@ -197,3 +197,31 @@ fn a_statistics_window_before_the_start_is_refused() {
         assert!(error.contains(says), "{bad}: {error}");
     }
 }
+
+#[test]
+fn a_sections_mesh_is_the_models_elements_over_it() {
+    // 30 elements over 30 m, cut at 10 and 20 m; the written units agree.
+    let table: toml::Table = HANGING_PIPE.parse().expect("TOML");
+    let layout = crate::structure::layout(&table)
+        .expect("a layout")
+        .expect("a structure");
+    let meshes: Vec<usize> = layout.sections.iter().map(|s| s.mesh).collect();
+    assert_eq!(meshes, [10, 10, 10]);
+    let scene = parse(HANGING_PIPE).expect("the example");
+    for (section, mesh) in layout.sections.iter().zip(meshes) {
+        let unit = (scene.spec.units.iter())
+            .find(|u| u.name.get_ref() == &section.unit)
+            .expect("the section's unit");
+        let parameters = unit.parameters.as_ref().expect("parameters").get_ref();
+        let segments = parameters["segments"].as_array().expect("segments");
+        let written: i64 = segments
+            .iter()
+            .map(|s| s["elements"].as_integer().unwrap_or(0))
+            .sum();
+        assert_eq!(written, mesh as i64, "{}", section.name);
+    }
+    assert!(crate::structure::takes_model_mesh("nonlinear"));
+    assert!(crate::structure::takes_model_mesh("linear"));
+    assert!(!crate::structure::takes_model_mesh("reduced"));
+    assert!(!crate::structure::takes_model_mesh("cable"));
+}

@@ -113,6 +113,25 @@ impl FromStr for SectionChoices {
     }
 }
 
+impl SectionChoices {
+    /// Two of the choices that make the same run on a section whose model
+    /// mesh is `mesh` elements (`nonlinear` and `nonlinear:N` with N that
+    /// mesh), if any: the earlier first.
+    pub(super) fn same_run(&self, mesh: usize) -> Option<(&Choice, &Choice)> {
+        let resolved = |c: &Choice| {
+            let mut c = c.clone();
+            if c.elements.is_none() && slender_scene::structure::takes_model_mesh(&c.fidelity) {
+                c.elements = Some(mesh);
+            }
+            c
+        };
+        let all = &self.choices;
+        (all.iter().enumerate())
+            .flat_map(|(k, later)| all[..k].iter().map(move |earlier| (earlier, later)))
+            .find(|(earlier, later)| resolved(earlier) == resolved(later))
+    }
+}
+
 /// The training window after `@` in choice `c` of `s`: seconds > 0.
 fn seconds(s: &str, c: &str, t: &str) -> Result<f64, String> {
     t.parse::<f64>()

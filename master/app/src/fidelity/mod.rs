@@ -251,7 +251,17 @@ fn sections_asked(plan: &FidelityPlan, sections: &[SectionName]) -> Result<(), S
                 s.section
             ));
         }
-        if !sections.iter().any(|section| section.name == s.section) {
+        let found = sections.iter().find(|section| section.name == s.section);
+        if let Some((earlier, later)) = found.and_then(|f| s.same_run(f.mesh)) {
+            return Err(format!(
+                "--section {}: `{}` and `{}` are the same run (the section's own mesh is {} elements); each choice runs once",
+                s.section,
+                earlier.label(),
+                later.label(),
+                found.map_or(0, |f| f.mesh)
+            ));
+        }
+        if found.is_none() {
             let names: Vec<&str> = sections.iter().map(|s| s.name.as_str()).collect();
             return Err(format!(
                 "--section {}: the structure has no section `{}`; its sections are {}",

@@ -16,6 +16,8 @@ pub(super) struct SectionName {
     pub(super) name: String,
     pub(super) choice: String,
     pub(super) plain: bool,
+    /// The model's own element count over the section.
+    pub(super) mesh: usize,
 }
 
 impl SectionName {
@@ -25,6 +27,7 @@ impl SectionName {
             name,
             choice: section.choice.clone(),
             plain: section.plain,
+            mesh: section.mesh,
         }
     }
 }

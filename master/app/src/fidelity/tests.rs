@@ -122,3 +122,33 @@ fn a_mooring_s_line_sections_are_studied_against_every_line_whole() {
         "{refused}"
     );
 }
+
+/// Issue 49, item 18: `nonlinear` and `nonlinear:N` with N the section's
+/// own mesh are the same run, refused as a choice listed twice.
+#[test]
+fn a_bare_choice_and_its_own_mesh_are_one_run() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/structure_mooring.toml");
+    let table: Table = std::fs::read_to_string(&path).unwrap().parse().unwrap();
+    let layout = slender_scene::structure::layout(&table).unwrap().unwrap();
+    let mesh = layout.sections[0].mesh;
+    assert_eq!(layout.sections[0].name, "lower");
+    assert!(mesh > 1, "{mesh}");
+    let same = one_at_a_time(&[&format!("lower=cable,nonlinear,nonlinear:{mesh}")]);
+    let e = run_fidelity(&path, &same, |_| {})
+        .expect_err("one run twice")
+        .to_string();
+    assert!(
+        e.contains(&format!(
+            "--section lower: `nonlinear` and `nonlinear:{mesh}` are the same run (the section's own mesh is {mesh} elements)"
+        )),
+        "{e}"
+    );
+    // Another count is another run: refused only by the bound, after.
+    let mut other = one_at_a_time(&[&format!("lower=nonlinear,nonlinear:{}", mesh + 1)]);
+    other.max_runs = 0;
+    let e = run_fidelity(&path, &other, |_| {})
+        .expect_err("the bound")
+        .to_string();
+    assert!(e.contains("more than the bound of 0"), "{e}");
+}

@@ -41,6 +41,9 @@ pub struct SectionLayout {
     pub choice: String,
     /// Written as a bare fidelity word: no count, sub-steps or options.
     pub plain: bool,
+    /// The model's own element count over the section: what a fidelity that
+    /// [`takes_model_mesh`] is given without a count.
+    pub mesh: usize,
     /// Which of its unit's outputs carry what a study measures.
     pub outputs: SectionOutputs,
 }
@@ -117,6 +120,18 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, super::StructureError> {
                 && cut.substeps.is_none()
                 && cut.options.is_none()
                 && cut.fmu.is_none(),
+            mesh: (spec.segments.iter())
+                .map(|s| {
+                    // As the section's unit clips the segment (`nonlinear.rs`).
+                    let length = s.overlap(cut.from, cut.to);
+                    let inside = length > 1e-12 * s.length;
+                    if inside {
+                        (s.elements * length / s.length).round().max(1.0) as usize
+                    } else {
+                        0
+                    }
+                })
+                .sum(),
             outputs: (cut.fidelity.model()).outputs(
                 cut.fmu.is_some(),
                 seabed,
@@ -160,6 +175,14 @@ pub(super) fn choice_of(cut: &Cut) -> String {
         choice += &format!("/{n}");
     }
     choice
+}
+
+/// Whether the fidelity `word` without a count takes the model's own mesh
+/// over the section (`SectionLayout::mesh` elements), so that `nonlinear`
+/// and `nonlinear:N` with N that mesh are the same choice.
+pub fn takes_model_mesh(word: &str) -> bool {
+    Fidelity::parse("fidelity", word)
+        .is_ok_and(|f| f.count_key() == "elements" && f.model().is_section_unit())
 }
 
 /// Writes a choice onto the section table `section` of `[[structure.sections]]`

@@ -71,10 +71,7 @@ pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
     let mut units = Vec::new();
     let mut connections = Vec::new();
     for (k, cut) in cuts.iter().enumerate() {
-        let elements = cut.elements.unwrap_or_else(|| {
-            let share = (cut.to - cut.from) / params.length * params.elements as f64;
-            (share.round() as usize).max(2)
-        });
+        let elements = cut.elements.unwrap_or_else(|| mesh_of(cut, &params));
         let mut section = parameters.clone();
         section.insert("length".into(), Value::Float(cut.to - cut.from));
         section.insert("elements".into(), Value::Integer(elements as i64));
@@ -108,6 +105,12 @@ pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
     })
 }
 
+/// The model's own element count over the section `cut` (at least 2).
+fn mesh_of(cut: &Cut, params: &Line3dParams) -> usize {
+    let share = (cut.to - cut.from) / params.length * params.elements as f64;
+    (share.round() as usize).max(2)
+}
+
 /// The unit kind of a 3D section at `fidelity`.
 fn kind_of(fidelity: Fidelity) -> &'static str {
     if fidelity == Fidelity::Static {
@@ -139,6 +142,7 @@ pub(super) fn layout(structure: &Table) -> Result<Layout, String> {
             to: cut.to,
             choice: choice_of(cut),
             plain: cut.elements.is_none() && cut.substeps.is_none() && cut.options.is_none(),
+            mesh: mesh_of(cut, &params),
             outputs: SectionOutputs {
                 start_force: forces("start"),
                 end_force: Some(forces("end")),

@@ -42,8 +42,8 @@ pub(crate) use cuts::link;
 use cuts::{End, Side};
 pub use error::StructureError;
 pub use layout::{
-    Layout, SectionLayout, SectionOutputs, layout, reference_name, unit_name, write_choice,
-    write_training,
+    Layout, SectionLayout, SectionOutputs, layout, reference_name, takes_model_mesh, unit_name,
+    write_choice, write_training,
 };
 pub(crate) use line3d::unit_table;
 use nonlinear::start_of;
