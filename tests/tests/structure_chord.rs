@@ -28,6 +28,7 @@ fn parse(text: &str) -> Result<Scene, String> {
 
 fn plan(sections: &[&str], duration: f64) -> FidelityPlan {
     FidelityPlan {
+        from: None,
         overrides: Vec::new(),
         max_runs: slender_app::DEFAULT_MAX_RUNS,
         repeats: 1,

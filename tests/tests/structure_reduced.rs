@@ -235,6 +235,7 @@ fn a_fidelity_study_compares_reduced_corners_by_their_modes() {
     use slender_app::study::Design;
     let path = root().join("examples/structure_frame_reduced.toml");
     let plan = FidelityPlan {
+        from: None,
         overrides: Vec::new(),
         max_runs: slender_app::DEFAULT_MAX_RUNS,
         repeats: 1,

@@ -321,6 +321,10 @@ pub(crate) enum Command {
         /// mooring: the lines' tensions).
         #[arg(long, value_delimiter = ',')]
         quantities: Vec<String>,
+        /// Measure the errors from this time on (s), leaving out a build-up
+        /// (default: the whole run).
+        #[arg(long)]
+        from: Option<f64>,
         #[command(flatten)]
         runs: StudyRuns,
         /// Results folder (default: results/<scene name>-fidelity).

@@ -33,6 +33,7 @@ fn a_set_run_and_a_fidelity_study_parse_the_file_once() {
 
     let before = texts_parsed();
     let plan = FidelityPlan {
+        from: None,
         overrides: Vec::new(),
         max_runs: 10,
         repeats: 1,

@@ -118,10 +118,12 @@ fn studies(command: Command, set: &[String]) -> Result<(), CliError> {
             grid,
             tolerance,
             quantities,
+            from,
             runs,
             out,
         } => {
             let plan = slender_app::fidelity::FidelityPlan {
+                from,
                 max_runs: runs.max_runs,
                 sections,
                 design: design(grid),

@@ -48,13 +48,17 @@ fn rms(time: &[f64], x: &[f64]) -> f64 {
 
 /// Per quantity (in `names` order), the scale to judge it against where the
 /// reference's own RMS is round-off; and the list for the report.
-pub(super) fn floors(names: &[&str], reference: &Outcome) -> (Vec<Option<f64>>, Vec<Floor>) {
+pub(super) fn floors(
+    names: &[&str],
+    reference: &Outcome,
+    from: Option<f64>,
+) -> (Vec<Option<f64>>, Vec<Floor>) {
     let own: Vec<f64> = (0..names.len())
         .map(|i| {
-            reference
-                .series
-                .get(i)
-                .map_or(0.0, |x| rms(&reference.time, x))
+            reference.series.get(i).map_or(0.0, |x| {
+                let (time, x) = crate::indicators::window(&reference.time, &[x], from);
+                rms(time, x[0])
+            })
         })
         .collect();
     let scale_of = |unit: &str| {

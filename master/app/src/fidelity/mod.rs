@@ -51,6 +51,9 @@ pub struct FidelityPlan {
     pub repeats: usize,
     /// Scene keys set over the file first (`KEY=VALUE`, `--set`).
     pub overrides: Vec<String>,
+    /// The time (s) the errors are measured from (`--from`): the build-up
+    /// before it left out; the whole run when None.
+    pub from: Option<f64>,
 }
 
 /// One run: a combination (or the reference) and what it measured.
@@ -88,6 +91,9 @@ pub struct FidelityRow {
 pub struct FidelityReport {
     pub scene: String,
     pub tolerance: f64,
+    /// The time (s) the errors were measured from (`--from`), when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub from: Option<f64>,
     pub quantities: Vec<String>,
     /// The quantities `worst` is taken over.
     pub judged: Vec<String>,
@@ -148,8 +154,9 @@ pub fn run_fidelity_kept(
     progress: impl Fn(&str) + Sync,
 ) -> Result<FidelityReport, crate::AppError> {
     let mut draft = crate::study::draft_of(path, &plan.overrides)?;
-    // The scene must load as written.
-    crate::study::scene_of(&draft, plan.duration)?;
+    // The scene must load as written, and `--from` lie in its runs.
+    let scene = crate::study::scene_of(&draft, plan.duration)?;
+    window_in(plan.from, &scene)?;
     let subject = subject_of(draft.table())?;
     let subject = subject.as_ref();
     let sections = subject.sections();
@@ -192,12 +199,12 @@ pub fn run_fidelity_kept(
         outcome
     });
     crate::interrupt::stop_if_requested(&outcomes, |o: &Outcome| o.error.is_none())?;
-    let (scales, floors) = floors::floors(&names, &outcomes[0]);
+    let (scales, floors) = floors::floors(&names, &outcomes[0], plan.from);
     let rows = rows::rows_of(
         subject,
         (&tasks, &outcomes),
         (&names, &scales),
-        (plan.tolerance, &judged),
+        (plan.tolerance, &judged, plan.from),
     );
     let cheapest = rows
         .iter()
@@ -211,12 +218,24 @@ pub fn run_fidelity_kept(
     Ok(FidelityReport {
         scene: path.display().to_string(),
         tolerance: plan.tolerance,
+        from: plan.from,
         quantities: names.iter().map(|n| (*n).to_owned()).collect(),
         judged,
         rows,
         cheapest,
         floors,
     })
+}
+
+/// Refuses a `--from` that is not a time before the runs' end.
+fn window_in(from: Option<f64>, scene: &slender_scene::Scene) -> Result<(), String> {
+    let (start, end) = (scene.start.as_secs(), scene.end().as_secs());
+    match from {
+        Some(from) if !(from.is_finite() && from < end) => Err(format!(
+            "--from {from}: expected a time (s) before the runs' end, {end} (they start at {start})"
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// Refuses a study of more runs than `plan.max_runs`, counted before they

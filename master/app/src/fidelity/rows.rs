@@ -11,7 +11,7 @@ pub(super) fn rows_of(
     subject: &dyn Subject,
     (tasks, outcomes): (&[Task], &[Outcome]),
     (names, scales): (&[&str], &[Option<f64>]),
-    (tolerance, judged): (f64, &[String]),
+    (tolerance, judged, from): (f64, &[String], Option<f64>),
 ) -> Vec<FidelityRow> {
     let reference = &outcomes[0];
     let mut rows: Vec<FidelityRow> = tasks
@@ -25,7 +25,7 @@ pub(super) fn rows_of(
                     let e = if task.is_none() {
                         0.0
                     } else {
-                        epsilon(o, reference, i, scales.get(i).copied().flatten())
+                        epsilon(o, reference, (i, from), scales.get(i).copied().flatten())
                     };
                     ((*n).to_owned(), e)
                 })
@@ -79,9 +79,14 @@ pub(super) fn rows_of(
 }
 
 /// epsilon of quantity `i` of run `o` against the reference, at the run's
-/// times: relative to the reference itself, or to `scale` where the
-/// reference is zero to round-off (`floors`).
-fn epsilon(o: &Outcome, reference: &Outcome, i: usize, scale: Option<f64>) -> f64 {
+/// times from `from` (s) on: relative to the reference itself, or to
+/// `scale` where the reference is zero to round-off (`floors`).
+fn epsilon(
+    o: &Outcome,
+    reference: &Outcome,
+    (i, from): (usize, Option<f64>),
+    scale: Option<f64>,
+) -> f64 {
     let (Some(x), Some(r)) = (o.series.get(i), reference.series.get(i)) else {
         return f64::NAN;
     };
@@ -93,9 +98,11 @@ fn epsilon(o: &Outcome, reference: &Outcome, i: usize, scale: Option<f64>) -> f6
         .iter()
         .map(|&t| interpolate(&reference.time, r, t))
         .collect();
+    let (time, x) = crate::indicators::window(&o.time, &[x], from);
+    let (_, r) = crate::indicators::window(&o.time, &[&resampled], from);
     match scale {
-        Some(scale) => super::floors::against_scale(&o.time, x, &resampled, scale),
-        None => indicator("", normalized_error(&o.time, &[x], &[&resampled])).relative_error,
+        Some(scale) => super::floors::against_scale(time, x[0], r[0], scale),
+        None => indicator("", normalized_error(time, &x, &r)).relative_error,
     }
 }
 

@@ -5,6 +5,7 @@ use super::*;
 /// A one-section-at-a-time plan of `sections` (`NAME=CHOICE,...`).
 fn one_at_a_time(sections: &[&str]) -> FidelityPlan {
     FidelityPlan {
+        from: None,
         overrides: Vec::new(),
         max_runs: crate::DEFAULT_MAX_RUNS,
         repeats: 1,
@@ -151,4 +152,29 @@ fn a_bare_choice_and_its_own_mesh_are_one_run() {
         .expect_err("the bound")
         .to_string();
     assert!(e.contains("more than the bound of 0"), "{e}");
+}
+
+/// Issue 49, item 5: `--from` measures the errors after a build-up (the
+/// hanging pipe's end starts at full speed), and must lie in the runs.
+#[test]
+fn errors_measured_from_a_time_leave_out_the_build_up() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/structure_hanging_pipe.toml");
+    let mut plan = one_at_a_time(&["middle=linear"]);
+    plan.duration = Some(2.0);
+    let whole = run_fidelity(&path, &plan, |_| {}).expect("the study");
+    plan.from = Some(1.0);
+    let late = run_fidelity(&path, &plan, |_| {}).expect("the study");
+    assert_eq!(late.from, Some(1.0));
+    let worst = |r: &FidelityReport| r.rows[1].worst_error;
+    assert!(worst(&whole).is_finite() && worst(&late).is_finite());
+    assert_ne!(worst(&whole), worst(&late));
+    plan.from = Some(2.0);
+    let e = run_fidelity(&path, &plan, |_| {})
+        .expect_err("past the end")
+        .to_string();
+    assert!(
+        e.contains("--from 2: expected a time (s) before the runs' end, 2"),
+        "{e}"
+    );
 }
