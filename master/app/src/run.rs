@@ -235,8 +235,6 @@ pub enum RunError {
     Scene(#[from] SceneError),
     #[error(transparent)]
     Master(Box<MasterError>),
-    #[error("writing results: {0}")]
-    Io(#[from] std::io::Error),
     /// A results file or folder and what went wrong.
     #[error("{path}: {reason}")]
     File { path: String, reason: String },

@@ -155,10 +155,13 @@ impl Draft {
         }
         let changes = Changes {
             origins: self.origins.clone(),
+            // Each path as errors may name it: by index, and by name where
+            // an array's items have names.
             keys: (self.changed.iter())
                 .flat_map(|(path, k)| {
                     let named = named_path(&self.table, path);
-                    [(dotted(path), *k), (dotted(&named), *k)]
+                    let by_name = (named != *path).then(|| (dotted(&named), *k));
+                    std::iter::once((dotted(path), *k)).chain(by_name)
                 })
                 .collect(),
             table: self.is_changed().then(|| self.table.clone()),

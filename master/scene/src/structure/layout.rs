@@ -121,17 +121,8 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, super::StructureError> {
                 && cut.options.is_none()
                 && cut.fmu.is_none(),
             mesh: (spec.segments.iter())
-                .map(|s| {
-                    // As the section's unit clips the segment (`nonlinear.rs`).
-                    let length = s.overlap(cut.from, cut.to);
-                    let inside = length > 1e-12 * s.length;
-                    if inside {
-                        (s.elements * length / s.length).round().max(1.0) as usize
-                    } else {
-                        0
-                    }
-                })
-                .sum(),
+                .filter_map(|s| s.elements_over(cut.from, cut.to))
+                .sum::<f64>() as usize,
             outputs: (cut.fidelity.model()).outputs(
                 cut.fmu.is_some(),
                 seabed,

@@ -77,20 +77,19 @@ pub(super) fn section_unit(
     let mut density = Vec::new();
     let mut start = None;
     for s in segments {
-        let (a, b) = (arc.max(cut.from), (arc + s.length).min(cut.to));
         let (c, sn) = (
             s.angle_deg.to_radians().cos(),
             s.angle_deg.to_radians().sin(),
         );
-        if b > a + 1e-12 * s.length {
+        if let Some(elements) = s.elements_over(cut.from, cut.to) {
             if start.is_none() {
                 let d = cut.from - arc;
                 start = Some([position[0] + d * c, position[1] + d * sn]);
             }
             let mut t = s.table.clone();
-            let share = (b - a) / s.length;
-            t.insert("length".into(), Value::Float(b - a));
-            let elements = (s.elements * share).round().max(1.0);
+            let length = s.overlap(cut.from, cut.to);
+            let share = length / s.length;
+            t.insert("length".into(), Value::Float(length));
             t.insert("elements".into(), Value::Integer(elements as i64));
             clipped.push(t);
             density.push(s.elements * share);

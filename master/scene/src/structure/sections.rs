@@ -22,6 +22,16 @@ impl Segment {
     pub(super) fn overlap(&self, from: f64, to: f64) -> f64 {
         ((self.from + self.length).min(to) - self.from.max(from)).max(0.0)
     }
+
+    /// The model's own element count on the part of the segment inside
+    /// [from, to]: its share of the segment's elements, rounded, at least 1;
+    /// None where the segment does not reach into it (by more than 1e-12 of
+    /// its length). What a section's `nonlinear` unit is written with.
+    pub(super) fn elements_over(&self, from: f64, to: f64) -> Option<f64> {
+        let length = self.overlap(from, to);
+        (length > 1e-12 * self.length)
+            .then(|| (self.elements * (length / self.length)).round().max(1.0))
+    }
 }
 
 pub(super) fn segments_of(model: &Table) -> Result<Vec<Segment>, String> {
