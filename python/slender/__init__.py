@@ -9,6 +9,7 @@ here is the result the command wrote::
     run.units["left.displacement"]          # "m"
     run.summary["status"]                   # "completed"
     run.statistics                          # with [output] statistics: a row per signal
+    run.extremes, run.spectra, run.fatigue  # most probable maxima, Welch spectra, damage
     rows = slender.study("examples/b3_force_displacement.toml",
                          vary={"step": [0.001, 0.002, 0.005]})
 
@@ -70,6 +71,9 @@ class Run:
     summary: dict
     #: The unit of measure of each column ("" for a dimensionless one).
     units: dict = field(default_factory=dict)
+    #: With ``statistics.spectra``: spectra.csv, each signal's power spectral
+    #: density (its unit squared per Hz) indexed by frequency (Hz).
+    spectra: pd.DataFrame = field(default_factory=pd.DataFrame)
 
     @property
     def status(self) -> str:
@@ -83,10 +87,42 @@ class Run:
         (mean, std_dev, skewness, kurtosis, min, max,
         zero_up_crossing_period, samples); empty when the scene asks for none.
         """
-        rows = self.summary.get("statistics", {})
-        frame = pd.DataFrame.from_dict(rows, orient="index", dtype=float)
-        frame.index.name = "signal"
-        return frame
+        return _rows(self.summary.get("statistics", {}), "signal")
+
+    @property
+    def extremes(self) -> pd.DataFrame:
+        """Each signal's most probable maximum over the duration
+        ``statistics.extremes`` asks for: one row per signal (duration_s,
+        peaks, largest_seen, rayleigh_mpm, and the Weibull fit's
+        weibull_shape, weibull_scale, weibull_r_squared, weibull_mpm, NaN
+        without a fit); empty when the scene asks for none."""
+        rows = {}
+        for signal, row in self.summary.get("extremes", {}).items():
+            fit = row.get("weibull") or {}
+            rows[signal] = {k: v for k, v in row.items() if k != "weibull"}
+            rows[signal].update({f"weibull_{k}": fit.get(k, float("nan"))
+                                 for k in ("shape", "scale", "r_squared", "mpm")})
+        return _rows(rows, "signal")
+
+    @property
+    def spectral_moments(self) -> pd.DataFrame:
+        """Each spectrum's m0, peak_period_s, zero_crossing_period_s,
+        resolution_hz and segments: one row per signal."""
+        return _rows(self.summary.get("spectra", {}), "signal")
+
+    @property
+    def fatigue(self) -> pd.DataFrame:
+        """Each ``[[output.fatigue]]`` entry's window_s, cycles,
+        largest_range, damage, damage_per_year and life_years: one row per
+        entry; empty when the scene asks for none."""
+        return _rows(self.summary.get("fatigue", {}), "name")
+
+
+def _rows(rows: dict, index: str) -> pd.DataFrame:
+    """A summary.json mapping of names to records as a data frame of floats."""
+    frame = pd.DataFrame.from_dict(rows, orient="index", dtype=float)
+    frame.index.name = index
+    return frame
 
 
 def binary() -> str:
@@ -217,7 +253,12 @@ def read_run(folder: PathLike) -> Run:
         frame.columns = [n for n, _ in named]
         frame = frame.set_index("time")
     frame.attrs["units"] = units
-    return Run(folder=folder, timeseries=frame, summary=summary, units=units)
+    spectra = pd.DataFrame()
+    if (folder / "spectra.csv").exists():
+        spectra = pd.read_csv(folder / "spectra.csv", float_precision="round_trip")
+        spectra.columns = [_name_and_unit(c)[0] for c in spectra.columns]
+        spectra = spectra.set_index("frequency")
+    return Run(folder=folder, timeseries=frame, summary=summary, units=units, spectra=spectra)
 
 
 def _vary(vary: Mapping[str, Iterable[object]]) -> list:

@@ -10,10 +10,13 @@
 //! - [`parallel`]: independent runs on a few threads; [`resume`]: a stopped study resumed;
 //!   [`progress`]: k of N runs and the time left.
 
+pub mod analysis;
 pub mod costs;
 pub mod coupling_study;
 pub mod decay;
 pub mod error;
+pub mod extremes;
+pub mod fatigue;
 pub mod fidelity;
 pub mod figures;
 pub mod indicators;
@@ -21,12 +24,14 @@ pub mod interrupt;
 pub mod parallel;
 pub mod plot;
 pub mod progress;
+pub mod rainflow;
 pub mod realtime;
 pub mod record;
 pub mod report;
 pub mod resume;
 pub mod run;
 pub mod span_study;
+pub mod spectrum;
 pub mod statistics;
 pub mod study;
 pub mod uq;

@@ -62,8 +62,12 @@ pub fn time_series(
             .collect::<Result<_, _>>()?;
         let (chart_area, legend) = area.split_horizontally(950);
         let y_title = units_title(panel.iter().map(|n| recorder.unit(n).unwrap_or("")));
-        panel_chart(&chart_area, (t0, t1), &y_title, &recorder.time, &series)
-            .map_err(|e| fail(&e))?;
+        let axes = Axes {
+            x: (t0, t1),
+            x_title: "time (s)",
+            y_title: &y_title,
+        };
+        panel_chart(&chart_area, &axes, &recorder.time, &series).map_err(|e| fail(&e))?;
         let entries: Vec<Entry> = (series.iter().enumerate())
             .map(|(i, (name, _))| Entry {
                 text: (*name).clone(),
@@ -88,14 +92,68 @@ fn units_title<'a>(units: impl Iterator<Item = &'a str>) -> String {
     format!("value ({})", distinct.join(", "))
 }
 
-/// One panel: the signals against time on 1-2-5 ticks.
+/// A panel's x range and its axes' titles.
+struct Axes<'a> {
+    x: (f64, f64),
+    x_title: &'a str,
+    y_title: &'a str,
+}
+
+/// Stacked panels of power spectral densities, one per `(signal, density
+/// unit, spectrum)`, up to the frequency past which every density stays
+/// under a thousandth of its peak.
+pub fn spectra(
+    path: &Path,
+    title: &str,
+    panels: &[(&str, &str, &crate::spectrum::Spectrum)],
+) -> Result<(), PlotError> {
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
+    let top = (panels.iter())
+        .map(|(_, _, s)| {
+            let peak = s.density.iter().copied().fold(0.0, f64::max);
+            let last = s
+                .density
+                .iter()
+                .rposition(|d| *d > 1e-3 * peak)
+                .unwrap_or(0);
+            s.frequency_hz[(last + 1).min(s.frequency_hz.len() - 1)]
+        })
+        .fold(0.0, f64::max);
+    let root = SVGBackend::new(path, (1200, 60 + 220 * panels.len() as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let root = root
+        .titled(title, ("sans-serif", 22))
+        .map_err(|e| fail(&e))?;
+    for (area, (name, unit, s)) in root.split_evenly((panels.len(), 1)).iter().zip(panels) {
+        let (chart_area, legend) = area.split_horizontally(950);
+        let y_title = format!("density ({unit})");
+        let axes = Axes {
+            x: (0.0, if top > 0.0 { top } else { 1.0 }),
+            x_title: "frequency (Hz)",
+            y_title: &y_title,
+        };
+        let name = (*name).to_owned();
+        panel_chart(&chart_area, &axes, &s.frequency_hz, &[(&name, &s.density)])
+            .map_err(|e| fail(&e))?;
+        let entry = Entry {
+            text: name,
+            colour: Palette99::pick(0).to_rgba(),
+            marker: false,
+        };
+        side_legend(&legend, "", &[entry]).map_err(|e| fail(&e))?;
+    }
+    root.present().map_err(|e| fail(&e))
+}
+
+/// One panel: the signals against x (time, frequency) on 1-2-5 ticks.
 fn panel_chart(
     area: &Area<'_>,
-    (t0, t1): (f64, f64),
-    y_title: &str,
+    axes: &Axes<'_>,
     time: &[f64],
     series: &[(&String, &[f64])],
 ) -> DrawResult {
+    let (t0, t1) = axes.x;
+    let y_title = axes.y_title;
     let (lo, hi) = series
         .iter()
         .flat_map(|(_, c)| c.iter().copied())
@@ -122,7 +180,7 @@ fn panel_chart(
         .build_cartesian_2d(x_axis, y_axis)?;
     chart
         .configure_mesh()
-        .x_desc("time (s)")
+        .x_desc(axes.x_title)
         .y_desc(y_title)
         .x_label_formatter(&|v| ticks::linear_label(*v, x_step))
         .y_label_formatter(&|v| ticks::linear_label(*v, y_step))

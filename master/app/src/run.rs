@@ -50,10 +50,11 @@ pub struct Summary {
     pub counters: Counters,
     /// Indicators of `[[output.indicators]]` over the recorded time.
     pub indicators: Vec<crate::indicators::Indicator>,
-    /// With `[output] statistics`: each recorded signal's statistics over
-    /// the window it asks for (the build-up left out).
-    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
-    pub statistics: BTreeMap<String, crate::statistics::Statistics>,
+    /// With `[output] statistics` and `[[output.fatigue]]`: each recorded
+    /// signal's statistics, extremes and spectrum over the window asked for
+    /// (the build-up left out), and the fatigue damage asked for.
+    #[serde(flatten)]
+    pub analysis: crate::analysis::Analysis,
     /// The unit of measure of each recorded signal (the timeseries.csv
     /// columns; `""` for a dimensionless one).
     pub units: BTreeMap<String, String>,
@@ -64,30 +65,6 @@ pub struct Summary {
     /// watch's warnings (`crate::watch`), when any.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
-}
-
-/// Each recorded signal's statistics over the window `[output] statistics`
-/// asks for (none unless it does; a window of under two samples is left out).
-fn statistics(
-    scene: &Scene,
-    recorder: &Recorder,
-    warnings: &mut Vec<String>,
-) -> BTreeMap<String, crate::statistics::Statistics> {
-    let Some(asked) = scene.spec.output.statistics else {
-        return BTreeMap::new();
-    };
-    let from = asked.from.unwrap_or(scene.start.as_secs());
-    let end = recorder.time.last().copied().unwrap_or(f64::NAN);
-    if from >= end || end.is_nan() {
-        warnings.push(format!(
-            "output.statistics.from = {from} s is not before the recording's end ({end} s): no statistics"
-        ));
-    }
-    (recorder.names.iter().zip(&recorder.columns))
-        .filter_map(|(name, column)| {
-            crate::statistics::of(&recorder.time, column, from).map(|s| (name.clone(), s))
-        })
-        .collect()
 }
 
 /// The outcome of a run: the summary, the recording and the files written.
@@ -125,10 +102,11 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
     // Plots before the summary: a run whose figures cannot be written is not
     // reported as completed.
     let mut outcome = outcome.map_err(|e| e.to_string());
+    let (analysis, spectra) = crate::analysis::of(scene, &recorder, &mut warnings);
     if let Some(dir) = &options.output_dir
         && recorder.time.len() > 1
     {
-        match write_plots(scene, &recorder, dir) {
+        match write_plots(scene, &recorder, dir, &spectra) {
             Ok(plots) => files.extend(plots),
             Err(e) => {
                 if outcome.is_ok() {
@@ -156,7 +134,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         settings: master.settings().clone(),
         counters: master.counters(),
         indicators: indicators(scene, &recorder),
-        statistics: statistics(scene, &recorder, &mut warnings),
+        analysis,
         units: (recorder.names.iter().cloned())
             .zip(recorder.units.iter().cloned())
             .collect(),
@@ -167,17 +145,23 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         files.push(write_overruns(dir, report)?);
     }
     if let Some(dir) = &options.output_dir {
-        let path = dir.join("summary.json");
-        let text = serde_json::to_string_pretty(&summary)?;
-        whole::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
-        files.push(report_page(dir, &summary, &files)?);
-        files.push(path);
+        write_summary(dir, &summary, &mut files)?;
     }
     Ok(RunResult {
         summary,
         recorder,
         files,
     })
+}
+
+/// Writes `summary.json` and the run's report page into `dir`.
+fn write_summary(dir: &Path, summary: &Summary, files: &mut Vec<PathBuf>) -> Result<(), RunError> {
+    let path = dir.join("summary.json");
+    let text = serde_json::to_string_pretty(summary)?;
+    whole::write(&path, text).map_err(|e| RunError::file(&path, &e))?;
+    files.push(report_page(dir, summary, files)?);
+    files.push(path);
+    Ok(())
 }
 
 /// Writes the run's `report.html` (its summary and figures) into `dir`.
@@ -409,8 +393,14 @@ fn update_progress(bar: &mut Option<ProgressBar>, elapsed: Duration, done: u64, 
     }
 }
 
-fn write_plots(scene: &Scene, recorder: &Recorder, dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
-    let mut files = Vec::new();
+/// The scene's figures, and the spectra's table and figure when it asks for them.
+fn write_plots(
+    scene: &Scene,
+    recorder: &Recorder,
+    dir: &Path,
+    spectra: &[(String, crate::spectrum::Spectrum)],
+) -> Result<Vec<PathBuf>, PlotError> {
+    let mut files = crate::analysis::write_spectra(dir, scene, recorder, spectra)?;
     if scene.spec.output.plots.is_empty() {
         let path = dir.join("timeseries.svg");
         let panels: Vec<Vec<String>> = recorder.names.iter().map(|n| vec![n.clone()]).collect();

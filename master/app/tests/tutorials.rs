@@ -39,8 +39,12 @@ fn steps_of(markdown: &str) -> Vec<Step> {
     let mut steps: Vec<Step> = Vec::new();
     let mut block = None;
     let mut pending = String::new();
+    // The steps before the open block: a block's lines are the output of
+    // its own command only (a Python or TOML block shows no output).
+    let mut before_block = 0;
     for line in markdown.lines() {
         if let Some(fence) = line.trim_start().strip_prefix("```") {
+            before_block = steps.len();
             block = match block {
                 Some(_) => None,
                 None if fence == "sh" => Some(Block::Run),
@@ -67,7 +71,9 @@ fn steps_of(markdown: &str) -> Vec<Step> {
                 }
             }
             (None, Block::Shown) if !line.trim().is_empty() => {
-                if let Some(step) = steps.last_mut().filter(|s| s.block == Block::Shown) {
+                if steps.len() > before_block
+                    && let Some(step) = steps.last_mut().filter(|s| s.block == Block::Shown)
+                {
                     step.expected.push(line.trim().to_owned());
                 }
             }
@@ -160,7 +166,12 @@ fn every_tutorial_is_listed_in_the_guide() {
         assert!(summary.contains(&format!("(tutorials/{name})")), "{name}");
         count += 1;
     }
-    assert_eq!(count, 6);
+    assert_eq!(count, 7);
+}
+
+#[test]
+fn design_check() {
+    run_tutorial("design-check.md");
 }
 
 #[test]

@@ -4,6 +4,7 @@
 //! Errors name the file, the line where known, the key and what was expected.
 #![warn(missing_docs)]
 
+pub mod analysis;
 mod draft;
 mod expansion;
 pub mod export;
@@ -278,16 +279,7 @@ impl Scene {
         }
         // A window past the end (a run shortened by --duration) is said in
         // the run's warnings, not refused.
-        if let Some(from) = self.spec.output.statistics.and_then(|s| s.from) {
-            let start = self.start.as_secs();
-            if !(from.is_finite() && from >= start) {
-                return Err(self.error(
-                    None,
-                    "output.statistics.from",
-                    format!("{from}: expected a time (s) at or after the run's start, {start}"),
-                ));
-            }
-        }
+        self.check_analysis(&system)?;
         if let Err((key, message)) = self.spec.output.watch.check() {
             return Err(self.error(None, key, message));
         }

@@ -1,6 +1,7 @@
 //! The scene file format (TOML), as serde types. Every table rejects unknown keys.
 //! `docs/scene-reference.md` documents these types field by field.
 
+pub use crate::analysis::{ExtremesSpec, FatigueCurve, FatigueSpec, SpectraSpec, StatisticsSpec};
 use serde::Deserialize;
 use slender_coupling::settings::MasterSettings;
 use slender_units::Hold;
@@ -206,16 +207,9 @@ pub struct OutputSpec {
     /// over the time from `from` on; none unless asked for.
     #[serde(default)]
     pub statistics: Option<StatisticsSpec>,
-}
-
-/// `[output] statistics = { from = S }`: the window of the statistics.
-#[derive(Copy, Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StatisticsSpec {
-    /// The window's start (s): the build-up before it is left out; default
-    /// the simulation's start.
+    /// Fatigue damage of recorded tensions or stresses (rainflow and Miner).
     #[serde(default)]
-    pub from: Option<f64>,
+    pub fatigue: Vec<FatigueSpec>,
 }
 
 /// `[output] watch = { factor, stop, breaking_load, energy_growth }`.
@@ -341,6 +335,7 @@ impl Default for OutputSpec {
             max_bytes: None,
             watch: WatchSpec::default(),
             statistics: None,
+            fatigue: Vec::new(),
         }
     }
 }

@@ -225,3 +225,136 @@ fn a_sections_mesh_is_the_models_elements_over_it() {
     assert!(!crate::structure::takes_model_mesh("reduced"));
     assert!(!crate::structure::takes_model_mesh("cable"));
 }
+
+/// An oscillator scene with `output` in its `[output]`, parsed.
+fn analysis_scene(output: &str) -> Result<(), String> {
+    let text = format!(
+        "[simulation]\nduration = 10.0\nstep = 0.5\n[master]\nscheme = \"jacobi\"\n[[units]]\nname = \"m\"\nkind = \"oscillator\"\nparameters = {{ mass = 1.0, stiffness = 1.0 }}\n[output]\n{output}\n"
+    );
+    parse(&text).map(|_| ()).map_err(|e| e.to_string())
+}
+
+/// A fatigue entry of the oscillator's displacement with `rest` added.
+fn analysis_fatigue(rest: &str) -> String {
+    format!("[[output.fatigue]]\nname = \"f\"\ntension = \"m.displacement\"\n{rest}")
+}
+
+#[test]
+fn extremes_spectra_and_fatigue_a_scene_can_give_are_accepted() {
+    let (scene, fatigue) = (analysis_scene, analysis_fatigue);
+    let chain = "curve = \"dnv_studless_chain\"\nchain_diameter = 0.1";
+    for good in [
+        "statistics = { extremes = { duration = 10800.0 }, spectra = {} }".to_owned(),
+        "statistics = { spectra = { segment = 2.0 } }".to_owned(),
+        fatigue(chain),
+        fatigue("curve = \"api_studless_chain\"\nbreaking_load = 1e6"),
+        fatigue(
+            "curve = \"dnv_c203_d_seawater_cp\"\narea = 0.02\nmoment = \"m.velocity\"\nsection_modulus = 1e-3\nscf = 1.2\nfrom = 2.0",
+        ),
+    ] {
+        assert_eq!(scene(&good), Ok(()), "{good}");
+    }
+}
+
+#[test]
+fn extremes_spectra_and_fatigue_that_cannot_be_given_are_refused_before_the_run() {
+    let (scene, fatigue) = (analysis_scene, analysis_fatigue);
+    let chain = "curve = \"dnv_studless_chain\"\nchain_diameter = 0.1";
+    for (bad, says) in [
+        (
+            "statistics = { extremes = { duration = 0.0 } }".to_owned(),
+            "output.statistics.extremes.duration: 0: expected a positive number",
+        ),
+        (
+            "statistics = { extremes = {} }".to_owned(),
+            "missing field `duration`",
+        ),
+        (
+            "statistics = { spectra = { segment = -1.0 } }".to_owned(),
+            "output.statistics.spectra.segment: -1: expected a positive number",
+        ),
+        (
+            fatigue("curve = \"studless\"\narea = 1.0"),
+            "unknown variant `studless`, expected one of `dnv_studless_chain`",
+        ),
+        (
+            fatigue("curve = \"dnv_studless_chain\""),
+            "output.fatigue[0]: the curve needs one of `area` (m2) and `chain_diameter` (m)",
+        ),
+        (
+            fatigue("curve = \"dnv_studless_chain\"\narea = 1.0\nchain_diameter = 0.1"),
+            "needs one of `area`",
+        ),
+        (
+            fatigue("curve = \"api_studlink_chain\""),
+            "output.fatigue[0]: the curve needs `breaking_load` (N)",
+        ),
+        (
+            fatigue(
+                "curve = \"api_studlink_chain\"\nbreaking_load = 1e6\nmoment = \"m.velocity\"\nsection_modulus = 1.0",
+            ),
+            "a tension range alone",
+        ),
+        (
+            fatigue(&format!("{chain}\nmoment = \"m.velocity\"")),
+            "`moment` and `section_modulus` (m3) are given together",
+        ),
+        (
+            fatigue(&format!("{chain}\nscf = 0.0")),
+            "output.fatigue[0].scf: 0: expected a positive number",
+        ),
+        (
+            fatigue(&format!("{chain}\nfrom = -3.0")),
+            "output.fatigue[0].from: -3: expected a time",
+        ),
+        (
+            fatigue(&format!("{chain}\ntension = \"m.tension\"")),
+            "duplicate key",
+        ),
+        (
+            fatigue(chain).replace("m.displacement", "m.tension"),
+            "output.fatigue[0]: ",
+        ),
+        (
+            format!("signals = [\"m.velocity\"]\n{}", fatigue(chain)),
+            "output.fatigue[0]: `m.displacement` is not among output.signals",
+        ),
+        (
+            format!("{}\n{}", fatigue(chain), fatigue(chain)),
+            "output.fatigue[1]: `f` is named twice",
+        ),
+    ] {
+        let error = scene(&bad).expect_err(&bad);
+        assert!(error.contains(says), "{bad}: {error}");
+    }
+}
+
+#[test]
+fn a_sea_that_repeats_within_the_analysed_window_is_named_with_the_components_it_needs() {
+    // 200 components over [0.5, 5] x wp at Tp = 10 s: dw = 4.5 wp / 200,
+    // repeating every 2 pi / dw = 444.4 s.
+    let text = |duration: f64| {
+        format!(
+            "[simulation]\nduration = {duration}\nstep = 0.5\n[master]\nscheme = \"jacobi\"\n[[units]]\nname = \"wave\"\nkind = \"signal\"\nparameters = {{ quantity = \"displacement\", sea = {{ spectrum = {{ kind = \"jonswap\", significant_height = 4.0, peak_period = 10.0 }} }} }}\n"
+        )
+    };
+    let scene = parse(&text(1000.0)).expect("scene");
+    let warnings = scene.sea_repeat_warnings(100.0);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    let w = &warnings[0];
+    assert!(w.starts_with("the sea of wave (200 components over [0.5, 5] x the peak frequency) repeats every 444.4 s: the 900 s analysed see the same waves 2.0 times"), "{w}");
+    assert!(
+        w.ends_with("give the spectrum `components = 405` or more for a sea that does not repeat"),
+        "{w}"
+    );
+    assert!(
+        scene.sea_repeat_warnings(600.0).is_empty(),
+        "400 s: no repeat"
+    );
+    assert!(
+        parse(&text(400.0))
+            .expect("scene")
+            .sea_repeat_warnings(0.0)
+            .is_empty()
+    );
+}

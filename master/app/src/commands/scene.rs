@@ -139,6 +139,7 @@ fn print_summary(result: &RunResult) {
             );
         }
     }
+    print_analysis(&s.analysis);
     for u in &c.units {
         println!(
             "unit         {:<12} {} do_step calls, {:.3} s",
@@ -147,6 +148,29 @@ fn print_summary(result: &RunResult) {
     }
     for f in &result.files {
         println!("wrote        {}", f.display());
+    }
+}
+
+/// Prints each signal's most probable maxima and each fatigue entry's damage
+/// and life, when the scene asks for them.
+fn print_analysis(a: &slender_app::analysis::Analysis) {
+    for (signal, e) in &a.extremes {
+        let weibull = e.weibull.as_ref().map_or(String::new(), |w| {
+            format!(
+                ", {:.4e} (Weibull, shape {:.2}, R2 {:.3})",
+                w.mpm, w.shape, w.r_squared
+            )
+        });
+        println!(
+            "extreme      {signal}: most probable maximum in {} s {:.4e} (Rayleigh){weibull}; largest seen {:.4e}",
+            e.duration_s, e.rayleigh_mpm, e.largest_seen
+        );
+    }
+    for (name, d) in &a.fatigue {
+        println!(
+            "fatigue      {name}: damage {:.3e} in {} s ({} cycles), {:.3e} per year: life {:.3} years",
+            d.damage, d.window_s, d.cycles, d.damage_per_year, d.life_years
+        );
     }
 }
 

@@ -1,6 +1,6 @@
 //! A run's report page: its outcome, the coupling's counters, the indicators,
-//! the warnings, each signal's unit (and statistics, when the scene asks for
-//! them) and every figure.
+//! the warnings, each signal's unit (and its statistics, extremes, spectral
+//! moments and fatigue damage, when the scene asks for them) and every figure.
 
 use super::Part;
 use crate::run::Summary;
@@ -41,6 +41,8 @@ pub fn parts(summary: &Summary, figures: &[PathBuf]) -> Vec<Part> {
         md += "\n";
     }
     md += &units_and_statistics(summary);
+    md += &extremes_and_spectra(summary);
+    md += &fatigue(summary);
     let mut parts = vec![Part::Heading(summary.title.clone()), Part::Markdown(md)];
     parts.extend(figures.iter().map(|f| Part::figure(f, Vec::new())));
     parts
@@ -49,7 +51,7 @@ pub fn parts(summary: &Summary, figures: &[PathBuf]) -> Vec<Part> {
 /// A row per recorded signal: its unit, and with `[output] statistics` its
 /// statistics over the window asked for.
 fn units_and_statistics(summary: &Summary) -> String {
-    if summary.statistics.is_empty() {
+    if summary.analysis.statistics.is_empty() {
         let mut md = "| signal | unit |\n|---|---|\n".to_owned();
         for (signal, unit) in &summary.units {
             md += &format!(
@@ -62,7 +64,7 @@ fn units_and_statistics(summary: &Summary) -> String {
     let mut md = "| signal | unit | mean | standard deviation | skewness | kurtosis | min | max | zero-up-crossing period (s) |\n|---|---|---|---|---|---|---|---|---|\n".to_owned();
     for (signal, unit) in &summary.units {
         let unit = if unit.is_empty() { "-" } else { unit };
-        let Some(s) = summary.statistics.get(signal) else {
+        let Some(s) = summary.analysis.statistics.get(signal) else {
             md += &format!("| {signal} | {unit} | | | | | | | |\n");
             continue;
         };
@@ -72,6 +74,58 @@ fn units_and_statistics(summary: &Summary) -> String {
         md += &format!(
             "| {signal} | {unit} | {:.4e} | {:.4e} | {:.3} | {:.3} | {:.4e} | {:.4e} | {period} |\n",
             s.mean, s.std_dev, s.skewness, s.kurtosis, s.min, s.max
+        );
+    }
+    md
+}
+
+/// A row per signal with `statistics.extremes` or `statistics.spectra`: the
+/// most probable maxima (Rayleigh, Weibull with its fit) and the spectrum's
+/// variance and periods.
+fn extremes_and_spectra(summary: &Summary) -> String {
+    let a = &summary.analysis;
+    if a.extremes.is_empty() && a.spectra.is_empty() {
+        return String::new();
+    }
+    let mut md = "\n| signal | peaks | largest seen | MPM Rayleigh | MPM Weibull | Weibull shape | Weibull R2 | m0 of spectrum | peak period (s) | Tz of spectrum (s) |\n|---|---|---|---|---|---|---|---|---|---|\n".to_owned();
+    let or_dash =
+        |v: Option<f64>, digits: usize| v.map_or("-".to_owned(), |v| format!("{v:.digits$}"));
+    for signal in summary.units.keys() {
+        let (e, p) = (a.extremes.get(signal), a.spectra.get(signal));
+        if e.is_none() && p.is_none() {
+            continue;
+        }
+        let w = e.and_then(|e| e.weibull.as_ref());
+        let sci = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.4e}"));
+        md += &format!(
+            "| {signal} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            e.map_or("-".to_owned(), |e| e.peaks.to_string()),
+            sci(e.map(|e| e.largest_seen)),
+            sci(e.map(|e| e.rayleigh_mpm)),
+            sci(w.map(|w| w.mpm)),
+            or_dash(w.map(|w| w.shape), 3),
+            or_dash(w.map(|w| w.r_squared), 4),
+            sci(p.map(|p| p.m0)),
+            or_dash(p.and_then(|p| p.peak_period_s), 3),
+            or_dash(p.and_then(|p| p.zero_crossing_period_s), 3),
+        );
+    }
+    if let Some(e) = a.extremes.values().next() {
+        md += &format!("\nMost probable maxima over {} s.\n", e.duration_s);
+    }
+    md
+}
+
+/// A row per `[[output.fatigue]]` entry: its cycles, largest range and damage.
+fn fatigue(summary: &Summary) -> String {
+    if summary.analysis.fatigue.is_empty() {
+        return String::new();
+    }
+    let mut md = "\n| fatigue | window (s) | cycles | largest range | damage | damage per year | life (years) |\n|---|---|---|---|---|---|---|\n".to_owned();
+    for (name, d) in &summary.analysis.fatigue {
+        md += &format!(
+            "| {name} | {} | {} | {:.4e} | {:.4e} | {:.4e} | {:.4e} |\n",
+            d.window_s, d.cycles, d.largest_range, d.damage, d.damage_per_year, d.life_years
         );
     }
     md

@@ -1,0 +1,154 @@
+//! A run's analysis of its recorded signals, as `[output] statistics` and
+//! `[[output.fatigue]]` ask for it (issue 50): each signal's statistics over
+//! the window, its most probable maximum over a longer duration, its power
+//! spectrum, and the fatigue damage of the tensions and stresses named. What
+//! the scene does not ask for is not computed.
+
+use crate::extremes::{self, Extremes};
+use crate::fatigue::{self, Damage};
+use crate::plot::PlotError;
+use crate::record::Recorder;
+use crate::spectrum::{self, SpectralSummary, Spectrum};
+use crate::statistics::{self, Statistics};
+use serde::Serialize;
+use slender_scene::Scene;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// What `summary.json` holds of the analysis, per signal (per fatigue entry).
+#[derive(Debug, Default, Serialize)]
+pub struct Analysis {
+    /// With `[output] statistics`: each signal's statistics over the window.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub statistics: BTreeMap<String, Statistics>,
+    /// With `statistics.extremes`: each signal's most probable maximum.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub extremes: BTreeMap<String, Extremes>,
+    /// With `statistics.spectra`: each signal's spectral moments and periods
+    /// (the densities are in `spectra.csv`).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub spectra: BTreeMap<String, SpectralSummary>,
+    /// With `[[output.fatigue]]`: each entry's damage over its window.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub fatigue: BTreeMap<String, Damage>,
+}
+
+/// The analysis of `recorder` and the spectra themselves (for the CSV and
+/// the figure); a window that holds too little to analyse is said in
+/// `warnings`.
+pub fn of(
+    scene: &Scene,
+    recorder: &Recorder,
+    warnings: &mut Vec<String>,
+) -> (Analysis, Vec<(String, Spectrum)>) {
+    let mut analysis = Analysis::default();
+    let mut spectra = Vec::new();
+    let start = scene.start.as_secs();
+    let end = recorder.time.last().copied().unwrap_or(f64::NAN);
+    let asked = scene.spec.output.statistics;
+    let statistics_from = asked.and_then(|s| s.from).unwrap_or(start);
+    if asked.is_some() || !scene.spec.output.fatigue.is_empty() {
+        warnings.extend(scene.sea_repeat_warnings(statistics_from));
+    }
+    if let Some(asked) = asked {
+        if statistics_from >= end || end.is_nan() {
+            warnings.push(format!(
+                "output.statistics.from = {statistics_from} s is not before the recording's end ({end} s): no statistics"
+            ));
+        }
+        for (name, column) in recorder.names.iter().zip(&recorder.columns) {
+            let time = &recorder.time;
+            if let Some(s) = statistics::of(time, column, statistics_from) {
+                analysis.statistics.insert(name.clone(), s);
+            }
+            if let Some(e) = asked.extremes
+                && let Some(x) = extremes::of(time, column, statistics_from, e.duration)
+            {
+                analysis.extremes.insert(name.clone(), x);
+            }
+            if let Some(p) = asked.spectra
+                && let Some(s) = spectrum_of(time, column, statistics_from, p.segment)
+            {
+                analysis.spectra.insert(name.clone(), s.summary());
+                spectra.push((name.clone(), s));
+            }
+        }
+        if asked.spectra.is_some() && spectra.is_empty() && !recorder.names.is_empty() {
+            warnings.push(
+                "output.statistics.spectra: the window holds fewer samples than a segment: no spectra"
+                    .into(),
+            );
+        }
+    }
+    for f in &scene.spec.output.fatigue {
+        let from = f.from.unwrap_or(statistics_from);
+        let first = recorder.time.partition_point(|&t| t < from);
+        let column = |name: &str| recorder.column(name).map(|c| &c[first.min(c.len())..]);
+        let (Some(tension), moment) = (column(&f.tension), f.moment.as_deref().map(column)) else {
+            continue;
+        };
+        if tension.len() < 2 {
+            warnings.push(format!(
+                "output.fatigue `{}`: fewer than two samples after {from} s: no damage",
+                f.name
+            ));
+            continue;
+        }
+        let window = end - recorder.time[first];
+        let d = fatigue::damage(f, tension, moment.flatten(), window);
+        analysis.fatigue.insert(f.name.clone(), d);
+    }
+    (analysis, spectra)
+}
+
+/// Welch's spectrum of `values` at `time` from `from` on, with segments of
+/// `segment` seconds (default an eighth of the window).
+fn spectrum_of(time: &[f64], values: &[f64], from: f64, segment: Option<f64>) -> Option<Spectrum> {
+    let first = time.partition_point(|&t| t < from);
+    let n = values.len().min(time.len());
+    if first + 8 > n {
+        return None;
+    }
+    let dt = (time[n - 1] - time[first]) / (n - 1 - first) as f64;
+    let samples = match segment {
+        Some(s) => (s / dt).round() as usize,
+        None => (n - first) / 8,
+    };
+    spectrum::welch(&values[first..n], dt, samples)
+}
+
+/// Writes `spectra.csv` (frequency and each signal's density) and
+/// `spectra.svg` (a panel per signal) into `dir`; nothing without spectra.
+pub fn write_spectra(
+    dir: &Path,
+    scene: &Scene,
+    recorder: &Recorder,
+    spectra: &[(String, Spectrum)],
+) -> Result<Vec<PathBuf>, PlotError> {
+    let Some((_, first)) = spectra.first() else {
+        return Ok(Vec::new());
+    };
+    let density_unit = |name: &str| match recorder.unit(name).unwrap_or("") {
+        "" => "1/Hz".to_owned(),
+        u => format!("({u})^2/Hz"),
+    };
+    let names: Vec<String> = spectra.iter().map(|(n, _)| n.clone()).collect();
+    let units: Vec<String> = names.iter().map(|n| density_unit(n)).collect();
+    let mut csv = crate::record::header(&names, &units).replacen("time [s]", "frequency [Hz]", 1);
+    for (k, f) in first.frequency_hz.iter().enumerate() {
+        csv += &format!("\n{f}");
+        for (_, s) in spectra {
+            csv += &format!(",{}", s.density.get(k).copied().unwrap_or(f64::NAN));
+        }
+    }
+    csv.push('\n');
+    let csv_path = dir.join("spectra.csv");
+    crate::whole::write(&csv_path, csv).map_err(|e| PlotError::new(&csv_path, &e))?;
+    let svg_path = dir.join("spectra.svg");
+    let title = format!("{}: power spectral densities (Welch)", scene.spec.title);
+    let panels: Vec<(&str, &str, &Spectrum)> = (spectra.iter().zip(&units))
+        .map(|((n, s), u)| (n.as_str(), u.as_str(), s))
+        .collect();
+    crate::whole::through(&svg_path, |p| crate::plot::spectra(p, &title, &panels))?;
+    Ok(vec![csv_path, svg_path])
+}
