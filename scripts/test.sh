@@ -55,10 +55,11 @@ portable_passed=$(count passed)
 passed=$((passed + portable_passed))
 ignored=$((ignored - portable_passed))
 
-step "cluster test: a UQ study through a local single-node Slurm (ignored above)"
+step "cluster tests: a UQ study and a load-case matrix through a local single-node Slurm (ignored above)"
 if [ "$(id -u)" = 0 ]; then
     ./scripts/slurm-up.sh
-    cargo test --release -p slender-tests --test uq_slurm -- --ignored 2>&1 | tee "$log"
+    { cargo test --release -p slender-tests --test uq_slurm -- --ignored
+      cargo test --release -p slender-app --test cases_cli -- --ignored; } 2>&1 | tee "$log"
     slurm_passed=$(count passed)
     passed=$((passed + slurm_passed))
     ignored=$((ignored - slurm_passed))

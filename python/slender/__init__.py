@@ -44,6 +44,8 @@ __all__ = [
     "read_study",
     "read_fidelity",
     "read_uq",
+    "cases",
+    "read_cases",
 ]
 
 PathLike = Union[str, os.PathLike]
@@ -357,3 +359,34 @@ def read_uq(folder: PathLike) -> tuple:
     folder = Path(folder)
     report = json.loads((folder / "uq.json").read_text())
     return report, pd.read_csv(folder / "runs.csv", float_precision="round_trip")
+
+
+def cases(scene: PathLike, seas: Iterable[Sequence[float]], headings: Iterable[object] = (),
+          seeds: int = 1, out: Optional[PathLike] = None, duration: Optional[float] = None,
+          jobs: Optional[int] = None, set: Optional[Mapping[str, object]] = None) -> tuple:
+    """A load-case matrix (``slender cases``): ``seas`` as (Hs, Tp,
+    probability) triples, ``headings`` as degrees or (degrees, probability)
+    pairs; (cases.json as a dictionary, cases.csv as a data frame), as
+    :func:`read_cases`. Failed cases are rows marked ``failed``."""
+    folder = _folder(out, "cases")
+    args = ["cases", str(scene), "--out", str(folder), "--seeds", str(int(seeds)), *_settings(set)]
+    for hs, tp, p in seas:
+        args += ["--sea", f"{float(hs)!r},{float(tp)!r},{float(p)!r}"]
+    for h in headings:
+        args += ["--heading", ",".join(repr(float(v)) for v in (h if isinstance(h, (tuple, list)) else [h]))]
+    if duration is not None:
+        args += ["--duration", repr(float(duration))]
+    if jobs is not None:
+        args += ["--jobs", str(int(jobs))]
+    _call(args, accept_failed_runs=True)
+    return _read_then_tidy(folder, out, read_cases)
+
+
+def read_cases(folder: PathLike) -> tuple:
+    """A load-case matrix's folder: (cases.json as a dictionary: its groups,
+    design values and fatigue lives; cases.csv as a data frame, a row per
+    case indexed by its number)."""
+    folder = Path(folder)
+    report = json.loads((folder / "cases.json").read_text())
+    table = pd.read_csv(folder / "cases.csv", float_precision="round_trip").set_index("case")
+    return report, table

@@ -57,3 +57,14 @@ assert ext["largest_seen"] == x.max()
 assert ext["rayleigh_mpm"] > x.mean() + 3.0 * x.std(ddof=0), ext
 assert 0.5 < ext["weibull_shape"] < 4.0 and 0.0 < ext["weibull_r_squared"] <= 1.0, ext
 print(f"extremes: spar.x MPM {ext['rayleigh_mpm']:.3f} m (Rayleigh), {ext['weibull_mpm']:.3f} m (Weibull)")
+
+# A load-case matrix through the reader: the fatigue over the scatter is the
+# table's damages weighed by the sea states' probabilities.
+report, table = slender.cases(root / "examples/oc3_hywind_jonswap.toml", seas=[(4, 9, 0.7), (6, 10, 0.3)],
+                              seeds=2, duration=120.0, out=work / "cases")
+assert list(table.index) == [0, 1, 2, 3] and (table["status"] == "completed").all(), table
+means = table.groupby("significant_height")["line1_fairlead/damage_per_year"].mean()
+total = 0.7 * means[4.0] + 0.3 * means[6.0]
+life = report["fatigue"][0]
+assert abs(life["damage_per_year"] / total - 1.0) < 1e-12, (life, total)
+print(f"cases: damage per year over the scatter {life['damage_per_year']:.4e} = the table's weighed mean")

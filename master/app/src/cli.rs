@@ -343,31 +343,36 @@ pub(crate) enum Command {
         /// hypercube of its own.
         #[arg(long)]
         samples: Option<usize>,
-        /// Runs at once (default: the machine's cores); results do not depend on it.
-        #[arg(long)]
-        jobs: Option<usize>,
-        /// The most runs to start (default 10 000): a larger study is
-        /// refused before any run, naming its size.
-        #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
-        max_runs: usize,
-        /// Simulated time of each run (s); default: the scene's duration.
-        #[arg(long, allow_negative_numbers = true)]
-        duration: Option<f64>,
         /// Results folder (default: results/<scene name>-uq).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Run only shard K of N (K/N, 1-based: every N-th design point from
-        /// K), into <out>/shard-K-of-N/runs.csv, for a cluster's job array.
-        #[arg(long, value_parser = parse_shard)]
-        shard: Option<(usize, usize)>,
-        /// Merge the shards' runs under <out> (running any that are missing)
-        /// and expand: the same results as one local run.
-        #[arg(long, conflicts_with = "shard")]
-        merge: bool,
-        /// Write the Slurm scripts for N shards (uq-shards.sbatch, a job array,
-        /// and submit.sh, which submits it and the merge after it).
-        #[arg(long, conflicts_with_all = ["shard", "merge"])]
-        slurm: Option<usize>,
+        #[command(flatten)]
+        runs: SplitRuns,
+    },
+    /// A load-case matrix: the scene's sea (every wave spectrum in it) at each
+    /// sea state of a scatter, each heading and each seed. Each case's
+    /// statistics, extremes and fatigue damage go to cases.csv (resumable),
+    /// aggregated into each signal's design value and each fatigue entry's
+    /// damage per year over the scatter (cases.json, cases.md, report.html).
+    /// The scene needs `[output] statistics`.
+    Cases {
+        scene: PathBuf,
+        /// A sea state: significant height (m), peak period (s) and its
+        /// probability, `HS,TP,P`; repeat it for a scatter.
+        #[arg(long = "sea", value_parser = parse_sea, required = true)]
+        seas: Vec<(f64, f64, f64)>,
+        /// A wave heading (deg), `DEG` or `DEG,P` with its probability
+        /// (default: equal shares); repeat it; default: the scene's heading.
+        #[arg(long = "heading", value_parser = parse_heading, allow_negative_numbers = true)]
+        headings: Vec<(f64, Option<f64>)>,
+        /// Seeds of each sea state and heading (1 to N).
+        #[arg(long, default_value_t = 1)]
+        seeds: u64,
+        /// Results folder (default: results/<scene name>-cases).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        #[command(flatten)]
+        runs: SplitRuns,
     },
     /// The suspended span (seed 004 ch. 5): Bode plots and accuracy against cost.
     Span {
@@ -416,6 +421,57 @@ pub(crate) enum Command {
     },
     /// List the unit kinds a scene can use.
     Kinds,
+}
+
+/// How a study of independent runs (`uq`, `cases`) runs: at once, within a
+/// bound, and split over a cluster.
+#[derive(Args, Debug)]
+pub(crate) struct SplitRuns {
+    /// Runs at once (default: the machine's cores); results do not depend on it.
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// The most runs to start (default 10 000): a larger study is refused
+    /// before any run, naming its size.
+    #[arg(long, default_value_t = slender_app::DEFAULT_MAX_RUNS)]
+    pub max_runs: usize,
+    /// Simulated time of each run (s); default: the scene's duration.
+    #[arg(long, allow_negative_numbers = true)]
+    pub duration: Option<f64>,
+    /// Run only shard K of N (K/N, 1-based: every N-th run from K), into
+    /// <out>/shard-K-of-N/, for a cluster's job array.
+    #[arg(long, value_parser = parse_shard)]
+    pub shard: Option<(usize, usize)>,
+    /// Merge the shards' runs under <out> (running any that are missing):
+    /// the same results as one local run.
+    #[arg(long, conflicts_with = "shard")]
+    pub merge: bool,
+    /// Write the Slurm scripts for N shards (a job array, and submit.sh,
+    /// which submits it and the merge after it).
+    #[arg(long, conflicts_with_all = ["shard", "merge"])]
+    pub slurm: Option<usize>,
+}
+
+/// `HS,TP,P`: three numbers.
+fn parse_sea(text: &str) -> Result<(f64, f64, f64), String> {
+    let numbers: Result<Vec<f64>, _> = text.split(',').map(|v| v.trim().parse::<f64>()).collect();
+    match numbers.as_deref() {
+        Ok([hs, tp, p]) => Ok((*hs, *tp, *p)),
+        _ => Err(format!(
+            "`{text}`: expected HS,TP,PROBABILITY (m, s, a fraction), e.g. 4,9,0.25"
+        )),
+    }
+}
+
+/// `DEG` or `DEG,P`.
+fn parse_heading(text: &str) -> Result<(f64, Option<f64>), String> {
+    let numbers: Result<Vec<f64>, _> = text.split(',').map(|v| v.trim().parse::<f64>()).collect();
+    match numbers.as_deref() {
+        Ok([deg]) => Ok((*deg, None)),
+        Ok([deg, p]) => Ok((*deg, Some(*p))),
+        _ => Err(format!(
+            "`{text}`: expected DEG or DEG,PROBABILITY, e.g. 30,0.5"
+        )),
+    }
 }
 
 /// `K/N` with 1 <= K <= N.

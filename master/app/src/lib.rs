@@ -11,6 +11,7 @@
 //!   [`progress`]: k of N runs and the time left.
 
 pub mod analysis;
+pub mod cases;
 pub mod costs;
 pub mod coupling_study;
 pub mod decay;

@@ -3,6 +3,8 @@
 //! a write) with code 1, as the README and the user guide promise.
 
 mod analysis;
+mod cases;
+mod cluster;
 mod decay;
 mod fmu;
 mod lock;
@@ -139,34 +141,77 @@ fn studies(command: Command, set: &[String]) -> Result<(), CliError> {
         Command::Uq {
             scene,
             samples,
-            jobs,
-            max_runs,
-            duration,
             out,
-            shard,
-            merge,
-            slurm,
+            runs,
         } => {
             let plan = slender_app::uq::UqPlan {
-                max_runs,
+                max_runs: runs.max_runs,
                 samples,
-                jobs: jobs_or_cores(jobs),
-                duration,
+                jobs: jobs_or_cores(runs.jobs),
+                duration: runs.duration,
                 shard: None,
                 overrides,
             };
-            uq::uq(&scene, &plan, out, uq_mode(shard, slurm, merge)?)
+            uq::uq(&scene, &plan, out, uq_mode(&runs)?)
         }
+        c @ Command::Cases { .. } => load_cases(c, overrides),
         _ => Err(CliError::failure("not a study command")),
     }
 }
 
-/// How a `slender uq` runs: a shard, through Slurm, or whole (merging shards).
-fn uq_mode(
-    shard: Option<(usize, usize)>,
-    slurm: Option<usize>,
-    merge: bool,
-) -> Result<uq::Mode, CliError> {
+/// `slender cases`: its plan from the arguments.
+fn load_cases(command: Command, overrides: Vec<String>) -> Result<(), CliError> {
+    let Command::Cases {
+        scene,
+        seas,
+        headings,
+        seeds,
+        out,
+        runs,
+    } = command
+    else {
+        return Err(CliError::failure("not the cases command"));
+    };
+    let plan = slender_app::cases::CasesPlan {
+        seas: (seas.into_iter())
+            .map(|(hs, tp, p)| slender_app::cases::SeaState {
+                significant_height: hs,
+                peak_period: tp,
+                probability: p,
+            })
+            .collect(),
+        headings: headings_of(&headings)?,
+        seeds,
+        jobs: jobs_or_cores(runs.jobs),
+        duration: runs.duration,
+        shard: None,
+        max_runs: runs.max_runs,
+        overrides,
+    };
+    cases::cases(&scene, &plan, out, uq_mode(&runs)?)
+}
+
+/// The headings with their probabilities: all given, or none (equal shares).
+fn headings_of(given: &[(f64, Option<f64>)]) -> Result<Vec<slender_app::cases::Heading>, CliError> {
+    let shares = given.iter().filter(|h| h.1.is_some()).count();
+    if shares != 0 && shares != given.len() {
+        return Err(CliError::input(
+            "--heading: give every heading's probability (DEG,P) or none (equal shares)",
+        ));
+    }
+    let equal = 1.0 / given.len().max(1) as f64;
+    Ok((given.iter())
+        .map(|&(degrees, p)| slender_app::cases::Heading {
+            degrees,
+            probability: p.unwrap_or(equal),
+        })
+        .collect())
+}
+
+/// How a `slender uq` or `cases` runs: a shard, through Slurm, or whole
+/// (merging shards).
+fn uq_mode(runs: &crate::cli::SplitRuns) -> Result<uq::Mode, CliError> {
+    let (shard, slurm, merge) = (runs.shard, runs.slurm, runs.merge);
     Ok(match (shard, slurm) {
         (Some((k, n)), _) => uq::Mode::Shard(k, n),
         (_, Some(0)) => return Err(CliError::input("--slurm 0: expected at least one shard")),
@@ -218,9 +263,10 @@ pub(crate) fn dispatch(cli: Cli) -> Result<(), CliError> {
             out,
             statics::Sweep { range, yaw, points },
         ),
-        c @ (Command::Study { .. } | Command::Fidelity { .. } | Command::Uq { .. }) => {
-            studies(c, set)
-        }
+        c @ (Command::Study { .. }
+        | Command::Fidelity { .. }
+        | Command::Uq { .. }
+        | Command::Cases { .. }) => studies(c, set),
         Command::Span {
             action,
             flexural_rigidity,

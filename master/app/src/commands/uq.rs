@@ -2,6 +2,7 @@
 //! the Slurm scripts that run the shards as a job array and merge them.
 
 use super::analysis::study_folder;
+use super::cluster::{ArrayJob, shell_word};
 use super::{CliError, SceneArg, report_written};
 use slender_app::plot::PlotError;
 use slender_app::uq::{self, Run, UqPlan};
@@ -239,62 +240,24 @@ fn merged(dir: &Path, read: &dyn Fn(&Path) -> Vec<Run>) -> Result<Vec<Run>, CliE
 /// `uq-shards.sbatch` (a job array, one shard per task) and `submit.sh` (it,
 /// then the merge once every shard is done).
 fn slurm_scripts(path: &Path, plan: &UqPlan, dir: &Path, n: usize) -> Result<(), CliError> {
-    let exe = std::env::current_exe().map_err(CliError::failure)?;
-    let scene = std::fs::canonicalize(path)
-        .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
-    let out = std::fs::canonicalize(dir).map_err(CliError::failure)?;
-    let mut common = format!("--out {:?}", out.display().to_string());
+    let mut args = Vec::new();
     if let Some(s) = plan.samples {
-        common += &format!(" --samples {s}");
+        args.push(format!("--samples {s}"));
     }
     if let Some(d) = plan.duration {
-        common += &format!(" --duration {d}");
+        args.push(format!("--duration {d}"));
     }
-    for o in &plan.overrides {
-        common += &format!(" --set {}", shell_word(o));
-    }
-    let command = format!(
-        "{} uq {} {common}",
-        shell_word(&exe.display().to_string()),
-        shell_word(&scene.display().to_string())
+    args.extend(
+        plan.overrides
+            .iter()
+            .map(|o| format!("--set {}", shell_word(o))),
     );
-    // The merge's command goes inside the single quotes of `--wrap '...'`.
-    let wrapped = command.replace('\'', "'\\''");
-    let array = format!(
-        "#!/bin/sh\n#SBATCH --job-name=slender-uq\n#SBATCH --array=1-{n}\n#SBATCH --ntasks=1\n#SBATCH --cpus-per-task={jobs}\n#SBATCH --output={o}/shard-%a.log\n{command} --jobs {jobs} --shard \"$SLURM_ARRAY_TASK_ID/{n}\"\n",
-        jobs = plan.jobs,
-        o = out.display()
-    );
-    let submit = format!(
-        "#!/bin/sh\n# Submits the {n} shards as a job array, then the merge once all succeed.\nset -e\njob=$(sbatch --parsable {o}/uq-shards.sbatch)\nsbatch --dependency=afterok:\"$job\" --job-name=slender-uq-merge --output={o}/merge.log --wrap '{wrapped} --jobs {jobs} --merge'\n",
-        o = out.display(),
-        jobs = plan.jobs
-    );
-    let write = |name: &str, text: &str| -> Result<PathBuf, CliError> {
-        let file = dir.join(name);
-        slender_app::whole::write(&file, text)
-            .map_err(|e| CliError::failure(format!("{}: {e}", file.display())))?;
-        Ok(file)
-    };
-    let files = vec![
-        write("uq-shards.sbatch", &array)?,
-        write("submit.sh", &submit)?,
-    ];
-    report_written(&files);
-    println!("submit with: sh {}", out.join("submit.sh").display());
-    Ok(())
-}
-
-/// `text` as one word of a POSIX shell command: in double quotes, with the
-/// characters the shell reads there (`"`, `\`, `$`, `` ` ``) escaped.
-fn shell_word(text: &str) -> String {
-    let mut word = String::from('"');
-    for c in text.chars() {
-        if matches!(c, '"' | '\\' | '$' | '`') {
-            word.push('\\');
-        }
-        word.push(c);
-    }
-    word.push('"');
-    word
+    super::cluster::slurm_scripts(&ArrayJob {
+        command: "uq",
+        scene: path,
+        dir,
+        args,
+        jobs: plan.jobs,
+        shards: n,
+    })
 }
