@@ -10,6 +10,7 @@ here is the result the command wrote::
     run.summary["status"]                   # "completed"
     run.statistics                          # with [output] statistics: a row per signal
     run.extremes, run.spectra, run.fatigue  # most probable maxima, Welch spectra, damage
+    run.envelopes                           # min, max, mean along each unit (by arc)
     rows = slender.study("examples/b3_force_displacement.toml",
                          vary={"step": [0.001, 0.002, 0.005]})
 
@@ -76,6 +77,9 @@ class Run:
     #: With ``statistics.spectra``: spectra.csv, each signal's power spectral
     #: density (its unit squared per Hz) indexed by frequency (Hz).
     spectra: pd.DataFrame = field(default_factory=pd.DataFrame)
+    #: With ``[output] envelopes``: envelopes.csv, a row per unit, field and
+    #: point along it (unit, field, unit_of_measure, arc, min, max, mean).
+    envelopes: pd.DataFrame = field(default_factory=pd.DataFrame)
 
     @property
     def status(self) -> str:
@@ -260,7 +264,12 @@ def read_run(folder: PathLike) -> Run:
         spectra = pd.read_csv(folder / "spectra.csv", float_precision="round_trip")
         spectra.columns = [_name_and_unit(c)[0] for c in spectra.columns]
         spectra = spectra.set_index("frequency")
-    return Run(folder=folder, timeseries=frame, summary=summary, units=units, spectra=spectra)
+    envelopes = pd.DataFrame()
+    if (folder / "envelopes.csv").exists():
+        envelopes = pd.read_csv(folder / "envelopes.csv", float_precision="round_trip")
+        envelopes = envelopes.rename(columns={"arc [m]": "arc"})
+    return Run(folder=folder, timeseries=frame, summary=summary, units=units, spectra=spectra,
+               envelopes=envelopes)
 
 
 def _vary(vary: Mapping[str, Iterable[object]]) -> list:

@@ -68,3 +68,12 @@ total = 0.7 * means[4.0] + 0.3 * means[6.0]
 life = report["fatigue"][0]
 assert abs(life["damage_per_year"] / total - 1.0) < 1e-12, (life, total)
 print(f"cases: damage per year over the scatter {life['damage_per_year']:.4e} = the table's weighed mean")
+
+# Envelopes: the frame of envelopes.csv holds the summary's extremes.
+riser = slender.run(root / "examples/structure_riser.toml", duration=20.0, set={"output.envelopes": {}},
+                    out=work / "riser")
+frame = riser.envelopes
+top = frame[(frame["unit"] == "riser_top") & (frame["field"] == "tension")]
+said = next(e for e in riser.summary["envelopes"] if e["unit"] == "riser_top" and e["field"] == "tension")
+assert top["max"].max() == said["max"] and top.loc[top["max"].idxmax(), "arc"] == said["max_arc_m"], (top, said)
+print(f"envelopes: {len(frame)} rows; riser_top's largest tension {said['max']:.4e} N at {said['max_arc_m']:.1f} m")

@@ -70,7 +70,8 @@ fn column(unit: &Driver<FmuUnit>, name: &str) -> usize {
 }
 
 /// The FMI 3.0 import has the FMI 2.0 twin's ports, then one output per
-/// element of each field (x and z per node, the tension per element).
+/// element of each field (x and z per node, the tension per element, the
+/// moment per node).
 fn check_ports(two: &Driver<FmuUnit>, three: &Driver<FmuUnit>, nodes: usize) {
     let scalars = two.description().outputs.len();
     let names = |u: &Driver<FmuUnit>| -> Vec<String> {
@@ -79,9 +80,10 @@ fn check_ports(two: &Driver<FmuUnit>, three: &Driver<FmuUnit>, nodes: usize) {
     };
     assert_eq!(names(two), names(three)[..scalars]);
     let arrays = &names(three)[scalars..];
-    assert_eq!(arrays.len(), 3 * nodes - 1);
+    assert_eq!(arrays.len(), 4 * nodes - 1);
     assert_eq!((&*arrays[0], &*arrays[nodes]), ("x[1]", "z[1]"));
-    assert_eq!(arrays.last().map(String::as_str), Some("tension[15]"));
+    assert_eq!(&*arrays[3 * nodes - 2], "tension[15]");
+    assert_eq!(arrays.last(), Some(&format!("moment[{nodes}]")));
     // The same inputs; FMI 3.0's held zero-order (no input derivatives).
     let inputs = |u: &Driver<FmuUnit>| -> Vec<(String, String)> {
         let ports = &u.description().inputs;
@@ -95,15 +97,20 @@ fn check_ports(two: &Driver<FmuUnit>, three: &Driver<FmuUnit>, nodes: usize) {
     assert!(holds.into_iter().all(|h| h == Hold::ZeroOrder));
 }
 
-/// At every step the arrays end at the section's end positions and their
-/// largest tension is its `max_tension` output, bit for bit.
+/// At every step the arrays end at the section's end positions, their
+/// largest tension is its `max_tension` output, bit for bit, and no node
+/// moment (the mean of two element ends) exceeds its `max_moment`.
 fn check_arrays(three: &Driver<FmuUnit>, outputs: &[Vec<f64>], scalars: usize, nodes: usize) {
     let bits = |v: &f64| v.to_bits();
     for (k, b) in outputs.iter().enumerate() {
         let at = |name: &str| b[column(three, name)];
         let x = &b[scalars..scalars + nodes];
         let z = &b[scalars + nodes..scalars + 2 * nodes];
-        let tension = &b[scalars + 2 * nodes..];
+        let tension = &b[scalars + 2 * nodes..scalars + 3 * nodes - 1];
+        let moment = &b[scalars + 3 * nodes - 1..];
+        assert_eq!(moment.len(), nodes);
+        let bending = moment.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(bending <= at("max_moment"), "step {k}");
         assert_eq!(bits(&x[0]), bits(&at("start_position_x")));
         assert_eq!(bits(&x[nodes - 1]), bits(&at("end_position_x")));
         assert_eq!(bits(&z[0]), bits(&at("start_position_z")));

@@ -31,6 +31,10 @@ pub struct Analysis {
     /// With `[[output.fatigue]]`: each entry's damage over its window.
     #[serde(skip_serializing_if = "BTreeMap::is_empty")]
     pub fatigue: BTreeMap<String, Damage>,
+    /// With `[output] envelopes`: each unit field's extremes along the unit
+    /// (the envelopes themselves are in `envelopes.csv`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub envelopes: Vec<crate::envelopes::EnvelopeExtremes>,
 }
 
 /// The analysis of `recorder` and the spectra themselves (for the CSV and
@@ -39,9 +43,13 @@ pub struct Analysis {
 pub fn of(
     scene: &Scene,
     recorder: &Recorder,
+    envelopes: &[crate::envelopes::Envelope],
     warnings: &mut Vec<String>,
 ) -> (Analysis, Vec<(String, Spectrum)>) {
-    let mut analysis = Analysis::default();
+    let mut analysis = Analysis {
+        envelopes: envelopes.iter().map(|e| e.extremes()).collect(),
+        ..Analysis::default()
+    };
     let mut spectra = Vec::new();
     let start = scene.start.as_secs();
     let end = recorder.time.last().copied().unwrap_or(f64::NAN);
@@ -99,6 +107,14 @@ pub fn of(
         analysis.fatigue.insert(f.name.clone(), d);
     }
     (analysis, spectra)
+}
+
+/// The start (s) of the envelopes' window: theirs, else the statistics', else
+/// the run's start.
+pub fn envelopes_from(scene: &Scene) -> Option<f64> {
+    let asked = scene.spec.output.envelopes?;
+    let statistics = scene.spec.output.statistics.and_then(|s| s.from);
+    Some(asked.from.or(statistics).unwrap_or(scene.start.as_secs()))
 }
 
 /// Welch's spectrum of `values` at `time` from `from` on, with segments of

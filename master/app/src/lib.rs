@@ -15,6 +15,7 @@ pub mod cases;
 pub mod costs;
 pub mod coupling_study;
 pub mod decay;
+pub mod envelopes;
 pub mod error;
 pub mod extremes;
 pub mod fatigue;

@@ -99,6 +99,46 @@ struct Axes<'a> {
     y_title: &'a str,
 }
 
+/// One panel of a stacked figure: curves against a shared x.
+pub struct Profile<'a> {
+    pub x: &'a [f64],
+    /// The x axis's range.
+    pub x_range: (f64, f64),
+    pub x_title: &'a str,
+    pub y_title: String,
+    /// Each curve's legend and values (one per x).
+    pub series: Vec<(String, &'a [f64])>,
+}
+
+/// Stacked panels, top to bottom, each its curves with a legend beside it.
+pub fn profiles(path: &Path, title: &str, panels: &[Profile<'_>]) -> Result<(), PlotError> {
+    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
+    let root = SVGBackend::new(path, (1200, 60 + 220 * panels.len() as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let root = root
+        .titled(title, ("sans-serif", 22))
+        .map_err(|e| fail(&e))?;
+    for (area, p) in root.split_evenly((panels.len(), 1)).iter().zip(panels) {
+        let (chart_area, legend) = area.split_horizontally(950);
+        let axes = Axes {
+            x: p.x_range,
+            x_title: p.x_title,
+            y_title: &p.y_title,
+        };
+        let series: Vec<(&String, &[f64])> = p.series.iter().map(|(n, v)| (n, *v)).collect();
+        panel_chart(&chart_area, &axes, p.x, &series).map_err(|e| fail(&e))?;
+        let entries: Vec<Entry> = (p.series.iter().enumerate())
+            .map(|(i, (name, _))| Entry {
+                text: name.clone(),
+                colour: Palette99::pick(i).to_rgba(),
+                marker: false,
+            })
+            .collect();
+        side_legend(&legend, "", &entries).map_err(|e| fail(&e))?;
+    }
+    root.present().map_err(|e| fail(&e))
+}
+
 /// Stacked panels of power spectral densities, one per `(signal, density
 /// unit, spectrum)`, up to the frequency past which every density stays
 /// under a thousandth of its peak.
@@ -107,42 +147,25 @@ pub fn spectra(
     title: &str,
     panels: &[(&str, &str, &crate::spectrum::Spectrum)],
 ) -> Result<(), PlotError> {
-    let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     let top = (panels.iter())
         .map(|(_, _, s)| {
             let peak = s.density.iter().copied().fold(0.0, f64::max);
-            let last = s
-                .density
-                .iter()
+            let last = (s.density.iter())
                 .rposition(|d| *d > 1e-3 * peak)
                 .unwrap_or(0);
             s.frequency_hz[(last + 1).min(s.frequency_hz.len() - 1)]
         })
         .fold(0.0, f64::max);
-    let root = SVGBackend::new(path, (1200, 60 + 220 * panels.len() as u32)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| fail(&e))?;
-    let root = root
-        .titled(title, ("sans-serif", 22))
-        .map_err(|e| fail(&e))?;
-    for (area, (name, unit, s)) in root.split_evenly((panels.len(), 1)).iter().zip(panels) {
-        let (chart_area, legend) = area.split_horizontally(950);
-        let y_title = format!("density ({unit})");
-        let axes = Axes {
-            x: (0.0, if top > 0.0 { top } else { 1.0 }),
+    let profiles: Vec<Profile> = (panels.iter())
+        .map(|(name, unit, s)| Profile {
+            x: &s.frequency_hz,
+            x_range: (0.0, if top > 0.0 { top } else { 1.0 }),
             x_title: "frequency (Hz)",
-            y_title: &y_title,
-        };
-        let name = (*name).to_owned();
-        panel_chart(&chart_area, &axes, &s.frequency_hz, &[(&name, &s.density)])
-            .map_err(|e| fail(&e))?;
-        let entry = Entry {
-            text: name,
-            colour: Palette99::pick(0).to_rgba(),
-            marker: false,
-        };
-        side_legend(&legend, "", &[entry]).map_err(|e| fail(&e))?;
-    }
-    root.present().map_err(|e| fail(&e))
+            y_title: format!("density ({unit})"),
+            series: vec![((*name).to_owned(), s.density.as_slice())],
+        })
+        .collect();
+    self::profiles(path, title, &profiles)
 }
 
 /// One panel: the signals against x (time, frequency) on 1-2-5 ticks.

@@ -21,6 +21,8 @@ pub struct Recorder {
     csv: Option<(BufWriter<File>, std::path::PathBuf)>,
     every: u32,
     counter: u32,
+    /// With `[output] envelopes`: the units' fields, every step.
+    envelopes: Option<crate::envelopes::Envelopes>,
 }
 
 /// The CSV header: `time [s]`, then each signal with its unit of measure in
@@ -88,12 +90,16 @@ impl Recorder {
             csv,
             every: every.max(1),
             counter: 0,
+            envelopes: None,
         })
     }
 
     /// Records the master's current outputs, honouring `every` (the first call, at
     /// the initial time, is always recorded); an error names the CSV file.
     pub fn observe(&mut self, master: &Master) -> Result<(), RunError> {
+        if let Some(e) = &mut self.envelopes {
+            e.observe(master, master.time().as_secs());
+        }
         let due = self.counter % self.every == 0;
         self.counter += 1;
         if !due {
@@ -131,6 +137,17 @@ impl Recorder {
             }
             None => Ok(()),
         }
+    }
+
+    /// Keeps the envelopes of the units' fields from `from` (s) on, every
+    /// step whatever `every` says.
+    pub fn envelope_from(&mut self, from: f64) {
+        self.envelopes = Some(crate::envelopes::Envelopes::new(from));
+    }
+
+    /// The envelopes kept (none unless asked for).
+    pub fn take_envelopes(&mut self) -> Vec<crate::envelopes::Envelope> {
+        self.envelopes.take().map_or(Vec::new(), |e| e.finish())
     }
 
     /// The recorded column of `name`.

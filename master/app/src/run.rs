@@ -89,6 +89,9 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         scene.spec.output.every,
         csv_path.as_deref(),
     )?;
+    if let Some(from) = crate::analysis::envelopes_from(scene) {
+        recorder.envelope_from(from);
+    }
     let started = Instant::now();
     // The scene's advisories first, then the plausibility watch's.
     let mut warnings = scene.advisories.clone();
@@ -102,11 +105,12 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
     // Plots before the summary: a run whose figures cannot be written is not
     // reported as completed.
     let mut outcome = outcome.map_err(|e| e.to_string());
-    let (analysis, spectra) = crate::analysis::of(scene, &recorder, &mut warnings);
+    let envelopes = recorder.take_envelopes();
+    let (analysis, spectra) = crate::analysis::of(scene, &recorder, &envelopes, &mut warnings);
     if let Some(dir) = &options.output_dir
         && recorder.time.len() > 1
     {
-        match write_plots(scene, &recorder, dir, &spectra) {
+        match write_plots(scene, &recorder, dir, (&spectra, &envelopes)) {
             Ok(plots) => files.extend(plots),
             Err(e) => {
                 if outcome.is_ok() {
@@ -398,9 +402,13 @@ fn write_plots(
     scene: &Scene,
     recorder: &Recorder,
     dir: &Path,
-    spectra: &[(String, crate::spectrum::Spectrum)],
+    (spectra, envelopes): (
+        &[(String, crate::spectrum::Spectrum)],
+        &[crate::envelopes::Envelope],
+    ),
 ) -> Result<Vec<PathBuf>, PlotError> {
     let mut files = crate::analysis::write_spectra(dir, scene, recorder, spectra)?;
+    files.extend(crate::envelopes::write(dir, &scene.spec.title, envelopes)?);
     if scene.spec.output.plots.is_empty() {
         let path = dir.join("timeseries.svg");
         let panels: Vec<Vec<String>> = recorder.names.iter().map(|n| vec![n.clone()]).collect();

@@ -71,6 +71,20 @@ impl UnitAdapter {
         self.driver.description()
     }
 
+    /// The quantities along the unit it can report (`Unit::fields`).
+    pub fn fields(&self) -> Vec<slender_contract::Field> {
+        self.driver.unit().fields()
+    }
+
+    /// The current values of the unit's field `index` into `out`.
+    pub fn field_values(
+        &self,
+        index: usize,
+        out: &mut [f64],
+    ) -> Result<(), slender_contract::UnitError> {
+        self.driver.unit().field_values(index, out)
+    }
+
     /// The inputs whose values at `initialize` set the unit's static state.
     pub fn static_inputs(&self) -> Vec<usize> {
         self.driver.unit().static_inputs()

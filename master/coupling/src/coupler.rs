@@ -18,6 +18,7 @@ use crate::system::{Connection, System};
 use slender_contract::{Causality, Hold, Time};
 use std::time::Instant;
 
+mod fields;
 mod initial;
 mod parallel;
 mod setup;

@@ -47,6 +47,16 @@ pub struct SpectraSpec {
     pub segment: Option<f64>,
 }
 
+/// `[output] envelopes = { from = S }`: the smallest, largest and mean
+/// tension, curvature and bending moment along every unit that reports them.
+#[derive(Copy, Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvelopesSpec {
+    /// The window's start (s); default the statistics' `from`, or the start.
+    #[serde(default)]
+    pub from: Option<f64>,
+}
+
 /// `[[output.fatigue]]`: the fatigue damage of one point of a line.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -156,6 +166,9 @@ impl Scene {
             if let Some(p) = s.spectra {
                 self.check_positive("output.statistics.spectra.segment", p.segment)?;
             }
+        }
+        if let Some(e) = output.envelopes {
+            self.check_from("output.envelopes.from", e.from)?;
         }
         for (i, f) in output.fatigue.iter().enumerate() {
             let key = format!("output.fatigue[{i}]");

@@ -1,7 +1,9 @@
 //! The scene file format (TOML), as serde types. Every table rejects unknown keys.
 //! `docs/scene-reference.md` documents these types field by field.
 
-pub use crate::analysis::{ExtremesSpec, FatigueCurve, FatigueSpec, SpectraSpec, StatisticsSpec};
+pub use crate::analysis::{
+    EnvelopesSpec, ExtremesSpec, FatigueCurve, FatigueSpec, SpectraSpec, StatisticsSpec,
+};
 use serde::Deserialize;
 use slender_coupling::settings::MasterSettings;
 use slender_units::Hold;
@@ -210,6 +212,9 @@ pub struct OutputSpec {
     /// Fatigue damage of recorded tensions or stresses (rainflow and Miner).
     #[serde(default)]
     pub fatigue: Vec<FatigueSpec>,
+    /// Envelopes of the units' tension, curvature and moment along them.
+    #[serde(default)]
+    pub envelopes: Option<EnvelopesSpec>,
 }
 
 /// `[output] watch = { factor, stop, breaking_load, energy_growth }`.
@@ -336,6 +341,7 @@ impl Default for OutputSpec {
             watch: WatchSpec::default(),
             statistics: None,
             fatigue: Vec::new(),
+            envelopes: None,
         }
     }
 }

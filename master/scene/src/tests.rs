@@ -246,6 +246,7 @@ fn extremes_spectra_and_fatigue_a_scene_can_give_are_accepted() {
     for good in [
         "statistics = { extremes = { duration = 10800.0 }, spectra = {} }".to_owned(),
         "statistics = { spectra = { segment = 2.0 } }".to_owned(),
+        "envelopes = { from = 2.0 }".to_owned(),
         fatigue(chain),
         fatigue("curve = \"api_studless_chain\"\nbreaking_load = 1e6"),
         fatigue(
@@ -307,6 +308,11 @@ fn extremes_spectra_and_fatigue_that_cannot_be_given_are_refused_before_the_run(
             fatigue(&format!("{chain}\nfrom = -3.0")),
             "output.fatigue[0].from: -3: expected a time",
         ),
+        (
+            "envelopes = { from = -2.0 }".to_owned(),
+            "output.envelopes.from: -2: expected a time",
+        ),
+        ("envelopes = { to = 2.0 }".to_owned(), "unknown field `to`"),
         (
             fatigue(&format!("{chain}\ntension = \"m.tension\"")),
             "duplicate key",

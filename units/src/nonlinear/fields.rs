@@ -1,6 +1,6 @@
 //! The section's quantities along its length (the unit's fields): node
-//! positions and the tension in every element, what an FMI 3.0 export offers
-//! as array outputs.
+//! positions, the tension in every element and the bending moment at every
+//! node, what an FMI 3.0 export offers as array outputs and envelopes read.
 
 use super::NonlinearSection;
 use crate::contract::{Field, UnitError};
@@ -9,10 +9,12 @@ use crate::contract::{Field, UnitError};
 const X: usize = 0;
 const Z: usize = 1;
 const TENSION: usize = 2;
+const MOMENT: usize = 3;
 
 impl NonlinearSection {
-    /// Node x and z (m, per node from the first end) and the axial force of
-    /// each element (N, tension positive).
+    /// Node x and z (m, per node from the first end), the axial force of
+    /// each element (N, tension positive) and the bending moment at each node
+    /// (N m).
     pub(super) fn field_list(&self) -> Vec<Field> {
         let nodes = self.model.reference.len();
         let field = Field::new;
@@ -35,6 +37,12 @@ impl NonlinearSection {
                 "axial force of each element (tension positive), first end first",
                 self.model.elements.len(),
             ),
+            field(
+                "moment",
+                "N.m",
+                "bending moment at each node, the mean of its elements' ends (positive turning the tangent counter-clockwise along the arc), first end first",
+                nodes,
+            ),
         ]
     }
 
@@ -42,7 +50,7 @@ impl NonlinearSection {
     pub(super) fn write_field(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
         let q = &self.state.q;
         let expected = match index {
-            X | Z => self.model.reference.len(),
+            X | Z | MOMENT => self.model.reference.len(),
             TENSION => self.model.elements.len(),
             _ => {
                 return Err(UnitError::Unsupported(format!(
@@ -62,12 +70,30 @@ impl NonlinearSection {
                     *v = r[index] + q[3 * node + index];
                 }
             }
-            _ => {
+            TENSION => {
                 for (e, v) in out.iter_mut().enumerate() {
                     *v = self.model.local_forces(q, e).axial;
                 }
             }
+            _ => self.write_moments(out),
         }
         Ok(())
+    }
+
+    /// Each node's bending moment (N m) into `out`: the mean of the moments
+    /// at the ends of the elements that meet there (one at each end of the
+    /// section), each signed as `extremes` signs them.
+    fn write_moments(&self, out: &mut [f64]) {
+        out.fill(0.0);
+        // Element e joins nodes e and e + 1.
+        for e in 0..self.model.elements.len() {
+            let l = self.model.local_forces(&self.state.q, e);
+            out[e] -= l.moments[0];
+            out[e + 1] += l.moments[1];
+        }
+        let last = out.len().saturating_sub(1);
+        for v in out.iter_mut().take(last).skip(1) {
+            *v /= 2.0;
+        }
     }
 }

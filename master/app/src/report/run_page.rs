@@ -43,6 +43,7 @@ pub fn parts(summary: &Summary, figures: &[PathBuf]) -> Vec<Part> {
     md += &units_and_statistics(summary);
     md += &extremes_and_spectra(summary);
     md += &fatigue(summary);
+    md += &envelopes(summary);
     let mut parts = vec![Part::Heading(summary.title.clone()), Part::Markdown(md)];
     parts.extend(figures.iter().map(|f| Part::figure(f, Vec::new())));
     parts
@@ -126,6 +127,22 @@ fn fatigue(summary: &Summary) -> String {
         md += &format!(
             "| {name} | {} | {} | {:.4e} | {:.4e} | {:.4e} | {:.4e} |\n",
             d.window_s, d.cycles, d.largest_range, d.damage, d.damage_per_year, d.life_years
+        );
+    }
+    md
+}
+
+/// A row per unit and field with `[output] envelopes`: its extremes along
+/// the unit and where they are.
+fn envelopes(summary: &Summary) -> String {
+    if summary.analysis.envelopes.is_empty() {
+        return String::new();
+    }
+    let mut md = "\n| unit | field | max | at arc (m) | min | at arc (m) | steps |\n|---|---|---|---|---|---|---|\n".to_owned();
+    for e in &summary.analysis.envelopes {
+        md += &format!(
+            "| {} | {} ({}) | {:.4e} | {:.1} | {:.4e} | {:.1} | {} |\n",
+            e.unit, e.field, e.unit_of_measure, e.max, e.max_arc_m, e.min, e.min_arc_m, e.samples
         );
     }
     md

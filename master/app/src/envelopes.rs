@@ -1,0 +1,237 @@
+//! Envelopes along the line (issue 50): over the window a scene asks for
+//! (`[output] envelopes = { from = S }`), the smallest, largest and mean value
+//! of each unit's tension, curvature and bending moment at every node or
+//! element, from the units' fields, against the arc length along the unit
+//! (from its start, measured on its positions at the run's start: its static
+//! shape). The buffers are made once, at the first observation; each step
+//! only reads the fields into them.
+
+use crate::plot::{PlotError, Profile};
+use serde::Serialize;
+use slender_coupling::coupler::Master;
+use std::path::{Path, PathBuf};
+
+/// The fields an envelope is kept of (by their names in `Unit::fields`).
+const ENVELOPED: [&str; 3] = ["tension", "curvature", "moment"];
+
+/// One field of one unit over the window.
+#[derive(Clone, Debug, Serialize)]
+pub struct Envelope {
+    pub unit: String,
+    pub field: String,
+    /// The field's unit of measure.
+    pub unit_of_measure: String,
+    /// The arc length (m) of each value from the unit's start: a node's, or
+    /// an element's midpoint.
+    pub arc: Vec<f64>,
+    pub min: Vec<f64>,
+    pub max: Vec<f64>,
+    pub mean: Vec<f64>,
+    /// The steps averaged.
+    pub samples: usize,
+}
+
+/// A field being enveloped: where it is read from, and its buffers.
+struct Track {
+    unit: usize,
+    field: usize,
+    envelope: Envelope,
+    values: Vec<f64>,
+    sum: Vec<f64>,
+}
+
+/// The envelopes of every enveloped field of a master's units, observed
+/// from `from` (s) on.
+pub struct Envelopes {
+    from: f64,
+    /// Made at the first observation (the run's start).
+    tracks: Option<Vec<Track>>,
+}
+
+impl Envelopes {
+    /// Envelopes from `from` (s) on.
+    pub fn new(from: f64) -> Envelopes {
+        Envelopes { from, tracks: None }
+    }
+
+    /// The fields to envelope and their arc lengths (after `initialize`).
+    fn tracks(master: &Master) -> Vec<Track> {
+        let mut tracks = Vec::new();
+        for (u, name) in master.unit_names().enumerate() {
+            let fields = master.fields(u);
+            let arc = node_arc(master, u, &fields);
+            for (k, f) in fields.iter().enumerate() {
+                if !ENVELOPED.contains(&f.name.as_str()) || f.len == 0 {
+                    continue;
+                }
+                let arc = match &arc {
+                    Some(nodes) if nodes.len() == f.len => nodes.clone(),
+                    Some(nodes) if nodes.len() == f.len + 1 => {
+                        nodes.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect()
+                    }
+                    _ => (0..f.len).map(|i| i as f64).collect(),
+                };
+                tracks.push(Track {
+                    unit: u,
+                    field: k,
+                    envelope: Envelope {
+                        unit: name.to_owned(),
+                        field: f.name.clone(),
+                        unit_of_measure: f.unit.clone(),
+                        arc,
+                        min: vec![f64::INFINITY; f.len],
+                        max: vec![f64::NEG_INFINITY; f.len],
+                        mean: vec![0.0; f.len],
+                        samples: 0,
+                    },
+                    values: vec![0.0; f.len],
+                    sum: vec![0.0; f.len],
+                });
+            }
+        }
+        tracks
+    }
+
+    /// Reads every tracked field at time `t` (s), when in the window.
+    pub fn observe(&mut self, master: &Master, t: f64) {
+        let tracks = self.tracks.get_or_insert_with(|| Self::tracks(master));
+        if t < self.from {
+            return;
+        }
+        for track in tracks {
+            if master
+                .field_values(track.unit, track.field, &mut track.values)
+                .is_err()
+            {
+                continue;
+            }
+            let e = &mut track.envelope;
+            for (i, &v) in track.values.iter().enumerate() {
+                e.min[i] = e.min[i].min(v);
+                e.max[i] = e.max[i].max(v);
+                track.sum[i] += v;
+            }
+            e.samples += 1;
+        }
+    }
+
+    /// The envelopes (the means divided out); none without samples.
+    pub fn finish(self) -> Vec<Envelope> {
+        (self.tracks.unwrap_or_default().into_iter())
+            .filter(|t| t.envelope.samples > 0)
+            .map(|mut t| {
+                let n = t.envelope.samples as f64;
+                t.envelope.mean = t.sum.iter().map(|s| s / n).collect();
+                t.envelope
+            })
+            .collect()
+    }
+}
+
+/// The arc length (m) of each node of unit `u` from its start, from its
+/// position fields (`x`, `y`, `z`) now; None without them.
+fn node_arc(
+    master: &Master,
+    u: usize,
+    fields: &[slender_units::contract::Field],
+) -> Option<Vec<f64>> {
+    let axes: Vec<usize> = ["x", "y", "z"]
+        .iter()
+        .filter_map(|a| fields.iter().position(|f| f.name == *a))
+        .collect();
+    let len = fields.get(*axes.first()?)?.len;
+    let mut positions = vec![vec![0.0; len]; axes.len()];
+    for (a, &k) in axes.iter().enumerate() {
+        master.field_values(u, k, &mut positions[a]).ok()?;
+    }
+    let mut arc = vec![0.0; len];
+    for i in 1..len {
+        let step: f64 = (positions.iter())
+            .map(|p| (p[i] - p[i - 1]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        arc[i] = arc[i - 1] + step;
+    }
+    Some(arc)
+}
+
+/// What `summary.json` says of an envelope: its extremes and where they are.
+#[derive(Clone, Debug, Serialize)]
+pub struct EnvelopeExtremes {
+    pub unit: String,
+    pub field: String,
+    pub unit_of_measure: String,
+    /// The largest value anywhere along the unit over the window.
+    pub max: f64,
+    /// Where (m of arc from the unit's start).
+    pub max_arc_m: f64,
+    pub min: f64,
+    pub min_arc_m: f64,
+    pub samples: usize,
+}
+
+impl Envelope {
+    /// The envelope's largest and smallest values and where they are.
+    pub fn extremes(&self) -> EnvelopeExtremes {
+        let at = |values: &[f64], better: fn(f64, f64) -> bool| {
+            (values.iter().enumerate()).fold((f64::NAN, f64::NAN), |(v, a), (i, &x)| {
+                if v.is_nan() || better(x, v) {
+                    (x, self.arc[i])
+                } else {
+                    (v, a)
+                }
+            })
+        };
+        let (max, max_arc_m) = at(&self.max, |x, v| x > v);
+        let (min, min_arc_m) = at(&self.min, |x, v| x < v);
+        EnvelopeExtremes {
+            unit: self.unit.clone(),
+            field: self.field.clone(),
+            unit_of_measure: self.unit_of_measure.clone(),
+            max,
+            max_arc_m,
+            min,
+            min_arc_m,
+            samples: self.samples,
+        }
+    }
+}
+
+/// Writes `envelopes.csv` (a row per unit, field and point: arc, min, max,
+/// mean) and `envelopes.svg` (a panel per unit and field) into `dir`.
+pub fn write(dir: &Path, title: &str, envelopes: &[Envelope]) -> Result<Vec<PathBuf>, PlotError> {
+    if envelopes.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut csv = "unit,field,unit_of_measure,arc [m],min,max,mean\n".to_owned();
+    for e in envelopes {
+        for i in 0..e.arc.len() {
+            csv += &format!(
+                "{},{},{},{},{:e},{:e},{:e}\n",
+                e.unit, e.field, e.unit_of_measure, e.arc[i], e.min[i], e.max[i], e.mean[i]
+            );
+        }
+    }
+    let csv_path = dir.join("envelopes.csv");
+    crate::whole::write(&csv_path, csv).map_err(|e| PlotError::new(&csv_path, &e))?;
+    let panels: Vec<Profile> = (envelopes.iter())
+        .map(|e| Profile {
+            x: &e.arc,
+            x_range: (
+                e.arc.first().copied().unwrap_or(0.0),
+                e.arc.last().copied().unwrap_or(1.0).max(1e-9),
+            ),
+            x_title: "arc length from the unit's start (m)",
+            y_title: format!("{} {} ({})", e.unit, e.field, e.unit_of_measure),
+            series: vec![
+                ("max".to_owned(), e.max.as_slice()),
+                ("mean".to_owned(), e.mean.as_slice()),
+                ("min".to_owned(), e.min.as_slice()),
+            ],
+        })
+        .collect();
+    let svg_path = dir.join("envelopes.svg");
+    let title = format!("{title}: envelopes along the units");
+    crate::whole::through(&svg_path, |p| crate::plot::profiles(p, &title, &panels))?;
+    Ok(vec![csv_path, svg_path])
+}

@@ -1,0 +1,90 @@
+//! Envelopes along the line (issue 50) on the planar riser in three sections
+//! and its monolithic twin: each envelope's extreme is the run's extreme
+//! output of the same unit, and the sections' envelopes agree with the twin's
+//! (the same mesh, coupled at the cuts).
+
+mod common;
+
+use common::{slender, summary, text};
+
+const UNITS: [&str; 4] = [
+    "riser_laid",
+    "riser_sagbend",
+    "riser_top",
+    "riser_reference",
+];
+
+#[test]
+fn a_units_envelope_holds_its_extreme_outputs_and_the_sections_agree_with_the_twin() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("riser");
+    let signals: Vec<String> = (UNITS.iter())
+        .flat_map(|u| {
+            [
+                format!("\"{u}.max_tension\""),
+                format!("\"{u}.max_moment\""),
+            ]
+        })
+        .collect();
+    let signals = format!("output.signals=[{}]", signals.join(", "));
+    let run = slender(&[
+        "run",
+        "examples/structure_riser.toml",
+        "--duration",
+        "40",
+        "--set",
+        &signals,
+        "--set",
+        "output.plots=[]",
+        "--set",
+        "output.indicators=[]",
+        "--set",
+        "output.envelopes={}",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let s = summary(&out);
+    let envelopes = s["envelopes"].as_array().expect("envelopes");
+    let envelope = |unit: &str, field: &str| {
+        (envelopes.iter())
+            .find(|e| e["unit"] == unit && e["field"] == field)
+            .unwrap_or_else(|| panic!("{unit} {field}: {envelopes:?}"))
+    };
+    let csv = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let largest = |signal: &str| {
+        let i = header.iter().position(|h| h.starts_with(signal)).unwrap();
+        (csv.lines().skip(1))
+            .map(|l| l.split(',').nth(i).unwrap().parse::<f64>().unwrap())
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    for unit in UNITS {
+        // The same element forces: the recorded largest tension (written as
+        // {:e}, exact) is the envelope's largest.
+        let tension = envelope(unit, "tension")["max"].as_f64().unwrap();
+        assert_eq!(tension, largest(&format!("{unit}.max_tension")), "{unit}");
+        // Node moments are the means of their elements' end moments: at most
+        // the largest end moment, and close to it.
+        let m = envelope(unit, "moment");
+        let node = m["max"].as_f64().unwrap().max(-m["min"].as_f64().unwrap());
+        let end = largest(&format!("{unit}.max_moment"));
+        assert!(
+            node <= end && node > 0.95 * end,
+            "{unit}: {node} against {end}"
+        );
+        assert_eq!(envelope(unit, "tension")["samples"], 801);
+    }
+    // The sections' largest tension and sag-bend moment are the twin's.
+    let largest_of = |field: &str, key: &str| -> f64 {
+        (UNITS[..3].iter())
+            .map(|u| envelope(u, field)[key].as_f64().unwrap())
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let twin = |field: &str, key: &str| envelope("riser_reference", field)[key].as_f64().unwrap();
+    let tension = (largest_of("tension", "max"), twin("tension", "max"));
+    assert!((tension.0 / tension.1 - 1.0).abs() < 1e-4, "{tension:?}");
+    let moment = (largest_of("moment", "max"), twin("moment", "max"));
+    assert!((moment.0 / moment.1 - 1.0).abs() < 1e-4, "{moment:?}");
+    assert!(out.join("envelopes.csv").exists() && out.join("envelopes.svg").exists());
+}
