@@ -6,7 +6,7 @@
 //! shape). The buffers are made once, at the first observation; each step
 //! only reads the fields into them.
 
-use crate::plot::{PlotError, Profile};
+use crate::plot::{Curve, PlotError, Profile};
 use serde::Serialize;
 use slender_coupling::coupler::Master;
 use std::path::{Path, PathBuf};
@@ -197,9 +197,111 @@ impl Envelope {
     }
 }
 
+/// Moves each structure section's arcs onto the structure's (its start
+/// added), so that they line up with the twin's.
+pub fn place(envelopes: &mut [Envelope], starts: &[(String, f64)]) {
+    for e in envelopes {
+        if let Some((_, from)) = starts.iter().find(|(unit, _)| *unit == e.unit) {
+            e.arc.iter_mut().for_each(|a| *a += from);
+        }
+    }
+}
+
+/// A structure's twin unit and its sections' units with the arc of their
+/// start (`Scene::structure_sections`).
+pub type Structure = (String, Vec<(String, f64)>);
+
+/// A structure's sections' envelope of one field joined along the structure:
+/// arc, min and max.
+type Joined = (String, Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// Per field of the twin, the sections' envelopes of it joined in order.
+fn joined(envelopes: &[Envelope], (twin, starts): &Structure) -> Vec<Joined> {
+    let fields = envelopes
+        .iter()
+        .filter(|e| &e.unit == twin)
+        .map(|e| &e.field);
+    fields
+        .map(|field| {
+            let (mut arc, mut min, mut max) = (Vec::new(), Vec::new(), Vec::new());
+            for (unit, _) in starts {
+                if let Some(e) = envelopes
+                    .iter()
+                    .find(|e| &e.unit == unit && &e.field == field)
+                {
+                    arc.extend(&e.arc);
+                    min.extend(&e.min);
+                    max.extend(&e.max);
+                }
+            }
+            (field.clone(), arc, min, max)
+        })
+        .collect()
+}
+
+/// The figure's panels: with a structure, per field the sections' envelope
+/// beside the twin's along the structure; then each other unit's own.
+fn panels<'a>(
+    envelopes: &'a [Envelope],
+    structure: Option<&Structure>,
+    joined: &'a [Joined],
+) -> Vec<Profile<'a>> {
+    let x_title = "arc length (m)";
+    let range = |arc: &[f64]| {
+        let (lo, hi) = (
+            arc.first().copied().unwrap_or(0.0),
+            arc.last().copied().unwrap_or(1.0),
+        );
+        (lo, hi.max(lo + 1e-9))
+    };
+    let curve = |name: String, x: &'a [f64], y: &'a [f64]| Curve { name, x, y };
+    let mut panels = Vec::new();
+    for (field, arc, min, max) in joined {
+        let Some(twin) = structure
+            .and_then(|(t, _)| envelopes.iter().find(|e| &e.unit == t && &e.field == field))
+        else {
+            continue;
+        };
+        panels.push(Profile {
+            x_range: range(&twin.arc),
+            x_title,
+            y_title: format!("{field} ({})", twin.unit_of_measure),
+            series: vec![
+                curve("twin max".into(), &twin.arc, &twin.max),
+                curve("twin min".into(), &twin.arc, &twin.min),
+                curve("sections max".into(), arc, max),
+                curve("sections min".into(), arc, min),
+            ],
+        });
+    }
+    let shown = |e: &Envelope| {
+        structure
+            .is_none_or(|(t, starts)| &e.unit != t && !starts.iter().any(|(u, _)| *u == e.unit))
+    };
+    for e in envelopes.iter().filter(|e| shown(e)) {
+        panels.push(Profile {
+            x_range: range(&e.arc),
+            x_title,
+            y_title: format!("{} {} ({})", e.unit, e.field, e.unit_of_measure),
+            series: vec![
+                curve("max".into(), &e.arc, &e.max),
+                curve("mean".into(), &e.arc, &e.mean),
+                curve("min".into(), &e.arc, &e.min),
+            ],
+        });
+    }
+    panels
+}
+
 /// Writes `envelopes.csv` (a row per unit, field and point: arc, min, max,
-/// mean) and `envelopes.svg` (a panel per unit and field) into `dir`.
-pub fn write(dir: &Path, title: &str, envelopes: &[Envelope]) -> Result<Vec<PathBuf>, PlotError> {
+/// mean) and `envelopes.svg` into `dir`: with a structure, per field its
+/// sections' envelope beside its twin's along it, then any other unit's.
+pub fn write(
+    dir: &Path,
+    title: &str,
+    envelopes: &[Envelope],
+    structure: Option<&Structure>,
+) -> Result<Vec<PathBuf>, PlotError> {
     if envelopes.is_empty() {
         return Ok(Vec::new());
     }
@@ -214,24 +316,10 @@ pub fn write(dir: &Path, title: &str, envelopes: &[Envelope]) -> Result<Vec<Path
     }
     let csv_path = dir.join("envelopes.csv");
     crate::whole::write(&csv_path, csv).map_err(|e| PlotError::new(&csv_path, &e))?;
-    let panels: Vec<Profile> = (envelopes.iter())
-        .map(|e| Profile {
-            x: &e.arc,
-            x_range: (
-                e.arc.first().copied().unwrap_or(0.0),
-                e.arc.last().copied().unwrap_or(1.0).max(1e-9),
-            ),
-            x_title: "arc length from the unit's start (m)",
-            y_title: format!("{} {} ({})", e.unit, e.field, e.unit_of_measure),
-            series: vec![
-                ("max".to_owned(), e.max.as_slice()),
-                ("mean".to_owned(), e.mean.as_slice()),
-                ("min".to_owned(), e.min.as_slice()),
-            ],
-        })
-        .collect();
+    let joined = structure.map_or(Vec::new(), |s| joined(envelopes, s));
+    let panels = panels(envelopes, structure, &joined);
     let svg_path = dir.join("envelopes.svg");
-    let title = format!("{title}: envelopes along the units");
+    let title = format!("{title}: envelopes along the line");
     crate::whole::through(&svg_path, |p| crate::plot::profiles(p, &title, &panels))?;
     Ok(vec![csv_path, svg_path])
 }

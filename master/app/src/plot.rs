@@ -67,7 +67,10 @@ pub fn time_series(
             x_title: "time (s)",
             y_title: &y_title,
         };
-        panel_chart(&chart_area, &axes, &recorder.time, &series).map_err(|e| fail(&e))?;
+        let curves: Vec<(&String, &[f64], &[f64])> = (series.iter())
+            .map(|(n, c)| (*n, recorder.time.as_slice(), *c))
+            .collect();
+        panel_chart(&chart_area, &axes, &curves).map_err(|e| fail(&e))?;
         let entries: Vec<Entry> = (series.iter().enumerate())
             .map(|(i, (name, _))| Entry {
                 text: (*name).clone(),
@@ -99,15 +102,20 @@ struct Axes<'a> {
     y_title: &'a str,
 }
 
-/// One panel of a stacked figure: curves against a shared x.
-pub struct Profile<'a> {
+/// One curve of a panel: its legend, and its points' x and y.
+pub struct Curve<'a> {
+    pub name: String,
     pub x: &'a [f64],
+    pub y: &'a [f64],
+}
+
+/// One panel of a stacked figure: curves against x.
+pub struct Profile<'a> {
     /// The x axis's range.
     pub x_range: (f64, f64),
     pub x_title: &'a str,
     pub y_title: String,
-    /// Each curve's legend and values (one per x).
-    pub series: Vec<(String, &'a [f64])>,
+    pub series: Vec<Curve<'a>>,
 }
 
 /// Stacked panels, top to bottom, each its curves with a legend beside it.
@@ -125,11 +133,12 @@ pub fn profiles(path: &Path, title: &str, panels: &[Profile<'_>]) -> Result<(), 
             x_title: p.x_title,
             y_title: &p.y_title,
         };
-        let series: Vec<(&String, &[f64])> = p.series.iter().map(|(n, v)| (n, *v)).collect();
-        panel_chart(&chart_area, &axes, p.x, &series).map_err(|e| fail(&e))?;
+        let series: Vec<(&String, &[f64], &[f64])> =
+            p.series.iter().map(|c| (&c.name, c.x, c.y)).collect();
+        panel_chart(&chart_area, &axes, &series).map_err(|e| fail(&e))?;
         let entries: Vec<Entry> = (p.series.iter().enumerate())
-            .map(|(i, (name, _))| Entry {
-                text: name.clone(),
+            .map(|(i, c)| Entry {
+                text: c.name.clone(),
                 colour: Palette99::pick(i).to_rgba(),
                 marker: false,
             })
@@ -158,28 +167,31 @@ pub fn spectra(
         .fold(0.0, f64::max);
     let profiles: Vec<Profile> = (panels.iter())
         .map(|(name, unit, s)| Profile {
-            x: &s.frequency_hz,
             x_range: (0.0, if top > 0.0 { top } else { 1.0 }),
             x_title: "frequency (Hz)",
             y_title: format!("density ({unit})"),
-            series: vec![((*name).to_owned(), s.density.as_slice())],
+            series: vec![Curve {
+                name: (*name).to_owned(),
+                x: &s.frequency_hz,
+                y: &s.density,
+            }],
         })
         .collect();
     self::profiles(path, title, &profiles)
 }
 
-/// One panel: the signals against x (time, frequency) on 1-2-5 ticks.
+/// One panel: the curves (name, x, y) against x (time, frequency, arc) on
+/// 1-2-5 ticks.
 fn panel_chart(
     area: &Area<'_>,
     axes: &Axes<'_>,
-    time: &[f64],
-    series: &[(&String, &[f64])],
+    series: &[(&String, &[f64], &[f64])],
 ) -> DrawResult {
     let (t0, t1) = axes.x;
     let y_title = axes.y_title;
     let (lo, hi) = series
         .iter()
-        .flat_map(|(_, c)| c.iter().copied())
+        .flat_map(|(_, _, c)| c.iter().copied())
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(v), b.max(v))
@@ -208,9 +220,9 @@ fn panel_chart(
         .x_label_formatter(&|v| ticks::linear_label(*v, x_step))
         .y_label_formatter(&|v| ticks::linear_label(*v, y_step))
         .draw()?;
-    for (i, (_, column)) in series.iter().enumerate() {
+    for (i, (_, x, column)) in series.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
-        let points = crate::figures::thin::thinned(time, column, crate::figures::thin::COLUMNS);
+        let points = crate::figures::thin::thinned(x, column, crate::figures::thin::COLUMNS);
         chart.draw_series(LineSeries::new(points, color.stroke_width(2)))?;
     }
     Ok(())

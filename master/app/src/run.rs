@@ -105,20 +105,13 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
     // Plots before the summary: a run whose figures cannot be written is not
     // reported as completed.
     let mut outcome = outcome.map_err(|e| e.to_string());
-    let envelopes = recorder.take_envelopes();
-    let (analysis, spectra) = crate::analysis::of(scene, &recorder, &envelopes, &mut warnings);
-    if let Some(dir) = &options.output_dir
-        && recorder.time.len() > 1
-    {
-        match write_plots(scene, &recorder, dir, (&spectra, &envelopes)) {
-            Ok(plots) => files.extend(plots),
-            Err(e) => {
-                if outcome.is_ok() {
-                    outcome = Err(format!("writing the plots: {e}"));
-                }
-            }
-        }
-    }
+    let analysis = analyse_and_draw(
+        scene,
+        &mut recorder,
+        options.output_dir.as_deref(),
+        (&mut outcome, &mut files),
+        &mut warnings,
+    );
     let summary = Summary {
         scene: scene.path.display().to_string(),
         overrides: scene.overrides.clone(),
@@ -397,18 +390,68 @@ fn update_progress(bar: &mut Option<ProgressBar>, elapsed: Duration, done: u64, 
     }
 }
 
-/// The scene's figures, and the spectra's table and figure when it asks for them.
+/// The run's analysis of its recording (`crate::analysis`, the envelopes
+/// placed on a structure's arc) and, with a results folder, the scene's
+/// figures and the analysis's files; a figure that cannot be written fails
+/// the run (`outcome`).
+fn analyse_and_draw(
+    scene: &Scene,
+    recorder: &mut Recorder,
+    dir: Option<&Path>,
+    (outcome, files): (&mut Result<(), String>, &mut Vec<PathBuf>),
+    warnings: &mut Vec<String>,
+) -> crate::analysis::Analysis {
+    let mut envelopes = recorder.take_envelopes();
+    let structure = (!envelopes.is_empty())
+        .then(|| scene.structure_sections())
+        .flatten();
+    if let Some((_, starts)) = &structure {
+        crate::envelopes::place(&mut envelopes, starts);
+    }
+    let (analysis, spectra) = crate::analysis::of(scene, recorder, &envelopes, warnings);
+    if let Some(dir) = dir
+        && recorder.time.len() > 1
+    {
+        let drawn = Drawn {
+            spectra: &spectra,
+            envelopes: &envelopes,
+            structure: structure.as_ref(),
+        };
+        match write_plots(scene, recorder, dir, &drawn) {
+            Ok(plots) => files.extend(plots),
+            Err(e) => {
+                if outcome.is_ok() {
+                    *outcome = Err(format!("writing the plots: {e}"));
+                }
+            }
+        }
+    }
+    analysis
+}
+
+/// What the run's analysis writes beside the scene's figures.
+struct Drawn<'a> {
+    spectra: &'a [(String, crate::spectrum::Spectrum)],
+    envelopes: &'a [crate::envelopes::Envelope],
+    structure: Option<&'a crate::envelopes::Structure>,
+}
+
+/// The scene's figures, and the spectra's and envelopes' tables and figures
+/// when it asks for them.
 fn write_plots(
     scene: &Scene,
     recorder: &Recorder,
     dir: &Path,
-    (spectra, envelopes): (
-        &[(String, crate::spectrum::Spectrum)],
-        &[crate::envelopes::Envelope],
-    ),
+    drawn: &Drawn<'_>,
 ) -> Result<Vec<PathBuf>, PlotError> {
-    let mut files = crate::analysis::write_spectra(dir, scene, recorder, spectra)?;
-    files.extend(crate::envelopes::write(dir, &scene.spec.title, envelopes)?);
+    let mut files = crate::analysis::write_spectra(dir, scene, recorder, drawn.spectra)?;
+    let title = &scene.spec.title;
+    files.extend(crate::envelopes::write(
+        dir,
+        title,
+        drawn.envelopes,
+        drawn.structure,
+    )?);
     if scene.spec.output.plots.is_empty() {
         let path = dir.join("timeseries.svg");
         let panels: Vec<Vec<String>> = recorder.names.iter().map(|n| vec![n.clone()]).collect();
