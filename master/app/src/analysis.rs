@@ -162,9 +162,62 @@ pub fn write_spectra(
     crate::whole::write(&csv_path, csv).map_err(|e| PlotError::new(&csv_path, &e))?;
     let svg_path = dir.join("spectra.svg");
     let title = format!("{}: power spectral densities (Welch)", scene.spec.title);
-    let panels: Vec<(&str, &str, &Spectrum)> = (spectra.iter().zip(&units))
-        .map(|((n, s), u)| (n.as_str(), u.as_str(), s))
+    // The sea states' own spectra first, on the same frequencies, beside the
+    // motions they drive.
+    let seas: Vec<(String, Spectrum)> = (scene.sea_spectra().iter())
+        .map(|sea| (sea_label(sea), sea_density(sea, &first.frequency_hz)))
         .collect();
+    let mut panels: Vec<(&str, &str, &Spectrum)> = seas
+        .iter()
+        .map(|(n, s)| (n.as_str(), "m^2/Hz", s))
+        .collect();
+    panels.extend((spectra.iter().zip(&units)).map(|((n, s), u)| (n.as_str(), u.as_str(), s)));
     crate::whole::through(&svg_path, |p| crate::plot::spectra(p, &title, &panels))?;
     Ok(vec![csv_path, svg_path])
+}
+
+/// A sea state as the figure names it.
+fn sea_label(sea: &slender_units::sea::spectrum::Spectrum) -> String {
+    format!(
+        "sea state: {:?} Hs {} m, Tp {} s (the scene's spectrum)",
+        sea.kind, sea.significant_height, sea.peak_period
+    )
+}
+
+/// The sea state's one-sided density per Hz (2 pi S(w), m^2/Hz) at
+/// `frequency_hz`.
+fn sea_density(sea: &slender_units::sea::spectrum::Spectrum, frequency_hz: &[f64]) -> Spectrum {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    Spectrum {
+        frequency_hz: frequency_hz.to_vec(),
+        density: frequency_hz
+            .iter()
+            .map(|f| two_pi * sea.density(two_pi * f))
+            .collect(),
+        segments: 0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sea_density;
+
+    #[test]
+    fn the_sea_states_density_per_hz_holds_its_variance() {
+        // JONSWAP Hs 4 m, Tp 10 s: m0 = Hs^2 / 16 within 2 % (A_gamma's
+        // normalisation), integrated per Hz on a fine grid to 1 Hz.
+        let sea: slender_units::sea::spectrum::Spectrum =
+            toml::from_str("kind = \"jonswap\"\nsignificant_height = 4.0\npeak_period = 10.0")
+                .unwrap();
+        let df = 1e-4;
+        let f: Vec<f64> = (0..=10_000).map(|k| k as f64 * df).collect();
+        let s = sea_density(&sea, &f);
+        let m0: f64 = s.density.iter().sum::<f64>() * df;
+        assert!((m0 / 1.0 - 1.0).abs() < 0.02, "{m0}");
+        let peak = (s.density.iter().enumerate())
+            .max_by(|a, b| a.1.total_cmp(b.1))
+            .map(|(k, _)| f[k])
+            .unwrap();
+        assert!((peak - 0.1).abs() < 2e-4, "{peak}");
+    }
 }

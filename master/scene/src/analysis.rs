@@ -295,6 +295,24 @@ impl Scene {
     }
 }
 
+impl Scene {
+    /// The wave spectra the scene's units are driven by, each once (the
+    /// same sea on several units counted once), in unit order.
+    pub fn sea_spectra(&self) -> Vec<slender_units::sea::spectrum::Spectrum> {
+        let mut seas: Vec<slender_units::sea::spectrum::Spectrum> = Vec::new();
+        for unit in &self.spec.units {
+            if let Some(parameters) = &unit.parameters {
+                for s in spectra_in(parameters.get_ref()) {
+                    if !seas.contains(&s) {
+                        seas.push(s);
+                    }
+                }
+            }
+        }
+        seas
+    }
+}
+
 /// Every wave spectrum among a unit's parameters (a `spectrum` table that
 /// reads as one, at any depth).
 fn spectra_in(table: &toml::Table) -> Vec<slender_units::sea::spectrum::Spectrum> {
