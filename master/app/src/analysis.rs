@@ -51,10 +51,9 @@ pub fn of(
         ..Analysis::default()
     };
     let mut spectra = Vec::new();
-    let start = scene.start.as_secs();
     let end = recorder.time.last().copied().unwrap_or(f64::NAN);
     let asked = scene.spec.output.statistics;
-    let statistics_from = asked.and_then(|s| s.from).unwrap_or(start);
+    let statistics_from = statistics_from(scene);
     if asked.is_some() || !scene.spec.output.fatigue.is_empty() {
         warnings.extend(scene.sea_repeat_warnings(statistics_from));
     }
@@ -113,8 +112,14 @@ pub fn of(
 /// the run's start.
 pub fn envelopes_from(scene: &Scene) -> Option<f64> {
     let asked = scene.spec.output.envelopes?;
-    let statistics = scene.spec.output.statistics.and_then(|s| s.from);
-    Some(asked.from.or(statistics).unwrap_or(scene.start.as_secs()))
+    Some(asked.from.unwrap_or(statistics_from(scene)))
+}
+
+/// The start (s) of the statistics' window: `[output] statistics.from`, else
+/// the run's start. Extremes, spectra, fatigue and envelopes default to it.
+pub fn statistics_from(scene: &Scene) -> f64 {
+    let from = scene.spec.output.statistics.and_then(|s| s.from);
+    from.unwrap_or(scene.start.as_secs())
 }
 
 /// Welch's spectrum of `values` at `time` from `from` on, with segments of

@@ -11,6 +11,7 @@ use crate::SceneError;
 use serde::Deserialize;
 use slender_coupling::system::System;
 use slender_units::contract::Causality;
+use slender_units::sea::spectrum::Spectrum;
 
 /// `[output] statistics = { from = S, extremes = { duration = D }, spectra = { segment = L } }`.
 #[derive(Copy, Clone, Debug, Default, Deserialize)]
@@ -263,21 +264,15 @@ impl Scene {
     pub fn sea_repeat_warnings(&self, from: f64) -> Vec<String> {
         let window = self.end().as_secs() - from;
         let mut seas: Vec<(f64, usize, [f64; 2], Vec<String>)> = Vec::new();
-        for unit in &self.spec.units {
-            let Some(parameters) = &unit.parameters else {
+        for (name, s) in self.seas_by_unit() {
+            let period = s.repeat_period();
+            if period >= window {
                 continue;
-            };
-            for s in spectra_in(parameters.get_ref()) {
-                let period = s.repeat_period();
-                if period >= window {
-                    continue;
-                }
-                let name = unit.name.get_ref().clone();
-                match seas.iter_mut().find(|x| x.0 == period) {
-                    Some(x) if !x.3.contains(&name) => x.3.push(name),
-                    Some(_) => {}
-                    None => seas.push((period, s.components, s.band, vec![name])),
-                }
+            }
+            match seas.iter_mut().find(|x| x.0 == period) {
+                Some(x) if !x.3.contains(&name) => x.3.push(name),
+                Some(_) => {}
+                None => seas.push((period, s.components, s.band, vec![name])),
             }
         }
         (seas.into_iter())
@@ -293,20 +288,30 @@ impl Scene {
             })
             .collect()
     }
-}
 
-impl Scene {
     /// The wave spectra the scene's units are driven by, each once (the
     /// same sea on several units counted once), in unit order.
-    pub fn sea_spectra(&self) -> Vec<slender_units::sea::spectrum::Spectrum> {
-        let mut seas: Vec<slender_units::sea::spectrum::Spectrum> = Vec::new();
+    pub fn sea_spectra(&self) -> Vec<Spectrum> {
+        let mut seas: Vec<Spectrum> = Vec::new();
+        for (_, s) in self.seas_by_unit() {
+            if !seas.contains(&s) {
+                seas.push(s);
+            }
+        }
+        seas
+    }
+
+    /// Each unit's name with each wave spectrum among its parameters.
+    fn seas_by_unit(&self) -> Vec<(String, Spectrum)> {
+        let mut seas = Vec::new();
         for unit in &self.spec.units {
             if let Some(parameters) = &unit.parameters {
-                for s in spectra_in(parameters.get_ref()) {
-                    if !seas.contains(&s) {
-                        seas.push(s);
-                    }
-                }
+                let name = unit.name.get_ref();
+                seas.extend(
+                    spectra_in(parameters.get_ref())
+                        .into_iter()
+                        .map(|s| (name.clone(), s)),
+                );
             }
         }
         seas
@@ -315,14 +320,14 @@ impl Scene {
 
 /// Every wave spectrum among a unit's parameters (a `spectrum` table that
 /// reads as one, at any depth).
-fn spectra_in(table: &toml::Table) -> Vec<slender_units::sea::spectrum::Spectrum> {
+fn spectra_in(table: &toml::Table) -> Vec<Spectrum> {
     let mut found = Vec::new();
     for (key, value) in table {
         let Some(inner) = value.as_table() else {
             continue;
         };
         if key == "spectrum"
-            && let Ok(s) = slender_units::sea::spectrum::Spectrum::deserialize(value.clone())
+            && let Ok(s) = Spectrum::deserialize(value.clone())
         {
             found.push(s);
         } else {

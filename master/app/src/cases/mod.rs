@@ -128,11 +128,11 @@ pub fn check(path: &Path, plan: &CasesPlan) -> Result<Checked, AppError> {
     }
     let master = scene.build().map_err(AppError::Scene)?;
     let columns = table::columns(&scene, &scene.signals(&master));
-    let statistics = scene.spec.output.statistics.unwrap_or_default();
-    let from = statistics.from.unwrap_or(scene.start.as_secs());
     let durations = aggregate::Durations {
-        window_s: scene.end().as_secs() - from,
-        storm_s: statistics.extremes.map(|e| e.duration),
+        window_s: scene.end().as_secs() - crate::analysis::statistics_from(&scene),
+        storm_s: (scene.spec.output.statistics)
+            .and_then(|s| s.extremes)
+            .map(|e| e.duration),
     };
     Ok(Checked {
         draft,

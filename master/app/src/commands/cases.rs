@@ -138,28 +138,12 @@ fn merged(
     read: &dyn Fn(&Path) -> Vec<Option<Row>>,
     mut all: Vec<Option<Row>>,
 ) -> Result<Vec<Option<Row>>, CliError> {
-    let entries =
-        std::fs::read_dir(dir).map_err(|e| CliError::input(format!("{}: {e}", dir.display())))?;
-    let mut shards = 0;
-    for entry in entries.flatten() {
-        if !entry.file_name().to_string_lossy().starts_with("shard-") {
-            continue;
-        }
-        shards += 1;
-        for (k, row) in read(&entry.path().join("cases.csv"))
-            .into_iter()
-            .enumerate()
-        {
+    for folder in super::cluster::shard_folders(dir, "cases")? {
+        for (k, row) in read(&folder.join("cases.csv")).into_iter().enumerate() {
             if row.is_some() {
                 all[k] = row;
             }
         }
-    }
-    if shards == 0 {
-        return Err(CliError::input(format!(
-            "{}: no shard-K-of-N folders to merge (run `slender cases SCENE ... --shard K/N` first)",
-            dir.display()
-        )));
     }
     println!(
         "merging: {} cases from the shards",

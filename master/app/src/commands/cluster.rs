@@ -70,3 +70,22 @@ pub(super) fn shell_word(text: &str) -> String {
     word.push('"');
     word
 }
+
+/// The `shard-K-of-N` folders a sharded study wrote under `dir` (the study's
+/// `command`, `uq` or `cases`, names the call that makes them when there are
+/// none).
+pub(super) fn shard_folders(dir: &Path, command: &str) -> Result<Vec<PathBuf>, CliError> {
+    let entries =
+        std::fs::read_dir(dir).map_err(|e| CliError::input(format!("{}: {e}", dir.display())))?;
+    let folders: Vec<PathBuf> = (entries.flatten())
+        .filter(|e| e.file_name().to_string_lossy().starts_with("shard-"))
+        .map(|e| e.path())
+        .collect();
+    if folders.is_empty() {
+        return Err(CliError::input(format!(
+            "{}: no shard-K-of-N folders to merge (run `slender {command} SCENE --shard K/N` first)",
+            dir.display()
+        )));
+    }
+    Ok(folders)
+}

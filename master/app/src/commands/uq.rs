@@ -208,17 +208,9 @@ fn run_appending(
 
 /// Every shard's runs under `dir`, by design index.
 fn merged(dir: &Path, read: &dyn Fn(&Path) -> Vec<Run>) -> Result<Vec<Run>, CliError> {
-    let entries =
-        std::fs::read_dir(dir).map_err(|e| CliError::input(format!("{}: {e}", dir.display())))?;
     let mut all: Vec<Run> = Vec::new();
-    let mut shards = 0;
-    for entry in entries.flatten() {
-        let name = entry.file_name().to_string_lossy().into_owned();
-        if !name.starts_with("shard-") {
-            continue;
-        }
-        shards += 1;
-        for (k, run) in read(&entry.path().join("runs.csv")).into_iter().enumerate() {
+    for folder in super::cluster::shard_folders(dir, "uq")? {
+        for (k, run) in read(&folder.join("runs.csv")).into_iter().enumerate() {
             if run.0.is_empty() {
                 continue;
             }
@@ -227,12 +219,6 @@ fn merged(dir: &Path, read: &dyn Fn(&Path) -> Vec<Run>) -> Result<Vec<Run>, CliE
             }
             all[k] = run;
         }
-    }
-    if shards == 0 {
-        return Err(CliError::input(format!(
-            "{}: no shard-K-of-N folders to merge (run `slender uq SCENE --shard K/N` first)",
-            dir.display()
-        )));
     }
     Ok(all)
 }
