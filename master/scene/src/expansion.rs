@@ -255,6 +255,33 @@ mod tests {
         assert!(error.contains("unused"), "{error}");
     }
 
+    /// The model is read once, typed as the `nonlinear` unit's parameters:
+    /// a wrong model key is refused at the model's own key and line, before
+    /// any statics are solved or units written (it was found in the first
+    /// section's unit, `units[0] ("pipe_upper").parameters`, at the
+    /// `[structure]` header's line).
+    #[test]
+    fn a_wrong_model_key_is_refused_at_the_users_line() {
+        for (written, expected) in [
+            (
+                "mass_per_length = \"x\"",
+                "invalid type: string \"x\", expected a number",
+            ),
+            ("mass_per_lenth = 50.0", "unknown field `mass_per_lenth`"),
+        ] {
+            let text = HANGING_PIPE.replacen("mass_per_length = 50.0", written, 1);
+            let error = parse(&text).expect_err(written).to_string();
+            let line = line_of(&text, written);
+            assert!(
+                error.starts_with(&format!(
+                    "pipe.toml:{line}: structure: `structure.model.segments[0]."
+                )),
+                "{error}"
+            );
+            assert!(error.contains(expected), "{error}");
+        }
+    }
+
     #[test]
     fn a_structure_error_names_the_users_line() {
         let text = HANGING_PIPE.replacen(

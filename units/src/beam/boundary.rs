@@ -3,10 +3,10 @@
 
 use crate::contract::UnitError;
 use crate::sea::SeaState;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The four end quantities. Moment is EI y'' (N m), shear EI y''' (N).
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Quantity {
     Deflection,
@@ -51,7 +51,7 @@ impl Quantity {
 }
 
 /// A prescribed value over time.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(
     untagged,
     expecting = "expected a number, \"input\" or a table { offset, amplitude, angular_frequency, phase, decay_amplitude, decay_rate, sines, fade_in, sea } (an unknown key in the table also gives this)"
@@ -67,15 +67,15 @@ pub enum TimeFunction {
 }
 
 /// The word "input".
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum InputMarker {
     Input,
 }
 
 /// Sum of a constant, a sine and a decaying exponential (SI units, t in s).
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
-#[serde(from = "ExpressionSpec")]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(from = "ExpressionSpec", into = "ExpressionSpec")]
 pub struct Expression {
     pub offset: f64,
     pub amplitude: f64,
@@ -99,8 +99,9 @@ pub struct Expression {
     pub sea: Option<SeaState>,
 }
 
-/// An expression as a scene writes it.
-#[derive(Default, Deserialize)]
+/// An expression as a scene writes it (a sea state's sines not among its
+/// `sines`: they are made from the sea when it is read).
+#[derive(Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 struct ExpressionSpec {
     offset: f64,
@@ -128,6 +129,29 @@ impl From<ExpressionSpec> for Expression {
             sines,
             fade_in: spec.fade_in,
             sea: spec.sea,
+        }
+    }
+}
+
+/// The expression as a scene writes it: without the sines its sea added, so
+/// that reading it back gives it again (the sea adds them once more).
+impl From<Expression> for ExpressionSpec {
+    fn from(e: Expression) -> ExpressionSpec {
+        let mut sines = e.sines;
+        let added = e.sea.as_ref().map(SeaState::sines).unwrap_or_default();
+        if !added.is_empty() && sines.ends_with(&added) {
+            sines.truncate(sines.len() - added.len());
+        }
+        ExpressionSpec {
+            offset: e.offset,
+            amplitude: e.amplitude,
+            angular_frequency: e.angular_frequency,
+            phase: e.phase,
+            decay_amplitude: e.decay_amplitude,
+            decay_rate: e.decay_rate,
+            sines,
+            fade_in: e.fade_in,
+            sea: e.sea,
         }
     }
 }
@@ -246,7 +270,7 @@ fn first_bad_field(e: &Expression) -> Option<(String, f64)> {
 }
 
 /// One condition at an end.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Condition {
     pub quantity: Quantity,
@@ -254,7 +278,7 @@ pub struct Condition {
 }
 
 /// The two conditions at each end.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Boundary {
     /// At x = 0.

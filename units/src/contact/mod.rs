@@ -9,10 +9,10 @@
 pub mod surface;
 
 use crate::contract::{UnitError, require_positive};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// When the Lagrangian parameter of the augmented methods is updated.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LambdaUpdate {
     /// Scheme 1: after every Newton iteration.
@@ -23,7 +23,7 @@ pub enum LambdaUpdate {
 }
 
 /// A contact law (scene table `contact.method`).
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Law {
     /// Xi = p d^2 / 2 for d <= 0 (a spring in the surface).

@@ -3,10 +3,10 @@
 
 use crate::beam::boundary::Sine;
 use crate::contract::{UnitError, require_finite, require_positive};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The shape of a contact surface (m).
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Shape {
     /// f = height.
@@ -36,7 +36,7 @@ pub enum Shape {
 }
 
 /// Vertical motion of the whole surface.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Motion {
     #[default]
@@ -76,7 +76,7 @@ fn sum(sines: &[Sine], t: f64) -> (f64, f64) {
 }
 
 /// A surface: shape plus motion.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Surface {
     pub shape: Shape,

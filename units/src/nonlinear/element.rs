@@ -16,10 +16,10 @@
 // Small dense element blocks read best indexed as in the formulas.
 #![allow(clippy::needless_range_loop)]
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Which element kinematics a section uses.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Formulation {
     /// Large displacements and rotations.

@@ -11,10 +11,10 @@ use crate::contact::surface::Surface;
 use crate::contract::{
     UnitError, require_finite, require_in_range, require_non_negative, require_positive,
 };
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A straight run of equal elements of one cross-section.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Segment {
     /// Unstretched length (m).
@@ -49,7 +49,7 @@ pub struct Segment {
 }
 
 /// How one DOF of an end is held or loaded.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DofCondition {
     /// Nothing acts on it.
@@ -82,7 +82,7 @@ impl DofCondition {
 }
 
 /// Shorthand for an end; per-DOF keys override it.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum EndKind {
     /// x, z and rotation held.
@@ -94,7 +94,7 @@ pub enum EndKind {
 }
 
 /// One end of the structure.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct End {
     #[serde(default)]
@@ -128,7 +128,7 @@ impl End {
 }
 
 /// Both ends: `start` at arc length 0, `end` at the far end.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Ends {
     #[serde(default)]
@@ -138,7 +138,7 @@ pub struct Ends {
 }
 
 /// An interior support: the DOFs of the node at arc length `at` it holds.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Support {
     /// Arc length (m) of the node held; it must be a node of the mesh.
@@ -152,7 +152,7 @@ pub struct Support {
 }
 
 /// A distributed load (N/m, global components) over an arc-length range.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DistributedLoad {
     /// Arc-length range (m); elements whose midpoint lies in it carry the load.
@@ -175,7 +175,7 @@ fn zero_function() -> TimeFunction {
 }
 
 /// The mass matrix.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MassKind {
     /// Linear axial, Hermite transverse (seed 002), in each element's frame at the
@@ -187,7 +187,7 @@ pub enum MassKind {
 }
 
 /// The time integrator.
-#[derive(Copy, Clone, Debug, PartialEq, Deserialize)]
+#[derive(Copy, Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Integrator {
     /// HHT-alpha with Newton iterations.
@@ -239,7 +239,7 @@ fn default_iterations() -> u32 {
 }
 
 /// The start guess of the static solve.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StartShape {
     /// The stress-free shape (ends moved to their prescribed positions).
@@ -264,7 +264,7 @@ impl StartShape {
 }
 
 /// Contact with a surface z >= f(x, t), at the nodes.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct NodalContact {
     pub method: Law,
@@ -280,7 +280,7 @@ impl NodalContact {
 
 /// A current: horizontal velocity (m/s) as a table over z (m), linear between and
 /// constant beyond its points.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Current {
     pub z: Vec<f64>,
@@ -288,7 +288,7 @@ pub struct Current {
 }
 
 /// Parameters of the nonlinear section unit.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct NonlinearParams {
     #[serde(default)]

@@ -112,3 +112,47 @@ fn both_formulations_agree_with_the_linear_element_for_small_displacements() {
         }
     }
 }
+
+/// A section's parameters written out as TOML (what `slender expand` prints
+/// and what a structure hands the registry) read back as the same
+/// parameters: every kind of end condition, time function, integrator,
+/// contact law and surface, and a sea state whose sines are made when it is
+/// read (written without them, so they are not added twice).
+#[test]
+fn parameters_written_out_read_back_the_same() {
+    let text = r#"
+        start = [1, -2.5]
+        segments = [{ length = 30, elements = 6, axial_stiffness = 1e9, bending_stiffness = 1e5,
+                      mass_per_length = 100, submerged_weight = 500, diameter = 0.3, drag_normal = 1.0 }]
+        loads = [{ from = 2.0, x = 10.0 }]
+        supports = [{ at = 10.0, x = true }]
+        stations = [5.0]
+        integrator = { kind = "hht", alpha = -0.1 }
+        current = { z = [-100.0, 0.0], velocity = [0.2, 1.0] }
+        contact = { method = { kind = "penalty", penalty = 1e6 }, surface = { shape = { kind = "flat", height = -100.0 } } }
+        stinger = { method = { kind = "penalty", penalty = 1e6 }, surface = { shape = { kind = "rollers", positions = [1.0, 2.0], radius = 0.5 }, motion = { kind = "sine", amplitude = 0.1, angular_frequency = 0.5 } } }
+        reduced_sampling = { training = 10.0 }
+        [ends.start]
+        kind = "fixed"
+        [ends.end]
+        x = { velocity_from = 0.25 }
+        rotation = { force = "input" }
+        z = { displacement = { offset = 2.0, amplitude = 1.0, angular_frequency = 0.6, fade_in = 20.0, sines = [{ amplitude = 0.2, angular_frequency = 0.9 }], sea = { spectrum = { kind = "jonswap", significant_height = 2.0, peak_period = 9.0, components = 40 } } } }
+    "#;
+    let params: super::NonlinearParams = toml::from_str(text).expect("parameters");
+    let z = &params.ends.end.z;
+    let Some(super::params::DofCondition::Displacement(
+        crate::beam::boundary::TimeFunction::Expression(e),
+    )) = z
+    else {
+        panic!("a displacement: {z:?}");
+    };
+    assert_eq!(
+        e.sines.len(),
+        41,
+        "the sea's 40 sines after the one written"
+    );
+    let written = toml::to_string(&params).expect("written out");
+    let again: super::NonlinearParams = toml::from_str(&written).expect(&written);
+    assert_eq!(again, params, "{written}");
+}

@@ -9,11 +9,11 @@ pub mod spectrum;
 
 use crate::contract::UnitError;
 use crate::signal::sine::Sine;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A sea state, and the motion it makes when a RAO is given (else the
 /// elevation itself, m).
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SeaState {
     pub spectrum: spectrum::Spectrum,

@@ -2,10 +2,10 @@
 //! of the motion per metre of wave amplitude, against wave frequency.
 
 use crate::signal::sine::Sine;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A table of the response per metre of wave amplitude.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Rao {
     /// Rows `[angular frequency (rad/s), amplitude (the motion's unit per m),

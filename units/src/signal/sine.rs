@@ -4,10 +4,10 @@
 //! scenes have them).
 
 use crate::contract::{UnitError, require_finite, require_non_negative};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// One sine `amplitude exp(-decay t) sin(angular_frequency t + phase)`.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Sine {
     /// In the unit of measure of what it is added to.

@@ -23,7 +23,7 @@ fn one_section_at_a_time_runs_the_scene_as_written_once() {
     let table: Table = r#"
 [structure]
 name = "line"
-model = { segments = [{ length = 30.0, elements = 6 }] }
+model = { segments = [{ length = 30.0, elements = 6, axial_stiffness = 1e9, bending_stiffness = 1e5, mass_per_length = 100.0 }] }
 [[structure.sections]]
 name = "lower"
 to = 10.0

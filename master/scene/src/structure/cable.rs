@@ -8,9 +8,12 @@
 //! `full` line), so it needs the structure's static start to place its anchor
 //! where the equilibrium puts the section's start.
 
+use super::cable_fits;
 use super::model::{CutNeeds, Place, SectionAt, SectionModel};
 use super::sections::{Cut, Segment};
-use super::{cable_fits, statics};
+use super::unit::SectionUnit;
+use slender_units::nonlinear::NonlinearParams;
+use slender_units::nonlinear::params::{Current, Segment as ModelSegment};
 use toml::{Table, Value};
 
 /// The `cable` fidelity.
@@ -33,7 +36,7 @@ impl SectionModel for Cable {
     fn cut_needs(&self, _: Place) -> CutNeeds {
         CutNeeds::MOVING_START_LOADED_END
     }
-    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+    fn unit(&self, at: &SectionAt) -> Result<SectionUnit, String> {
         let (built, cuts, k, cut) = (at.built, at.cuts, at.k, at.cut());
         cable_fits(&built.model, cuts, k, built.top_load.is_some())?;
         let anchor = built.statics.as_ref().map(|e| e.position_at(cut.from)).ok_or(format!(
@@ -51,25 +54,11 @@ impl SectionModel for Cable {
         // Its static state needs the force at its top in the master's first
         // initial iterate: the equilibrium's, as the first guess.
         if let (Some(e), true) = (&built.statics, k + 1 < cuts.len()) {
-            statics::first_guess_force(&mut unit, "top", e.force_at(cut.to));
+            unit.first_guess_force("top", e.force_at(cut.to));
         }
         Ok(unit)
     }
 }
-
-/// Section properties that must be equal along a cable section (the cable unit
-/// has one cross-section).
-const UNIFORM: [&str; 9] = [
-    "axial_stiffness",
-    "mass_per_length",
-    "submerged_weight",
-    "diameter",
-    "drag_normal",
-    "drag_tangential",
-    "added_mass_normal",
-    "added_mass_tangential",
-    "bending_stiffness",
-];
 
 /// Where the structure's frame puts the water: the seabed height (m, in the
 /// structure's frame) and the water depth (m).
@@ -81,21 +70,15 @@ pub(super) struct Water {
 
 impl Water {
     /// `structure.seabed` (default 0) and `structure.water_depth` (needed by a
-    /// cable section only: `None` when absent).
-    pub(super) fn of(structure: &Table) -> Result<Option<Water>, String> {
-        let number = |key: &str| -> Result<Option<f64>, String> {
-            match structure.get(key) {
-                None => Ok(None),
-                Some(v) => v
-                    .as_float()
-                    .or_else(|| v.as_integer().map(|i| i as f64))
-                    .filter(|x| x.is_finite())
-                    .map(Some)
-                    .ok_or(format!("`structure.{key}`: expected a number (m)")),
+    /// cable section only: `None` when absent), both m.
+    pub(super) fn of(seabed: Option<f64>, depth: Option<f64>) -> Result<Option<Water>, String> {
+        for (key, value) in [("seabed", seabed), ("water_depth", depth)] {
+            if value.is_some_and(|v| !v.is_finite()) {
+                return Err(format!("`structure.{key}`: expected a number (m)"));
             }
-        };
-        let seabed = number("seabed")?.unwrap_or(0.0);
-        match number("water_depth")? {
+        }
+        let seabed = seabed.unwrap_or(0.0);
+        match depth {
             Some(depth) if depth > 0.0 => Ok(Some(Water { seabed, depth })),
             Some(depth) => Err(format!(
                 "`structure.water_depth` = {depth}: expected a depth > 0 m"
@@ -109,17 +92,20 @@ impl Water {
 /// than dropped where the model has them in its range.
 fn carries_nothing_along(
     key: &str,
-    model: &Table,
+    model: &NonlinearParams,
     segments: &[Segment],
     cut: &Cut,
 ) -> Result<(), String> {
     let length = segments.iter().map(|s| s.length).sum();
-    for (what, list) in super::nonlinear::along(model, cut, length)? {
-        if what != "stations" && !list.is_empty() {
-            return Err(format!(
-                "`{key}.fidelity` = \"cable\": the cable carries no `structure.model.{what}`; give this range another fidelity or move the cut"
-            ));
-        }
+    let along = super::nonlinear::along(model, cut, length)?;
+    let carried = [
+        ("supports", along.supports.is_empty()),
+        ("loads", along.loads.is_empty()),
+    ];
+    if let Some((what, _)) = carried.into_iter().find(|(_, none)| !none) {
+        return Err(format!(
+            "`{key}.fidelity` = \"cable\": the cable carries no `structure.model.{what}`; give this range another fidelity or move the cut"
+        ));
     }
     Ok(())
 }
@@ -128,12 +114,12 @@ fn carries_nothing_along(
 /// (structure frame, m).
 pub(super) fn cable_unit(
     name: &str,
-    model: &Table,
+    model: &NonlinearParams,
     segments: &[Segment],
     cut: &Cut,
     water: Option<Water>,
     anchor: [f64; 2],
-) -> Result<Table, String> {
+) -> Result<SectionUnit, String> {
     let key = format!("structure.sections.{}", cut.name);
     let water = water.ok_or(format!(
         "`{key}.fidelity` = \"cable\": the cable needs `structure.water_depth` (m; and `structure.seabed`, the seabed's z in the structure's frame, default 0)"
@@ -141,7 +127,7 @@ pub(super) fn cable_unit(
     carries_nothing_along(&key, model, segments, cut)?;
     let inside: Vec<&Segment> = segments_in(segments, cut.from, cut.to);
     let first = one_cross_section(&key, &inside)?;
-    let diameter = property(first, "diameter");
+    let diameter = first.diameter;
     if diameter <= 0.0 {
         return Err(format!(
             "`{key}.fidelity` = \"cable\": the cable takes EA as E pi D^2 / 4, so its segments need `diameter` > 0 m"
@@ -162,30 +148,17 @@ pub(super) fn cable_unit(
     put("diameter", diameter);
     put(
         "youngs_modulus",
-        property(first, "axial_stiffness") / (std::f64::consts::PI * diameter * diameter / 4.0),
+        first.axial_stiffness / (std::f64::consts::PI * diameter * diameter / 4.0),
     );
-    for k in [
-        "mass_per_length",
-        "submerged_weight",
-        "added_mass_normal",
-        "added_mass_tangential",
-        "drag_normal",
-        "drag_tangential",
-    ] {
-        put(k, property(first, k));
-    }
-    let model_number = |k: &str, default: f64| {
-        model
-            .get(k)
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-            .unwrap_or(default)
-    };
-    put("rayleigh_mass", model_number("rayleigh_mass", 0.0));
-    put(
-        "rayleigh_stiffness",
-        model_number("rayleigh_stiffness", 0.0),
-    );
-    put("water_density", model_number("water_density", 1025.0));
+    put("mass_per_length", first.mass_per_length);
+    put("submerged_weight", first.submerged_weight);
+    put("added_mass_normal", first.added_mass_normal);
+    put("added_mass_tangential", first.added_mass_tangential);
+    put("drag_normal", first.drag_normal);
+    put("drag_tangential", first.drag_tangential);
+    put("rayleigh_mass", model.rayleigh_mass);
+    put("rayleigh_stiffness", model.rayleigh_stiffness);
+    put("water_density", model.water_density);
     put("water_depth", water.depth);
     p.insert("elements".into(), Value::Integer(elements as i64));
     p.insert(
@@ -195,52 +168,46 @@ pub(super) fn cable_unit(
             Value::Float(anchor[1] - water.seabed),
         ]),
     );
-    let current = model.get("current").and_then(Value::as_table);
-    if let Some(current) = current {
-        p.insert("current".into(), cable_current(current, water.seabed)?);
+    if let Some(current) = &model.current {
+        p.insert("current".into(), cable_current(current, water.seabed));
     }
-    Ok(unit_table(
-        super::unit_name(name, &cut.name),
-        effects(&p, current.is_some()),
-        p,
-    ))
+    let effects = effects(&p, model.current.is_some());
+    Ok(SectionUnit::of_table(super::unit_name(name, &cut.name), "cable", p).with_effects(effects))
 }
 
-/// A `cable` unit as a scene table.
-fn unit_table(name: String, effects: Vec<&str>, parameters: Table) -> Table {
-    let mut unit = Table::new();
-    unit.insert("name".into(), Value::String(name));
-    unit.insert("kind".into(), Value::String("cable".into()));
-    let effects = effects.into_iter().map(|e| Value::String(e.into()));
-    unit.insert("effects".into(), Value::Array(effects.collect()));
-    unit.insert("parameters".into(), Value::Table(parameters));
-    unit
-}
-
-/// A segment's section property `k` (0 when not given).
-fn property(s: &Segment, k: &str) -> f64 {
-    s.table
-        .get(k)
-        .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-        .unwrap_or(0.0)
+/// A segment's section properties that must be equal along a cable
+/// section (the cable unit has one cross-section), by name.
+fn uniform_properties(s: &Segment) -> [(&'static str, f64); 9] {
+    let p = &s.properties;
+    [
+        ("axial_stiffness", p.axial_stiffness),
+        ("mass_per_length", p.mass_per_length),
+        ("submerged_weight", p.submerged_weight),
+        ("diameter", p.diameter),
+        ("drag_normal", p.drag_normal),
+        ("drag_tangential", p.drag_tangential),
+        ("added_mass_normal", p.added_mass_normal),
+        ("added_mass_tangential", p.added_mass_tangential),
+        ("bending_stiffness", p.bending_stiffness),
+    ]
 }
 
 /// The cross-section of a cable section: its segments must agree on it.
-fn one_cross_section<'a>(key: &str, inside: &[&'a Segment]) -> Result<&'a Segment, String> {
+fn one_cross_section<'a>(key: &str, inside: &[&'a Segment]) -> Result<&'a ModelSegment, String> {
     let first = *inside
         .first()
         .ok_or(format!("`{key}`: the section is empty"))?;
     for s in &inside[1..] {
-        if let Some(k) = UNIFORM
-            .iter()
-            .find(|k| property(s, k) != property(first, k))
-        {
+        let pairs = uniform_properties(s)
+            .into_iter()
+            .zip(uniform_properties(first));
+        if let Some(((k, _), _)) = pairs.into_iter().find(|((_, a), (_, b))| a != b) {
             return Err(format!(
                 "`{key}.fidelity` = \"cable\": the section's segments differ in `{k}`; the cable unit has one cross-section"
             ));
         }
     }
-    Ok(first)
+    Ok(&first.properties)
 }
 
 /// The segments overlapping [from, to].
@@ -253,30 +220,16 @@ fn segments_in(segments: &[Segment], from: f64, to: f64) -> Vec<&Segment> {
 
 /// The structure's current table (z in its frame) as the cable's (z above the
 /// seabed).
-fn cable_current(current: &Table, seabed: f64) -> Result<Value, String> {
-    let list = |k: &str| -> Result<Vec<f64>, String> {
-        current
-            .get(k)
-            .and_then(Value::as_array)
-            .map(|a| {
-                a.iter()
-                    .filter_map(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-                    .collect()
-            })
-            .ok_or(format!(
-                "`structure.model.current.{k}`: expected a list of numbers"
-            ))
-    };
-    let z: Vec<Value> = list("z")?
-        .into_iter()
-        .map(|z| Value::Float(z - seabed))
-        .collect();
-    let speed: Vec<Value> = list("velocity")?.into_iter().map(Value::Float).collect();
+fn cable_current(current: &Current, seabed: f64) -> Value {
+    let numbers = |v: Vec<f64>| Value::Array(v.into_iter().map(Value::Float).collect());
     let mut t = Table::new();
     t.insert("kind".into(), Value::String("table".into()));
-    t.insert("z".into(), Value::Array(z));
-    t.insert("speed".into(), Value::Array(speed));
-    Ok(Value::Table(t))
+    t.insert(
+        "z".into(),
+        numbers(current.z.iter().map(|z| z - seabed).collect()),
+    );
+    t.insert("speed".into(), numbers(current.velocity.clone()));
+    Value::Table(t)
 }
 
 /// The cable effects the section's properties call for; geometric stiffness

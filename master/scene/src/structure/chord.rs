@@ -15,6 +15,8 @@ use super::model::{CutNeeds, Place, SectionAt, SectionModel};
 use super::nonlinear::section_unit;
 use super::sections::{Cut, Fidelity, Segment};
 use super::statics::Equilibrium;
+use super::unit::SectionUnit;
+use slender_units::nonlinear::NonlinearParams;
 use toml::{Table, Value};
 
 /// A chord fidelity: its name, the keys of its table form and what a count
@@ -79,7 +81,7 @@ impl SectionModel for Chord {
     fn cut_needs(&self, _: Place) -> CutNeeds {
         CutNeeds::MOVING_START_LOADED_END
     }
-    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+    fn unit(&self, at: &SectionAt) -> Result<SectionUnit, String> {
         let built = at.built;
         let statics = built.statics.as_ref();
         chord_unit(
@@ -147,7 +149,7 @@ fn uniform_enough(equilibrium: &Equilibrium, cut: &Cut, key: &str) -> Result<(),
 /// arc length is 2.5e7: the sag, not the pipe's stretch, gives way.
 fn axial_stiffness(
     structure: &str,
-    (model, segments): (&Table, &[Segment]),
+    (model, segments): (&NonlinearParams, &[Segment]),
     cut: &Cut,
     equilibrium: &Equilibrium,
 ) -> Result<f64, String> {
@@ -157,10 +159,13 @@ fn axial_stiffness(
         by_displacement: false,
     };
     let mut section = section_unit(structure, model, segments, cut, (Some(held), Some(held)))?;
-    equilibrium.start_section(&mut section, (cut.from, cut.to))?;
+    let parameters = section
+        .nonlinear_mut()
+        .ok_or("the section is not a `nonlinear` unit")?;
+    equilibrium.start_section(parameters, (cut.from, cut.to));
     // The end force is the section's pull on what holds it: its stiffness is
     // the negative of the force's derivative.
-    let force_derivative = equilibrium.end_stiffness(&section, (cut.from, cut.to))?;
+    let force_derivative = equilibrium.end_stiffness(parameters, (cut.from, cut.to))?;
     let stiffness = force_derivative.map(|row| row.map(|k| -k));
     let (a, b) = (
         equilibrium.position_at(cut.from),
@@ -185,12 +190,12 @@ fn axial_stiffness(
 /// The `chord` unit of section `k`, its start moving with the section below.
 pub(super) fn chord_unit(
     structure: &str,
-    model: &Table,
+    model: &NonlinearParams,
     segments: &[Segment],
     cuts: &[Cut],
     k: usize,
     equilibrium: Option<&Equilibrium>,
-) -> Result<Table, String> {
+) -> Result<SectionUnit, String> {
     let cut = &cuts[k];
     let key = format!("structure.sections.{}.fidelity", cut.name);
     let word = cut.fidelity.name();
@@ -248,19 +253,12 @@ pub(super) fn chord_unit(
     // the moving one, so the neighbours' first static solves hang as the whole.
     let force = equilibrium.force_at(cut.to);
     let position = equilibrium.position_at(cut.from);
-    let mut inputs = Table::new();
+    let mut unit = SectionUnit::of_table(super::unit_name(structure, &cut.name), "chord", p);
     for (axis, i) in [("x", 0), ("z", 1)] {
-        inputs.insert(format!("end_force_{axis}"), Value::Float(force[i]));
-        inputs.insert(format!("start_position_{axis}"), Value::Float(position[i]));
+        unit.inputs.insert(format!("end_force_{axis}"), force[i]);
+        unit.inputs
+            .insert(format!("start_position_{axis}"), position[i]);
     }
-    let mut unit = Table::new();
-    unit.insert(
-        "name".into(),
-        Value::String(super::unit_name(structure, &cut.name)),
-    );
-    unit.insert("kind".into(), Value::String("chord".into()));
-    unit.insert("parameters".into(), Value::Table(p));
-    unit.insert("inputs".into(), Value::Table(inputs));
     Ok(unit)
 }
 
@@ -326,36 +324,24 @@ fn neighbours_fit(cuts: &[Cut], k: usize, key: &str) -> Result<(), String> {
 /// moving along the pipe) of the segments the section spans; one value each,
 /// or an error.
 fn properties(
-    model: &Table,
+    model: &NonlinearParams,
     segments: &[Segment],
     cut: &Cut,
     key: &str,
 ) -> Result<[f64; 4], String> {
-    let number = |t: &Table, k: &str| {
-        t.get(k)
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-    };
-    let density = number(model, "water_density").unwrap_or(1025.0);
+    let density = model.water_density;
     let mut found: Option<[f64; 4]> = None;
     for s in segments
         .iter()
         .filter(|s| s.overlap(cut.from, cut.to) > 0.0)
     {
-        let t = &s.table;
-        let ei = number(t, "bending_stiffness").unwrap_or(0.0);
-        let diameter = number(t, "diameter").unwrap_or(0.0);
-        let added = number(t, "added_mass_normal").unwrap_or(0.0)
-            * density
-            * std::f64::consts::PI
-            * diameter.powi(2)
-            / 4.0;
-        let structural = number(t, "mass_per_length").unwrap_or(0.0);
+        let t = &s.properties;
+        let ei = t.bending_stiffness;
+        let diameter = t.diameter;
+        let added = t.added_mass_normal * density * std::f64::consts::PI * diameter.powi(2) / 4.0;
+        let structural = t.mass_per_length;
         let mass = structural + added;
-        let drag = 8.0 / (3.0 * std::f64::consts::PI)
-            * 0.5
-            * density
-            * number(t, "drag_normal").unwrap_or(0.0)
-            * diameter;
+        let drag = 8.0 / (3.0 * std::f64::consts::PI) * 0.5 * density * t.drag_normal * diameter;
         match found {
             Some(f)
                 if (f[0] - ei).abs() > 1e-9 * f[0].abs() || (f[1] - mass).abs() > 1e-9 * f[1] =>
@@ -376,9 +362,7 @@ fn weight_of(segments: &[Segment], cut: &Cut, equilibrium: &Equilibrium) -> (f64
         segments
             .iter()
             .find(|g| s >= g.from && s <= g.from + g.length)
-            .and_then(|g| g.table.get("submerged_weight"))
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-            .unwrap_or(0.0)
+            .map_or(0.0, |g| g.properties.submerged_weight)
     };
     let ds = (cut.to - cut.from) / WEIGHT_POINTS as f64;
     let (mut weight, mut moment) = (0.0, [0.0; 2]);

@@ -7,6 +7,8 @@
 //! side emits through its sensor, what it receives through its actuator.
 
 use super::sections::Fidelity;
+use slender_units::beam::boundary::{InputMarker, TimeFunction};
+use slender_units::nonlinear::params::{DofCondition, End as ModelEnd, EndKind};
 use toml::{Table, Value};
 
 /// How a section's end at a cut is coupled.
@@ -30,52 +32,35 @@ pub(super) struct Side<'a> {
     pub physical: Option<&'a Table>,
 }
 
-/// The loaded side of a cut: the other side's force and moment (a pinned cut's
-/// rotation is free).
-pub(super) fn coupled_load(pinned: bool) -> Value {
-    let force = || {
-        let mut t = Table::new();
-        t.insert("force".into(), Value::String("input".into()));
-        Value::Table(t)
+/// The end condition of a section's end at a cut, as `End` couples it: the
+/// other side's velocity (`moving`), its displacement (`by_displacement`:
+/// next to a chord section) or its force and moment (loaded); a pinned cut's
+/// rotation is free.
+pub(super) fn coupled_end(end: End) -> ModelEnd {
+    let input = || TimeFunction::Input(InputMarker::Input);
+    let (translation, rotation) = match end {
+        End {
+            moving: true,
+            by_displacement: true,
+            ..
+        } => {
+            let d = DofCondition::Displacement(input());
+            (d.clone(), d)
+        }
+        End { moving: true, .. } => (DofCondition::Velocity, DofCondition::Velocity),
+        End { moving: false, .. } => (DofCondition::Force(input()), DofCondition::Force(input())),
     };
-    let mut t = Table::new();
-    t.insert("x".into(), force());
-    t.insert("z".into(), force());
-    t.insert(
-        "rotation".into(),
-        if pinned {
-            Value::String("free".into())
+    let free_rotation = end.pinned && !(end.moving && end.by_displacement);
+    ModelEnd {
+        kind: EndKind::Free,
+        x: Some(translation.clone()),
+        z: Some(translation),
+        rotation: Some(if free_rotation {
+            DofCondition::Free
         } else {
-            force()
-        },
-    );
-    Value::Table(t)
-}
-
-/// The moving side of a cut next to a chord section: the displacement it
-/// hands over (x, z from the stress-free position and rotation).
-pub(super) fn coupled_displacement() -> Value {
-    let mut t = Table::new();
-    for dof in ["x", "z", "rotation"] {
-        let mut condition = Table::new();
-        condition.insert("displacement".into(), Value::String("input".into()));
-        t.insert(dof.into(), Value::Table(condition));
+            rotation
+        }),
     }
-    Value::Table(t)
-}
-
-/// The moving side of a cut: the other side's velocity (a pinned cut's rotation
-/// is free).
-pub(super) fn coupled_motion(pinned: bool) -> Value {
-    let mut t = Table::new();
-    for dof in ["x", "z", "rotation"] {
-        let free = pinned && dof == "rotation";
-        t.insert(
-            dof.into(),
-            Value::String(if free { "free" } else { "velocity" }.into()),
-        );
-    }
-    Value::Table(t)
 }
 
 /// A section's port at one of its ends (`at_end`: its end, else its start) for

@@ -8,46 +8,48 @@
 //! and the dynamics start from that top.
 
 use super::statics::Equilibrium;
+use serde::Deserialize;
 use slender_units::Time;
-use toml::{Table, Value};
+use slender_units::beam::boundary::TimeFunction;
+use slender_units::nonlinear::NonlinearParams;
+use slender_units::nonlinear::params::{DofCondition, End, EndKind};
 
 /// Static solves of the search, at most.
 const MAX_SOLVES: usize = 40;
 /// The angle's tolerance (deg).
 const TOLERANCE_DEG: f64 = 1e-6;
 
-/// The requested hang-off angle (deg from the vertical), if any.
-pub(super) fn angle_of(structure: &Table) -> Result<Option<f64>, String> {
-    let Some(value) = structure.get("hang_off") else {
-        return Ok(None);
-    };
-    let table = value
-        .as_table()
-        .ok_or("`structure.hang_off`: expected a table `{ angle_deg = DEG }`")?;
-    if let Some(key) = table.keys().find(|k| *k != "angle_deg") {
-        return Err(format!(
-            "`structure.hang_off.{key}`: unknown key; the hang-off takes `angle_deg` (the pipe tangent's angle from the vertical, deg)"
-        ));
+/// `structure.hang_off` as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct HangOff {
+    /// The pipe tangent's angle from the vertical at the top (deg).
+    angle_deg: f64,
+}
+
+impl HangOff {
+    /// The requested hang-off angle (deg from the vertical), checked.
+    pub(super) fn angle(&self) -> Result<f64, String> {
+        let angle = self.angle_deg;
+        if !(angle > 0.0 && angle < 90.0) {
+            return Err(format!(
+                "`structure.hang_off.angle_deg` = {angle}: expected an angle between 0 and 90 deg from the vertical"
+            ));
+        }
+        Ok(angle)
     }
-    let angle = match table.get("angle_deg") {
-        Some(Value::Float(a)) => *a,
-        Some(Value::Integer(a)) => *a as f64,
-        _ => return Err("`structure.hang_off.angle_deg`: expected the pipe tangent's angle from the vertical at the top, in degrees".into()),
-    };
-    if !(angle > 0.0 && angle < 90.0) {
-        return Err(format!(
-            "`structure.hang_off.angle_deg` = {angle}: expected an angle between 0 and 90 deg from the vertical"
-        ));
-    }
-    Ok(Some(angle))
 }
 
 /// Moves the end of `model` (the structure's `model` table, solved for its
 /// statics) horizontally until its equilibrium at `t0` has its tangent
 /// `angle` (deg) from the vertical; returns the shift (m) and that equilibrium.
-pub(super) fn place(model: &mut Table, angle: f64, t0: Time) -> Result<(f64, Equilibrium), String> {
-    let length = length_of(model);
-    let solve = |shift: f64, model: &Table| -> Result<(f64, Equilibrium), String> {
+pub(super) fn place(
+    model: &mut NonlinearParams,
+    angle: f64,
+    t0: Time,
+) -> Result<(f64, Equilibrium), String> {
+    let length = model.length();
+    let solve = |shift: f64, model: &NonlinearParams| -> Result<(f64, Equilibrium), String> {
         let mut trial = model.clone();
         end_offset(&mut trial, shift)?;
         let equilibrium = Equilibrium::solve(&trial, t0).map_err(|e| {
@@ -80,58 +82,31 @@ pub(super) fn place(model: &mut Table, angle: f64, t0: Time) -> Result<(f64, Equ
     ))
 }
 
-/// The structure's length (m): its segments' lengths summed.
-fn length_of(model: &Table) -> f64 {
-    (model.get("segments").and_then(Value::as_array))
-        .map(|segments| {
-            (segments.iter())
-                .filter_map(|s| s.get("length").and_then(Value::as_float))
-                .sum()
-        })
-        .unwrap_or(0.0)
-}
-
 /// Adds `shift` (m) to the x displacement of the model's end (held, or given
 /// as a constant or a time function's offset).
-fn end_offset(model: &mut Table, shift: f64) -> Result<(), String> {
+fn end_offset(model: &mut NonlinearParams, shift: f64) -> Result<(), String> {
     let refuse = |what: &str| {
         Err(format!(
             "`structure.hang_off`: the top is placed by moving the end's x, which {what}; expected `ends.end` pinned or fixed, or its `x` a displacement"
         ))
     };
-    let Some(end) = (model.get_mut("ends").and_then(Value::as_table_mut))
-        .and_then(|ends| ends.get_mut("end"))
-        .and_then(Value::as_table_mut)
-    else {
+    let end = &mut model.ends.end;
+    if *end == End::default() {
         return refuse("is free");
-    };
-    let held = matches!(
-        end.get("kind").and_then(Value::as_str),
-        Some("pinned" | "fixed")
-    );
-    match end.get_mut("x") {
+    }
+    let held = matches!(end.kind, EndKind::Pinned | EndKind::Fixed);
+    match &mut end.x {
         None if held => {
-            let mut x = Table::new();
-            x.insert("displacement".into(), Value::Float(shift));
-            end.insert("x".into(), Value::Table(x));
+            end.x = Some(DofCondition::Displacement(TimeFunction::Constant(shift)));
         }
-        Some(Value::Table(x)) => match x.get_mut("displacement") {
-            Some(Value::Float(d)) => *d += shift,
-            Some(Value::Integer(d)) => {
-                let d = *d as f64 + shift;
-                x.insert("displacement".into(), Value::Float(d));
-            }
-            Some(Value::Table(f)) => {
-                let offset = match f.get("offset") {
-                    Some(Value::Float(o)) => *o,
-                    Some(Value::Integer(o)) => *o as f64,
-                    _ => 0.0,
-                };
-                f.insert("offset".into(), Value::Float(offset + shift));
-            }
-            _ => return refuse("is not given as a displacement"),
-        },
-        _ => return refuse("is free or not a displacement"),
+        Some(DofCondition::Displacement(TimeFunction::Constant(d))) => *d += shift,
+        Some(DofCondition::Displacement(TimeFunction::Expression(e))) => e.offset += shift,
+        Some(
+            DofCondition::Displacement(TimeFunction::Input(_))
+            | DofCondition::Force(_)
+            | DofCondition::VelocityFrom(_),
+        ) => return refuse("is not given as a displacement"),
+        None | Some(_) => return refuse("is free or not a displacement"),
     }
     Ok(())
 }

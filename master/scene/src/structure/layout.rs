@@ -107,8 +107,8 @@ pub fn layout(scene: &Table) -> Result<Option<Layout>, super::StructureError> {
     }
     let spec = Spec::parse(structure)?;
     let name = &spec.name;
-    let seabed = spec.model.contains_key("contact");
-    let stinger = spec.model.contains_key("stinger");
+    let seabed = spec.model.contact.is_some();
+    let stinger = spec.model.stinger.is_some();
     let sections = (spec.sections.iter())
         .map(|cut| SectionLayout {
             name: cut.name.clone(),
@@ -246,7 +246,7 @@ mod tests {
     /// A three-section structure whose sections are written as `sections`.
     fn scene(sections: &str) -> Table {
         format!(
-            "[structure]\nname = \"pipe\"\nmodel = {{ segments = [{{ length = 30.0, elements = 6 }}], contact = {{}} }}\n{sections}"
+            "[structure]\nname = \"pipe\"\nmodel = {{ segments = [{{ length = 30.0, elements = 6, axial_stiffness = 1e9, bending_stiffness = 1e5, mass_per_length = 100.0 }}], contact = {{ method = {{ kind = \"penalty\", penalty = 1e6 }}, surface = {{ shape = {{ kind = \"flat\", height = -10.0 }} }} }} }}\n{sections}"
         )
         .parse()
         .unwrap()

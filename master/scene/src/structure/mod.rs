@@ -37,6 +37,7 @@ mod sections;
 mod spec;
 mod static_fidelity;
 mod statics;
+mod unit;
 
 pub(crate) use cuts::link;
 use cuts::{End, Side};
@@ -46,13 +47,15 @@ pub use layout::{
     write_choice, write_training,
 };
 pub(crate) use line3d::unit_table;
-use nonlinear::start_of;
 pub use sections::FIDELITIES;
 use sections::{Cut, Fidelity, Segment};
 use slender_units::Time;
+use slender_units::nonlinear::NonlinearParams;
+use slender_units::nonlinear::params::{DofCondition, EndKind};
 use spec::Spec;
 pub(crate) use spec::typed;
-use toml::{Table, Value};
+use toml::Value;
+use unit::{Parameters, SectionUnit};
 
 /// What a `[structure]` writes out: its units and connections (as tables of
 /// the scene's `[[units]]` and `[[connections]]`), and the advisories on what
@@ -84,7 +87,7 @@ pub fn expand(structure: &Value, t0: Time) -> Result<Written, StructureError> {
     let mut connections = Vec::new();
     let mut advisories = Vec::new();
     for k in 0..cuts.len() {
-        units.push(Value::Table(built.section(&cuts, k, &force_on_upper)?));
+        units.push(built.section(&cuts, k, &force_on_upper)?.into_value()?);
         advisories.extend(built.advise_on_touchdown(&cuts[k]));
         if cut_is_plain(&cuts, k, built.holding_static) {
             let (links, artefacts) = cuts::cut_connections(
@@ -119,7 +122,7 @@ pub fn expand(structure: &Value, t0: Time) -> Result<Written, StructureError> {
         if let Some(load) = &built.top_load {
             connections.extend(load.links(&reference_name(&built.name), fidelity));
         }
-        units.push(Value::Table(unit));
+        units.push(unit.into_value()?);
     }
     for cut in cuts
         .iter()
@@ -246,7 +249,7 @@ fn fmu_input_names(unit: &str, units: &mut [Value], connections: &mut [Value]) {
 struct Built {
     name: String,
     /// The model as the units take it (a top load as a coupled input).
-    model: Table,
+    model: NonlinearParams,
     segments: Vec<Segment>,
     /// The structure's stress-free length (m).
     length: f64,
@@ -299,7 +302,12 @@ impl Built {
     }
 
     /// Section `k`'s unit.
-    fn section(&self, cuts: &[Cut], k: usize, force_on_upper: &[bool]) -> Result<Table, String> {
+    fn section(
+        &self,
+        cuts: &[Cut],
+        k: usize,
+        force_on_upper: &[bool],
+    ) -> Result<SectionUnit, String> {
         let cut = &cuts[k];
         self.refuse_without_seabed(cut)?;
         cut.fidelity.model().refuse(self, cut)?;
@@ -327,13 +335,11 @@ impl Built {
         }
         if let Some(fmu) = &cut.fmu {
             // The FMU takes the unit's place: same name, ports, first guesses.
-            unit.insert("kind".into(), Value::String("fmu".into()));
-            unit.insert("parameters".into(), Value::Table(fmu.clone()));
-            unit.remove("effects");
+            unit.kind = "fmu";
+            unit.parameters = Parameters::Table(fmu.clone());
+            unit.effects = None;
         }
-        if let Some(n) = cut.substeps {
-            unit.insert("substeps".into(), Value::Integer(n as i64));
-        }
+        unit.substeps = cut.substeps;
         Ok(unit)
     }
 
@@ -390,7 +396,7 @@ impl Built {
     /// The monolithic twin `<name>_reference` (`reference = true` or
     /// "nonlinear": the model as one unit; "cable": the whole structure as one
     /// cable) and its fidelity; None without one.
-    fn reference(&self) -> Result<Option<(Table, Fidelity)>, String> {
+    fn reference(&self) -> Result<Option<(SectionUnit, Fidelity)>, String> {
         let Some(fidelity) = self.reference else {
             return Ok(None);
         };
@@ -407,21 +413,16 @@ impl Built {
                 options: None,
             }];
             cable_fits(&self.model, &whole, 0, self.top_load.is_some())?;
-            let start = start_of(&self.model);
             cable::cable_unit(
                 &self.name,
                 &self.model,
                 &self.segments,
                 &whole[0],
                 self.water,
-                start,
+                self.model.start,
             )?
         } else {
-            let mut unit = Table::new();
-            unit.insert("name".into(), Value::String(reference_name(&self.name)));
-            unit.insert("kind".into(), Value::String("nonlinear".into()));
-            unit.insert("parameters".into(), Value::Table(self.model.clone()));
-            unit
+            SectionUnit::nonlinear(reference_name(&self.name), self.model.clone())
         };
         if let Some(load) = &self.top_load {
             load.first_guess(&mut unit, fidelity);
@@ -433,7 +434,12 @@ impl Built {
 /// Whether section `k` can be a cable: its top takes a coupled force, so it
 /// cannot end the structure, and its bottom a coupled velocity, so at the
 /// structure's start it must be anchored (x and z held).
-fn cable_fits(model: &Table, cuts: &[Cut], k: usize, top_load: bool) -> Result<(), String> {
+fn cable_fits(
+    model: &NonlinearParams,
+    cuts: &[Cut],
+    k: usize,
+    top_load: bool,
+) -> Result<(), String> {
     let key = format!("structure.sections.{}.fidelity", cuts[k].name);
     if k + 1 == cuts.len() && !top_load {
         return Err(format!(
@@ -441,13 +447,10 @@ fn cable_fits(model: &Table, cuts: &[Cut], k: usize, top_load: bool) -> Result<(
         ));
     }
     if k == 0 {
-        let start = model
-            .get("ends")
-            .and_then(|e| e.get("start"))
-            .and_then(Value::as_table);
-        let word = |k: &str| start.and_then(|s| s.get(k)).and_then(Value::as_str);
-        let anchored = matches!(word("kind"), Some("fixed" | "pinned"))
-            || (word("x") == Some("held") && word("z") == Some("held"));
+        let start = &model.ends.start;
+        let held = |dof: &Option<DofCondition>| *dof == Some(DofCondition::Held);
+        let anchored = matches!(start.kind, EndKind::Fixed | EndKind::Pinned)
+            || (held(&start.x) && held(&start.z));
         if !anchored {
             return Err(format!(
                 "`{key}` = \"cable\": a cable at the structure's start needs an anchor there (`structure.model.ends.start`: kind \"pinned\" or \"fixed\")"

@@ -10,7 +10,7 @@ use super::Built;
 use super::cuts::End;
 use super::layout::SectionOutputs;
 use super::sections::Cut;
-use toml::Table;
+use super::unit::SectionUnit;
 
 /// Where a section is and how the structure starts, for a fidelity's needs
 /// at its cuts.
@@ -130,7 +130,7 @@ pub(super) trait SectionModel: Sync {
 
     /// Its unit for the section `at`; refuses with the reason where it
     /// cannot model the section.
-    fn unit(&self, at: &SectionAt) -> Result<Table, String>;
+    fn unit(&self, at: &SectionAt) -> Result<SectionUnit, String>;
 
     /// How it keeps the contact state it starts with, in words, where it
     /// does (so it cannot follow a moving touchdown point); None: it follows

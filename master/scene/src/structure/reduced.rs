@@ -10,6 +10,8 @@ use super::layout::SectionOutputs;
 use super::model::{CutNeeds, Place, SectionAt, SectionModel, outputs_of};
 use super::nonlinear::{section_outputs, section_unit};
 use super::sections::Cut;
+use super::unit::{Parameters, SectionUnit};
+use slender_units::nonlinear::NonlinearParams;
 use toml::{Table, Value};
 
 /// The `reduced` fidelity.
@@ -73,7 +75,7 @@ impl SectionModel for Reduced {
             false => outputs_of(["start", "end"], false, None, false, (seabed, stinger)),
         }
     }
-    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+    fn unit(&self, at: &SectionAt) -> Result<SectionUnit, String> {
         let (built, cut) = (at.built, at.cut());
         if built.statics.is_some() {
             return reduced_unit(built.section_unit(cut, at.ends)?, cut, true);
@@ -101,23 +103,26 @@ const SAMPLING_KEYS: [&str; 2] = ["training", "tolerance"];
 /// critical step is the modes' own) from the fidelity, the section's
 /// parameters as its `section`.
 pub(super) fn reduced_unit(
-    mut section: Table,
+    mut section: SectionUnit,
     cut: &Cut,
     static_start: bool,
-) -> Result<Table, String> {
+) -> Result<SectionUnit, String> {
     let key = format!("structure.sections.{}.fidelity", cut.name);
     let options = cut.options.clone().unwrap_or_default();
     if static_start {
-        return about_static_state(section, &key, &options);
+        let parameters = section
+            .nonlinear_mut()
+            .ok_or(format!("`{key}`: the section is not a `nonlinear` unit"))?;
+        about_static_state(parameters, &key, &options)?;
+        return Ok(section);
     }
     if let Some(other) = options.keys().find(|k| SAMPLING_KEYS.contains(&k.as_str())) {
         return Err(format!(
             "`{key}.{other}`: sampled forces are for a section reduced about the structure's static equilibrium (a `[structure]` with a static start); seed 002's reduced section samples none"
         ));
     }
-    let parameters = section
-        .remove("parameters")
-        .ok_or(format!("`{key}`: the section has no parameters"))?;
+    let parameters = Value::try_from(section.section_parameters(&key)?)
+        .map_err(|e| format!("`{key}`: the section's parameters as TOML: {e}"))?;
     let mut reduced = options;
     reduced
         .entry("modes")
@@ -126,39 +131,48 @@ pub(super) fn reduced_unit(
         .entry("derivatives")
         .or_insert(Value::String("taylor".into()));
     reduced.insert("section".into(), parameters);
-    section.insert("kind".into(), Value::String("reduced".into()));
-    section.insert("parameters".into(), Value::Table(reduced));
+    section.kind = "reduced";
+    section.parameters = Parameters::Table(reduced);
     Ok(section)
 }
 
-/// The section's `nonlinear` unit with `reduced_modes`: reduced about the
-/// equilibrium it starts from.
-fn about_static_state(mut section: Table, key: &str, options: &Table) -> Result<Table, String> {
+/// The section's `nonlinear` unit's `parameters` with `reduced_modes`
+/// (and `reduced_sampling` after `training`): reduced about the equilibrium
+/// it starts from.
+fn about_static_state(
+    parameters: &mut NonlinearParams,
+    key: &str,
+    options: &Table,
+) -> Result<(), String> {
     if let Some(other) = options.keys().find(|k| !STATIC_KEYS.contains(&k.as_str())) {
         return Err(format!(
             "`{key}.{other}`: a section reduced about the structure's static equilibrium takes `modes`, `training` and `tolerance` only (its basis: modes of the tangent there with attachment and constraint vectors, stepped by the section's own integrator; its forces sampled after `training` seconds)"
         ));
     }
-    let modes = options
-        .get("modes")
-        .cloned()
-        .unwrap_or(Value::Integer(DEFAULT_MODES));
-    let parameters = section
-        .get_mut("parameters")
-        .and_then(Value::as_table_mut)
-        .ok_or(format!("`{key}`: the section has no parameters"))?;
-    parameters.insert("reduced_modes".into(), modes);
+    let modes = match options.get("modes") {
+        None => DEFAULT_MODES as usize,
+        Some(v) => v
+            .as_integer()
+            .and_then(|n| usize::try_from(n).ok())
+            .ok_or(format!(
+                "`{key}.modes` = {v}: expected a whole number of modes"
+            ))?,
+    };
+    parameters.reduced_modes = Some(modes);
     if let Some(training) = options.get("training") {
         let mut sampling = Table::new();
         sampling.insert("training".into(), training.clone());
         if let Some(tolerance) = options.get("tolerance") {
             sampling.insert("tolerance".into(), tolerance.clone());
         }
-        parameters.insert("reduced_sampling".into(), Value::Table(sampling));
+        let sampling = Value::Table(sampling)
+            .try_into()
+            .map_err(|e| format!("`{key}`: `training` and `tolerance`: {e}"))?;
+        parameters.reduced_sampling = Some(sampling);
     } else if options.contains_key("tolerance") {
         return Err(format!(
             "`{key}.tolerance`: with `training` (the seconds the section runs on every element before its forces are sampled)"
         ));
     }
-    Ok(section)
+    Ok(())
 }

@@ -9,7 +9,7 @@
 
 use super::Built;
 use super::sections::Cut;
-use toml::Value;
+use slender_units::contact::surface::Shape;
 
 impl Built {
     /// Refuses a model without seabed contact (`Fidelity::lacks_seabed`) on
@@ -34,16 +34,11 @@ impl Built {
     /// seabed in the equilibrium; None where none lies (or without a static
     /// start or a flat seabed).
     fn lying(&self, cut: &Cut) -> Option<(f64, f64)> {
-        let height = (self.model.get("contact"))
-            .and_then(|c| c.get("surface")?.get("shape"))
-            .filter(|shape| shape.get("kind").and_then(Value::as_str) == Some("flat"))
-            .and_then(|shape| {
-                let height = shape.get("height")?;
-                (height.as_float()).or_else(|| height.as_integer().map(|h| h as f64))
-            });
-        self.statics
-            .as_ref()?
-            .on_seabed((cut.from, cut.to), height?)
+        let height = match self.model.contact.as_ref()?.surface.shape {
+            Shape::Flat { height } => height,
+            _ => return None,
+        };
+        self.statics.as_ref()?.on_seabed((cut.from, cut.to), height)
     }
 
     /// An advisory where a model that keeps its contact state (its
@@ -96,9 +91,9 @@ impl Built {
     /// The x (m) of a stinger's roller the section passes over in the static
     /// equilibrium, if any.
     fn roller_over(&self, cut: &Cut) -> Option<f64> {
-        let rollers = (self.model.get("stinger"))
-            .and_then(|c| c.get("surface")?.get("shape")?.get("positions"))
-            .and_then(Value::as_array)?;
+        let Shape::Rollers { positions, .. } = &self.model.stinger.as_ref()?.surface.shape else {
+            return None;
+        };
         let equilibrium = self.statics.as_ref()?;
         let samples = 200;
         let xs = (0..=samples).map(|i| {
@@ -108,10 +103,6 @@ impl Built {
         let (low, high) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
             (l.min(x), h.max(x))
         });
-        let number = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
-        rollers
-            .iter()
-            .filter_map(number)
-            .find(|x| (low..=high).contains(x))
+        positions.iter().copied().find(|x| (low..=high).contains(x))
     }
 }

@@ -3,9 +3,12 @@
 
 use super::model::SectionModel;
 use serde::Deserialize;
+use slender_units::nonlinear::NonlinearParams;
+use slender_units::nonlinear::params::Segment as ModelSegment;
 use toml::{Table, Value};
 
-/// A straight segment of the stress-free shape.
+/// A straight segment of the stress-free shape: the model's segment as
+/// written (its section properties, typed) and where it starts.
 #[derive(Clone, Debug)]
 pub(crate) struct Segment {
     /// Arc length of its start (m).
@@ -13,8 +16,8 @@ pub(crate) struct Segment {
     pub length: f64,
     pub angle_deg: f64,
     pub elements: f64,
-    /// The segment as written (its section properties).
-    pub table: Table,
+    /// The segment as the model gives it.
+    pub properties: ModelSegment,
 }
 
 impl Segment {
@@ -34,38 +37,25 @@ impl Segment {
     }
 }
 
-pub(super) fn segments_of(model: &Table) -> Result<Vec<Segment>, String> {
-    let list = model
-        .get("segments")
-        .and_then(Value::as_array)
-        .filter(|list| !list.is_empty())
-        .ok_or("`structure.model.segments`: expected a list of at least one segment")?;
+/// The model's segments placed along the structure's arc.
+pub(super) fn segments_of(model: &NonlinearParams) -> Result<Vec<Segment>, String> {
+    if model.segments.is_empty() {
+        return Err("`structure.model.segments`: expected a list of at least one segment".into());
+    }
     let mut from = 0.0;
-    list.iter()
-        .enumerate()
-        .map(|(i, s)| {
-            let t = s
-                .as_table()
-                .ok_or(format!("`structure.model.segments[{i}]`: expected a table"))?;
-            let number = |key: &str, default: Option<f64>| {
-                t.get(key)
-                    .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-                    .or(default)
-                    .ok_or(format!(
-                        "`structure.model.segments[{i}].{key}`: expected a number"
-                    ))
-            };
+    Ok((model.segments.iter())
+        .map(|s| {
             let segment = Segment {
                 from,
-                length: number("length", None)?,
-                angle_deg: number("angle_deg", Some(0.0))?,
-                elements: number("elements", None)?,
-                table: t.clone(),
+                length: s.length,
+                angle_deg: s.angle_deg,
+                elements: s.elements as f64,
+                properties: s.clone(),
             };
             from += segment.length;
-            Ok(segment)
+            segment
         })
-        .collect()
+        .collect())
 }
 
 /// One section: its name, arc-length range (m), fidelity and element count

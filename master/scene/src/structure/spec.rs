@@ -5,32 +5,29 @@
 //! solves the statics from it (`Built::new`) and the layout reads it as it is.
 
 use super::cable::Water;
-use super::hang_off;
-use super::load::TopLoad;
+use super::hang_off::HangOff;
+use super::load::{TopLoad, TopLoadFile};
 use super::sections::{Cut, Fidelity, SectionFile, Segment, cuts_of, segments_of};
 use serde::Deserialize;
-use serde::de::{DeserializeOwned, IgnoredAny};
+use serde::de::DeserializeOwned;
+use slender_units::nonlinear::NonlinearParams;
 use toml::{Table, Value};
 
 /// `[structure]` as written: its keys and their types, checked by serde (a
 /// key it does not take, or a value of the wrong type, is refused naming its
-/// path). The top load, hang-off and water are read by their own modules.
+/// path), the model as the `nonlinear` unit's own parameters.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct StructureFile {
     name: String,
-    model: Table,
+    model: NonlinearParams,
     #[serde(default)]
     sections: Vec<SectionFile>,
     reference: Option<Value>,
-    #[serde(rename = "water_depth")]
-    _water_depth: Option<IgnoredAny>,
-    #[serde(rename = "seabed")]
-    _seabed: Option<IgnoredAny>,
-    #[serde(rename = "top_load")]
-    _top_load: Option<IgnoredAny>,
-    #[serde(rename = "hang_off")]
-    _hang_off: Option<IgnoredAny>,
+    water_depth: Option<f64>,
+    seabed: Option<f64>,
+    top_load: Option<TopLoadFile>,
+    hang_off: Option<HangOff>,
 }
 
 /// `table`, found at `key`, as a `T`; an error names the key path where it
@@ -49,8 +46,8 @@ pub(crate) fn typed<T: DeserializeOwned>(key: &str, table: &Table) -> Result<T, 
 pub(super) struct Spec {
     /// The prefix of its units' names.
     pub name: String,
-    /// `structure.model` as written: a `nonlinear` unit's parameters.
-    pub model: Table,
+    /// `structure.model`: a `nonlinear` unit's parameters.
+    pub model: NonlinearParams,
     pub segments: Vec<Segment>,
     /// Its sections, by arc length.
     pub sections: Vec<Cut>,
@@ -73,9 +70,9 @@ impl Spec {
     pub(super) fn parse(structure: &Table) -> Result<Spec, String> {
         let file: StructureFile = typed("structure", structure)?;
         let (name, model) = (file.name, file.model);
-        let top_load = TopLoad::of(structure, &model)?;
-        let static_start = model.get("static_start").and_then(Value::as_bool) == Some(true);
-        let hang_off = hang_off::angle_of(structure)?;
+        let top_load = (file.top_load.map(|t| TopLoad::of(t, &model))).transpose()?;
+        let static_start = model.static_start;
+        let hang_off = file.hang_off.map(|h| h.angle()).transpose()?;
         if hang_off.is_some() && (!static_start || top_load.is_some()) {
             return Err("`structure.hang_off`: the top is placed in the static equilibrium, so the structure needs `structure.model.static_start = true` and its end held (not a `top_load`)".into());
         }
@@ -83,7 +80,7 @@ impl Spec {
         let length: f64 = segments.iter().map(|s| s.length).sum();
         let sections = cuts_of(&file.sections, length)?;
         Ok(Spec {
-            water: Water::of(structure)?,
+            water: Water::of(file.seabed, file.water_depth)?,
             reference: reference_of(file.reference.as_ref())?,
             name,
             model,

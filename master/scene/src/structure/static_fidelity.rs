@@ -10,7 +10,8 @@ use super::layout::SectionOutputs;
 use super::model::{CutNeeds, Place, SectionAt, SectionModel, outputs_of};
 use super::nonlinear::section_unit;
 use super::sections::Cut;
-use toml::{Table, Value};
+use super::unit::{Parameters, SectionUnit};
+use toml::Value;
 
 /// The `static` fidelity.
 pub(super) struct Static;
@@ -48,7 +49,7 @@ impl SectionModel for Static {
             (seabed, stinger),
         )
     }
-    fn unit(&self, at: &SectionAt) -> Result<Table, String> {
+    fn unit(&self, at: &SectionAt) -> Result<SectionUnit, String> {
         at.built.static_unit(at.cuts, at.k, at.ends)
     }
 }
@@ -61,7 +62,7 @@ impl Built {
         cuts: &[Cut],
         k: usize,
         (start, end): (Option<End>, Option<End>),
-    ) -> Result<Table, String> {
+    ) -> Result<SectionUnit, String> {
         let cut = &cuts[k];
         let key = format!("structure.sections.{}.fidelity", cut.name);
         let equilibrium = match (&self.statics, k, cuts.len()) {
@@ -73,10 +74,12 @@ impl Built {
             }
         };
         let mut section = section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
-        equilibrium.start_section(&mut section, (cut.from, cut.to))?;
+        if let Some(parameters) = section.nonlinear_mut() {
+            equilibrium.start_section(parameters, (cut.from, cut.to));
+        }
         let mut unit = equilibrium.static_section(&key, &section, (cut.from, cut.to))?;
         if self.holding_static
-            && let Some(p) = unit.get_mut("parameters").and_then(Value::as_table_mut)
+            && let Parameters::Table(p) = &mut unit.parameters
         {
             p.insert("force_input".into(), Value::Boolean(true));
         }

@@ -3,6 +3,9 @@
 //! the displacement of its cut start, so every section's own static solve and the
 //! master's initial iterations land on that equilibrium.
 
+use super::unit::SectionUnit;
+use slender_units::beam::boundary::TimeFunction;
+use slender_units::nonlinear::params::{DofCondition, End, EndKind, StartShape};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::{Driver, Time, Unit};
 use toml::{Table, Value};
@@ -20,17 +23,9 @@ const POINTS_PER_METRE: f64 = 2.0;
 impl Equilibrium {
     /// Solves the model's statics at `t0` (the simulation's start: the ends'
     /// positions and the loads there); the error says why it cannot.
-    pub(super) fn solve(model: &Table, t0: Time) -> Result<Equilibrium, String> {
-        // The key path inside the model where it does not read.
-        let params: NonlinearParams = serde_path_to_error::deserialize(Value::Table(model.clone()))
-            .map_err(|e| {
-                let message = crate::words::in_words(e.inner().message().trim());
-                match e.path().to_string().as_str() {
-                    "" | "." => format!("`structure.model`: {message}"),
-                    path => format!("`structure.model.{path}`: {message}"),
-                }
-            })?;
-        let unit = NonlinearSection::new(params).map_err(|e| format!("`structure.model`: {e}"))?;
+    pub(super) fn solve(model: &NonlinearParams, t0: Time) -> Result<Equilibrium, String> {
+        let unit =
+            NonlinearSection::new(model.clone()).map_err(|e| format!("`structure.model`: {e}"))?;
         if !unit.description().inputs.is_empty() {
             return Err("`structure.model.static_start`: the structure's statics are solved on their own, so its ends cannot take coupled inputs".into());
         }
@@ -41,47 +36,26 @@ impl Equilibrium {
         Ok(Equilibrium { section, t0 })
     }
 
-    /// Sets a section's static start: the equilibrium shape over [from, to] as its
-    /// start polyline, and its moving cut ends (each DOF coupled by `velocity`)
-    /// where the equilibrium puts them.
-    pub(super) fn start_section(
-        &self,
-        unit: &mut Table,
-        (from, to): (f64, f64),
-    ) -> Result<(), String> {
+    /// Sets a section's static start (its parameters): the equilibrium shape
+    /// over [from, to] as its start polyline, and its moving cut ends (each
+    /// DOF coupled by `velocity`) where the equilibrium puts them.
+    pub(super) fn start_section(&self, parameters: &mut NonlinearParams, (from, to): (f64, f64)) {
         let section = self.section.unit();
         let points = ((to - from) * POINTS_PER_METRE).ceil().max(20.0) as usize;
-        let shape: Vec<Value> = (0..=points)
-            .map(|k| {
-                let p = section.position_at(from + (to - from) * k as f64 / points as f64);
-                Value::Array(vec![Value::Float(p[0]), Value::Float(p[1])])
-            })
+        parameters.static_start = true;
+        parameters.start_shape = StartShape::Points;
+        parameters.start_points = (0..=points)
+            .map(|k| section.position_at(from + (to - from) * k as f64 / points as f64))
             .collect();
-        let parameters = unit
-            .get_mut("parameters")
-            .and_then(Value::as_table_mut)
-            .ok_or("a section without parameters")?;
-        parameters.insert("static_start".into(), Value::Boolean(true));
-        parameters.insert("start_shape".into(), Value::String("points".into()));
-        parameters.insert("start_points".into(), Value::Array(shape));
-        let Some(ends) = parameters.get_mut("ends").and_then(Value::as_table_mut) else {
-            return Ok(());
-        };
-        for (key, at) in [("start", from), ("end", to)] {
-            let Some(end) = ends.get_mut(key).and_then(Value::as_table_mut) else {
-                continue;
-            };
-            for (dof, d) in ["x", "z", "rotation"].iter().zip(self.displacement_at(at)) {
-                if let Some(condition) = end.get_mut(*dof)
-                    && condition.as_str() == Some("velocity")
-                {
-                    let mut from = Table::new();
-                    from.insert("velocity_from".into(), Value::Float(d));
-                    *condition = Value::Table(from);
+        let ends = &mut parameters.ends;
+        for (end, at) in [(&mut ends.start, from), (&mut ends.end, to)] {
+            let dofs = [&mut end.x, &mut end.z, &mut end.rotation];
+            for (condition, d) in dofs.into_iter().zip(self.displacement_at(at)) {
+                if *condition == Some(DofCondition::Velocity) {
+                    *condition = Some(DofCondition::VelocityFrom(d));
                 }
             }
         }
-        Ok(())
     }
 
     /// The force (N) the structure beyond arc length `s` exerts on the part
@@ -105,17 +79,17 @@ impl Equilibrium {
     /// structure does (the master iterates the moment and the rest).
     pub(super) fn first_guess_loads(
         &self,
-        unit: &mut Table,
+        unit: &mut SectionUnit,
         (from, to): (f64, f64),
         loaded: (bool, bool),
     ) {
         if loaded.0 {
             // The force on a start is the part before's pull on the part after.
             let f = self.force_at(from);
-            first_guess_force(unit, "start", [-f[0], -f[1]]);
+            unit.first_guess_force("start", [-f[0], -f[1]]);
         }
         if loaded.1 {
-            first_guess_force(unit, "end", self.force_at(to));
+            unit.first_guess_force("end", self.force_at(to));
         }
     }
 
@@ -157,9 +131,10 @@ impl Equilibrium {
     pub(super) fn static_section(
         &self,
         key: &str,
-        section: &Table,
+        section: &SectionUnit,
         (from, to): (f64, f64),
-    ) -> Result<Table, String> {
+    ) -> Result<SectionUnit, String> {
+        let (name, section) = (section.name.clone(), section.section_parameters(key)?);
         let (base, columns) = self
             .end_held_derivatives(section, (from, to))
             .map_err(|e| format!("`{key}` = \"static\": {e}"))?;
@@ -190,13 +165,7 @@ impl Equilibrium {
                 ]),
             );
         }
-        let mut unit = Table::new();
-        if let Some(name) = section.get("name") {
-            unit.insert("name".into(), name.clone());
-        }
-        unit.insert("kind".into(), Value::String("static_section".into()));
-        unit.insert("parameters".into(), Value::Table(parameters));
-        Ok(unit)
+        Ok(SectionUnit::of_table(name, "static_section", parameters))
     }
 
     /// A section's static response with its end held where the equilibrium
@@ -205,7 +174,7 @@ impl Equilibrium {
     /// steps of 1e-5 of the section's length and 1e-5 rad; seven static solves.
     fn end_held_derivatives(
         &self,
-        section: &Table,
+        section: &NonlinearParams,
         (from, to): (f64, f64),
     ) -> Result<([f64; RESPONSES], [[f64; RESPONSES]; 3]), String> {
         let at_rest = self.displacement_at(to);
@@ -233,7 +202,7 @@ impl Equilibrium {
     /// contact make it far softer along the chord than EA over the length.
     pub(super) fn end_stiffness(
         &self,
-        section: &Table,
+        section: &NonlinearParams,
         (from, to): (f64, f64),
     ) -> Result<[[f64; 3]; 3], String> {
         let (_, columns) = self.end_held_derivatives(section, (from, to))?;
@@ -264,17 +233,10 @@ impl Equilibrium {
 /// a force in x or z (a tensioner, a top load), the sections above cannot all
 /// be held at their ends, so the static section holds them (`Built::new` also
 /// makes it hold under a chord section, for the same reason).
-pub(super) fn static_takes_force(model: &Table, top_load: bool) -> bool {
-    let end = model
-        .get("ends")
-        .and_then(|e| e.get("end"))
-        .and_then(Value::as_table);
-    let forced = |dof: &str| {
-        end.and_then(|e| e.get(dof))
-            .and_then(Value::as_table)
-            .is_some_and(|c| c.contains_key("force"))
-    };
-    top_load || forced("x") || forced("z")
+pub(super) fn static_takes_force(model: &NonlinearParams, top_load: bool) -> bool {
+    let end = &model.ends.end;
+    let forced = |dof: &Option<DofCondition>| matches!(dof, Some(DofCondition::Force(_)));
+    top_load || forced(&end.x) || forced(&end.z)
 }
 
 /// The links of the cut above a static first section that takes force
@@ -307,19 +269,6 @@ pub(super) fn holding_links(
     links
 }
 
-/// Sets `<side>_force_x` and `<side>_force_z` (N) in the unit's `inputs`: the
-/// first guess of force inputs fed through the master's loops.
-pub(super) fn first_guess_force(unit: &mut Table, side: &str, force: [f64; 2]) {
-    if let Some(inputs) = unit
-        .entry("inputs")
-        .or_insert_with(|| Value::Table(Table::new()))
-        .as_table_mut()
-    {
-        inputs.insert(format!("{side}_force_x"), Value::Float(force[0]));
-        inputs.insert(format!("{side}_force_z"), Value::Float(force[1]));
-    }
-}
-
 /// What `end_held_response` returns.
 const RESPONSES: usize = 7;
 
@@ -327,25 +276,20 @@ const RESPONSES: usize = 7;
 /// the seabed gap crosses zero; NaN without contact) and the largest sag-bend
 /// moment of a `nonlinear` section's static solve with its end displaced by `d`
 /// (x, z, rotation) from the stress-free position.
-fn end_held_response(section: &Table, d: [f64; 3], t0: Time) -> Result<[f64; RESPONSES], String> {
-    let mut parameters = section
-        .get("parameters")
-        .and_then(Value::as_table)
-        .cloned()
-        .ok_or("a section without parameters")?;
-    let mut end = Table::new();
-    for (dof, value) in ["x", "z", "rotation"].iter().zip(d) {
-        let mut condition = Table::new();
-        condition.insert("displacement".into(), Value::Float(value));
-        end.insert((*dof).into(), Value::Table(condition));
-    }
-    if let Some(ends) = parameters.get_mut("ends").and_then(Value::as_table_mut) {
-        ends.insert("end".into(), Value::Table(end));
-    }
-    parameters.insert("static_start".into(), Value::Boolean(true));
-    let params: NonlinearParams = Value::Table(parameters)
-        .try_into()
-        .map_err(|e| format!("{e}"))?;
+fn end_held_response(
+    section: &NonlinearParams,
+    d: [f64; 3],
+    t0: Time,
+) -> Result<[f64; RESPONSES], String> {
+    let mut params = section.clone();
+    let held = |d: f64| Some(DofCondition::Displacement(TimeFunction::Constant(d)));
+    params.ends.end = End {
+        kind: EndKind::Free,
+        x: held(d[0]),
+        z: held(d[1]),
+        rotation: held(d[2]),
+    };
+    params.static_start = true;
     let unit = NonlinearSection::new(params).map_err(|e| e.to_string())?;
     let names: Vec<String> = unit
         .description()

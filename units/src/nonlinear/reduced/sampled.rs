@@ -40,14 +40,14 @@ use crate::nonlinear::NonlinearSection;
 use crate::numerics::banded::SymmetricBand;
 use crate::reduced::ecsw::nnls;
 use nalgebra::DMatrix;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Hyper-reduction of a reduced section (`reduced_sampling`): the section
 /// runs on every element for `training` seconds from its start, recording its
 /// reduced state, then on the elements and seabed nodes that non-negative
 /// least squares picks to reproduce the projected forces of those states to
 /// `tolerance` (relative).
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Sampling {
     /// The training window (s) from the section's start.
