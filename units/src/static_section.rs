@@ -17,10 +17,10 @@ use crate::contract::{
     Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
     UnitError, require_finite,
 };
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Parameters (SI units; rows are outputs, columns the end's x, z and rotation).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct StaticSectionParams {
     /// d(end force x, z, moment) / d(end x, z, rotation) (N/m, N/rad, N m/m, N m/rad).
@@ -45,7 +45,7 @@ pub struct StaticSectionParams {
 }
 
 /// An output linear in the end's displacement u: value + gradient . u.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Linearised {
     /// The output's name.

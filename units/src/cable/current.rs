@@ -2,10 +2,10 @@
 //! the seabed.
 
 use crate::contract::{UnitError, require_finite};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A current profile.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum CurrentProfile {
     /// No current.

@@ -5,10 +5,10 @@ use super::current::CurrentProfile;
 use crate::contract::{
     UnitError, require_finite, require_in_range, require_non_negative, require_positive,
 };
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Properties of the whole line and of the water (SI units).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CableParams {
     /// Unstretched length of the whole line (m).
@@ -75,17 +75,23 @@ fn seawater() -> f64 {
     1025.0
 }
 
+/// The static solve's default tolerance (`static_tolerance`).
+pub const DEFAULT_STATIC_TOLERANCE: f64 = 1e-10;
+
+/// The drag iterations' default tolerance (`drag_tolerance`).
+pub const DEFAULT_DRAG_TOLERANCE: f64 = 1e-9;
+
 fn static_tolerance() -> f64 {
-    1e-10
+    DEFAULT_STATIC_TOLERANCE
 }
 
 fn drag_tolerance() -> f64 {
-    1e-9
+    DEFAULT_DRAG_TOLERANCE
 }
 
 /// The part of the line a unit models, split at the node nearest to the height
 /// `truncation_ratio * water_depth` above the seabed.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "part", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Section {
     /// The whole line, anchor to top.

@@ -29,10 +29,10 @@ use crate::contract::{
 use crate::span::coupling::{Orientation, SpanCoupling, SpanCouplingParams};
 use axial::{Axial, AxialState};
 use ports::{describe, inner_ports, set_dependencies};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The small-deflection model in the chord frame.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ChordModel {
     /// Seed 004's Hermite FE beam with tension (kind `beam`).
@@ -42,7 +42,7 @@ pub enum ChordModel {
 }
 
 /// The end that follows its neighbour's motion.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MovingEnd {
     Start,
@@ -50,7 +50,7 @@ pub enum MovingEnd {
 }
 
 /// Parameters (SI units; positions in the structure's x, z plane).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ChordParams {
     pub model: ChordModel,
@@ -97,16 +97,25 @@ pub struct ChordParams {
     pub band: f64,
 }
 
+impl ChordParams {
+    /// Beam elements when the scene gives none (`elements`).
+    pub const DEFAULT_ELEMENTS: usize = 20;
+    /// The span fit's order when the scene gives none (`order`).
+    pub const DEFAULT_ORDER: usize = 24;
+    /// The span fit's band (rad/s: 10 Hz) when the scene gives none (`band`).
+    pub const DEFAULT_BAND: f64 = 2.0 * std::f64::consts::PI * 10.0;
+}
+
 fn twenty() -> usize {
-    20
+    ChordParams::DEFAULT_ELEMENTS
 }
 
 fn twenty_four() -> usize {
-    24
+    ChordParams::DEFAULT_ORDER
 }
 
 fn ten_hz() -> f64 {
-    2.0 * std::f64::consts::PI * 10.0
+    ChordParams::DEFAULT_BAND
 }
 
 /// The chord's frame: origin at the start, `e` along it, `n` turned +90 deg.

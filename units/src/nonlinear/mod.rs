@@ -41,6 +41,8 @@ use params::Integrator;
 /// Outputs per station: tension, moment, curvature, x, z, internal force.
 const STATION_OUTPUTS: usize = 6;
 pub use params::NonlinearParams;
+/// How a section reduced about its start samples its forces (`reduced_sampling`).
+pub use reduced::Sampling;
 
 crate::state_struct! {
     /// Everything that changes while stepping.

@@ -27,14 +27,14 @@ use crate::integrators::hht::{NewtonSettings, SecondOrderSystem, StepLoads};
 use crate::nonlinear::model::element_dofs;
 use crate::nonlinear::{NonlinearParams, NonlinearSection};
 use nalgebra::DVector;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// What the reduced section's motion is, for an error where it became
 /// non-finite.
 const MOTION: &str = "the reduced section's coordinates, velocities and accelerations";
 
 /// How the modes' derivatives enter the basis.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Derivatives {
     /// Modes only.
@@ -47,7 +47,7 @@ pub enum Derivatives {
 }
 
 /// Parameters (scene kind `reduced`).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ReducedParams {
     /// The full section: a `nonlinear` unit's parameters, seed 002's element.
@@ -72,7 +72,7 @@ fn yes() -> bool {
 }
 
 /// How a reduced unit steps its coordinates.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Stepping {
     /// Central differences in sub-steps below 0.9 times the critical step.

@@ -11,10 +11,12 @@
 use super::cable_fits;
 use super::model::{CutNeeds, Place, SectionAt, SectionModel};
 use super::sections::{Cut, Segment};
-use super::unit::SectionUnit;
+use super::unit::{Parameters, SectionUnit};
+use slender_units::cable::current::CurrentProfile;
+use slender_units::cable::params::{DEFAULT_DRAG_TOLERANCE, DEFAULT_STATIC_TOLERANCE};
+use slender_units::cable::{CableParams, Section as CableSection};
 use slender_units::nonlinear::NonlinearParams;
 use slender_units::nonlinear::params::{Current, Segment as ModelSegment};
-use toml::{Table, Value};
 
 /// The `cable` fidelity.
 pub(super) struct Cable;
@@ -140,39 +142,32 @@ pub(super) fn cable_unit(
             .sum();
         share.round().max(1.0) as usize
     });
-    let mut p = Table::new();
-    let mut put = |k: &str, v: f64| {
-        p.insert(k.into(), Value::Float(v));
+    let current = (model.current.as_ref()).map(|c| cable_current(c, water.seabed));
+    let p = CableParams {
+        length: cut.to - cut.from,
+        elements,
+        diameter,
+        mass_per_length: first.mass_per_length,
+        youngs_modulus: first.axial_stiffness / (std::f64::consts::PI * diameter * diameter / 4.0),
+        submerged_weight: first.submerged_weight,
+        added_mass_normal: first.added_mass_normal,
+        added_mass_tangential: first.added_mass_tangential,
+        drag_normal: first.drag_normal,
+        drag_tangential: first.drag_tangential,
+        rayleigh_mass: model.rayleigh_mass,
+        rayleigh_stiffness: model.rayleigh_stiffness,
+        water_density: model.water_density,
+        water_depth: water.depth,
+        current: current.unwrap_or_default(),
+        anchor: [anchor[0], anchor[1] - water.seabed],
+        static_top_force: None,
+        section: CableSection::Full,
+        static_tolerance: DEFAULT_STATIC_TOLERANCE,
+        drag_tolerance: DEFAULT_DRAG_TOLERANCE,
     };
-    put("length", cut.to - cut.from);
-    put("diameter", diameter);
-    put(
-        "youngs_modulus",
-        first.axial_stiffness / (std::f64::consts::PI * diameter * diameter / 4.0),
-    );
-    put("mass_per_length", first.mass_per_length);
-    put("submerged_weight", first.submerged_weight);
-    put("added_mass_normal", first.added_mass_normal);
-    put("added_mass_tangential", first.added_mass_tangential);
-    put("drag_normal", first.drag_normal);
-    put("drag_tangential", first.drag_tangential);
-    put("rayleigh_mass", model.rayleigh_mass);
-    put("rayleigh_stiffness", model.rayleigh_stiffness);
-    put("water_density", model.water_density);
-    put("water_depth", water.depth);
-    p.insert("elements".into(), Value::Integer(elements as i64));
-    p.insert(
-        "anchor".into(),
-        Value::Array(vec![
-            Value::Float(anchor[0]),
-            Value::Float(anchor[1] - water.seabed),
-        ]),
-    );
-    if let Some(current) = &model.current {
-        p.insert("current".into(), cable_current(current, water.seabed));
-    }
     let effects = effects(&p, model.current.is_some());
-    Ok(SectionUnit::of_table(super::unit_name(name, &cut.name), "cable", p).with_effects(effects))
+    let name = super::unit_name(name, &cut.name);
+    Ok(SectionUnit::new(name, Parameters::Cable(Box::new(p))).with_effects(effects))
 }
 
 /// A segment's section properties that must be equal along a cable
@@ -220,37 +215,31 @@ fn segments_in(segments: &[Segment], from: f64, to: f64) -> Vec<&Segment> {
 
 /// The structure's current table (z in its frame) as the cable's (z above the
 /// seabed).
-fn cable_current(current: &Current, seabed: f64) -> Value {
-    let numbers = |v: Vec<f64>| Value::Array(v.into_iter().map(Value::Float).collect());
-    let mut t = Table::new();
-    t.insert("kind".into(), Value::String("table".into()));
-    t.insert(
-        "z".into(),
-        numbers(current.z.iter().map(|z| z - seabed).collect()),
-    );
-    t.insert("speed".into(), numbers(current.velocity.clone()));
-    Value::Table(t)
+fn cable_current(current: &Current, seabed: f64) -> CurrentProfile {
+    CurrentProfile::Table {
+        z: current.z.iter().map(|z| z - seabed).collect(),
+        speed: current.velocity.clone(),
+    }
 }
 
 /// The cable effects the section's properties call for; geometric stiffness
 /// always (a cable has no transverse stiffness without it).
-fn effects(p: &Table, current: bool) -> Vec<&'static str> {
-    let nonzero = |k: &str| p.get(k).and_then(Value::as_float).unwrap_or(0.0) != 0.0;
+fn effects(p: &CableParams, current: bool) -> Vec<&'static str> {
     let mut effects = vec!["geometric_stiffness"];
-    if nonzero("submerged_weight") {
+    if p.submerged_weight != 0.0 {
         effects.push("weight");
     }
-    if nonzero("added_mass_normal") || nonzero("added_mass_tangential") {
+    if p.added_mass_normal != 0.0 || p.added_mass_tangential != 0.0 {
         effects.push("added_mass");
     }
-    let drag = nonzero("drag_normal") || nonzero("drag_tangential");
+    let drag = p.drag_normal != 0.0 || p.drag_tangential != 0.0;
     if drag {
         effects.push("drag");
     }
     if drag && current {
         effects.push("current");
     }
-    if nonzero("rayleigh_mass") || nonzero("rayleigh_stiffness") {
+    if p.rayleigh_mass != 0.0 || p.rayleigh_stiffness != 0.0 {
         effects.push("structural_damping");
     }
     effects

@@ -14,10 +14,13 @@ use super::cuts::{End, link};
 use super::model::{CutNeeds, Place, SectionAt, SectionModel};
 use super::nonlinear::section_unit;
 use super::sections::{Cut, Fidelity, Segment};
+use super::spec::typed;
 use super::statics::Equilibrium;
-use super::unit::SectionUnit;
+use super::unit::{Parameters, SectionUnit};
+use serde::Deserialize;
+use slender_units::chord::{ChordModel, ChordParams, MovingEnd};
 use slender_units::nonlinear::NonlinearParams;
-use toml::{Table, Value};
+use toml::Value;
 
 /// A chord fidelity: its name, the keys of its table form and what a count
 /// sets.
@@ -95,8 +98,6 @@ impl SectionModel for Chord {
     }
 }
 
-/// Beam elements of a chord section when the scene gives none.
-const DEFAULT_ELEMENTS: i64 = 20;
 /// Points per section for the centre of its weight.
 const WEIGHT_POINTS: usize = 200;
 /// The transverse velocity amplitude (m/s) the section's drag is linearised at
@@ -204,56 +205,51 @@ pub(super) fn chord_unit(
     ))?;
     neighbours_fit(cuts, k, &key)?;
     uniform_enough(equilibrium, cut, &key)?;
-    let mut p = cut.options.clone().unwrap_or_default();
-    let drag_velocity = drag_velocity_of(&mut p, &key)?;
-    p.insert("model".into(), Value::String(word.into()));
-    p.insert("moving".into(), Value::String("start".into()));
-    p.insert("start".into(), pair(equilibrium.position_at(cut.from)));
-    p.insert("end".into(), pair(equilibrium.position_at(cut.to)));
-    let (weight, centre) = weight_of(segments, cut, equilibrium);
-    p.insert("weight".into(), Value::Float(weight));
-    p.insert("weight_at".into(), pair(centre));
-    p.insert(
-        "loaded_end_displacement".into(),
-        Value::Array(
-            equilibrium
-                .displacement_at(cut.to)
-                .into_iter()
-                .map(Value::Float)
-                .collect(),
-        ),
-    );
+    let options: ChordOptions = typed(&key, &cut.options.clone().unwrap_or_default())?;
+    let drag_velocity = options.drag_velocity(&key)?;
+    let (weight, weight_at) = weight_of(segments, cut, equilibrium);
     let [ei, mass, drag, structural] = properties(model, segments, cut, &key)?;
-    section_properties(&mut p, [ei, mass, drag], drag_velocity);
     let stiffness = axial_stiffness(structure, (model, segments), cut, equilibrium)
         .map_err(|e| format!("`{key}` = \"{word}\": {e}"))?;
-    p.insert("axial_stiffness".into(), Value::Float(stiffness));
     // The section's own inertia along the pipe: the loaded end's half of it
     // (the moving end's half is left out: its acceleration would come from
     // differencing its neighbour's positions). The mass of the static shapes
     // the end drags along (the sag's motion across the pipe, 8 times the
     // section's mass on the S-lay) was tried: it doubled the sag-bend error.
     let axial_mass = 0.5 * structural * (cut.to - cut.from);
-    if axial_mass > 0.0 {
-        p.insert("axial_mass".into(), Value::Float(axial_mass));
-    }
-    let middle = 0.5 * (cut.from + cut.to);
-    p.insert(
-        "tension".into(),
-        Value::Float(equilibrium.tension_at(middle)),
-    );
-    if cut.fidelity == Fidelity::Span {
-        p.entry("alpha").or_insert(Value::Float(DEFAULT_SPAN_ALPHA));
-    }
-    if cut.fidelity == Fidelity::Beam {
-        let elements = cut.elements.map_or(DEFAULT_ELEMENTS, |n| n as i64);
-        p.insert("elements".into(), Value::Integer(elements));
-    }
+    let span = cut.fidelity == Fidelity::Span;
+    let p = ChordParams {
+        model: if span {
+            ChordModel::Span
+        } else {
+            ChordModel::Beam
+        },
+        moving: MovingEnd::Start,
+        start: equilibrium.position_at(cut.from),
+        end: equilibrium.position_at(cut.to),
+        weight,
+        weight_at,
+        loaded_end_displacement: equilibrium.displacement_at(cut.to),
+        flexural_rigidity: ei,
+        mass_per_length: mass,
+        damping_per_length: options.damping_per_length.unwrap_or(drag * drag_velocity),
+        tension: equilibrium.tension_at(0.5 * (cut.from + cut.to)),
+        axial_stiffness: Some(stiffness),
+        axial_mass: (axial_mass > 0.0).then_some(axial_mass),
+        elements: match span {
+            true => ChordParams::DEFAULT_ELEMENTS,
+            false => cut.elements.unwrap_or(ChordParams::DEFAULT_ELEMENTS),
+        },
+        alpha: (options.alpha).unwrap_or(if span { DEFAULT_SPAN_ALPHA } else { 0.0 }),
+        order: options.order.unwrap_or(ChordParams::DEFAULT_ORDER),
+        band: options.band.unwrap_or(ChordParams::DEFAULT_BAND),
+    };
     // First guesses: the equilibrium's force at the loaded end and position at
     // the moving one, so the neighbours' first static solves hang as the whole.
     let force = equilibrium.force_at(cut.to);
     let position = equilibrium.position_at(cut.from);
-    let mut unit = SectionUnit::of_table(super::unit_name(structure, &cut.name), "chord", p);
+    let name = super::unit_name(structure, &cut.name);
+    let mut unit = SectionUnit::new(name, Parameters::Chord(Box::new(p)));
     for (axis, i) in [("x", 0), ("z", 1)] {
         unit.inputs.insert(format!("end_force_{axis}"), force[i]);
         unit.inputs
@@ -262,27 +258,35 @@ pub(super) fn chord_unit(
     Ok(unit)
 }
 
-/// The fidelity's `drag_velocity` (m/s; taken out of `p`), or the default.
-fn drag_velocity_of(p: &mut Table, key: &str) -> Result<f64, String> {
-    match p.remove("drag_velocity") {
-        None => Ok(DEFAULT_DRAG_VELOCITY),
-        Some(v) => v
-            .as_float()
-            .or_else(|| v.as_integer().map(|i| i as f64))
-            .filter(|v| *v >= 0.0 && v.is_finite())
-            .ok_or(format!(
-                "`{key}.drag_velocity` = {v}: expected a velocity amplitude >= 0 (m/s)"
-            )),
-    }
+/// A chord fidelity's own keys as the scene writes them (`{ kind = "span",
+/// order = 16, alpha = 0.05 }`; `kind` and `elements` are read by the
+/// sections), checked by serde at the section's key.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ChordOptions {
+    /// Numerical damping of the chord unit's integrator.
+    alpha: Option<f64>,
+    /// Linear damping per length (N s/m^2) in place of the drag's.
+    damping_per_length: Option<f64>,
+    /// The velocity amplitude (m/s) the drag is linearised at.
+    drag_velocity: Option<f64>,
+    /// The span fit's order.
+    order: Option<usize>,
+    /// The span fit's band (rad/s).
+    band: Option<f64>,
 }
 
-/// The section's EI, mass and drag damping (at `drag_velocity`, unless the
-/// scene gives `damping_per_length`) into the chord's parameters `p`.
-fn section_properties(p: &mut Table, [ei, mass, drag]: [f64; 3], drag_velocity: f64) {
-    p.entry("damping_per_length")
-        .or_insert(Value::Float(drag * drag_velocity));
-    p.insert("flexural_rigidity".into(), Value::Float(ei));
-    p.insert("mass_per_length".into(), Value::Float(mass));
+impl ChordOptions {
+    /// `drag_velocity` (m/s), or the default.
+    fn drag_velocity(&self, key: &str) -> Result<f64, String> {
+        match self.drag_velocity {
+            None => Ok(DEFAULT_DRAG_VELOCITY),
+            Some(v) if v >= 0.0 && v.is_finite() => Ok(v),
+            Some(v) => Err(format!(
+                "`{key}.drag_velocity` = {v}: expected a velocity amplitude >= 0 (m/s)"
+            )),
+        }
+    }
 }
 
 /// A chord section lies between two numerical sections that follow its
@@ -382,10 +386,6 @@ fn weight_of(segments: &[Segment], cut: &Cut, equilibrium: &Equilibrium) -> (f64
         );
         (0.0, [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])])
     }
-}
-
-fn pair(p: [f64; 2]) -> Value {
-    Value::Array(vec![Value::Float(p[0]), Value::Float(p[1])])
 }
 
 /// The links at a chord section's moving start: the position and rotation of

@@ -335,8 +335,7 @@ impl Built {
         }
         if let Some(fmu) = &cut.fmu {
             // The FMU takes the unit's place: same name, ports, first guesses.
-            unit.kind = "fmu";
-            unit.parameters = Parameters::Table(fmu.clone());
+            unit.parameters = Parameters::Fmu(fmu.clone());
             unit.effects = None;
         }
         unit.substeps = cut.substeps;

@@ -10,9 +10,11 @@ use super::layout::SectionOutputs;
 use super::model::{CutNeeds, Place, SectionAt, SectionModel, outputs_of};
 use super::nonlinear::{section_outputs, section_unit};
 use super::sections::Cut;
+use super::spec::typed;
 use super::unit::{Parameters, SectionUnit};
-use slender_units::nonlinear::NonlinearParams;
-use toml::{Table, Value};
+use serde::Deserialize;
+use slender_units::nonlinear::Sampling;
+use slender_units::reduced::unit::{Derivatives, ReducedParams, Stepping};
 
 /// The `reduced` fidelity.
 pub(super) struct Reduced;
@@ -86,7 +88,7 @@ impl SectionModel for Reduced {
 }
 
 /// Modes in the basis when the scene gives none.
-const DEFAULT_MODES: i64 = 6;
+const DEFAULT_MODES: usize = 6;
 
 /// The keys a section reduced about its static state takes besides `kind`
 /// and `elements` (seed 002's `derivatives`, `attachments` and `integrator`
@@ -108,71 +110,74 @@ pub(super) fn reduced_unit(
     static_start: bool,
 ) -> Result<SectionUnit, String> {
     let key = format!("structure.sections.{}.fidelity", cut.name);
-    let options = cut.options.clone().unwrap_or_default();
+    let written = cut.options.clone().unwrap_or_default();
+    let refused = match static_start {
+        true => written.keys().find(|k| !STATIC_KEYS.contains(&k.as_str())),
+        false => written.keys().find(|k| SAMPLING_KEYS.contains(&k.as_str())),
+    };
+    if let Some(other) = refused {
+        return Err(match static_start {
+            true => format!(
+                "`{key}.{other}`: a section reduced about the structure's static equilibrium takes `modes`, `training` and `tolerance` only (its basis: modes of the tangent there with attachment and constraint vectors, stepped by the section's own integrator; its forces sampled after `training` seconds)"
+            ),
+            false => format!(
+                "`{key}.{other}`: sampled forces are for a section reduced about the structure's static equilibrium (a `[structure]` with a static start); seed 002's reduced section samples none"
+            ),
+        });
+    }
+    let options: ReducedOptions = typed(&key, &written)?;
+    let modes = options.modes.unwrap_or(DEFAULT_MODES);
     if static_start {
         let parameters = section
             .nonlinear_mut()
             .ok_or(format!("`{key}`: the section is not a `nonlinear` unit"))?;
-        about_static_state(parameters, &key, &options)?;
+        parameters.reduced_modes = Some(modes);
+        parameters.reduced_sampling = options.sampling(&key)?;
         return Ok(section);
     }
-    if let Some(other) = options.keys().find(|k| SAMPLING_KEYS.contains(&k.as_str())) {
-        return Err(format!(
-            "`{key}.{other}`: sampled forces are for a section reduced about the structure's static equilibrium (a `[structure]` with a static start); seed 002's reduced section samples none"
-        ));
-    }
-    let parameters = Value::try_from(section.section_parameters(&key)?)
-        .map_err(|e| format!("`{key}`: the section's parameters as TOML: {e}"))?;
-    let mut reduced = options;
-    reduced
-        .entry("modes")
-        .or_insert(Value::Integer(DEFAULT_MODES));
-    reduced
-        .entry("derivatives")
-        .or_insert(Value::String("taylor".into()));
-    reduced.insert("section".into(), parameters);
-    section.kind = "reduced";
-    section.parameters = Parameters::Table(reduced);
+    let reduced = ReducedParams {
+        section: section.section_parameters(&key)?.clone(),
+        modes,
+        derivatives: options.derivatives.unwrap_or(Derivatives::Taylor),
+        integrator: options.integrator.unwrap_or_default(),
+        attachments: options.attachments.unwrap_or(true),
+    };
+    section.parameters = Parameters::Reduced(Box::new(reduced));
     Ok(section)
 }
 
-/// The section's `nonlinear` unit's `parameters` with `reduced_modes`
-/// (and `reduced_sampling` after `training`): reduced about the equilibrium
-/// it starts from.
-fn about_static_state(
-    parameters: &mut NonlinearParams,
-    key: &str,
-    options: &Table,
-) -> Result<(), String> {
-    if let Some(other) = options.keys().find(|k| !STATIC_KEYS.contains(&k.as_str())) {
-        return Err(format!(
-            "`{key}.{other}`: a section reduced about the structure's static equilibrium takes `modes`, `training` and `tolerance` only (its basis: modes of the tangent there with attachment and constraint vectors, stepped by the section's own integrator; its forces sampled after `training` seconds)"
-        ));
-    }
-    let modes = match options.get("modes") {
-        None => DEFAULT_MODES as usize,
-        Some(v) => v
-            .as_integer()
-            .and_then(|n| usize::try_from(n).ok())
-            .ok_or(format!(
-                "`{key}.modes` = {v}: expected a whole number of modes"
-            ))?,
-    };
-    parameters.reduced_modes = Some(modes);
-    if let Some(training) = options.get("training") {
-        let mut sampling = Table::new();
-        sampling.insert("training".into(), training.clone());
-        if let Some(tolerance) = options.get("tolerance") {
-            sampling.insert("tolerance".into(), tolerance.clone());
+/// A `reduced` fidelity's own keys as the scene writes them (`kind` and
+/// `elements` are read by the sections), checked by serde at the section's key.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ReducedOptions {
+    /// Modes in the basis (default 6).
+    modes: Option<usize>,
+    /// Seed 002's modal derivatives (default "taylor").
+    derivatives: Option<Derivatives>,
+    /// Seed 002's integrator of the modal coordinates.
+    integrator: Option<Stepping>,
+    /// Seed 002's attachment vectors (default true).
+    attachments: Option<bool>,
+    /// About the equilibrium: the seconds the section runs on every element
+    /// before its forces are sampled.
+    training: Option<f64>,
+    /// About the equilibrium: the sampled forces' relative residual.
+    tolerance: Option<f64>,
+}
+
+impl ReducedOptions {
+    /// The sampling of the forces after `training` seconds, if asked for.
+    fn sampling(&self, key: &str) -> Result<Option<Sampling>, String> {
+        match (self.training, self.tolerance) {
+            (Some(training), tolerance) => Ok(Some(Sampling {
+                training,
+                tolerance: tolerance.unwrap_or(Sampling::DEFAULT_TOLERANCE),
+            })),
+            (None, Some(_)) => Err(format!(
+                "`{key}.tolerance`: with `training` (the seconds the section runs on every element before its forces are sampled)"
+            )),
+            (None, None) => Ok(None),
         }
-        let sampling = Value::Table(sampling)
-            .try_into()
-            .map_err(|e| format!("`{key}`: `training` and `tolerance`: {e}"))?;
-        parameters.reduced_sampling = Some(sampling);
-    } else if options.contains_key("tolerance") {
-        return Err(format!(
-            "`{key}.tolerance`: with `training` (the seconds the section runs on every element before its forces are sampled)"
-        ));
     }
-    Ok(())
 }

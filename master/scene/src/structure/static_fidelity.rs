@@ -11,7 +11,6 @@ use super::model::{CutNeeds, Place, SectionAt, SectionModel, outputs_of};
 use super::nonlinear::section_unit;
 use super::sections::Cut;
 use super::unit::{Parameters, SectionUnit};
-use toml::Value;
 
 /// The `static` fidelity.
 pub(super) struct Static;
@@ -79,9 +78,9 @@ impl Built {
         }
         let mut unit = equilibrium.static_section(&key, &section, (cut.from, cut.to))?;
         if self.holding_static
-            && let Parameters::Table(p) = &mut unit.parameters
+            && let Parameters::Static(p) = &mut unit.parameters
         {
-            p.insert("force_input".into(), Value::Boolean(true));
+            p.force_input = true;
         }
         Ok(unit)
     }

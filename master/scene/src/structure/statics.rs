@@ -3,12 +3,13 @@
 //! the displacement of its cut start, so every section's own static solve and the
 //! master's initial iterations land on that equilibrium.
 
-use super::unit::SectionUnit;
+use super::unit::{Parameters, SectionUnit};
 use slender_units::beam::boundary::TimeFunction;
 use slender_units::nonlinear::params::{DofCondition, End, EndKind, StartShape};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
+use slender_units::static_section::{Linearised, StaticSectionParams};
 use slender_units::{Driver, Time, Unit};
-use toml::{Table, Value};
+use toml::Value;
 
 /// The whole structure at rest in equilibrium.
 pub(super) struct Equilibrium {
@@ -138,34 +139,32 @@ impl Equilibrium {
         let (base, columns) = self
             .end_held_derivatives(section, (from, to))
             .map_err(|e| format!("`{key}` = \"static\": {e}"))?;
-        let row = |i: usize| Value::Array((0..3).map(|j| Value::Float(columns[j][i])).collect());
-        let numbers = |v: &[f64]| Value::Array(v.iter().map(|&x| Value::Float(x)).collect());
-        let mut parameters = Table::new();
-        parameters.insert("stiffness".into(), Value::Array((0..3).map(row).collect()));
-        parameters.insert("force".into(), numbers(&base[..3]));
-        parameters.insert(
-            "start_stiffness".into(),
-            Value::Array((3..5).map(row).collect()),
-        );
-        parameters.insert("start_force".into(), numbers(&base[3..5]));
-        if base[5].is_finite() && columns.iter().all(|c| c[5].is_finite()) {
-            let quantity = |name: &str, unit: &str, i: usize| {
-                let mut q = Table::new();
-                q.insert("name".into(), Value::String(name.into()));
-                q.insert("unit".into(), Value::String(unit.into()));
-                q.insert("value".into(), Value::Float(base[i]));
-                q.insert("gradient".into(), row(i));
-                Value::Table(q)
-            };
-            parameters.insert(
-                "quantities".into(),
-                Value::Array(vec![
+        let row = |i: usize| std::array::from_fn(|j| columns[j][i]);
+        let touchdown = base[5].is_finite() && columns.iter().all(|c| c[5].is_finite());
+        let quantity = |name: &str, unit: &str, i: usize| Linearised {
+            name: name.into(),
+            unit: unit.into(),
+            value: base[i],
+            gradient: row(i),
+        };
+        let parameters = StaticSectionParams {
+            stiffness: std::array::from_fn(row),
+            force: [base[0], base[1], base[2]],
+            start_stiffness: [row(3), row(4)],
+            start_force: [base[3], base[4]],
+            force_input: false,
+            quantities: match touchdown {
+                true => vec![
                     quantity("touchdown", "m", 5),
                     quantity("sagbend_moment", "N.m", 6),
-                ]),
-            );
-        }
-        Ok(SectionUnit::of_table(name, "static_section", parameters))
+                ],
+                false => Vec::new(),
+            },
+        };
+        Ok(SectionUnit::new(
+            name,
+            Parameters::Static(Box::new(parameters)),
+        ))
     }
 
     /// A section's static response with its end held where the equilibrium

@@ -1,24 +1,62 @@
 //! A unit a structure writes out for one of its sections (or its twin): its
-//! name, kind, parameters, effects, first guesses and sub-steps. A section of
-//! the `nonlinear` unit (the `nonlinear` and `linear` fidelities, `reduced`
-//! about the equilibrium, the twin) carries the unit's own typed parameters
-//! (`NonlinearParams`, the type the unit deserialises): the statics and the
-//! fidelities set its fields, not TOML keys. It becomes the scene's
-//! `[[units]]` table once, when the structure hands its units to the scene
-//! (`into_value`).
+//! name, parameters, effects, first guesses and sub-steps. Its parameters
+//! are its kind's own type (`NonlinearParams`, `CableParams`, ...: the type
+//! the unit deserialises), so the statics and the fidelities set fields, not
+//! TOML keys; only an external FMU's are the table the scene gives. It
+//! becomes the scene's `[[units]]` table once, when the structure hands its
+//! units to the scene (`into_value`).
 
+use slender_units::cable::CableParams;
+use slender_units::chord::ChordParams;
 use slender_units::nonlinear::NonlinearParams;
+use slender_units::reduced::unit::ReducedParams;
+use slender_units::static_section::StaticSectionParams;
 use std::collections::BTreeMap;
 use toml::{Table, Value};
 
-/// The parameters of a written-out unit.
+/// The parameters of a written-out unit: each kind's own type (the one its
+/// unit deserialises), or an external FMU's table as the scene gives it.
 #[derive(Clone, Debug)]
 pub(super) enum Parameters {
-    /// A `nonlinear` unit's, typed.
+    /// A `nonlinear` unit's (`nonlinear`, `linear`, `reduced` about the
+    /// equilibrium, the twin).
     Nonlinear(Box<NonlinearParams>),
-    /// Another kind's, as its parameter table (a cable, a static section, a
-    /// chord, seed 002's reduced section, an external FMU).
-    Table(Table),
+    /// A `cable` unit's.
+    Cable(Box<CableParams>),
+    /// A `static_section` unit's.
+    Static(Box<StaticSectionParams>),
+    /// A `chord` unit's (`beam`, `span`).
+    Chord(Box<ChordParams>),
+    /// Seed 002's `reduced` unit's (`reduced` about the stress-free state).
+    Reduced(Box<ReducedParams>),
+    /// An external FMU's `fmu` parameters, as the scene gives them.
+    Fmu(Table),
+}
+
+impl Parameters {
+    /// The kind of unit that takes them.
+    pub(super) fn kind(&self) -> &'static str {
+        match self {
+            Parameters::Nonlinear(_) => "nonlinear",
+            Parameters::Cable(_) => "cable",
+            Parameters::Static(_) => "static_section",
+            Parameters::Chord(_) => "chord",
+            Parameters::Reduced(_) => "reduced",
+            Parameters::Fmu(_) => "fmu",
+        }
+    }
+
+    /// As the unit's `parameters` table.
+    fn into_table(self) -> Result<Table, toml::ser::Error> {
+        match self {
+            Parameters::Nonlinear(p) => Table::try_from(&*p),
+            Parameters::Cable(p) => Table::try_from(&*p),
+            Parameters::Static(p) => Table::try_from(&*p),
+            Parameters::Chord(p) => Table::try_from(&*p),
+            Parameters::Reduced(p) => Table::try_from(&*p),
+            Parameters::Fmu(t) => Ok(t),
+        }
+    }
 }
 
 /// A unit a structure writes out.
@@ -26,8 +64,7 @@ pub(super) enum Parameters {
 pub(super) struct SectionUnit {
     /// The unit's name in the scene (`<structure>_<section>`).
     pub name: String,
-    /// Its kind (`slender kinds`).
-    pub kind: &'static str,
+    /// Its parameters (they say its kind).
     pub parameters: Parameters,
     /// The effects it asks for, where its kind switches them.
     pub effects: Option<Vec<&'static str>>,
@@ -40,22 +77,13 @@ pub(super) struct SectionUnit {
 impl SectionUnit {
     /// A `nonlinear` unit named `name` with `parameters`.
     pub(super) fn nonlinear(name: String, parameters: NonlinearParams) -> SectionUnit {
-        SectionUnit::with(
-            name,
-            "nonlinear",
-            Parameters::Nonlinear(Box::new(parameters)),
-        )
+        SectionUnit::new(name, Parameters::Nonlinear(Box::new(parameters)))
     }
 
-    /// A unit of `kind` named `name` with the parameter table `parameters`.
-    pub(super) fn of_table(name: String, kind: &'static str, parameters: Table) -> SectionUnit {
-        SectionUnit::with(name, kind, Parameters::Table(parameters))
-    }
-
-    fn with(name: String, kind: &'static str, parameters: Parameters) -> SectionUnit {
+    /// A unit named `name` with `parameters`.
+    pub(super) fn new(name: String, parameters: Parameters) -> SectionUnit {
         SectionUnit {
             name,
-            kind,
             parameters,
             effects: None,
             inputs: BTreeMap::new(),
@@ -73,7 +101,7 @@ impl SectionUnit {
     pub(super) fn nonlinear_mut(&mut self) -> Option<&mut NonlinearParams> {
         match &mut self.parameters {
             Parameters::Nonlinear(p) => Some(p),
-            Parameters::Table(_) => None,
+            _ => None,
         }
     }
 
@@ -81,7 +109,7 @@ impl SectionUnit {
     pub(super) fn section_parameters(&self, key: &str) -> Result<&NonlinearParams, String> {
         match &self.parameters {
             Parameters::Nonlinear(p) => Ok(p),
-            Parameters::Table(_) => Err(format!("`{key}`: the section is not a `nonlinear` unit")),
+            _ => Err(format!("`{key}`: the section is not a `nonlinear` unit")),
         }
     }
 
@@ -94,14 +122,12 @@ impl SectionUnit {
     /// The unit as a table of the scene's `[[units]]`: the one place its
     /// typed parameters are written as TOML values.
     pub(super) fn into_value(self) -> Result<Value, String> {
-        let parameters = match self.parameters {
-            Parameters::Nonlinear(p) => Table::try_from(&*p)
-                .map_err(|e| format!("unit `{}`: its parameters as TOML: {e}", self.name))?,
-            Parameters::Table(t) => t,
-        };
+        let kind = self.parameters.kind();
+        let parameters = (self.parameters.into_table())
+            .map_err(|e| format!("unit `{}`: its parameters as TOML: {e}", self.name))?;
         let mut unit = Table::new();
         unit.insert("name".into(), Value::String(self.name));
-        unit.insert("kind".into(), Value::String(self.kind.into()));
+        unit.insert("kind".into(), Value::String(kind.into()));
         if let Some(effects) = self.effects {
             let words = effects.into_iter().map(|e| Value::String(e.into()));
             unit.insert("effects".into(), Value::Array(words.collect()));

@@ -32,7 +32,7 @@ mod products;
 mod sampled;
 
 pub(super) use checks::validate;
-pub(super) use sampled::Sampling;
+pub use sampled::Sampling;
 
 use super::NonlinearSection;
 use super::params::Integrator;

@@ -57,8 +57,13 @@ pub struct Sampling {
     pub tolerance: f64,
 }
 
+impl Sampling {
+    /// The trained forces' relative residual when the scene gives none.
+    pub const DEFAULT_TOLERANCE: f64 = 1e-3;
+}
+
 fn default_sampling_tolerance() -> f64 {
-    1e-3
+    Sampling::DEFAULT_TOLERANCE
 }
 
 /// Why a section over a stinger's rollers is not sampled.
