@@ -3,10 +3,10 @@
 //! on. Outside the grid the edge values hold (a flat apron).
 
 use crate::contract::{UnitError, require_finite};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Depths (m, positive down) at the grid's nodes.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Bathymetry {
     /// The grid's x and y coordinates (m), each increasing, at least two.

@@ -8,10 +8,10 @@
 use crate::contract::{UnitError, require_finite, require_non_negative, require_positive};
 use crate::sea::spectrum::Spectrum;
 use crate::signal::sine::Sine;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The 3D line's parameters.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Line3dParams {
     /// Unstretched length (m).
@@ -85,7 +85,7 @@ pub struct Line3dParams {
 }
 
 /// An end of the line: its position at the start and its condition.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct EndSpec {
     /// Position at t0 (m): x, y, z (z up).
@@ -115,7 +115,7 @@ impl EndSpec {
 }
 
 /// How an end is held or loaded.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum EndCondition {
     /// Held at its position.
@@ -134,7 +134,7 @@ pub enum EndCondition {
 /// The seabed: a plane through (0, 0, -depth) with slopes dz/dx and dz/dy,
 /// or a bathymetry grid; normal contact by a penalty spring and damper per
 /// unit length, and Coulomb friction regularised by a stick velocity.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Seabed {
     /// Depth of the seabed plane below z = 0 at x = y = 0 (m).
@@ -164,7 +164,7 @@ pub struct Seabed {
 }
 
 /// One row of the current table.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CurrentPoint {
     /// Depth below z = 0 (m, positive down).
@@ -178,7 +178,7 @@ pub struct CurrentPoint {
 
 /// Airy waves: a sea state's components (or sines given), travelling towards
 /// a heading, on water of a depth (infinite when absent).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Waves {
     /// The elevation's spectrum (seeded components), or ...

@@ -17,8 +17,10 @@
 use super::layout::{Layout, SectionLayout, SectionOutputs, choice_of};
 use super::sections::{Cut, Fidelity, SectionFile, cuts_of};
 use super::spec::typed;
+use super::unit::{Parameters, SectionUnit};
 use super::{Written, reference_name, unit_name};
 use serde::Deserialize;
+use slender_units::line3d::params::EndSpec;
 use slender_units::line3d::{EndCondition, Line3d, Line3dParams};
 use slender_units::{Driver, Time, Unit};
 use toml::{Table, Value};
@@ -41,8 +43,8 @@ pub(super) fn is_3d(structure: &Table) -> bool {
     kind.and_then(Value::as_str) == Some("line3d")
 }
 
-/// The model's parameters without `kind`, and the line they make.
-fn model_of(model: &Table) -> Result<(Table, Line3dParams), String> {
+/// The line the model makes (its parameters without `kind`), checked.
+fn model_of(model: &Table) -> Result<Line3dParams, String> {
     let mut parameters = model.clone();
     parameters.remove("kind");
     let params: Line3dParams = typed("structure.model", &parameters)?;
@@ -56,13 +58,13 @@ fn model_of(model: &Table) -> Result<(Table, Line3dParams), String> {
             ));
         }
     }
-    Ok((parameters, params))
+    Ok(params)
 }
 
 /// Writes out a 3D line's `[structure]` at `t0` (its statics solved there).
 pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
     let file: Structure3dFile = typed("structure", structure)?;
-    let (parameters, params) = model_of(&file.model)?;
+    let params = model_of(&file.model)?;
     let cuts = cuts_of(&file.sections, params.length)?;
     for (k, cut) in cuts.iter().enumerate() {
         refuse_planar(cut, k, cuts.len(), &params)?;
@@ -71,32 +73,31 @@ pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
     let mut units = Vec::new();
     let mut connections = Vec::new();
     for (k, cut) in cuts.iter().enumerate() {
-        let elements = cut.elements.unwrap_or_else(|| mesh_of(cut, &params));
-        let mut section = parameters.clone();
-        section.insert("length".into(), Value::Float(cut.to - cut.from));
-        section.insert("elements".into(), Value::Integer(elements as i64));
+        let mut section = params.clone();
+        section.length = cut.to - cut.from;
+        section.elements = cut.elements.unwrap_or_else(|| mesh_of(cut, &params));
         if k > 0 {
-            section.insert("start".into(), cut_end(shape.at(cut.from), "force"));
+            section.start = cut_end(shape.at(cut.from), EndCondition::Force);
         }
         if k + 1 < cuts.len() {
-            section.insert("end".into(), cut_end(shape.at(cut.to), "velocity"));
+            section.end = cut_end(shape.at(cut.to), EndCondition::Velocity);
         }
-        if cut.fidelity == Fidelity::Linear {
-            section.insert("linear".into(), Value::Boolean(true));
-        }
+        section.linear |= cut.fidelity == Fidelity::Linear;
         let name = unit_name(&file.name, &cut.name);
         if k > 0 {
             let lower = unit_name(&file.name, &cuts[k - 1].name);
             connections.extend(cut_links(&lower, &name));
         }
-        units.push(unit_table(&name, kind_of(cut.fidelity), section));
+        let section = Box::new(section);
+        let parameters = match cut.fidelity {
+            Fidelity::Static => Parameters::Catenary3d(section),
+            _ => Parameters::Line3d(section),
+        };
+        units.push(SectionUnit::new(name, parameters).into_value()?);
     }
     if file.reference {
-        units.push(unit_table(
-            &reference_name(&file.name),
-            "line3d",
-            parameters,
-        ));
+        let twin = Parameters::Line3d(Box::new(params));
+        units.push(SectionUnit::new(reference_name(&file.name), twin).into_value()?);
     }
     Ok(Written {
         units,
@@ -111,21 +112,12 @@ fn mesh_of(cut: &Cut, params: &Line3dParams) -> usize {
     (share.round() as usize).max(2)
 }
 
-/// The unit kind of a 3D section at `fidelity`.
-fn kind_of(fidelity: Fidelity) -> &'static str {
-    if fidelity == Fidelity::Static {
-        "catenary3d"
-    } else {
-        "line3d"
-    }
-}
-
 /// What a 3D structure's runs show (for `slender fidelity`): each section's
 /// unit and the outputs carrying its end forces (x, y, z), its touchdown
 /// point and its largest bending moment (a catenary section has none).
 pub(super) fn layout(structure: &Table) -> Result<Layout, String> {
     let file: Structure3dFile = typed("structure", structure)?;
-    let (_, params) = model_of(&file.model)?;
+    let params = model_of(&file.model)?;
     let cuts = cuts_of(&file.sections, params.length)?;
     let seabed = params.seabed.is_some();
     let forces = |side: &str| {
@@ -238,15 +230,15 @@ fn static_shape(params: &Line3dParams, t0: Time) -> Result<Shape, String> {
     })
 }
 
-/// A cut end at `position`, coupled by `condition`.
-fn cut_end(position: [f64; 3], condition: &str) -> Value {
-    let mut end = Table::new();
-    end.insert(
-        "position".into(),
-        Value::Array(position.iter().map(|&x| Value::Float(x)).collect()),
-    );
-    end.insert("condition".into(), Value::String(condition.into()));
-    Value::Table(end)
+/// A cut end at `position` (m), coupled by `condition`.
+fn cut_end(position: [f64; 3], condition: EndCondition) -> EndSpec {
+    EndSpec {
+        position,
+        condition,
+        motion: Default::default(),
+        fade_in: 0.0,
+        released_at: None,
+    }
 }
 
 /// The cut between `lower` and `upper`: the lower end follows the upper

@@ -8,6 +8,7 @@
 
 use slender_units::cable::CableParams;
 use slender_units::chord::ChordParams;
+use slender_units::line3d::Line3dParams;
 use slender_units::nonlinear::NonlinearParams;
 use slender_units::reduced::unit::ReducedParams;
 use slender_units::static_section::StaticSectionParams;
@@ -29,6 +30,10 @@ pub(super) enum Parameters {
     Chord(Box<ChordParams>),
     /// Seed 002's `reduced` unit's (`reduced` about the stress-free state).
     Reduced(Box<ReducedParams>),
+    /// A `line3d` unit's (a 3D line's `nonlinear` and `linear` sections, its twin).
+    Line3d(Box<Line3dParams>),
+    /// A `catenary3d` unit's (a 3D line's `static` first section).
+    Catenary3d(Box<Line3dParams>),
     /// An external FMU's `fmu` parameters, as the scene gives them.
     Fmu(Table),
 }
@@ -42,6 +47,8 @@ impl Parameters {
             Parameters::Static(_) => "static_section",
             Parameters::Chord(_) => "chord",
             Parameters::Reduced(_) => "reduced",
+            Parameters::Line3d(_) => "line3d",
+            Parameters::Catenary3d(_) => "catenary3d",
             Parameters::Fmu(_) => "fmu",
         }
     }
@@ -54,6 +61,7 @@ impl Parameters {
             Parameters::Static(p) => Table::try_from(&*p),
             Parameters::Chord(p) => Table::try_from(&*p),
             Parameters::Reduced(p) => Table::try_from(&*p),
+            Parameters::Line3d(p) | Parameters::Catenary3d(p) => Table::try_from(&*p),
             Parameters::Fmu(t) => Ok(t),
         }
     }
