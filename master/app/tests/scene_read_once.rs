@@ -8,7 +8,7 @@ use slender_app::fidelity::{FidelityPlan, run_fidelity};
 use slender_app::run::{RunOptions, run_scene};
 use slender_app::study::Design;
 use slender_app::study::scene_with_overrides;
-use slender_scene::texts_parsed;
+use slender_scene::{texts_parsed, texts_written};
 use std::path::{Path, PathBuf};
 
 fn example(name: &str) -> PathBuf {
@@ -20,7 +20,7 @@ fn example(name: &str) -> PathBuf {
 #[test]
 fn a_set_run_and_a_fidelity_study_parse_the_file_once() {
     let scene = example("structure_hanging_pipe.toml");
-    let before = texts_parsed();
+    let (before, written) = (texts_parsed(), texts_written());
     let set = ["simulation.duration=0.5".to_owned()];
     let loaded = scene_with_overrides(&scene, &set).expect("the scene with --set");
     let options = RunOptions {
@@ -30,6 +30,7 @@ fn a_set_run_and_a_fidelity_study_parse_the_file_once() {
     };
     run_scene(&loaded, &options).expect("the run");
     assert_eq!(texts_parsed() - before, 1, "a --set run");
+    assert_eq!(texts_written(), written, "a --set run writes no scene text");
 
     let before = texts_parsed();
     let plan = FidelityPlan {
@@ -48,4 +49,8 @@ fn a_set_run_and_a_fidelity_study_parse_the_file_once() {
     // The reference and two combinations, each a scene of its own.
     assert_eq!(report.rows.len(), 3);
     assert_eq!(texts_parsed() - before, 1, "a fidelity study of three runs");
+    assert_eq!(texts_written(), written, "a fidelity study writes no scene text");
+    // What counts: `slender expand` writes the expanded text once.
+    loaded.source().expect("the expanded text");
+    assert_eq!(texts_written(), written + 1);
 }

@@ -15,6 +15,7 @@ use slender_units::{Hold, Time};
 use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use toml::{Spanned, Table, Value};
 
 /// What a `[structure]` writes out.
@@ -52,6 +53,16 @@ pub(crate) fn append(
     (written, advisories)
 }
 
+/// Scene texts written out in this process (`texts_written`).
+static TEXTS_WRITTEN: AtomicUsize = AtomicUsize::new(0);
+
+/// How many expanded scene texts this process has written (`slender
+/// expand`, an FMU's export): what a test counts to show that a run and a
+/// study make none.
+pub fn texts_written() -> usize {
+    TEXTS_WRITTEN.load(Ordering::Relaxed)
+}
+
 /// The scene text `source` (its keys as `edited`, where changed) as it
 /// runs: its `[structure]` and `[mooring]` replaced by the units and
 /// connections they write out, when they do (what `slender expand` prints).
@@ -60,6 +71,7 @@ pub(crate) fn expanded_text(
     edited: Option<&Table>,
     written: Option<&Written>,
 ) -> Result<String, String> {
+    TEXTS_WRITTEN.fetch_add(1, Ordering::Relaxed);
     let mut table: Table = match edited {
         Some(table) => table.clone(),
         None => toml::from_str(source).map_err(|e| e.to_string())?,

@@ -24,6 +24,7 @@ pub use slender_kinds as kinds;
 pub use slender_kinds::{fields, words};
 
 pub use draft::{Draft, texts_parsed};
+pub use expansion::texts_written;
 use slender_coupling::Master;
 use slender_coupling::error::did_you_mean;
 use slender_coupling::system::{Link, System};
