@@ -49,7 +49,11 @@ fn a_set_run_and_a_fidelity_study_parse_the_file_once() {
     // The reference and two combinations, each a scene of its own.
     assert_eq!(report.rows.len(), 3);
     assert_eq!(texts_parsed() - before, 1, "a fidelity study of three runs");
-    assert_eq!(texts_written(), written, "a fidelity study writes no scene text");
+    assert_eq!(
+        texts_written(),
+        written,
+        "a fidelity study writes no scene text"
+    );
     // What counts: `slender expand` writes the expanded text once.
     loaded.source().expect("the expanded text");
     assert_eq!(texts_written(), written + 1);

@@ -29,14 +29,16 @@
 //! `initial_offset` counted from there, and each line solves its statics
 //! with its end at the fairlead so placed.
 
+use crate::structure::Layout;
 use crate::structure::StructureError;
-use crate::structure::{self, link, unit_table};
+use crate::structure::{self, Line3dStructure, Parameters, SectionFile, SectionUnit, link};
 use serde::Deserialize;
 use slender_units::Time;
 use slender_units::body::mooring::{MooredLine, MooringStatics, equilibrium, fairlead_position};
 use slender_units::body::{Body, BodyParams};
-use slender_units::line3d::Line3dParams;
 use slender_units::line3d::catenary_section::CatenarySection;
+use slender_units::line3d::params::EndSpec;
+use slender_units::line3d::{EndCondition, Line3dParams};
 use toml::{Table, Value};
 
 /// `[mooring]` as written.
@@ -66,7 +68,7 @@ struct LineFile {
     #[serde(default)]
     model: Table,
     #[serde(default)]
-    sections: Vec<Value>,
+    sections: Vec<SectionFile>,
     #[serde(default)]
     reference: bool,
     /// The time (s) the line breaks at its fairlead.
@@ -80,7 +82,6 @@ pub struct Mooring {
     pub name: String,
     /// The body's parameters as written.
     pub body: BodyParams,
-    body_table: Table,
     /// An external FMU in the body's place (`mooring.body.fmu`: the `fmu`
     /// kind's parameters), the parameters then describing it for the statics.
     fmu: Option<Table>,
@@ -93,9 +94,9 @@ struct Line {
     file: LineFile,
     /// The index of its fairlead among the body's.
     fairlead: usize,
-    /// Its model (`kind` left out) with the anchor as its start.
-    model: Table,
-    params: Line3dParams,
+    /// The line from its anchor (its end placed at the fairlead when the
+    /// system is written out), cut into its sections.
+    structure: Line3dStructure,
 }
 
 impl Mooring {
@@ -154,7 +155,6 @@ impl Mooring {
         Ok(Mooring {
             name,
             body,
-            body_table,
             fmu,
             lines,
             statics: file.statics,
@@ -166,7 +166,7 @@ impl Mooring {
     pub fn catenaries(&self) -> Result<Vec<MooredLine>, StructureError> {
         (self.lines.iter())
             .map(|l| {
-                let mut params = l.params.clone();
+                let mut params = l.structure.params.clone();
                 params.end.condition = slender_units::line3d::EndCondition::Fixed;
                 let line = CatenarySection::new(params).map_err(|e| {
                     format!(
@@ -205,16 +205,11 @@ impl Mooring {
             .collect()
     }
 
-    /// Each line's name and the `[structure]` table it is written out as
-    /// (its fairlead where the body's initial offset puts it, without the
-    /// statics): what a study reads the line's sections and units from.
-    pub fn line_structures(&self) -> Vec<(String, Table)> {
-        let offset = self.body.initial_offset;
+    /// Each line's name and layout (its sections, units and the outputs a
+    /// study reads), its fairlead where the body's initial offset puts it.
+    pub fn line_layouts(&self) -> Vec<(String, Layout)> {
         (self.lines.iter())
-            .map(|l| {
-                let at = fairlead_position(&self.body, l.fairlead, &offset);
-                (l.file.name.clone(), l.structure(at))
-            })
+            .map(|l| (l.file.name.clone(), l.structure.layout()))
             .collect()
     }
 
@@ -229,13 +224,14 @@ impl Mooring {
                 *o += e;
             }
         }
-        let mut body = self.body_table.clone();
-        body.insert("initial_offset".into(), floats(&offset));
-        let body_unit = match &self.fmu {
-            Some(fmu) => unit_table(&self.name, "fmu", fmu.clone()),
-            None => unit_table(&self.name, "body", body),
+        let body = match &self.fmu {
+            Some(fmu) => Parameters::Fmu(fmu.clone()),
+            None => Parameters::Body(Box::new(BodyParams {
+                initial_offset: offset,
+                ..self.body.clone()
+            })),
         };
-        let mut units = vec![body_unit];
+        let mut units = vec![SectionUnit::new(self.name.clone(), body).into_value()?];
         let mut connections = Vec::new();
         let mut advisories = Vec::new();
         for line in &self.lines {
@@ -284,60 +280,45 @@ impl Line {
                 ));
             }
         }
-        let mut start = Table::new();
-        start.insert("position".into(), floats(&file.anchor));
-        model.insert("start".into(), Value::Table(start));
-        model.insert("end".into(), end_table([0.0; 3]));
-        let mut parameters = model.clone();
-        parameters.remove("kind");
-        let params: Line3dParams = structure::typed(&format!("{key}.model"), &parameters)?;
+        model.remove("kind");
+        // The ends are the anchor and the fairlead: typed with the model
+        // and set below (the fairlead's position when it is written out).
+        let placeholder = Value::try_from(end_at([0.0; 3], EndCondition::Fixed))
+            .map_err(|e| format!("`{key}`: {e}"))?;
+        for end in ["start", "end"] {
+            model.insert(end.into(), placeholder.clone());
+        }
+        let mut params: Line3dParams = structure::typed(&format!("{key}.model"), &model)?;
+        params.start = end_at(file.anchor, EndCondition::Fixed);
+        params.end = end_at([0.0; 3], EndCondition::Velocity);
+        let sections = match file.sections.is_empty() {
+            true => vec![SectionFile::whole("full")],
+            false => file.sections.clone(),
+        };
+        let structure = Line3dStructure::new(file.name.clone(), params, &sections, file.reference)
+            .map_err(|e| e.replace("`structure", &format!("`{key}")))?;
         Ok(Line {
             file: file.clone(),
             fairlead,
-            model,
-            params,
+            structure,
         })
     }
 
-    /// The line as a 3D `[structure]` with its end at `fairlead` (m), written out.
+    /// The line written out with its end at `fairlead` (m), released at
+    /// its `break_at`.
     fn expand(&self, fairlead: [f64; 3], t0: Time) -> Result<structure::Written, String> {
-        let table = self.structure(fairlead);
-        let key = format!("`mooring.lines.{}", self.file.name);
-        structure::expand(&Value::Table(table), t0)
-            .map_err(|e| e.message.replace("`structure", &key))
-    }
-
-    /// The line as the `[structure]` table it is written out as, its end at
-    /// `fairlead` (m).
-    fn structure(&self, fairlead: [f64; 3]) -> Table {
-        let mut model = self.model.clone();
-        let mut end = end_table(fairlead);
-        if let (Some(at), Value::Table(t)) = (self.file.break_at, &mut end) {
-            t.insert("released_at".into(), Value::Float(at));
-        }
-        model.insert("end".into(), end);
-        let mut table = Table::new();
-        table.insert("name".into(), Value::String(self.file.name.clone()));
-        table.insert("model".into(), Value::Table(model));
-        let sections = if self.file.sections.is_empty() {
-            let mut whole = Table::new();
-            whole.insert("name".into(), Value::String("full".into()));
-            vec![Value::Table(whole)]
-        } else {
-            self.file.sections.clone()
+        let mut line = self.structure.clone();
+        line.params.end = EndSpec {
+            released_at: self.file.break_at,
+            ..end_at(fairlead, EndCondition::Velocity)
         };
-        table.insert("sections".into(), Value::Array(sections));
-        table.insert("reference".into(), Value::Boolean(self.file.reference));
-        table
+        let key = format!("`mooring.lines.{}", self.file.name);
+        line.write(t0).map_err(|e| e.replace("`structure", &key))
     }
 
     /// The unit of its top section.
     fn top_unit(&self) -> String {
-        let last = (self.file.sections.last())
-            .and_then(|s| s.get("name"))
-            .and_then(Value::as_str)
-            .unwrap_or("full");
-        structure::unit_name(&self.file.name, last)
+        self.structure.top_unit()
     }
 
     /// Its top moves with the fairlead of `body` and pulls it; its twin
@@ -369,16 +350,15 @@ impl Line {
     }
 }
 
-fn floats(values: &[f64]) -> Value {
-    Value::Array(values.iter().map(|&x| Value::Float(x)).collect())
-}
-
-/// A line's end at `position` moved by coupled velocities.
-fn end_table(position: [f64; 3]) -> Value {
-    let mut end = Table::new();
-    end.insert("position".into(), floats(&position));
-    end.insert("condition".into(), Value::String("velocity".into()));
-    Value::Table(end)
+/// A line's end at `position` (m), held or moved as `condition` says.
+fn end_at(position: [f64; 3], condition: EndCondition) -> EndSpec {
+    EndSpec {
+        position,
+        condition,
+        motion: Default::default(),
+        fade_in: 0.0,
+        released_at: None,
+    }
 }
 
 /// The scene's `[mooring]` read and checked; None when it has none.

@@ -6,12 +6,12 @@
 //! sample).
 
 use crate::contract::{UnitError, require_finite};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The table as a scene gives it: the times and, per degree of freedom, the
 /// displacement from rest at each (m for surge, sway, heave; rad for roll,
 /// pitch, yaw). A degree of freedom left out stays at rest.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MotionTable {
     /// Sample times (s), strictly increasing.

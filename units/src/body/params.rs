@@ -11,13 +11,13 @@ use super::waves::RaoTable;
 use crate::contract::{UnitError, require_finite, require_non_negative, require_positive};
 use crate::line3d::params::Waves;
 use crate::signal::sine::Sine;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A 6x6 matrix as rows (surge, sway, heave, roll, pitch, yaw).
 pub type Matrix6Rows = [[f64; 6]; 6];
 
 /// The rigid body's parameters.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodyParams {
     /// Structural mass (kg).
@@ -112,7 +112,7 @@ pub struct BodyParams {
 }
 
 /// A named attachment point.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Fairlead {
     /// Its name: the prefix of its ports (`<name>_position_x`, `<name>_force_x`).

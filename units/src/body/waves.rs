@@ -14,10 +14,10 @@ use crate::contract::{UnitError, require_finite};
 use crate::line3d::params::Waves;
 use crate::line3d::waves::wavenumber;
 use crate::signal::sine::Sine;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A response amplitude operator per degree of freedom.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RaoTable {
     /// Wave angular frequencies (rad/s), increasing.

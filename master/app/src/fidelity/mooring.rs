@@ -13,7 +13,7 @@
 use super::Choice;
 use super::subject::{Reader, SectionName, Subject};
 use slender_scene::mooring::Mooring;
-use slender_scene::structure::{Layout, layout, write_choice};
+use slender_scene::structure::{Layout, write_choice};
 use toml::{Table, Value};
 
 /// The body's motions: the quantities' suffixes and the body's outputs.
@@ -37,7 +37,7 @@ impl MooringLines {
     /// The scene's `[mooring]` read; the error names the key.
     pub(super) fn of(table: &Table) -> Result<MooringLines, String> {
         let mooring = Mooring::parse(table.get("mooring").ok_or("no `[mooring]`")?)?;
-        let lines = line_layouts(&mooring)?;
+        let lines = mooring.line_layouts();
         Ok(MooringLines {
             body: mooring.name,
             lines,
@@ -57,23 +57,6 @@ impl MooringLines {
             })
             .map(move |(l, _)| (l.as_str(), section))
     }
-}
-
-/// Each line's name and layout (its sections, units and choices).
-fn line_layouts(mooring: &Mooring) -> Result<Vec<(String, Layout)>, String> {
-    (mooring.line_structures().into_iter())
-        .map(|(name, structure)| {
-            let mut scene = Table::new();
-            scene.insert("structure".into(), Value::Table(structure));
-            let layout = layout(&scene)
-                .map_err(|e| {
-                    e.message
-                        .replace("`structure", &format!("`mooring.lines.{name}"))
-                })?
-                .ok_or("no line structure")?;
-            Ok((name, layout))
-        })
-        .collect()
 }
 
 /// The `[[mooring.lines]]` tables of a scene.
@@ -157,7 +140,7 @@ impl Subject for MooringLines {
             }
         }
         let mooring = Mooring::parse(table.get("mooring").ok_or("no `[mooring]`")?)?;
-        let tops = (line_layouts(&mooring)?.into_iter())
+        let tops = (mooring.line_layouts().into_iter())
             .map(|(_, layout)| {
                 let top = layout.sections.last().ok_or("a line without sections")?;
                 Ok(format!("{}.end_tension", top.unit))

@@ -61,49 +61,101 @@ fn model_of(model: &Table) -> Result<Line3dParams, String> {
     Ok(params)
 }
 
+/// A 3D line's `[structure]` read and checked: its name, the line, its
+/// sections and whether it has a twin. A `[mooring]` makes one per line.
+#[derive(Clone, Debug)]
+pub(crate) struct Line3dStructure {
+    /// The prefix of its units' names.
+    pub name: String,
+    /// The whole line.
+    pub params: Line3dParams,
+    /// Its sections, by arc length.
+    pub(super) cuts: Vec<Cut>,
+    /// It has a twin, the whole line as one unit.
+    pub reference: bool,
+}
+
+impl Line3dStructure {
+    /// Reads a `[structure]` whose model is a 3D line; the error names the key.
+    pub(super) fn parse(structure: &Table) -> Result<Line3dStructure, String> {
+        let file: Structure3dFile = typed("structure", structure)?;
+        Line3dStructure::new(
+            file.name,
+            model_of(&file.model)?,
+            &file.sections,
+            file.reference,
+        )
+    }
+
+    /// The line `params` named `name`, cut into `sections`.
+    pub(crate) fn new(
+        name: String,
+        params: Line3dParams,
+        sections: &[SectionFile],
+        reference: bool,
+    ) -> Result<Line3dStructure, String> {
+        let cuts = cuts_of(sections, params.length)?;
+        Ok(Line3dStructure {
+            name,
+            params,
+            cuts,
+            reference,
+        })
+    }
+
+    /// The unit of its last section (the one at the line's end).
+    pub(crate) fn top_unit(&self) -> String {
+        let last = self.cuts.last().map_or("", |c| c.name.as_str());
+        unit_name(&self.name, last)
+    }
+
+    /// Writes the line out at `t0` (its statics solved there).
+    pub(crate) fn write(&self, t0: Time) -> Result<Written, String> {
+        let (params, cuts) = (&self.params, &self.cuts);
+        for (k, cut) in cuts.iter().enumerate() {
+            refuse_planar(cut, k, cuts.len(), params)?;
+        }
+        let shape = static_shape(params, t0)?;
+        let mut units = Vec::new();
+        let mut connections = Vec::new();
+        for (k, cut) in cuts.iter().enumerate() {
+            let mut section = params.clone();
+            section.length = cut.to - cut.from;
+            section.elements = cut.elements.unwrap_or_else(|| mesh_of(cut, params));
+            if k > 0 {
+                section.start = cut_end(shape.at(cut.from), EndCondition::Force);
+            }
+            if k + 1 < cuts.len() {
+                section.end = cut_end(shape.at(cut.to), EndCondition::Velocity);
+            }
+            section.linear |= cut.fidelity == Fidelity::Linear;
+            let name = unit_name(&self.name, &cut.name);
+            if k > 0 {
+                let lower = unit_name(&self.name, &cuts[k - 1].name);
+                connections.extend(cut_links(&lower, &name));
+            }
+            let section = Box::new(section);
+            let parameters = match cut.fidelity {
+                Fidelity::Static => Parameters::Catenary3d(section),
+                _ => Parameters::Line3d(section),
+            };
+            units.push(SectionUnit::new(name, parameters).into_value()?);
+        }
+        if self.reference {
+            let twin = Parameters::Line3d(Box::new(params.clone()));
+            units.push(SectionUnit::new(reference_name(&self.name), twin).into_value()?);
+        }
+        Ok(Written {
+            units,
+            connections,
+            advisories: Vec::new(),
+        })
+    }
+}
+
 /// Writes out a 3D line's `[structure]` at `t0` (its statics solved there).
 pub(super) fn expand(structure: &Table, t0: Time) -> Result<Written, String> {
-    let file: Structure3dFile = typed("structure", structure)?;
-    let params = model_of(&file.model)?;
-    let cuts = cuts_of(&file.sections, params.length)?;
-    for (k, cut) in cuts.iter().enumerate() {
-        refuse_planar(cut, k, cuts.len(), &params)?;
-    }
-    let shape = static_shape(&params, t0)?;
-    let mut units = Vec::new();
-    let mut connections = Vec::new();
-    for (k, cut) in cuts.iter().enumerate() {
-        let mut section = params.clone();
-        section.length = cut.to - cut.from;
-        section.elements = cut.elements.unwrap_or_else(|| mesh_of(cut, &params));
-        if k > 0 {
-            section.start = cut_end(shape.at(cut.from), EndCondition::Force);
-        }
-        if k + 1 < cuts.len() {
-            section.end = cut_end(shape.at(cut.to), EndCondition::Velocity);
-        }
-        section.linear |= cut.fidelity == Fidelity::Linear;
-        let name = unit_name(&file.name, &cut.name);
-        if k > 0 {
-            let lower = unit_name(&file.name, &cuts[k - 1].name);
-            connections.extend(cut_links(&lower, &name));
-        }
-        let section = Box::new(section);
-        let parameters = match cut.fidelity {
-            Fidelity::Static => Parameters::Catenary3d(section),
-            _ => Parameters::Line3d(section),
-        };
-        units.push(SectionUnit::new(name, parameters).into_value()?);
-    }
-    if file.reference {
-        let twin = Parameters::Line3d(Box::new(params));
-        units.push(SectionUnit::new(reference_name(&file.name), twin).into_value()?);
-    }
-    Ok(Written {
-        units,
-        connections,
-        advisories: Vec::new(),
-    })
+    Line3dStructure::parse(structure)?.write(t0)
 }
 
 /// The model's own element count over the section `cut` (at least 2).
@@ -116,43 +168,48 @@ fn mesh_of(cut: &Cut, params: &Line3dParams) -> usize {
 /// unit and the outputs carrying its end forces (x, y, z), its touchdown
 /// point and its largest bending moment (a catenary section has none).
 pub(super) fn layout(structure: &Table) -> Result<Layout, String> {
-    let file: Structure3dFile = typed("structure", structure)?;
-    let params = model_of(&file.model)?;
-    let cuts = cuts_of(&file.sections, params.length)?;
-    let seabed = params.seabed.is_some();
-    let forces = |side: &str| {
-        ["x", "y", "z"]
-            .map(|c| format!("{side}_force_{c}"))
-            .to_vec()
-    };
-    let sections = cuts
-        .iter()
-        .map(|cut| SectionLayout {
-            name: cut.name.clone(),
-            unit: unit_name(&file.name, &cut.name),
-            from: cut.from,
-            to: cut.to,
-            choice: choice_of(cut),
-            plain: cut.elements.is_none() && cut.substeps.is_none() && cut.options.is_none(),
-            mesh: mesh_of(cut, &params),
-            outputs: SectionOutputs {
-                start_force: forces("start"),
-                end_force: Some(forces("end")),
-                touchdown: seabed.then(|| "touchdown_arc".to_owned()),
-                sagbend_moment: (cut.fidelity != Fidelity::Static)
-                    .then(|| "largest_moment".to_owned()),
-                overbend_moment: None,
-                stations: false,
-            },
-        })
-        .collect();
-    Ok(Layout {
-        name: file.name,
-        sections,
-        seabed,
-        stinger: false,
-        planar: false,
-    })
+    Ok(Line3dStructure::parse(structure)?.layout())
+}
+
+impl Line3dStructure {
+    /// What its runs show (for `slender fidelity`).
+    pub(crate) fn layout(&self) -> Layout {
+        let (params, cuts) = (&self.params, &self.cuts);
+        let seabed = params.seabed.is_some();
+        let forces = |side: &str| {
+            ["x", "y", "z"]
+                .map(|c| format!("{side}_force_{c}"))
+                .to_vec()
+        };
+        let sections = cuts
+            .iter()
+            .map(|cut| SectionLayout {
+                name: cut.name.clone(),
+                unit: unit_name(&self.name, &cut.name),
+                from: cut.from,
+                to: cut.to,
+                choice: choice_of(cut),
+                plain: cut.elements.is_none() && cut.substeps.is_none() && cut.options.is_none(),
+                mesh: mesh_of(cut, params),
+                outputs: SectionOutputs {
+                    start_force: forces("start"),
+                    end_force: Some(forces("end")),
+                    touchdown: seabed.then(|| "touchdown_arc".to_owned()),
+                    sagbend_moment: (cut.fidelity != Fidelity::Static)
+                        .then(|| "largest_moment".to_owned()),
+                    overbend_moment: None,
+                    stations: false,
+                },
+            })
+            .collect();
+        Layout {
+            name: self.name.clone(),
+            sections,
+            seabed,
+            stinger: false,
+            planar: false,
+        }
+    }
 }
 
 /// Refuses what a 3D section cannot be yet: section `k` of `count` of the
@@ -265,13 +322,4 @@ fn cut_links(lower: &str, upper: &str) -> Vec<Value> {
             ]
         })
         .collect()
-}
-
-/// A `[[units]]` table of `kind`.
-pub(crate) fn unit_table(name: &str, kind: &str, parameters: Table) -> Value {
-    let mut unit = Table::new();
-    unit.insert("name".into(), Value::String(name.into()));
-    unit.insert("kind".into(), Value::String(kind.into()));
-    unit.insert("parameters".into(), Value::Table(parameters));
-    Value::Table(unit)
 }

@@ -46,8 +46,9 @@ pub use layout::{
     Layout, SectionLayout, SectionOutputs, layout, reference_name, takes_model_mesh, unit_name,
     write_choice, write_training,
 };
-pub(crate) use line3d::unit_table;
+pub(crate) use line3d::Line3dStructure;
 pub use sections::FIDELITIES;
+pub(crate) use sections::SectionFile;
 use sections::{Cut, Fidelity, Segment};
 use slender_units::Time;
 use slender_units::nonlinear::NonlinearParams;
@@ -55,7 +56,7 @@ use slender_units::nonlinear::params::{DofCondition, EndKind};
 use spec::Spec;
 pub(crate) use spec::typed;
 use toml::Value;
-use unit::{Parameters, SectionUnit};
+pub(crate) use unit::{Parameters, SectionUnit};
 
 /// What a `[structure]` writes out: its units and connections (as tables of
 /// the scene's `[[units]]` and `[[connections]]`), and the advisories on what

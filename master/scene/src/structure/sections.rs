@@ -176,9 +176,9 @@ impl Fidelity {
 
 /// A `[[structure.sections]]` entry as written (its keys checked by serde;
 /// its fidelity, a name or a table, read by `fidelity_of`).
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct SectionFile {
+pub(crate) struct SectionFile {
     name: String,
     /// Where it ends (m of arc length); none for the last.
     to: Option<f64>,
@@ -186,6 +186,21 @@ pub(super) struct SectionFile {
     elements: Option<i64>,
     substeps: Option<i64>,
     physical: Option<Value>,
+}
+
+impl SectionFile {
+    /// One section named `name` over the whole structure at its model's
+    /// fidelity.
+    pub(crate) fn whole(name: &str) -> SectionFile {
+        SectionFile {
+            name: name.into(),
+            to: None,
+            fidelity: None,
+            elements: None,
+            substeps: None,
+            physical: None,
+        }
+    }
 }
 
 /// The sections of `[structure]` as cuts of its `length` (m).

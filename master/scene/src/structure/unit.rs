@@ -6,6 +6,7 @@
 //! becomes the scene's `[[units]]` table once, when the structure hands its
 //! units to the scene (`into_value`).
 
+use slender_units::body::BodyParams;
 use slender_units::cable::CableParams;
 use slender_units::chord::ChordParams;
 use slender_units::line3d::Line3dParams;
@@ -18,7 +19,7 @@ use toml::{Table, Value};
 /// The parameters of a written-out unit: each kind's own type (the one its
 /// unit deserialises), or an external FMU's table as the scene gives it.
 #[derive(Clone, Debug)]
-pub(super) enum Parameters {
+pub(crate) enum Parameters {
     /// A `nonlinear` unit's (`nonlinear`, `linear`, `reduced` about the
     /// equilibrium, the twin).
     Nonlinear(Box<NonlinearParams>),
@@ -34,6 +35,8 @@ pub(super) enum Parameters {
     Line3d(Box<Line3dParams>),
     /// A `catenary3d` unit's (a 3D line's `static` first section).
     Catenary3d(Box<Line3dParams>),
+    /// A `body` unit's (a `[mooring]`'s body).
+    Body(Box<BodyParams>),
     /// An external FMU's `fmu` parameters, as the scene gives them.
     Fmu(Table),
 }
@@ -49,6 +52,7 @@ impl Parameters {
             Parameters::Reduced(_) => "reduced",
             Parameters::Line3d(_) => "line3d",
             Parameters::Catenary3d(_) => "catenary3d",
+            Parameters::Body(_) => "body",
             Parameters::Fmu(_) => "fmu",
         }
     }
@@ -62,6 +66,7 @@ impl Parameters {
             Parameters::Chord(p) => Table::try_from(&*p),
             Parameters::Reduced(p) => Table::try_from(&*p),
             Parameters::Line3d(p) | Parameters::Catenary3d(p) => Table::try_from(&*p),
+            Parameters::Body(p) => Table::try_from(&*p),
             Parameters::Fmu(t) => Ok(t),
         }
     }
@@ -69,7 +74,7 @@ impl Parameters {
 
 /// A unit a structure writes out.
 #[derive(Clone, Debug)]
-pub(super) struct SectionUnit {
+pub(crate) struct SectionUnit {
     /// The unit's name in the scene (`<structure>_<section>`).
     pub name: String,
     /// Its parameters (they say its kind).
@@ -89,7 +94,7 @@ impl SectionUnit {
     }
 
     /// A unit named `name` with `parameters`.
-    pub(super) fn new(name: String, parameters: Parameters) -> SectionUnit {
+    pub(crate) fn new(name: String, parameters: Parameters) -> SectionUnit {
         SectionUnit {
             name,
             parameters,
@@ -129,7 +134,7 @@ impl SectionUnit {
 
     /// The unit as a table of the scene's `[[units]]`: the one place its
     /// typed parameters are written as TOML values.
-    pub(super) fn into_value(self) -> Result<Value, String> {
+    pub(crate) fn into_value(self) -> Result<Value, String> {
         let kind = self.parameters.kind();
         let parameters = (self.parameters.into_table())
             .map_err(|e| format!("unit `{}`: its parameters as TOML: {e}", self.name))?;
