@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 
 /// A unit as the master holds it.
 pub struct UnitAdapter {
+    /// The unit's name in the system.
     pub name: String,
     driver: Driver,
     /// Input values for the next `initialize` or step.
@@ -22,6 +23,7 @@ pub struct UnitAdapter {
     /// Constant values of inputs nothing drives (first guess for looped inputs).
     pub start_inputs: Vec<f64>,
     saved: DriverSlot,
+    /// What the unit was asked to do in the run.
     pub counters: UnitCounters,
     /// Wall time charged to this unit by the master's sweeps and Jacobians.
     pub step_time: Duration,
@@ -42,6 +44,7 @@ pub struct UnitAdapter {
 }
 
 impl UnitAdapter {
+    /// The unit `unit` named `name`, its undriven inputs at `start_inputs`.
     pub fn new(name: String, unit: Box<dyn Unit>, start_inputs: Vec<f64>) -> UnitAdapter {
         let n_out = unit.description().outputs.len();
         let n_in = unit.description().inputs.len();
@@ -120,6 +123,7 @@ impl UnitAdapter {
             .map_err(|e| self.fail("set_substeps", Time::ZERO, 0, e))
     }
 
+    /// Sets how every input of the unit is held within a step.
     pub fn set_hold_all(&mut self, hold: Hold) -> Result<(), MasterError> {
         if self.driver.is_initialized() {
             return Err(MasterError::Invalid(format!(

@@ -5,6 +5,7 @@ use serde::Serialize;
 /// Per-unit counters.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct UnitCounters {
+    /// The unit's name.
     pub name: String,
     /// `do_step` calls, including repeated and Jacobian-probing ones.
     pub do_step_calls: u64,
@@ -51,6 +52,7 @@ pub struct Counters {
     /// unit solves its statics under a coupled load.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub start_load: Option<crate::coupler::StartLoad>,
+    /// Per unit, in the system's order.
     pub units: Vec<UnitCounters>,
 }
 

@@ -9,6 +9,8 @@
 //!   Newton; [`order`]: sweep order and torn connections;
 //! - [`settings`], [`counters`], [`error`]: settings, what a run did, typed errors.
 
+#![warn(missing_docs)]
+
 pub mod acceleration;
 pub mod adapter;
 pub mod counters;

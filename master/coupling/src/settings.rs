@@ -70,6 +70,7 @@ pub enum Acceleration {
     },
     /// Aitken dynamic relaxation; the factor restarts at `initial_factor` each step.
     Aitken {
+        /// The relaxation factor of each step's first update (default 0.5).
         #[serde(default = "half")]
         initial_factor: f64,
     },
@@ -147,7 +148,9 @@ pub enum Derivatives {
 /// iteration with an acceleration, or Newton.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Solver {
+    /// A fixed-point iteration with its acceleration.
     FixedPoint(Acceleration),
+    /// Newton on the interface with the units' Jacobians.
     Newton(NewtonSettings),
 }
 
@@ -282,12 +285,16 @@ pub enum Extrapolation {
 /// A master setting out of range (the key and what was expected).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{0}")]
-pub struct SettingsError(pub String);
+pub struct SettingsError(
+    /// The setting and what was expected.
+    pub String,
+);
 
 /// Everything that configures the master.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MasterSettings {
+    /// The synchronisation scheme.
     pub scheme: Scheme,
     /// Order of the units for Gauss-Seidel schemes, by name; empty: derived from the
     /// connection graph (upstream first, scene order among equals).
@@ -296,6 +303,7 @@ pub struct MasterSettings {
     /// Iterations allowed per step for iterative schemes (default 50).
     #[serde(default = "default_max_iterations")]
     pub max_iterations: u32,
+    /// What a step that reaches `max_iterations` does.
     #[serde(default)]
     pub on_max_iterations: OnMaxIterations,
     /// Update of a fixed-point iteration (iterative schemes).
@@ -304,8 +312,10 @@ pub struct MasterSettings {
     /// Newton instead of a fixed-point iteration (iterative schemes).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub newton: Option<NewtonSettings>,
+    /// When the coupled values of an iterative step have converged.
     #[serde(default)]
     pub tolerances: Tolerances,
+    /// The first iterate of a step from the accepted values before it.
     #[serde(default)]
     pub extrapolation: Extrapolation,
     /// Threads that step the units of a Jacobi sweep side by side (default 1:

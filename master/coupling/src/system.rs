@@ -12,9 +12,13 @@ use thiserror::Error;
     "`{path}`: unit `{unit}` (kind {kind}) has no {wanted} `{port}`{hint}; its {wanted}s are: {ports}"
 )]
 pub struct UnknownPort {
+    /// The port path as written ("unit.port").
     pub path: String,
+    /// The unit's name.
     pub unit: String,
+    /// The unit's kind.
     pub kind: String,
+    /// The port name that was not found.
     pub port: String,
     /// "input" or "output".
     pub wanted: &'static str,
@@ -28,72 +32,122 @@ pub struct UnknownPort {
 #[derive(Debug, Error, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum SystemError {
+    /// A unit or port name that is not a valid name.
     #[error(transparent)]
     Name(#[from] NameError),
+    /// Two units with one name.
     #[error("unit name `{0}` is used twice")]
     DuplicateUnit(String),
+    /// A port path without a unit and a port.
     #[error("`{path}`: expected \"unit.port\", e.g. \"left.displacement\"")]
-    NotAPortPath { path: String },
+    NotAPortPath {
+        /// The path as written.
+        path: String,
+    },
+    /// A port path naming a unit the system does not have.
     #[error("`{path}`: no unit named `{unit}`{hint}")]
     UnknownUnit {
+        /// The path as written.
         path: String,
+        /// The unit it names.
         unit: String,
+        /// "; did you mean ...?" or "".
         hint: String,
     },
+    /// An output where an input is wanted, or the other way round.
     #[error("`{path}`: `{port}` is not an {wanted} of unit `{unit}` (it is the other way round)")]
     WrongCausality {
+        /// The path as written.
         path: String,
+        /// The port it names.
         port: String,
+        /// The unit's name.
         unit: String,
+        /// "input" or "output".
         wanted: &'static str,
     },
+    /// A port the unit does not have.
     #[error(transparent)]
     UnknownPort(Box<UnknownPort>),
+    /// A connection's gain or offset that is not finite.
     #[error("{label}: gain {gain} and offset {offset} must be finite")]
     NonFiniteLink {
+        /// The connection, "unit.port -> unit.port".
         label: String,
+        /// Its gain.
         gain: f64,
+        /// Its offset (unit of the destination port).
         offset: f64,
     },
+    /// A connection's tolerance that is not a finite value > 0.
     #[error("{label}: tolerance {tolerance} is not a finite value > 0")]
-    BadTolerance { label: String, tolerance: f64 },
+    BadTolerance {
+        /// The connection, "unit.port -> unit.port".
+        label: String,
+        /// The tolerance given.
+        tolerance: f64,
+    },
+    /// An output of one kind connected to an input of another.
     #[error(
         "{label}: cannot connect a {from_kind} output ({from_unit}) to a {to_kind} input ({to_unit})"
     )]
     KindMismatch {
+        /// The connection, "unit.port -> unit.port".
         label: String,
+        /// The output's kind.
         from_kind: PortKind,
+        /// The output's unit of measure.
         from_unit: String,
+        /// The input's kind.
         to_kind: PortKind,
+        /// The input's unit of measure.
         to_unit: String,
     },
+    /// An output and an input in different units of measure.
     #[error("{label}: units of measure differ ({from_unit} vs {to_unit})")]
     UnitMismatch {
+        /// The connection, "unit.port -> unit.port".
         label: String,
+        /// The output's unit of measure.
         from_unit: String,
+        /// The input's unit of measure.
         to_unit: String,
     },
+    /// An input driven by two connections.
     #[error("{label}: input `{to}` is already driven by `{existing}`")]
     AlreadyDriven {
+        /// The second connection, "unit.port -> unit.port".
         label: String,
+        /// The input.
         to: String,
+        /// The output already driving it.
         existing: String,
     },
+    /// A start value of an input that is not finite.
     #[error("{to}: start value {value} is not finite")]
-    NonFiniteStart { to: String, value: f64 },
+    NonFiniteStart {
+        /// The input, "unit.port".
+        to: String,
+        /// The value given.
+        value: f64,
+    },
 }
 
 /// A port of a unit in the system, by indices.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub struct PortRef {
+    /// The unit's index in the system.
     pub unit: usize,
+    /// The port's index among the unit's inputs or outputs.
     pub port: usize,
 }
 
 /// Options of a connection: the value passed is `gain * output + offset`.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Link {
+    /// Multiplies the output.
     pub gain: f64,
+    /// Added after the gain (unit of the destination port).
     pub offset: f64,
     /// Absolute convergence tolerance (unit of the destination port); `None`: the
     /// master's tolerance for the destination port's kind.
@@ -113,8 +167,11 @@ impl Default for Link {
 /// An output feeding an input.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Connection {
+    /// The output.
     pub from: PortRef,
+    /// The input it drives.
     pub to: PortRef,
+    /// Gain, offset and tolerance.
     pub link: Link,
     /// Kind of the destination port (selects the default tolerance).
     pub kind: PortKind,
@@ -125,8 +182,11 @@ pub struct Connection {
 /// A unit of the system with its name and the constant values of its inputs that no
 /// connection drives (also the first guess for inputs fed through a loop).
 pub struct NamedUnit {
+    /// Its name in the system.
     pub name: String,
+    /// The unit.
     pub unit: Box<dyn Unit>,
+    /// One value per input, in the unit's input order.
     pub start_inputs: Vec<f64>,
 }
 

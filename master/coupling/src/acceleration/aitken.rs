@@ -13,6 +13,8 @@ pub struct Aitken {
 }
 
 impl Aitken {
+    /// Aitken's relaxation of `n` coupled values, its factor starting at
+    /// `initial` each step.
     pub fn new(initial: f64, n: usize) -> Aitken {
         Aitken {
             initial,

@@ -4,6 +4,7 @@ use super::Accelerator;
 
 /// `x + factor (G(x) - x)`; factor 1 is plain fixed-point iteration.
 pub struct Constant {
+    /// The relaxation factor.
     pub factor: f64,
 }
 

@@ -34,6 +34,8 @@ pub struct IqnIls {
 }
 
 impl IqnIls {
+    /// IQN-ILS on `n` coupled values: relaxed by `initial` until it has
+    /// differences, keeping those of the last `reuse_steps` steps.
     pub fn new(initial: f64, reuse_steps: u32, n: usize) -> IqnIls {
         let columns = n.max(1);
         IqnIls {
