@@ -336,3 +336,32 @@ fn an_indicators_window_leaves_out_the_build_up() {
         "{refused}"
     );
 }
+
+/// `slender statics --set` changes the system it solves: `[mooring]` is
+/// read from the scene's keys as changed (it was read from the file's text,
+/// so a `--set` on the body or a line was silently left out).
+#[test]
+fn statics_reads_the_mooring_as_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let heave = |sets: &[&str]| {
+        let out = dir.path().join(format!("statics{}", sets.len()));
+        let mut args = vec!["statics", "examples/oc3_hywind.toml"];
+        args.extend(["--out", out.to_str().unwrap()]);
+        args.extend(sets.iter().flat_map(|s| ["--set", s]));
+        let run = slender(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let json = std::fs::read_to_string(out.join("statics.json")).expect("statics.json");
+        let statics: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+        statics["offset"][2].as_f64().expect("the heave offset")
+    };
+    let (written, buoyant) = (heave(&[]), heave(&["mooring.body.displaced_volume=8100"]));
+    // 8100 m^3 against the file's 8029.21 m^3: the buoyancy rho g dV lifts
+    // the spar against its hydrostatic stiffness (332,941 N/m) and the
+    // lines' vertical stiffness, so by a little less than rho g dV / k33.
+    let hydrostatic = 1025.0 * 9.80665 * (8100.0 - 8029.21) / 332_941.0;
+    let rise = buoyant - written;
+    assert!(
+        rise > 0.8 * hydrostatic && rise < hydrostatic,
+        "{written} -> {buoyant} m (hydrostatics alone: {hydrostatic} m)"
+    );
+}

@@ -343,18 +343,8 @@ impl Scene {
     /// structure, so that what a section reports along itself (an envelope)
     /// can be placed on the structure beside the twin's; None without one.
     pub fn structure_sections(&self) -> Option<(String, Vec<(String, f64)>)> {
-        let parsed;
-        let table = match &self.changes.table {
-            Some(table) => table,
-            None => match toml::from_str::<toml::Table>(&self.source) {
-                Ok(t) => {
-                    parsed = t;
-                    &parsed
-                }
-                Err(_) => return None,
-            },
-        };
-        let layout = crate::structure::layout(table).ok()??;
+        let table = self.keys().ok()?;
+        let layout = crate::structure::layout(&table).ok()??;
         let twin = crate::structure::reference_name(&layout.name);
         let starts = (layout.sections.into_iter())
             .map(|s| (s.unit, s.from))

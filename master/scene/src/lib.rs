@@ -184,6 +184,24 @@ impl Scene {
         Ok(scene)
     }
 
+    /// The scene's keys as they run: the file's, with the changes
+    /// (`--set`, a study's) made; what a tool that reads a table of the
+    /// scene (`[mooring]`, the structure's layout) reads. The error names
+    /// the file.
+    pub fn keys(&self) -> Result<std::borrow::Cow<'_, toml::Table>, SceneError> {
+        match &self.changes.table {
+            Some(table) => Ok(std::borrow::Cow::Borrowed(table)),
+            None => toml::from_str(&self.source)
+                .map(std::borrow::Cow::Owned)
+                .map_err(|e| SceneError {
+                    file: self.path.clone(),
+                    line: None,
+                    key: String::new(),
+                    message: e.to_string(),
+                }),
+        }
+    }
+
     /// The scene as it runs, as TOML text: the file's, with a `[structure]`
     /// written out as plain units and connections (what `slender expand`
     /// prints; that text is made when first asked for, for showing and

@@ -361,8 +361,9 @@ fn end_at(position: [f64; 3], condition: EndCondition) -> EndSpec {
     }
 }
 
-/// The scene's `[mooring]` read and checked; None when it has none.
+/// The scene's `[mooring]` as it runs (with the changes `--set` made)
+/// read and checked; None when it has none.
 pub fn of_scene(scene: &crate::Scene) -> Result<Option<Mooring>, StructureError> {
-    let table: Table = toml::from_str(&scene.source).map_err(|e| e.to_string())?;
+    let table = scene.keys().map_err(|e| e.to_string())?;
     table.get("mooring").map(Mooring::parse).transpose()
 }
