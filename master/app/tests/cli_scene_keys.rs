@@ -365,3 +365,40 @@ fn statics_reads_the_mooring_as_set() {
         "{written} -> {buoyant} m (hydrostatics alone: {hydrostatic} m)"
     );
 }
+
+/// `slender decay --set` compares the run with the statics of the same
+/// system: the undamped periods beside the measured ones come from the
+/// `[mooring]` as changed (they came from the file, so with a heavier spar the
+/// surge's measured period grew and its linear one did not).
+#[test]
+fn decay_compares_with_the_statics_of_the_system_as_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let surge = |sets: &[&str]| {
+        let out = dir.path().join(format!("decay{}", sets.len()));
+        let mut args = vec!["decay", "examples/oc3_hywind.toml"];
+        args.extend(["--out", out.to_str().unwrap()]);
+        args.extend(sets.iter().flat_map(|s| ["--set", s]));
+        let run = slender(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let json = std::fs::read_to_string(out.join("decay.json")).expect("decay.json");
+        let rows: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+        let row = (rows.as_array().expect("rows").iter())
+            .find(|r| r["dof"] == "surge")
+            .expect("the surge row")
+            .clone();
+        let period = |v: &serde_json::Value| v.as_f64().expect("a period (s)");
+        (
+            period(&row["decay"]["period"]),
+            period(&row["linear_period_s"]),
+        )
+    };
+    let (measured, linear) = surge(&[]);
+    let (heavy_measured, heavy_linear) = surge(&["mooring.body.mass=9000000"]);
+    assert!(
+        heavy_measured > 1.1 * measured,
+        "{measured} -> {heavy_measured} s"
+    );
+    for (m, l) in [(measured, linear), (heavy_measured, heavy_linear)] {
+        assert!((m - l).abs() < 0.02 * l, "measured {m} s, linear {l} s");
+    }
+}
