@@ -21,10 +21,10 @@ use crate::contract::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Exp, StandardNormal};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Parameters (scene kind `artefact`).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ArtefactParams {
     /// Port kind of the signal: force, velocity, displacement, rotation, moment or

@@ -7,8 +7,11 @@
 //! side emits through its sensor, what it receives through its actuator.
 
 use super::sections::Fidelity;
+use super::spec::typed;
+use super::unit::{Parameters, SectionUnit};
 use slender_units::beam::boundary::{InputMarker, TimeFunction};
 use slender_units::nonlinear::params::{DofCondition, End as ModelEnd, EndKind};
+use slender_units::signal::artefact::ArtefactParams;
 use toml::{Table, Value};
 
 /// How a section's end at a cut is coupled.
@@ -170,11 +173,10 @@ fn through_artefacts(
             ));
         }
         parameters.insert("quantity".into(), Value::String(quantity.into()));
-        let mut artefact = Table::new();
-        artefact.insert("name".into(), Value::String(name.clone()));
-        artefact.insert("kind".into(), Value::String("artefact".into()));
-        artefact.insert("parameters".into(), Value::Table(parameters));
-        units.push(Value::Table(artefact));
+        let artefact: ArtefactParams = typed(&format!("physical.{role}"), &parameters)
+            .map_err(|e| e.replacen("`: ", &format!("` of `{unit}`: "), 1))?;
+        let artefact = Parameters::Artefact(Box::new(artefact));
+        units.push(SectionUnit::new(name.clone(), artefact).into_value()?);
         // The x and z links of this quantity into or out of the physical unit.
         for axis in ["x", "z"] {
             let suffix = format!("_{quantity}_{axis}");

@@ -12,6 +12,7 @@ use slender_units::chord::ChordParams;
 use slender_units::line3d::Line3dParams;
 use slender_units::nonlinear::NonlinearParams;
 use slender_units::reduced::unit::ReducedParams;
+use slender_units::signal::artefact::ArtefactParams;
 use slender_units::static_section::StaticSectionParams;
 use std::collections::BTreeMap;
 use toml::{Table, Value};
@@ -37,6 +38,8 @@ pub(crate) enum Parameters {
     Catenary3d(Box<Line3dParams>),
     /// A `body` unit's (a `[mooring]`'s body).
     Body(Box<BodyParams>),
+    /// An `artefact` unit's (a physical section's sensor or actuator).
+    Artefact(Box<ArtefactParams>),
     /// An external FMU's `fmu` parameters, as the scene gives them.
     Fmu(Table),
 }
@@ -53,6 +56,7 @@ impl Parameters {
             Parameters::Line3d(_) => "line3d",
             Parameters::Catenary3d(_) => "catenary3d",
             Parameters::Body(_) => "body",
+            Parameters::Artefact(_) => "artefact",
             Parameters::Fmu(_) => "fmu",
         }
     }
@@ -67,6 +71,7 @@ impl Parameters {
             Parameters::Reduced(p) => Table::try_from(&*p),
             Parameters::Line3d(p) | Parameters::Catenary3d(p) => Table::try_from(&*p),
             Parameters::Body(p) => Table::try_from(&*p),
+            Parameters::Artefact(p) => Table::try_from(&*p),
             Parameters::Fmu(t) => Ok(t),
         }
     }
