@@ -344,13 +344,7 @@ fn an_indicators_window_leaves_out_the_build_up() {
 fn statics_reads_the_mooring_as_set() {
     let dir = tempfile::tempdir().unwrap();
     let heave = |sets: &[&str]| {
-        let out = dir.path().join(format!("statics{}", sets.len()));
-        let mut args = vec!["statics", "examples/oc3_hywind.toml"];
-        args.extend(["--out", out.to_str().unwrap()]);
-        args.extend(sets.iter().flat_map(|s| ["--set", s]));
-        let run = slender(&args);
-        assert!(run.status.success(), "{}", text(&run.stderr));
-        let json = std::fs::read_to_string(out.join("statics.json")).expect("statics.json");
+        let json = oc3_json("statics", dir.path(), sets);
         let statics: serde_json::Value = serde_json::from_str(&json).expect("JSON");
         statics["offset"][2].as_f64().expect("the heave offset")
     };
@@ -374,13 +368,7 @@ fn statics_reads_the_mooring_as_set() {
 fn decay_compares_with_the_statics_of_the_system_as_set() {
     let dir = tempfile::tempdir().unwrap();
     let surge = |sets: &[&str]| {
-        let out = dir.path().join(format!("decay{}", sets.len()));
-        let mut args = vec!["decay", "examples/oc3_hywind.toml"];
-        args.extend(["--out", out.to_str().unwrap()]);
-        args.extend(sets.iter().flat_map(|s| ["--set", s]));
-        let run = slender(&args);
-        assert!(run.status.success(), "{}", text(&run.stderr));
-        let json = std::fs::read_to_string(out.join("decay.json")).expect("decay.json");
+        let json = oc3_json("decay", dir.path(), sets);
         let rows: serde_json::Value = serde_json::from_str(&json).expect("JSON");
         let row = (rows.as_array().expect("rows").iter())
             .find(|r| r["dof"] == "surge")
@@ -401,4 +389,16 @@ fn decay_compares_with_the_statics_of_the_system_as_set() {
     for (m, l) in [(measured, linear), (heavy_measured, heavy_linear)] {
         assert!((m - l).abs() < 0.02 * l, "measured {m} s, linear {l} s");
     }
+}
+
+/// `slender COMMAND examples/oc3_hywind.toml --set ...` run into a folder of
+/// `dir`: the `<command>.json` it writes.
+fn oc3_json(command: &str, dir: &std::path::Path, sets: &[&str]) -> String {
+    let out = dir.join(format!("{command}{}", sets.len()));
+    let mut args = vec![command, "examples/oc3_hywind.toml"];
+    args.extend(["--out", out.to_str().unwrap()]);
+    args.extend(sets.iter().flat_map(|s| ["--set", s]));
+    let run = slender(&args);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    std::fs::read_to_string(out.join(format!("{command}.json"))).expect("the JSON file")
 }

@@ -283,14 +283,14 @@ impl Line {
         model.remove("kind");
         // The ends are the anchor and the fairlead: typed with the model
         // and set below (the fairlead's position when it is written out).
-        let placeholder = Value::try_from(end_at([0.0; 3], EndCondition::Fixed))
+        let placeholder = Value::try_from(EndSpec::at([0.0; 3], EndCondition::Fixed))
             .map_err(|e| format!("`{key}`: {e}"))?;
         for end in ["start", "end"] {
             model.insert(end.into(), placeholder.clone());
         }
         let mut params: Line3dParams = structure::typed(&format!("{key}.model"), &model)?;
-        params.start = end_at(file.anchor, EndCondition::Fixed);
-        params.end = end_at([0.0; 3], EndCondition::Velocity);
+        params.start = EndSpec::at(file.anchor, EndCondition::Fixed);
+        params.end = EndSpec::at([0.0; 3], EndCondition::Velocity);
         let sections = match file.sections.is_empty() {
             true => vec![SectionFile::whole("full")],
             false => file.sections.clone(),
@@ -310,7 +310,7 @@ impl Line {
         let mut line = self.structure.clone();
         line.params.end = EndSpec {
             released_at: self.file.break_at,
-            ..end_at(fairlead, EndCondition::Velocity)
+            ..EndSpec::at(fairlead, EndCondition::Velocity)
         };
         let key = format!("`mooring.lines.{}", self.file.name);
         line.write(t0).map_err(|e| e.replace("`structure", &key))
@@ -347,17 +347,6 @@ impl Line {
             }
         }
         out
-    }
-}
-
-/// A line's end at `position` (m), held or moved as `condition` says.
-fn end_at(position: [f64; 3], condition: EndCondition) -> EndSpec {
-    EndSpec {
-        position,
-        condition,
-        motion: Default::default(),
-        fade_in: 0.0,
-        released_at: None,
     }
 }
 

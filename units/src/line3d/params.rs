@@ -107,6 +107,19 @@ pub struct EndSpec {
 }
 
 impl EndSpec {
+    /// An end at `position` (m) held or moved as `condition` says, without
+    /// a motion of its own (a section's cut end, a mooring line's anchor or
+    /// fairlead).
+    pub fn at(position: [f64; 3], condition: EndCondition) -> EndSpec {
+        EndSpec {
+            position,
+            condition,
+            motion: Default::default(),
+            fade_in: 0.0,
+            released_at: None,
+        }
+    }
+
     /// Whether the end has let go for a step starting at `t` (s).
     pub fn released(&self, t: f64) -> bool {
         self.released_at

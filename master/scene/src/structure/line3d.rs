@@ -123,10 +123,10 @@ impl Line3dStructure {
             section.length = cut.to - cut.from;
             section.elements = cut.elements.unwrap_or_else(|| mesh_of(cut, params));
             if k > 0 {
-                section.start = cut_end(shape.at(cut.from), EndCondition::Force);
+                section.start = EndSpec::at(shape.at(cut.from), EndCondition::Force);
             }
             if k + 1 < cuts.len() {
-                section.end = cut_end(shape.at(cut.to), EndCondition::Velocity);
+                section.end = EndSpec::at(shape.at(cut.to), EndCondition::Velocity);
             }
             section.linear |= cut.fidelity == Fidelity::Linear;
             let name = unit_name(&self.name, &cut.name);
@@ -285,17 +285,6 @@ fn static_shape(params: &Line3dParams, t0: Time) -> Result<Shape, String> {
             .map(|i| [axes[0][i], axes[1][i], axes[2][i]])
             .collect(),
     })
-}
-
-/// A cut end at `position` (m), coupled by `condition`.
-fn cut_end(position: [f64; 3], condition: EndCondition) -> EndSpec {
-    EndSpec {
-        position,
-        condition,
-        motion: Default::default(),
-        fade_in: 0.0,
-        released_at: None,
-    }
 }
 
 /// The cut between `lower` and `upper`: the lower end follows the upper
