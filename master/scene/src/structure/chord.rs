@@ -12,7 +12,7 @@
 
 use super::cuts::{End, link};
 use super::model::{CutNeeds, Place, SectionAt, SectionModel};
-use super::nonlinear::section_unit;
+use super::nonlinear::section_parameters;
 use super::sections::{Cut, Fidelity, Segment};
 use super::spec::typed;
 use super::statics::Equilibrium;
@@ -149,7 +149,6 @@ fn uniform_enough(equilibrium: &Equilibrium, cut: &Cut, key: &str) -> Result<(),
 /// the S-lay's sag bend (109.7 to 231.0 m of arc) 6.4e4 N/m where EA over the
 /// arc length is 2.5e7: the sag, not the pipe's stretch, gives way.
 fn axial_stiffness(
-    structure: &str,
     (model, segments): (&NonlinearParams, &[Segment]),
     cut: &Cut,
     equilibrium: &Equilibrium,
@@ -159,14 +158,11 @@ fn axial_stiffness(
         pinned: false,
         by_displacement: false,
     };
-    let mut section = section_unit(structure, model, segments, cut, (Some(held), Some(held)))?;
-    let parameters = section
-        .nonlinear_mut()
-        .ok_or("the section is not a `nonlinear` unit")?;
-    equilibrium.start_section(parameters, (cut.from, cut.to));
+    let mut section = section_parameters(model, segments, cut, (Some(held), Some(held)))?;
+    equilibrium.start_section(&mut section, (cut.from, cut.to));
     // The end force is the section's pull on what holds it: its stiffness is
     // the negative of the force's derivative.
-    let force_derivative = equilibrium.end_stiffness(parameters, (cut.from, cut.to))?;
+    let force_derivative = equilibrium.end_stiffness(&section, (cut.from, cut.to))?;
     let stiffness = force_derivative.map(|row| row.map(|k| -k));
     let (a, b) = (
         equilibrium.position_at(cut.from),
@@ -209,7 +205,7 @@ pub(super) fn chord_unit(
     let drag_velocity = options.drag_velocity(&key)?;
     let (weight, weight_at) = weight_of(segments, cut, equilibrium);
     let [ei, mass, drag, structural] = properties(model, segments, cut, &key)?;
-    let stiffness = axial_stiffness(structure, (model, segments), cut, equilibrium)
+    let stiffness = axial_stiffness((model, segments), cut, equilibrium)
         .map_err(|e| format!("`{key}` = \"{word}\": {e}"))?;
     // The section's own inertia along the pipe: the loaded end's half of it
     // (the moving end's half is left out: its acceleration would come from

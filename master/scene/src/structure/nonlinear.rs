@@ -72,6 +72,20 @@ pub(super) fn section_unit(
     cut: &Cut,
     coupling: (Option<End>, Option<End>),
 ) -> Result<SectionUnit, String> {
+    let parameters = section_parameters(model, segments, cut, coupling)?;
+    Ok(SectionUnit::nonlinear(
+        super::unit_name(name, &cut.name),
+        parameters,
+    ))
+}
+
+/// The parameters of [`section_unit`]'s unit.
+pub(super) fn section_parameters(
+    model: &NonlinearParams,
+    segments: &[Segment],
+    cut: &Cut,
+    coupling: (Option<End>, Option<End>),
+) -> Result<NonlinearParams, String> {
     let mut parameters = model.clone();
     let (mut position, mut arc) = (model.start, 0.0f64);
     let mut clipped = Vec::new();
@@ -116,10 +130,7 @@ pub(super) fn section_unit(
             *end = coupled_end(coupled);
         }
     }
-    Ok(SectionUnit::nonlinear(
-        super::unit_name(name, &cut.name),
-        parameters,
-    ))
+    Ok(parameters)
 }
 
 /// The model's `supports`, `loads` and `stations` inside a section, in the

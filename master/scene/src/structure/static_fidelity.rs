@@ -8,7 +8,7 @@ use super::Built;
 use super::cuts::End;
 use super::layout::SectionOutputs;
 use super::model::{CutNeeds, Place, SectionAt, SectionModel, outputs_of};
-use super::nonlinear::section_unit;
+use super::nonlinear::section_parameters;
 use super::sections::Cut;
 use super::unit::{Parameters, SectionUnit};
 
@@ -72,11 +72,10 @@ impl Built {
                 ));
             }
         };
-        let mut section = section_unit(&self.name, &self.model, &self.segments, cut, (start, end))?;
-        if let Some(parameters) = section.nonlinear_mut() {
-            equilibrium.start_section(parameters, (cut.from, cut.to));
-        }
-        let mut unit = equilibrium.static_section(&key, &section, (cut.from, cut.to))?;
+        let mut section = section_parameters(&self.model, &self.segments, cut, (start, end))?;
+        equilibrium.start_section(&mut section, (cut.from, cut.to));
+        let name = super::unit_name(&self.name, &cut.name);
+        let mut unit = equilibrium.static_section(&key, name, &section, (cut.from, cut.to))?;
         if self.holding_static
             && let Parameters::Static(p) = &mut unit.parameters
         {

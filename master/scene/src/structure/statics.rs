@@ -120,8 +120,8 @@ impl Equilibrium {
         self.section.unit().position_at(s)
     }
 
-    /// The `static_section` unit of `section` (a `nonlinear` unit's table over
-    /// [from, to] of arc length): the end force and moment and the start reaction
+    /// The `static_section` unit `name` of `section` (a `nonlinear` unit's
+    /// parameters over [from, to] of arc length): the end force and moment and the start reaction
     /// of the section's own static solve with its end held where the equilibrium
     /// puts it, and their derivatives with the end's position by central
     /// differences (steps of 1e-5 of the section's length and 1e-5 rad); six
@@ -132,10 +132,10 @@ impl Equilibrium {
     pub(super) fn static_section(
         &self,
         key: &str,
-        section: &SectionUnit,
+        name: String,
+        section: &NonlinearParams,
         (from, to): (f64, f64),
     ) -> Result<SectionUnit, String> {
-        let (name, section) = (section.name.clone(), section.section_parameters(key)?);
         let (base, columns) = self
             .end_held_derivatives(section, (from, to))
             .map_err(|e| format!("`{key}` = \"static\": {e}"))?;
