@@ -237,6 +237,31 @@ macro_rules! state_struct {
     };
 }
 
+/// A [`Unit`](crate::Unit)'s `save_state` and `restore_state` when its whole
+/// rollback state is one field of a [`state_struct!`](crate::state_struct)
+/// type: stored whole, restored by `clone_from` (no allocation). The optional
+/// block runs after a restore with the unit bound to the name given, for what
+/// a rollback must also reset (a stale step Jacobian, a cached start).
+#[macro_export]
+macro_rules! state_in_field {
+    ($field:ident : $ty:ty) => {
+        $crate::state_in_field!($field: $ty, |_unit| {});
+    };
+    ($field:ident : $ty:ty, |$unit:ident| $after:block) => {
+        fn save_state(&self, slot: &mut $crate::StateSlot) -> Result<(), $crate::UnitError> {
+            slot.store(&self.$field);
+            Ok(())
+        }
+
+        fn restore_state(&mut self, slot: &$crate::StateSlot) -> Result<(), $crate::UnitError> {
+            self.$field.clone_from(&*slot.load::<$ty>()?);
+            let $unit = &mut *self;
+            $after
+            Ok(())
+        }
+    };
+}
+
 /// A nalgebra vector in a unit's state whose `clone_from` copies in place when the
 /// lengths agree (nalgebra's own `clone_from` allocates), for [`state_struct!`](crate::state_struct).
 #[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -90,6 +90,16 @@ impl UnitDescription {
             .collect()
     }
 
+    /// [`Unit::static_inputs`] of a unit that solves its statics under its
+    /// load inputs when it has a `static_start`: those inputs, else none.
+    pub fn static_load_inputs(&self, static_start: bool) -> Vec<usize> {
+        if static_start {
+            self.load_inputs()
+        } else {
+            Vec::new()
+        }
+    }
+
     /// Index of the output called `name`.
     pub fn output_index(&self, name: &str) -> Option<usize> {
         self.outputs.iter().position(|p| p.name == name)

@@ -14,8 +14,8 @@
 //! reaction at the start, and the end's displacement from the equilibrium.
 
 use crate::contract::{
-    Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
-    UnitError, require_finite,
+    Capabilities, Inputs, Port, PortKind, StepReport, Time, Unit, UnitDescription, UnitError,
+    require_finite,
 };
 use serde::{Deserialize, Serialize};
 
@@ -268,15 +268,7 @@ impl Unit for StaticSection {
         }
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(&*slot.load::<StaticSectionState>()?);
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: StaticSectionState);
 
     /// Exact: the displacement is linear in the end inputs (the compliance, or
     /// the trapezoidal rule over the last step), every output linear in it.

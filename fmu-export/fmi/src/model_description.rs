@@ -259,10 +259,7 @@ impl ModelDescription {
                 cs.provides_directional_derivative
             );
         }
-        self.write_units(&mut x);
-        self.write_log_categories(&mut x);
-        self.write_default_experiment(&mut x);
-        x.push_str("  <ModelVariables>\n");
+        self.write_declarations(&mut x);
         // Arrays are FMI 3.0's and come after every scalar, so leaving them
         // out keeps the scalars' indices.
         for (i, v) in self.variables.iter().enumerate() {
@@ -291,6 +288,16 @@ impl ModelDescription {
         .filter(|(_, v)| !v.is_empty())
         .map(|(k, v)| format!(r#" {k}="{}""#, escape(*v)))
         .collect()
+    }
+
+    /// What both versions write between `<CoSimulation>` and the variables:
+    /// units, log categories and the default experiment, then the opening
+    /// `<ModelVariables>`.
+    pub(crate) fn write_declarations(&self, x: &mut String) {
+        self.write_units(x);
+        self.write_log_categories(x);
+        self.write_default_experiment(x);
+        x.push_str("  <ModelVariables>\n");
     }
 
     /// `<LogCategories>`, when any is declared.

@@ -10,7 +10,7 @@
 
 use crate::span_study::{
     Drive, StudyError, StudyScene, UnitText, cheapest_as_accurate, engine_rows, number,
-    report_order, span_properties, sweep,
+    report_order, span_properties, span_unit, sweep,
 };
 use crate::study::{self, Design};
 use serde::Serialize;
@@ -236,7 +236,16 @@ fn write_scenes(
         fe_unit(span, "reference", plan.reference_elements, 1),
         &FE_PORTS,
     )?;
-    let span_scene = write("span", plan.step, span_unit(span), &SPAN_PORTS)?;
+    let span_scene = write(
+        "span",
+        plan.step,
+        span_unit(
+            span,
+            "span_coupling",
+            "orientation = \"upper_motion\"\nalpha = 0.0\n",
+        ),
+        &SPAN_PORTS,
+    )?;
     let fe_scene = write("fe", plan.step, fe_unit(span, "fe", 8, 1), &FE_PORTS)?;
     Ok([reference, span_scene, fe_scene])
 }
@@ -313,20 +322,6 @@ fn drives(ports: &[&'static str; 8]) -> Vec<Drive> {
             }
         })
         .collect()
-}
-
-/// The span unit as a scene writes it (discretisation and order are varied).
-fn span_unit(span: &Span) -> UnitText {
-    UnitText {
-        name: "span",
-        kind: "span_coupling",
-        substeps: 1,
-        parameters: format!(
-            "{}orientation = \"upper_motion\"\nband = {}\nalpha = 0.0\n",
-            span_properties(span),
-            number(2.0 * std::f64::consts::PI * 10.0)
-        ),
-    }
 }
 
 /// The FE span of [`fe_span`] (trapezoidal rule) as a scene writes it.

@@ -1,7 +1,7 @@
 //! SVG figures of recorded time series (plotters, SVG backend: no fonts needed).
 
 use crate::figures::axes::{linear_axis, log_axis, positive_range};
-use crate::figures::labels::{Area, DrawResult, Entry, side_legend};
+use crate::figures::labels::{Area, DrawResult, Entry, inner_legend, side_legend};
 use crate::figures::ticks;
 use crate::record::Recorder;
 use plotters::prelude::*;
@@ -284,12 +284,7 @@ pub fn mode_shapes(
             .label(format!("mode {} ({:.2} s)", i + 1, m.period))
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| fail(&e))?;
+    inner_legend(&mut chart).map_err(|e| fail(&e))?;
     root.present().map_err(|e| fail(&e))
 }
 
@@ -329,11 +324,7 @@ fn log_log_panel(
         chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
     }
     if series.iter().any(|s| !s.0.is_empty()) {
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()?;
+        inner_legend(&mut chart)?;
     }
     Ok(())
 }
@@ -399,11 +390,7 @@ pub fn bode(
             ))
             .map_err(|e| fail(&e))?;
     }
-    mag.configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| fail(&e))?;
+    inner_legend(&mut mag).map_err(|e| fail(&e))?;
     root.present().map_err(|e| fail(&e))
 }
 

@@ -82,18 +82,9 @@ impl Beam {
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
         let n_in = inputs.len();
-        let (newton, factor) = self.hht.last_newton().ok_or_else(|| {
-            UnitError::Numerical("beam: no Newton matrix of the last step".into())
-        })?;
         let damping_at = |i: usize, k: usize| self.c.get(i, k);
-        let sensitivity = StepSensitivity {
-            newton,
-            factor,
-            mass: &self.m,
-            damping: &damping_at,
-            parameters: self.hht.parameters(),
-            h: w.h,
-        };
+        let sensitivity =
+            StepSensitivity::of_last_step(&self.hht, "beam", (&self.m, &damping_at), w.h)?;
         match self.beam_drive(inputs, j, w.h) {
             Some(drive) => sensitivity.solve(drive, &w.held, &mut w.change),
             None => w.change.clear(self.state.q.len()),

@@ -330,11 +330,8 @@ impl Unit for Beam {
 
     /// With a static start, the end loads its statics are solved under.
     fn static_inputs(&self) -> Vec<usize> {
-        if self.params.static_start {
-            self.description.load_inputs()
-        } else {
-            Vec::new()
-        }
+        self.description
+            .static_load_inputs(self.params.static_start)
     }
 
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {

@@ -30,8 +30,8 @@ mod tests;
 mod waves_tests;
 
 use crate::contract::{
-    Capabilities, HoldSupport, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription,
-    UnitError, require_step_jacobian_ready,
+    Capabilities, HoldSupport, Inputs, StepReport, Time, Unit, UnitDescription, UnitError,
+    require_step_jacobian_ready,
 };
 use crate::signal::sine::{Sine, faded_sum};
 use dynamics::{Model, Motion, rate_map, rate_map_derivative};
@@ -332,16 +332,9 @@ impl Unit for Body {
         ports::write_outputs(self, &self.kinematics(), out);
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(&*slot.load::<BodyState>()?);
-        self.last_start = None;
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: BodyState, |unit| {
+        unit.last_start = None;
+    });
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
         let Some((start, t0, h)) = self.last_start else {

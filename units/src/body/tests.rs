@@ -255,7 +255,7 @@ fn the_step_jacobian_matches_differences_of_the_step() {
     let holds = vec![crate::contract::Hold::Ramp; n_in];
     let view = Inputs::new(&holds, &inputs, &inputs);
     body.initialize(Time::ZERO, view).unwrap();
-    let mut slot = StateSlot::new();
+    let mut slot = crate::contract::StateSlot::new();
     body.save_state(&mut slot).unwrap();
     body.do_step(Time::ZERO, secs(0.1), view).unwrap();
     let mut jacobian = vec![0.0; n_out * n_in];

@@ -25,7 +25,6 @@ mod jacobian;
 use crate::integrators::newmark_iterated::LoadIteration;
 use dynamics::{CableStep, Dynamics, mat2};
 
-use crate::contract::StateSlot;
 use crate::contract::Time;
 use crate::contract::{
     Capabilities, Field, ModalAnalysis, Mode, StepReport, Unit, UnitDescription, UnitError,
@@ -476,16 +475,9 @@ impl Unit for Cable {
         out[7] = bottom;
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.jacobian.ready = false;
-        self.state.clone_from(&*slot.load::<CableState>()?);
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: CableState, |unit| {
+        unit.jacobian.ready = false;
+    });
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
         self.interface_jacobian(inputs, jacobian)

@@ -75,6 +75,13 @@ fn sum(sines: &[Sine], t: f64) -> (f64, f64) {
     })
 }
 
+/// Each named value finite; the first that is not is refused by its key.
+fn all_finite(values: &[(&str, f64)]) -> Result<(), UnitError> {
+    values
+        .iter()
+        .try_for_each(|&(key, value)| require_finite(key, value))
+}
+
 /// A surface: shape plus motion.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -90,8 +97,7 @@ impl Surface {
         match &self.shape {
             Shape::Flat { height } => require_finite("surface.height", *height)?,
             Shape::Tilted { height, slope } => {
-                require_finite("surface.height", *height)?;
-                require_finite("surface.slope", *slope)?;
+                all_finite(&[("surface.height", *height), ("surface.slope", *slope)])?;
             }
             Shape::Bump {
                 height,
@@ -99,10 +105,12 @@ impl Surface {
                 half_width,
                 bump_height,
             } => {
-                require_finite("surface.height", *height)?;
-                require_finite("surface.center", *center)?;
+                all_finite(&[
+                    ("surface.height", *height),
+                    ("surface.center", *center),
+                    ("surface.bump_height", *bump_height),
+                ])?;
                 require_positive("surface.half_width", *half_width)?;
-                require_finite("surface.bump_height", *bump_height)?;
             }
             Shape::Rollers {
                 positions,

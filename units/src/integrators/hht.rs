@@ -258,6 +258,13 @@ impl HhtAlpha {
         }
     }
 
+    /// [`HhtAlpha::last_newton`], or an error naming the unit (`label`) when
+    /// the last step kept none.
+    pub fn last_newton_of(&self, label: &str) -> Result<(&SymmetricBand, &BandLdlt), UnitError> {
+        self.last_newton()
+            .ok_or_else(|| UnitError::Numerical(format!("{label}: the step kept no Newton matrix")))
+    }
+
     /// Starts the next step's Newton from `y` instead of the start state (the
     /// held DOFs still take their prescribed values): a step repeated with
     /// slightly changed inputs starts near its solution. Used once.

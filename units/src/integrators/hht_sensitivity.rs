@@ -12,6 +12,8 @@
 //! (beta h) dq)` for a held DOF's column, and the change of the reaction `M a +
 //! (C + C_t) v + K_t q` at any DOF.
 
+use super::hht::HhtAlpha;
+use crate::contract::UnitError;
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
 /// One input's effect on the step: a held DOF moved by (dq, dv, da), or a DOF
@@ -34,6 +36,28 @@ pub struct StepSensitivity<'a> {
     /// (alpha, beta, gamma) and the step (s).
     pub parameters: (f64, f64, f64),
     pub h: f64,
+}
+
+impl<'a> StepSensitivity<'a> {
+    /// The sensitivity of `hht`'s last step of `h` seconds (its kept Newton
+    /// matrix) for a system of `mass` and `damping`; `label` names the unit
+    /// when the step kept no matrix.
+    pub fn of_last_step(
+        hht: &'a HhtAlpha,
+        label: &str,
+        (mass, damping): (&'a SymmetricBand, &'a dyn Fn(usize, usize) -> f64),
+        h: f64,
+    ) -> Result<StepSensitivity<'a>, UnitError> {
+        let (newton, factor) = hht.last_newton_of(label)?;
+        Ok(StepSensitivity {
+            newton,
+            factor,
+            mass,
+            damping,
+            parameters: hht.parameters(),
+            h,
+        })
+    }
 }
 
 /// The motion's change per unit input: dq, dv, da of every DOF.

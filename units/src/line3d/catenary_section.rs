@@ -21,8 +21,7 @@ use super::outputs::{AXES, CATENARY_OUTPUTS, EXTRA_OUTPUTS};
 use super::params::{EndCondition, Line3dParams};
 use super::step::{end_motion, follow_velocity};
 use crate::contract::{
-    Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
-    UnitError,
+    Capabilities, Inputs, Port, PortKind, StepReport, Time, Unit, UnitDescription, UnitError,
 };
 use crate::integrators::hht::parameters_of;
 use nalgebra::Vector3;
@@ -309,15 +308,7 @@ impl Unit for CatenarySection {
         ]);
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(&*slot.load::<CatenaryState>()?);
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: CatenaryState);
 
     /// The end's position moves by beta h / gamma per unit velocity input
     /// (Newmark), its velocity by one; the forces through the catenary's

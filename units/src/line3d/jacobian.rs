@@ -128,7 +128,7 @@ impl Line3d {
             let Some(m) = self.environment.friction_correction(&s.q, &s.v, s.t, i) else {
                 continue;
             };
-            let (newton, factor) = self.hht.last_newton().ok_or_else(no_matrix)?;
+            let (newton, factor) = self.hht.last_newton_of("line3d")?;
             let c = w.corrected.get_or_insert_with(|| Corrected {
                 newton: newton.clone(),
                 held: newton.clone(),
@@ -188,7 +188,7 @@ impl Line3d {
         let n_in = inputs.len();
         let (newton, factor) = match (&w.corrected, w.sliding) {
             (Some(c), true) => (&c.newton, &c.factor),
-            _ => self.hht.last_newton().ok_or_else(no_matrix)?,
+            _ => self.hht.last_newton_of("line3d")?,
         };
         let damping = w.damping.as_ref();
         let damping_at = |i: usize, k: usize| damping.map_or(0.0, |c| c.get(i, k));
@@ -250,9 +250,4 @@ impl Line3d {
         }
         Ok(())
     }
-}
-
-/// The error where no Newton matrix was kept.
-fn no_matrix() -> UnitError {
-    UnitError::Numerical("line3d: no Newton matrix kept".into())
 }

@@ -29,7 +29,7 @@ mod statics;
 mod step;
 
 use crate::contract::{
-    Capabilities, Field, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription, UnitError,
+    Capabilities, Field, Inputs, StepReport, Time, Unit, UnitDescription, UnitError,
 };
 use crate::integrators::hht::HhtAlpha;
 use crate::numerics::banded::SymmetricBand;
@@ -239,16 +239,9 @@ impl Unit for Line3d {
         self.write_outputs(&inputs, out);
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(&*slot.load::<Line3dState>()?);
-        self.jacobian.ready = false;
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: Line3dState, |unit| {
+        unit.jacobian.ready = false;
+    });
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
         self.interface_jacobian(inputs, jacobian)

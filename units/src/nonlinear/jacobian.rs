@@ -155,21 +155,16 @@ impl NonlinearSection {
             h,
             ..
         } = w;
-        let (newton, factor) = self.hht.last_newton().ok_or_else(|| {
-            UnitError::Numerical("nonlinear section: no Newton matrix kept".into())
-        })?;
         let c = self.c.as_ref();
         let damping_at = |i: usize, k: usize| {
             c.map_or(0.0, |c| c.get(i, k)) + damping.as_ref().map_or(0.0, |c| c.get(i, k))
         };
-        let sensitivity = StepSensitivity {
-            newton,
-            factor,
-            mass: &self.m,
-            damping: &damping_at,
-            parameters: self.hht.parameters(),
-            h: *h,
-        };
+        let sensitivity = StepSensitivity::of_last_step(
+            &self.hht,
+            "nonlinear section",
+            (&self.m, &damping_at),
+            *h,
+        )?;
         match self.drive_of(inputs, j, *h) {
             Some(drive) => sensitivity.solve(drive, held, change),
             None => change.clear(self.model.dofs()),

@@ -27,7 +27,7 @@ mod start_shape;
 mod statics;
 
 use crate::contract::{
-    Capabilities, Field, Inputs, StateSlot, StepReport, Time, Unit, UnitDescription, UnitError,
+    Capabilities, Field, Inputs, StepReport, Time, Unit, UnitDescription, UnitError,
 };
 use crate::integrators::central_difference::CentralDifference;
 use crate::integrators::hht::HhtAlpha;
@@ -435,11 +435,8 @@ impl Unit for NonlinearSection {
 
     /// With a static start, the end loads its statics are solved under.
     fn static_inputs(&self) -> Vec<usize> {
-        if self.params.static_start {
-            self.description.load_inputs()
-        } else {
-            Vec::new()
-        }
+        self.description
+            .static_load_inputs(self.params.static_start)
     }
 
     fn initialize(&mut self, t0: Time, inputs: Inputs<'_>) -> Result<(), UnitError> {
@@ -539,16 +536,9 @@ impl Unit for NonlinearSection {
         }
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.jacobian_work.ready = false;
-        self.state.clone_from(&*slot.load::<SectionState>()?);
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: SectionState, |unit| {
+        unit.jacobian_work.ready = false;
+    });
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
         self.interface_jacobian(inputs, jacobian)

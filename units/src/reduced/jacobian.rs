@@ -171,9 +171,7 @@ impl ReducedUnit {
         let Model::Linear(system, Stepper::Implicit(implicit)) = &self.model else {
             return Ok(());
         };
-        let (_, factor) = implicit.hht.last_newton().ok_or_else(|| {
-            UnitError::Numerical("reduced section: the step kept no Newton matrix".into())
-        })?;
+        let (_, factor) = implicit.hht.last_newton_of("reduced section")?;
         let (_, beta, gamma) = implicit.hht.parameters();
         let (n, h) = (system.size(), w.h);
         for j in 0..n_in {

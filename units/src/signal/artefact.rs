@@ -15,8 +15,8 @@
 //! iterations of one step see the same artefacts.
 
 use crate::contract::{
-    Capabilities, HoldSupport, Inputs, PortKind, StateSlot, StepReport, Time, Unit,
-    UnitDescription, UnitError, require_finite, require_non_negative,
+    Capabilities, HoldSupport, Inputs, PortKind, StepReport, Time, Unit, UnitDescription,
+    UnitError, require_finite, require_non_negative,
 };
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -341,13 +341,5 @@ impl Unit for Artefact {
         out.copy_from_slice(&self.state.output);
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(&*slot.load::<ArtefactState>()?);
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: ArtefactState);
 }

@@ -10,8 +10,8 @@
 //! the ones there are.
 
 use crate::contract::{
-    Capabilities, HoldSupport, Inputs, PortKind, StateSlot, StepReport, Time, Unit,
-    UnitDescription, UnitError, require_non_negative,
+    Capabilities, HoldSupport, Inputs, PortKind, StepReport, Time, Unit, UnitDescription,
+    UnitError, require_non_negative,
 };
 use serde::Deserialize;
 
@@ -134,13 +134,5 @@ impl Unit for Compensation {
         out.copy_from_slice(&self.state.output);
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(&*slot.load::<CompensationState>()?);
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: CompensationState);
 }

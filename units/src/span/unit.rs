@@ -7,7 +7,6 @@
 use super::rational::{RationalX, function_pade_u2_u5, taylor_u2_u5, term_pade_u2_u5};
 use super::realization::{StateSpace, Stepper};
 use super::transfer::Span;
-use crate::contract::StateSlot;
 use crate::contract::Time;
 use crate::contract::{Capabilities, StepReport, Unit, UnitDescription, UnitError};
 use crate::contract::{Inputs, Port, PortKind, StateVector};
@@ -182,13 +181,5 @@ impl Unit for SpanUnit {
         out[0] = self.system.c.dot(&self.state.x) + self.system.d * inputs.end()[0];
     }
 
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.state);
-        Ok(())
-    }
-
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.state.clone_from(&*slot.load::<SpanState>()?);
-        Ok(())
-    }
+    slender_contract::state_in_field!(state: SpanState);
 }

@@ -2,7 +2,7 @@
 //! the FMI 3.0 logger (not variadic: the FMU formats its message).
 
 use super::LoadError;
-use super::library::{LogBook, log_tail, symbol};
+use super::library::{LogBook, log_tail, optional, symbol};
 use crate::model_description::ModelDescription;
 use std::ffi::{CString, c_char, c_int, c_void};
 use std::path::Path;
@@ -155,14 +155,6 @@ impl Api3 {
 }
 
 /// The entry point `name` when `wanted`.
-fn optional<T: Copy>(
-    library: &libloading::Library,
-    wanted: bool,
-    name: &str,
-) -> Result<Option<T>, String> {
-    wanted.then(|| symbol(library, name)).transpose()
-}
-
 /// FMI 3.0's `logMessage`: the message into the unit's log.
 unsafe extern "C" fn log_message(
     environment: *mut c_void,

@@ -170,6 +170,16 @@ pub(super) fn symbol<T: Copy>(library: &libloading::Library, name: &str) -> Resu
         })
 }
 
+/// The entry point `name` when `wanted` (an optional capability the model
+/// description declares), else `None`.
+pub(super) fn optional<T: Copy>(
+    library: &libloading::Library,
+    wanted: bool,
+    name: &str,
+) -> Result<Option<T>, String> {
+    wanted.then(|| symbol(library, name)).transpose()
+}
+
 impl Api {
     /// Binds the entry points; the state calls when `states`, the directional
     /// derivative when `derivatives` (as the model description declares them).
@@ -193,26 +203,14 @@ impl Api {
             set_string: symbol(library, "fmi2SetString")?,
             set_real_input_derivatives: symbol(library, "fmi2SetRealInputDerivatives")?,
             do_step: symbol(library, "fmi2DoStep")?,
-            get_fmu_state: if states {
-                Some(symbol(library, "fmi2GetFMUstate")?)
-            } else {
-                None
-            },
-            set_fmu_state: if states {
-                Some(symbol(library, "fmi2SetFMUstate")?)
-            } else {
-                None
-            },
-            free_fmu_state: if states {
-                Some(symbol(library, "fmi2FreeFMUstate")?)
-            } else {
-                None
-            },
-            get_directional_derivative: if derivatives {
-                Some(symbol(library, "fmi2GetDirectionalDerivative")?)
-            } else {
-                None
-            },
+            get_fmu_state: optional(library, states, "fmi2GetFMUstate")?,
+            set_fmu_state: optional(library, states, "fmi2SetFMUstate")?,
+            free_fmu_state: optional(library, states, "fmi2FreeFMUstate")?,
+            get_directional_derivative: optional(
+                library,
+                derivatives,
+                "fmi2GetDirectionalDerivative",
+            )?,
         })
     }
 }

@@ -42,10 +42,7 @@ impl ModelDescription {
                 cs.provides_directional_derivative
             );
         }
-        self.write_units(&mut x);
-        self.write_log_categories(&mut x);
-        self.write_default_experiment(&mut x);
-        x.push_str("  <ModelVariables>\n");
+        self.write_declarations(&mut x);
         for v in &self.variables {
             write_variable3(&mut x, v);
         }

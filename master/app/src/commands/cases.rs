@@ -3,10 +3,10 @@
 
 use super::analysis::study_folder;
 use super::cluster::{ArrayJob, shell_word, slurm_scripts};
+use super::runs_csv::{RunsCsv, write_report_files};
 use super::uq::Mode;
 use super::{CliError, SceneArg, report_written};
 use slender_app::cases::{self, CasesPlan, Row, table};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Runs the command. A whole matrix writes cases.csv, cases.json, cases.md
@@ -97,24 +97,16 @@ fn run_appending(
     csv: &Path,
     earlier: Vec<Option<Row>>,
 ) -> Result<(Vec<Option<Row>>, Failures), CliError> {
-    let fail = |e: std::io::Error| CliError::failure(format!("{}: {e}", csv.display()));
     let header = table::header(&checked.columns);
     let rows_text = |rows: &[Option<Row>]| -> String {
         (rows.iter().enumerate())
             .filter_map(|(k, r)| r.as_ref().map(|r| table::row(plan, k, r)))
             .collect()
     };
-    std::fs::write(csv, format!("{header}{}", rows_text(&earlier))).map_err(fail)?;
-    let file = std::fs::OpenOptions::new()
-        .append(true)
-        .open(csv)
-        .map_err(fail)?;
-    let file = std::sync::Mutex::new(file);
+    let log = RunsCsv::start(csv, &header, &rows_text(&earlier))?;
     let failed = std::sync::Mutex::new(Vec::new());
     let rows = cases::run_checked(plan, checked, &earlier, |k, row, progress| {
-        let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
-        // A row that cannot be written is run again on resume.
-        let _ = f.write_all(table::row(plan, k, row).as_bytes());
+        log.append(&table::row(plan, k, row));
         let case = plan.describe(&plan.cases()[k]);
         match &row.1 {
             None => println!("{progress} case {k} ({case}): completed"),
@@ -126,7 +118,7 @@ fn run_appending(
         }
     })
     .map_err(CliError::of)?;
-    slender_app::whole::write(csv, format!("{header}{}", rows_text(&rows))).map_err(fail)?;
+    log.finish(&rows_text(&rows))?;
     let mut failed = failed.into_inner().unwrap_or_else(|e| e.into_inner());
     failed.sort();
     Ok((rows, failed))
@@ -160,14 +152,9 @@ fn write_matrix(
     csv: PathBuf,
     report: &cases::aggregate::CasesReport,
 ) -> Result<(), CliError> {
-    let write = |name: &str, text: String| super::write_in(dir, name, text);
-    let json = serde_json::to_string_pretty(report).map_err(CliError::failure)?;
     let markdown = cases::markdown::to_markdown(report);
-    let mut files = vec![
-        csv,
-        write("cases.json", json)?,
-        write("cases.md", markdown.clone())?,
-    ];
+    let mut files = vec![csv];
+    files.extend(write_report_files(dir, "cases", report, &markdown)?);
     let parts = vec![slender_app::report::Part::Markdown(markdown.clone())];
     let title = format!("Load-case matrix of {}", path.display());
     files.push(super::write_report(dir, &title, &parts)?);

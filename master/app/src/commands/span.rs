@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 pub(super) fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), CliError> {
     span.validate()
         .map_err(|e| CliError::input(e.to_string()))?;
+    let coupled = matches!(action, SpanAction::Coupling { .. });
     let files = match action {
         SpanAction::Bode { order, elements } => bode(span, order, elements, out)?,
         SpanAction::Study {
@@ -19,31 +20,25 @@ pub(super) fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), Cl
             reference_elements,
             reference_substeps,
             fe_substeps,
-        } => {
-            let plan = StudyPlan {
-                orders: span_study::ORDERS.to_vec(),
-                elements: span_study::ELEMENTS.to_vec(),
-                ..plan(
-                    duration,
-                    step,
-                    reference_elements,
-                    reference_substeps,
-                    fe_substeps,
-                )?
-            };
-            let _lock = results_folder(out)?;
-            siso_study(span, &plan, out).map_err(CliError::failure)?
         }
-        SpanAction::Coupling {
+        | SpanAction::Coupling {
             duration,
             step,
             reference_elements,
             reference_substeps,
             fe_substeps,
         } => {
+            let (orders, elements) = if coupled {
+                (
+                    coupling_study::ORDERS.to_vec(),
+                    coupling_study::ELEMENTS.to_vec(),
+                )
+            } else {
+                (span_study::ORDERS.to_vec(), span_study::ELEMENTS.to_vec())
+            };
             let plan = StudyPlan {
-                orders: coupling_study::ORDERS.to_vec(),
-                elements: coupling_study::ELEMENTS.to_vec(),
+                orders,
+                elements,
                 ..plan(
                     duration,
                     step,
@@ -53,7 +48,8 @@ pub(super) fn span(span: &Span, action: SpanAction, out: &Path) -> Result<(), Cl
                 )?
             };
             let _lock = results_folder(out)?;
-            coupling(span, &plan, out).map_err(CliError::failure)?
+            let study = if coupled { coupling } else { siso_study };
+            study(span, &plan, out).map_err(CliError::failure)?
         }
     };
     report_written(&files);

@@ -3,10 +3,11 @@
 
 use super::analysis::study_folder;
 use super::cluster::{ArrayJob, shell_word};
+use super::runs_csv::{RunsCsv, write_report_files};
 use super::{CliError, SceneArg, report_written};
 use slender_app::plot::PlotError;
 use slender_app::uq::{self, Run, UqPlan};
-use std::io::Write;
+
 use std::path::{Path, PathBuf};
 
 /// How `slender uq` was asked to run.
@@ -93,15 +94,10 @@ fn write_study(
     report: &uq::UqReport,
     runs: &[uq::Run],
 ) -> Result<(), CliError> {
-    let write = |name: &str, text: String| super::write_in(dir, name, text);
     // runs.csv is already complete and in index order.
-    let json = serde_json::to_string_pretty(report).map_err(CliError::failure)?;
     let markdown = uq::report::to_markdown(report);
-    let mut files = vec![
-        csv,
-        write("uq.json", json)?,
-        write("uq.md", markdown.clone())?,
-    ];
+    let mut files = vec![csv];
+    files.extend(write_report_files(dir, "uq", report, &markdown)?);
     let drawn = figures(dir, report, runs)?;
     let mut parts = vec![slender_app::report::Part::Markdown(markdown.clone())];
     parts.extend(
@@ -162,29 +158,19 @@ fn run_appending(
     header: &str,
     earlier: Vec<Run>,
 ) -> Result<(Option<uq::UqReport>, Vec<Run>), CliError> {
-    let fail = |e: std::io::Error| CliError::failure(format!("{}: {e}", csv.display()));
-    // The file starts with the runs already done (resumed or merged), so an
-    // interruption from here on loses nothing.
-    let done: String = earlier
-        .iter()
-        .enumerate()
-        .filter(|(_, r)| !r.0.is_empty())
-        .map(|(k, r)| uq::report::row(k, r))
-        .collect();
-    std::fs::write(csv, format!("{header}{done}")).map_err(fail)?;
-    let file = std::fs::OpenOptions::new()
-        .append(true)
-        .open(csv)
-        .map_err(fail)?;
-    let file = std::sync::Mutex::new(file);
+    let rows_text = |runs: &[Run]| -> String {
+        (runs.iter().enumerate())
+            .filter(|(_, r)| !r.0.is_empty())
+            .map(|(k, r)| uq::report::row(k, r))
+            .collect()
+    };
+    let log = RunsCsv::start(csv, header, &rows_text(&earlier))?;
     let new_runs = std::sync::atomic::AtomicUsize::new(0);
     // Each finished run says how many are done and the time left (uq was
     // silent for minutes).
     let (report, runs) = uq::run_checked(path, plan, inputs, &earlier, |k, run, progress| {
         new_runs.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
-        // A row that cannot be written is run again on resume.
-        let _ = f.write_all(uq::report::row(k, run).as_bytes());
+        log.append(&uq::report::row(k, run));
         let outputs: Vec<String> = run.1.iter().map(|v| format!("{v:.4e}")).collect();
         println!("{progress} design point {k}: {}", outputs.join(", "));
     })
@@ -196,13 +182,7 @@ fn run_appending(
     if reused > 0 {
         println!("reused {reused} runs already in {}", csv.display());
     }
-    let rows: String = runs
-        .iter()
-        .enumerate()
-        .filter(|(_, r)| !r.0.is_empty())
-        .map(|(k, r)| uq::report::row(k, r))
-        .collect();
-    slender_app::whole::write(csv, format!("{header}{rows}")).map_err(fail)?;
+    log.finish(&rows_text(&runs))?;
     Ok((report, runs))
 }
 

@@ -1,6 +1,7 @@
 //! Curves against one abscissa in stacked panels (`statics.svg`: a moored
 //! body's restoring force and its lines' tensions against its offset).
 
+use crate::figures::labels::inner_legend;
 use crate::plot::PlotError;
 use plotters::prelude::*;
 use std::path::Path;
@@ -61,12 +62,7 @@ pub fn curves(path: &Path, title: &str, panels: &[CurvePanel]) -> Result<(), Plo
                 .label(name.as_str())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| fail(&e))?;
+        inner_legend(&mut chart).map_err(|e| fail(&e))?;
     }
     root.present().map_err(|e| fail(&e))
 }

@@ -118,6 +118,18 @@ pub fn place_labels(points: &[(i32, i32)], lengths: &[usize], bounds: PixelBox) 
     corners
 }
 
+/// The series' own legend (their `label`s) inside the chart, on a white box
+/// with a black border: for charts whose lines leave a corner free.
+pub fn inner_legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -180,7 +180,7 @@ pub fn study(span: &Span, plan: &StudyPlan, scenes: &Path) -> Result<StudyReport
         )?;
         let span_scene = write(
             "span",
-            span_unit(span),
+            span_unit(span, "span", ""),
             ("upper_rotation", "lower_deflection"),
         )?;
         let fe_scene = write("fe", fe("fe", 4, 1), FE_PORTS)?;
@@ -345,14 +345,16 @@ fn span_params(span: &Span, approximation: Approximation, order: usize) -> SpanP
     }
 }
 
-/// The span unit as a scene writes it (approximation and order are varied).
-fn span_unit(span: &Span) -> UnitText {
+/// A span unit of `kind` (`span` or `span_coupling`) as a scene writes it,
+/// with the `extra` keys of its kind; the band of interest up to 10 Hz
+/// (approximation, order and discretisation are what a study varies).
+pub(crate) fn span_unit(span: &Span, kind: &'static str, extra: &str) -> UnitText {
     UnitText {
         name: "span",
-        kind: "span",
+        kind,
         substeps: 1,
         parameters: format!(
-            "{}band = {}\n",
+            "{}band = {}\n{extra}",
             span_properties(span),
             number(2.0 * std::f64::consts::PI * 10.0)
         ),
