@@ -8,8 +8,6 @@
 //! - [`state`]: [`StateSlot`] for rollback and FMU state, [`state_struct!`](crate::state_struct)
 //!   for allocation-free `clone_from`;
 //! - [`driver`]: [`Driver`], which owns a unit's held inputs and checks them.
-#![warn(missing_docs)]
-
 pub mod driver;
 pub mod hold;
 pub mod measure;

@@ -2,8 +2,6 @@
 //! the registry on its own (below the scene crate), so an exported FMU, which
 //! builds its one unit from a kind and a parameter table, links the units and
 //! this registry but no scene, coupling, study or command-line code.
-#![warn(missing_docs)]
-
 pub mod exported;
 pub mod fields;
 pub mod reference;

@@ -3,7 +3,9 @@
 
 /// One section: its name and its bytes in the file.
 pub struct Section<'a> {
+    /// The section's name.
     pub name: String,
+    /// Its bytes.
     pub data: &'a [u8],
 }
 

@@ -51,11 +51,17 @@ pub fn load(relative: &str) -> Scene {
 
 /// Recorded time and signals of a run kept in memory.
 pub struct Series {
+    /// Recorded times (s).
     pub time: Vec<f64>,
+    /// The signals' names.
     pub names: Vec<String>,
+    /// One column per signal.
     pub columns: Vec<Vec<f64>>,
+    /// The master's counters.
     pub counters: slender_coupling::counters::Counters,
+    /// Why the run failed, when it did.
     pub error: Option<String>,
+    /// The scene's indicators.
     pub indicators: Vec<slender_app::indicators::Indicator>,
 }
 
@@ -124,12 +130,19 @@ pub fn b1_exact(t: f64) -> (f64, f64) {
 /// A two-mass chain: masses, springs and dampers to ground, coupling spring-damper.
 #[derive(Clone, Copy, Debug)]
 pub struct Chain {
+    /// Masses (kg).
     pub m: [f64; 2],
+    /// Springs to ground (N/m).
     pub k: [f64; 2],
+    /// Dampers to ground (N s/m).
     pub c: [f64; 2],
+    /// Coupling spring (N/m).
     pub kc: f64,
+    /// Coupling damper (N s/m).
     pub dc: f64,
+    /// Start displacements (m).
     pub u0: [f64; 2],
+    /// Start velocities (m/s).
     pub v0: [f64; 2],
 }
 
@@ -208,6 +221,7 @@ pub mod exact;
 pub mod samples;
 pub mod slay;
 
+/// A unit that misbehaves on cue, for the master's failure paths.
 pub mod probe {
     use slender_units::{
         Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
@@ -217,8 +231,11 @@ pub mod probe {
     /// What the probe does at a step, decided from the step's end time (s) and the
     /// number of `do_step` calls so far (rollbacks do not reset it).
     pub enum Act {
+        /// Steps normally.
         Behave,
+        /// Fails with this message.
         Fail(&'static str),
+        /// Outputs NaN.
         ProduceNan,
     }
 
@@ -227,6 +244,7 @@ pub mod probe {
         y: f64,
     }
 
+    /// The probe: one output following its input, scripted by [`Act`].
     pub struct Probe {
         description: UnitDescription,
         state: State,

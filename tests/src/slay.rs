@@ -9,20 +9,25 @@ use slender_units::{Driver, Time};
 pub const SEABED: f64 = -40.0;
 /// The vessel end (m): firing line horizontal.
 pub const VESSEL: [f64; 2] = [300.0, 5.0];
-/// Stinger radius (m) and angle at its tip (deg); rollers every 5 m of arc.
+/// Stinger radius (m); rollers every 5 m of arc.
 pub const STINGER_RADIUS: f64 = 100.0;
+/// Stinger angle at its tip (deg).
 pub const STINGER_ANGLE: f64 = 30.0;
-/// Submerged weight (N/m), tensioner force (N), bending stiffness (N m^2).
+/// Submerged weight (N/m).
 pub const WEIGHT: f64 = 400.0;
+/// Tensioner force (N).
 pub const TENSION: f64 = 100.0e3;
+/// Bending stiffness (N m^2).
 pub const BENDING_STIFFNESS: f64 = 1.0e7;
 
 /// One S-lay scene.
 #[derive(Clone, Debug)]
 pub struct Slay {
+    /// Elements of the pipe.
     pub elements: usize,
-    /// Contact laws (TOML tables) of the seabed (N/m^2) and the rollers (N/m).
+    /// Contact law (a TOML table) of the seabed (N/m^2).
     pub seabed_law: String,
+    /// Contact law of the rollers (N/m).
     pub stinger_law: String,
     /// Vessel heave: amplitude (m) and angular frequency (rad/s); the stinger moves
     /// with it.

@@ -11,8 +11,6 @@
 //!   coefficients;
 //! - [`distribution`]: an expansion's output distribution (quantiles, density)
 //!   from the surrogate on a large Sobol' sample.
-#![warn(missing_docs)]
-
 pub mod basis;
 pub mod bootstrap;
 pub mod design;

@@ -21,7 +21,6 @@ use crate::model_description::{
 use serde::{Deserialize, Serialize};
 use slender_contract::{Field, Hold, UnitDescription};
 use std::collections::BTreeMap;
-use std::io::Write as _;
 use std::path::Path;
 
 /// Why an FMU's configuration, a parameter of it, or its packaging failed.
@@ -36,7 +35,12 @@ pub enum PackageError {
     Parameter(String),
     /// A file (the FMU library, the FMU being written) and what went wrong.
     #[error("{path}: {problem}")]
-    File { path: String, problem: String },
+    File {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        problem: String,
+    },
 }
 
 fn file_error(path: &Path, problem: String) -> PackageError {
@@ -55,20 +59,26 @@ pub const CONFIG_FILE: &str = "slender-unit.toml";
 pub struct ExportConfig {
     /// Unit name in the scene.
     pub name: String,
+    /// The unit's kind (its scene `kind`).
     pub kind: String,
+    /// The effects switched on.
     #[serde(default)]
     pub effects: Vec<String>,
+    /// How the unit's inputs are held over a step, when not the kind's default.
     #[serde(default)]
     pub hold: Option<Hold>,
     /// Start values of inputs by port name: the values the scene's master settled
     /// on at initialisation, so the FMU starts in the scene's initial state.
     #[serde(default)]
     pub inputs: BTreeMap<String, f64>,
+    /// The unit's parameter table, as the scene gives it.
     #[serde(default)]
     pub parameters: toml::Table,
     /// The scene's time window (s), for the default experiment.
     pub start_time: f64,
+    /// Stop time (s).
     pub stop_time: f64,
+    /// Communication step (s).
     pub step: f64,
     /// The FMU's GUID (a hash of everything above), checked at instantiation.
     #[serde(default)]
@@ -87,8 +97,11 @@ pub enum ParameterTarget {
 /// One parameter variable of the FMU.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParameterVariable {
+    /// The variable's name (a parameter's key path, or `effect.<name>`).
     pub name: String,
+    /// Its value reference.
     pub value_reference: u32,
+    /// What setting it changes.
     pub target: ParameterTarget,
     /// Type and start value.
     pub start: Value,
@@ -103,6 +116,7 @@ pub struct ParameterInfo {
     pub meaning: String,
     /// The documented range of a number, inclusive.
     pub min: Option<f64>,
+    /// Upper bound, inclusive.
     pub max: Option<f64>,
 }
 
@@ -134,11 +148,14 @@ pub const LOG_CATEGORIES: [(&str, &str); 3] = [
 pub struct Layout {
     /// The unit's own description (ports, feedthrough, capabilities).
     pub unit: UnitDescription,
+    /// The parameter variables, in value-reference order.
     pub parameters: Vec<ParameterVariable>,
     /// The unit's fields, FMI 3.0 array outputs with value references from
     /// `first_field_reference` (after every scalar).
     pub fields: Vec<Field>,
+    /// Value reference of the first field (array) output.
     pub first_field_reference: u32,
+    /// The model description written into the FMU.
     pub model: ModelDescription,
 }
 
@@ -308,8 +325,10 @@ impl Layout {
 
 mod arrays;
 mod binary;
+mod package;
 mod variables;
 pub use binary::{check_binary, default_binary};
+pub use package::{FmiVersion, package, package_version};
 pub use variables::VARIABLES_FILE;
 
 /// The parameter variables: the scalars of the parameter table, then a Boolean per
@@ -479,103 +498,4 @@ fn flatten(table: &toml::Table, path: &mut Vec<String>, out: &mut Vec<ParameterV
         }
         path.pop();
     }
-}
-
-/// Now in UTC (xs:dateTime), or `SOURCE_DATE_EPOCH` (s) where it is set, so
-/// that a build meant to be reproducible writes the same description.
-fn generation_date() -> String {
-    let fixed = std::env::var("SOURCE_DATE_EPOCH")
-        .ok()
-        .and_then(|s| s.trim().parse::<u64>().ok())
-        .map(|s| std::time::UNIX_EPOCH + std::time::Duration::from_secs(s));
-    let when = fixed.unwrap_or_else(std::time::SystemTime::now);
-    humantime::format_rfc3339_seconds(when).to_string()
-}
-
-/// The FMI version an FMU is written for (the library serves both).
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum FmiVersion {
-    #[default]
-    Two,
-    Three,
-}
-
-impl FmiVersion {
-    /// The binaries folder of this platform in the standard's naming.
-    fn binaries(self) -> &'static str {
-        match self {
-            FmiVersion::Two => "binaries/linux64",
-            FmiVersion::Three => "binaries/x86_64-linux",
-        }
-    }
-}
-
-/// Writes the FMI 2.0 FMU for `config` with `layout` to `out` (see
-/// [`package_version`]).
-pub fn package(
-    config: &ExportConfig,
-    layout: &Layout,
-    binary: &Path,
-    out: &Path,
-) -> Result<(), PackageError> {
-    package_version(config, layout, binary, out, FmiVersion::Two)
-}
-
-/// Writes the FMU for `config` with `layout` to `out`, with `binary` (the
-/// `slender-fmu` shared library, which has both versions' entry points) as
-/// `<binaries>/<modelIdentifier>.so` and the model description of `version`.
-pub fn package_version(
-    config: &ExportConfig,
-    layout: &Layout,
-    binary: &Path,
-    out: &Path,
-    version: FmiVersion,
-) -> Result<(), PackageError> {
-    check_binary(binary)?;
-    let library = std::fs::read(binary).map_err(|e| {
-        file_error(
-            binary,
-            format!(
-                "cannot read the FMU library ({e}); build it with `cargo build --release -p slender-fmu`"
-            ),
-        )
-    })?;
-    // The folder it goes in is made, as `slender fmu wrap` makes its own.
-    if let Some(folder) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(folder)
-            .map_err(|e| file_error(folder, format!("cannot create the FMU's folder ({e})")))?;
-    }
-    let (file, partial) = crate::whole_file::create(out)
-        .map_err(|e| file_error(out, format!("cannot create the FMU ({e})")))?;
-    let mut zip = zip::ZipWriter::new(file);
-    let options = zip::write::SimpleFileOptions::default()
-        .compression_method(zip::CompressionMethod::Deflated);
-    let mut model = layout.model.clone();
-    model.about.generation_date_and_time = Some(generation_date());
-    let description = match version {
-        FmiVersion::Two => model.to_xml(),
-        FmiVersion::Three => model.to_xml_fmi3(),
-    };
-    let entries: [(String, Vec<u8>); 4] = [
-        ("modelDescription.xml".into(), description.into_bytes()),
-        (
-            format!("{}/{}.so", version.binaries(), config.model_identifier()),
-            library,
-        ),
-        (
-            format!("resources/{CONFIG_FILE}"),
-            config.to_toml()?.into_bytes(),
-        ),
-        (
-            format!("resources/{VARIABLES_FILE}"),
-            layout.variables_text().into_bytes(),
-        ),
-    ];
-    let failed = |e: &dyn std::fmt::Display| file_error(out, format!("writing the FMU: {e}"));
-    for (name, bytes) in entries {
-        zip.start_file(name, options).map_err(|e| failed(&e))?;
-        zip.write_all(&bytes).map_err(|e| failed(&e))?;
-    }
-    zip.finish().map_err(|e| failed(&e))?;
-    crate::whole_file::finish(&partial, out).map_err(|e| failed(&e))
 }

@@ -15,18 +15,26 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error("modelDescription.xml:{line}: {message}")]
 pub struct DescriptionError {
+    /// 1-based line of the problem.
     pub line: usize,
+    /// What is wrong.
     pub message: String,
 }
 
 /// Where a variable sits in the model: FMI 2.0 `causality`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum VariableCausality {
+    /// A parameter (FMI 3.0 structural parameters too).
     Parameter,
+    /// A parameter the FMU computes.
     CalculatedParameter,
+    /// An input.
     Input,
+    /// An output.
     Output,
+    /// A local variable.
     Local,
+    /// The independent variable (time).
     Independent,
 }
 
@@ -59,9 +67,13 @@ impl VariableCausality {
 /// A variable's type and start value (FMI 2.0 type elements).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
+    /// A real (FMI 3.0: Float64), with its start.
     Real(Option<f64>),
+    /// An integer (FMI 3.0: Int32), with its start.
     Integer(Option<i32>),
+    /// A Boolean, with its start.
     Boolean(Option<bool>),
+    /// A string, with its start.
     String(Option<String>),
     /// An enumeration (an integer underneath).
     Enumeration(Option<i32>),
@@ -92,19 +104,25 @@ impl Value {
 /// One `ScalarVariable`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScalarVariable {
+    /// The variable's name (flat naming).
     pub name: String,
+    /// Its value reference.
     pub value_reference: u32,
+    /// What it is.
     pub description: String,
+    /// Its causality.
     pub causality: VariableCausality,
     /// FMI `variability` ("constant", "fixed", "tunable", "discrete", "continuous").
     pub variability: String,
     /// FMI `initial` ("exact", "approx", "calculated"), when given.
     pub initial: Option<String>,
+    /// Its type and start value.
     pub value: Value,
     /// Unit of measure of a Real, by name (see [`UnitDefinition`]).
     pub unit: Option<String>,
     /// Bounds of a Real's value, when stated (inclusive).
     pub min: Option<f64>,
+    /// Upper bound of a Real's value, inclusive.
     pub max: Option<f64>,
     /// An FMI 3.0 array's length in each dimension, row-major (empty: a
     /// scalar; FMI 2.0 has none). The FMI 2.0 description leaves arrays out.
@@ -127,10 +145,13 @@ impl ScalarVariable {
 /// `fmiModelDescription` (empty strings are left out).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct About {
+    /// `author`.
     pub author: String,
     /// The model's version.
     pub version: String,
+    /// `copyright`.
     pub copyright: String,
+    /// `license`.
     pub license: String,
     /// `generationDateAndTime` (xs:dateTime, UTC).
     pub generation_date_and_time: Option<String>,
@@ -139,17 +160,22 @@ pub struct About {
 /// A log category the FMU sends messages in (`LogCategories/Category`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct LogCategory {
+    /// The category's name (e.g. `logStatusError`).
     pub name: String,
+    /// What messages it holds.
     pub description: String,
 }
 
 /// A unit of measure: its name and SI base-unit exponents, factor and offset.
 #[derive(Clone, Debug, PartialEq)]
 pub struct UnitDefinition {
+    /// The unit's name as variables refer to it (e.g. `N/m`).
     pub name: String,
     /// Exponents of kg, m, s, A, K, mol, cd, rad.
     pub exponents: [i32; 8],
+    /// Factor to the SI base units: value_SI = factor value + offset.
     pub factor: f64,
+    /// Offset to the SI base units.
     pub offset: f64,
 }
 
@@ -159,11 +185,17 @@ pub const BASE_UNITS: [&str; 8] = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"]
 /// The `CoSimulation` element.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CoSimulation {
+    /// `modelIdentifier`: the binary's name.
     pub model_identifier: String,
+    /// `canHandleVariableCommunicationStepSize`.
     pub can_handle_variable_communication_step_size: bool,
+    /// `canInterpolateInputs` (FMI 2.0).
     pub can_interpolate_inputs: bool,
+    /// `maxOutputDerivativeOrder`.
     pub max_output_derivative_order: u32,
+    /// `canGetAndSetFMUstate`: rollback.
     pub can_get_and_set_fmu_state: bool,
+    /// `canSerializeFMUstate`.
     pub can_serialize_fmu_state: bool,
     /// `fmi2GetDirectionalDerivative` answers (for slender's FMUs: the step
     /// Jacobian of the last `fmi2DoStep`).
@@ -175,34 +207,53 @@ pub struct CoSimulation {
 /// the standard's meaning of a missing `dependencies` attribute).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Unknown {
+    /// The variable (1-based index).
     pub index: usize,
+    /// The variables it depends on directly (1-based); `None`: all.
     pub dependencies: Option<Vec<usize>>,
 }
 
 /// `DefaultExperiment` (s).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DefaultExperiment {
+    /// `startTime` (s).
     pub start_time: Option<f64>,
+    /// `stopTime` (s).
     pub stop_time: Option<f64>,
+    /// `tolerance` (relative).
     pub tolerance: Option<f64>,
+    /// `stepSize` (s).
     pub step_size: Option<f64>,
 }
 
 /// A model description.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModelDescription {
+    /// `fmiVersion` ("2.0" or "3.0").
     pub fmi_version: String,
+    /// `modelName`.
     pub model_name: String,
+    /// `guid` (FMI 3.0: `instantiationToken`).
     pub guid: String,
+    /// `description`.
     pub description: String,
+    /// `generationTool`.
     pub generation_tool: String,
+    /// The optional attributes on who made it.
     pub about: About,
+    /// The `CoSimulation` element, when the FMU offers co-simulation.
     pub co_simulation: Option<CoSimulation>,
+    /// `UnitDefinitions`.
     pub units: Vec<UnitDefinition>,
+    /// `LogCategories`.
     pub log_categories: Vec<LogCategory>,
+    /// The variables, in the description's order.
     pub variables: Vec<ScalarVariable>,
+    /// `ModelStructure/Outputs`.
     pub outputs: Vec<Unknown>,
+    /// `ModelStructure/InitialUnknowns`.
     pub initial_unknowns: Vec<Unknown>,
+    /// `DefaultExperiment`, when given.
     pub default_experiment: Option<DefaultExperiment>,
     /// FMI 3.0 clocks and the variables they tick (`name`, or `name (clocked
     /// by ...)`): slender does not run clocked FMUs, and refuses them by these.

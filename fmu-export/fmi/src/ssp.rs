@@ -17,7 +17,9 @@ mod parse;
 /// Where an element or connector sits: an input or an output of a component.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum ConnectorKind {
+    /// An input of its FMU.
     Input,
+    /// An output of its FMU.
     Output,
     /// A parameter, or a kind slender does not couple (`calculatedParameter`,
     /// `inout`): kept, not coupled.
@@ -27,15 +29,20 @@ pub enum ConnectorKind {
 /// One connector of a component (a variable of its FMU).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Connector {
+    /// The variable's name.
     pub name: String,
+    /// Input, output or neither.
     pub kind: ConnectorKind,
 }
 
 /// One component: an FMU in the archive (`source`, relative to its root).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Component {
+    /// The component's name in the system.
     pub name: String,
+    /// The FMU, relative to the archive's root.
     pub source: String,
+    /// Its connectors.
     pub connectors: Vec<Connector>,
     /// Parameter values bound to it (inline `ssv:ParameterValues`), by name.
     pub parameters: BTreeMap<String, toml::Value>,
@@ -44,26 +51,37 @@ pub struct Component {
 /// One connection: `end = factor * start + offset`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Connection {
+    /// The component the value comes from.
     pub start_element: String,
+    /// Its connector.
     pub start_connector: String,
+    /// The component the value goes to.
     pub end_element: String,
+    /// Its connector.
     pub end_connector: String,
+    /// Linear transformation's factor (1 when none).
     pub factor: f64,
+    /// Linear transformation's offset (0 when none).
     pub offset: f64,
 }
 
 /// A system structure: one system of FMU components.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SystemStructure {
+    /// The system's name.
     pub name: String,
+    /// Its components.
     pub components: Vec<Component>,
+    /// Its connections.
     pub connections: Vec<Connection>,
     /// `DefaultExperiment` (s).
     pub start_time: Option<f64>,
+    /// Stop time (s).
     pub stop_time: Option<f64>,
     /// The fixed step (s) of the OSP annotation (in the default experiment, as
     /// libcosim reads it), when given.
     pub step: Option<f64>,
+    /// `generationTool`.
     pub generation_tool: String,
 }
 
@@ -71,7 +89,9 @@ pub struct SystemStructure {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("SystemStructure.ssd:{line}: {message}")]
 pub struct SspError {
+    /// 1-based line of the problem.
     pub line: usize,
+    /// What is wrong.
     pub message: String,
 }
 

@@ -104,13 +104,18 @@ pub const ELEMENTS: [usize; 5] = [8, 16, 32, 64, 128];
 /// What the study measured.
 #[derive(Clone, Debug, Serialize)]
 pub struct CouplingReport {
+    /// Synchronisation step (s).
     pub step: f64,
+    /// Simulated time of each run (s).
     pub duration: f64,
+    /// Elements of the reference FE span.
     pub reference_elements: usize,
+    /// Its substeps per synchronisation step.
     pub reference_substeps: usize,
     /// Change of each output when the reference's substeps are halved, relative to
     /// its peak: about three times the reference's own time error.
     pub reference_halving_change: [f64; 4],
+    /// One row per model and size.
     pub rows: Vec<CouplingRow>,
 }
 

@@ -17,15 +17,20 @@ const ENVELOPED: [&str; 3] = ["tension", "curvature", "moment"];
 /// One field of one unit over the window.
 #[derive(Clone, Debug, Serialize)]
 pub struct Envelope {
+    /// The unit whose field it is.
     pub unit: String,
+    /// The field (e.g. `tension`).
     pub field: String,
     /// The field's unit of measure.
     pub unit_of_measure: String,
     /// The arc length (m) of each value from the unit's start: a node's, or
     /// an element's midpoint.
     pub arc: Vec<f64>,
+    /// Smallest value at each point over the window.
     pub min: Vec<f64>,
+    /// Largest value at each point.
     pub max: Vec<f64>,
+    /// Mean value at each point.
     pub mean: Vec<f64>,
     /// The steps averaged.
     pub samples: usize,
@@ -158,15 +163,21 @@ fn node_arc(
 /// What `summary.json` says of an envelope: its extremes and where they are.
 #[derive(Clone, Debug, Serialize)]
 pub struct EnvelopeExtremes {
+    /// The unit whose field it is.
     pub unit: String,
+    /// The field.
     pub field: String,
+    /// The field's unit of measure.
     pub unit_of_measure: String,
     /// The largest value anywhere along the unit over the window.
     pub max: f64,
     /// Where (m of arc from the unit's start).
     pub max_arc_m: f64,
+    /// Smallest value anywhere over the window.
     pub min: f64,
+    /// Where (m of arc from the unit's start).
     pub min_arc_m: f64,
+    /// How many recorded steps the envelope is over.
     pub samples: usize,
 }
 

@@ -13,6 +13,7 @@ use slender_scene::spec::Norm;
 /// One indicator's value.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Indicator {
+    /// The indicator's name as the scene gives it.
     pub name: String,
     /// -1/2 log10 S.
     pub fidelity: f64,

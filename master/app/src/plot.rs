@@ -11,7 +11,9 @@ use std::path::Path;
 #[derive(Debug, thiserror::Error)]
 #[error("{path}: {reason}")]
 pub struct PlotError {
+    /// The figure's file.
     pub path: String,
+    /// What went wrong.
     pub reason: String,
 }
 
@@ -104,8 +106,11 @@ struct Axes<'a> {
 
 /// One curve of a panel: its legend, and its points' x and y.
 pub struct Curve<'a> {
+    /// Its legend.
     pub name: String,
+    /// The points' x.
     pub x: &'a [f64],
+    /// The points' y.
     pub y: &'a [f64],
 }
 
@@ -113,8 +118,11 @@ pub struct Curve<'a> {
 pub struct Profile<'a> {
     /// The x axis's range.
     pub x_range: (f64, f64),
+    /// Title of the x axis, with its unit.
     pub x_title: &'a str,
+    /// Title of the y axis, with its unit.
     pub y_title: String,
+    /// The curves.
     pub series: Vec<Curve<'a>>,
 }
 

@@ -37,11 +37,17 @@ pub struct Overrun {
 /// The computing times of a paced run.
 #[derive(Clone, Debug, Serialize)]
 pub struct RealtimeReport {
+    /// The synchronisation step (s): each step's deadline.
     pub step_s: f64,
+    /// Steps timed.
     pub steps: usize,
+    /// Median computing time of a step (s).
     pub median_s: f64,
+    /// Its 99th percentile (s).
     pub p99_s: f64,
+    /// Its 99.9th percentile (s).
     pub p999_s: f64,
+    /// The worst step's computing time (s).
     pub worst_s: f64,
     /// Step whose computing time was the worst.
     pub worst_step: usize,

@@ -11,11 +11,14 @@ use std::path::Path;
 
 /// Recorded signals: names, and one column of values per signal.
 pub struct Recorder {
+    /// The signals' names (`unit.port`).
     pub names: Vec<String>,
     /// Each signal's unit of measure (`""` where it has none).
     pub units: Vec<String>,
     ports: Vec<(usize, usize)>,
+    /// Recorded times (s).
     pub time: Vec<f64>,
+    /// One column of values per signal, one value per recorded time.
     pub columns: Vec<Vec<f64>>,
     /// The CSV as it is written (its partial name) and its final path.
     csv: Option<(BufWriter<File>, std::path::PathBuf)>,
@@ -150,13 +153,13 @@ impl Recorder {
         self.envelopes.take().map_or(Vec::new(), |e| e.finish())
     }
 
-    /// The recorded column of `name`.
     /// The unit of the signal `name`, if recorded.
     pub fn unit(&self, name: &str) -> Option<&str> {
         let i = self.names.iter().position(|n| n == name)?;
         Some(&self.units[i])
     }
 
+    /// The recorded column of `name`, if recorded.
     pub fn column(&self, name: &str) -> Option<&[f64]> {
         self.names
             .iter()

@@ -106,6 +106,7 @@ impl Kept {
 
 /// A run's outcome, read back or made now.
 pub struct Fetched<T> {
+    /// The outcome.
     pub outcome: T,
     /// Read back from an earlier study, not run now.
     pub reused: bool,

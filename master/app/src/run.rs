@@ -30,23 +30,32 @@ pub struct RunOptions {
 /// What `summary.json` holds.
 #[derive(Debug, Serialize)]
 pub struct Summary {
+    /// The scene file.
     pub scene: String,
     /// Keys set over the scene file (`run --set`), as given.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub overrides: Vec<String>,
+    /// The scene's title.
     pub title: String,
     /// "completed", "failed" or "interrupted" (Ctrl-C, at a step boundary).
     pub status: String,
+    /// Why the run failed, when it did.
     pub error: Option<String>,
+    /// Start time (s).
     pub start_s: f64,
+    /// Synchronisation step (s).
     pub step_s: f64,
     /// Simulated time actually covered (s).
     pub simulated_s: f64,
+    /// Wall time of the run (s).
     pub wall_time_s: f64,
     /// Wall time per simulated second (s/s).
     pub cost_per_simulated_second: f64,
+    /// The units in the master's order.
     pub order: Vec<String>,
+    /// The master's settings as run.
     pub settings: slender_coupling::settings::MasterSettings,
+    /// The master's counters (steps, iterations, rollbacks, ...).
     pub counters: Counters,
     /// Indicators of `[[output.indicators]]` over the recorded time.
     pub indicators: Vec<crate::indicators::Indicator>,
@@ -69,8 +78,11 @@ pub struct Summary {
 
 /// The outcome of a run: the summary, the recording and the files written.
 pub struct RunResult {
+    /// What `summary.json` holds.
     pub summary: Summary,
+    /// The recorded signals.
     pub recorder: Recorder,
+    /// The files written.
     pub files: Vec<PathBuf>,
 }
 
@@ -212,15 +224,24 @@ fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indi
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum RunError {
+    /// The scene does not read or build.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The master failed.
     #[error(transparent)]
     Master(Box<MasterError>),
     /// A results file or folder and what went wrong.
     #[error("{path}: {reason}")]
-    File { path: String, reason: String },
+    File {
+        /// The file or folder.
+        path: String,
+        /// What went wrong.
+        reason: String,
+    },
+    /// A figure could not be drawn.
     #[error(transparent)]
     Plot(#[from] PlotError),
+    /// `summary.json` could not be written.
     #[error("summary.json: {0}")]
     Summary(#[from] serde_json::Error),
     /// Ctrl-C (`interrupt`): the run stopped at a step boundary.
@@ -476,15 +497,21 @@ fn write_plots(
 /// Cost of a scene measured over repeated runs without recording.
 #[derive(Debug, Serialize)]
 pub struct Benchmark {
+    /// Runs timed.
     pub repeats: usize,
     /// Median wall time per simulated second (s/s).
     pub median_cost_per_simulated_second: f64,
+    /// Smallest wall time per simulated second (s/s).
     pub min_cost_per_simulated_second: f64,
     /// Simulated seconds per wall-clock second (1 / median cost).
     pub realtime_factor: f64,
+    /// Synchronisation steps of one run.
     pub steps: u64,
+    /// Coupling iterations of one run.
     pub iterations: u64,
+    /// `do_step` calls of one run, all units.
     pub do_step_calls: u64,
+    /// Rollbacks of one run.
     pub rollbacks: u64,
     /// Median over runs of (wall time - time charged to units) divided by
     /// (iterations x connections): an upper estimate of the master's own cost per

@@ -25,7 +25,9 @@ pub fn write(path: &Path, contents: impl AsRef<[u8]>) -> io::Result<()> {
 #[derive(Debug, thiserror::Error)]
 #[error("{}: {source}", path.display())]
 pub struct RenameError {
+    /// The file.
     pub path: PathBuf,
+    /// Why it could not be renamed into place.
     pub source: io::Error,
 }
 

@@ -9,8 +9,6 @@
 //!   Newton; [`order`]: sweep order and torn connections;
 //! - [`settings`], [`counters`], [`error`]: settings, what a run did, typed errors.
 
-#![warn(missing_docs)]
-
 pub mod acceleration;
 pub mod adapter;
 pub mod counters;

@@ -2,8 +2,6 @@
 //! scheme and tolerances, time window, outputs), turned into a ready [`Master`].
 //!
 //! Errors name the file, the line where known, the key and what was expected.
-#![warn(missing_docs)]
-
 pub mod analysis;
 mod draft;
 mod expansion;

@@ -9,9 +9,13 @@ use serde::{Deserialize, Serialize};
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Quantity {
+    /// Transverse deflection (m).
     Deflection,
+    /// Rotation of the section (rad).
     Rotation,
+    /// Bending moment (N m).
     Moment,
+    /// Shear force (N).
     Shear,
 }
 
@@ -70,6 +74,7 @@ pub enum TimeFunction {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum InputMarker {
+    /// The value is read from a coupled input (the scene writes `"input"`).
     Input,
 }
 
@@ -77,12 +82,15 @@ pub enum InputMarker {
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(from = "ExpressionSpec", into = "ExpressionSpec")]
 pub struct Expression {
+    /// Constant part (the quantity's SI unit).
     pub offset: f64,
+    /// Amplitude of the sine (the quantity's SI unit).
     pub amplitude: f64,
     /// rad/s
     pub angular_frequency: f64,
     /// rad
     pub phase: f64,
+    /// Amplitude of the decaying exponential (the quantity's SI unit).
     pub decay_amplitude: f64,
     /// 1/s
     pub decay_rate: f64,
@@ -273,7 +281,9 @@ fn first_bad_field(e: &Expression) -> Option<(String, f64)> {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Condition {
+    /// What is prescribed at the end.
     pub quantity: Quantity,
+    /// Its value over time, or a coupled input.
     pub value: TimeFunction,
 }
 

@@ -545,6 +545,7 @@ impl BeamDriver for crate::contract::Driver<Beam> {
 
 /// The contact surface, for plots and tests.
 impl Beam {
+    /// The contact surface, when the beam has contact (for plots and tests).
     pub fn surface(&self) -> Option<&Surface> {
         self.params.contact.as_ref().map(|c| &c.surface)
     }

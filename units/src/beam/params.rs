@@ -21,8 +21,11 @@ pub enum ContactIntegration {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactParams {
+    /// The contact law (penalty, augmented Lagrangian or barrier).
     pub method: Law,
+    /// The surface the beam touches.
     pub surface: Surface,
+    /// Where the contact terms are integrated on each element.
     #[serde(default)]
     pub integration: ContactIntegration,
     /// Damping on contact c_c (N s/m per m), active where the gap <= gap_band.
@@ -39,7 +42,12 @@ pub struct ContactParams {
 pub enum InitialShape {
     /// Seed 004 eq. 4.41: the static shape of a pipe held at x = 0 with deflection
     /// `deflection` > 0 and angle `angle` < 0, lying on y = 0 from x = -3 y0 / y0'.
-    ContactReference { deflection: f64, angle: f64 },
+    ContactReference {
+        /// Deflection at x = 0 (m), > 0.
+        deflection: f64,
+        /// Angle at x = 0 (rad), < 0.
+        angle: f64,
+    },
 }
 
 impl InitialShape {
@@ -91,6 +99,7 @@ pub struct BeamParams {
     /// Rayleigh damping C += rayleigh_mass M + rayleigh_stiffness K.
     #[serde(default)]
     pub rayleigh_mass: f64,
+    /// Rayleigh damping proportional to stiffness (s): C = a M + b K, this is b.
     #[serde(default)]
     pub rayleigh_stiffness: f64,
     /// Distributed load w(x) = sum_i c_i x^i (N/m), constant in time.
@@ -112,7 +121,9 @@ pub struct BeamParams {
     /// Start from the static equilibrium instead of `initial_deflection`.
     #[serde(default)]
     pub static_start: bool,
+    /// The conditions at the two ends.
     pub boundary: Boundary,
+    /// Contact with a surface, when the beam can touch one.
     #[serde(default)]
     pub contact: Option<ContactParams>,
     /// HHT-alpha in [0, 1/3] (0: trapezoidal rule, no numerical damping).
@@ -129,6 +140,7 @@ pub struct BeamParams {
     /// capped at the method's penalty); default: the method's penalty from the start.
     #[serde(default)]
     pub static_penalty_start: Option<f64>,
+    /// Growth of the static solver's penalty per iteration (see `static_penalty_start`).
     #[serde(default = "one")]
     pub static_penalty_growth: f64,
 }

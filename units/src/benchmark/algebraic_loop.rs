@@ -75,8 +75,10 @@ impl LinearPair {
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Branch {
+    /// The root with the larger value.
     #[default]
     Positive,
+    /// The root with the smaller value.
     Negative,
 }
 

@@ -13,10 +13,20 @@ pub enum CurrentProfile {
     None,
     /// Linear shear from `seabed` (m/s, at z = 0) to `surface` (m/s, at the water
     /// depth); constant beyond.
-    Linear { seabed: f64, surface: f64 },
+    Linear {
+        /// Speed at the seabed (m/s, z = 0).
+        seabed: f64,
+        /// Speed at the surface (m/s, z = water depth).
+        surface: f64,
+    },
     /// Piecewise linear through (z, speed) points, z increasing (m, m/s); constant
     /// beyond the ends.
-    Table { z: Vec<f64>, speed: Vec<f64> },
+    Table {
+        /// Heights above the seabed (m), increasing.
+        z: Vec<f64>,
+        /// Current speed at each height (m/s).
+        speed: Vec<f64>,
+    },
 }
 
 impl CurrentProfile {

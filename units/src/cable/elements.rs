@@ -20,6 +20,7 @@ pub struct ElementProperties {
     /// Added mass per unit length normal and along the element (kg/m):
     /// rho pi D^2 / 4 times the coefficients (zero without the effect).
     pub added_mass_normal: f64,
+    /// Added mass per unit length along the element (kg/m).
     pub added_mass_tangential: f64,
 }
 

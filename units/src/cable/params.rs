@@ -98,9 +98,15 @@ pub enum Section {
     #[default]
     Full,
     /// From the anchor to the truncation point (the numerical substructure).
-    Lower { truncation_ratio: f64 },
+    Lower {
+        /// Where the cut is, as a fraction of the line's length from the anchor, in (0, 1).
+        truncation_ratio: f64,
+    },
     /// From the truncation point to the top (the physical substructure).
-    Upper { truncation_ratio: f64 },
+    Upper {
+        /// Where the cut is, as a fraction of the line's length from the anchor, in (0, 1).
+        truncation_ratio: f64,
+    },
 }
 
 /// The physical effects a scene can switch on; none is computed when off.

@@ -45,7 +45,9 @@ pub enum ChordModel {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MovingEnd {
+    /// The section's start follows the neighbour before it.
     Start,
+    /// The section's end follows the neighbour after it.
     End,
 }
 
@@ -53,13 +55,17 @@ pub enum MovingEnd {
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ChordParams {
+    /// How the chord carries load (a straight beam or the span's transfer matrix).
     pub model: ChordModel,
+    /// Which end follows its neighbour's motion (the other is held).
     pub moving: MovingEnd,
     /// The section's start and end in the equilibrium (m): the chord.
     pub start: [f64; 2],
+    /// The section's end in the equilibrium (m).
     pub end: [f64; 2],
     /// The section's submerged weight (N, downwards) and where it acts (m).
     pub weight: f64,
+    /// Where the submerged weight acts ([x, z], m).
     pub weight_at: [f64; 2],
     /// The loaded end's neighbour's displacement in the equilibrium (x, z from
     /// its stress-free position, m; rotation, rad): what it is handed at rest.

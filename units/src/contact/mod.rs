@@ -27,35 +27,51 @@ pub enum LambdaUpdate {
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Law {
     /// Xi = p d^2 / 2 for d <= 0 (a spring in the surface).
-    Penalty { penalty: f64 },
+    Penalty {
+        /// Penalty p (N/m per m of contact, or N/m at a node).
+        penalty: f64,
+    },
     /// Xi = (lambda + p d)^2 / (2p) for lambda + p d <= 0 (eq. 3.4).
     AugmentedLagrangian {
+        /// Penalty p (N/m per m of contact, or N/m at a node).
         penalty: f64,
+        /// Starting Lagrangian parameter lambda (force per length, like g).
         #[serde(default)]
         lambda0: f64,
+        /// Relaxation of the update in [0, 1]: lambda+ = eta lambda- + (1 - eta) g (eq. 3.12).
         #[serde(default)]
         eta: f64,
+        /// When lambda is updated.
         #[serde(default)]
         update: LambdaUpdate,
     },
     /// Shifted logarithmic barrier with quadratic extension (eq. 3.8).
     AugmentedBarrier {
+        /// Penalty p (N/m per m of contact, or N/m at a node).
         penalty: f64,
+        /// Starting Lagrangian parameter lambda (> 0 here: minus the source's).
         #[serde(default = "one")]
         lambda0: f64,
+        /// The barrier's shift s (>= 1, eq. 3.8).
         #[serde(default = "one")]
         s: f64,
+        /// Where the logarithm gives way to the quadratic extension, in (0, 1).
         #[serde(default = "half")]
         beta: f64,
+        /// Relaxation of the update in [0, 1]: lambda+ = eta lambda- + (1 - eta) g (eq. 3.12).
         #[serde(default)]
         eta: f64,
+        /// When lambda is updated.
         #[serde(default)]
         update: LambdaUpdate,
     },
     /// Penalty whose force over a step is the discrete gradient
     /// (Xi(d1) - Xi(d0)) / (d1 - d0): with the trapezoidal rule (alpha = 0) the
     /// contact neither adds nor removes energy (after Armero and Petocz 1998).
-    EnergyConserving { penalty: f64 },
+    EnergyConserving {
+        /// Penalty p (N/m per m of contact, or N/m at a node).
+        penalty: f64,
+    },
 }
 
 fn one() -> f64 {

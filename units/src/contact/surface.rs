@@ -10,52 +10,82 @@ use serde::{Deserialize, Serialize};
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Shape {
     /// f = height.
-    Flat { height: f64 },
+    Flat {
+        /// Height of the surface (m).
+        height: f64,
+    },
     /// f = height + slope x.
-    Tilted { height: f64, slope: f64 },
+    Tilted {
+        /// Height at x = 0 (m).
+        height: f64,
+        /// Rise per unit x (m/m).
+        slope: f64,
+    },
     /// f = height + bump_height (1 + cos(pi (x - center) / half_width)) / 2 within
     /// half_width of the center, else height.
     Bump {
+        /// Height away from the bump (m).
         height: f64,
+        /// Where the bump is highest (m).
         center: f64,
+        /// Half the bump's width (m), > 0.
         half_width: f64,
+        /// Height of the bump above `height` (m).
         bump_height: f64,
     },
     /// Circular rollers of `radius` with tops at `height` (or, per roller, at
     /// `tops`: a stinger's curve), centred at `positions`; no surface between them.
     Rollers {
+        /// The rollers' centres along x (m).
         positions: Vec<f64>,
+        /// Radius of every roller (m), > 0.
         radius: f64,
+        /// Height of the rollers' tops when `tops` is empty (m).
         #[serde(default)]
         height: f64,
+        /// Height of each roller's top (m); empty: all at `height`.
         #[serde(default)]
         tops: Vec<f64>,
     },
     /// Piecewise linear through (x, y), constant beyond the ends.
-    Table { x: Vec<f64>, y: Vec<f64> },
+    Table {
+        /// Abscissae (m), increasing.
+        x: Vec<f64>,
+        /// Heights of the surface there (m).
+        y: Vec<f64>,
+    },
 }
 
 /// Vertical motion of the whole surface.
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Motion {
+    /// The surface stays where it is.
     #[default]
     None,
     /// amplitude sin(angular_frequency t).
     Sine {
+        /// Amplitude of the vertical motion (m).
         amplitude: f64,
+        /// Its angular frequency (rad/s).
         angular_frequency: f64,
     },
     /// A sum of sines (a vessel's heave as wave components).
-    Sines { sines: Vec<Sine> },
+    Sines {
+        /// The components (m, rad/s, rad).
+        sines: Vec<Sine>,
+    },
     /// Rollers moving with their vessel: heave (m, sums of sines) and pitch
     /// (rad, counter-clockwise, sums of sines) about `pivot` ([x, z], m), each
     /// roller's centre carried rigidly (rollers only: a circle stays a circle).
     Vessel {
+        /// The vessel's heave (m).
         #[serde(default)]
         heave: Vec<Sine>,
+        /// The vessel's pitch (rad, counter-clockwise).
         #[serde(default)]
         pitch: Vec<Sine>,
+        /// The point the vessel pitches about ([x, z], m).
         pivot: [f64; 2],
     },
 }
@@ -86,7 +116,9 @@ fn all_finite(values: &[(&str, f64)]) -> Result<(), UnitError> {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Surface {
+    /// Where the surface is when it has not moved.
     pub shape: Shape,
+    /// How the whole surface moves.
     #[serde(default)]
     pub motion: Motion,
 }

@@ -16,6 +16,7 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
 /// The constant matrices of a second-order system.
 pub struct Matrices<'a> {
+    /// Mass matrix M.
     pub mass: &'a SymmetricBand,
     /// `None` when the system has no damping (its products are skipped).
     pub damping: Option<&'a SymmetricBand>,
@@ -28,7 +29,9 @@ pub struct Matrices<'a> {
 /// stiffness times `stiffness`, the tangent damping times `damping`.
 #[derive(Copy, Clone, Debug)]
 pub struct TangentScales {
+    /// Weight of the stiffness tangent.
     pub stiffness: f64,
+    /// Weight of the damping tangent.
     pub damping: f64,
 }
 
@@ -136,10 +139,13 @@ pub trait SecondOrderSystem {
 pub struct StepLoads<'a> {
     /// Start and end time (s) and the exact step length (s).
     pub t0: f64,
+    /// End time of the step (s).
     pub t1: f64,
+    /// Exact step length (s).
     pub h: f64,
     /// External loads at the step's start and end.
     pub f0: &'a [f64],
+    /// External load at the step's end.
     pub f1: &'a [f64],
     /// The nonlinear force at the step's start, as it enters the constant part
     /// (times alpha); `None` when it does not (energy-conserving contact).
@@ -153,6 +159,7 @@ pub struct StepLoads<'a> {
 pub struct NewtonSettings {
     /// Largest correction relative to max(1, |q|) below which a step has converged.
     pub tolerance: f64,
+    /// Most Newton iterations a step may take before it fails.
     pub max_iterations: u32,
 }
 

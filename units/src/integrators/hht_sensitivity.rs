@@ -20,8 +20,20 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 /// loaded with the weight the load has in the residual.
 #[derive(Copy, Clone, Debug)]
 pub enum Drive {
-    Motion { dof: usize, change: [f64; 3] },
-    Load { dof: usize, weight: f64 },
+    /// A held DOF moved by its (dq, dv, da).
+    Motion {
+        /// The DOF moved.
+        dof: usize,
+        /// Its change of displacement, velocity and acceleration per unit input.
+        change: [f64; 3],
+    },
+    /// A DOF loaded by the input.
+    Load {
+        /// The DOF loaded.
+        dof: usize,
+        /// The load's weight in the residual per unit input.
+        weight: f64,
+    },
 }
 
 /// A converged step as its sensitivity needs it.
@@ -29,12 +41,15 @@ pub struct StepSensitivity<'a> {
     /// The Newton matrix with the held rows in place, and its factor with the
     /// held DOFs as identity rows.
     pub newton: &'a SymmetricBand,
+    /// The factor of the Newton matrix, held DOFs as identity rows.
     pub factor: &'a BandLdlt,
+    /// Mass matrix M.
     pub mass: &'a SymmetricBand,
     /// The damping of the step's end, C + C_t, at (i, k).
     pub damping: &'a dyn Fn(usize, usize) -> f64,
     /// (alpha, beta, gamma) and the step (s).
     pub parameters: (f64, f64, f64),
+    /// The step (s).
     pub h: f64,
 }
 
@@ -63,8 +78,11 @@ impl<'a> StepSensitivity<'a> {
 /// The motion's change per unit input: dq, dv, da of every DOF.
 #[derive(Default)]
 pub struct Change {
+    /// Change of the displacements (per unit input).
     pub dq: Vec<f64>,
+    /// Change of the velocities (per unit input).
     pub dv: Vec<f64>,
+    /// Change of the accelerations (per unit input).
     pub da: Vec<f64>,
 }
 

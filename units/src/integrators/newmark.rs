@@ -13,8 +13,11 @@ crate::state_struct! {
     /// Displacement, velocity and acceleration of a linear system.
     #[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
     pub struct NewmarkState {
+        /// Displacements (each DOF's SI unit).
         pub u: StateVector,
+        /// Velocities.
         pub v: StateVector,
+        /// Accelerations.
         pub a: StateVector,
     }
 }

@@ -19,6 +19,7 @@ use crate::numerics::banded::{BandLdlt, SymmetricBand};
 pub struct LoadIteration {
     /// Largest change of any velocity between two iterations (its SI unit).
     pub tolerance: f64,
+    /// Most iterations a step may take before it fails.
     pub max_iterations: u32,
 }
 

@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 pub struct Bathymetry {
     /// The grid's x and y coordinates (m), each increasing, at least two.
     pub x: Vec<f64>,
+    /// The grid's y coordinates (m), increasing, at least two.
     pub y: Vec<f64>,
     /// `depth[j][i]` at (x[i], y[j]) (m below z = 0): one row per y.
     pub depth: Vec<Vec<f64>>,

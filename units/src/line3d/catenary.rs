@@ -12,7 +12,9 @@ use crate::contract::UnitError;
 pub struct CatenaryLine {
     /// Unstretched length (m), EA (N), weight in water per length (N/m, > 0).
     pub length: f64,
+    /// EA (N).
     pub axial_stiffness: f64,
+    /// Weight in water per length (N/m, > 0).
     pub weight: f64,
     /// Whether a seabed at the anchor's level carries the line.
     pub seabed: bool,
@@ -21,8 +23,11 @@ pub struct CatenaryLine {
 /// The solution: horizontal tension H and the fairlead's vertical force VF (N).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Catenary {
+    /// The line solved.
     pub line: CatenaryLine,
+    /// Horizontal tension H (N).
     pub horizontal: f64,
+    /// The fairlead's vertical force VF (N).
     pub vertical: f64,
 }
 

@@ -102,7 +102,9 @@ pub struct NodeForces {
     pub hydrodynamic: Vector3<f64>,
     /// The seabed's spring (conservative) and its damper.
     pub seabed_spring: Vector3<f64>,
+    /// The seabed's damper.
     pub seabed_damper: Vector3<f64>,
+    /// Seabed friction.
     pub friction: Vector3<f64>,
 }
 
@@ -116,6 +118,7 @@ pub struct Environment {
     /// Depth (m) and current velocity (m/s), by depth.
     current: Vec<(f64, Vector3<f64>)>,
     waves: Option<AiryWaves>,
+    /// The seabed, when the line can touch it.
     pub seabed: Option<SeabedPlane>,
     /// Tributary length per node (m).
     tributary: Vec<f64>,
@@ -423,8 +426,11 @@ fn split(u: &Vector3<f64>, axis: &Vector3<f64>) -> (f64, Vector3<f64>) {
 /// takes them (friction's secant while sliding).
 #[derive(Copy, Clone, Debug)]
 pub struct SeabedTangent {
+    /// Of the seabed's spring (N/m).
     pub stiffness: Matrix3<f64>,
+    /// Of the seabed's damper (N s/m).
     pub damper: Matrix3<f64>,
+    /// Of friction (N s/m while sliding: its secant).
     pub friction: Matrix3<f64>,
     /// Friction's true velocity derivative (the tangent of the tanh also
     /// while sliding), for the step's sensitivity.

@@ -25,7 +25,9 @@ pub struct Mechanics {
     pub element_length: f64,
     /// EA (N), EI (N m^2), BA (N s).
     pub axial_stiffness: f64,
+    /// EI (N m^2).
     pub bending_stiffness: f64,
+    /// BA (N s).
     pub axial_damping: f64,
 }
 

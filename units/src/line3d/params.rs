@@ -42,11 +42,13 @@ pub struct Line3dParams {
     /// tangential one on the surface pi D, as MoorDyn and the planar unit).
     #[serde(default)]
     pub drag_normal: f64,
+    /// Morison drag coefficient tangential to the line (on the surface pi D).
     #[serde(default)]
     pub drag_tangential: f64,
     /// Added-mass coefficients normal and tangential.
     #[serde(default)]
     pub added_mass_normal: f64,
+    /// Added-mass coefficient tangential to the line.
     #[serde(default)]
     pub added_mass_tangential: f64,
     /// Water density (kg/m^3).
@@ -167,6 +169,7 @@ pub struct Seabed {
     /// Coulomb coefficients along the line and across it.
     #[serde(default)]
     pub friction_axial: f64,
+    /// Coulomb coefficient across the line.
     #[serde(default)]
     pub friction_lateral: f64,
     /// Friction is mu N tanh(v / stick_velocity) in each direction (m/s): a

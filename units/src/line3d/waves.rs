@@ -48,6 +48,7 @@ pub struct Kinematics {
     pub elevation: f64,
     /// Velocity (m/s) and acceleration (m/s^2).
     pub velocity: Vector3<f64>,
+    /// Acceleration (m/s^2).
     pub acceleration: Vector3<f64>,
 }
 

@@ -428,6 +428,7 @@ impl NodalContacts {
         touched
     }
 
+    /// The contact's summary at (q, t, lambda): nodes in contact, reactions and the touchdown.
     pub fn summary(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> ContactSummary {
         let mut s = ContactSummary {
             touchdown: f64::NAN,

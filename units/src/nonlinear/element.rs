@@ -36,9 +36,11 @@ pub struct Element {
     pub length: f64,
     /// Direction cosines of the stress-free chord.
     pub cos0: f64,
+    /// Direction sine of the stress-free chord.
     pub sin0: f64,
     /// Axial stiffness EA (N) and bending stiffness EI (N m^2).
     pub ea: f64,
+    /// Bending stiffness EI (N m^2).
     pub ei: f64,
 }
 
@@ -49,9 +51,13 @@ pub type ElementForce = ([f64; 6], [[f64; 6]; 6]);
 /// on the element), plus its current chord length (m) and angle (rad).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct LocalForces {
+    /// Axial force N (N, tension positive).
     pub axial: f64,
+    /// End moments M1, M2 (N m, counter-clockwise on the element).
     pub moments: [f64; 2],
+    /// Current chord length (m).
     pub chord: f64,
+    /// Current chord angle (rad).
     pub angle: f64,
 }
 

@@ -19,7 +19,9 @@ pub struct Resolved {
     pub end: usize,
     /// 0 x, 1 z, 2 rotation.
     pub component: usize,
+    /// The DOF's index in the model.
     pub dof: usize,
+    /// How it is held or loaded.
     pub condition: DofCondition,
     /// The input port feeding it, if coupled.
     pub input: Option<usize>,

@@ -25,6 +25,7 @@ mod modes;
 mod reduced;
 mod start_shape;
 mod statics;
+mod validation;
 
 use crate::contract::{
     Capabilities, Field, Inputs, StepReport, Time, Unit, UnitDescription, UnitError,

@@ -18,7 +18,9 @@ pub const BAND: usize = 5;
 /// The discretised structure.
 #[derive(Clone, Debug)]
 pub struct Model {
+    /// How the elements' forces are computed.
     pub formulation: Formulation,
+    /// The elements, from the start.
     pub elements: Vec<Element>,
     /// Segment of each element.
     pub segment_of: Vec<usize>,

@@ -8,9 +8,6 @@ use super::element::Formulation;
 use crate::beam::boundary::TimeFunction;
 use crate::contact::Law;
 use crate::contact::surface::Surface;
-use crate::contract::{
-    UnitError, require_finite, require_in_range, require_non_negative, require_positive,
-};
 use serde::{Deserialize, Serialize};
 
 /// A straight run of equal elements of one cross-section.
@@ -23,6 +20,7 @@ pub struct Segment {
     /// the key says so, as every angle input in degrees does).
     #[serde(default)]
     pub angle_deg: f64,
+    /// Number of equal elements.
     pub elements: usize,
     /// EA (N).
     pub axial_stiffness: f64,
@@ -39,11 +37,13 @@ pub struct Segment {
     /// Morison drag coefficients normal and tangential to the element.
     #[serde(default)]
     pub drag_normal: f64,
+    /// Morison drag coefficient tangential to the element (on the surface pi D).
     #[serde(default)]
     pub drag_tangential: f64,
     /// Added-mass coefficients normal and tangential.
     #[serde(default)]
     pub added_mass_normal: f64,
+    /// Added-mass coefficient tangential to the element.
     #[serde(default)]
     pub added_mass_tangential: f64,
 }
@@ -89,6 +89,7 @@ pub enum EndKind {
     Fixed,
     /// x and z held, rotation free.
     Pinned,
+    /// Nothing held.
     #[default]
     Free,
 }
@@ -97,10 +98,14 @@ pub enum EndKind {
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct End {
+    /// A shorthand for the DOFs' conditions; a DOF given below overrides it.
     #[serde(default)]
     pub kind: EndKind,
+    /// Condition of the x displacement.
     pub x: Option<DofCondition>,
+    /// Condition of the z displacement.
     pub z: Option<DofCondition>,
+    /// Condition of the rotation.
     pub rotation: Option<DofCondition>,
 }
 
@@ -131,8 +136,10 @@ impl End {
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Ends {
+    /// The first node's end.
     #[serde(default)]
     pub start: End,
+    /// The last node's end.
     #[serde(default)]
     pub end: End,
 }
@@ -143,10 +150,13 @@ pub struct Ends {
 pub struct Support {
     /// Arc length (m) of the node held; it must be a node of the mesh.
     pub at: f64,
+    /// Hold the node's x displacement.
     #[serde(default)]
     pub x: bool,
+    /// Hold its z displacement.
     #[serde(default)]
     pub z: bool,
+    /// Hold its rotation.
     #[serde(default)]
     pub rotation: bool,
 }
@@ -158,10 +168,13 @@ pub struct DistributedLoad {
     /// Arc-length range (m); elements whose midpoint lies in it carry the load.
     #[serde(default)]
     pub from: f64,
+    /// End of the arc-length range (m).
     #[serde(default = "infinity")]
     pub to: f64,
+    /// Load along x (N/m) over time.
     #[serde(default = "zero_function")]
     pub x: TimeFunction,
+    /// Load along z (N/m) over time.
     #[serde(default = "zero_function")]
     pub z: TimeFunction,
 }
@@ -192,10 +205,13 @@ pub enum MassKind {
 pub enum Integrator {
     /// HHT-alpha with Newton iterations.
     Hht {
+        /// Numerical damping alpha in [0, 1/3].
         #[serde(default)]
         alpha: f64,
+        /// Newton's tolerance on the largest correction relative to max(1, |q|).
         #[serde(default = "default_tolerance")]
         tolerance: f64,
+        /// Most Newton iterations a step may take.
         #[serde(default = "default_iterations")]
         max_iterations: u32,
     },
@@ -207,8 +223,10 @@ pub enum Integrator {
     /// the energy difference floors its corrections near 1e-9 m, hence a looser
     /// default tolerance than HHT's.
     EnergyConserving {
+        /// Newton's tolerance on the largest correction relative to max(1, |q|).
         #[serde(default = "default_discrete_gradient_tolerance")]
         tolerance: f64,
+        /// Most Newton iterations a step may take.
         #[serde(default = "default_iterations")]
         max_iterations: u32,
     },
@@ -267,7 +285,9 @@ impl StartShape {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct NodalContact {
+    /// The contact law.
     pub method: Law,
+    /// The surface the nodes touch.
     pub surface: Surface,
 }
 
@@ -283,7 +303,9 @@ impl NodalContact {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Current {
+    /// Heights (m), increasing.
     pub z: Vec<f64>,
+    /// Current speed along +x at each height (m/s).
     pub velocity: Vec<f64>,
 }
 
@@ -291,31 +313,39 @@ pub struct Current {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct NonlinearParams {
+    /// How the elements' forces are computed (co-rotational by default, or seed 002's cubic).
     #[serde(default)]
     pub formulation: Formulation,
     /// Stress-free position of the start (m).
     #[serde(default)]
     pub start: [f64; 2],
+    /// The stress-free geometry, from the start.
     pub segments: Vec<Segment>,
+    /// How the two ends are held, loaded or coupled.
     #[serde(default)]
     pub ends: Ends,
     /// Interior supports (e.g. a frame's corner held horizontally).
     #[serde(default)]
     pub supports: Vec<Support>,
+    /// Distributed loads over arc-length ranges.
     #[serde(default)]
     pub loads: Vec<DistributedLoad>,
+    /// Lumped or consistent mass.
     #[serde(default)]
     pub mass: MassKind,
+    /// The time integrator.
     #[serde(default)]
     pub integrator: Integrator,
     /// Rayleigh damping C = a M + b K0 (1/s, s).
     #[serde(default)]
     pub rayleigh_mass: f64,
+    /// Rayleigh damping proportional to stiffness (s): C = a M + b K, this is b.
     #[serde(default)]
     pub rayleigh_stiffness: f64,
     /// Water density (kg/m^3) for drag and added mass.
     #[serde(default = "water_density")]
     pub water_density: f64,
+    /// A current by height, for drag.
     #[serde(default)]
     pub current: Option<Current>,
     /// Contact with the seabed (its nodes define the touchdown point).
@@ -332,6 +362,7 @@ pub struct NonlinearParams {
     pub reduced_modes: Option<usize>,
     /// With `reduced_modes`: forces through sampled elements (see `reduced`).
     pub reduced_sampling: Option<super::reduced::Sampling>,
+    /// The shape the statics start from (stress-free, a catenary, or given points).
     #[serde(default)]
     pub start_shape: StartShape,
     /// The polyline (x, z in m) of `start_shape = "points"`.
@@ -382,210 +413,6 @@ impl NonlinearParams {
         }
         ((arc - s).abs() <= tolerance).then_some(node)
     }
-
-    /// Checks every parameter, naming the first bad one.
-    pub fn validate(&self) -> Result<(), UnitError> {
-        if self.segments.is_empty() {
-            return Err(UnitError::parameter(
-                "segments",
-                "[]",
-                "at least one segment",
-            ));
-        }
-        require_finite("start[0]", self.start[0])?;
-        require_finite("start[1]", self.start[1])?;
-        for (i, s) in self.segments.iter().enumerate() {
-            validate_segment(&format!("segments[{i}]"), s)?;
-        }
-        require_non_negative("rayleigh_mass", self.rayleigh_mass)?;
-        require_non_negative("rayleigh_stiffness", self.rayleigh_stiffness)?;
-        require_positive("water_density", self.water_density)?;
-        require_in_range("load_steps", f64::from(self.load_steps), 1.0, 10_000.0, "")?;
-        require_in_range(
-            "max_substeps",
-            f64::from(self.max_substeps),
-            1.0,
-            1024.0,
-            "",
-        )?;
-        self.integrator.validate()?;
-        let length = self.length();
-        for (i, &s) in self.stations.iter().enumerate() {
-            require_in_range(&format!("stations[{i}]"), s, 0.0, length, "m")?;
-        }
-        for (i, support) in self.supports.iter().enumerate() {
-            require_in_range(&format!("supports[{i}].at"), support.at, 0.0, length, "m")?;
-            if self.node_at(support.at).is_none() {
-                return Err(UnitError::parameter(
-                    &format!("supports[{i}].at"),
-                    support.at,
-                    "the arc length of a node (segment ends and element boundaries)",
-                ));
-            }
-        }
-        for (i, l) in self.loads.iter().enumerate() {
-            if l.from.is_nan() || l.to.is_nan() || l.from > l.to {
-                return Err(UnitError::parameter(
-                    &format!("loads[{i}]"),
-                    format!("from = {}, to = {}", l.from, l.to),
-                    "expected from <= to",
-                ));
-            }
-            l.x.validate(&format!("loads[{i}].x"))?;
-            l.z.validate(&format!("loads[{i}].z"))?;
-        }
-        if let Some(c) = &self.current {
-            validate_current(c)?;
-        }
-        super::contact::validate(self)?;
-        self.validate_start_points()?;
-        self.ends.validate()?;
-        let hydro = self.segments.iter().any(|s| {
-            s.drag_normal + s.drag_tangential + s.added_mass_normal + s.added_mass_tangential > 0.0
-        });
-        if self.current.is_some() && !hydro {
-            return Err(UnitError::parameter(
-                "current",
-                "a current profile",
-                "drag coefficients and a diameter on some segment (a current without drag acts on nothing)",
-            ));
-        }
-        Ok(())
-    }
-}
-
-impl NonlinearParams {
-    /// `start_points` are given exactly when `start_shape = "points"`: at least two
-    /// finite points, consecutive ones distinct.
-    fn validate_start_points(&self) -> Result<(), UnitError> {
-        let points = &self.start_points;
-        let wanted = self.start_shape == StartShape::Points;
-        if wanted == points.is_empty() {
-            return Err(UnitError::parameter(
-                "start_points",
-                format!("{} points", points.len()),
-                "at least two points exactly when start_shape = \"points\"",
-            ));
-        }
-        let bad = points.iter().flatten().any(|v| !v.is_finite())
-            || points.windows(2).any(|w| w[0] == w[1]);
-        if bad || (wanted && points.len() < 2) {
-            return Err(UnitError::parameter(
-                "start_points",
-                format!("{points:?}"),
-                "at least two finite points, consecutive ones distinct",
-            ));
-        }
-        Ok(())
-    }
-}
-
-impl Integrator {
-    /// Checks the integrator's settings.
-    fn validate(&self) -> Result<(), UnitError> {
-        if let Integrator::Hht { alpha, .. } = *self {
-            require_in_range("integrator.alpha", alpha, 0.0, 1.0 / 3.0, "")?;
-        }
-        if let Integrator::Hht {
-            tolerance,
-            max_iterations,
-            ..
-        }
-        | Integrator::EnergyConserving {
-            tolerance,
-            max_iterations,
-        } = *self
-        {
-            require_in_range("integrator.tolerance", tolerance, 1e-15, 1e-2, "")?;
-            require_in_range(
-                "integrator.max_iterations",
-                f64::from(max_iterations),
-                1.0,
-                1000.0,
-                "",
-            )?;
-        }
-        Ok(())
-    }
-}
-
-fn validate_segment(key: &str, s: &Segment) -> Result<(), UnitError> {
-    require_in_range(&format!("{key}.length"), s.length, 1e-3, 1e6, "m")?;
-    let angle = format!("{key}.angle_deg");
-    require_in_range(&angle, s.angle_deg, -360.0, 360.0, "deg")?;
-    require_in_range(
-        &format!("{key}.elements"),
-        s.elements as f64,
-        1.0,
-        100_000.0,
-        "",
-    )?;
-    require_in_range(
-        &format!("{key}.axial_stiffness"),
-        s.axial_stiffness,
-        1.0,
-        1e13,
-        "N",
-    )?;
-    require_in_range(
-        &format!("{key}.bending_stiffness"),
-        s.bending_stiffness,
-        1e-9,
-        1e12,
-        "N m^2",
-    )?;
-    require_in_range(
-        &format!("{key}.mass_per_length"),
-        s.mass_per_length,
-        1e-6,
-        1e6,
-        "kg/m",
-    )?;
-    // As heavy or as buoyant as 1e6 kg/m in water (mass_per_length's bound).
-    require_in_range(
-        &format!("{key}.submerged_weight"),
-        s.submerged_weight,
-        -1e8,
-        1e8,
-        "N/m",
-    )?;
-    for (name, v) in [
-        ("diameter", s.diameter),
-        ("drag_normal", s.drag_normal),
-        ("drag_tangential", s.drag_tangential),
-        ("added_mass_normal", s.added_mass_normal),
-        ("added_mass_tangential", s.added_mass_tangential),
-    ] {
-        require_in_range(&format!("{key}.{name}"), v, 0.0, 100.0, "")?;
-    }
-    let hydro = s.drag_normal + s.drag_tangential + s.added_mass_normal + s.added_mass_tangential;
-    if hydro > 0.0 && s.diameter <= 0.0 {
-        return Err(UnitError::parameter(
-            &format!("{key}.diameter"),
-            s.diameter,
-            "a diameter > 0 where drag or added-mass coefficients are given",
-        ));
-    }
-    Ok(())
-}
-
-fn validate_current(c: &Current) -> Result<(), UnitError> {
-    if c.z.is_empty() || c.z.len() != c.velocity.len() {
-        return Err(UnitError::parameter(
-            "current",
-            format!("{} depths, {} velocities", c.z.len(), c.velocity.len()),
-            "as many velocities as depths, at least one",
-        ));
-    }
-    if c.z.windows(2).any(|w| w[0] >= w[1]) || c.z.iter().chain(&c.velocity).any(|v| !v.is_finite())
-    {
-        return Err(UnitError::parameter(
-            "current.z",
-            format!("{:?}", c.z),
-            "finite, strictly increasing depths",
-        ));
-    }
-    Ok(())
 }
 
 impl Current {

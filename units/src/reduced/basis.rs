@@ -35,8 +35,11 @@ pub enum Normalisation {
 /// Which modal derivatives.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Derivative {
+    /// Static modal derivatives (the mass term left out).
     Static,
+    /// Modified modal derivatives (the mass term kept).
     Modified,
+    /// Novel derivatives (the tangent's change along the mode, mass-orthogonalised).
     Novel,
 }
 
@@ -45,7 +48,9 @@ pub enum Derivative {
 /// first clearly nonzero entry is positive.
 #[derive(Clone, Debug)]
 pub struct LinearModes {
+    /// Angular frequencies (rad/s), increasing.
     pub omegas: Vec<f64>,
+    /// The mode shapes, one per frequency.
     pub shapes: Vec<DVector<f64>>,
 }
 

@@ -54,6 +54,7 @@ pub struct ReducedParams {
     pub section: NonlinearParams,
     /// Linear modes in the basis, >= 1.
     pub modes: usize,
+    /// How the modes' derivatives enter the basis.
     #[serde(default)]
     pub derivatives: Derivatives,
     /// How the coordinates are stepped.

@@ -16,7 +16,9 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SeaState {
+    /// The wave spectrum and how its components are drawn.
     pub spectrum: spectrum::Spectrum,
+    /// The vessel's motion RAO, to turn waves into motion.
     #[serde(default)]
     pub rao: Option<rao::Rao>,
 }

@@ -24,6 +24,7 @@ pub enum SpectrumKind {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Spectrum {
+    /// The spectrum's family (JONSWAP, Pierson-Moskowitz) and its parameters.
     pub kind: SpectrumKind,
     /// Significant wave height Hs (m).
     pub significant_height: f64,

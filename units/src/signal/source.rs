@@ -27,6 +27,7 @@ pub enum FadeShape {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FadeIn {
+    /// How the factor rises from 0 to 1.
     pub shape: FadeShape,
     /// Time constant or duration (s).
     pub time: f64,
@@ -60,11 +61,13 @@ pub struct Step {
 pub struct SignalParams {
     /// The output's physical kind (its unit of measure), e.g. "rotation".
     pub quantity: PortKind,
+    /// Constant part (the quantity's SI unit).
     pub offset: f64,
     /// The sines given, then the sea state's.
     pub sines: Vec<Sine>,
     /// Applied to the sines only; none: the sines start at full size.
     pub fade_in: Option<FadeIn>,
+    /// Steps added at given times.
     pub steps: Vec<Step>,
     /// The sea state whose sines were added to `sines` (kept to be checked).
     pub sea: Option<SeaState>,

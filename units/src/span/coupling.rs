@@ -102,6 +102,7 @@ pub struct SpanCouplingParams {
     /// transverse forces EI y''' - T y'.
     #[serde(default)]
     pub tension: f64,
+    /// Which end's motion is the input.
     #[serde(default)]
     pub orientation: Orientation,
     /// Number of poles (even, 2..=40), default 16.
@@ -110,6 +111,7 @@ pub struct SpanCouplingParams {
     /// Band of the fit (rad/s), default 2 pi 10.
     #[serde(default = "ten_hz")]
     pub band: f64,
+    /// How the span's states are stepped.
     #[serde(default)]
     pub discretization: Discretization,
     /// Numerical damping of the trapezoidal stepping, in [0, 1/3]: the theta

@@ -16,7 +16,9 @@ pub struct MatrixFit {
     /// residues[o][i][k]: residue of output o, input i at pole k (its conjugate
     /// pair has the conjugate residue).
     pub residues: [[Vec<C64>; 4]; 4],
+    /// Direct term D of each entry (H = sum of residue terms + D + E s).
     pub d: [[f64; 4]; 4],
+    /// Proportional term E of each entry (s).
     pub e: [[f64; 4]; 4],
 }
 

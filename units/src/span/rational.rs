@@ -18,7 +18,9 @@ use crate::contract::UnitError;
 /// H ~ L num(x) / den(x) with x = (beta L)^4; `den` is monic (highest coefficient 1).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RationalX {
+    /// Numerator coefficients, lowest power first.
     pub num: Vec<f64>,
+    /// Denominator coefficients, lowest power first (monic).
     pub den: Vec<f64>,
 }
 

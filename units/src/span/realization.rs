@@ -202,9 +202,13 @@ fn roots(p: &[f64]) -> Result<Vec<C64>, UnitError> {
 /// A single-input single-output state-space system dx/dt = A x + B u, y = C x + D u.
 #[derive(Clone, Debug)]
 pub struct StateSpace {
+    /// State matrix A.
     pub a: DMatrix<f64>,
+    /// Input vector B.
     pub b: DVector<f64>,
+    /// Output vector C.
     pub c: DVector<f64>,
+    /// Feedthrough D.
     pub d: f64,
     /// Poles (1/s), after repair.
     pub poles: Vec<C64>,
@@ -494,9 +498,13 @@ pub struct ModalBlock {
 pub enum Stepper {
     /// Canonical (companion) form: a dense Phi, O(n^2) per step.
     Dense {
+        /// Transition matrix Phi = exp(A h).
         phi: DMatrix<f64>,
+        /// Input vector Gamma1 of the held input u0.
         gamma1: DVector<f64>,
+        /// Input vector Gamma2 of the input's change over the step.
         gamma2: DVector<f64>,
+        /// Scratch for the step (no allocation).
         scratch: DVector<f64>,
     },
     /// Modal form: each block advances on its own, O(n) per step.

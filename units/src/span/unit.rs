@@ -17,8 +17,11 @@ use serde::Deserialize;
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Approximation {
+    /// Taylor series of the exact transfer function.
     Taylor,
+    /// Pade approximants of each term.
     TermPade,
+    /// Pade approximant of the whole function.
     #[default]
     FunctionPade,
     /// Vector fitting of the exact transfer function over `band` (beyond the source).
@@ -42,6 +45,7 @@ pub struct SpanParams {
     /// (the Taylor and Pade forms are those of the tension-free span).
     #[serde(default)]
     pub tension: f64,
+    /// How the exact transfer function is approximated.
     #[serde(default)]
     pub approximation: Approximation,
     /// Order in s (even, 2..=24), default 8.

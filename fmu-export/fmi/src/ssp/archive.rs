@@ -50,10 +50,22 @@ pub fn package(
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum OpenError {
+    /// The archive or its folder cannot be read or unpacked.
     #[error("{path}: {problem}")]
-    File { path: String, problem: String },
+    File {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        problem: String,
+    },
+    /// The system structure description does not read.
     #[error("{path}: {source}")]
-    Description { path: String, source: SspError },
+    Description {
+        /// The archive.
+        path: String,
+        /// Where and why.
+        source: SspError,
+    },
 }
 
 /// Unpacks the archive `path` into `dir` and reads its description; an `.ssd`

@@ -19,8 +19,11 @@ use serde::Serialize;
 /// One sea state and heading over its seeds.
 #[derive(Clone, Debug, Serialize)]
 pub struct Group {
+    /// Significant wave height Hs (m).
     pub significant_height: f64,
+    /// Peak period Tp (s).
     pub peak_period: f64,
+    /// Heading (deg); none: the scene's own.
     pub heading_deg: Option<f64>,
     /// The sea state's probability times the heading's.
     pub probability: f64,
@@ -35,7 +38,9 @@ pub struct Group {
 /// A signal's extreme in a group.
 #[derive(Clone, Debug, Serialize)]
 pub struct Extreme {
+    /// The signal's name.
     pub signal: String,
+    /// Its extreme (the signal's unit).
     pub value: f64,
     /// `gumbel`, `weibull`, `rayleigh` or `largest seen`.
     pub basis: &'static str,
@@ -46,8 +51,11 @@ pub struct Extreme {
 /// A signal's design value: the largest of its groups' extremes.
 #[derive(Clone, Debug, Serialize)]
 pub struct DesignValue {
+    /// The signal's name.
     pub signal: String,
+    /// Its design value (the signal's unit).
     pub value: f64,
+    /// How the group's extreme was found (see [`Extreme::basis`]).
     pub basis: &'static str,
     /// The group it comes from (an index into `CasesReport::groups`).
     pub group: usize,
@@ -56,6 +64,7 @@ pub struct DesignValue {
 /// A fatigue entry's damage over the scatter.
 #[derive(Clone, Debug, Serialize)]
 pub struct FatigueLife {
+    /// The fatigue entry's name (`[[fatigue]]`).
     pub name: String,
     /// The sum over the groups of probability x mean damage per year; NaN
     /// when a group has no completed seed.
@@ -78,14 +87,21 @@ pub struct Durations {
 /// What `cases.json` holds.
 #[derive(Clone, Debug, Serialize)]
 pub struct CasesReport {
+    /// The scene file.
     pub scene: String,
+    /// How many cases the matrix has.
     pub cases: usize,
+    /// The times the extremes are over.
     pub durations: Durations,
+    /// Each failed case's index and reason.
     pub failed: Vec<(usize, String)>,
     /// The sum of the groups' probabilities (1 for a whole scatter).
     pub probability_sum: f64,
+    /// One group per sea state and heading.
     pub groups: Vec<Group>,
+    /// Each signal's design value over the groups.
     pub design: Vec<DesignValue>,
+    /// Each fatigue entry's damage over the scatter.
     pub fatigue: Vec<FatigueLife>,
 }
 

@@ -21,26 +21,33 @@ use std::sync::Mutex;
 /// and probability of occurrence.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SeaState {
+    /// Significant wave height Hs (m).
     pub significant_height: f64,
+    /// Peak period Tp (s).
     pub peak_period: f64,
+    /// Probability of occurrence, in [0, 1].
     pub probability: f64,
 }
 
 /// A wave heading (degrees, the scene's `heading_deg`) and its probability.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Heading {
+    /// Heading (deg).
     pub degrees: f64,
+    /// Probability of the heading, in [0, 1].
     pub probability: f64,
 }
 
 /// What a matrix runs.
 #[derive(Clone, Debug)]
 pub struct CasesPlan {
+    /// The sea states of the scatter.
     pub seas: Vec<SeaState>,
     /// The headings; none: the scene's own.
     pub headings: Vec<Heading>,
     /// The seeds of each sea state and heading: 1 to `seeds`.
     pub seeds: u64,
+    /// Runs at once.
     pub jobs: usize,
     /// Simulated time of each run (s); the scene's when `None`.
     pub duration: Option<f64>,
@@ -55,8 +62,11 @@ pub struct CasesPlan {
 /// One case: indices into the plan's seas and headings, and its seed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Case {
+    /// Index into the plan's sea states.
     pub sea: usize,
+    /// Index into the plan's headings; none: the scene's own.
     pub heading: Option<usize>,
+    /// The sea's seed (1 to the plan's `seeds`).
     pub seed: u64,
 }
 

@@ -13,9 +13,13 @@ use std::str::FromStr;
 /// forces go through sampled elements (`reduced:6@5`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Choice {
+    /// The fidelity's name (e.g. `nonlinear`).
     pub fidelity: String,
+    /// Its elements (`:N`), when given.
     pub elements: Option<usize>,
+    /// Its substeps per synchronisation step (`/N`), when given.
     pub substeps: Option<u32>,
+    /// A reduced section's training window (s, `@T`), when given.
     pub training: Option<f64>,
 }
 
@@ -39,7 +43,9 @@ impl Choice {
 /// A section's choices: `NAME=CHOICE,CHOICE,...`.
 #[derive(Clone, Debug)]
 pub struct SectionChoices {
+    /// The section's name.
     pub section: String,
+    /// Its choices, in the order given.
     pub choices: Vec<Choice>,
 }
 

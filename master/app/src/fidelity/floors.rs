@@ -14,11 +14,14 @@ const ROUND_OFF: f64 = 1e-9;
 /// A quantity judged against its kind's scale.
 #[derive(Clone, Debug, Serialize)]
 pub struct Floor {
+    /// The quantity's name.
     pub quantity: String,
     /// The reference's RMS of the quantity and the scale it is judged
     /// against, in the quantity's unit.
     pub reference_rms: f64,
+    /// The scale it is judged against.
     pub scale: f64,
+    /// The quantity's unit of measure.
     pub unit: &'static str,
 }
 

@@ -31,6 +31,7 @@ use toml::{Table, Value};
 /// What a fidelity study runs.
 #[derive(Clone, Debug)]
 pub struct FidelityPlan {
+    /// Each section's choices.
     pub sections: Vec<SectionChoices>,
     /// Every combination, or one section's choices at a time (the others as
     /// the scene has them).
@@ -61,6 +62,7 @@ pub struct FidelityPlan {
 pub struct FidelityRow {
     /// Each section's choice (all sections, in order).
     pub combination: Vec<(String, String)>,
+    /// Whether it is the reference (the structure as one model).
     pub reference: bool,
     /// epsilon of each quantity against the reference.
     pub errors: Vec<(String, f64)>,
@@ -72,14 +74,18 @@ pub struct FidelityRow {
     pub cost_spread: f64,
     /// The reference's cost over this run's.
     pub speed_up: f64,
+    /// Coupling iterations per synchronisation step.
     pub iterations_per_step: f64,
+    /// Steps the master did not converge in.
     pub non_converged_steps: u64,
     /// The master's start check: the largest relative change over the first
     /// step of a load a section's statics were solved under.
     pub start_change: Option<f64>,
     /// Not beaten in both worst error and cost by another combination.
     pub pareto: bool,
+    /// Its worst error is within the tolerance.
     pub within_tolerance: bool,
+    /// Why the run failed, when it did.
     pub error: Option<String>,
     /// The run's warnings: the scene's advisories (a section's model that
     /// follows the touchdown point poorly) and the plausibility watch's.
@@ -89,11 +95,14 @@ pub struct FidelityRow {
 /// A fidelity study's result.
 #[derive(Clone, Debug, Serialize)]
 pub struct FidelityReport {
+    /// The scene file.
     pub scene: String,
+    /// The largest worst error a combination may have.
     pub tolerance: f64,
     /// The time (s) the errors were measured from (`--from`), when given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub from: Option<f64>,
+    /// Every quantity measured.
     pub quantities: Vec<String>,
     /// The quantities `worst` is taken over.
     pub judged: Vec<String>,

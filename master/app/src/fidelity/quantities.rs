@@ -16,8 +16,11 @@ use slender_scene::structure::SectionOutputs;
 /// its outputs the quantities read.
 #[derive(Clone, Debug)]
 pub struct SectionUnit {
+    /// The unit's name.
     pub unit: String,
+    /// Where it starts (m of arc).
     pub from: f64,
+    /// Which of its outputs the quantities read.
     pub outputs: SectionOutputs,
     /// The whole structure as one unit (the reference): the number of its
     /// first station at a cut (the cuts' stations follow in order).
@@ -31,8 +34,11 @@ pub struct SectionUnit {
 /// stinger (overbend), and its cuts (their quantities' names).
 #[derive(Clone, Debug, Default)]
 pub struct Features {
+    /// Seabed contact: touchdown and sag bend.
     pub seabed: bool,
+    /// A stinger: the overbend.
     pub stinger: bool,
+    /// The cuts' quantities' names.
     pub cuts: Vec<String>,
 }
 

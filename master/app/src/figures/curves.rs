@@ -8,8 +8,11 @@ use std::path::Path;
 
 /// One panel: its axes' titles (with units) and its named curves.
 pub struct CurvePanel {
+    /// Title of the x axis, with its unit.
     pub x_label: String,
+    /// Title of the y axis, with its unit.
     pub y_label: String,
+    /// Each curve's name and points (x, y).
     pub series: Vec<(String, Vec<(f64, f64)>)>,
 }
 

@@ -19,8 +19,11 @@ pub const CHAR_WIDTH: i32 = 7;
 
 /// One legend entry: a line (or a marker) in a colour, and its text.
 pub struct Entry {
+    /// The entry's text.
     pub text: String,
+    /// Its colour.
     pub colour: RGBAColor,
+    /// A marker rather than a line.
     pub marker: bool,
 }
 

@@ -23,11 +23,15 @@ pub struct Point {
 
 /// What the figure shows besides the points.
 pub struct Tradeoff<'a> {
+    /// The figure's title.
     pub title: &'a str,
     /// The y axis: what the error is measured against.
     pub error_label: &'a str,
+    /// The combinations or runs.
     pub points: Vec<Point>,
+    /// The tolerance drawn as a line, when there is one.
     pub tolerance: Option<f64>,
+    /// The reference's cost drawn as a line (s per simulated s).
     pub reference_cost: Option<f64>,
     /// The point to ring (the cheapest within the tolerance).
     pub chosen: Option<usize>,

@@ -8,8 +8,11 @@ use std::fmt::Write as _;
 /// A point of a figure in its pixels, and what hovering on it shows.
 #[derive(Clone, Debug)]
 pub struct Point {
+    /// x in the SVG's pixels.
     pub x: i32,
+    /// y in the SVG's pixels.
     pub y: i32,
+    /// What the point shows.
     pub text: String,
 }
 

@@ -20,7 +20,9 @@ pub enum Part {
     Markdown(String),
     /// An SVG figure, read from its file, with its hover points.
     Figure {
+        /// The SVG text.
         svg: String,
+        /// Points that show a value when hovered.
         hover: Vec<hover::Point>,
     },
 }

@@ -48,10 +48,13 @@ pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, UnitError> {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum StudyError {
+    /// A unit could not be built or stepped.
     #[error(transparent)]
     Unit(#[from] UnitError),
+    /// The plan is not valid.
     #[error("{0}")]
     Plan(String),
+    /// A run or a file failed.
     #[error(transparent)]
     App(#[from] crate::AppError),
 }
@@ -68,6 +71,7 @@ pub struct StudyRow {
     /// Largest error against the reference, relative to the reference's peak, for
     /// the sum of sines and for the step.
     pub error_sines: f64,
+    /// The same for the step.
     pub error_step: f64,
     /// Wall time per simulated second (s/s), mean of the two runs.
     pub cost_per_simulated_second: f64,
@@ -90,21 +94,28 @@ impl StudyRow {
 /// same sampled-and-ramped end motion, from a fine FE span with fine substeps.
 #[derive(Clone, Debug, Serialize)]
 pub struct Reference {
+    /// Elements of the reference FE span.
     pub elements: usize,
+    /// Its substeps per synchronisation step.
     pub substeps: usize,
     /// Largest change when the reference's substeps are halved, relative to its peak
     /// (sines, step): about three times the reference's own time error for a
     /// second-order integrator (e(m/2) - e(m) = 4e - e), so an upper bound on it.
     pub halving_change_sines: f64,
+    /// The same for the step.
     pub halving_change_step: f64,
 }
 
 /// What the study measured.
 #[derive(Clone, Debug, Serialize)]
 pub struct StudyReport {
+    /// Synchronisation step (s).
     pub step: f64,
+    /// Simulated time of each run (s).
     pub duration: f64,
+    /// The reference and its own error.
     pub reference: Reference,
+    /// One row per model and size.
     pub rows: Vec<StudyRow>,
     /// Models whose runs failed (an approximation that does not form), with why.
     pub failed: Vec<String>,
@@ -128,9 +139,11 @@ pub struct StudyPlan {
     pub fe_substeps: Vec<usize>,
     /// Elements and substeps of the reference FE span.
     pub reference_elements: usize,
+    /// Substeps of the reference FE span.
     pub reference_substeps: usize,
     /// Simulated time of each run (s) and synchronisation step (s).
     pub duration: f64,
+    /// Synchronisation step (s).
     pub step: f64,
 }
 

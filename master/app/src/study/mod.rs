@@ -36,7 +36,9 @@ type IndicatorColumns = (String, Vec<Vec<f64>>);
 /// One sweep: a setting and its values.
 #[derive(Clone, Debug)]
 pub struct Sweep {
+    /// The key varied.
     pub setting: Setting,
+    /// Its values.
     pub values: Vec<toml::Value>,
 }
 
@@ -111,7 +113,9 @@ pub enum Design {
 /// What a study runs.
 #[derive(Clone, Debug)]
 pub struct StudyPlan {
+    /// The sweeps.
     pub sweeps: Vec<Sweep>,
+    /// Every combination, or one sweep at a time.
     pub design: Design,
     /// Simulated time of each run (s); the scene's when `None`.
     pub duration: Option<f64>,
@@ -148,6 +152,7 @@ pub struct StudyRow {
     /// Observed order of convergence of each indicator between this run and the
     /// next finer one (NaN where it does not apply).
     pub orders: Vec<(String, f64)>,
+    /// Coupling iterations per synchronisation step.
     pub iterations_per_step: f64,
     /// The master's start check: the largest relative change over the first
     /// step of a load a section's statics were solved under.
@@ -156,6 +161,7 @@ pub struct StudyRow {
     pub cost_per_simulated_second: f64,
     /// (max - min) / median of the repeats' costs (NaN for one).
     pub cost_spread: f64,
+    /// Why the run failed, when it did.
     pub error: Option<String>,
     /// `indicator: signal` of each component judged against its indicator's
     /// largest, its reference being round-off against it (a free end's force).

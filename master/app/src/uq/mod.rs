@@ -28,6 +28,7 @@ pub struct UqPlan {
     /// Design size (default: the scene's `samples`); the scene's `samples`
     /// times a power of two keeps a smaller study's runs.
     pub samples: Option<usize>,
+    /// Runs at once.
     pub jobs: usize,
     /// Simulated time of each run (s); the scene's when `None`.
     pub duration: Option<f64>,
@@ -43,14 +44,23 @@ pub struct UqPlan {
 /// One output's expansion.
 #[derive(Clone, Debug, Serialize)]
 pub struct OutputResult {
+    /// The output's name.
     pub name: String,
+    /// Its mean from the expansion.
     pub mean: f64,
+    /// Its standard deviation from the expansion.
     pub sd: f64,
+    /// First-order Sobol' index of each input.
     pub first_order: Vec<f64>,
+    /// Total Sobol' index of each input.
     pub total: Vec<f64>,
+    /// Bootstrap intervals of the mean, sd and indices.
     pub intervals: Intervals,
+    /// Total degree of the expansion.
     pub degree: usize,
+    /// Its number of terms.
     pub terms: usize,
+    /// Its leave-one-out error (relative).
     pub loo_error: f64,
     /// (design size, mean, sd) of the expansion fitted on each nested design
     /// (the first `samples` points, then twice as many, ...), the whole last.
@@ -62,14 +72,19 @@ pub struct OutputResult {
 /// A study's result.
 #[derive(Clone, Debug, Serialize)]
 pub struct UqReport {
+    /// The scene file.
     pub scene: String,
+    /// Design points run.
     pub samples: usize,
     /// How the points were placed, in words.
     pub design: String,
+    /// The inputs' names.
     pub inputs: Vec<String>,
+    /// How many runs failed.
     pub failed_runs: usize,
     /// Each failed run's design index and reason.
     pub failures: Vec<(usize, String)>,
+    /// One result per output.
     pub outputs: Vec<OutputResult>,
 }
 
