@@ -219,7 +219,6 @@ pub mod edited;
 pub mod elf;
 pub mod exact;
 pub mod samples;
-pub mod slay;
 
 /// A unit that misbehaves on cue, for the master's failure paths.
 pub mod probe {
@@ -329,154 +328,15 @@ pub fn published() -> toml::Table {
     text.parse().expect("reference parses")
 }
 
-/// The polyester line of seed 000 Table 1 with `elements` elements, in 1200 m of
-/// water with the 0-0.5 m/s shear current, as a full line.
-pub fn polyester_line(elements: usize) -> slender_units::cable::CableParams {
-    slender_units::cable::CableParams::seed000_polyester(elements)
-}
-
 pub mod fmu;
 
-/// Beams of the seed 004 tests: conditions, the cantilever, the static contact
-/// reference problem (eq. 4.41) and its reference distance.
-pub mod beams {
-    use slender_units::Driver;
-    use slender_units::beam::boundary::{Boundary, Condition, Quantity, TimeFunction};
-    use slender_units::beam::{Beam, BeamParams, ContactIntegration, ContactParams};
-    use slender_units::contact::Law;
-    use slender_units::contact::surface::{Motion, Shape, Surface};
-
-    /// A condition with a constant value.
-    pub fn cond(quantity: Quantity, value: f64) -> Condition {
-        Condition {
-            quantity,
-            value: TimeFunction::Constant(value),
-        }
-    }
-
-    /// A 10 m beam (EI 1e4, mu 10) with a tight Newton tolerance.
-    pub fn params(elements: usize, boundary: Boundary) -> BeamParams {
-        let mut p = BeamParams::new(10.0, elements, 1e4, 10.0, boundary);
-        p.newton_tolerance = 1e-10;
-        p
-    }
-
-    /// Clamped at the left, free at the right.
-    pub fn cantilever() -> Boundary {
-        Boundary {
-            left: [
-                cond(Quantity::Deflection, 0.0),
-                cond(Quantity::Rotation, 0.0),
-            ],
-            right: [cond(Quantity::Moment, 0.0), cond(Quantity::Shear, 0.0)],
-        }
-    }
-
-    /// The static contact reference problem (seed 004 eq. 4.41) with `method`.
-    pub fn contact_params(elements: usize, method: Law) -> BeamParams {
-        let mut p = params(
-            elements,
-            Boundary {
-                left: [
-                    cond(Quantity::Deflection, 1.0),
-                    cond(Quantity::Rotation, -0.5),
-                ],
-                right: [cond(Quantity::Moment, 0.0), cond(Quantity::Shear, 0.0)],
-            },
-        );
-        // The surface y >= 0 holds the beam from below; a small uniform load keeps the
-        // free part on it without changing the shape before touchdown much.
-        p.contact = Some(ContactParams {
-            method,
-            surface: Surface {
-                shape: Shape::Flat { height: 0.0 },
-                motion: Motion::None,
-            },
-            integration: ContactIntegration::Gauss,
-            damping: 0.0,
-            gap_band: 0.0,
-        });
-        p.static_start = true;
-        p.newton_tolerance = 1e-9;
-        p
-    }
-
-    /// The contact reference problem as a driven unit.
-    pub fn contact_problem(elements: usize, method: Law) -> Driver<Beam> {
-        Driver::new(Beam::new(contact_params(elements, method)).unwrap())
-    }
-
-    /// Reference distance (eq. 4.42) to y_ref and the largest penetration.
-    pub fn reference_distance(beam: &Beam) -> (f64, f64) {
-        let yref = |x: f64| {
-            if x < 6.0 {
-                -0.5f64.powi(3) * x.powi(3) / 27.0 + 0.25 * x * x / 3.0 - 0.5 * x + 1.0
-            } else {
-                0.0
-            }
-        };
-        let n = 2000;
-        let (mut sum, mut pen) = (0.0, 0.0f64);
-        for i in 0..n {
-            let x = (i as f64 + 0.5) * 10.0 / n as f64;
-            let y = beam.deflection_at(x);
-            sum += (y - yref(x)).powi(2) * 10.0 / n as f64;
-            pen = pen.max(-y);
-        }
-        (sum.sqrt(), pen)
-    }
-}
-
-/// Seed 002's structures as `nonlinear` section parameters (TOML): the steel
-/// section (E = 210 GPa, D = 50 mm with the exact area, rho = 7800 kg/m^3), the
-/// simply supported cable (20 m, 20 elements, 59 free DOFs) and the simple
-/// frame (two 10 m members at 90 deg, 20 elements each, 118 free DOFs).
+/// Seed 002's structures ([`slender_units::nonlinear::seed002`]) and what
+/// the tests do with them: a section made from their text, random states.
 pub mod seed002 {
     use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
     use slender_units::{Driver, Time};
-    use std::f64::consts::PI;
 
-    /// EA, EI and mass per length of the steel section, as TOML keys.
-    pub fn steel() -> String {
-        let (e, d, rho) = (210e9, 0.05, 7800.0);
-        let area = PI * d * d / 4.0;
-        let inertia = PI * d.powi(4) / 64.0;
-        format!(
-            "axial_stiffness = {}, bending_stiffness = {}, mass_per_length = {}",
-            e * area,
-            e * inertia,
-            rho * area
-        )
-    }
-
-    /// The pinned-pinned cable, with `extra` TOML lines.
-    pub fn cable(extra: &str) -> String {
-        format!(
-            r#"
-formulation = "seed002"
-segments = [{{ length = 20.0, elements = 20, {} }}]
-ends.start = {{ kind = "pinned" }}
-ends.end = {{ kind = "pinned" }}
-{extra}
-"#,
-            steel()
-        )
-    }
-
-    /// The frame: column and beam, far ends pinned, the corner held in x.
-    pub fn frame(extra: &str) -> String {
-        format!(
-            r#"
-formulation = "seed002"
-segments = [{{ length = 10.0, angle_deg = 90.0, elements = 20, {s} }}, {{ length = 10.0, elements = 20, {s} }}]
-ends.start = {{ kind = "pinned" }}
-ends.end = {{ kind = "pinned" }}
-supports = [{{ at = 10.0, x = true }}]
-{extra}
-"#,
-            s = steel()
-        )
-    }
+    pub use slender_units::nonlinear::seed002::{cable, frame, steel};
 
     /// A deterministic pseudo-random vector of `n` entries in [-scale, scale]
     /// (a linear congruential generator: the same states on every machine).

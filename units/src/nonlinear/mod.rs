@@ -15,6 +15,7 @@ pub mod ends;
 pub mod environment;
 pub mod model;
 pub mod params;
+pub mod seed002;
 
 mod dynamics;
 mod energy;

@@ -6,23 +6,23 @@ use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::{Driver, Time};
 
 /// Seabed height (m, water surface at 0).
-pub const SEABED: f64 = -40.0;
+pub(crate) const SEABED: f64 = -40.0;
 /// The vessel end (m): firing line horizontal.
-pub const VESSEL: [f64; 2] = [300.0, 5.0];
+pub(crate) const VESSEL: [f64; 2] = [300.0, 5.0];
 /// Stinger radius (m); rollers every 5 m of arc.
-pub const STINGER_RADIUS: f64 = 100.0;
+pub(crate) const STINGER_RADIUS: f64 = 100.0;
 /// Stinger angle at its tip (deg).
-pub const STINGER_ANGLE: f64 = 30.0;
+pub(crate) const STINGER_ANGLE: f64 = 30.0;
 /// Submerged weight (N/m).
-pub const WEIGHT: f64 = 400.0;
+pub(crate) const WEIGHT: f64 = 400.0;
 /// Tensioner force (N).
-pub const TENSION: f64 = 100.0e3;
+pub(crate) const TENSION: f64 = 100.0e3;
 /// Bending stiffness (N m^2).
-pub const BENDING_STIFFNESS: f64 = 1.0e7;
+pub(crate) const BENDING_STIFFNESS: f64 = 1.0e7;
 
 /// One S-lay scene.
 #[derive(Clone, Debug)]
-pub struct Slay {
+pub(crate) struct Slay {
     /// Elements of the pipe.
     pub elements: usize,
     /// Contact law (a TOML table) of the seabed (N/m^2).
@@ -38,7 +38,7 @@ pub struct Slay {
 
 impl Slay {
     /// Penalty contact (1e6 N/m^2 on the seabed, 1e6 N/m per roller), no heave.
-    pub fn new(elements: usize) -> Slay {
+    pub(crate) fn new(elements: usize) -> Slay {
         Slay {
             elements,
             seabed_law: r#"{ kind = "penalty", penalty = 1.0e6 }"#.into(),
@@ -49,7 +49,7 @@ impl Slay {
     }
 
     /// The unit's parameters as TOML.
-    pub fn toml(&self) -> String {
+    pub(crate) fn toml(&self) -> String {
         let (positions, tops) = rollers();
         let points = start_points();
         let length: f64 = points
@@ -92,7 +92,7 @@ stinger = {{ method = {stinger}, surface = {{ shape = {{ kind = "rollers", posit
     }
 
     /// The unit, initialised (static start).
-    pub fn solved(&self) -> Result<Driver<NonlinearSection>, String> {
+    pub(crate) fn solved(&self) -> Result<Driver<NonlinearSection>, String> {
         let params: NonlinearParams = toml::from_str(&self.toml()).map_err(|e| e.to_string())?;
         let unit = NonlinearSection::new(params).map_err(|e| e.to_string())?;
         let mut driver = Driver::new(unit);
@@ -103,7 +103,7 @@ stinger = {{ method = {stinger}, surface = {{ shape = {{ kind = "rollers", posit
 
 /// Roller x positions and tops (m) along the stinger arc, the first 2 m from the
 /// vessel end.
-pub fn rollers() -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn rollers() -> (Vec<f64>, Vec<f64>) {
     let arc = STINGER_RADIUS * STINGER_ANGLE.to_radians();
     let count = (arc / 5.0).round() as usize;
     (0..=count)
@@ -120,7 +120,7 @@ pub fn rollers() -> (Vec<f64>, Vec<f64>) {
 /// Start polyline from the laid end: the seabed, the catenary from its touchdown
 /// to the stinger tip (horizontal tension: the tensioner force less the weight
 /// times the height), the stinger arc 1 cm above the rollers.
-pub fn start_points() -> Vec<[f64; 2]> {
+pub(crate) fn start_points() -> Vec<[f64; 2]> {
     let phi = STINGER_ANGLE.to_radians();
     let tip = [
         VESSEL[0] - STINGER_RADIUS * phi.sin(),
@@ -145,7 +145,7 @@ pub fn start_points() -> Vec<[f64; 2]> {
 }
 
 /// The outputs of a driver by name.
-pub fn output(driver: &Driver<NonlinearSection>, name: &str) -> f64 {
+pub(crate) fn output(driver: &Driver<NonlinearSection>, name: &str) -> f64 {
     let ports = &driver.description().outputs;
     let mut out = vec![0.0; ports.len()];
     driver.outputs(&mut out).expect("outputs");

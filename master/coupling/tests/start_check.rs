@@ -9,7 +9,7 @@
 
 use slender_coupling::settings::{MasterSettings, Scheme};
 use slender_coupling::{Link, Master, MasterError, System};
-use slender_tests::polyester_line;
+use slender_units::cable::CableParams;
 use slender_units::cable::{Cable, Effects};
 use slender_units::{
     Capabilities, Inputs, Port, PortKind, StateSlot, StepReport, Time, Unit, UnitDescription,
@@ -78,7 +78,7 @@ fn first_step(spike: f64, start_tolerance: f64) -> (Result<(), MasterError>, Mas
     system
         .add_unit("top", Box::new(SpikedTop::new(spike)))
         .unwrap();
-    let cable = Cable::new(polyester_line(20), Effects::all()).unwrap();
+    let cable = Cable::new(CableParams::seed000_polyester(20), Effects::all()).unwrap();
     system.add_unit("line", Box::new(cable)).unwrap();
     for axis in ["x", "z"] {
         let (from, to) = (

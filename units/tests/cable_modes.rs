@@ -1,15 +1,18 @@
 //! Eigenperiods of the 1934 m polyester line (seed 000 Table 3) from the cable
 //! unit's modal analysis at its static state.
 
-use slender_tests::{polyester_line, published};
+mod support;
+
+use crate::support::published;
 use slender_units::Driver;
 use slender_units::Time;
+use slender_units::cable::CableParams;
 use slender_units::cable::{Cable, Effects};
 
 /// Periods of the first 15 modes with the given stiffness factor, effects, top
 /// force angle from the vertical (deg) and element count.
 fn periods(stiffness_factor: f64, effects: Effects, angle_deg: f64, elements: usize) -> Vec<f64> {
-    let mut p = polyester_line(elements);
+    let mut p = CableParams::seed000_polyester(elements);
     p.youngs_modulus *= stiffness_factor;
     let mut cable = Driver::new(Cable::new(p, effects).unwrap());
     let a = angle_deg.to_radians();
@@ -160,7 +163,7 @@ fn eighty_elements_match_the_published_fe_columns() {
 /// Seed 000 eq. 9 with our parameters (rho = 1025): T_i = 4L / (2i - 1) sqrt(m / T0),
 /// m = structural + added mass per length.
 fn string_periods() -> Vec<f64> {
-    let line = polyester_line(80);
+    let line = CableParams::seed000_polyester(80);
     let area = std::f64::consts::PI * line.diameter.powi(2) / 4.0;
     let m = line.mass_per_length + line.water_density * area * line.added_mass_normal;
     (0..15)
@@ -179,7 +182,7 @@ fn as_vec(v: &toml::Value) -> Vec<f64> {
 #[test]
 fn the_truncation_point_of_the_nominal_line() {
     use slender_units::cable::Section;
-    let mut p = polyester_line(80);
+    let mut p = CableParams::seed000_polyester(80);
     let a = 50f64.to_radians();
     p.static_top_force = Some([2.5e6 * a.sin(), 2.5e6 * a.cos()]);
     p.section = Section::Lower {
@@ -189,7 +192,8 @@ fn the_truncation_point_of_the_nominal_line() {
     let k = lower.element_count();
     let top = lower.bottom_position();
     assert_eq!(top, [0.0, 0.0]);
-    let mut full = Driver::new(Cable::new(polyester_line(80), Effects::all()).unwrap());
+    let mut full =
+        Driver::new(Cable::new(CableParams::seed000_polyester(80), Effects::all()).unwrap());
     full.set_inputs(&[2.5e6 * a.sin(), 2.5e6 * a.cos(), 0.0, 0.0])
         .unwrap();
     full.initialize(Time::ZERO).unwrap();

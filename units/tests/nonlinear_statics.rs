@@ -3,7 +3,9 @@
 //! moment rolling a cantilever into a circle, and the elastic catenary against
 //! Irvine's closed form.
 
-use slender_tests::published;
+mod support;
+
+use crate::support::published;
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::{Driver, Time};
 

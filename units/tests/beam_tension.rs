@@ -4,7 +4,9 @@
 //! (EI -> 0) n pi / L sqrt(T / mu), and the static deflection under a uniform
 //! load against the closed form.
 
-use slender_tests::beams::{cond, params};
+mod support;
+
+use crate::support::beams::{cond, params};
 use slender_units::beam::Beam;
 use slender_units::beam::boundary::{Boundary, Quantity};
 use slender_units::{Driver, Time};

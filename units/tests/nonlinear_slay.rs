@@ -4,7 +4,9 @@
 //! 004's touchdown estimate in its own regime; energy kept with energy-conserving
 //! contact on rollers and seabed.
 
-use slender_tests::slay::{BENDING_STIFFNESS, STINGER_RADIUS, Slay, TENSION, output};
+mod support;
+
+use crate::support::slay::{BENDING_STIFFNESS, STINGER_RADIUS, Slay, TENSION, output};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::{Driver, Time};
 

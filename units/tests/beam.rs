@@ -2,14 +2,16 @@
 //! the analytical solution, static distributed load against eq. 6.2, and the
 //! static contact reference problem (eq. 4.41) for each contact method.
 
-use slender_tests::published;
+mod support;
+
+use crate::support::published;
 use slender_units::Driver;
 use slender_units::Time;
 use slender_units::beam::boundary::{Boundary, Quantity};
 use slender_units::beam::{Beam, BeamParams};
 use slender_units::contact::{LambdaUpdate, Law};
 
-use slender_tests::beams::{
+use crate::support::beams::{
     cantilever, cond, contact_params, contact_problem, params, reference_distance,
 };
 

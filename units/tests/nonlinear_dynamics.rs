@@ -3,9 +3,12 @@
 //! seed 000's Table 3 eigenperiods about the static state, energy over long free
 //! vibration (implicit and explicit) and the critical step of central differences.
 
-use slender_tests::published;
-use slender_tests::seed002::{cable as seed002_cable, frame as seed002_frame, section};
+mod support;
+
+use crate::support::published;
+use crate::support::section;
 use slender_units::nonlinear::NonlinearSection;
+use slender_units::nonlinear::seed002::{cable as seed002_cable, frame as seed002_frame};
 use slender_units::{Driver, Time};
 use std::f64::consts::PI;
 
@@ -296,7 +299,7 @@ fn central_differences_run_the_seed002_frame_at_its_critical_step() {
 /// the `beam` unit, and the largest difference of the nonlinear section
 /// (`formulation`, EA 1e9) from it relative to the beam's peak.
 fn against_the_beam_unit(formulation: &str, amplitude: f64) -> f64 {
-    use slender_tests::beams::{cond, params};
+    use crate::support::beams::{cond, params};
     use slender_units::beam::Beam;
     use slender_units::beam::boundary::{Boundary, Condition, Expression, Quantity, TimeFunction};
     let (omega, h, steps) = (3.0, 1e-3, 10_000);

@@ -2,7 +2,9 @@
 //! repeated impacts, the reference shape of sec. 6.2.2, a moving support with long
 //! steps, stiff penalties, Newton failures, and energy conservation.
 
-use slender_tests::beams::{cond, contact_params, params, reference_distance};
+mod support;
+
+use crate::support::beams::{cond, contact_params, params, reference_distance};
 use slender_units::Driver;
 use slender_units::Time;
 use slender_units::beam::boundary::{Boundary, Condition, Quantity, TimeFunction};
