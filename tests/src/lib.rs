@@ -338,20 +338,6 @@ pub mod seed002 {
 
     pub use slender_units::nonlinear::seed002::{cable, frame, steel};
 
-    /// A deterministic pseudo-random vector of `n` entries in [-scale, scale]
-    /// (a linear congruential generator: the same states on every machine).
-    pub fn random_vector(n: usize, seed: u64, scale: f64) -> nalgebra::DVector<f64> {
-        let next = |x: u64| {
-            x.wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407)
-        };
-        let mut x = next(seed);
-        nalgebra::DVector::from_fn(n, |_, _| {
-            x = next(x);
-            scale * (2.0 * ((x >> 11) as f64 / (1u64 << 53) as f64) - 1.0)
-        })
-    }
-
     /// The section of `text`, initialised at t = 0.
     pub fn section(text: &str) -> Driver<NonlinearSection> {
         let params: NonlinearParams = toml::from_str(text).expect("parameters parse");

@@ -4,12 +4,15 @@
 //! 118-DOF model under p = 3 sin(6.401 t) N/m on the beam member; the beam's
 //! midpoint (arc 15 m) over 10 s.
 
+mod support;
+
+use crate::support::rms;
+use crate::support::section;
 use nalgebra::{DMatrix, DVector};
-use slender_tests::rms;
-use slender_tests::seed002::{frame, section};
 use slender_units::Time;
 use slender_units::integrators::central_difference::CentralDifference;
 use slender_units::integrators::hht::{HhtAlpha, NewtonSettings, SecondOrderSystem, StepLoads};
+use slender_units::nonlinear::seed002::frame;
 use slender_units::numerics::banded::SymmetricBand;
 use slender_units::reduced::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
 use slender_units::reduced::ecsw::SampledForce;

@@ -4,10 +4,13 @@
 //! (CRD3) against the full 59-DOF model, with the Taylor coordinate relations
 //! that only the novel derivatives satisfy (the frame: `reduced_frame.rs`).
 
+mod support;
+
+use crate::support::rms;
+use crate::support::{random_vector, section};
 use nalgebra::{DMatrix, DVector};
-use slender_tests::rms;
-use slender_tests::seed002::{cable, random_vector, section};
 use slender_units::integrators::central_difference::CentralDifference;
+use slender_units::nonlinear::seed002::cable;
 use slender_units::numerics::banded::SymmetricBand;
 use slender_units::reduced::basis::{Derivative, Normalisation, derivative_columns, linear_modes};
 use slender_units::reduced::polynomial::CubicSection;

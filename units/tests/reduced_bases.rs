@@ -5,8 +5,11 @@
 //! novel ones, and the frame's dependent derivatives at N = 6 and 7; Ritz
 //! vectors and the shifted modes of a free-free section.
 
+mod support;
+
+use crate::support::{random_vector, section};
 use nalgebra::DMatrix;
-use slender_tests::seed002::{cable, frame, random_vector, section};
+use slender_units::nonlinear::seed002::{cable, frame};
 use slender_units::reduced::basis::{
     Derivative, Normalisation, attachment_vectors, dependent_columns, derivative,
     derivative_columns, linear_modes, ritz_vectors, shifted_modes,

@@ -7,11 +7,14 @@
 //! 6.1e-6 s), so it runs on demand; BENCHMARKS.md holds its figures beside the
 //! step's cost.
 
+mod support;
+
+use crate::support::rms;
+use crate::support::section;
 use nalgebra::{DMatrix, DVector};
-use slender_tests::rms;
-use slender_tests::seed002::{section, steel};
 use slender_units::Time;
 use slender_units::integrators::central_difference::CentralDifference;
+use slender_units::nonlinear::seed002::steel;
 use slender_units::reduced::basis::{Normalisation, linear_modes};
 use slender_units::reduced::ecsw::SampledForce;
 use slender_units::reduced::polynomial::CubicSection;
