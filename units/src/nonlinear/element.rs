@@ -59,6 +59,9 @@ pub struct LocalForces {
     pub chord: f64,
     /// Current chord angle (rad).
     pub angle: f64,
+    /// Its cosine and sine (the chord over its length), kept so that a
+    /// caller needs no trigonometry per element.
+    pub direction: [f64; 2],
 }
 
 /// Where a co-rotational element is: its local rotations (rad, wrapped to
@@ -68,6 +71,7 @@ struct Kinematics {
     stretch: f64,
     chord: f64,
     angle: f64,
+    direction: [f64; 2],
 }
 
 /// Five-point Gauss-Legendre on [0, 1]: (abscissa, weight).
@@ -152,6 +156,7 @@ impl Element {
             stretch: (ln * ln - self.length * self.length) / (ln + self.length),
             chord: ln,
             angle: beta,
+            direction: [dx / ln, dz / ln],
         }
     }
 
@@ -173,6 +178,7 @@ impl Element {
             ],
             chord: kinematics.chord,
             angle: kinematics.angle,
+            direction: kinematics.direction,
         }
     }
 
@@ -188,7 +194,7 @@ impl Element {
     fn corotational(&self, p: &[f64; 6], tangent: bool) -> ElementForce {
         let kinematics = self.corotational_kinematics(p);
         let local = self.corotational_local(&kinematics);
-        let (ln, (c, s)) = (local.chord, (local.angle.cos(), local.angle.sin()));
+        let (ln, [c, s]) = (local.chord, local.direction);
         let r = [-c, -s, 0.0, c, s, 0.0];
         let z = [s, -c, 0.0, -s, c, 0.0];
         // Rows of B: d(stretch), d(theta1 local), d(theta2 local).
@@ -289,11 +295,13 @@ impl Element {
         // The end moments are the rotational entries of the nodal force.
         let (f, _) = self.seed002(p, false);
         let (dx, dz) = self.chord(p);
+        let chord = dx.hypot(dz);
         LocalForces {
             axial: self.ea * (u1 + 0.5 * w1 * w1),
             moments: [f[2], f[5]],
-            chord: dx.hypot(dz),
+            chord,
             angle: dz.atan2(dx),
+            direction: [dx / chord, dz / chord],
         }
     }
 

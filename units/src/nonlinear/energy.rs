@@ -79,6 +79,9 @@ impl NonlinearSection {
         for ((o, f), w) in out.iter_mut().zip(load).zip(&self.weight) {
             *o = f - w;
         }
+        // The end elements' load moments (`moments.rs`) stay in: they follow
+        // the end element's normal, so no potential of the lumped weight holds
+        // their work.
         for r in &self.ends {
             match r.condition {
                 DofCondition::Force(TimeFunction::Constant(f)) => out[r.dof] -= f,

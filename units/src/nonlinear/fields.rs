@@ -80,17 +80,17 @@ impl NonlinearSection {
         Ok(())
     }
 
-    /// Each node's bending moment (N m) into `out`: the mean of the moments
-    /// at the ends of the elements that meet there (one at each end of the
+    /// Each node's bending moment (N m) into `out`: the mean of the recovered
+    /// moments (see `moments.rs`) at the ends of the elements that meet there (one at each end of the
     /// section), each signed as `extremes` signs them.
     fn write_moments(&self, out: &mut [f64]) {
         out.fill(0.0);
         // Element e joins nodes e and e + 1.
-        for e in 0..self.model.elements.len() {
-            let l = self.model.local_forces(&self.state.q, e);
-            out[e] -= l.moments[0];
-            out[e + 1] += l.moments[1];
-        }
+        self.model
+            .for_each_recovered(&self.state.q, self, |e, _, moments| {
+                out[e] -= moments[0];
+                out[e + 1] += moments[1];
+            });
         let last = out.len().saturating_sub(1);
         for v in out.iter_mut().take(last).skip(1) {
             *v /= 2.0;

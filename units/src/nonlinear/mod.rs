@@ -23,6 +23,7 @@ mod fields;
 mod jacobian;
 mod linear;
 mod modes;
+mod moments;
 mod reduced;
 mod start_shape;
 mod statics;
@@ -42,6 +43,7 @@ use params::Integrator;
 
 /// Outputs per station: tension, moment, curvature, x, z, internal force.
 const STATION_OUTPUTS: usize = 6;
+pub use moments::Loads;
 pub use params::NonlinearParams;
 /// How a section reduced about its start samples its forces (`reduced_sampling`).
 pub use reduced::Sampling;
@@ -129,6 +131,13 @@ pub struct NonlinearSection {
     weight: Vec<f64>,
     /// Critical step 2 / omega_max of the tangent at the start of the dynamics (s).
     critical_step: f64,
+    /// Whether a node has a held DOF (a reaction acts there): its net load is
+    /// no distributed load (see `moments.rs`).
+    held_nodes: Vec<bool>,
+    /// Whether the first and the last node's rotation is free or loaded by a
+    /// given moment (not held, not coupled): where the end elements'
+    /// fixed-end moments load (`moments.rs`).
+    free_end_rotation: [bool; 2],
     /// The drag (N, N m per DOF) at the state of the last `refresh_forces`
     /// (zero without drag), for the energy balance.
     drag_at_state: Vec<f64>,
@@ -206,6 +215,8 @@ impl NonlinearSection {
             c: None,
             m,
             critical_step: f64::NAN,
+            held_nodes: Vec::new(),
+            free_end_rotation: [true; 2],
             drag_at_state: vec![0.0; n],
             patterns,
             weight,
@@ -214,6 +225,7 @@ impl NonlinearSection {
             params,
         };
         section.check_reduced_size()?;
+        section.mark_held_ends();
         section.description.capabilities.step_jacobian = section.offers_jacobian();
         if section.offers_jacobian() {
             section.hht.keep_newton_matrix();
@@ -338,6 +350,7 @@ impl NonlinearSection {
         for r in &self.ends {
             out[r.dof] += r.load(inputs, t, s);
         }
+        self.add_end_load_moments((&self.state.q, t), 1.0, out);
     }
 
     fn held(&self) -> impl Iterator<Item = &Resolved> + '_ {
@@ -345,11 +358,13 @@ impl NonlinearSection {
     }
 
     /// Tension (N), bending moment (N m) and curvature (1/m) at arc length `s`,
-    /// the moment interpolated linearly between the element's ends.
+    /// the moment interpolated linearly between the element's recovered end
+    /// moments (see `moments.rs`).
     pub fn section_forces(&self, s: f64) -> [f64; 3] {
         let (e, xi) = self.model.locate(s);
         let local = self.model.local_forces(&self.state.q, e);
-        let moment = (1.0 - xi) * -local.moments[0] + xi * local.moments[1];
+        let ends = self.model.recovered_moments(&self.state.q, e, self);
+        let moment = (1.0 - xi) * -ends[0] + xi * ends[1];
         [local.axial, moment, moment / self.model.elements[e].ei]
     }
 
@@ -397,32 +412,7 @@ impl NonlinearSection {
         let element = &self.model.elements[e];
         element.sin0.atan2(element.cos0) + self.state.q[3 * node + 2]
     }
-
-    /// In one pass over the element ends: the largest |moment| (N m), the largest
-    /// tension (N), and the largest sag-bend and overbend moments (N m): the
-    /// bending moment where the section is concave upwards (d2z/dx2 > 0, the sag
-    /// bend above the touchdown point) and convex (the overbend on a stinger).
-    fn extremes(&self) -> ([f64; 2], [f64; 2]) {
-        let (mut largest, mut bend) = ([0.0f64, f64::NEG_INFINITY], [0.0f64; 2]);
-        for e in 0..self.model.elements.len() {
-            let l = self.model.local_forces(&self.state.q, e);
-            largest[0] = largest[0].max(l.moments[0].abs()).max(l.moments[1].abs());
-            largest[1] = largest[1].max(l.axial);
-            let forward = l.angle.cos();
-            for m in [-l.moments[0], l.moments[1]] {
-                // Positive m turns the tangent counter-clockwise along the arc.
-                let concave = m * forward;
-                if concave > 0.0 {
-                    bend[0] = bend[0].max(m.abs());
-                } else if concave < 0.0 {
-                    bend[1] = bend[1].max(m.abs());
-                }
-            }
-        }
-        (largest, bend)
-    }
 }
-
 /// The arc-length range of segment `i`.
 fn segment_range(model: &Model, i: usize) -> (f64, f64) {
     let first = model.segment_of.iter().position(|&s| s == i).unwrap_or(0);

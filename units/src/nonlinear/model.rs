@@ -179,7 +179,7 @@ impl Model {
             let normal = s.mass_per_length + rho * area * s.added_mass_normal;
             let local = self.local_forces(q, e);
             let (c, sn) = match self.formulation {
-                Formulation::Corotational => (local.angle.cos(), local.angle.sin()),
+                Formulation::Corotational => (local.direction[0], local.direction[1]),
                 Formulation::Seed002 => (element.cos0, element.sin0),
             };
             let block = element_mass(element.length, axial, normal, kind);

@@ -32,6 +32,8 @@ impl NonlinearSection {
         let t = self.state.t;
         let mut load = vec![0.0; n];
         self.external_load(inputs, (t, 1.0), &mut load);
+        // The end elements' load moments follow the iterate (`newton`).
+        self.add_end_load_moments((&self.state.q, t), -1.0, &mut load);
         let targets: Vec<(usize, f64)> = self
             .held()
             .map(|r| (r.dof, r.motion(inputs, (t, 0.0), (0.0, 1.0), [0.0; 3])[0]))
@@ -152,6 +154,7 @@ impl NonlinearSection {
             for (r, f) in w.residual.iter_mut().zip(load) {
                 *r = -(*r - level * f);
             }
+            self.add_end_load_moments((q, self.state.t), level, &mut w.residual);
             for &(d, _) in held {
                 w.tangent.set_identity_row(d);
                 w.residual[d] = 0.0;
