@@ -80,20 +80,9 @@ impl NonlinearSection {
         Ok(())
     }
 
-    /// Each node's bending moment (N m) into `out`: the mean of the recovered
-    /// moments (see `moments.rs`) at the ends of the elements that meet there (one at each end of the
-    /// section), each signed as `extremes` signs them.
+    /// Each node's bending moment (N m) into `out`, as
+    /// `moments.rs` gives it (the extremes read the same).
     fn write_moments(&self, out: &mut [f64]) {
-        out.fill(0.0);
-        // Element e joins nodes e and e + 1.
-        self.model
-            .for_each_recovered(&self.state.q, self, |e, _, moments| {
-                out[e] -= moments[0];
-                out[e + 1] += moments[1];
-            });
-        let last = out.len().saturating_sub(1);
-        for v in out.iter_mut().take(last).skip(1) {
-            *v /= 2.0;
-        }
+        self.for_each_node_moment(|_| {}, |j, m, _| out[j] = m);
     }
 }

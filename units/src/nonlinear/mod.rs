@@ -413,6 +413,7 @@ impl NonlinearSection {
         element.sin0.atan2(element.cos0) + self.state.q[3 * node + 2]
     }
 }
+
 /// The arc-length range of segment `i`.
 fn segment_range(model: &Model, i: usize) -> (f64, f64) {
     let first = model.segment_of.iter().position(|&s| s == i).unwrap_or(0);

@@ -143,7 +143,8 @@ impl super::NonlinearSection {
     /// 0.05 %).
     pub(super) fn extremes(&self) -> ([f64; 2], [f64; 2]) {
         let (mut moment, mut tension, mut bend) = (0.0f64, f64::NEG_INFINITY, [0.0f64; 2]);
-        let mut node = |m: f64, forward: f64| {
+        let element = |l: &LocalForces| tension = tension.max(l.axial);
+        let node = |_, m: f64, forward: f64| {
             moment = moment.max(m.abs());
             // Positive m turns the tangent counter-clockwise along the arc.
             let concave = m * forward;
@@ -153,23 +154,36 @@ impl super::NonlinearSection {
                 bend[1] = bend[1].max(m.abs());
             }
         };
+        self.for_each_node_moment(element, node);
+        ([moment, tension], bend)
+    }
+
+    /// Calls `element` with each element's local forces and `node` with each
+    /// node's index, bending moment (N m: the mean of the recovered moments of
+    /// the elements meeting there, one at each end of the section; positive
+    /// turning the tangent counter-clockwise along the arc) and the mean x
+    /// direction cosine of those elements, in order.
+    pub(super) fn for_each_node_moment(
+        &self,
+        mut element: impl FnMut(&LocalForces),
+        mut node: impl FnMut(usize, f64, f64),
+    ) {
         // The previous element's end moment (as the node's) and direction.
         let mut previous: Option<(f64, f64)> = None;
         let last = self.model.elements.len() - 1;
         self.model
             .for_each_recovered(&self.state.q, self, |e, l, moments| {
-                tension = tension.max(l.axial);
+                element(l);
                 let forward = l.direction[0];
                 match previous {
-                    Some((m, f)) => node(0.5 * (m - moments[0]), 0.5 * (f + forward)),
-                    None => node(-moments[0], forward),
+                    Some((m, f)) => node(e, 0.5 * (m - moments[0]), 0.5 * (f + forward)),
+                    None => node(e, -moments[0], forward),
                 }
                 if e == last {
-                    node(moments[1], forward);
+                    node(e + 1, moments[1], forward);
                 }
                 previous = Some((moments[1], forward));
             });
-        ([moment, tension], bend)
     }
 
     /// The load per length (N/m, x and z) along element `e` at time `t`: its
