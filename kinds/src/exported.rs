@@ -2,7 +2,7 @@
 //! effects, hold): what the FMU library does at instantiation, and what the
 //! exporter does to write the model description.
 
-use crate::{BuildContext, BuildError, find};
+use crate::{BuildContext, BuildError, Given, find};
 use slender_fmi::export::{ExportConfig, KindInfo, Layout};
 use slender_units::{Driver, Unit};
 use std::path::Path;
@@ -27,7 +27,7 @@ impl ExportedUnit for ExportConfig {
             effects: &self.effects,
             base_dir: Path::new("."),
         };
-        kind.build(self.parameters.clone(), &context)
+        kind.build(Given::Table(self.parameters.clone()), &context)
     }
 
     fn driver(&self) -> Result<Driver, BuildError> {

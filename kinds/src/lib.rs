@@ -31,6 +31,7 @@ use slender_units::span::coupling::{SpanCoupling, SpanCouplingParams};
 use slender_units::span::unit::{SpanParams, SpanUnit};
 use slender_units::static_section::{StaticSection, StaticSectionParams};
 use slender_units::{Unit, UnitError};
+use std::any::Any;
 use std::path::Path;
 
 /// What a builder needs besides the parameter table.
@@ -42,8 +43,19 @@ pub struct BuildContext<'a> {
     pub base_dir: &'a Path,
 }
 
-/// Builds a unit from its parameter table and the context.
-type Builder = fn(toml::Table, &BuildContext) -> Result<Box<dyn Unit>, BuildError>;
+/// Builds a unit from its parameters and the context.
+type Builder = fn(Given, &BuildContext) -> Result<Box<dyn Unit>, BuildError>;
+
+/// A unit's parameters as its builder receives them: the table a scene (or
+/// an FMU's configuration) gives, read into the kind's own type by serde, or
+/// that type already made (the units a `[structure]` writes out), taken as
+/// it is, so nothing is written as TOML and read back on a run.
+pub enum Given {
+    /// The parameters as a TOML table.
+    Table(toml::Table),
+    /// The kind's own parameter type (`NonlinearParams`, ...), boxed.
+    Typed(Box<dyn Any + Send>),
+}
 
 /// Why a unit could not be built from its scene section.
 #[derive(Debug, thiserror::Error)]
@@ -254,7 +266,7 @@ impl Kind {
     /// Builds a unit of this kind, checking the effects against the kind's list.
     pub fn build(
         &self,
-        params: toml::Table,
+        params: Given,
         context: &BuildContext,
     ) -> Result<Box<dyn Unit>, BuildError> {
         if let Some(bad) = context
@@ -279,9 +291,21 @@ impl Kind {
     }
 }
 
-/// Reads a kind's parameter table into its typed parameters; an error names
-/// the key path where it went wrong (`sines.0.phase`).
-fn parameters<T: DeserializeOwned>(table: toml::Table) -> Result<T, BuildError> {
+/// A kind's typed parameters from what its builder is given: a table read
+/// by serde (an error names the key path where it went wrong,
+/// `sines.0.phase`), or the type itself.
+fn parameters<T: DeserializeOwned + 'static>(given: Given) -> Result<T, BuildError> {
+    let table = match given {
+        Given::Table(table) => table,
+        Given::Typed(typed) => {
+            return typed.downcast::<T>().map(|p| *p).map_err(|_| {
+                BuildError::Parameters(format!(
+                    "the parameters given are not a `{}`",
+                    std::any::type_name::<T>()
+                ))
+            });
+        }
+    };
     serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
         let message = words::in_words(e.inner().message().trim());
         let path = e.path().to_string();
@@ -304,7 +328,10 @@ mod tests {
             base_dir: Path::new("."),
         };
         let table: toml::Table = parameters.parse().expect("TOML");
-        match find(kind).expect("a kind").build(table, &context) {
+        match find(kind)
+            .expect("a kind")
+            .build(Given::Table(table), &context)
+        {
             Ok(_) => panic!("{kind} accepted {parameters}"),
             Err(e) => e.to_string(),
         }

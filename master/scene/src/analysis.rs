@@ -305,10 +305,14 @@ impl Scene {
     fn seas_by_unit(&self) -> Vec<(String, Spectrum)> {
         let mut seas = Vec::new();
         for unit in &self.spec.units {
-            if let Some(parameters) = &unit.parameters {
+            // A written-out unit's typed parameters are searched as the
+            // table they write (once, after a run).
+            let written = (unit.written.clone()).and_then(|p| p.into_table().ok());
+            let parameters = (unit.parameters.as_ref().map(|p| p.get_ref())).or(written.as_ref());
+            if let Some(parameters) = parameters {
                 let name = unit.name.get_ref();
                 seas.extend(
-                    spectra_in(parameters.get_ref())
+                    spectra_in(parameters)
                         .into_iter()
                         .map(|s| (name.clone(), s)),
                 );

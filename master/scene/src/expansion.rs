@@ -1,6 +1,7 @@
 //! A scene's `[structure]` written out as typed units and connections: the
-//! structure's generator (`structure::expand`) gives them as tables, which are
-//! typed here (`UnitSpec`, `ConnectionSpec`) and appended to the scene's own,
+//! structure's generator (`structure::expand`) gives them in the units' own
+//! parameter types, taken here as the scene's (`UnitSpec`, `ConnectionSpec`)
+//! and appended to the scene's own,
 //! so the scene is read once, from the user's text, and every span points
 //! into it (the units a structure writes out point at its `[structure]`
 //! header). The TOML text of the whole expanded scene (`expanded_text`) is made only
@@ -8,11 +9,9 @@
 //! a section's unit; it is never read back.
 
 use crate::spec::{ConnectionSpec, UnitSpec};
-use crate::structure::{self, StructureError, Written};
+use crate::structure::{self, Link, Parameters, SectionUnit, StructureError, Written};
 use crate::{SceneError, structure_lines};
-use serde::de::DeserializeOwned;
-use slender_units::{Hold, Time};
-use std::collections::BTreeMap;
+use slender_units::Time;
 use std::ops::Range;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -43,10 +42,7 @@ pub(crate) fn append(
         spec.connections.extend(x.connections);
         advisories.append(&mut x.written.advisories);
         match &mut written {
-            Some(w) => {
-                w.units.append(&mut x.written.units);
-                w.connections.append(&mut x.written.connections);
-            }
+            Some(w) => w.append(x.written),
             None => written = Some(x.written),
         }
     }
@@ -81,16 +77,17 @@ pub(crate) fn expanded_text(
     };
     table.remove("structure");
     table.remove("mooring");
-    for (key, items) in [
-        ("units", &written.units),
-        ("connections", &written.connections),
-    ] {
+    let units = (written.units.iter().cloned())
+        .map(SectionUnit::into_value)
+        .collect::<Result<Vec<_>, _>>()?;
+    let connections = written.connections.iter().cloned().map(Link::into_value);
+    for (key, items) in [("units", units), ("connections", connections.collect())] {
         let list = table
             .entry(key.to_owned())
             .or_insert_with(|| Value::Array(Vec::new()))
             .as_array_mut()
             .ok_or(format!("`{key}`: expected a list"))?;
-        list.extend(items.iter().cloned());
+        list.extend(items);
     }
     toml::to_string(&table).map_err(|e| e.to_string())
 }
@@ -167,8 +164,7 @@ fn written_out(
         .map_err(|m| error(m.into()))?;
     let connections = (written.connections.iter())
         .map(|c| connection_spec(c, &span))
-        .collect::<Result<_, _>>()
-        .map_err(|m: String| error(m.into()))?;
+        .collect();
     Ok(Expansion {
         name,
         units,
@@ -177,66 +173,39 @@ fn written_out(
     })
 }
 
-/// The keys a written-out unit may have.
-const UNIT_KEYS: [&str; 7] = [
-    "name",
-    "kind",
-    "parameters",
-    "effects",
-    "hold",
-    "substeps",
-    "inputs",
-];
-
-/// A written-out unit as the scene's type, its name, kind and parameters
-/// spanned at `span`.
-fn unit_spec(unit: &Value, span: &Range<usize>) -> Result<UnitSpec, String> {
-    let t = unit.as_table().ok_or("a written-out unit is not a table")?;
-    if let Some(key) = t.keys().find(|k| !UNIT_KEYS.contains(&k.as_str())) {
-        return Err(format!("a written-out unit has the key `{key}`"));
-    }
-    let parameters = t.get("parameters").and_then(Value::as_table);
+/// A written-out unit as the scene's type, its name and kind spanned at
+/// `span`, its parameters in its kind's own type (an external FMU's as its
+/// table).
+fn unit_spec(unit: &SectionUnit, span: &Range<usize>) -> Result<UnitSpec, String> {
+    let substeps = (unit.substeps.map(u32::try_from).transpose())
+        .map_err(|_| format!("unit `{}`: too many sub-steps", unit.name))?;
+    let (parameters, written) = match &unit.parameters {
+        Parameters::Fmu(table) => (Some(Spanned::new(span.clone(), table.clone())), None),
+        typed => (None, Some(typed.clone())),
+    };
     Ok(UnitSpec {
-        name: Spanned::new(span.clone(), text(t, "name")?),
-        kind: Spanned::new(span.clone(), text(t, "kind")?),
-        parameters: parameters.map(|p| Spanned::new(span.clone(), p.clone())),
-        effects: typed::<Vec<String>>(t, "effects")?.unwrap_or_default(),
-        hold: typed::<Hold>(t, "hold")?,
-        substeps: typed::<u32>(t, "substeps")?,
-        inputs: typed::<BTreeMap<String, f64>>(t, "inputs")?.unwrap_or_default(),
+        name: Spanned::new(span.clone(), unit.name.clone()),
+        kind: Spanned::new(span.clone(), unit.parameters.kind().to_owned()),
+        parameters,
+        effects: (unit.effects.iter().flatten())
+            .map(|e| (*e).to_owned())
+            .collect(),
+        hold: None,
+        substeps,
+        inputs: unit.inputs.clone(),
+        written,
     })
 }
 
 /// A written-out connection as the scene's type, its ends spanned at `span`.
-fn connection_spec(link: &Value, span: &Range<usize>) -> Result<ConnectionSpec, String> {
-    let t = link
-        .as_table()
-        .ok_or("a written-out connection is not a table")?;
-    const KEYS: [&str; 5] = ["from", "to", "gain", "offset", "tolerance"];
-    if let Some(key) = t.keys().find(|k| !KEYS.contains(&k.as_str())) {
-        return Err(format!("a written-out connection has the key `{key}`"));
+fn connection_spec(link: &Link, span: &Range<usize>) -> ConnectionSpec {
+    ConnectionSpec {
+        from: Spanned::new(span.clone(), link.from.clone()),
+        to: Spanned::new(span.clone(), link.to.clone()),
+        gain: 1.0,
+        offset: link.offset.unwrap_or(0.0),
+        tolerance: None,
     }
-    Ok(ConnectionSpec {
-        from: Spanned::new(span.clone(), text(t, "from")?),
-        to: Spanned::new(span.clone(), text(t, "to")?),
-        gain: typed::<f64>(t, "gain")?.unwrap_or(1.0),
-        offset: typed::<f64>(t, "offset")?.unwrap_or(0.0),
-        tolerance: typed::<f64>(t, "tolerance")?,
-    })
-}
-
-fn text(t: &Table, key: &str) -> Result<String, String> {
-    (t.get(key).and_then(Value::as_str))
-        .map(str::to_owned)
-        .ok_or(format!("a written-out unit or connection has no `{key}`"))
-}
-
-/// `t[key]` as a `T`, where present.
-fn typed<T: DeserializeOwned>(t: &Table, key: &str) -> Result<Option<T>, String> {
-    (t.get(key).cloned())
-        .map(|v| v.try_into::<T>())
-        .transpose()
-        .map_err(|e| format!("a written-out `{key}`: {e}"))
 }
 
 #[cfg(test)]
@@ -305,5 +274,32 @@ mod tests {
         let line = line_of(&text, "\"wrong\"");
         assert!(error.starts_with(&format!("pipe.toml:{line}:")), "{error}");
         assert!(error.contains("wrong"), "{error}");
+    }
+
+    /// A physical section's artefacts are checked where the structure is
+    /// written out: a wrong key or value is refused at its own line (both
+    /// were placed at the `[structure]` header or the first section).
+    #[test]
+    fn a_physical_sections_artefact_is_refused_at_the_users_line() {
+        let truncation = include_str!("../../../examples/structure_truncation.toml");
+        let sensor_delay = "delay = 0.026                      # theta7 (s)";
+        for (written, expected) in [
+            (
+                "delayy = 0.026",
+                "`structure.sections.upper.physical.sensor.delayy`: unknown field `delayy`",
+            ),
+            (
+                "delay = -1.0",
+                "`structure.sections.upper.physical.sensor.delay` = -1: expected",
+            ),
+        ] {
+            let text = truncation.replacen(sensor_delay, written, 1);
+            let error = parse(&text).expect_err(written).to_string();
+            let line = line_of(&text, written);
+            assert!(
+                error.starts_with(&format!("pipe.toml:{line}: structure: {expected}")),
+                "{error}"
+            );
+        }
     }
 }

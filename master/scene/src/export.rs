@@ -114,17 +114,21 @@ impl SceneExport for ExportConfig {
             .zip(master.inputs(index))
             .map(|(p, v)| (p.name.clone(), *v))
             .collect();
+        // A written-out unit's typed parameters become the FMU's table here.
+        let parameters = match (&spec.written, &spec.parameters) {
+            (Some(written), _) => written.clone().into_table().map_err(|e| {
+                BuildError::Parameters(format!("unit `{unit}`: its parameters as TOML: {e}"))
+            })?,
+            (None, Some(p)) => p.get_ref().clone(),
+            (None, None) => toml::Table::new(),
+        };
         let mut config = ExportConfig {
             name: unit.to_owned(),
             kind: spec.kind.get_ref().clone(),
             effects: spec.effects.clone(),
             hold: spec.hold,
             inputs,
-            parameters: spec
-                .parameters
-                .as_ref()
-                .map(|p| p.get_ref().clone())
-                .unwrap_or_default(),
+            parameters,
             start_time: scene.start.as_secs(),
             stop_time: scene.end().as_secs(),
             step: scene.step.as_secs(),

@@ -359,9 +359,10 @@ impl Scene {
                 ),
             )
         })?;
-        let (parameters, span) = match &u.parameters {
-            Some(p) => (p.get_ref().clone(), p.span()),
-            None => (toml::Table::new(), u.name.span()),
+        let (parameters, span) = match (&u.written, &u.parameters) {
+            (Some(written), _) => (written.clone().given(), u.name.span()),
+            (None, Some(p)) => (kinds::Given::Table(p.get_ref().clone()), p.span()),
+            (None, None) => (kinds::Given::Table(toml::Table::new()), u.name.span()),
         };
         let base_dir = self.path.parent().unwrap_or(Path::new("."));
         let context = kinds::BuildContext {

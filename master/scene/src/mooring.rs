@@ -31,7 +31,7 @@
 
 use crate::structure::Layout;
 use crate::structure::StructureError;
-use crate::structure::{self, Line3dStructure, Parameters, SectionFile, SectionUnit, link};
+use crate::structure::{self, Line3dStructure, Link, Parameters, SectionFile, SectionUnit};
 use serde::Deserialize;
 use slender_units::Time;
 use slender_units::body::mooring::{MooredLine, MooringStatics, equilibrium, fairlead_position};
@@ -216,7 +216,7 @@ impl Mooring {
     /// Writes the system out at `t0`: the body (at its equilibrium with
     /// `statics`), each line as a 3D structure from its anchor to its
     /// fairlead, and the connections between them.
-    pub fn expand(&self, t0: Time) -> Result<structure::Written, StructureError> {
+    pub(crate) fn expand(&self, t0: Time) -> Result<structure::Written, StructureError> {
         let mut offset = self.body.initial_offset;
         if self.statics {
             let eq = self.equilibrium()?;
@@ -231,7 +231,7 @@ impl Mooring {
                 ..self.body.clone()
             })),
         };
-        let mut units = vec![SectionUnit::new(self.name.clone(), body).into_value()?];
+        let mut units = vec![SectionUnit::new(self.name.clone(), body)];
         let mut connections = Vec::new();
         let mut advisories = Vec::new();
         for line in &self.lines {
@@ -323,21 +323,21 @@ impl Line {
 
     /// Its top moves with the fairlead of `body` and pulls it; its twin
     /// moves with it too.
-    fn links(&self, body: &str) -> Vec<Value> {
+    fn links(&self, body: &str) -> Vec<Link> {
         let f = &self.file.fairlead;
         let top = self.top_unit();
         let mut out = Vec::new();
         for c in ["x", "y", "z"] {
-            out.push(link(
+            out.push(Link::new(
                 format!("{body}.{f}_velocity_{c}"),
                 format!("{top}.end_velocity_{c}"),
             ));
-            out.push(link(
+            out.push(Link::new(
                 format!("{top}.end_force_{c}"),
                 format!("{body}.{f}_force_{c}"),
             ));
             if self.file.reference {
-                out.push(link(
+                out.push(Link::new(
                     format!("{body}.{f}_velocity_{c}"),
                     format!(
                         "{}.end_velocity_{c}",

@@ -150,6 +150,11 @@ pub struct UnitSpec {
     /// and as the first guess of inputs fed through a loop.
     #[serde(default)]
     pub inputs: BTreeMap<String, f64>,
+    /// The parameters of a unit a `[structure]` or `[mooring]` writes out,
+    /// in its kind's own type (None for a unit the scene file gives: its
+    /// parameters are the table above).
+    #[serde(skip)]
+    pub(crate) written: Option<crate::structure::Parameters>,
 }
 
 /// `[[connections]]`: an output driving an input, `to = gain * from + offset`.

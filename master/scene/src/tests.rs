@@ -212,13 +212,11 @@ fn a_sections_mesh_is_the_models_elements_over_it() {
         let unit = (scene.spec.units.iter())
             .find(|u| u.name.get_ref() == &section.unit)
             .expect("the section's unit");
-        let parameters = unit.parameters.as_ref().expect("parameters").get_ref();
-        let segments = parameters["segments"].as_array().expect("segments");
-        let written: i64 = segments
-            .iter()
-            .map(|s| s["elements"].as_integer().unwrap_or(0))
-            .sum();
-        assert_eq!(written, mesh as i64, "{}", section.name);
+        let Some(crate::structure::Parameters::Nonlinear(parameters)) = &unit.written else {
+            panic!("{}: not a nonlinear unit", section.name);
+        };
+        let written: usize = parameters.segments.iter().map(|s| s.elements).sum();
+        assert_eq!(written, mesh, "{}", section.name);
     }
     assert!(crate::structure::takes_model_mesh("nonlinear"));
     assert!(crate::structure::takes_model_mesh("linear"));

@@ -10,17 +10,17 @@
 //! (`mod.rs::orientation`); below it may be a static first section that takes
 //! force (`statics::static_takes_force`).
 
-use super::cuts::{End, link};
+use super::cuts::End;
 use super::model::{CutNeeds, Place, SectionAt, SectionModel};
 use super::nonlinear::section_parameters;
 use super::sections::{Cut, Fidelity, Segment};
 use super::spec::typed;
 use super::statics::Equilibrium;
 use super::unit::{Parameters, SectionUnit};
+use super::written::Link;
 use serde::Deserialize;
 use slender_units::chord::{ChordModel, ChordParams, MovingEnd};
 use slender_units::nonlinear::NonlinearParams;
-use toml::Value;
 
 /// A chord fidelity: its name, the keys of its table form and what a count
 /// sets.
@@ -386,18 +386,18 @@ fn weight_of(segments: &[Segment], cut: &Cut, equilibrium: &Equilibrium) -> (f64
 
 /// The links at a chord section's moving start: the position and rotation of
 /// `below`'s end in, the force and moment on it out.
-pub(super) fn mover_links(chord: &str, below: &str) -> Vec<Value> {
+pub(super) fn mover_links(chord: &str, below: &str) -> Vec<Link> {
     let mut links = Vec::new();
     for (q, r) in [
         ("position_x", "force_x"),
         ("position_z", "force_z"),
         ("rotation", "moment"),
     ] {
-        links.push(link(
+        links.push(Link::new(
             format!("{below}.end_{q}"),
             format!("{chord}.start_{q}"),
         ));
-        links.push(link(
+        links.push(Link::new(
             format!("{chord}.start_{r}"),
             format!("{below}.end_{r}"),
         ));
@@ -407,18 +407,18 @@ pub(super) fn mover_links(chord: &str, below: &str) -> Vec<Value> {
 
 /// The links at a chord section's loaded end: the force and moment of
 /// `above`'s start in, the displacement it follows out.
-pub(super) fn loaded_links(chord: &str, above: &str) -> Vec<Value> {
+pub(super) fn loaded_links(chord: &str, above: &str) -> Vec<Link> {
     let mut links = Vec::new();
     for (q, r) in [
         ("force_x", "displacement_x"),
         ("force_z", "displacement_z"),
         ("moment", "rotation"),
     ] {
-        links.push(link(
+        links.push(Link::new(
             format!("{above}.start_{q}"),
             format!("{chord}.end_{q}"),
         ));
-        links.push(link(
+        links.push(Link::new(
             format!("{chord}.end_{r}"),
             format!("{above}.start_{r}"),
         ));

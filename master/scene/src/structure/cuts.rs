@@ -9,9 +9,11 @@
 use super::sections::Fidelity;
 use super::spec::typed;
 use super::unit::{Parameters, SectionUnit};
+use super::written::Link;
+use slender_units::UnitError;
 use slender_units::beam::boundary::{InputMarker, TimeFunction};
 use slender_units::nonlinear::params::{DofCondition, End as ModelEnd, EndKind};
-use slender_units::signal::artefact::ArtefactParams;
+use slender_units::signal::artefact::{Artefact, ArtefactParams};
 use toml::{Table, Value};
 
 /// How a section's end at a cut is coupled.
@@ -26,10 +28,11 @@ pub(super) struct End {
     pub by_displacement: bool,
 }
 
-/// A section as its cut sees it: unit name, fidelity, and the artefacts of a
-/// physical section (`sensor`, `actuator`: `artefact` parameters without
-/// `quantity`).
+/// A section as its cut sees it: its name, unit name, fidelity, and the
+/// artefacts of a physical section (`sensor`, `actuator`: `artefact`
+/// parameters without `quantity`).
 pub(super) struct Side<'a> {
+    pub section: &'a str,
     pub unit: String,
     pub fidelity: Fidelity,
     pub physical: Option<&'a Table>,
@@ -75,14 +78,6 @@ pub(super) fn port(unit: &str, fidelity: Fidelity, at_end: bool, quantity: &str)
     format!("{unit}.{side}_{quantity}")
 }
 
-/// A connection from an output to an input.
-pub(crate) fn link(from: String, to: String) -> Value {
-    let mut t = Table::new();
-    t.insert("from".into(), Value::String(from));
-    t.insert("to".into(), Value::String(to));
-    Value::Table(t)
-}
-
 /// The links of a cut (and the artefact units of a physical side): velocity
 /// from the loaded side to the moving side and force back (`force_on_upper`:
 /// the upper section's end is the loaded side); rotation and moment too unless
@@ -91,7 +86,7 @@ pub(super) fn cut_connections(
     upper: &Side<'_>,
     lower: &Side<'_>,
     force_on_upper: bool,
-) -> Result<(Vec<Value>, Vec<Value>), String> {
+) -> Result<(Vec<Link>, Vec<SectionUnit>), String> {
     let ((loaded, loaded_at_end), (moving, moving_at_end)) = if force_on_upper {
         ((upper, true), (lower, false))
     } else {
@@ -114,11 +109,11 @@ pub(super) fn cut_connections(
         if motion == "angular_velocity" && !bends {
             continue;
         }
-        links.push(link(
+        links.push(Link::new(
             port(&loaded.unit, loaded.fidelity, loaded_at_end, motion),
             port(&moving.unit, moving.fidelity, moving_at_end, motion),
         ));
-        links.push(link(
+        links.push(Link::new(
             port(&moving.unit, moving.fidelity, moving_at_end, load),
             port(&loaded.unit, loaded.fidelity, loaded_at_end, load),
         ));
@@ -129,7 +124,7 @@ pub(super) fn cut_connections(
             let moving_side = std::ptr::eq(side, moving);
             units.extend(through_artefacts(
                 &mut links,
-                &side.unit,
+                side,
                 &prefix,
                 physical,
                 moving_side,
@@ -139,64 +134,72 @@ pub(super) fn cut_connections(
     Ok((links, units))
 }
 
-/// Puts the physical section `unit`'s x and z links through a sensor (what it
-/// emits: force when it is the moving side, velocity otherwise) and an actuator
-/// (what it receives); returns the two artefact units `<prefix>_sensor` and
-/// `<prefix>_actuator`. Rotation and moment pass untouched.
+/// Puts the physical section `side`'s x and z links through a sensor (what
+/// it emits: force when it is the moving side, velocity otherwise) and an
+/// actuator (what it receives); returns the two artefact units
+/// `<prefix>_sensor` and `<prefix>_actuator`, checked here so that an error
+/// names the user's key. Rotation and moment pass untouched.
 fn through_artefacts(
-    links: &mut Vec<Value>,
-    unit: &str,
+    links: &mut Vec<Link>,
+    side: &Side<'_>,
     prefix: &str,
     physical: &Table,
     moving: bool,
-) -> Result<Vec<Value>, String> {
+) -> Result<Vec<SectionUnit>, String> {
     let (emits, receives) = if moving {
         ("force", "velocity")
     } else {
         ("velocity", "force")
     };
+    let unit = &side.unit;
     let mut units = Vec::new();
     for (role, quantity) in [("sensor", emits), ("actuator", receives)] {
         let name = format!("{prefix}_{role}");
+        let key = format!("structure.sections.{}.physical.{role}", side.section);
         let mut parameters = match physical.get(role) {
             None => Table::new(),
             Some(Value::Table(t)) => t.clone(),
             Some(_) => {
                 return Err(format!(
-                    "`physical.{role}` of `{unit}`: expected a table of `artefact` parameters"
+                    "`{key}`: expected a table of `artefact` parameters"
                 ));
             }
         };
         if parameters.contains_key("quantity") || parameters.contains_key("channels") {
             return Err(format!(
-                "`physical.{role}` of `{unit}`: `quantity` and `channels` follow from the cut; leave them out"
+                "`{key}`: `quantity` and `channels` follow from the cut; leave them out"
             ));
         }
         parameters.insert("quantity".into(), Value::String(quantity.into()));
-        let artefact: ArtefactParams = typed(&format!("physical.{role}"), &parameters)
-            .map_err(|e| e.replacen("`: ", &format!("` of `{unit}`: "), 1))?;
+        let artefact: ArtefactParams = typed(&key, &parameters)?;
+        Artefact::new(artefact.clone()).map_err(|e| artefact_refusal(&key, &e))?;
         let artefact = Parameters::Artefact(Box::new(artefact));
-        units.push(SectionUnit::new(name.clone(), artefact).into_value()?);
+        units.push(SectionUnit::new(name.clone(), artefact));
         // The x and z links of this quantity into or out of the physical unit.
         for axis in ["x", "z"] {
             let suffix = format!("_{quantity}_{axis}");
             let Some(l) = links.iter_mut().find(|l| {
-                let (from, to) = (
-                    l["from"].as_str().unwrap_or(""),
-                    l["to"].as_str().unwrap_or(""),
-                );
-                let ours = if role == "sensor" { from } else { to };
+                let ours = if role == "sensor" { &l.from } else { &l.to };
                 ours.starts_with(&format!("{unit}.")) && ours.ends_with(&suffix)
             }) else {
                 continue;
             };
-            let (from, to) = (
-                l["from"].as_str().unwrap_or_default().to_owned(),
-                l["to"].as_str().unwrap_or_default().to_owned(),
-            );
-            *l = link(from, format!("{name}.in_{axis}"));
-            links.push(link(format!("{name}.out_{axis}"), to));
+            let to = std::mem::replace(&mut l.to, format!("{name}.in_{axis}"));
+            links.push(Link::new(format!("{name}.out_{axis}"), to));
         }
     }
     Ok(units)
+}
+
+/// An artefact's refusal of its parameters at `key` (a physical section's
+/// `sensor` or `actuator`), naming the parameter's own key.
+fn artefact_refusal(key: &str, e: &UnitError) -> String {
+    match e {
+        UnitError::InvalidParameter {
+            name,
+            value,
+            expected,
+        } => format!("`{key}.{name}` = {value}: {expected}"),
+        other => format!("`{key}`: {other}"),
+    }
 }

@@ -18,7 +18,7 @@ use super::layout::{Layout, SectionLayout, SectionOutputs, choice_of};
 use super::sections::{Cut, Fidelity, SectionFile, cuts_of};
 use super::spec::typed;
 use super::unit::{Parameters, SectionUnit};
-use super::{Written, reference_name, unit_name};
+use super::{Link, Written, reference_name, unit_name};
 use serde::Deserialize;
 use slender_units::line3d::params::EndSpec;
 use slender_units::line3d::{EndCondition, Line3d, Line3dParams};
@@ -139,11 +139,11 @@ impl Line3dStructure {
                 Fidelity::Static => Parameters::Catenary3d(section),
                 _ => Parameters::Line3d(section),
             };
-            units.push(SectionUnit::new(name, parameters).into_value()?);
+            units.push(SectionUnit::new(name, parameters));
         }
         if self.reference {
             let twin = Parameters::Line3d(Box::new(params.clone()));
-            units.push(SectionUnit::new(reference_name(&self.name), twin).into_value()?);
+            units.push(SectionUnit::new(reference_name(&self.name), twin));
         }
         Ok(Written {
             units,
@@ -289,13 +289,8 @@ fn static_shape(params: &Line3dParams, t0: Time) -> Result<Shape, String> {
 
 /// The cut between `lower` and `upper`: the lower end follows the upper
 /// start's velocity, the upper start carries the lower end's pull.
-fn cut_links(lower: &str, upper: &str) -> Vec<Value> {
-    let link = |from: String, to: String| {
-        let mut t = Table::new();
-        t.insert("from".into(), Value::String(from));
-        t.insert("to".into(), Value::String(to));
-        Value::Table(t)
-    };
+fn cut_links(lower: &str, upper: &str) -> Vec<Link> {
+    let link = Link::new;
     ["x", "y", "z"]
         .iter()
         .flat_map(|c| {

@@ -3,14 +3,14 @@
 //! and z, whatever fidelity the last section has. The static force at t = 0
 //! (`static`, N) holds the structure in its equilibrium.
 
-use super::cuts::{link, port};
+use super::cuts::port;
 use super::sections::Fidelity;
 use super::unit::SectionUnit;
+use super::written::Link;
 use serde::Deserialize;
 use slender_units::beam::boundary::{InputMarker, TimeFunction};
 use slender_units::nonlinear::NonlinearParams;
 use slender_units::nonlinear::params::{DofCondition, EndKind};
-use toml::Value;
 
 /// `[structure.top_load]` as written.
 #[derive(Deserialize)]
@@ -82,10 +82,10 @@ impl TopLoad {
     }
 
     /// The connections from the load to a unit's top.
-    pub(super) fn links(&self, unit: &str, fidelity: Fidelity) -> Vec<Value> {
+    pub(super) fn links(&self, unit: &str, fidelity: Fidelity) -> Vec<Link> {
         vec![
-            link(self.x.clone(), port(unit, fidelity, true, "force_x")),
-            link(self.z.clone(), port(unit, fidelity, true, "force_z")),
+            Link::new(self.x.clone(), port(unit, fidelity, true, "force_x")),
+            Link::new(self.z.clone(), port(unit, fidelity, true, "force_z")),
         ]
     }
 

@@ -38,8 +38,8 @@ mod spec;
 mod static_fidelity;
 mod statics;
 mod unit;
+mod written;
 
-pub(crate) use cuts::link;
 use cuts::{End, Side};
 pub use error::StructureError;
 pub use layout::{
@@ -57,24 +57,12 @@ use spec::Spec;
 pub(crate) use spec::typed;
 use toml::Value;
 pub(crate) use unit::{Parameters, SectionUnit};
+pub(crate) use written::{Link, Written};
 
-/// What a `[structure]` writes out: its units and connections (as tables of
-/// the scene's `[[units]]` and `[[connections]]`), and the advisories on what
-/// its sections' models follow poorly.
-#[derive(Debug)]
-pub struct Written {
-    /// The units, as tables of `[[units]]`.
-    pub units: Vec<Value>,
-    /// The connections, as tables of `[[connections]]`.
-    pub connections: Vec<Value>,
-    /// What its sections' models follow poorly (said by `check` and a run).
-    pub advisories: Vec<String>,
-}
-
-/// Writes out the `[structure]` table `structure` as units and connections
-/// (as tables of the scene's `[[units]]` and `[[connections]]`), its statics
-/// solved at the simulation's start `t0`. The error names the key.
-pub fn expand(structure: &Value, t0: Time) -> Result<Written, StructureError> {
+/// Writes out the `[structure]` table `structure` as typed units and
+/// connections, its statics solved at the simulation's start `t0`. The error
+/// names the key.
+pub(crate) fn expand(structure: &Value, t0: Time) -> Result<Written, StructureError> {
     let structure = structure
         .as_table()
         .ok_or("`structure`: expected a table")?;
@@ -88,7 +76,7 @@ pub fn expand(structure: &Value, t0: Time) -> Result<Written, StructureError> {
     let mut connections = Vec::new();
     let mut advisories = Vec::new();
     for k in 0..cuts.len() {
-        units.push(built.section(&cuts, k, &force_on_upper)?.into_value()?);
+        units.push(built.section(&cuts, k, &force_on_upper)?);
         advisories.extend(built.advise_on_touchdown(&cuts[k]));
         if cut_is_plain(&cuts, k, built.holding_static) {
             let (links, artefacts) = cuts::cut_connections(
@@ -123,19 +111,20 @@ pub fn expand(structure: &Value, t0: Time) -> Result<Written, StructureError> {
         if let Some(load) = &built.top_load {
             connections.extend(load.links(&reference_name(&built.name), fidelity));
         }
-        units.push(unit.into_value()?);
+        units.push(unit);
     }
+    let mut written = Written {
+        units,
+        connections,
+        advisories,
+    };
     for cut in cuts
         .iter()
         .filter(|c| c.fmu.is_some() && c.fidelity.is_section_unit())
     {
-        fmu_input_names(&built.side(cut).unit, &mut units, &mut connections);
+        written.fmu_input_names(&built.side(cut).unit);
     }
-    Ok(Written {
-        units,
-        connections,
-        advisories,
-    })
+    Ok(written)
 }
 
 /// Per cut, whether the upper section's end is the loaded side (it carries the
@@ -217,32 +206,6 @@ fn require<'a>(
             fixed[cut] = Some((upper_loaded, by));
             Ok(())
         }
-    }
-}
-
-/// An FMU exported from a `nonlinear` unit names its end inputs `<port>_in`
-/// (each has an output of the same name, and FMI names are unique): its
-/// connections and first guesses take those names.
-fn fmu_input_names(unit: &str, units: &mut [Value], connections: &mut [Value]) {
-    let prefix = format!("{unit}.");
-    for link in connections.iter_mut() {
-        if let Some(to) = link.get_mut("to")
-            && let Some(port) = to.as_str().and_then(|t| t.strip_prefix(&prefix))
-        {
-            *to = Value::String(format!("{prefix}{port}_in"));
-        }
-    }
-    let ours = units
-        .iter_mut()
-        .find(|u| u.get("name").and_then(Value::as_str) == Some(unit));
-    if let Some(inputs) = ours
-        .and_then(|u| u.get_mut("inputs"))
-        .and_then(Value::as_table_mut)
-    {
-        *inputs = std::mem::take(inputs)
-            .into_iter()
-            .map(|(k, v)| (format!("{k}_in"), v))
-            .collect();
     }
 }
 
@@ -346,7 +309,7 @@ impl Built {
     /// The links between a static first section that takes force and the
     /// section above, which follows its displacement: a `nonlinear` section
     /// by the displacement of its start's DOFs, a chord section by position.
-    fn holding_links(&self, cuts: &[Cut]) -> Result<Vec<Value>, String> {
+    fn holding_links(&self, cuts: &[Cut]) -> Result<Vec<Link>, String> {
         let above = cuts.get(1).filter(|c| {
             c.physical.is_none()
                 && c.fmu.is_none()
@@ -387,6 +350,7 @@ impl Built {
     /// How a cut sees a section.
     fn side<'a>(&self, cut: &'a Cut) -> Side<'a> {
         Side {
+            section: &cut.name,
             unit: unit_name(&self.name, &cut.name),
             fidelity: cut.fidelity,
             physical: cut.physical.as_ref(),

@@ -4,12 +4,12 @@
 //! master's initial iterations land on that equilibrium.
 
 use super::unit::{Parameters, SectionUnit};
+use super::written::Link;
 use slender_units::beam::boundary::TimeFunction;
 use slender_units::nonlinear::params::{DofCondition, End, EndKind, StartShape};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::static_section::{Linearised, StaticSectionParams};
 use slender_units::{Driver, Time, Unit};
-use toml::Value;
 
 /// The whole structure at rest in equilibrium.
 pub(super) struct Equilibrium {
@@ -247,20 +247,19 @@ pub(super) fn holding_links(
     above: &str,
     ports: [&str; 3],
     offsets: [f64; 3],
-) -> Vec<Value> {
+) -> Vec<Link> {
     let mut links = Vec::new();
     let outputs = ["end_displacement_x", "end_displacement_z", "end_rotation"];
     let loads = ["force_x", "force_z", "moment"];
     for k in 0..3 {
-        let mut l = super::cuts::link(
-            format!("{static_unit}.{}", outputs[k]),
-            format!("{above}.{}", ports[k]),
+        links.push(
+            Link::new(
+                format!("{static_unit}.{}", outputs[k]),
+                format!("{above}.{}", ports[k]),
+            )
+            .with_offset(offsets[k]),
         );
-        if let Some(t) = l.as_table_mut() {
-            t.insert("offset".into(), Value::Float(offsets[k]));
-        }
-        links.push(l);
-        links.push(super::cuts::link(
+        links.push(Link::new(
             format!("{above}.start_{}", loads[k]),
             format!("{static_unit}.end_{}", loads[k]),
         ));

@@ -2,10 +2,11 @@
 //! name, parameters, effects, first guesses and sub-steps. Its parameters
 //! are its kind's own type (`NonlinearParams`, `CableParams`, ...: the type
 //! the unit deserialises), so the statics and the fidelities set fields, not
-//! TOML keys; only an external FMU's are the table the scene gives. It
-//! becomes the scene's `[[units]]` table once, when the structure hands its
-//! units to the scene (`into_value`).
+//! TOML keys; only an external FMU's are the table the scene gives. The
+//! scene builds the unit from that type as it is (`Parameters::given`); it
+//! becomes a `[[units]]` table only for the expanded text (`into_value`).
 
+use slender_kinds::Given;
 use slender_units::body::BodyParams;
 use slender_units::cable::CableParams;
 use slender_units::chord::ChordParams;
@@ -46,7 +47,7 @@ pub(crate) enum Parameters {
 
 impl Parameters {
     /// The kind of unit that takes them.
-    pub(super) fn kind(&self) -> &'static str {
+    pub(crate) fn kind(&self) -> &'static str {
         match self {
             Parameters::Nonlinear(_) => "nonlinear",
             Parameters::Cable(_) => "cable",
@@ -61,8 +62,24 @@ impl Parameters {
         }
     }
 
-    /// As the unit's `parameters` table.
-    fn into_table(self) -> Result<Table, toml::ser::Error> {
+    /// As its builder takes them: the kind's own type, or an FMU's table.
+    pub(crate) fn given(self) -> Given {
+        match self {
+            Parameters::Nonlinear(p) => Given::Typed(p),
+            Parameters::Cable(p) => Given::Typed(p),
+            Parameters::Static(p) => Given::Typed(p),
+            Parameters::Chord(p) => Given::Typed(p),
+            Parameters::Reduced(p) => Given::Typed(p),
+            Parameters::Line3d(p) | Parameters::Catenary3d(p) => Given::Typed(p),
+            Parameters::Body(p) => Given::Typed(p),
+            Parameters::Artefact(p) => Given::Typed(p),
+            Parameters::Fmu(t) => Given::Table(t),
+        }
+    }
+
+    /// As the unit's `parameters` table (the expanded text, an FMU's
+    /// configuration).
+    pub(crate) fn into_table(self) -> Result<Table, toml::ser::Error> {
         match self {
             Parameters::Nonlinear(p) => Table::try_from(&*p),
             Parameters::Cable(p) => Table::try_from(&*p),
@@ -137,8 +154,8 @@ impl SectionUnit {
         self.inputs.insert(format!("{side}_force_z"), force[1]);
     }
 
-    /// The unit as a table of the scene's `[[units]]`: the one place its
-    /// typed parameters are written as TOML values.
+    /// The unit as a table of the scene's `[[units]]` (the expanded text
+    /// `slender expand` prints).
     pub(crate) fn into_value(self) -> Result<Value, String> {
         let kind = self.parameters.kind();
         let parameters = (self.parameters.into_table())
