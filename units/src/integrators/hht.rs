@@ -280,6 +280,11 @@ impl HhtAlpha {
         self.guess.extend_from_slice(y);
     }
 
+    /// Whether the next step has a first iterate given (`guess_next`).
+    pub fn has_guess(&self) -> bool {
+        !self.guess.is_empty()
+    }
+
     /// The Newton matrix with the tangent of the last iteration.
     pub fn newton_matrix(&self) -> &SymmetricBand {
         &self.jacobian

@@ -9,10 +9,13 @@
 //!   the critical step reported;
 //! - [`newmark`]: linear Newmark average acceleration on small dense systems;
 //! - [`hht_sensitivity`]: a converged HHT-alpha step's sensitivity to its
-//!   coupled end values (the step Jacobians of the units it steps).
+//!   coupled end values (the step Jacobians of the units it steps);
+//! - [`warm_start`]: a repeated step's first iterate from the last attempt
+//!   moved by those derivatives.
 
 pub mod central_difference;
 pub mod hht;
 pub mod hht_sensitivity;
 pub mod newmark;
 pub mod newmark_iterated;
+pub mod warm_start;

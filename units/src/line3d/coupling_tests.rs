@@ -138,3 +138,51 @@ fn a_sliding_line_s_step_jacobian_takes_friction_s_tangent() {
         assert!(worst > 0.0, "the ends' forces moved with the inputs");
     }
 }
+
+#[test]
+fn a_repeated_step_starts_from_the_last_attempt_and_ends_where_a_cold_one_does() {
+    // The master's Newton restores the line and steps it again with inputs
+    // moved by its correction (`Unit::warm_repeat`): Newton starts from the
+    // last attempt moved by the step's derivatives and needs fewer
+    // iterations; the answer is the cold repeat's to Newton's tolerance.
+    let drag = "drag_normal = 1.2\ncurrent = [{ depth = 0.0, speed = 0.5, heading_deg = 70.0 }]";
+    for condition in ["velocity", "force"] {
+        let (mut d, inputs) = coupled(condition, drag);
+        let mut slot = crate::contract::DriverSlot::new();
+        d.save(&mut slot).unwrap();
+        let (t, h) = (Time::from_secs(2.0).unwrap(), Time::from_secs(0.1).unwrap());
+        d.set_inputs(&inputs).unwrap();
+        d.do_step(t, h).unwrap();
+        let n_out = d.description().outputs.len();
+        let mut jacobian = vec![0.0; n_out * inputs.len()];
+        d.step_jacobian(&mut jacobian).unwrap();
+        let moved: Vec<f64> = inputs.iter().map(|u| u + 1e-3 * u.abs().max(1.0)).collect();
+        let mut repeat = |warm: bool| {
+            if warm {
+                d.restore_warm(&slot).unwrap();
+            } else {
+                d.restore(&slot).unwrap();
+            }
+            d.set_inputs(&moved).unwrap();
+            let report = d.do_step(t, h).unwrap();
+            let mut out = vec![0.0; n_out];
+            d.outputs(&mut out).unwrap();
+            (report.solver_iterations, out)
+        };
+        let (cold_iterations, cold) = repeat(false);
+        let (warm_iterations, warm) = repeat(true);
+        assert!(
+            warm_iterations < cold_iterations,
+            "{condition}: {warm_iterations} warm against {cold_iterations} cold"
+        );
+        for row in 0..18 {
+            let scale = (0..18).map(|r| cold[r].abs()).fold(1.0, f64::max);
+            assert!(
+                (warm[row] - cold[row]).abs() <= 1e-6 * scale,
+                "{condition}: output {row}: {} warm against {} cold",
+                warm[row],
+                cold[row]
+            );
+        }
+    }
+}

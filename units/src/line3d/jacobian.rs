@@ -23,6 +23,7 @@ use super::mechanics::{BAND, DOF, add_block};
 use super::params::EndCondition;
 use crate::contract::{Hold, Inputs, UnitError, require_step_jacobian_ready};
 use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
+use crate::integrators::warm_start::WarmStart;
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
 /// Buffers of the Jacobian, kept between calls.
@@ -43,6 +44,9 @@ pub(super) struct JacobianWork {
     /// last Jacobian used them (the line slid).
     corrected: Option<Corrected>,
     sliding: bool,
+    /// The last whole step and its derivatives: the warm start of a
+    /// repeated step.
+    pub warm: WarmStart,
 }
 
 /// The Newton matrix with friction's true tangent: with its held rows (for
@@ -74,13 +78,16 @@ impl Line3d {
         }
         let n_in = inputs.len();
         jacobian.fill(f64::NAN);
+        w.warm.begin_columns(n_in, self.state.q.len());
         let mut result = Ok(());
         for j in 0..n_in {
             if let Err(e) = self.input_column(&inputs, &mut w, j, jacobian) {
                 result = Err(e);
                 break;
             }
+            w.warm.set_column(j, &w.change.dq);
         }
+        w.warm.columns_done(result.is_ok());
         self.jacobian = w;
         result
     }

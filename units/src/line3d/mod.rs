@@ -247,6 +247,10 @@ impl Unit for Line3d {
         self.interface_jacobian(inputs, jacobian)
     }
 
+    fn warm_repeat(&mut self) {
+        self.jacobian.warm.warm = true;
+    }
+
     fn fields(&self) -> Vec<Field> {
         self.field_list()
     }

@@ -147,6 +147,11 @@ impl Line3d {
             self.hht.forget_matrices();
         }
         let mut whole = count == 1;
+        // A repeated step (`Unit::warm_repeat`) starts Newton from the last
+        // attempt moved by its derivatives.
+        if let (true, Some(guess)) = (whole, self.jacobian.warm.guess(t, inputs.end())) {
+            self.hht.guess_next(guess);
+        }
         for k in 0..count {
             let (s0, s1) = (k as f64 / count as f64, (k + 1) as f64 / count as f64);
             let (taken, steps) = self.halving_step(t, h, inputs, [s0, s1], 0)?;
@@ -154,6 +159,11 @@ impl Line3d {
             whole &= steps == 1;
         }
         self.jacobian.ready = whole;
+        if whole {
+            let mut warm = std::mem::take(&mut self.jacobian.warm);
+            warm.record_step(t, inputs.end(), &self.state.q);
+            self.jacobian.warm = warm;
+        }
         self.state.newton_iterations = iterations;
         Ok(iterations)
     }
@@ -212,8 +222,14 @@ impl Line3d {
         self.held_motion(inputs, (t1, h), s, &mut w.held);
         self.hold_waves((t1, h), &w.held, &mut w.predicted);
         self.linear_loads(t0, t1, &mut w);
-        let mut hht = std::mem::take(&mut self.hht);
         let linear = self.linear.is_some();
+        if !linear && !self.hht.has_guess() {
+            // Newton starts from the motion carried on with its acceleration
+            // (not from the start state): one or two iterations fewer.
+            self.predict(h, &w.held, &mut w.predicted);
+            self.hht.guess_next(&w.predicted);
+        }
+        let mut hht = std::mem::take(&mut self.hht);
         let loads = StepLoads {
             t0,
             t1,
@@ -272,6 +288,13 @@ impl Line3d {
         if self.linear.is_some() || !self.environment.has_waves() {
             return;
         }
+        self.predict(h, held, predicted);
+        self.environment.hold_waves(predicted, t1);
+    }
+
+    /// The nodes' positions `h` (s) on, carried on with their velocity and
+    /// acceleration, the held DOFs at their prescribed values (m).
+    fn predict(&self, h: f64, held: &[(usize, [f64; 3])], predicted: &mut Vec<f64>) {
         let s = &self.state;
         predicted.clear();
         predicted.extend(
@@ -280,7 +303,6 @@ impl Line3d {
         for &(d, [q, _, _]) in held {
             predicted[d] = q;
         }
-        self.environment.hold_waves(predicted, t1);
     }
 
     /// The prescribed motion of the held DOFs at the step's end.

@@ -196,7 +196,7 @@ impl NonlinearSection {
         let mut w = std::mem::take(&mut self.work);
         self.jacobian_work.ready = false;
         let offers = self.offers_jacobian();
-        if let (Some(guess), true) = (self.jacobian_work.warm_guess(t0, inputs.end()), offers) {
+        if let (Some(guess), true) = (self.jacobian_work.warm.guess(t0, inputs.end()), offers) {
             match self.reduction.as_mut() {
                 Some(r) => r.guess_next(guess),
                 None => self.hht.guess_next(guess),
@@ -237,9 +237,9 @@ impl NonlinearSection {
         self.jacobian_work.ready = pieces == 1 && result.is_ok() && self.offers_jacobian();
         self.jacobian_work.h = h;
         if self.jacobian_work.ready {
-            let mut work = std::mem::take(&mut self.jacobian_work);
-            work.record_step(t0, inputs.end(), self.stepped_coordinates());
-            self.jacobian_work = work;
+            let mut warm = std::mem::take(&mut self.jacobian_work.warm);
+            warm.record_step(t0, inputs.end(), self.stepped_coordinates());
+            self.jacobian_work.warm = warm;
         }
         result
     }

@@ -14,6 +14,7 @@ use super::params::{DofCondition, Integrator};
 use crate::beam::boundary::TimeFunction;
 use crate::contract::{Hold, Inputs, UnitError};
 use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
+use crate::integrators::warm_start::WarmStart;
 use crate::numerics::banded::SymmetricBand;
 
 /// Buffers of the Jacobian, kept between calls; `ready` while the section's
@@ -23,17 +24,9 @@ pub(super) struct JacobianWork {
     pub ready: bool,
     /// The last step's length (s).
     pub h: f64,
-    /// The last whole step: its start time (s), end inputs and end
-    /// displacements, and (`columns_valid`) d q / d input per input
-    /// (`n_in x dofs`): the warm start of a repeated step.
-    last_t0: f64,
-    last_inputs: Vec<f64>,
-    last_end: Vec<f64>,
-    columns: Vec<f64>,
-    columns_valid: bool,
-    /// The next step repeats the last one (`Unit::warm_repeat`).
-    pub warm: bool,
-    guess: Vec<f64>,
+    /// The last whole step and its derivatives: the warm start of a
+    /// repeated step.
+    pub warm: WarmStart,
     /// The drag's tangent damping C_t at the step's end.
     damping: Option<SymmetricBand>,
     force: Vec<f64>,
@@ -71,17 +64,16 @@ impl NonlinearSection {
         let n_in = inputs.len();
         let n = self.model.dofs();
         jacobian.fill(f64::NAN);
-        w.columns.resize(n_in * n, 0.0);
-        w.columns_valid = false;
+        w.warm.begin_columns(n_in, n);
         let mut result = Ok(());
         for j in 0..n_in {
             if let Err(e) = self.input_column(inputs, &mut w, j, jacobian) {
                 result = Err(e);
                 break;
             }
-            w.columns[j * n..(j + 1) * n].copy_from_slice(&w.change.dq);
+            w.warm.set_column(j, &w.change.dq);
         }
-        w.columns_valid = result.is_ok();
+        w.warm.columns_done(result.is_ok());
         self.jacobian_work = w;
         result
     }
@@ -204,53 +196,5 @@ impl NonlinearSection {
                 };
             }
         }
-    }
-}
-
-impl JacobianWork {
-    /// The last step's derivatives of the stepped coordinates with respect
-    /// to each input (`n_in x coordinates`), for the warm start.
-    pub(super) fn set_columns(&mut self, columns: &[f64]) {
-        self.columns.clear();
-        self.columns.extend_from_slice(columns);
-        self.columns_valid = true;
-    }
-
-    /// Records a whole step from `t0` that ended at `q` with end `inputs`.
-    pub(super) fn record_step(&mut self, t0: f64, inputs: &[f64], q: &[f64]) {
-        self.last_t0 = t0;
-        self.last_inputs.clear();
-        self.last_inputs.extend_from_slice(inputs);
-        self.last_end.clear();
-        self.last_end.extend_from_slice(q);
-        self.columns_valid = false;
-    }
-
-    /// The first iterate of a step from `t0` with end `inputs` that repeats
-    /// the last one (after `Unit::warm_repeat`): its end displacements moved
-    /// by the Jacobian's columns where they are of that step; None when the
-    /// step is another one. Clears the hint.
-    pub(super) fn warm_guess(&mut self, t0: f64, inputs: &[f64]) -> Option<&[f64]> {
-        let warm = std::mem::take(&mut self.warm);
-        if !warm
-            || t0 != self.last_t0
-            || inputs.len() != self.last_inputs.len()
-            || self.last_end.is_empty()
-        {
-            return None;
-        }
-        let n = self.last_end.len();
-        self.guess.clone_from(&self.last_end);
-        if self.columns_valid && self.columns.len() == n * inputs.len() {
-            for (j, (u, u0)) in inputs.iter().zip(&self.last_inputs).enumerate() {
-                let du = u - u0;
-                if du != 0.0 {
-                    for (g, c) in self.guess.iter_mut().zip(&self.columns[j * n..(j + 1) * n]) {
-                        *g += c * du;
-                    }
-                }
-            }
-        }
-        Some(&self.guess)
     }
 }

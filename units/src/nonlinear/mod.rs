@@ -538,7 +538,7 @@ impl Unit for NonlinearSection {
     }
 
     fn warm_repeat(&mut self) {
-        self.jacobian_work.warm = true;
+        self.jacobian_work.warm.warm = true;
     }
 
     fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {

@@ -66,7 +66,7 @@ impl NonlinearSection {
         };
         let result = self.reduced_columns(&mut r, inputs, jacobian);
         if result.is_ok() {
-            self.jacobian_work.set_columns(&r.jacobian.columns);
+            self.jacobian_work.warm.set_columns(&r.jacobian.columns);
         }
         self.reduction = Some(r);
         result
