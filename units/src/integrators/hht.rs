@@ -195,6 +195,9 @@ pub struct HhtAlpha {
     /// Whether the last step was linear (its matrix `linear`, its factor
     /// `linear_factor`).
     last_linear: bool,
+    /// Newton starts a step without a guess from the motion carried on
+    /// (`predict_start`), not from the start state.
+    predicts: bool,
 }
 
 impl Default for HhtAlpha {
@@ -235,12 +238,21 @@ impl HhtAlpha {
             guess: Vec::new(),
             kept: None,
             last_linear: false,
+            predicts: false,
         }
     }
 
     /// (alpha, beta, gamma).
     pub fn parameters(&self) -> (f64, f64, f64) {
         parameters_of(self.alpha)
+    }
+
+    /// Starts each step's Newton (without a `guess_next`) from the motion
+    /// carried on over the step, q0 + h v0 + h^2 a0 / 2, instead of the start
+    /// state: a step of a moving structure starts an iteration or two closer
+    /// to its solution. The answer changes only to Newton's tolerance.
+    pub fn predict_start(&mut self) {
+        self.predicts = true;
     }
 
     /// Keeps a copy of every Newton matrix before the held DOFs become identity
@@ -278,11 +290,6 @@ impl HhtAlpha {
     pub fn guess_next(&mut self, y: &[f64]) {
         self.guess.clear();
         self.guess.extend_from_slice(y);
-    }
-
-    /// Whether the next step has a first iterate given (`guess_next`).
-    pub fn has_guess(&self) -> bool {
-        !self.guess.is_empty()
     }
 
     /// The Newton matrix with the tangent of the last iteration.
@@ -379,9 +386,9 @@ impl HhtAlpha {
         self.v0.copy_from_slice(v);
         self.a0.copy_from_slice(a);
         self.constant_part(&system.matrices(), loads);
-        self.first_iterate(loads.held);
-        self.history.clear();
         let linear = system.is_linear();
+        self.first_iterate(loads.held, h, linear);
+        self.history.clear();
         self.last_linear = linear;
         let scales = TangentScales {
             stiffness: 1.0 - alpha,
@@ -441,10 +448,18 @@ impl HhtAlpha {
     }
 
     /// Newton's first iterate: the guess if one was given, else the start
-    /// state; the held DOFs at their prescribed values.
-    fn first_iterate(&mut self, held: &[(usize, [f64; 3])]) {
+    /// state carried on over `h` (s) where the system asked for it (a
+    /// `linear` step is solved exactly from anywhere), else the start state;
+    /// the held DOFs at their prescribed values.
+    fn first_iterate(&mut self, held: &[(usize, [f64; 3])], h: f64, linear: bool) {
         if self.guess.len() == self.q0.len() {
             self.y.copy_from_slice(&self.guess);
+        } else if self.predicts && !linear {
+            let carried = (self.q0.iter().zip(&self.v0).zip(&self.a0))
+                .map(|((q, v), a)| q + h * v + 0.5 * h * h * a);
+            for (y, p) in self.y.iter_mut().zip(carried) {
+                *y = p;
+            }
         } else {
             self.y.copy_from_slice(&self.q0);
         }

@@ -126,6 +126,7 @@ impl Line3d {
         };
         let n = DOF * nodes;
         let mut hht = HhtAlpha::new(params.alpha, n, BAND);
+        hht.predict_start();
         if coupled {
             hht.keep_newton_matrix();
         }

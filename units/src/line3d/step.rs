@@ -223,12 +223,6 @@ impl Line3d {
         self.hold_waves((t1, h), &w.held, &mut w.predicted);
         self.linear_loads(t0, t1, &mut w);
         let linear = self.linear.is_some();
-        if !linear && !self.hht.has_guess() {
-            // Newton starts from the motion carried on with its acceleration
-            // (not from the start state): one or two iterations fewer.
-            self.predict(h, &w.held, &mut w.predicted);
-            self.hht.guess_next(&w.predicted);
-        }
         let mut hht = std::mem::take(&mut self.hht);
         let loads = StepLoads {
             t0,
@@ -288,13 +282,6 @@ impl Line3d {
         if self.linear.is_some() || !self.environment.has_waves() {
             return;
         }
-        self.predict(h, held, predicted);
-        self.environment.hold_waves(predicted, t1);
-    }
-
-    /// The nodes' positions `h` (s) on, carried on with their velocity and
-    /// acceleration, the held DOFs at their prescribed values (m).
-    fn predict(&self, h: f64, held: &[(usize, [f64; 3])], predicted: &mut Vec<f64>) {
         let s = &self.state;
         predicted.clear();
         predicted.extend(
@@ -303,6 +290,7 @@ impl Line3d {
         for &(d, [q, _, _]) in held {
             predicted[d] = q;
         }
+        self.environment.hold_waves(predicted, t1);
     }
 
     /// The prescribed motion of the held DOFs at the step's end.
