@@ -230,6 +230,7 @@ impl NonlinearSection {
         if section.offers_jacobian() {
             section.hht.keep_newton_matrix();
         }
+        section.hht.predict_start();
         Ok(section)
     }
 
