@@ -76,6 +76,7 @@ def recorded_motion():
         signals = "[" + ", ".join(f'"spar.{d}"' for d in DOFS) + "]"
         subprocess.run([SLENDER, "run", scene, "--duration", str(DURATION),
                         "--set", f"output.signals={signals}", "--set", "output.plots=[]",
+                        "--set", "output.fatigue=[]",
                         "--out", os.path.join(WORK, "motion")], check=True, capture_output=True)
     columns = read_csv(path)
     return columns["time"], [columns["spar." + d] for d in DOFS]
