@@ -307,7 +307,7 @@ impl Scene {
         for unit in &self.spec.units {
             // A written-out unit's typed parameters are searched as the
             // table they write (once, after a run).
-            let written = (unit.written.clone()).and_then(|p| p.into_table().ok());
+            let written = (unit.written.as_ref()).and_then(|p| p.to_table().ok());
             let parameters = (unit.parameters.as_ref().map(|p| p.get_ref())).or(written.as_ref());
             if let Some(parameters) = parameters {
                 let name = unit.name.get_ref();

@@ -77,10 +77,10 @@ pub(crate) fn expanded_text(
     };
     table.remove("structure");
     table.remove("mooring");
-    let units = (written.units.iter().cloned())
-        .map(SectionUnit::into_value)
+    let units = (written.units.iter())
+        .map(SectionUnit::to_value)
         .collect::<Result<Vec<_>, _>>()?;
-    let connections = written.connections.iter().cloned().map(Link::into_value);
+    let connections = written.connections.iter().map(Link::to_value);
     for (key, items) in [("units", units), ("connections", connections.collect())] {
         let list = table
             .entry(key.to_owned())

@@ -116,7 +116,7 @@ impl SceneExport for ExportConfig {
             .collect();
         // A written-out unit's typed parameters become the FMU's table here.
         let parameters = match (&spec.written, &spec.parameters) {
-            (Some(written), _) => written.clone().into_table().map_err(|e| {
+            (Some(written), _) => written.to_table().map_err(|e| {
                 BuildError::Parameters(format!("unit `{unit}`: its parameters as TOML: {e}"))
             })?,
             (None, Some(p)) => p.get_ref().clone(),

@@ -222,8 +222,8 @@ impl Line3d {
         self.held_motion(inputs, (t1, h), s, &mut w.held);
         self.hold_waves((t1, h), &w.held, &mut w.predicted);
         self.linear_loads(t0, t1, &mut w);
-        let linear = self.linear.is_some();
         let mut hht = std::mem::take(&mut self.hht);
+        let linear = self.linear.is_some();
         let loads = StepLoads {
             t0,
             t1,

@@ -338,8 +338,16 @@ impl NonlinearSection {
     }
 
     /// External load at time t (weight, distributed loads, end loads; coupled ones
-    /// read at fraction `s` of the coupling step) into `out`.
+    /// read at fraction `s` of the coupling step) into `out`, with the end
+    /// elements' load moments at the state (`moments.rs`).
     fn external_load(&self, inputs: Inputs<'_>, (t, s): (f64, f64), out: &mut [f64]) {
+        self.applied_load(inputs, (t, s), out);
+        self.add_end_load_moments((&self.state.q, t), 1.0, out);
+    }
+
+    /// [`Self::external_load`] without the end elements' load moments (the
+    /// statics add them at each iterate).
+    fn applied_load(&self, inputs: Inputs<'_>, (t, s): (f64, f64), out: &mut [f64]) {
         out.copy_from_slice(&self.weight);
         for (l, [px, pz]) in self.params.loads.iter().zip(&self.patterns) {
             let fx = l.x.eval(t).map_or(0.0, |v| v[0]);
@@ -351,7 +359,6 @@ impl NonlinearSection {
         for r in &self.ends {
             out[r.dof] += r.load(inputs, t, s);
         }
-        self.add_end_load_moments((&self.state.q, t), 1.0, out);
     }
 
     fn held(&self) -> impl Iterator<Item = &Resolved> + '_ {
@@ -364,7 +371,7 @@ impl NonlinearSection {
     pub fn section_forces(&self, s: f64) -> [f64; 3] {
         let (e, xi) = self.model.locate(s);
         let local = self.model.local_forces(&self.state.q, e);
-        let ends = self.model.recovered_moments(&self.state.q, e, self);
+        let ends = self.model.recovered_moments(e, &local, self);
         let moment = (1.0 - xi) * -ends[0] + xi * ends[1];
         [local.axial, moment, moment / self.model.elements[e].ei]
     }

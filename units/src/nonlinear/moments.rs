@@ -32,15 +32,32 @@ pub trait Loads {
 }
 
 impl Model {
-    /// Element `e`'s end moments at `q` (N m, counter-clockwise on the element
-    /// as [`LocalForces::moments`]), the fixed-end moments of the load along
-    /// it removed. `loads.0(j)` is node `j`'s net load (N, x and z), `None`
-    /// where a reaction acts; `loads.1(e)` the load along element `e` (N/m, x
-    /// and z) it knows of (weight, distributed loads), for an element whose
-    /// two nodes are held. Co-rotational only: seed 002's element takes its
-    /// loads consistently already and is returned as it is.
-    pub fn recovered_moments(&self, q: &[f64], e: usize, loads: &impl Loads) -> [f64; 2] {
-        self.recover(e, &self.local_forces(q, e), loads)
+    /// Element `e`'s end moments (N m, counter-clockwise on the element as
+    /// [`LocalForces::moments`]) from its `local` forces, the fixed-end
+    /// moments of the load along it (read from `loads`) removed.
+    /// Co-rotational only: seed 002's element takes its loads consistently
+    /// already and is returned as it is.
+    pub fn recovered_moments(&self, e: usize, local: &LocalForces, loads: &impl Loads) -> [f64; 2] {
+        if self.formulation != Formulation::Corotational {
+            return local.moments;
+        }
+        let last = self.elements.len();
+        // The load density (N/m) along the normal at node `j`.
+        let density = |j: usize| {
+            if j == 0 || j == last {
+                return None;
+            }
+            let f = loads.net_load(j)?;
+            let tributary = 0.5 * (self.elements[j - 1].length + self.elements[j].length);
+            Some(normal_part(f, local) / tributary)
+        };
+        let load = match (density(e), density(e + 1)) {
+            (Some(a), Some(b)) => 0.5 * (a + b),
+            (Some(a), None) | (None, Some(a)) => a,
+            (None, None) => normal_part(loads.element_load(e), local),
+        };
+        let fixed = load * local.chord * local.chord / 12.0;
+        [local.moments[0] - fixed, local.moments[1] + fixed]
     }
 
     /// Calls `visit` with every element's index, local forces and recovered
@@ -53,37 +70,16 @@ impl Model {
     ) {
         for e in 0..self.elements.len() {
             let local = self.local_forces(q, e);
-            visit(e, &local, self.recover(e, &local, loads));
+            visit(e, &local, self.recovered_moments(e, &local, loads));
         }
     }
+}
 
-    /// The recovered end moments of element `e` with `local` forces.
-    fn recover(&self, e: usize, local: &LocalForces, loads: &impl Loads) -> [f64; 2] {
-        if self.formulation != Formulation::Corotational {
-            return local.moments;
-        }
-        let normal = [-local.direction[1], local.direction[0]];
-        let last = self.elements.len();
-        // The load density (N/m) along the normal at node `j`.
-        let density = |j: usize| {
-            if j == 0 || j == last {
-                return None;
-            }
-            let f = loads.net_load(j)?;
-            let tributary = 0.5 * (self.elements[j - 1].length + self.elements[j].length);
-            Some((f[0] * normal[0] + f[1] * normal[1]) / tributary)
-        };
-        let load = match (density(e), density(e + 1)) {
-            (Some(a), Some(b)) => 0.5 * (a + b),
-            (Some(a), None) | (None, Some(a)) => a,
-            (None, None) => {
-                let own = loads.element_load(e);
-                own[0] * normal[0] + own[1] * normal[1]
-            }
-        };
-        let fixed = load * local.chord * local.chord / 12.0;
-        [local.moments[0] - fixed, local.moments[1] + fixed]
-    }
+/// The part of `load` (x and z) along the element's normal (its direction
+/// turned counter-clockwise).
+fn normal_part(load: [f64; 2], local: &LocalForces) -> f64 {
+    let [c, s] = local.direction;
+    -load[0] * s + load[1] * c
 }
 
 impl super::NonlinearSection {
@@ -124,9 +120,7 @@ impl super::NonlinearSection {
                 continue;
             }
             let local = self.model.local_forces(q, e);
-            let load = self.load_along(e, t);
-            let normal = [-local.direction[1], local.direction[0]];
-            let q_n = load[0] * normal[0] + load[1] * normal[1];
+            let q_n = normal_part(self.load_along(e, t), &local);
             let l = self.model.elements[e].length;
             out[3 * node + 2] += scale * sign * q_n * l * l / 12.0;
         }

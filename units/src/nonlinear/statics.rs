@@ -31,9 +31,8 @@ impl NonlinearSection {
         let n = self.model.dofs();
         let t = self.state.t;
         let mut load = vec![0.0; n];
-        self.external_load(inputs, (t, 1.0), &mut load);
         // The end elements' load moments follow the iterate (`newton`).
-        self.add_end_load_moments((&self.state.q, t), -1.0, &mut load);
+        self.applied_load(inputs, (t, 1.0), &mut load);
         let targets: Vec<(usize, f64)> = self
             .held()
             .map(|r| (r.dof, r.motion(inputs, (t, 0.0), (0.0, 1.0), [0.0; 3])[0]))

@@ -4,7 +4,7 @@
 //! the unit deserialises), so the statics and the fidelities set fields, not
 //! TOML keys; only an external FMU's are the table the scene gives. The
 //! scene builds the unit from that type as it is (`Parameters::given`); it
-//! becomes a `[[units]]` table only for the expanded text (`into_value`).
+//! becomes a `[[units]]` table only for the expanded text (`to_value`).
 
 use slender_kinds::Given;
 use slender_units::body::BodyParams;
@@ -79,17 +79,17 @@ impl Parameters {
 
     /// As the unit's `parameters` table (the expanded text, an FMU's
     /// configuration).
-    pub(crate) fn into_table(self) -> Result<Table, toml::ser::Error> {
+    pub(crate) fn to_table(&self) -> Result<Table, toml::ser::Error> {
         match self {
-            Parameters::Nonlinear(p) => Table::try_from(&*p),
-            Parameters::Cable(p) => Table::try_from(&*p),
-            Parameters::Static(p) => Table::try_from(&*p),
-            Parameters::Chord(p) => Table::try_from(&*p),
-            Parameters::Reduced(p) => Table::try_from(&*p),
-            Parameters::Line3d(p) | Parameters::Catenary3d(p) => Table::try_from(&*p),
-            Parameters::Body(p) => Table::try_from(&*p),
-            Parameters::Artefact(p) => Table::try_from(&*p),
-            Parameters::Fmu(t) => Ok(t),
+            Parameters::Nonlinear(p) => Table::try_from(&**p),
+            Parameters::Cable(p) => Table::try_from(&**p),
+            Parameters::Static(p) => Table::try_from(&**p),
+            Parameters::Chord(p) => Table::try_from(&**p),
+            Parameters::Reduced(p) => Table::try_from(&**p),
+            Parameters::Line3d(p) | Parameters::Catenary3d(p) => Table::try_from(&**p),
+            Parameters::Body(p) => Table::try_from(&**p),
+            Parameters::Artefact(p) => Table::try_from(&**p),
+            Parameters::Fmu(t) => Ok(t.clone()),
         }
     }
 }
@@ -156,20 +156,20 @@ impl SectionUnit {
 
     /// The unit as a table of the scene's `[[units]]` (the expanded text
     /// `slender expand` prints).
-    pub(crate) fn into_value(self) -> Result<Value, String> {
+    pub(crate) fn to_value(&self) -> Result<Value, String> {
         let kind = self.parameters.kind();
-        let parameters = (self.parameters.into_table())
+        let parameters = (self.parameters.to_table())
             .map_err(|e| format!("unit `{}`: its parameters as TOML: {e}", self.name))?;
         let mut unit = Table::new();
-        unit.insert("name".into(), Value::String(self.name));
+        unit.insert("name".into(), Value::String(self.name.clone()));
         unit.insert("kind".into(), Value::String(kind.into()));
-        if let Some(effects) = self.effects {
-            let words = effects.into_iter().map(|e| Value::String(e.into()));
+        if let Some(effects) = &self.effects {
+            let words = effects.iter().map(|e| Value::String((*e).into()));
             unit.insert("effects".into(), Value::Array(words.collect()));
         }
         unit.insert("parameters".into(), Value::Table(parameters));
         if !self.inputs.is_empty() {
-            let inputs = self.inputs.into_iter().map(|(k, v)| (k, Value::Float(v)));
+            let inputs = (self.inputs.iter()).map(|(k, v)| (k.clone(), Value::Float(*v)));
             unit.insert("inputs".into(), Value::Table(inputs.collect()));
         }
         if let Some(n) = self.substeps {

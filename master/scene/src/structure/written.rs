@@ -1,7 +1,7 @@
 //! What a `[structure]` (or a `[mooring]`) writes out, typed: its units (each
 //! with its kind's own parameter type, `SectionUnit`) and its connections
 //! (`Link`). The scene takes them as they are; they become TOML tables only
-//! for the text `slender expand` prints (`into_value`).
+//! for the text `slender expand` prints (`to_value`).
 
 use super::SectionUnit;
 use toml::{Table, Value};
@@ -77,10 +77,10 @@ impl Link {
     }
 
     /// As a table of the scene's `[[connections]]`.
-    pub(crate) fn into_value(self) -> Value {
+    pub(crate) fn to_value(&self) -> Value {
         let mut t = Table::new();
-        t.insert("from".into(), Value::String(self.from));
-        t.insert("to".into(), Value::String(self.to));
+        t.insert("from".into(), Value::String(self.from.clone()));
+        t.insert("to".into(), Value::String(self.to.clone()));
         if let Some(offset) = self.offset {
             t.insert("offset".into(), Value::Float(offset));
         }
