@@ -302,6 +302,41 @@ impl<U: Unit> Driver<U> {
         self.unit.step_jacobian(self.held.view(), jacobian)
     }
 
+    /// Whether the unit can correct its last step ([`Unit::correct_step`]):
+    /// it declares it and steps in one step per coupling step.
+    pub fn can_correct_step(&self) -> bool {
+        self.unit.description().capabilities.step_correction && self.substeps == 1
+    }
+
+    /// The last step taken again with its end inputs moved by `change`, to
+    /// first order ([`Unit::correct_step`]): the moved inputs become the
+    /// step's end values and the next step's start. Refused as
+    /// [`Driver::step_jacobian`] is, and for a unit that does not declare it.
+    pub fn correct_step(&mut self, change: &[f64]) -> Result<(), UnitError> {
+        if !self.can_correct_step() {
+            return Err(UnitError::Unsupported(format!(
+                "the step correction of a `{}` unit{}",
+                self.unit.description().kind,
+                if self.substeps > 1 {
+                    " in sub-steps"
+                } else {
+                    ""
+                }
+            )));
+        }
+        if change.len() != self.held.len() {
+            return Err(UnitError::InputCount {
+                expected: self.held.len(),
+                got: change.len(),
+            });
+        }
+        for (p, d) in change.iter().enumerate() {
+            self.held.nudge_end(p, *d);
+        }
+        self.held.advance();
+        self.unit.correct_step(self.held.view(), change)
+    }
+
     /// The same derivative by forward differences of the unit's own step: for
     /// each input `j`, the step from `start` (a state saved at the step's start)
     /// is repeated with end inputs `end` but `end[j] + delta[j]`, and the

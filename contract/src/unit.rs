@@ -36,6 +36,10 @@ pub struct Capabilities {
     /// respect to that step's end inputs; without it a master that needs the
     /// derivative takes it by finite differences from a rolled-back state.
     pub step_jacobian: bool,
+    /// `correct_step` moves the last step's end state to first order in a
+    /// change of its end inputs, by the derivatives `step_jacobian` solved for:
+    /// a master may then close a step after one sweep (`newton.one_sweep`).
+    pub step_correction: bool,
 }
 
 /// Which input holds a unit honours (the driver applies a scene's `hold` by it).
@@ -59,6 +63,7 @@ impl Default for Capabilities {
             output_derivative_order: 0,
             hold: HoldSupport::Any,
             step_jacobian: false,
+            step_correction: false,
         }
     }
 }
@@ -292,6 +297,22 @@ pub trait Unit: Send {
         )))
     }
 
+    /// The last `do_step` with its end inputs moved by `change` (one value per
+    /// input, in the inputs' units), to first order: the unit moves its end
+    /// state by the derivatives its `step_jacobian` solved for, so that its
+    /// outputs move by that Jacobian times `change`, and brings what it keeps
+    /// of the step's end (forces, reactions, energy ledger) to the moved state.
+    /// `inputs` are the step's corrected end inputs. Called after
+    /// `step_jacobian` on the same step, by units that declare
+    /// `Capabilities::step_correction`; others return `Unsupported`.
+    fn correct_step(&mut self, inputs: Inputs<'_>, change: &[f64]) -> Result<(), UnitError> {
+        let _ = (inputs, change);
+        Err(UnitError::Unsupported(format!(
+            "the step correction of a `{}` unit",
+            self.description().kind
+        )))
+    }
+
     /// The quantities along the unit it can report (constant over its life,
     /// known before `initialize`). Default: none.
     fn fields(&self) -> Vec<Field> {
@@ -459,6 +480,10 @@ macro_rules! forward_unit {
 
             fn warm_repeat(&mut self) {
                 (**self).warm_repeat()
+            }
+
+            fn correct_step(&mut self, inputs: Inputs<'_>, change: &[f64]) -> Result<(), UnitError> {
+                (**self).correct_step(inputs, change)
             }
 
             fn static_inputs(&self) -> Vec<usize> {

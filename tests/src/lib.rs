@@ -63,6 +63,8 @@ pub struct Series {
     pub error: Option<String>,
     /// The scene's indicators.
     pub indicators: Vec<slender_app::indicators::Indicator>,
+    /// The run's warnings (the scene's advisories, the master's, the watch's).
+    pub warnings: Vec<String>,
 }
 
 impl Series {
@@ -100,6 +102,7 @@ pub fn run(scene: &Scene) -> Series {
         counters: result.summary.counters,
         error: result.summary.error,
         indicators: result.summary.indicators,
+        warnings: result.summary.warnings,
     }
 }
 

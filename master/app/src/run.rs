@@ -107,6 +107,11 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
     let started = Instant::now();
     // The scene's advisories first, then the plausibility watch's.
     let mut warnings = scene.advisories.clone();
+    if let Some(unit) = master.one_sweep_blocked_by() {
+        warnings.push(format!(
+            "master.newton.one_sweep: unit `{unit}` cannot correct its step (its kind offers no linear correction, or it steps in sub-steps): every step is iterated as without one_sweep"
+        ));
+    }
     let (outcome, realtime) = simulate(scene, &mut master, &mut recorder, (options, &mut warnings));
     let wall = started.elapsed().as_secs_f64();
     recorder.finish()?;

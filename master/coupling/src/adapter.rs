@@ -41,6 +41,8 @@ pub struct UnitAdapter {
     pub coupled_outputs: Vec<usize>,
     /// Scratch: the finite-difference steps of the inputs.
     delta: Vec<f64>,
+    /// The last `step_jacobian` was the unit's own (not finite differences).
+    pub own_jacobian: bool,
 }
 
 impl UnitAdapter {
@@ -66,6 +68,7 @@ impl UnitAdapter {
             input_tolerance: vec![0.0; n_in],
             coupled_outputs: Vec::new(),
             delta: vec![0.0; n_in],
+            own_jacobian: false,
         }
     }
 
@@ -161,6 +164,7 @@ impl UnitAdapter {
                 self.name
             )));
         }
+        self.own_jacobian = false;
         self.driver
             .set_inputs(&self.inputs)
             .map_err(|e| self.fail("set_inputs", t + h, iteration, e))?;
@@ -248,7 +252,41 @@ impl UnitAdapter {
             self.counters.do_step_calls += n_in as u64;
         }
         self.step_time += started.elapsed();
+        self.own_jacobian = own;
         Ok(own)
+    }
+
+    /// Whether the unit declares a step correction and steps whole.
+    pub fn declares_step_correction(&self) -> bool {
+        self.driver.can_correct_step()
+    }
+
+    /// Whether the unit can correct the step just taken to first order: it
+    /// declares it and its last Jacobian was its own.
+    pub fn can_correct_step(&self) -> bool {
+        self.own_jacobian && self.driver.can_correct_step()
+    }
+
+    /// The step just taken with its end inputs moved by `change` to first
+    /// order ([`slender_contract::Unit::correct_step`]); the moved inputs and
+    /// the outputs at the moved state into `inputs` and `outputs`.
+    pub fn correct_step(
+        &mut self,
+        change: &[f64],
+        t_end: Time,
+        iteration: u32,
+    ) -> Result<(), MasterError> {
+        let started = Instant::now();
+        self.own_jacobian = false;
+        self.driver
+            .correct_step(change)
+            .map_err(|e| self.fail("correct_step", t_end, iteration, e))?;
+        for (u, d) in self.inputs.iter_mut().zip(change) {
+            *u += d;
+        }
+        let read = self.read_outputs(t_end, iteration);
+        self.step_time += started.elapsed();
+        read
     }
 
     /// Saves the unit's state for a later `restore`.

@@ -42,6 +42,10 @@ pub struct Counters {
     /// Left out of the summary while zero.
     #[serde(skip_serializing_if = "is_zero")]
     pub restarts: u64,
+    /// Steps closed after one sweep by the units' linear correction
+    /// (`newton.one_sweep`). Left out of the summary while zero.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub corrected_steps: u64,
     /// Residual at the exit of the last step: the largest |change| / tolerance over
     /// the connections (<= 1 means converged); 0 for non-iterative schemes.
     pub last_residual: f64,

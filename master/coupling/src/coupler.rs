@@ -12,6 +12,7 @@ use crate::acceleration::{Accelerator, accelerator};
 use crate::adapter::UnitAdapter;
 use crate::counters::Counters;
 use crate::error::MasterError;
+pub(crate) use crate::newton::Update;
 use crate::order::{derive_order, reached_by_torn, torn_connections, wiring};
 use crate::settings::{Extrapolation, MasterSettings, OnMaxIterations};
 use crate::system::{Connection, System};
@@ -354,7 +355,7 @@ impl Master {
     /// and roll the units back, until converged or out of iterations.
     pub(crate) fn iterate(
         &mut self,
-        update: &mut dyn FnMut(&mut Master, u32) -> Result<(), MasterError>,
+        update: &mut dyn FnMut(&mut Master, u32) -> Result<Update, MasterError>,
     ) -> Result<(u32, f64, bool), MasterError> {
         self.save_all()?;
         let max = self.settings.max_iterations;
@@ -371,7 +372,13 @@ impl Master {
             if k == max {
                 return self.give_up(k, residual);
             }
-            update(self, k)?;
+            if update(self, k)? == Update::Corrected {
+                let corrected = self.residual();
+                if corrected.scaled <= 1.0 {
+                    self.counters.corrected_steps += 1;
+                    return Ok((k, corrected.scaled, true));
+                }
+            }
             k += 1;
         }
     }
@@ -406,7 +413,7 @@ impl Master {
             m.accelerator
                 .next(&m.scaled_x, &m.scaled_gx, &mut m.scaled_next);
             m.unscale_next();
-            Ok(())
+            Ok(Update::Sweep)
         })
     }
 
@@ -581,6 +588,6 @@ impl Master {
 }
 
 /// The value a connection passes on, from its source unit's outputs.
-fn link_value(c: &Connection, outputs: &[f64]) -> f64 {
+pub(crate) fn link_value(c: &Connection, outputs: &[f64]) -> f64 {
     c.link.gain * outputs[c.from.port] + c.link.offset
 }

@@ -9,11 +9,22 @@
 //! iteration converges slowly, since the interface of one structure changes
 //! little from one step to the next.
 
-use crate::coupler::Master;
+use crate::coupler::{Master, link_value};
 use crate::error::MasterError;
 use crate::settings::{Derivatives, JacobianUpdate, NewtonSettings};
 use nalgebra::{DMatrix, DVector, Dyn, linalg::LU};
 use rayon::prelude::*;
+
+/// What an iteration's update did: proposed the next iterate to sweep with,
+/// or closed the step itself by the units' linear correction
+/// (`newton.one_sweep`), whose residual is then checked.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Update {
+    /// The next sweep takes the new iterate.
+    Sweep,
+    /// The units were moved to the new iterate to first order.
+    Corrected,
+}
 
 /// Buffers of the Newton scheme, sized once for the torn values.
 pub(crate) struct NewtonWork {
@@ -30,6 +41,8 @@ pub(crate) struct NewtonWork {
     dv: Vec<f64>,
     /// The same for the inputs of the unit being chained (`inputs x torn`).
     du: Vec<f64>,
+    /// Scratch: one unit's input change in a linear correction.
+    change: Vec<f64>,
 }
 
 impl NewtonWork {
@@ -43,6 +56,7 @@ impl NewtonWork {
             last_residual: f64::INFINITY,
             dv: vec![0.0; n_connections * n_torn],
             du: Vec::new(),
+            change: Vec::new(),
         }
     }
 }
@@ -111,8 +125,71 @@ impl Master {
             for (i, &c) in m.torn.iter().enumerate() {
                 m.x[i] += work.correction[i] * m.tolerance[c];
             }
-            Ok(())
+            if settings.one_sweep && k == 1 && m.units_can_correct() {
+                m.correct_units(&mut work.change, k)?;
+                return Ok(Update::Corrected);
+            }
+            Ok(Update::Sweep)
         })
+    }
+
+    /// With `newton.one_sweep`: the first iterated unit that cannot correct
+    /// its step (its kind offers no `Unit::correct_step`, or it steps in
+    /// sub-steps), so every step is iterated as without it; None otherwise.
+    pub fn one_sweep_blocked_by(&self) -> Option<&str> {
+        let asked = self.settings.newton.is_some_and(|n| n.one_sweep);
+        let blocked = (self.units.iter().enumerate())
+            .find(|(u, unit)| self.iterated[*u] && !unit.declares_step_correction());
+        blocked
+            .filter(|_| asked)
+            .map(|(_, unit)| unit.name.as_str())
+    }
+
+    /// Whether every iterated unit can move its last step to the new iterate
+    /// to first order (its own Jacobian of that step, `Unit::correct_step`).
+    fn units_can_correct(&self) -> bool {
+        (self.units.iter().enumerate())
+            .all(|(u, unit)| !self.iterated[u] || unit.can_correct_step())
+    }
+
+    /// Moves every iterated unit's last step, in the sweep order, to its
+    /// inputs at the new torn values `x` (the others' at the values the units
+    /// upstream now give), to first order, and takes their outputs at the
+    /// moved state: the sweep's values move to the corrected ones, and the
+    /// residual that follows compares the torn ones with `x`. `change`: scratch.
+    fn correct_units(&mut self, change: &mut Vec<f64>, iteration: u32) -> Result<(), MasterError> {
+        let t_end = self.time + self.step_size;
+        for i in 0..self.order.len() {
+            let u = self.order[i];
+            if !self.iterated[u] {
+                continue;
+            }
+            let unit = &mut self.units[u];
+            change.clear();
+            change.resize(unit.inputs.len(), 0.0);
+            for (p, source) in self.input_connection[u].iter().enumerate() {
+                if let Some(c) = *source {
+                    let value = match self.tear_index[c] {
+                        Some(k) => self.x[k],
+                        None => self.value[c],
+                    };
+                    change[p] = value - unit.inputs[p];
+                }
+            }
+            if change.iter().all(|d| *d == 0.0) {
+                continue;
+            }
+            unit.correct_step(change, t_end, iteration)?;
+            for &c in &self.outgoing[u] {
+                self.value[c] = link_value(&self.connections[c], &unit.outputs);
+            }
+        }
+        for (k, &c) in self.torn.iter().enumerate() {
+            self.gx[k] = self.value[c];
+        }
+        // The connections that are not torn were taken as they now are.
+        self.previous.copy_from_slice(&self.value);
+        Ok(())
     }
 
     /// The largest |G(x) - x| / tolerance over the torn values.

@@ -115,6 +115,16 @@ pub struct NewtonSettings {
     /// repeated sweep costs a Newton iteration or two instead of a whole solve.
     #[serde(default = "yes")]
     pub warm_start: bool,
+    /// With `derivatives = "units"`: a step whose first sweep is not within
+    /// tolerance is closed by one linear correction instead of a second
+    /// sweep (default false). The Newton update of the torn values moves
+    /// every unit's end state by its own step derivatives
+    /// (`Unit::correct_step`); the step is accepted when the residual after
+    /// the correction (the units' forces at the moved state against the
+    /// updated values) is within tolerance, and iterated as usual otherwise
+    /// or when a unit cannot correct its step.
+    #[serde(default)]
+    pub one_sweep: bool,
 }
 
 impl Default for NewtonSettings {
@@ -126,6 +136,7 @@ impl Default for NewtonSettings {
             refresh_steps: default_refresh_steps(),
             refresh_rate: default_refresh_rate(),
             warm_start: true,
+            one_sweep: false,
         }
     }
 }
@@ -450,6 +461,14 @@ impl MasterSettings {
                 return Err(invalid(format!(
                     "newton.refresh_rate {r}: expected a value in (0, 1)"
                 )));
+            }
+            if newton.one_sweep
+                && (newton.derivatives != Derivatives::Units
+                    || newton.jacobian == JacobianUpdate::Reuse)
+            {
+                return Err(invalid(
+                    "newton.one_sweep = true: expected derivatives = \"units\" and a Jacobian of each step (jacobian = \"every_iteration\" or \"once_per_step\"): the correction moves the units by the derivatives of the step they took".into(),
+                ));
             }
         }
         let factor_ok = |f: f64| f.is_finite() && f > 0.0 && f <= 2.0;

@@ -61,6 +61,25 @@ impl WarmStart {
         self.columns_valid = true;
     }
 
+    /// Adds the last step's end coordinates' change for a change of its end
+    /// inputs, to first order (the columns times `change`, one per input), to
+    /// `dq`; false, adding nothing, when the columns are not all known.
+    pub fn add_change(&self, change: &[f64], dq: &mut [f64]) -> bool {
+        let n = dq.len();
+        if !self.columns_valid || self.columns.len() != n * change.len() || n != self.last_end.len()
+        {
+            return false;
+        }
+        for (du, column) in change.iter().zip(self.columns.chunks_exact(n)) {
+            if *du != 0.0 {
+                for (d, c) in dq.iter_mut().zip(column) {
+                    *d += c * du;
+                }
+            }
+        }
+        true
+    }
+
     /// The first iterate of a step from `t0` with end `inputs` that repeats
     /// the last one (after `Unit::warm_repeat`): its end coordinates moved
     /// by the columns where they are of that step; None when the step is
@@ -107,7 +126,11 @@ mod tests {
         assert_eq!(w.guess(1.0, &[2.5, 4.0]), Some(&[10.5, 18.0][..]));
         w.warm = true;
         assert_eq!(w.guess(1.1, &[2.5, 4.0]), None, "another step");
+        let mut dq = [0.0; 2];
+        assert!(w.add_change(&[0.5, 1.0], &mut dq));
+        assert_eq!(dq, [0.5, -2.0]);
         w.columns_done(false);
+        assert!(!w.add_change(&[0.5, 1.0], &mut dq), "columns not known");
         w.warm = true;
         assert_eq!(w.guess(1.0, &[9.0, 9.0]), Some(&[10.0, 20.0][..]));
     }

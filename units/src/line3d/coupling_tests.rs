@@ -186,3 +186,67 @@ fn a_repeated_step_starts_from_the_last_attempt_and_ends_where_a_cold_one_does()
         }
     }
 }
+
+#[test]
+fn a_corrected_step_is_the_step_taken_again_to_second_order() {
+    // `Unit::correct_step` moves the last step to end inputs moved by a
+    // change, by the step's derivatives: its outputs (end motion and forces,
+    // tension, energies and the ledger's balance) differ from the step taken
+    // again with the moved inputs by the change squared (the difference falls
+    // 100-fold for a change 10 times smaller), and a linear line's not at all.
+    let drag = "drag_normal = 1.2\ncurrent = [{ depth = 0.0, speed = 0.5, heading_deg = 70.0 }]";
+    let linear_drag = format!("linear = true\n{drag}");
+    for (condition, extra) in [
+        ("velocity", drag),
+        ("force", drag),
+        ("velocity", linear_drag.as_str()),
+        ("force", "linear = true"),
+    ] {
+        let (mut d, inputs) = coupled(condition, extra);
+        let mut slot = crate::contract::DriverSlot::new();
+        d.save(&mut slot).unwrap();
+        let (t, h) = (Time::from_secs(2.0).unwrap(), Time::from_secs(0.1).unwrap());
+        let n_out = d.description().outputs.len();
+        let names: Vec<String> = (d.description().outputs.iter())
+            .map(|p| p.name.clone())
+            .collect();
+        let mut gap = |size: f64| {
+            let change: Vec<f64> = (inputs.iter().enumerate())
+                .map(|(j, u)| size * u.abs().max(1.0) * [1.0, -0.7, 0.4][j % 3])
+                .collect();
+            let moved: Vec<f64> = inputs.iter().zip(&change).map(|(u, c)| u + c).collect();
+            let again = step_from(&mut d, &slot, (t, h), &moved);
+            step_from(&mut d, &slot, (t, h), &inputs);
+            let mut jacobian = vec![0.0; n_out * inputs.len()];
+            d.step_jacobian(&mut jacobian).unwrap();
+            d.correct_step(&change).unwrap();
+            let mut corrected = vec![0.0; n_out];
+            d.outputs(&mut corrected).unwrap();
+            let scale = |row: usize| again[row].abs().max(1.0);
+            (0..n_out)
+                // Not the solver's count, nor the extremes (a node's index).
+                .filter(|&r| {
+                    !(names[r].contains("touchdown")
+                        || names[r].starts_with("largest")
+                        || names[r].contains("iterations"))
+                })
+                .map(|r| ((corrected[r] - again[r]).abs() / scale(r), r))
+                .fold((0.0f64, 0), |w, e| if e.0 > w.0 { e } else { w })
+        };
+        let (large, row) = gap(1e-2);
+        let (small, _) = gap(1e-3);
+        if extra.contains("linear") {
+            assert!(
+                large < 1e-9,
+                "{condition} {extra}: {large:e} at {}",
+                names[row]
+            );
+        } else {
+            assert!(
+                small < large / 30.0 && large < 1e-3,
+                "{condition} {extra}: {large:e} then {small:e} at {}",
+                names[row]
+            );
+        }
+    }
+}

@@ -210,6 +210,9 @@ impl Line3d {
         };
         let (alpha, beta, gamma) = self.hht.parameters();
         let ramp = inputs.hold(j) == Hold::Ramp;
+        // An input that moves nothing has a zero column (the warm start and the
+        // step's correction read it).
+        w.change.clear(self.state.q.len());
         let Some((end, node, condition)) = self.input_end(j) else {
             return Ok(());
         };

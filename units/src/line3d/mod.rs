@@ -121,6 +121,7 @@ impl Line3d {
             outputs: outputs::output_ports(&params, &first_input),
             capabilities: Capabilities {
                 step_jacobian: coupled,
+                step_correction: coupled,
                 ..Capabilities::default()
             },
         };
@@ -250,6 +251,10 @@ impl Unit for Line3d {
 
     fn warm_repeat(&mut self) {
         self.jacobian.warm.warm = true;
+    }
+
+    fn correct_step(&mut self, inputs: Inputs<'_>, change: &[f64]) -> Result<(), UnitError> {
+        self.correct_last_step(&inputs, change)
     }
 
     fn fields(&self) -> Vec<Field> {

@@ -269,6 +269,61 @@ impl Line3d {
         Ok(iterations)
     }
 
+    /// The last coupling step with its end inputs moved by `change`, to first
+    /// order (`Unit::correct_step`): the coordinates move by the step's
+    /// derivatives (the columns its Jacobian solved for), the velocities and
+    /// accelerations by Newmark's relations for a change of the end
+    /// coordinates, and the end's force, reactions and energy ledger are
+    /// evaluated again at the moved state (the ledger's last trapezoid with
+    /// the moved end powers). `inputs`: the moved end inputs.
+    pub(super) fn correct_last_step(
+        &mut self,
+        inputs: &Inputs<'_>,
+        change: &[f64],
+    ) -> Result<(), UnitError> {
+        let n = self.state.q.len();
+        let mut w = std::mem::take(&mut self.work);
+        w.f1.clear();
+        w.f1.resize(n, 0.0);
+        let known = self.jacobian.ready && self.jacobian.warm.add_change(change, &mut w.f1);
+        if !known {
+            self.work = w;
+            return Err(UnitError::State(
+                "line3d: a step correction needs the step's Jacobian, taken after a whole step"
+                    .into(),
+            ));
+        }
+        let (_, beta, gamma) = self.hht.parameters();
+        let h = self.jacobian.h;
+        let s = &mut self.state;
+        for (i, dq) in w.f1.iter().enumerate() {
+            s.q[i] += dq;
+            s.v[i] += gamma / (beta * h) * dq;
+            s.a[i] += dq / (beta * h * h);
+        }
+        self.jacobian.ready = false;
+        self.end_loads(inputs, 1.0, &mut w.f1);
+        for (f, g) in w.f1.iter_mut().zip(&self.weight) {
+            *f += g;
+        }
+        let before = self.state.ledger.power;
+        let (q, v) = (
+            std::mem::take(&mut self.state.q),
+            std::mem::take(&mut self.state.v),
+        );
+        let surroundings = self.evaluate_end(&q, &v, self.state.t, (&w.f1, &w.water1));
+        self.work = w;
+        self.state.q = q;
+        self.state.v = v;
+        self.update_linear_energy();
+        self.evaluate_end_powers(surroundings);
+        let ledger = &mut self.state.ledger;
+        for ((work, old), new) in ledger.work.iter_mut().zip(before).zip(ledger.power) {
+            *work += 0.5 * h * (new - old);
+        }
+        require_finite_state("line3d positions", &self.state.q)
+    }
+
     /// The waves' kinematics for the step ending at `t1` (s), `h` long, taken
     /// once at the nodes' predicted end positions `q + h v + h^2 a / 2` (the
     /// `held` DOFs' at their prescribed ones; `predicted`: a buffer), unless

@@ -77,6 +77,7 @@ pub(super) fn describe(
             // The step Jacobian through the FMU's directional derivative,
             // taken as with respect to the inputs at the end of the last step.
             step_jacobian: cs.provides_directional_derivative,
+            step_correction: false,
         },
     })
 }
