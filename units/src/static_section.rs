@@ -162,6 +162,7 @@ impl StaticSection {
                 outputs,
                 capabilities: Capabilities {
                     step_jacobian: true,
+                    step_correction: true,
                     ..Capabilities::default()
                 },
             },
@@ -269,6 +270,24 @@ impl Unit for StaticSection {
     }
 
     slender_contract::state_in_field!(state: StaticSectionState);
+
+    /// Exact, as its Jacobian: under force inputs the displacement is the
+    /// compliance's (taken from the moved inputs), under velocities it moves
+    /// by the trapezoidal rule's share of the end velocity's change.
+    fn correct_step(&mut self, inputs: Inputs<'_>, change: &[f64]) -> Result<(), UnitError> {
+        if let Some(d) = self.yielded(inputs) {
+            self.state.displacement = d;
+            return Ok(());
+        }
+        for (k, u) in self.state.displacement.iter_mut().enumerate() {
+            let weight = match inputs.hold(k) {
+                crate::contract::Hold::ZeroOrder => 2.0,
+                crate::contract::Hold::Ramp => 1.0,
+            };
+            *u += 0.5 * self.last_step * weight * change[k];
+        }
+        Ok(())
+    }
 
     /// Exact: the displacement is linear in the end inputs (the compliance, or
     /// the trapezoidal rule over the last step), every output linear in it.

@@ -19,7 +19,7 @@ pub(super) struct StepWork {
     pub(super) f1: Vec<f64>,
     g0: Vec<f64>,
     /// Displacements at the step's start.
-    q0: Vec<f64>,
+    pub(super) q0: Vec<f64>,
     /// The state at the step's start, restored before sub-stepping.
     backup: Option<super::SectionState>,
     held: Vec<(usize, [f64; 3])>,
@@ -28,7 +28,22 @@ pub(super) struct StepWork {
     pub(super) linear_f0: Vec<f64>,
     pub(super) linear_f1: Vec<f64>,
     /// The outside force at the step's end (`energy::record_step`).
-    outside: Vec<f64>,
+    pub(super) outside: Vec<f64>,
+    /// What the last step's end changed, kept to take that end again at a
+    /// corrected state (`correction.rs`): the energy ledger and the
+    /// contacts' Lagrangian parameters before it, the bend moments at the
+    /// step's start, the moving surfaces' energy jump.
+    pub(super) before_end: EndOfStep,
+}
+
+/// The section's ledger and Lagrangian parameters before a step's end was
+/// taken, the bend moments at the step's start and its surfaces' jump.
+#[derive(Default)]
+pub(super) struct EndOfStep {
+    pub(super) ledger: super::energy::EnergyLedger,
+    pub(super) lambda: Vec<f64>,
+    pub(super) bend_start: [f64; 2],
+    pub(super) surface_jump: f64,
 }
 
 impl NonlinearSection {
@@ -253,6 +268,7 @@ impl NonlinearSection {
         pieces: u32,
     ) -> Result<u32, Failure> {
         let mut bend = self.state.bend_now;
+        w.before_end.bend_start = bend;
         let mut total = 0;
         for k in 0..pieces {
             let (s0, s1) = (
@@ -354,7 +370,15 @@ impl NonlinearSection {
     /// After a step of length `h` (s) from `w.q0` under `w.f1`: the restoring
     /// forces, reactions and contact summary at its end, and its entry in the
     /// energy balance (with the moving surfaces' `surface_jump`, J).
-    fn end_step(&mut self, w: &mut StepWork, h: f64, surface_jump: f64) -> Result<(), Failure> {
+    pub(super) fn end_step(
+        &mut self,
+        w: &mut StepWork,
+        h: f64,
+        surface_jump: f64,
+    ) -> Result<(), Failure> {
+        w.before_end.ledger = self.state.ledger;
+        w.before_end.lambda.clone_from(&self.state.lambda);
+        w.before_end.surface_jump = surface_jump;
         let q0 = self.energy_conserving().then_some(w.q0.as_slice());
         self.restoring_forces(q0, Some(&w.drag));
         let surface_power = self.surface_power();

@@ -10,6 +10,7 @@
 //! section: the cheaper units are measured against it.
 
 pub mod contact;
+mod correction;
 pub mod element;
 pub mod ends;
 pub mod environment;
@@ -227,6 +228,7 @@ impl NonlinearSection {
         section.check_reduced_size()?;
         section.mark_held_ends();
         section.description.capabilities.step_jacobian = section.offers_jacobian();
+        section.description.capabilities.step_correction = section.offers_correction();
         if section.offers_jacobian() {
             section.hht.keep_newton_matrix();
         }
@@ -543,6 +545,10 @@ impl Unit for NonlinearSection {
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
         self.interface_jacobian(inputs, jacobian)
+    }
+
+    fn correct_step(&mut self, inputs: Inputs<'_>, change: &[f64]) -> Result<(), UnitError> {
+        self.correct_last_step(inputs, change)
     }
 
     fn warm_repeat(&mut self) {
