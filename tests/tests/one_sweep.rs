@@ -1,7 +1,8 @@
 //! Planar partitions closed in one sweep per step (`newton.one_sweep`): the
 //! riser (laid as its static section, sag bend `nonlinear`, top `linear:30`)
 //! and the mooring line (lower `nonlinear:16`) follow their iterated runs to
-//! the coupling tolerance, at the sweeps per step (at most 1.2).
+//! the coupling tolerance, at the sweeps per step (at most 1.2); a
+//! section that cannot correct its step leaves every step iterated.
 
 use slender_tests::Series;
 use slender_tests::edited::run_edited;
@@ -21,12 +22,21 @@ fn sweeps(s: &Series) -> f64 {
     s.counters.iterations as f64 / s.counters.steps as f64
 }
 
-/// The example with `edits`, iterated and in one sweep: (iterated, one sweep).
+/// The example with `edits`, iterated and in one sweep: (iterated, one
+/// sweep), whichever of the two the example ships with.
 fn both(scene: &str, edits: &[(&str, &str)]) -> (Series, Series) {
-    let iterated = run_edited(scene, edits).unwrap();
-    let mut one = edits.to_vec();
-    one.push((NEWTON, ONE_SWEEP));
-    (iterated, run_edited(scene, &one).unwrap())
+    let text = std::fs::read_to_string(slender_tests::root().join(scene)).unwrap();
+    let (to_iterated, to_one) = if text.contains(ONE_SWEEP) {
+        (Some((ONE_SWEEP, NEWTON)), None)
+    } else {
+        (None, Some((NEWTON, ONE_SWEEP)))
+    };
+    let with = |extra: Option<(&'static str, &'static str)>| {
+        let mut all = edits.to_vec();
+        all.extend(extra);
+        run_edited(scene, &all).unwrap()
+    };
+    (with(to_iterated), with(to_one))
 }
 
 #[test]
@@ -77,4 +87,22 @@ fn the_mooring_line_in_one_sweep_per_step_follows_its_iterated_run() {
     let d = largest_difference(&one, &iterated, "line_upper.end_force_z");
     eprintln!("fairlead force: {d:.3e} N");
     assert!(d < 1.0, "{d} N");
+}
+
+#[test]
+fn a_section_that_cannot_correct_its_step_leaves_every_step_iterated() {
+    // The mooring line as shipped: its lower section is a `cable`, which
+    // offers no correction; the run is the iterated one to the bit, and a
+    // warning names the section.
+    let (iterated, asked) = both("examples/structure_mooring.toml", &[]);
+    assert_eq!(asked.counters.corrected_steps, 0);
+    assert_eq!(
+        asked.get("line_upper.end_force_z"),
+        iterated.get("line_upper.end_force_z")
+    );
+    assert!(
+        (asked.warnings.iter()).any(|w| w.contains("one_sweep") && w.contains("`line_lower`")),
+        "{:?}",
+        asked.warnings
+    );
 }

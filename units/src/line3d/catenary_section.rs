@@ -113,6 +113,7 @@ impl CatenarySection {
             outputs: output_ports(),
             capabilities: Capabilities {
                 step_jacobian: coupled,
+                step_correction: coupled,
                 ..Capabilities::default()
             },
         };
@@ -309,6 +310,31 @@ impl Unit for CatenarySection {
     }
 
     slender_contract::state_in_field!(state: CatenaryState);
+
+    /// Exact: the end's motion follows the changed velocity by Newmark (as
+    /// the step moved it) and the catenary is solved again at its position.
+    fn correct_step(&mut self, _inputs: Inputs<'_>, change: &[f64]) -> Result<(), UnitError> {
+        let h = self.last_step;
+        if self.params.end.condition != EndCondition::Velocity || h <= 0.0 {
+            return Err(UnitError::State(
+                "catenary3d: a step correction needs a step taken with a coupled end velocity"
+                    .into(),
+            ));
+        }
+        let (_, beta, gamma) = self.newmark;
+        let mut end = self.state.end;
+        for (c, dv) in change.iter().enumerate().take(3) {
+            end[0][c] += beta * h / gamma * dv;
+            end[1][c] += dv;
+            end[2][c] += dv / (gamma * h);
+        }
+        let c = self.solve(&end[0])?;
+        self.state = CatenaryState {
+            end,
+            tensions: [c.horizontal, c.vertical],
+        };
+        Ok(())
+    }
 
     /// The end's position moves by beta h / gamma per unit velocity input
     /// (Newmark), its velocity by one; the forces through the catenary's
