@@ -217,18 +217,21 @@ impl BandLdlt {
                 return false;
             }
             f[j * s] = d;
-            // l_ij = (a_ij - sum_k l_ik l_jk d_k) / d_j for i = j+1..j+w
+            // l_ij = (a_ij - sum_k l_ik l_jk d_k) / d_j for i = j+1..j+w, over
+            // the columns c = j - k within the band of both rows (k <= j and
+            // i - c <= w), in increasing k: row i's entries are contiguous.
             for i in j + 1..(j + w + 1).min(n) {
-                let mut v = f[i * s + (i - j)];
-                for k in 1..=w {
-                    // column c = j - k must be within the band of both rows
-                    if k > j || (i - (j - k)) > w {
-                        continue;
-                    }
-                    let c = j - k;
-                    v -= f[i * s + (i - c)] * f[j * s + k] * f[c * s];
+                let (rows_before, rows_from_i) = f.split_at_mut(i * s);
+                let row_j = &rows_before[j * s..(j + 1) * s];
+                let row_i = &mut rows_from_i[..s];
+                let offset = i - j;
+                let reach = j.min(w - offset);
+                let mut v = row_i[offset];
+                for (k, l_ic) in row_i[offset + 1..=offset + reach].iter().enumerate() {
+                    let k = k + 1;
+                    v -= l_ic * row_j[k] * rows_before[(j - k) * s];
                 }
-                f[i * s + (i - j)] = v / d;
+                row_i[offset] = v / d;
             }
         }
         true
@@ -238,11 +241,15 @@ impl BandLdlt {
     pub fn solve_in_place(&self, b: &mut [f64]) {
         let (n, w, s) = (self.n, self.w, self.w + 1);
         for i in 0..n {
-            let mut v = b[i];
-            for k in 1..=w.min(i) {
-                v -= self.band[i * s + k] * b[i - k];
+            // Row i's entries (i, i - k), k = 1..=reach, against b[i - k].
+            let reach = w.min(i);
+            let row = &self.band[i * s + 1..=i * s + reach];
+            let (done, rest) = b.split_at_mut(i);
+            let mut v = rest[0];
+            for (l, x) in row.iter().zip(done[i - reach..].iter().rev()) {
+                v -= l * x;
             }
-            b[i] = v;
+            rest[0] = v;
         }
         for (i, x) in b.iter_mut().enumerate() {
             *x /= self.band[i * s];
