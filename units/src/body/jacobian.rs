@@ -17,7 +17,7 @@ use super::Body;
 use super::dynamics::skew;
 use super::ports;
 use super::step::{EndLoads, Kinematics, moved, residual};
-use crate::contract::UnitError;
+use crate::contract::{UnitError, require_step_jacobian_ready};
 use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
 
 impl Body {
@@ -49,6 +49,50 @@ impl Body {
         }
         ports::clear_energy_rows(self, jacobian, n_in);
         (self.velocity_by_input, self.output_by_velocity) = (du, dy);
+        self.sensitivity_ready = true;
+        Ok(())
+    }
+
+    /// The last step with its end inputs moved by `change` (`Unit::correct_step`;
+    /// `inputs`: the moved end values): the end velocity by `du1/df` times the
+    /// change, the motion and acceleration from it as the step makes them
+    /// (`step::residual`), the power's trapezoid in the work with the moved
+    /// end's; a prescribed motion stays, its loads' power moves.
+    pub(super) fn correct_last_step(
+        &mut self,
+        inputs: &[f64],
+        change: &[f64],
+    ) -> Result<(), UnitError> {
+        let Some((start, t0, h)) = self.last_start else {
+            return require_step_jacobian_ready(false, "a body");
+        };
+        let loads = self.end_loads(inputs, t0 + h);
+        let end = if self.is_prescribed() {
+            self.kinematics()
+        } else {
+            if !self.sensitivity_ready {
+                return require_step_jacobian_ready(
+                    false,
+                    "a body whose step Jacobian was not taken",
+                );
+            }
+            let du = &self.velocity_by_input;
+            let mut u1 = self.kinematics().motion.velocity;
+            for (j, dj) in change.iter().enumerate() {
+                for k in 0..6 {
+                    u1[k] += du[(k, j)] * dj;
+                }
+            }
+            residual(&self.model, &start, &u1, h, &loads)?.1
+        };
+        crate::contract::require_finite_state("the body's motion", end.acceleration.as_slice())?;
+        let power = self.power(&end, &loads);
+        self.state.work += 0.5 * h * (power - self.state.power);
+        self.state.power = power;
+        self.set_kinematics(&end);
+        self.sensitivity_ready = false;
+        self.end_inputs.clear();
+        self.end_inputs.extend_from_slice(inputs);
         Ok(())
     }
 

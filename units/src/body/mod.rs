@@ -77,6 +77,8 @@ pub struct Body {
     minus: Vec<f64>,
     velocity_by_input: nalgebra::DMatrix<f64>,
     output_by_velocity: nalgebra::DMatrix<f64>,
+    /// `velocity_by_input` is of the last step (its Jacobian was taken).
+    sensitivity_ready: bool,
     /// What the waves do to the body (made once).
     sea: Sea,
     /// The splines of a prescribed motion table.
@@ -125,6 +127,7 @@ impl Body {
             outputs: ports::outputs(&params),
             capabilities: Capabilities {
                 step_jacobian: true,
+                step_correction: true,
                 // The trapezoidal rule reads the loads at the step's ends
                 // only: its start's are the last step's end.
                 hold: HoldSupport::Fixed,
@@ -156,6 +159,7 @@ impl Body {
             plus: vec![0.0; outputs],
             minus: vec![0.0; outputs],
             velocity_by_input: nalgebra::DMatrix::zeros(6, inputs),
+            sensitivity_ready: false,
             output_by_velocity: nalgebra::DMatrix::zeros(outputs, 6),
             sea,
             table,
@@ -321,6 +325,7 @@ impl Unit for Body {
         self.state.t = t0 + h;
         self.state.newton_iterations = iterations;
         self.last_start = Some((start, t0, h));
+        self.sensitivity_ready = false;
         self.end_inputs.clear();
         self.end_inputs.extend_from_slice(inputs.end());
         Ok(StepReport {
@@ -334,6 +339,7 @@ impl Unit for Body {
 
     slender_contract::state_in_field!(state: BodyState, |unit| {
         unit.last_start = None;
+        unit.sensitivity_ready = false;
     });
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
@@ -346,5 +352,9 @@ impl Unit for Body {
             return Ok(());
         }
         self.implicit_jacobian(&start, (t0, h), jacobian)
+    }
+
+    fn correct_step(&mut self, inputs: Inputs<'_>, change: &[f64]) -> Result<(), UnitError> {
+        self.correct_last_step(inputs.end(), change)
     }
 }
