@@ -64,6 +64,24 @@ fn gap(
     [worst(&corrected), worst(&base), worst(&warm)]
 }
 
+/// Each row's scale: 1, but an energy balance's error is a difference of the
+/// energies (J): their size, so its round-off is not taken for an error.
+fn row_scales(rows: &[usize], names: &[String], base: &[f64]) -> Vec<f64> {
+    let energy = (rows.iter())
+        .filter(|&&r| names[r].contains("energy") || names[r].contains("work"))
+        .map(|&r| base[r].abs())
+        .fold(1.0, f64::max);
+    (rows.iter())
+        .map(|&r| {
+            if names[r].contains("error") {
+                energy
+            } else {
+                1.0
+            }
+        })
+        .collect()
+}
+
 /// The kinds whose Jacobian leaves part of a tangent out (as in
 /// `contract_jacobian.rs`).
 const DRAG_KINDS: [&str; 2] = ["nonlinear", "line3d coupled"];
@@ -111,22 +129,7 @@ fn every_declared_step_correction_is_the_step_taken_again_to_its_jacobian_s_erro
             })
             .filter(|&r| base[r].abs() > 1e-6)
             .collect();
-        // A row's scale: 1, but an energy balance's error is a difference
-        // of the energies (J): their size, so its round-off is not taken for
-        // an error.
-        let energy = (rows.iter())
-            .filter(|&&r| names[r].contains("energy") || names[r].contains("work"))
-            .map(|&r| base[r].abs())
-            .fold(1.0, f64::max);
-        let scales: Vec<f64> = (rows.iter())
-            .map(|&r| {
-                if names[r].contains("error") {
-                    energy
-                } else {
-                    1.0
-                }
-            })
-            .collect();
+        let scales = row_scales(&rows, &names, &base);
         let rows = (rows.as_slice(), scales.as_slice());
         let [large, moved, _] = gap(&mut driver, &slot, (t, h), (&inputs, 1e-4), rows);
         let [small, _, noise] = gap(&mut driver, &slot, (t, h), (&inputs, 1e-5), rows);
