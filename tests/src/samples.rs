@@ -299,3 +299,64 @@ pub fn started(config: &ExportConfig, steps: i64) -> (Driver, Vec<f64>, Time) {
     }
     (driver, start, h)
 }
+
+/// Outputs after one step from `slot` over `(t, h)` with end inputs `inputs`.
+pub fn outputs_after(
+    driver: &mut Driver,
+    slot: &slender_units::DriverSlot,
+    (t, h): (Time, Time),
+    inputs: &[f64],
+) -> Vec<f64> {
+    driver.restore(slot).unwrap();
+    driver.set_inputs(inputs).unwrap();
+    driver.do_step(t, h).unwrap();
+    let mut out = vec![0.0; driver.description().outputs.len()];
+    driver.outputs(&mut out).unwrap();
+    out
+}
+
+/// A sample stepped three times, saved at the start of its fourth step, and
+/// that step taken with `inputs` (outputs `base`): where the contract tests
+/// of a step's derivatives start.
+pub struct SteppedSample {
+    /// The sample's name (`samples`).
+    pub kind: &'static str,
+    /// Its driver, after the fourth step.
+    pub driver: Driver,
+    /// Its state at the fourth step's start.
+    pub slot: slender_units::DriverSlot,
+    /// The fourth step's start and length.
+    pub step: (Time, Time),
+    /// The fourth step's end inputs.
+    pub inputs: Vec<f64>,
+    /// The outputs after it.
+    pub base: Vec<f64>,
+}
+
+/// Every sample whose capabilities `declares` accepts, as [`SteppedSample`].
+pub fn stepped_samples(
+    dir: &Path,
+    declares: impl Fn(&slender_units::Capabilities) -> bool,
+) -> Vec<SteppedSample> {
+    let mut stepped = Vec::new();
+    for (kind, config) in samples(dir) {
+        let (mut driver, start, h) = started(&config, 3);
+        if !declares(&driver.description().capabilities) {
+            continue;
+        }
+        let step = (h * 3, h);
+        let inputs = inputs_at(&start, 4);
+        let mut slot = slender_units::DriverSlot::new();
+        driver.save(&mut slot).unwrap();
+        let base = outputs_after(&mut driver, &slot, step, &inputs);
+        stepped.push(SteppedSample {
+            kind,
+            driver,
+            slot,
+            step,
+            inputs,
+            base,
+        });
+    }
+    stepped
+}

@@ -9,23 +9,8 @@
 //! are listed.
 
 use slender_scene::export::ExportedUnit;
-use slender_tests::samples::{inputs_at, samples, started};
+use slender_tests::samples::{SteppedSample, outputs_after, samples, started, stepped_samples};
 use slender_units::{Driver, DriverSlot, Time};
-
-/// Outputs after one step from `slot` with end inputs `inputs`.
-fn outputs_after(
-    driver: &mut Driver,
-    slot: &DriverSlot,
-    (t, h): (Time, Time),
-    inputs: &[f64],
-) -> Vec<f64> {
-    driver.restore(slot).unwrap();
-    driver.set_inputs(inputs).unwrap();
-    driver.do_step(t, h).unwrap();
-    let mut out = vec![0.0; driver.description().outputs.len()];
-    driver.outputs(&mut out).unwrap();
-    out
-}
 
 /// The largest differences, relative to max(|output|, its row's scale), over `rows`, for
 /// inputs moved by `size` of their scale: between the corrected step and the
@@ -101,16 +86,15 @@ const CORRECTING_KINDS: [&str; 7] = [
 fn every_declared_step_correction_is_the_step_taken_again_to_its_jacobian_s_error() {
     let dir = tempfile::tempdir().unwrap();
     let mut checked = Vec::new();
-    for (kind, config) in samples(dir.path()) {
-        let (mut driver, start, h) = started(&config, 3);
-        if !driver.description().capabilities.step_correction {
-            continue;
-        }
-        let t = h * 3;
-        let inputs = inputs_at(&start, 4);
-        let mut slot = DriverSlot::new();
-        driver.save(&mut slot).unwrap();
-        let base = outputs_after(&mut driver, &slot, (t, h), &inputs);
+    for sample in stepped_samples(dir.path(), |c| c.step_correction) {
+        let SteppedSample {
+            kind,
+            mut driver,
+            slot,
+            step: (t, h),
+            inputs,
+            base,
+        } = sample;
         let mut jacobian = vec![0.0; base.len() * inputs.len()];
         driver.step_jacobian(&mut jacobian).unwrap();
         let names: Vec<String> = (driver.description().outputs.iter())

@@ -8,23 +8,10 @@
 //! skipped, but every end output of a nonlinear section is given.
 
 use slender_scene::export::ExportedUnit;
-use slender_tests::samples::{inputs_at, samples, started};
+use slender_tests::samples::{
+    SteppedSample, inputs_at, outputs_after, samples, started, stepped_samples,
+};
 use slender_units::{Driver, DriverSlot, Time};
-
-/// Outputs after one step from `slot` with end inputs `inputs`.
-fn outputs_after(
-    driver: &mut Driver,
-    slot: &DriverSlot,
-    (t, h): (Time, Time),
-    inputs: &[f64],
-) -> Vec<f64> {
-    driver.restore(slot).unwrap();
-    driver.set_inputs(inputs).unwrap();
-    driver.do_step(t, h).unwrap();
-    let mut out = vec![0.0; driver.description().outputs.len()];
-    driver.outputs(&mut out).unwrap();
-    out
-}
 
 /// Central differences of the step, column by column (row-major outputs x
 /// inputs), each input moved by `relative` of its size (at least `relative`).
@@ -134,16 +121,15 @@ const DRAG_KINDS: [&str; 4] = [
 fn every_declared_step_jacobian_equals_finite_differences_of_the_step() {
     let dir = tempfile::tempdir().unwrap();
     let mut checked = Vec::new();
-    for (kind, config) in samples(dir.path()) {
-        let (mut driver, start, h) = started(&config, 3);
-        if !driver.description().capabilities.step_jacobian {
-            continue;
-        }
-        let t = h * 3;
-        let inputs = inputs_at(&start, 4);
-        let mut slot = DriverSlot::new();
-        driver.save(&mut slot).unwrap();
-        let base = outputs_after(&mut driver, &slot, (t, h), &inputs);
+    for sample in stepped_samples(dir.path(), |c| c.step_jacobian) {
+        let SteppedSample {
+            kind,
+            mut driver,
+            slot,
+            step: (t, h),
+            inputs,
+            base,
+        } = sample;
         let (n_in, n_out) = (inputs.len(), base.len());
         let mut own = vec![0.0; n_out * n_in];
         driver

@@ -251,12 +251,22 @@ impl Line3d {
             return Err(error);
         }
         self.state.t = t1;
+        self.end_of_step(w, h, 1.0);
+        Ok(iterations)
+    }
+
+    /// The step's end evaluated at the current state under the loads `w.f1`
+    /// and the water's force `w.water1` (force, reactions, energies, powers;
+    /// `w` is put back), and the trapezoid h / 2 (weight p0 + p1) of each
+    /// power into the ledger, p0 the powers before: weight 1 for a step, -1
+    /// for a correction (the moved end's share replaces the last one's).
+    fn end_of_step(&mut self, w: Work, h: f64, weight: f64) {
         let before = self.state.ledger.power;
         let (q, v) = (
             std::mem::take(&mut self.state.q),
             std::mem::take(&mut self.state.v),
         );
-        let surroundings = self.evaluate_end(&q, &v, t1, (&w.f1, &w.water1));
+        let surroundings = self.evaluate_end(&q, &v, self.state.t, (&w.f1, &w.water1));
         self.work = w;
         self.state.q = q;
         self.state.v = v;
@@ -264,9 +274,8 @@ impl Line3d {
         self.evaluate_end_powers(surroundings);
         let ledger = &mut self.state.ledger;
         for ((work, start), end) in ledger.work.iter_mut().zip(before).zip(ledger.power) {
-            *work += 0.5 * h * (start + end);
+            *work += 0.5 * h * (weight * start + end);
         }
-        Ok(iterations)
     }
 
     /// The last coupling step with its end inputs moved by `change`, to first
@@ -306,21 +315,7 @@ impl Line3d {
         for (f, g) in w.f1.iter_mut().zip(&self.weight) {
             *f += g;
         }
-        let before = self.state.ledger.power;
-        let (q, v) = (
-            std::mem::take(&mut self.state.q),
-            std::mem::take(&mut self.state.v),
-        );
-        let surroundings = self.evaluate_end(&q, &v, self.state.t, (&w.f1, &w.water1));
-        self.work = w;
-        self.state.q = q;
-        self.state.v = v;
-        self.update_linear_energy();
-        self.evaluate_end_powers(surroundings);
-        let ledger = &mut self.state.ledger;
-        for ((work, old), new) in ledger.work.iter_mut().zip(before).zip(ledger.power) {
-            *work += 0.5 * h * (new - old);
-        }
+        self.end_of_step(w, h, -1.0);
         require_finite_state("line3d positions", &self.state.q)
     }
 
