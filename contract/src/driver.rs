@@ -282,15 +282,7 @@ impl<U: Unit> Driver<U> {
     pub fn step_jacobian(&mut self, jacobian: &mut [f64]) -> Result<(), UnitError> {
         let d = self.unit.description();
         if !d.capabilities.step_jacobian || self.substeps > 1 {
-            return Err(UnitError::Unsupported(format!(
-                "the step Jacobian of a `{}` unit{}",
-                d.kind,
-                if self.substeps > 1 {
-                    " in sub-steps"
-                } else {
-                    ""
-                }
-            )));
+            return Err(self.unsupported("the step Jacobian"));
         }
         let expected = d.outputs.len() * d.inputs.len();
         if jacobian.len() != expected {
@@ -300,6 +292,20 @@ impl<U: Unit> Driver<U> {
             )));
         }
         self.unit.step_jacobian(self.held.view(), jacobian)
+    }
+
+    /// `what` refused: the unit does not declare it, or steps in sub-steps
+    /// (what it would give is its last sub-step's, not the coupling step's).
+    fn unsupported(&self, what: &str) -> UnitError {
+        let sub_steps = if self.substeps > 1 {
+            " in sub-steps"
+        } else {
+            ""
+        };
+        UnitError::Unsupported(format!(
+            "{what} of a `{}` unit{sub_steps}",
+            self.unit.description().kind
+        ))
     }
 
     /// Whether the unit can correct its last step ([`Unit::correct_step`]):
@@ -314,15 +320,7 @@ impl<U: Unit> Driver<U> {
     /// [`Driver::step_jacobian`] is, and for a unit that does not declare it.
     pub fn correct_step(&mut self, change: &[f64]) -> Result<(), UnitError> {
         if !self.can_correct_step() {
-            return Err(UnitError::Unsupported(format!(
-                "the step correction of a `{}` unit{}",
-                self.unit.description().kind,
-                if self.substeps > 1 {
-                    " in sub-steps"
-                } else {
-                    ""
-                }
-            )));
+            return Err(self.unsupported("the step correction"));
         }
         if change.len() != self.held.len() {
             return Err(UnitError::InputCount {

@@ -176,6 +176,17 @@ impl StaticSection {
 
     /// The end's displacement from the equilibrium under the force inputs (the
     /// end exerts what is applied on it, reversed), when it takes forces.
+    /// d displacement_k / d end velocity k over the last step (s): the
+    /// trapezoidal rule's share of the end value (all of it under a
+    /// zero-order hold, which holds the end value over the step).
+    fn velocity_share(&self, inputs: &Inputs<'_>, k: usize) -> f64 {
+        let start = match inputs.hold(k) {
+            crate::contract::Hold::ZeroOrder => 1.0,
+            crate::contract::Hold::Ramp => 0.0,
+        };
+        0.5 * self.last_step * (start + 1.0)
+    }
+
     fn yielded(&self, inputs: Inputs<'_>) -> Option<[f64; 3]> {
         let c = self.compliance.as_ref()?;
         let f = inputs.end();
@@ -279,12 +290,8 @@ impl Unit for StaticSection {
             self.state.displacement = d;
             return Ok(());
         }
-        for (k, u) in self.state.displacement.iter_mut().enumerate() {
-            let weight = match inputs.hold(k) {
-                crate::contract::Hold::ZeroOrder => 2.0,
-                crate::contract::Hold::Ramp => 1.0,
-            };
-            *u += 0.5 * self.last_step * weight * change[k];
+        for k in 0..3 {
+            self.state.displacement[k] += self.velocity_share(&inputs, k) * change[k];
         }
         Ok(())
     }
@@ -298,11 +305,7 @@ impl Unit for StaticSection {
             Some(c) => du = c.map(|row| row.map(|v| -v)),
             None => {
                 for (k, row) in du.iter_mut().enumerate() {
-                    let start = match inputs.hold(k) {
-                        crate::contract::Hold::ZeroOrder => 1.0,
-                        crate::contract::Hold::Ramp => 0.0,
-                    };
-                    row[k] = 0.5 * self.last_step * (start + 1.0);
+                    row[k] = self.velocity_share(&inputs, k);
                 }
             }
         }

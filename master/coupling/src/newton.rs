@@ -137,11 +137,11 @@ impl Master {
     /// its step (its kind offers no `Unit::correct_step`, or it steps in
     /// sub-steps), so every step is iterated as without it; None otherwise.
     pub fn one_sweep_blocked_by(&self) -> Option<&str> {
-        let asked = self.settings.newton.is_some_and(|n| n.one_sweep);
-        let blocked = (self.units.iter().enumerate())
-            .find(|(u, unit)| self.iterated[*u] && !unit.declares_step_correction());
-        blocked
-            .filter(|_| asked)
+        if !self.settings.newton.is_some_and(|n| n.one_sweep) {
+            return None;
+        }
+        (self.units.iter().enumerate())
+            .find(|(u, unit)| self.iterated[*u] && !unit.declares_step_correction())
             .map(|(_, unit)| unit.name.as_str())
     }
 

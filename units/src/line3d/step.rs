@@ -292,6 +292,7 @@ impl Line3d {
     ) -> Result<(), UnitError> {
         let n = self.state.q.len();
         let mut w = std::mem::take(&mut self.work);
+        // `w.f1` holds the coordinates' change first, then the moved loads.
         w.f1.clear();
         w.f1.resize(n, 0.0);
         let known = self.jacobian.ready && self.jacobian.warm.add_change(change, &mut w.f1);

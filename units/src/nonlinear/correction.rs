@@ -28,6 +28,7 @@ impl NonlinearSection {
     ) -> Result<(), UnitError> {
         let n = self.model.dofs();
         let mut w = std::mem::take(&mut self.work);
+        // `w.f1` holds the coordinates' change first, then the moved loads.
         w.f1.clear();
         w.f1.resize(n, 0.0);
         let known = self.offers_correction()
