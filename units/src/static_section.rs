@@ -290,8 +290,9 @@ impl Unit for StaticSection {
             self.state.displacement = d;
             return Ok(());
         }
-        for k in 0..3 {
-            self.state.displacement[k] += self.velocity_share(&inputs, k) * change[k];
+        let shares: [f64; 3] = std::array::from_fn(|k| self.velocity_share(&inputs, k));
+        for ((u, share), du) in self.state.displacement.iter_mut().zip(shares).zip(change) {
+            *u += share * du;
         }
         Ok(())
     }
