@@ -28,6 +28,8 @@ fn parse(text: &str) -> Result<Scene, String> {
 
 fn plan(sections: &[&str], duration: f64) -> FidelityPlan {
     FidelityPlan {
+        reference: slender_app::fidelity::ReferenceMode::Model,
+        max_refinements: 3,
         from: None,
         overrides: Vec::new(),
         max_runs: slender_app::DEFAULT_MAX_RUNS,

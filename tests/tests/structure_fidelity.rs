@@ -159,6 +159,8 @@ fn swapping_a_section_to_cable_changes_its_unit_and_its_cuts_only() {
 
 fn plan(sections: &[&str], design: Design, jobs: usize) -> FidelityPlan {
     FidelityPlan {
+        reference: slender_app::fidelity::ReferenceMode::Model,
+        max_refinements: 3,
         from: None,
         overrides: Vec::new(),
         max_runs: slender_app::DEFAULT_MAX_RUNS,

@@ -235,6 +235,8 @@ fn a_fidelity_study_compares_reduced_corners_by_their_modes() {
     use slender_app::study::Design;
     let path = root().join("examples/structure_frame_reduced.toml");
     let plan = FidelityPlan {
+        reference: slender_app::fidelity::ReferenceMode::Model,
+        max_refinements: 3,
         from: None,
         overrides: Vec::new(),
         max_runs: slender_app::DEFAULT_MAX_RUNS,

@@ -325,6 +325,19 @@ pub(crate) enum Command {
         /// (default: the whole run).
         #[arg(long)]
         from: Option<f64>,
+        /// The reference: `estimate` (the monolithic run at the model's mesh,
+        /// its own error estimated by a run at half its element length and
+        /// half its step, reported beside the combinations' and flagged when
+        /// above a fifth of the tolerance), `converged` (halved again until
+        /// that estimate is below a fifth of the tolerance, at most
+        /// --refinements times, and judged against the finest) or `model` (as
+        /// written, no estimate).
+        #[arg(long, default_value = "estimate")]
+        reference: slender_app::fidelity::ReferenceMode,
+        /// The most halvings of the reference's element length and step for
+        /// `--reference converged` (each one about four times the cost).
+        #[arg(long, default_value_t = slender_app::fidelity::reference::DEFAULT_MAX_REFINEMENTS)]
+        refinements: u32,
         #[command(flatten)]
         runs: StudyRuns,
         /// Results folder (default: results/<scene name>-fidelity).

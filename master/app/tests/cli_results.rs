@@ -358,7 +358,7 @@ fn a_study_larger_than_its_bound_is_refused_before_any_run() {
         .iter()
         .zip([
             "4294967296 runs, more than the bound of 10000",
-            "21 runs, more than the bound of 20",
+            "22 runs, more than the bound of 20",
             "3 runs, more than the bound of 2",
         ])
         .enumerate()

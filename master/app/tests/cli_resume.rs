@@ -164,8 +164,9 @@ fn a_fidelity_study_reads_back_its_finished_runs_but_not_failed_ones() {
     assert_eq!(again.status.code(), Some(1));
     let progress = text(&again.stdout);
     assert!(progress.contains("reference (monolithic): ") && progress.contains("(reused)"));
-    // The reference and the partition read back; the failed span run again.
-    assert_eq!(reused(&again.stdout), 2, "{progress}");
+    // The reference, its finer level (its error's estimate) and the
+    // partition read back; the failed span run again.
+    assert_eq!(reused(&again.stdout), 3, "{progress}");
     assert!(progress.contains("middle=span: FAILED"), "{progress}");
     assert_eq!(
         std::fs::read_to_string(dir.join("o/fidelity.csv")).unwrap(),

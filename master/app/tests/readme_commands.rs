@@ -215,3 +215,60 @@ fn every_readme_figure_is_reproduced_by_its_command() {
     }
     assert!(figures >= 1, "the README shows no figure");
 }
+
+/// The `slender fidelity` commands of an example scene's comments (`#`
+/// lines, continued with `\`), each as its words.
+fn comment_commands(scene_text: &str) -> Vec<Vec<String>> {
+    let comments: String = (scene_text.lines())
+        .filter_map(|l| l.trim_start().strip_prefix('#'))
+        .map(|l| format!("{}\n", l.trim()))
+        .collect();
+    let fenced = format!("```\n{comments}```\n");
+    commands_of(&fenced)
+        .into_iter()
+        .filter(|w| w.first().map(String::as_str) == Some("fidelity"))
+        .collect()
+}
+
+/// Issue 48: the quantities a study judges are part of the scene (`[output]
+/// quantities`), so the README, the guide and the example's own comment judge
+/// a combination on the same ones: a fidelity command on a scene that
+/// declares them gives no other `--quantities`.
+#[test]
+fn fidelity_commands_judge_the_quantities_their_scene_declares() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut commands: Vec<Vec<String>> = readme_commands();
+    let mut declaring = 0;
+    for entry in std::fs::read_dir(root.join("examples")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            commands.extend(comment_commands(&std::fs::read_to_string(&path).unwrap()));
+        }
+    }
+    for words in commands.iter().filter(|w| w[0] == "fidelity") {
+        let scene = words.iter().find(|w| w.starts_with("examples/")).unwrap();
+        let table: toml::Table = std::fs::read_to_string(root.join(scene))
+            .unwrap()
+            .parse()
+            .unwrap();
+        let Some(declared) = table.get("output").and_then(|o| o.get("quantities")) else {
+            continue;
+        };
+        let declared: Vec<&str> = (declared.as_array().unwrap().iter())
+            .map(|q| q.as_str().unwrap())
+            .collect();
+        declaring += 1;
+        if let Some(k) = words.iter().position(|w| w == "--quantities") {
+            let given: Vec<&str> = words[k + 1].split(',').collect();
+            assert_eq!(
+                given, declared,
+                "{words:?} judges other quantities than {scene}"
+            );
+        }
+    }
+    // The riser's and the S-lay's commands (README, guide, comments).
+    assert!(
+        declaring >= 4,
+        "{declaring} commands on scenes that declare quantities"
+    );
+}

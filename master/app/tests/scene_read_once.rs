@@ -34,6 +34,8 @@ fn a_set_run_and_a_fidelity_study_parse_the_file_once() {
 
     let before = texts_parsed();
     let plan = FidelityPlan {
+        reference: slender_app::fidelity::ReferenceMode::Model,
+        max_refinements: 3,
         from: None,
         overrides: Vec::new(),
         max_runs: 10,

@@ -220,6 +220,12 @@ pub struct OutputSpec {
     /// Envelopes of the units' tension, curvature and moment along them.
     #[serde(default)]
     pub envelopes: Option<EnvelopesSpec>,
+    /// The quantities of interest a study judges (`slender fidelity`'s
+    /// names, e.g. `top_force`, `touchdown`, `sagbend_moment`), so that the
+    /// scene says what its fidelity answers are about; the command line's
+    /// `--quantities` wins; default: the study's own.
+    #[serde(default)]
+    pub quantities: Vec<String>,
 }
 
 /// `[output] watch = { factor, stop, breaking_load, energy_growth }`.
@@ -347,6 +353,7 @@ impl Default for OutputSpec {
             statistics: None,
             fatigue: Vec::new(),
             envelopes: None,
+            quantities: Vec::new(),
         }
     }
 }

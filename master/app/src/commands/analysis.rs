@@ -179,6 +179,8 @@ pub(super) fn fidelity(
 ) -> Result<(), CliError> {
     positive("--tolerance", plan.tolerance)?;
     count_in("--repeats", plan.repeats, 1, 1000)?;
+    // Each halving costs about four times the level before it.
+    count_in("--refinements", plan.max_refinements as usize, 1, 5)?;
     let scene = SceneArg::new(path.to_owned(), &plan.overrides);
     let (dir, _) = study_folder(&scene, out, "-fidelity", (plan.duration, plan.jobs))?;
     let _lock = super::lock::lock(&dir)?;

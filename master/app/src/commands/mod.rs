@@ -122,10 +122,14 @@ fn studies(command: Command, set: &[String]) -> Result<(), CliError> {
             tolerance,
             quantities,
             from,
+            reference,
+            refinements,
             runs,
             out,
         } => {
             let plan = slender_app::fidelity::FidelityPlan {
+                reference,
+                max_refinements: refinements,
                 from,
                 max_runs: runs.max_runs,
                 sections,

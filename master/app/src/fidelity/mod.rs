@@ -13,18 +13,22 @@ mod choice;
 pub mod floors;
 mod mooring;
 pub mod quantities;
+pub mod reference;
+mod reference_report;
 pub mod report;
 mod rows;
 mod run;
+mod structure_runs;
 mod subject;
 
 pub use choice::{Choice, SectionChoices};
+pub use reference::{ReferenceCheck, ReferenceMode};
 use subject::{SectionName, Subject};
 
 use crate::study::Design;
-use quantities::{Features, SectionUnit};
+use quantities::Features;
 use serde::Serialize;
-use slender_scene::structure::{Layout, SectionLayout};
+use slender_scene::structure::Layout;
 use std::path::Path;
 use toml::{Table, Value};
 
@@ -55,6 +59,11 @@ pub struct FidelityPlan {
     /// The time (s) the errors are measured from (`--from`): the build-up
     /// before it left out; the whole run when None.
     pub from: Option<f64>,
+    /// The reference and how its own error is estimated (`--reference`).
+    pub reference: ReferenceMode,
+    /// The most halvings of the reference's element length and step
+    /// `converged` may make (`--refinements`).
+    pub max_refinements: u32,
 }
 
 /// One run: a combination (or the reference) and what it measured.
@@ -113,11 +122,20 @@ pub struct FidelityReport {
     /// Quantities whose reference is zero to round-off, judged against
     /// their kind's scale.
     pub floors: Vec<floors::Floor>,
+    /// The reference's own error: its levels and the estimate.
+    pub reference: ReferenceCheck,
 }
 
-/// One run: a combination of the sections' choices, or `None` for the
-/// reference.
+/// One row's run: a combination of the sections' choices, or `None` for the
+/// reference at the model's mesh.
 type Task = Option<Vec<(String, Choice)>>;
+
+/// One run of the study: a level of the reference (0: the model's mesh;
+/// [`reference`]), or a combination.
+enum Job {
+    Level(u32),
+    Combination(Vec<(String, Choice)>),
+}
 
 /// The structure as the study sees it: its sections as the scene writes them
 /// (the expansion's layout) and what its model has.
@@ -127,7 +145,7 @@ struct Structure {
 }
 
 /// A run's recording reduced to the quantities (kept to resume a study).
-#[derive(Serialize, serde::Deserialize)]
+#[derive(Clone, Serialize, serde::Deserialize)]
 struct Outcome {
     time: Vec<f64>,
     series: Vec<Vec<f64>>,
@@ -170,49 +188,94 @@ pub fn run_fidelity_kept(
     let subject = subject.as_ref();
     let sections = subject.sections();
     sections_asked(plan, &sections)?;
+    let names = subject.quantities();
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    // Before any run (a misspelt quantity was refused after them all), and
+    // the bound last, so that a study refused for its size was otherwise valid.
+    let judged = judged_of(plan, draft.table(), &names, subject)?;
+    within_bound(plan)?;
     // Runs record only what the study reads, and carry no twin.
     let mut table = draft.table().clone();
     subject.prepare(&mut table);
     table.remove("output");
     draft.change("the fidelity study (no twin, its own [output])", table);
-    let names = subject.quantities();
-    let names: Vec<&str> = names.iter().map(String::as_str).collect();
-    // Before any run (a misspelt quantity was refused after them all), and
-    // the bound last, so that a study refused for its size was otherwise valid.
-    let judged = judged_of(plan, &names, subject)?;
-    within_bound(plan)?;
     if let Some(kept) = kept {
         kept.claim()?;
     }
-    let mut tasks: Vec<Task> = vec![None];
-    tasks.extend(
+    let first = reference::first_levels(plan.reference);
+    let mut jobs: Vec<Job> = (0..first).map(Job::Level).collect();
+    jobs.extend(
         combinations(plan, &own_choices(&sections))
             .into_iter()
-            .map(Some),
+            .map(Job::Combination),
     );
-    let order = order_of(&tasks);
+    let order = order_of(&jobs);
     // Each finished run says which of how many it is, and the time left.
-    let counter = crate::progress::Progress::new(tasks.len());
-    let outcomes = crate::parallel::run_all(&tasks, &order, plan.jobs, |task| {
-        let what = run::combination_label(task.as_deref());
-        let fetched = crate::resume::run_or_reuse(
-            kept,
-            &what,
-            |o: &Outcome| o.error.is_none(),
-            || run::run_one(&draft, subject, task.as_deref(), plan),
-        );
-        let (outcome, reused) = (fetched.outcome, fetched.note);
-        let k = counter.tick(!fetched.reused);
-        let how = run::describe(&outcome);
-        progress(&format!("{k} {what}: {how}{reused}"));
-        outcome
-    });
+    let counter = crate::progress::Progress::new(jobs.len());
+    let study = run::Study {
+        draft: &draft,
+        subject,
+        plan,
+        kept,
+        progress: &progress,
+    };
+    let mut outcomes =
+        crate::parallel::run_all(&jobs, &order, plan.jobs, |job| study.run(job, &counter));
     crate::interrupt::stop_if_requested(&outcomes, |o: &Outcome| o.error.is_none())?;
-    let (scales, floors) = floors::floors(&names, &outcomes[0], plan.from);
+    let combination_outcomes = outcomes.split_off(first as usize);
+    let step = scene.step.as_secs();
+    let mut levels: Vec<(f64, Outcome)> = (outcomes.into_iter().enumerate())
+        .map(|(k, o)| (step / (1u64 << k) as f64, o))
+        .collect();
+    let (scales, floors) = floors::floors(&names, &levels[0].1, plan.from);
+    let measure = reference::Measure {
+        names: &names,
+        scales: &scales,
+        from: plan.from,
+    };
+    study.refine_until_converged(&mut levels, &measure, &judged)?;
+    let rows = (jobs, levels, combination_outcomes);
+    let mut report = report_of(subject, rows, &measure, (plan, judged));
+    report.scene = path.display().to_string();
+    report.floors = floors;
+    Ok(report)
+}
+
+/// The report of a study's runs: the reference's check from its levels, the
+/// rows judged against the level the plan asks for, the cheapest within the
+/// tolerance (its scene and floors left for the caller).
+fn report_of(
+    subject: &dyn Subject,
+    (jobs, levels, combination_outcomes): (Vec<Job>, Vec<(f64, Outcome)>, Vec<Outcome>),
+    measure: &reference::Measure,
+    (plan, judged): (&FidelityPlan, Vec<String>),
+) -> FidelityReport {
+    let judging = match plan.reference {
+        ReferenceMode::Converged => levels.len() - 1,
+        _ => 0,
+    };
+    let check = reference::check(
+        (plan.reference, &levels, judging),
+        measure,
+        (&judged, plan.tolerance),
+    );
+    let tasks: Vec<Task> = std::iter::once(None)
+        .chain(jobs.into_iter().filter_map(|job| match job {
+            Job::Combination(c) => Some(Some(c)),
+            Job::Level(_) => None,
+        }))
+        .collect();
+    let row_outcomes: Vec<Outcome> = std::iter::once(levels[0].1.clone())
+        .chain(combination_outcomes)
+        .collect();
     let rows = rows::rows_of(
         subject,
-        (&tasks, &outcomes),
-        (&names, &scales),
+        (
+            &tasks,
+            &row_outcomes,
+            (judging > 0).then(|| &levels[judging].1),
+        ),
+        (measure.names, measure.scales),
         (plan.tolerance, &judged, plan.from),
     );
     let cheapest = rows
@@ -224,16 +287,17 @@ pub fn run_fidelity_kept(
                 .total_cmp(&b.1.cost_per_simulated_second)
         })
         .map(|(k, _)| k);
-    Ok(FidelityReport {
-        scene: path.display().to_string(),
+    FidelityReport {
+        scene: String::new(),
         tolerance: plan.tolerance,
         from: plan.from,
-        quantities: names.iter().map(|n| (*n).to_owned()).collect(),
+        quantities: measure.names.iter().map(|n| (*n).to_owned()).collect(),
         judged,
         rows,
         cheapest,
-        floors,
-    })
+        floors: Vec::new(),
+        reference: check,
+    }
 }
 
 /// Refuses a `--from` that is not a time before the runs' end.
@@ -248,18 +312,18 @@ fn window_in(from: Option<f64>, scene: &slender_scene::Scene) -> Result<(), Stri
 }
 
 /// Refuses a study of more runs than `plan.max_runs`, counted before they
-/// are built (a grid of many sections would not fit in memory).
+/// are built (a grid of many sections would not fit in memory); a converged
+/// reference counts every level it may run.
 fn within_bound(plan: &FidelityPlan) -> Result<(), String> {
     let choices = plan.sections.iter().map(|s| s.choices.len());
-    let runs = match plan.design {
-        Design::OneAtATime => choices.fold(1usize, usize::saturating_add),
-        Design::Grid => choices
-            .fold(1usize, usize::saturating_mul)
-            .saturating_add(1),
+    let combinations = match plan.design {
+        Design::OneAtATime => choices.fold(0usize, usize::saturating_add),
+        Design::Grid => choices.fold(1usize, usize::saturating_mul),
     };
+    let runs = combinations.saturating_add(reference::most_levels(plan) as usize);
     if runs > plan.max_runs {
         return Err(crate::too_many_runs(
-            "the reference and the combinations",
+            "the reference's levels and the combinations",
             runs,
             plan.max_runs,
         ));
@@ -382,12 +446,13 @@ fn combinations(plan: &FidelityPlan, own: &[(String, Choice)]) -> Vec<Vec<(Strin
     }
 }
 
-/// Start order: the reference first, then the combinations with the most
-/// nonlinear elements asked for (the likely costliest).
-fn order_of(tasks: &[Task]) -> Vec<usize> {
-    let weight = |t: &Task| match t {
-        None => f64::INFINITY,
-        Some(c) => c
+/// Start order: the reference's levels first (the finest first), then the
+/// combinations with the most nonlinear elements asked for (the likely
+/// costliest).
+fn order_of(jobs: &[Job]) -> Vec<usize> {
+    let weight = |job: &Job| match job {
+        Job::Level(_) => f64::INFINITY,
+        Job::Combination(c) => c
             .iter()
             .map(|(_, c)| match c.fidelity.as_str() {
                 "nonlinear" => c.elements.map_or(1e6, |n| n as f64),
@@ -395,183 +460,45 @@ fn order_of(tasks: &[Task]) -> Vec<usize> {
             })
             .sum(),
     };
-    let mut order: Vec<usize> = (0..tasks.len()).collect();
-    order.sort_by(|&a, &b| weight(&tasks[b]).total_cmp(&weight(&tasks[a])));
+    let mut order: Vec<usize> = (0..jobs.len()).collect();
+    order.sort_by(|&a, &b| match (&jobs[a], &jobs[b]) {
+        (Job::Level(x), Job::Level(y)) => y.cmp(x),
+        _ => weight(&jobs[b]).total_cmp(&weight(&jobs[a])),
+    });
     order
 }
 
-/// The scene of one run: the combination's choices on the sections, or (for
-/// the reference, `None`) the whole structure as one section; and its sections'
-/// units, as the run's layout names them.
-fn run_table(
-    table: &Table,
-    structure: &Structure,
-    combination: Option<&[(String, Choice)]>,
-) -> Result<(Table, Vec<SectionUnit>), String> {
-    let mut table = table.clone();
-    let s = table
-        .get_mut("structure")
-        .and_then(Value::as_table_mut)
-        .ok_or("no `[structure]`")?;
-    let sections = s
-        .get_mut("sections")
-        .and_then(Value::as_array_mut)
-        .ok_or("`structure.sections`: expected a list")?;
-    let Some(combination) = combination else {
-        let mut whole = Table::new();
-        whole.insert("name".into(), Value::String("monolithic".into()));
-        *sections = vec![Value::Table(whole)];
-        let planar = structure.layout.planar;
-        let first = planar
-            .then(|| add_cut_stations(s, &structure.layout))
-            .transpose()?;
-        let mut units = run_sections(&table)?;
-        if let [whole] = units.as_mut_slice() {
-            whole.cut_stations = first;
-        }
-        return finish(table, units, &structure.features);
-    };
-    for (name, choice) in combination {
-        let section = sections
-            .iter_mut()
-            .filter_map(Value::as_table_mut)
-            .find(|t| t.get("name").and_then(Value::as_str) == Some(name))
-            .ok_or(format!("no section `{name}`"))?;
-        slender_scene::structure::write_choice(
-            section,
-            &choice.fidelity,
-            choice.elements,
-            choice.substeps,
-        )?;
-        if let Some(t) = choice.training {
-            slender_scene::structure::write_training(section, t)?;
-        }
-    }
-    let mut units = run_sections(&table)?;
-    let end_stations = add_end_stations(&mut table, &units)?;
-    for (unit, ends) in units.iter_mut().zip(end_stations) {
-        unit.end_stations = ends;
-    }
-    finish(table, units, &structure.features)
-}
-
-/// The sections' units of a run's scene, from its layout.
-fn run_sections(table: &Table) -> Result<Vec<SectionUnit>, String> {
-    let layout = slender_scene::structure::layout(table)?.ok_or("no `[structure]`")?;
-    Ok(layout.sections.into_iter().map(SectionUnit::new).collect())
-}
-
-impl SectionUnit {
-    /// A section of a run, before its stations are placed.
-    fn new(section: SectionLayout) -> SectionUnit {
-        SectionUnit {
-            unit: section.unit,
-            from: section.from,
-            outputs: section.outputs,
-            cut_stations: None,
-            end_stations: [None, None],
-        }
-    }
-}
-
-/// The structure model's `stations` list (made empty when there is none).
-fn model_stations(structure_table: &mut Table) -> Result<&mut Vec<Value>, String> {
-    structure_table
-        .get_mut("model")
-        .and_then(Value::as_table_mut)
-        .ok_or("`structure.model`: expected a table")?
-        .entry("stations")
-        .or_insert_with(|| Value::Array(Vec::new()))
-        .as_array_mut()
-        .ok_or_else(|| "`structure.model.stations`: expected a list".to_owned())
-}
-
-/// Puts stations in the elements on both sides of every cut between two
-/// sections that take stations (native `nonlinear` units), just below the
-/// cut in the lower section and at the cut in the upper one (a section holds
-/// the model's stations in [from, to), numbered from 1 in the model's order);
-/// returns each section's numbers of its first- and last-element stations.
-fn add_end_stations(
-    table: &mut Table,
-    sections: &[SectionUnit],
-) -> Result<Vec<[Option<usize>; 2]>, String> {
-    let n = sections.len();
-    let mut ends = vec![[None, None]; n];
-    if !sections.iter().any(|s| s.outputs.stations) {
-        return Ok(ends);
-    }
-    let structure_table = table
-        .get_mut("structure")
-        .and_then(Value::as_table_mut)
-        .ok_or("no `[structure]`")?;
-    let stations = model_stations(structure_table)?;
-    let arc = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
-    let mut count = vec![0usize; n];
-    let section_of = |s: f64| sections.iter().rposition(|section| section.from <= s);
-    for s in stations.iter().filter_map(arc) {
-        if let Some(k) = section_of(s) {
-            count[k] += 1;
-        }
-    }
-    for k in 0..n.saturating_sub(1) {
-        if !sections[k].outputs.stations || !sections[k + 1].outputs.stations {
-            continue;
-        }
-        let cut = sections[k + 1].from;
-        // Inside the lower section's last element, clear of round-off.
-        stations.push(Value::Float(cut - 1e-6 * cut.abs().max(1.0)));
-        count[k] += 1;
-        ends[k][1] = Some(count[k]);
-        stations.push(Value::Float(cut));
-        count[k + 1] += 1;
-        ends[k + 1][0] = Some(count[k + 1]);
-    }
-    Ok(ends)
-}
-
-/// Puts a station at each cut on the whole structure's model (the reference),
-/// after the model's own; returns the number of the first.
-fn add_cut_stations(structure_table: &mut Table, layout: &Layout) -> Result<usize, String> {
-    let stations = model_stations(structure_table)?;
-    let first = stations.len() + 1;
-    stations.extend((layout.sections.iter().skip(1)).map(|section| Value::Float(section.from)));
-    Ok(first)
-}
-
-/// Adds the `[output]` that records the quantities' signals.
-fn finish(
-    mut table: Table,
-    units: Vec<SectionUnit>,
-    features: &Features,
-) -> Result<(Table, Vec<SectionUnit>), String> {
-    let signals = quantities::signals(&units, features);
-    let mut output = Table::new();
-    output.insert(
-        "signals".into(),
-        Value::Array(signals.into_iter().map(Value::String).collect()),
-    );
-    table.insert("output".into(), Value::Table(output));
-    Ok((table, units))
-}
-
-/// The judged quantities: the plan's, each one the structure has, or the
-/// subject's default.
+/// The judged quantities: the plan's (`--quantities`), else the scene's
+/// `[output] quantities`, each one the structure has; or the subject's
+/// default.
 fn judged_of(
     plan: &FidelityPlan,
+    scene: &Table,
     names: &[&str],
     subject: &dyn Subject,
 ) -> Result<Vec<String>, String> {
-    if let Some(unknown) = plan.judged.iter().find(|q| !names.contains(&q.as_str())) {
+    let declared: Vec<String> = (scene.get("output"))
+        .and_then(|o| o.get("quantities"))
+        .and_then(Value::as_array)
+        .map(|q| {
+            q.iter()
+                .filter_map(Value::as_str)
+                .map(str::to_owned)
+                .collect()
+        })
+        .unwrap_or_default();
+    let (asked, source) = match (plan.judged.is_empty(), declared.is_empty()) {
+        (false, _) => (&plan.judged, "--quantities"),
+        (true, false) => (&declared, "`[output] quantities` of the scene"),
+        (true, true) => return Ok(subject.default_judged()),
+    };
+    if let Some(unknown) = asked.iter().find(|q| !names.contains(&q.as_str())) {
         return Err(format!(
-            "--quantities: `{unknown}` is not a quantity of this structure; it has {}",
+            "{source}: `{unknown}` is not a quantity of this structure; it has {}",
             names.join(", ")
         ));
     }
-    Ok(if plan.judged.is_empty() {
-        subject.default_judged()
-    } else {
-        plan.judged.clone()
-    })
+    Ok(asked.clone())
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use crate::plot::PlotError;
 use std::path::Path;
 
 /// A row's combination as `section=choice` pairs.
-fn label(r: &FidelityRow) -> String {
+pub(super) fn label(r: &FidelityRow) -> String {
     r.combination
         .iter()
         .map(|(s, c)| format!("{s}={c}"))
@@ -84,6 +84,7 @@ pub fn to_markdown(report: &FidelityReport) -> String {
         );
     }
     out += &format!("\n{}\n", conclusion(report));
+    out += &super::reference_report::to_markdown(report);
     out += &warnings(report);
     out
 }
@@ -111,13 +112,15 @@ fn warnings(report: &FidelityReport) -> String {
     out
 }
 
-/// The sentence naming the cheapest combination within the tolerance.
+/// The sentence naming the cheapest combination within the tolerance, and
+/// the cautions on what it is judged against.
 pub fn conclusion(report: &FidelityReport) -> String {
-    let verdict = verdict(report);
-    match super::floors::note(&report.floors) {
-        Some(note) => format!("{verdict}\n{note}"),
-        None => verdict,
-    }
+    let notes = [
+        Some(verdict(report)),
+        super::reference_report::caution(report),
+        super::floors::note(&report.floors),
+    ];
+    notes.into_iter().flatten().collect::<Vec<_>>().join("\n")
 }
 
 /// The cheapest combination within the tolerance, or that there is none.
@@ -141,7 +144,7 @@ fn verdict(report: &FidelityReport) -> String {
 }
 
 /// The judged quantities in words: "every quantity" or their names.
-fn judged(report: &FidelityReport) -> String {
+pub(super) fn judged(report: &FidelityReport) -> String {
     if report.judged.len() == report.quantities.len() {
         "every quantity".into()
     } else {

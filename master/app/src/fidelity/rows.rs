@@ -5,15 +5,17 @@
 use super::{Choice, FidelityRow, Outcome, Structure, Subject, Task};
 use crate::indicators::{indicator, interpolate, normalized_error};
 
-/// The report's rows: errors against the reference (task 0), speed-ups, the
-/// Pareto front and the tolerance.
+/// The report's rows: errors against `finer` (a finer reference judged
+/// against) or else against the reference at the model's mesh (task 0),
+/// speed-ups against the latter, the Pareto front and the tolerance.
 pub(super) fn rows_of(
     subject: &dyn Subject,
-    (tasks, outcomes): (&[Task], &[Outcome]),
+    (tasks, outcomes, finer): (&[Task], &[Outcome], Option<&Outcome>),
     (names, scales): (&[&str], &[Option<f64>]),
     (tolerance, judged, from): (f64, &[String], Option<f64>),
 ) -> Vec<FidelityRow> {
     let reference = &outcomes[0];
+    let judge = finer.unwrap_or(reference);
     let mut rows: Vec<FidelityRow> = tasks
         .iter()
         .zip(outcomes)
@@ -22,10 +24,10 @@ pub(super) fn rows_of(
                 .iter()
                 .enumerate()
                 .map(|(i, n)| {
-                    let e = if task.is_none() {
+                    let e = if task.is_none() && finer.is_none() {
                         0.0
                     } else {
-                        epsilon(o, reference, (i, from), scales.get(i).copied().flatten())
+                        epsilon(o, judge, (i, from), scales.get(i).copied().flatten())
                     };
                     ((*n).to_owned(), e)
                 })
@@ -81,7 +83,7 @@ pub(super) fn rows_of(
 /// epsilon of quantity `i` of run `o` against the reference, at the run's
 /// times from `from` (s) on: relative to the reference itself, or to
 /// `scale` where the reference is zero to round-off (`floors`).
-fn epsilon(
+pub(super) fn epsilon(
     o: &Outcome,
     reference: &Outcome,
     (i, from): (usize, Option<f64>),

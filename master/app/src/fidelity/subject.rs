@@ -2,7 +2,8 @@
 //! sections, or a `[mooring]`'s lines' sections (`super::mooring`); the
 //! study itself does not know which.
 
-use super::{Choice, Structure, quantities, rows, run_table};
+use super::structure_runs::run_table;
+use super::{Choice, Structure, quantities, rows};
 use slender_scene::structure::SectionLayout;
 use toml::{Table, Value};
 

@@ -5,6 +5,8 @@ use super::*;
 /// A one-section-at-a-time plan of `sections` (`NAME=CHOICE,...`).
 fn one_at_a_time(sections: &[&str]) -> FidelityPlan {
     FidelityPlan {
+        reference: ReferenceMode::Model,
+        max_refinements: 3,
         from: None,
         overrides: Vec::new(),
         max_runs: crate::DEFAULT_MAX_RUNS,
