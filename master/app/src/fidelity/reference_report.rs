@@ -36,8 +36,14 @@ pub(super) fn caution(report: &FidelityReport) -> Option<String> {
             report.tolerance
         )
     };
+    let remedy = match check.mode {
+        ReferenceMode::Converged => "a larger `--refinements` refines it further",
+        _ => {
+            "`--reference converged` judges against a reference refined until its error is below a fifth of the tolerance"
+        }
+    };
     Some(format!(
-        "Caution: {against} has an estimated error above a fifth of the tolerance on {}: {severity}. `--reference converged` judges against a reference refined until its error is below a fifth of the tolerance.",
+        "Caution: {against} has an estimated error above a fifth of the tolerance on {}: {severity}; {remedy}.",
         items.join(", ")
     ))
 }
