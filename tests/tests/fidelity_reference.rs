@@ -143,3 +143,61 @@ fn the_judged_quantities_are_the_scenes_and_a_misspelt_one_is_refused_by_its_key
         "{e}"
     );
 }
+
+/// `slender study` on a scene whose indicators judge against its twin
+/// estimates the twin's own error the same way: on the riser it is the
+/// fidelity study's estimate of the same monolithic riser.
+#[test]
+fn a_study_estimates_its_twins_error_as_the_fidelity_study_does() {
+    let path = root().join("examples/structure_riser.toml");
+    let plan = slender_app::study::StudyPlan {
+        sweeps: vec!["structure.sections.top.elements=30".parse().unwrap()],
+        design: Design::OneAtATime,
+        duration: Some(50.0),
+        jobs: 1,
+        cost_units: Vec::new(),
+        reference: None,
+        max_runs: slender_app::DEFAULT_MAX_RUNS,
+        repeats: 1,
+        overrides: Vec::new(),
+    };
+    let Some(slender_app::study::TwinError::Estimated { estimates, .. }) =
+        slender_app::study::twin_error(&path, &plan).unwrap()
+    else {
+        panic!("the riser's twin error was not estimated");
+    };
+    let fidelity = riser_study(&riser_plan(ReferenceMode::Estimate, Some(50.0)));
+    // The same signal (the twin's sag-bend moment is the monolithic run's):
+    // the same estimate.
+    let (study, fidelity_estimate) = (
+        of(&estimates, "sagbend_moment"),
+        of(&fidelity.reference.estimate, "sagbend_moment"),
+    );
+    assert!(
+        (study - fidelity_estimate).abs() <= 1e-6 * fidelity_estimate,
+        "the study's {study:e}, the fidelity study's {fidelity_estimate:e}"
+    );
+    // The study's top force is its two components, the fidelity study's its
+    // magnitude: the same size, not the same number.
+    let (study, fidelity_estimate) = (
+        of(&estimates, "top_force"),
+        of(&fidelity.reference.estimate, "top_force"),
+    );
+    let ratio = study / fidelity_estimate;
+    assert!(
+        (0.5..2.0).contains(&ratio),
+        "{study:e} against {fidelity_estimate:e}"
+    );
+    // A scene without a structure to refine says why it estimates nothing.
+    let truncation = root().join("examples/truncation_substructured.toml");
+    let plan = slender_app::study::StudyPlan {
+        sweeps: Vec::new(),
+        ..plan
+    };
+    match slender_app::study::twin_error(&truncation, &plan).unwrap() {
+        Some(slender_app::study::TwinError::NotEstimated(why)) => {
+            assert!(why.contains("[structure]"), "{why}")
+        }
+        other => panic!("{other:?}"),
+    }
+}

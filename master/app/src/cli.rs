@@ -254,7 +254,9 @@ pub(crate) enum Command {
     },
     /// Convergence and cost study (seed 000 Appendix B): vary one setting at a time
     /// and report, per run, the relative error of the scene's indicator signals
-    /// against the finest value, iterations per step and cost per simulated second.
+    /// against the finest value, iterations per step and cost per simulated second;
+    /// where the indicators judge against an in-run twin, the twin's own error
+    /// (the scene again at half its element length and step).
     /// Writes study.csv, study.md, study.svg, error_cost.svg and report.html;
     /// resumable: runs/ keeps each finished run, and the same command again
     /// reuses them.

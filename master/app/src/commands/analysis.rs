@@ -98,11 +98,18 @@ pub(super) fn study(
     );
     rows.iter().for_each(print_row);
     let failed = rows.iter().filter(|r| r.error.is_some()).count();
+    // The twin's own error, when the indicators judge against one.
+    let twin = study::twin_error(path, plan).map_err(CliError::of)?;
+    let twin_text = twin.as_ref().map(study::twin_error::to_markdown);
+    if let Some(text) = &twin_text {
+        println!("{}", text.trim());
+    }
+    let markdown = study::to_markdown(&rows) + twin_text.as_deref().unwrap_or("");
     let csv = dir.join("study.csv");
     slender_app::whole::write(&csv, study::to_csv(&rows))
         .map_err(|e| CliError::failure(format!("{}: {e}", csv.display())))?;
     let md = dir.join("study.md");
-    slender_app::whole::write(&md, study::to_markdown(&rows))
+    slender_app::whole::write(&md, markdown.clone())
         .map_err(|e| CliError::failure(format!("{}: {e}", md.display())))?;
     let svg = dir.join("study.svg");
     let title = format!("Convergence and cost: {}", path.display());
@@ -122,7 +129,7 @@ pub(super) fn study(
     })
     .map_err(CliError::failure)?;
     let parts = [
-        Part::Markdown(study::to_markdown(&rows)),
+        Part::Markdown(markdown),
         Part::figure(&svg, Vec::new()),
         Part::figure(&tradeoff, hover),
     ];

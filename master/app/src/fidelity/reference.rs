@@ -140,7 +140,7 @@ pub(super) fn label(level: u32) -> String {
 /// element count of the model (each segment of a planar model, a 3D line's
 /// or a mooring's lines') doubled `level` times. The error names what could
 /// not be refined.
-pub(super) fn refine(table: &mut Table, level: u32) -> Result<(), String> {
+pub(crate) fn refine(table: &mut Table, level: u32) -> Result<(), String> {
     if level == 0 {
         return Ok(());
     }

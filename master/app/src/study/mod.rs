@@ -16,6 +16,7 @@ mod orders_tests;
 pub mod report;
 pub mod setting;
 mod tasks;
+pub mod twin_error;
 
 use crate::AppError;
 use crate::resume::Kept;
@@ -29,6 +30,7 @@ use std::str::FromStr;
 use tasks::{Assignment, costliest_first, groups};
 
 pub use report::{to_csv, to_markdown, tradeoff};
+pub use twin_error::{TwinError, twin_error};
 
 /// An indicator's name and its recorded signal columns.
 type IndicatorColumns = (String, Vec<Vec<f64>>);
