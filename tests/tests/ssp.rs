@@ -244,6 +244,52 @@ fn libcosim_runs_slender_s_ssp_as_slender_runs_the_scene() {
     }
 }
 
+/// Issue 49 #15: the SSD declares its connectors' units (SSP 1.0 `Units`
+/// and each connector's `ssc:Real unit`, the unit its FMU's variable
+/// declares), every connection joins like with like, the description reads
+/// back as written, and FMPy validates it against the SSP 1.0 schema.
+#[test]
+fn the_ssd_declares_each_connectors_unit() {
+    let scene = jacobi("examples/structure_truncation.toml", 1.0);
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("system.ssp");
+    let structure = write_ssp(&scene, &fmu::library(), &file).unwrap();
+    let xml = structure.to_xml();
+    assert_eq!(
+        slender_fmi::ssp::SystemStructure::parse(&xml).unwrap(),
+        structure
+    );
+    let unit_of = |element: &str, connector: &str| {
+        let component = structure.components.iter().find(|c| c.name == element);
+        let c = component.and_then(|c| c.connectors.iter().find(|k| k.name == connector));
+        c.and_then(|c| c.unit.clone())
+    };
+    assert!(!structure.connections.is_empty());
+    for c in &structure.connections {
+        let start = unit_of(&c.start_element, &c.start_connector);
+        let end = unit_of(&c.end_element, &c.end_connector);
+        assert!(start.is_some(), "{c:?}: no unit");
+        assert_eq!(start, end, "{c:?}");
+    }
+    let named: Vec<String> = (structure.components.iter())
+        .flat_map(|c| &c.connectors)
+        .filter_map(|c| c.unit.clone())
+        .collect();
+    for unit in &named {
+        assert!(
+            xml.contains(&format!("<ssc:Unit name=\"{unit}\">")),
+            "{unit}"
+        );
+    }
+    assert_eq!(xml.matches("<ssc:Unit name=").count(), {
+        let mut distinct = named.clone();
+        distinct.sort();
+        distinct.dedup();
+        distinct.len()
+    });
+    validate_with_fmpy(&file);
+}
+
 #[test]
 fn a_structure_wraps_as_its_written_out_sections() {
     // `slender fmu wrap` of a `[structure]` scene once failed with "no

@@ -325,6 +325,7 @@ impl Layout {
 
 mod arrays;
 mod binary;
+mod describe;
 mod package;
 mod variables;
 pub use binary::{check_binary, default_binary};
@@ -381,17 +382,10 @@ fn variables(
         None => None,
     };
     for (i, p) in unit.inputs.iter().enumerate() {
-        let hold = match p.hold {
-            Hold::Ramp => "ramp",
-            Hold::ZeroOrder => "zero-order",
-        };
         variables.push(ScalarVariable {
             name: input_variable_name(unit, i),
             value_reference: i as u32,
-            description: format!(
-                "{} input ({hold} hold when input derivatives are set)",
-                p.kind
-            ),
+            description: describe::input(p),
             causality: VariableCausality::Input,
             variability: "continuous".into(),
             initial: None,
@@ -406,7 +400,7 @@ fn variables(
         variables.push(ScalarVariable {
             name: p.name.clone(),
             value_reference: (n_in + i) as u32,
-            description: format!("{} output", p.kind),
+            description: describe::output(p),
             causality: VariableCausality::Output,
             variability: "continuous".into(),
             initial: Some("calculated".into()),

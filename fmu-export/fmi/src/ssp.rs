@@ -33,6 +33,10 @@ pub struct Connector {
     pub name: String,
     /// Input, output or neither.
     pub kind: ConnectorKind,
+    /// Its unit of measure (an SI name such as "N" or "m/s", declared in the
+    /// description's `Units`); `None` where it has none or slender does not
+    /// know its symbol.
+    pub unit: Option<String>,
 }
 
 /// One component: an FMU in the archive (`source`, relative to its root).
@@ -134,7 +138,9 @@ impl SystemStructure {
                 x.push_str("/>\n");
             }
         }
-        x.push_str("    </ssd:Connections>\n  </ssd:System>\n  <ssd:DefaultExperiment");
+        x.push_str("    </ssd:Connections>\n  </ssd:System>\n");
+        write_units(&mut x, &self.components);
+        x.push_str("  <ssd:DefaultExperiment");
         for (name, v) in [("startTime", self.start_time), ("stopTime", self.stop_time)] {
             if let Some(v) = v {
                 let _ = write!(x, r#" {name}="{v:e}""#);
@@ -171,13 +177,53 @@ fn write_component(x: &mut String, c: &Component) {
             ConnectorKind::Output => "output",
             ConnectorKind::Other => "parameter",
         };
+        let unit = match known_unit(k) {
+            Some(u) => format!(r#" unit="{}""#, e(u)),
+            None => String::new(),
+        };
         let _ = writeln!(
             x,
-            r#"          <ssd:Connector name="{}" kind="{kind}"><ssc:Real/></ssd:Connector>"#,
+            r#"          <ssd:Connector name="{}" kind="{kind}"><ssc:Real{unit}/></ssd:Connector>"#,
             e(&k.name)
         );
     }
     x.push_str("        </ssd:Connectors>\n      </ssd:Component>\n");
+}
+
+/// A connector's unit where slender knows its SI base units (so that the
+/// description can define it).
+fn known_unit(c: &Connector) -> Option<&str> {
+    let unit = c.unit.as_deref()?;
+    slender_contract::measure::si_exponents(unit).map(|_| unit)
+}
+
+/// `<ssd:Units>`: every unit the connectors name, once, in the order first
+/// named, with its SI base-unit exponents (none when no connector has one).
+fn write_units(x: &mut String, components: &[Component]) {
+    let mut names: Vec<&str> = Vec::new();
+    for c in components.iter().flat_map(|c| &c.connectors) {
+        if let Some(u) = known_unit(c).filter(|u| !names.contains(u)) {
+            names.push(u);
+        }
+    }
+    if names.is_empty() {
+        return;
+    }
+    x.push_str("  <ssd:Units>\n");
+    const BASE: [&str; 8] = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"];
+    for name in names {
+        let exponents = slender_contract::measure::si_exponents(name).unwrap_or_default();
+        let base: String = (BASE.iter().zip(exponents))
+            .filter(|(_, p)| *p != 0)
+            .map(|(b, p)| format!(r#" {b}="{p}""#))
+            .collect();
+        let _ = writeln!(
+            x,
+            r#"    <ssc:Unit name="{}"><ssc:BaseUnit{base}/></ssc:Unit>"#,
+            escape(name)
+        );
+    }
+    x.push_str("  </ssd:Units>\n");
 }
 
 #[cfg(test)]
@@ -188,6 +234,7 @@ mod tests {
         let connector = |name: &str, kind| Connector {
             name: name.into(),
             kind,
+            unit: Some(if name.contains("force") { "N" } else { "m/s" }.into()),
         };
         SystemStructure {
             name: "cut & paste".into(),

@@ -37,11 +37,13 @@ pub fn write_ssp(scene: &Scene, binary: &Path, out: &Path) -> Result<SystemStruc
             connectors.push(Connector {
                 name: variable,
                 kind: ConnectorKind::Input,
+                unit: known_unit(&port.unit),
             });
         }
         connectors.extend(layout.unit.outputs.iter().map(|p| Connector {
             name: p.name.clone(),
             kind: ConnectorKind::Output,
+            unit: known_unit(&p.unit),
         }));
         let source = format!("resources/{name}.fmu");
         fmus.push((source.clone(), file));
@@ -154,6 +156,12 @@ fn scene_text(s: &SystemStructure, root: &Path) -> Result<String, (String, Strin
     scene.insert("units".into(), Value::Array(units));
     scene.insert("connections".into(), Value::Array(connections.collect()));
     toml::to_string(&scene).map_err(|e| (String::new(), e.to_string()))
+}
+
+/// A port's unit for the SSD: its name where slender knows its SI base
+/// units (the FMU's description defines the same), else none.
+fn known_unit(unit: &str) -> Option<String> {
+    slender_fmi::measure::si_definition(unit).map(|_| unit.to_owned())
 }
 
 /// A component as a unit of kind `fmu`, and its FMU's default step (s).

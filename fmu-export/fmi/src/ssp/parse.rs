@@ -137,15 +137,13 @@ impl Parser<'_> {
             ("Elements", "SignalDictionaryReference") => {
                 return Err(self.error("signal dictionaries are not supported".into()));
             }
-            ("Connectors", "Connector") if self.in_component() => {
-                let kind = match attrs.get("kind").map(String::as_str) {
-                    Some("input") => ConnectorKind::Input,
-                    Some("output") => ConnectorKind::Output,
-                    _ => ConnectorKind::Other,
-                };
-                let name = self.required(attrs, "Connector", "name")?;
-                if let Some(c) = self.structure.components.last_mut() {
-                    c.connectors.push(Connector { name, kind });
+            ("Connectors", "Connector") if self.in_component() => self.connector(attrs)?,
+            // A connector's type: its unit of measure, when it names one.
+            ("Connector", "Real") if self.in_component() => {
+                let connector =
+                    (self.structure.components.last_mut()).and_then(|c| c.connectors.last_mut());
+                if let Some(connector) = connector {
+                    connector.unit = attrs.get("unit").cloned();
                 }
             }
             ("Connections", "Connection") => self.connection(attrs)?,
@@ -191,6 +189,25 @@ impl Parser<'_> {
                 self.structure.step = self.number(attrs, "baseStepSize")?;
             }
             _ => {}
+        }
+        Ok(())
+    }
+
+    /// A component's connector: its name and kind (its unit follows in its
+    /// type element).
+    fn connector(&mut self, attrs: &Attributes) -> Result<(), SspError> {
+        let kind = match attrs.get("kind").map(String::as_str) {
+            Some("input") => ConnectorKind::Input,
+            Some("output") => ConnectorKind::Output,
+            _ => ConnectorKind::Other,
+        };
+        let name = self.required(attrs, "Connector", "name")?;
+        if let Some(c) = self.structure.components.last_mut() {
+            c.connectors.push(Connector {
+                name,
+                kind,
+                unit: None,
+            });
         }
         Ok(())
     }

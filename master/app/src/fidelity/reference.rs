@@ -147,7 +147,8 @@ pub(crate) fn refine(table: &mut Table, level: u32) -> Result<(), String> {
     let factor = 1i64 << level;
     let simulation = (table.get_mut("simulation").and_then(Value::as_table_mut))
         .ok_or("the reference's refinement: the scene has no `[simulation]`")?;
-    let step = simulation.get("step").and_then(Value::as_float);
+    let step = (simulation.get("step"))
+        .and_then(|s| s.as_float().or_else(|| s.as_integer().map(|i| i as f64)));
     let step = step.ok_or("the reference's refinement: `simulation.step`: expected a number")?;
     simulation.insert("step".into(), Value::Float(step / factor as f64));
     let mut counts = Vec::new();
