@@ -298,18 +298,16 @@ pub(super) fn check(
 mod tests {
     use super::*;
 
+    /// The scene `text` made level `level`.
+    fn refined(text: &str, level: u32) -> Result<Table, String> {
+        let mut table: Table = text.parse().unwrap();
+        refine(&mut table, level).map(|()| table)
+    }
+
     #[test]
     fn a_level_halves_the_step_and_doubles_every_element_count() {
-        let mut table: Table = r#"
-[simulation]
-duration = 1.0
-step = 0.1
-[structure.model]
-segments = [{ length = 10.0, elements = 5 }, { length = 5.0, elements = 3 }]
-"#
-        .parse()
-        .unwrap();
-        refine(&mut table, 2).unwrap();
+        let text = "[simulation]\nduration = 1.0\nstep = 0.1\n[structure.model]\nsegments = [{ length = 10.0, elements = 5 }, { length = 5.0, elements = 3 }]\n";
+        let table = refined(text, 2).unwrap();
         assert_eq!(table["simulation"]["step"].as_float(), Some(0.025));
         let segments = table["structure"]["model"]["segments"].as_array().unwrap();
         let counts: Vec<i64> = segments
@@ -317,25 +315,23 @@ segments = [{ length = 10.0, elements = 5 }, { length = 5.0, elements = 3 }]
             .map(|s| s["elements"].as_integer().unwrap())
             .collect();
         assert_eq!(counts, [20, 12]);
+        // A step written as a whole number, and a 3D line's own count.
+        let table = refined(
+            "[simulation]\nduration = 2\nstep = 1\n[structure.model]\nelements = 4\n",
+            1,
+        )
+        .unwrap();
+        assert_eq!(table["simulation"]["step"].as_float(), Some(0.5));
+        assert_eq!(
+            table["structure"]["model"]["elements"].as_integer(),
+            Some(8)
+        );
     }
 
     #[test]
     fn a_moorings_shared_and_own_counts_are_refined() {
-        let mut table: Table = r#"
-[simulation]
-duration = 1.0
-step = 0.2
-[mooring.line]
-elements = 50
-[[mooring.lines]]
-name = "a"
-[[mooring.lines]]
-name = "b"
-model = { elements = 30 }
-"#
-        .parse()
-        .unwrap();
-        refine(&mut table, 1).unwrap();
+        let text = "[simulation]\nduration = 1.0\nstep = 0.2\n[mooring.line]\nelements = 50\n[[mooring.lines]]\nname = \"a\"\n[[mooring.lines]]\nname = \"b\"\nmodel = { elements = 30 }\n";
+        let table = refined(text, 1).unwrap();
         assert_eq!(table["mooring"]["line"]["elements"].as_integer(), Some(100));
         let b = &table["mooring"]["lines"].as_array().unwrap()[1];
         assert_eq!(b["model"]["elements"].as_integer(), Some(60));
@@ -343,11 +339,8 @@ model = { elements = 30 }
 
     #[test]
     fn a_model_without_an_element_count_is_refused_by_name() {
-        let mut table: Table =
-            "[simulation]\nduration = 1.0\nstep = 0.1\n[structure.model]\nlength = 3.0\n"
-                .parse()
-                .unwrap();
-        let e = refine(&mut table, 1).unwrap_err();
+        let text = "[simulation]\nduration = 1.0\nstep = 0.1\n[structure.model]\nlength = 3.0\n";
+        let e = refined(text, 1).unwrap_err();
         assert!(e.contains("`elements`"), "{e}");
     }
 
