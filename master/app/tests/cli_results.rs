@@ -457,3 +457,42 @@ fn a_run_states_which_components_were_judged_against_the_largest() {
         "{md}"
     );
 }
+
+/// Issue 48: `--reference` takes `estimate`, `converged` or `model`, and
+/// `--refinements` a number of halvings from 1 to 5; anything else is
+/// refused before a run, naming what is expected.
+#[test]
+fn a_fidelity_reference_that_is_not_one_of_its_modes_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let base = [
+        "fidelity",
+        "examples/structure_hanging_pipe.toml",
+        "--section",
+        "middle=nonlinear:5",
+        "--duration",
+        "0.1",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let with = |extra: &[&str]| {
+        let mut args = base.to_vec();
+        args.extend(extra);
+        slender(&args)
+    };
+    let mode = with(&["--reference", "finest"]);
+    assert_eq!(mode.status.code(), Some(2), "{}", text(&mode.stderr));
+    assert!(
+        text(&mode.stderr).contains("expected `estimate`"),
+        "{}",
+        text(&mode.stderr)
+    );
+    let refinements = with(&["--reference", "converged", "--refinements", "0"]);
+    assert_eq!(refinements.status.code(), Some(2));
+    assert!(
+        text(&refinements.stderr).contains("--refinements 0: expected 1 to 5"),
+        "{}",
+        text(&refinements.stderr)
+    );
+    assert!(!out.join("fidelity.csv").exists());
+}
