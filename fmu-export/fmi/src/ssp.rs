@@ -190,11 +190,15 @@ fn write_component(x: &mut String, c: &Component) {
     x.push_str("        </ssd:Connectors>\n      </ssd:Component>\n");
 }
 
-/// A connector's unit where slender knows its SI base units (so that the
-/// description can define it).
-fn known_unit(c: &Connector) -> Option<&str> {
-    let unit = c.unit.as_deref()?;
+/// A unit of measure as an SSD can declare it: the name where slender knows
+/// its SI base units (so that `ssd:Units` can define it), else none.
+pub fn ssd_unit(unit: &str) -> Option<&str> {
     slender_contract::measure::si_exponents(unit).map(|_| unit)
+}
+
+/// A connector's unit where the description can define it.
+fn known_unit(c: &Connector) -> Option<&str> {
+    c.unit.as_deref().and_then(ssd_unit)
 }
 
 /// `<ssd:Units>`: every unit the connectors name, once, in the order first

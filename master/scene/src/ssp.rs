@@ -10,7 +10,9 @@ use crate::export::{ExportError, ExportedFmu, FmiVersion, export_units, scene_st
 use crate::{Scene, SceneError};
 use slender_fmi::export::input_variable_name;
 use slender_fmi::model_description::{Value as FmiValue, VariableCausality};
-use slender_fmi::ssp::{Component, Connection, Connector, ConnectorKind, SystemStructure, archive};
+use slender_fmi::ssp::{
+    Component, Connection, Connector, ConnectorKind, SystemStructure, archive, ssd_unit,
+};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
@@ -37,13 +39,13 @@ pub fn write_ssp(scene: &Scene, binary: &Path, out: &Path) -> Result<SystemStruc
             connectors.push(Connector {
                 name: variable,
                 kind: ConnectorKind::Input,
-                unit: known_unit(&port.unit),
+                unit: ssd_unit(&port.unit).map(str::to_owned),
             });
         }
         connectors.extend(layout.unit.outputs.iter().map(|p| Connector {
             name: p.name.clone(),
             kind: ConnectorKind::Output,
-            unit: known_unit(&p.unit),
+            unit: ssd_unit(&p.unit).map(str::to_owned),
         }));
         let source = format!("resources/{name}.fmu");
         fmus.push((source.clone(), file));
@@ -156,12 +158,6 @@ fn scene_text(s: &SystemStructure, root: &Path) -> Result<String, (String, Strin
     scene.insert("units".into(), Value::Array(units));
     scene.insert("connections".into(), Value::Array(connections.collect()));
     toml::to_string(&scene).map_err(|e| (String::new(), e.to_string()))
-}
-
-/// A port's unit for the SSD: its name where slender knows its SI base
-/// units (the FMU's description defines the same), else none.
-fn known_unit(unit: &str) -> Option<String> {
-    slender_fmi::measure::si_definition(unit).map(|_| unit.to_owned())
 }
 
 /// A component as a unit of kind `fmu`, and its FMU's default step (s).

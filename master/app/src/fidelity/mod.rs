@@ -145,7 +145,7 @@ struct Structure {
 }
 
 /// A run's recording reduced to the quantities (kept to resume a study).
-#[derive(Clone, Serialize, serde::Deserialize)]
+#[derive(Serialize, serde::Deserialize)]
 struct Outcome {
     time: Vec<f64>,
     series: Vec<Vec<f64>>,
@@ -234,21 +234,24 @@ pub fn run_fidelity_kept(
         from: plan.from,
     };
     study.refine_until_converged(&mut levels, &measure, &judged)?;
-    let rows = (jobs, levels, combination_outcomes);
-    let mut report = report_of(subject, rows, &measure, (plan, judged));
-    report.scene = path.display().to_string();
-    report.floors = floors;
-    Ok(report)
+    let runs = (jobs, levels, combination_outcomes);
+    let scene = path.display().to_string();
+    Ok(report_of(
+        subject,
+        runs,
+        &measure,
+        (plan, judged, scene, floors),
+    ))
 }
 
 /// The report of a study's runs: the reference's check from its levels, the
 /// rows judged against the level the plan asks for, the cheapest within the
-/// tolerance (its scene and floors left for the caller).
+/// tolerance.
 fn report_of(
     subject: &dyn Subject,
-    (jobs, levels, combination_outcomes): (Vec<Job>, Vec<(f64, Outcome)>, Vec<Outcome>),
+    (jobs, mut levels, combination_outcomes): (Vec<Job>, Vec<(f64, Outcome)>, Vec<Outcome>),
     measure: &reference::Measure,
-    (plan, judged): (&FidelityPlan, Vec<String>),
+    (plan, judged, scene, floors): (&FidelityPlan, Vec<String>, String, Vec<floors::Floor>),
 ) -> FidelityReport {
     let judging = match plan.reference {
         ReferenceMode::Converged => levels.len() - 1,
@@ -265,16 +268,17 @@ fn report_of(
             Job::Level(_) => None,
         }))
         .collect();
-    let row_outcomes: Vec<Outcome> = std::iter::once(levels[0].1.clone())
-        .chain(combination_outcomes)
-        .collect();
+    // The finer level judged against (the last), then the model's mesh, the
+    // first row: moved out, not copied.
+    let finer = (judging > 0)
+        .then(|| levels.pop())
+        .flatten()
+        .map(|(_, o)| o);
+    let model_mesh = levels.into_iter().next().map(|(_, o)| o);
+    let row_outcomes: Vec<Outcome> = model_mesh.into_iter().chain(combination_outcomes).collect();
     let rows = rows::rows_of(
         subject,
-        (
-            &tasks,
-            &row_outcomes,
-            (judging > 0).then(|| &levels[judging].1),
-        ),
+        (&tasks, &row_outcomes, finer.as_ref()),
         (measure.names, measure.scales),
         (plan.tolerance, &judged, plan.from),
     );
@@ -288,14 +292,14 @@ fn report_of(
         })
         .map(|(k, _)| k);
     FidelityReport {
-        scene: String::new(),
+        scene,
         tolerance: plan.tolerance,
         from: plan.from,
         quantities: measure.names.iter().map(|n| (*n).to_owned()).collect(),
         judged,
         rows,
         cheapest,
-        floors: Vec::new(),
+        floors,
         reference: check,
     }
 }
@@ -450,20 +454,23 @@ fn combinations(plan: &FidelityPlan, own: &[(String, Choice)]) -> Vec<Vec<(Strin
 /// combinations with the most nonlinear elements asked for (the likely
 /// costliest).
 fn order_of(jobs: &[Job]) -> Vec<usize> {
-    let weight = |job: &Job| match job {
-        Job::Level(_) => f64::INFINITY,
-        Job::Combination(c) => c
-            .iter()
-            .map(|(_, c)| match c.fidelity.as_str() {
-                "nonlinear" => c.elements.map_or(1e6, |n| n as f64),
-                _ => c.elements.map_or(1.0, |n| n as f64 * 1e-3),
-            })
-            .sum(),
+    // (level + 1 for a level, else 0; the combination's weight), largest first.
+    let key = |job: &Job| match job {
+        Job::Level(k) => (k + 1, 0.0),
+        Job::Combination(c) => {
+            let weight = (c.iter())
+                .map(|(_, c)| match c.fidelity.as_str() {
+                    "nonlinear" => c.elements.map_or(1e6, |n| n as f64),
+                    _ => c.elements.map_or(1.0, |n| n as f64 * 1e-3),
+                })
+                .sum();
+            (0, weight)
+        }
     };
     let mut order: Vec<usize> = (0..jobs.len()).collect();
-    order.sort_by(|&a, &b| match (&jobs[a], &jobs[b]) {
-        (Job::Level(x), Job::Level(y)) => y.cmp(x),
-        _ => weight(&jobs[b]).total_cmp(&weight(&jobs[a])),
+    order.sort_by(|&a, &b| {
+        let ((la, wa), (lb, wb)) = (key(&jobs[a]), key(&jobs[b]));
+        lb.cmp(&la).then(wb.total_cmp(&wa))
     });
     order
 }

@@ -55,7 +55,16 @@ pub fn twin_error(path: &Path, plan: &StudyPlan) -> Result<Option<TwinError>, Ap
     }
     let mut refined = draft.clone();
     refined.change("the twin at half its element length and step", table);
-    let refined = scene_of(&refined, plan.duration)?;
+    // The study itself ran: a refined scene that does not load (its step
+    // bound, say) leaves the estimate out, not the study.
+    let refined = match scene_of(&refined, plan.duration) {
+        Ok(scene) => scene,
+        Err(e) => {
+            return Ok(Some(TwinError::NotEstimated(format!(
+                "the refined scene: {e}"
+            ))));
+        }
+    };
     let run = |scene| match run_scene(scene, &QUIET) {
         Ok(r) if r.summary.error.is_none() => Ok(r),
         Ok(r) => Err(r.summary.error.unwrap_or_default()),
