@@ -164,20 +164,7 @@ impl From<Expression> for ExpressionSpec {
     }
 }
 
-/// The quintic smoothstep over `duration` (s) at t and its first two time
-/// derivatives; 1 from `duration` on (and for a zero duration).
-fn smoothstep(t: f64, duration: f64) -> [f64; 3] {
-    if duration <= 0.0 || t >= duration {
-        return [1.0, 0.0, 0.0];
-    }
-    let x = t.max(0.0) / duration;
-    [
-        x * x * x * (10.0 - 15.0 * x + 6.0 * x * x),
-        30.0 * x * x * (1.0 - x) * (1.0 - x) / duration,
-        60.0 * x * (1.0 - x) * (1.0 - 2.0 * x) / (duration * duration),
-    ]
-}
-
+use crate::signal::sine::smoothstep;
 pub use crate::signal::sine::Sine;
 
 impl TimeFunction {

@@ -1,8 +1,8 @@
 //! Contact surfaces y >= f(x, t): flat, tilted, a smooth bump, a set of rollers and
 //! a tabulated profile, optionally moving vertically.
 
-use crate::beam::boundary::Sine;
-use crate::contract::{UnitError, require_finite, require_positive};
+use crate::signal::sine::{Sine, smoothstep};
+use crate::contract::{UnitError, require_finite, require_non_negative, require_positive};
 use serde::{Deserialize, Serialize};
 
 /// The shape of a contact surface (m).
@@ -74,6 +74,10 @@ pub enum Motion {
     Sines {
         /// The components (m, rad/s, rad).
         sines: Vec<Sine>,
+        /// The sines grow from nothing over this time (s, quintic smoothstep
+        /// as an end's `fade_in`); 0: at full amplitude from the start.
+        #[serde(default)]
+        fade_in: f64,
     },
     /// Rollers moving with their vessel: heave (m, sums of sines) and pitch
     /// (rad, counter-clockwise, sums of sines) about `pivot` ([x, z], m), each
@@ -87,6 +91,11 @@ pub enum Motion {
         pitch: Vec<Sine>,
         /// The point the vessel pitches about ([x, z], m).
         pivot: [f64; 2],
+        /// Heave and pitch grow from nothing over this time (s, quintic
+        /// smoothstep as an end's `fade_in`, so a pipe's end moved by the same
+        /// vessel fades alike); 0: at full amplitude from the start.
+        #[serde(default)]
+        fade_in: f64,
     },
 }
 
@@ -97,12 +106,14 @@ struct Pose {
     dz: f64,
 }
 
-/// The sum of `sines` at t (value, rate).
-fn sum(sines: &[Sine], t: f64) -> (f64, f64) {
-    sines.iter().fold((0.0, 0.0), |(v, r), s| {
+/// The sum of `sines` at t (value, rate), faded in over `fade_in` (s).
+fn sum(sines: &[Sine], fade_in: f64, t: f64) -> (f64, f64) {
+    let (v, rate) = sines.iter().fold((0.0, 0.0), |(v, r), s| {
         let [a, da, _] = s.eval(t);
         (v + a, r + da)
-    })
+    });
+    let [r, dr, _] = smoothstep(t, fade_in);
+    (r * v, dr * v + r * rate)
 }
 
 /// Each named value finite; the first that is not is refused by its key.
@@ -207,11 +218,15 @@ impl Surface {
                 require_finite("surface.motion.amplitude", amplitude)?;
                 require_finite("surface.motion.angular_frequency", angular_frequency)?;
             }
-            Motion::Sines { sines } => finite_sines("surface.motion.sines", sines)?,
+            Motion::Sines { sines, fade_in } => {
+                finite_sines("surface.motion.sines", sines)?;
+                require_non_negative("surface.motion.fade_in", *fade_in)?;
+            }
             Motion::Vessel {
                 heave,
                 pitch,
                 pivot,
+                fade_in,
             } => {
                 if !matches!(self.shape, Shape::Rollers { .. }) {
                     return Err(UnitError::parameter(
@@ -224,6 +239,7 @@ impl Surface {
                 finite_sines("surface.motion.pitch", pitch)?;
                 require_finite("surface.motion.pivot", pivot[0])?;
                 require_finite("surface.motion.pivot", pivot[1])?;
+                require_non_negative("surface.motion.fade_in", *fade_in)?;
             }
         }
         Ok(())
@@ -249,8 +265,13 @@ impl Surface {
     /// The surface's rigid motion at time t.
     fn pose(&self, t: f64) -> Pose {
         match &self.motion {
-            Motion::Vessel { pitch, pivot, .. } => {
-                let theta = sum(pitch, t).0;
+            Motion::Vessel {
+                pitch,
+                pivot,
+                fade_in,
+                ..
+            } => {
+                let theta = sum(pitch, *fade_in, t).0;
                 Pose {
                     turn: Some((theta.cos(), theta.sin(), *pivot)),
                     dz: self.heave(t).0,
@@ -299,8 +320,8 @@ impl Surface {
                 amplitude * (angular_frequency * t).sin(),
                 amplitude * angular_frequency * (angular_frequency * t).cos(),
             ),
-            Motion::Sines { sines } => sum(sines, t),
-            Motion::Vessel { heave, .. } => sum(heave, t),
+            Motion::Sines { sines, fade_in } => sum(sines, *fade_in, t),
+            Motion::Vessel { heave, fade_in, .. } => sum(heave, *fade_in, t),
         }
     }
 
@@ -416,5 +437,41 @@ mod tests {
         )
         .unwrap();
         assert!(flat.validate().is_err());
+    }
+
+    #[test]
+    fn a_faded_vessel_starts_at_rest_and_moves_as_its_end_motion() {
+        let motion = "heave = [{ amplitude = 1.5, angular_frequency = 0.6 }], pitch = [{ amplitude = 0.02, angular_frequency = 0.5 }]";
+        let faded = stinger(&format!(
+            "{{ kind = \"vessel\", pivot = [30.0, 0.0], {motion}, fade_in = 10.0 }}"
+        ));
+        let full = stinger(&format!(
+            "{{ kind = \"vessel\", pivot = [30.0, 0.0], {motion} }}"
+        ));
+        // At rest at the start: where it was drawn, not moving.
+        assert_eq!(faded.roller(0, 0.0), Some((10.0, 1.0)));
+        let (x, top) = faded.roller(1, 0.0).unwrap();
+        assert!((x - 20.0).abs() < 1e-12 && (top - 2.0).abs() < 1e-12);
+        assert!(faded.at(20.0, 0.0).unwrap().1.abs() < 1e-9);
+        // Half way, the quintic smoothstep's half of the motion; from the
+        // fade's end on, the unfaded motion itself.
+        let heave = |s: &Surface, t| s.heave(t);
+        let (half, _) = heave(&faded, 5.0);
+        assert!((half - 0.5 * heave(&full, 5.0).0).abs() < 1e-12);
+        for t in [10.5, 17.3] {
+            assert_eq!(faded.roller(1, t), full.roller(1, t));
+            assert_eq!(faded.at(20.0, t), full.at(20.0, t));
+        }
+        // The faded heave's rate is its derivative.
+        let (h, t) = (1e-6, 3.7);
+        let slope = (heave(&faded, t + h).0 - heave(&faded, t - h).0) / (2.0 * h);
+        assert!((heave(&faded, t).1 - slope).abs() < 1e-8);
+        // A fade-in that is not a duration is refused by its key.
+        let bad: Surface = toml::from_str(
+            "shape = { kind = \"flat\", height = 0.0 }\nmotion = { kind = \"sines\", sines = [], fade_in = -1.0 }",
+        )
+        .unwrap();
+        let e = bad.validate().unwrap_err().to_string();
+        assert!(e.contains("surface.motion.fade_in"), "{e}");
     }
 }

@@ -59,6 +59,20 @@ pub fn fade(duration: f64, t: f64) -> [f64; 3] {
     [0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c]
 }
 
+/// The quintic smoothstep over `duration` (s) at t and its first two time
+/// derivatives; 1 from `duration` on (and for a zero duration).
+pub fn smoothstep(t: f64, duration: f64) -> [f64; 3] {
+    if duration <= 0.0 || t >= duration {
+        return [1.0, 0.0, 0.0];
+    }
+    let x = t.max(0.0) / duration;
+    [
+        x * x * x * (10.0 - 15.0 * x + 6.0 * x * x),
+        30.0 * x * x * (1.0 - x) * (1.0 - x) / duration,
+        60.0 * x * (1.0 - x) * (1.0 - 2.0 * x) / (duration * duration),
+    ]
+}
+
 /// `base` plus the sum of `sines` faded in over `fade_in` (s) at `t`, and
 /// its two time derivatives: a prescribed motion's position, velocity and
 /// acceleration.
