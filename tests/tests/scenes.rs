@@ -417,3 +417,29 @@ fn an_error_in_an_inline_table_names_its_key_path() {
     );
     assert!(!e.contains("`{"), "{e}");
 }
+
+/// An indicator measured from `from` on a run that ends before it (a run
+/// shortened by `--duration`) is left out with a warning naming it, not
+/// reported as NaN; within the run it is measured.
+#[test]
+fn an_indicator_whose_window_lies_past_the_run_is_left_out_with_a_warning() {
+    let scene = |from: f64| {
+        let text = format!(
+            "{B1}\n[output]\n[[output.indicators]]\nname = \"gap\"\nsignals = [\"left.displacement\"]\nreference = [\"right.displacement\"]\nfrom = {from:?}\n"
+        );
+        Scene::parse(Path::new("b1.toml"), text).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let within = slender_tests::run(&scene(0.5));
+    assert_eq!(within.indicators.len(), 1);
+    assert!(within.indicators[0].relative_error.is_finite());
+    let past = slender_tests::run(&scene(5.0));
+    assert!(past.error.is_none(), "{:?}", past.error);
+    assert!(past.indicators.is_empty(), "{:?}", past.indicators);
+    assert!(
+        past.warnings
+            .iter()
+            .any(|w| w.contains("output.indicators `gap`") && w.contains("not measured")),
+        "{:?}",
+        past.warnings
+    );
+}

@@ -129,6 +129,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         (&mut outcome, &mut files),
         &mut warnings,
     );
+    let indicators = indicators(scene, &recorder, &mut warnings);
     let summary = Summary {
         scene: scene.path.display().to_string(),
         overrides: scene.overrides.clone(),
@@ -147,7 +148,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         order: master.order().into_iter().map(String::from).collect(),
         settings: master.settings().clone(),
         counters: master.counters(),
-        indicators: indicators(scene, &recorder),
+        indicators,
         analysis,
         units: (recorder.names.iter().cloned())
             .zip(recorder.units.iter().cloned())
@@ -201,13 +202,32 @@ fn status_of(outcome: &Result<(), String>) -> &'static str {
     }
 }
 
-fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indicator> {
+/// The scene's indicators with references, measured on the recording; one
+/// whose window (`from`) holds less than two samples (a run shortened by
+/// `--duration`) is left out with a warning, not reported as NaN.
+fn indicators(
+    scene: &Scene,
+    recorder: &Recorder,
+    warnings: &mut Vec<String>,
+) -> Vec<crate::indicators::Indicator> {
+    let end = recorder.time.last().copied().unwrap_or(f64::NAN);
     scene
         .spec
         .output
         .indicators
         .iter()
         .filter(|spec| !spec.reference.is_empty())
+        .filter(|spec| {
+            let window = crate::indicators::window(&recorder.time, &[], spec.from).0;
+            if window.len() < 2 && !recorder.time.is_empty() {
+                warnings.push(format!(
+                    "output.indicators `{}`: from = {} s leaves less than two recorded samples before the recording's end ({end} s): not measured",
+                    spec.name,
+                    spec.from.unwrap_or(0.0)
+                ));
+            }
+            window.len() >= 2
+        })
         .filter_map(|spec| {
             let cols = |names: &[String]| {
                 names
@@ -215,7 +235,10 @@ fn indicators(scene: &Scene, recorder: &Recorder) -> Vec<crate::indicators::Indi
                     .map(|n| recorder.column(n))
                     .collect::<Option<Vec<_>>>()
             };
-            let (x, r) = (cols(&spec.signals)?, cols(&spec.reference)?);
+            let x = spec.combine.apply(cols(&spec.signals)?);
+            let r = spec.combine.apply(cols(&spec.reference)?);
+            let (x, r): (Vec<&[f64]>, Vec<&[f64]>) =
+                (x.iter().map(|c| &**c).collect(), r.iter().map(|c| &**c).collect());
             let named = (spec.name.as_str(), spec.signals.as_slice());
             let (time, x) = crate::indicators::window(&recorder.time, &x, spec.from);
             let (_, r) = crate::indicators::window(&recorder.time, &r, spec.from);

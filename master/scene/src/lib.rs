@@ -404,11 +404,12 @@ impl Scene {
                     ),
                 ));
             }
-            if ind.signals.is_empty()
-                || !(ind.reference.is_empty() || ind.signals.len() == ind.reference.len())
-            {
+            let paired = ind.reference.is_empty()
+                || ind.signals.len() == ind.reference.len()
+                || ind.combine == spec::Combine::Largest;
+            if ind.signals.is_empty() || !paired {
                 return Err(self.error(None, &key, format!(
-                    "expected at least one signal, and as many reference signals as signals or none (got {} and {})",
+                    "expected at least one signal, and as many reference signals as signals or none (got {} and {}; `combine = \"largest\"` compares the largest of each side)",
                     ind.signals.len(),
                     ind.reference.len()
                 )));

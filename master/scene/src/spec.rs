@@ -322,6 +322,43 @@ pub struct IndicatorSpec {
     /// left out; default the run's start.
     #[serde(default)]
     pub from: Option<f64>,
+    /// How the signals (and the references) make the compared components:
+    /// each its own (default), or the largest magnitude over them.
+    #[serde(default)]
+    pub combine: Combine,
+}
+
+/// How an indicator's signals make its components.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Combine {
+    /// Each signal is a component, judged against its own reference.
+    #[default]
+    Each,
+    /// One component: at each time the largest magnitude over the signals,
+    /// against the largest over the references (a partition's sections each
+    /// report their own extreme, the twin one over the whole structure).
+    Largest,
+}
+
+impl Combine {
+    /// The components `columns` make: themselves, or one column of the
+    /// largest magnitude at each sample.
+    pub fn apply<'a>(self, columns: Vec<&'a [f64]>) -> Vec<std::borrow::Cow<'a, [f64]>> {
+        match self {
+            Combine::Each => columns
+                .into_iter()
+                .map(std::borrow::Cow::Borrowed)
+                .collect(),
+            Combine::Largest => {
+                let samples = columns.iter().map(|c| c.len()).min().unwrap_or(0);
+                let largest = (0..samples)
+                    .map(|k| columns.iter().map(|c| c[k].abs()).fold(0.0, f64::max))
+                    .collect::<Vec<f64>>();
+                vec![std::borrow::Cow::Owned(largest)]
+            }
+        }
+    }
 }
 
 /// The measure of an indicator's error.

@@ -362,3 +362,26 @@ fn a_sea_that_repeats_within_the_analysed_window_is_named_with_the_components_it
             .is_empty()
     );
 }
+
+#[test]
+fn an_indicator_of_the_largest_magnitude_takes_any_number_of_references() {
+    let indicator = |rest: &str| {
+        analysis_scene(&format!(
+            "[[output.indicators]]\nname = \"i\"\nsignals = [\"m.displacement\", \"m.velocity\"]\nreference = [\"m.displacement\"]\n{rest}"
+        ))
+    };
+    assert_eq!(indicator("combine = \"largest\""), Ok(()));
+    let error = indicator("").expect_err("two signals against one reference");
+    assert!(
+        error.contains("as many reference signals as signals") && error.contains("largest"),
+        "{error}"
+    );
+    let error = indicator("combine = \"max\"").expect_err("not a way to combine");
+    assert!(error.contains("unknown variant `max`"), "{error}");
+    // One component: the largest magnitude at each sample, over the shorter.
+    let (a, b) = ([1.0, -3.0, 0.5], [-2.0, 1.0]);
+    let largest = crate::spec::Combine::Largest.apply(vec![&a, &b]);
+    assert_eq!(largest.len(), 1);
+    assert_eq!(&*largest[0], &[2.0, 3.0]);
+    assert_eq!(crate::spec::Combine::Each.apply(vec![&a, &b]).len(), 2);
+}

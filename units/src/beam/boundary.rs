@@ -164,8 +164,8 @@ impl From<Expression> for ExpressionSpec {
     }
 }
 
-use crate::signal::sine::smoothstep;
 pub use crate::signal::sine::Sine;
+use crate::signal::sine::smoothstep;
 
 impl TimeFunction {
     /// Value and its first two time derivatives at t; `None` for an input.

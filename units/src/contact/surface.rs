@@ -1,8 +1,8 @@
 //! Contact surfaces y >= f(x, t): flat, tilted, a smooth bump, a set of rollers and
 //! a tabulated profile, optionally moving vertically.
 
-use crate::signal::sine::{Sine, smoothstep};
 use crate::contract::{UnitError, require_finite, require_non_negative, require_positive};
+use crate::signal::sine::{Sine, smoothstep};
 use serde::{Deserialize, Serialize};
 
 /// The shape of a contact surface (m).

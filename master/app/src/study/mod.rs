@@ -567,12 +567,15 @@ fn indicator_columns(scene: &Scene, rec: &crate::record::Recorder) -> Vec<Indica
         .indicators
         .iter()
         .map(|i| {
-            let cols = i
-                .signals
-                .iter()
-                .map(|s| rec.column(s).map(<[f64]>::to_vec).unwrap_or_default())
+            let empty: &[f64] = &[];
+            let cols = (i.signals.iter())
+                .map(|s| rec.column(s).unwrap_or(empty))
                 .collect();
-            (i.name.clone(), cols)
+            let combined = i.combine.apply(cols);
+            (
+                i.name.clone(),
+                combined.into_iter().map(|c| c.into_owned()).collect(),
+            )
         })
         .collect()
 }

@@ -13,6 +13,7 @@ use crate::indicators::{indicator, interpolate, normalized_error, window};
 use crate::record::Recorder;
 use crate::run::run_scene;
 use serde::Serialize;
+use slender_scene::spec::Combine;
 use std::path::Path;
 
 /// What a study knows of its in-run twin's own error.
@@ -39,7 +40,7 @@ pub fn twin_error(path: &Path, plan: &StudyPlan) -> Result<Option<TwinError>, Ap
     let base = scene_of(&draft, plan.duration)?;
     let in_run: Vec<_> = (base.spec.output.indicators.iter())
         .filter(|i| !i.reference.is_empty())
-        .map(|i| (i.name.clone(), i.reference.clone(), i.from))
+        .map(|i| (i.name.clone(), i.reference.clone(), (i.from, i.combine)))
         .collect();
     if in_run.is_empty() {
         return Ok(None);
@@ -84,8 +85,8 @@ pub fn twin_error(path: &Path, plan: &StudyPlan) -> Result<Option<TwinError>, Ap
         }
     };
     let estimates = (in_run.iter())
-        .map(|(name, signals, from)| {
-            let e = change(&coarse.recorder, &fine.recorder, signals, *from);
+        .map(|(name, signals, window)| {
+            let e = change(&coarse.recorder, &fine.recorder, signals, *window);
             (name.clone(), e.unwrap_or(f64::NAN))
         })
         .collect();
@@ -96,12 +97,13 @@ pub fn twin_error(path: &Path, plan: &StudyPlan) -> Result<Option<TwinError>, Ap
 }
 
 /// epsilon of `signals` in `coarse` against `fine` (resampled at the coarse
-/// run's times), from `from` (s) on; None where a signal was not recorded.
+/// run's times), from `from` (s) on, their components made by `combine`;
+/// None where a signal was not recorded.
 fn change(
     coarse: &Recorder,
     fine: &Recorder,
     signals: &[String],
-    from: Option<f64>,
+    (from, combine): (Option<f64>, Combine),
 ) -> Option<f64> {
     let mut x: Vec<&[f64]> = Vec::new();
     let mut r: Vec<Vec<f64>> = Vec::new();
@@ -116,7 +118,12 @@ fn change(
                 .collect(),
         );
     }
-    let r: Vec<&[f64]> = r.iter().map(Vec::as_slice).collect();
+    let (x, r) = (
+        combine.apply(x),
+        combine.apply(r.iter().map(Vec::as_slice).collect()),
+    );
+    let x: Vec<&[f64]> = x.iter().map(|c| &**c).collect();
+    let r: Vec<&[f64]> = r.iter().map(|c| &**c).collect();
     let (time, x) = window(&coarse.time, &x, from);
     let (_, r) = window(&coarse.time, &r, from);
     Some(indicator("", normalized_error(time, &x, &r)).relative_error)
