@@ -49,6 +49,30 @@ pub fn load(relative: &str) -> Scene {
     Scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// An example's text with its motions' `fade_in` and its indicators' `from`
+/// taken out: the mooring and S-lay examples as they were before they faded
+/// their motions in, at full speed from t = 0. The tests of the cuts'
+/// coupling and of a section's start keep that impulsive start: the harder
+/// case for the iterations at a cut, and the one their figures were measured
+/// on.
+pub fn impulsive(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for line in text.lines().filter(|l| !l.starts_with("from = ")) {
+        let mut rest = line;
+        while let Some(at) = rest.find(", fade_in = ") {
+            out.push_str(&rest[..at]);
+            let value = &rest[at + ", fade_in = ".len()..];
+            let end = value
+                .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+                .unwrap_or(value.len());
+            rest = &value[end..];
+        }
+        out.push_str(rest);
+        out.push('\n');
+    }
+    out
+}
+
 /// Recorded time and signals of a run kept in memory.
 pub struct Series {
     /// Recorded times (s).

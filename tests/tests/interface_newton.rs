@@ -6,13 +6,13 @@
 
 use slender_coupling::settings::{Derivatives, JacobianUpdate, NewtonSettings, Scheme, Solver};
 use slender_scene::Scene;
-use slender_tests::{Series, load, root, run, run_with};
+use slender_tests::{Series, impulsive, load, root, run, run_with};
 
 /// `scene` (a path under the root, its text changed by `edit`) with its
 /// `[master]` replaced by `master` and `[simulation] duration` by `duration`.
 fn with_master(scene: &str, edit: fn(String) -> String, master: &str, duration: f64) -> Scene {
     let path = root().join(scene);
-    let text = edit(std::fs::read_to_string(&path).unwrap());
+    let text = edit(impulsive(&std::fs::read_to_string(&path).unwrap()));
     let mut table: toml::Table = toml::from_str(&text).unwrap();
     table.insert(
         "master".into(),

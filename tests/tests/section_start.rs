@@ -7,7 +7,7 @@
 //! starts without a spike.
 
 use slender_scene::Scene;
-use slender_tests::{root, run};
+use slender_tests::{impulsive, root, run};
 
 /// The mooring example cut `top` elements (of 80) below the fairlead, run
 /// for `duration` s.
@@ -18,7 +18,7 @@ fn mooring(top: usize, duration: f64) -> Scene {
 /// The same with the scene's text changed by `edit`.
 fn mooring_with(top: usize, duration: f64, edit: impl Fn(String) -> String) -> Scene {
     let path = root().join("examples/structure_mooring.toml");
-    let text = edit(std::fs::read_to_string(&path).unwrap());
+    let text = edit(impulsive(&std::fs::read_to_string(&path).unwrap()));
     let element = 1934.0 / 80.0;
     let cut = 1934.0 - top as f64 * element;
     assert!(text.contains("to = 1571.375") && text.contains("duration = 60.0"));

@@ -10,13 +10,15 @@
 use slender_app::fidelity::{FidelityPlan, SectionChoices, run_fidelity};
 use slender_app::study::Design;
 use slender_scene::Scene;
-use slender_tests::{links_away_from, root, run, units_and_links};
+use slender_tests::{impulsive, links_away_from, root, run, units_and_links};
 use toml::Value;
 
 /// The mooring example, `duration` s long, with its sections replaced by
 /// `sections` (TOML of `[[structure.sections]]`).
 fn mooring(duration: f64, sections: Option<&str>) -> String {
-    let text = std::fs::read_to_string(root().join("examples/structure_mooring.toml")).unwrap();
+    let text = impulsive(
+        &std::fs::read_to_string(root().join("examples/structure_mooring.toml")).unwrap(),
+    );
     let text = text.replace("duration = 60.0", &format!("duration = {duration}"));
     match sections {
         None => text,
