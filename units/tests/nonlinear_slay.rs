@@ -18,6 +18,9 @@ fn the_slay_touchdown_point_and_bend_moments_converge_with_elements() {
         let d = Slay::new(n)
             .solved()
             .unwrap_or_else(|e| panic!("{n} elements: {e}"));
+        // One definition of the touchdown point (issue 49 #4): `touchdown` is
+        // the interpolated crossing `touchdown_arc`, not a node's arc.
+        assert_eq!(output(&d, "touchdown"), output(&d, "touchdown_arc"));
         let r = [
             output(&d, "touchdown"),
             output(&d, "sagbend_moment"),

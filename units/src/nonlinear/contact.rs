@@ -19,9 +19,6 @@ use crate::numerics::banded::SymmetricBand;
 /// What the contact did at one state.
 #[derive(Copy, Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactSummary {
-    /// Arc length (m) of the first node on the seabed counted from the far end
-    /// (the touchdown point); NaN without contact.
-    pub touchdown: f64,
     /// Sum of the tributary lengths on the seabed (m).
     pub length: f64,
     /// Largest penetration of any surface (m).
@@ -431,7 +428,6 @@ impl NodalContacts {
     /// The contact's summary at (q, t, lambda): nodes in contact, reactions and the touchdown.
     pub fn summary(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> ContactSummary {
         let mut s = ContactSummary {
-            touchdown: f64::NAN,
             crossing: [f64::NAN; 2],
             ..ContactSummary::default()
         };
@@ -452,9 +448,6 @@ impl NodalContacts {
                     return;
                 }
                 if seabed {
-                    if s.touchdown.is_nan() {
-                        s.touchdown = p.arc;
-                    }
                     s.length += p.weight;
                 }
                 s.penetration = s.penetration.max(-p.gap);

@@ -102,7 +102,6 @@ impl SectionState {
             stepped_contact: zeros,
             lambda,
             contact: ContactSummary {
-                touchdown: f64::NAN,
                 crossing: [f64::NAN; 2],
                 ..ContactSummary::default()
             },
@@ -518,7 +517,8 @@ impl Unit for NonlinearSection {
             } else {
                 0.0
             },
-            finite_or_zero(self.state.contact.touchdown),
+            // `touchdown` is `touchdown_arc`: one definition (issue 49 #4).
+            finite_or_zero(self.state.contact.crossing[0]),
             self.state.contact.length,
             max_moment,
             max_tension,
