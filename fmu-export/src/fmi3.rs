@@ -430,7 +430,9 @@ pub(crate) unsafe extern "C" fn fmi3DeserializeFMUState(
     unsafe { states::deserialize(c, "fmi3DeserializeFMUState", (bytes, size), state) }
 }
 
-/// `fmi3GetDirectionalDerivative`: the unit's step Jacobian times the seed.
+/// `fmi3GetDirectionalDerivative`: the outputs' partial derivatives at the
+/// current instant, as the standard defines them (zero for a unit without
+/// feedthrough); the step Jacobian is `slenderGetStepDerivative`.
 #[unsafe(no_mangle)]
 pub(crate) unsafe extern "C" fn fmi3GetDirectionalDerivative(
     c: Instance3,
@@ -445,7 +447,7 @@ pub(crate) unsafe extern "C" fn fmi3GetDirectionalDerivative(
 ) -> Status {
     guarded(c, "fmi3GetDirectionalDerivative", |i| {
         // SAFETY: FMI array arguments of the lengths given.
-        let (unknowns, knowns, seed, sensitivity) = unsafe {
+        let (unknowns, knowns, _, sensitivity) = unsafe {
             (
                 refs(unknowns, n_unknowns)?,
                 refs(knowns, n_knowns)?,
@@ -453,6 +455,9 @@ pub(crate) unsafe extern "C" fn fmi3GetDirectionalDerivative(
                 values_mut(sensitivity, n_sensitivity)?,
             )
         };
-        i.directional_derivative((unknowns, knowns), seed, sensitivity)
+        // Scalar unknowns are checked as outputs; an array's elements are
+        // zero alike.
+        let scalar = (sensitivity.len() == unknowns.len()).then_some(unknowns);
+        i.directional_derivative((scalar, knowns), sensitivity)
     })
 }

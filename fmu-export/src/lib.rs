@@ -386,10 +386,50 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     unsafe { states::deserialize(c, "fmi2DeSerializeFMUstate", (bytes.cast(), size), state) }
 }
 
-/// `fmi2GetDirectionalDerivative`: the unit's step Jacobian times the seed
-/// (`providesDirectionalDerivative` where the unit gives one).
+/// `fmi2GetDirectionalDerivative`: the outputs' partial derivatives with
+/// respect to the inputs at the current instant, as the standard defines
+/// them (zero for a unit without feedthrough; `instance/derivative.rs`).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
+    c: fmi2Component,
+    unknown: *const fmi2ValueReference,
+    n_unknown: usize,
+    known: *const fmi2ValueReference,
+    n_known: usize,
+    _dv_known: *const fmi2Real,
+    dv_unknown: *mut fmi2Real,
+) -> fmi2Status {
+    guarded(c, "fmi2GetDirectionalDerivative", |i| {
+        // SAFETY: FMI array arguments of the lengths given.
+        let (unknown, known, dv_unknown) = unsafe {
+            (
+                refs(unknown, n_unknown)?,
+                refs(known, n_known)?,
+                values_mut(dv_unknown, n_unknown)?,
+            )
+        };
+        i.directional_derivative((Some(unknown), known), dv_unknown)
+    })
+}
+
+/// `slenderGivesStepDerivative` (a slender extension): fmi2True when the
+/// instance's unit gives its step Jacobian through `slenderGetStepDerivative`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn slenderGivesStepDerivative(c: fmi2Component) -> fmi2Boolean {
+    let mut gives = false;
+    let status = guarded(c, "slenderGivesStepDerivative", |i| {
+        gives = i.gives_step_derivative();
+        Ok(FMI2_OK)
+    });
+    fmi2Boolean::from(status == FMI2_OK && gives)
+}
+
+/// `slenderGetStepDerivative` (a slender extension, FMI 2.0's
+/// `GetDirectionalDerivative` signature, for FMI 2.0 and 3.0 instances
+/// alike): the unit's step Jacobian times the seed, the derivative of the
+/// outputs after the last step with respect to the inputs it ended at.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn slenderGetStepDerivative(
     c: fmi2Component,
     unknown: *const fmi2ValueReference,
     n_unknown: usize,
@@ -398,7 +438,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     dv_known: *const fmi2Real,
     dv_unknown: *mut fmi2Real,
 ) -> fmi2Status {
-    guarded(c, "fmi2GetDirectionalDerivative", |i| {
+    guarded(c, "slenderGetStepDerivative", |i| {
         // SAFETY: FMI array arguments of the lengths given.
         let (unknown, known, dv_known, dv_unknown) = unsafe {
             (
@@ -408,7 +448,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
                 values_mut(dv_unknown, n_unknown)?,
             )
         };
-        i.directional_derivative((unknown, known), dv_known, dv_unknown)
+        i.step_derivative((unknown, known), dv_known, dv_unknown)
     })
 }
 

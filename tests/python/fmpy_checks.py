@@ -7,11 +7,15 @@
     fmpy_checks.py arrays FMU STOP STEP       a section's (nonlinear or cable) FMI 3.0 array
                                               outputs (x, z, tension) against its end and
                                               extreme outputs
-    fmpy_checks.py derivatives FMU ROWS       fmi2GetDirectionalDerivative against central
+    fmpy_checks.py derivatives FMU ROWS       slender's step derivative (the extension
+                                              slenderGetStepDerivative) against central
                                               differences of fmi2DoStep for the outputs
-                                              named in ROWS (comma-separated)
+                                              named in ROWS (comma-separated); the
+                                              standard's fmi2GetDirectionalDerivative
+                                              zero, or refused for feedthrough
 """
 
+import ctypes
 import math
 import sys
 
@@ -151,8 +155,8 @@ def state(path):
 
 
 def derivatives(path, rows):
-    """After 20 steps, the directional derivative of the named outputs for a
-    seed of each input, against central differences of the same step from the
+    """After 20 steps, the step derivative (slender's extension) of the named
+    outputs for a seed of each input, against central differences of the same step from the
     saved state; returns the number of mismatches."""
     md, a = instance(path, "a")
     inputs = [v for v in md.modelVariables if v.causality == "input"]
@@ -179,10 +183,38 @@ def derivatives(path, rows):
         return a.getReal(unknowns)
 
     step(u)
+    # The step Jacobian through slender's extension (FMI 2.0's signature).
+    ext = a.dll.slenderGetStepDerivative
+    ext.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_uint), ctypes.c_size_t,
+                    ctypes.POINTER(ctypes.c_uint), ctypes.c_size_t,
+                    ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double)]
+    ext.restype = ctypes.c_int
     columns = []
     for j in range(len(u)):
         seed = [1.0 if i == j else 0.0 for i in range(len(u))]
-        columns.append(a.getDirectionalDerivative(unknowns, in_refs, seed))
+        out = (ctypes.c_double * len(unknowns))()
+        status = ext(a.component, (ctypes.c_uint * len(unknowns))(*unknowns), len(unknowns),
+                     (ctypes.c_uint * len(in_refs))(*in_refs), len(in_refs),
+                     (ctypes.c_double * len(seed))(*seed), out)
+        if status != 0:
+            print(f"{path}: slenderGetStepDerivative returned status {status}")
+            return 1
+        columns.append(list(out))
+    # The standard's directional derivative is the derivative at an instant:
+    # zero for a unit whose outputs depend on its state only (declared by
+    # providesDirectionalDerivative), refused for one with feedthrough.
+    provides = md.coSimulation.providesDirectionalDerivative
+    try:
+        instant = a.getDirectionalDerivative(unknowns, in_refs, [1.0] * len(in_refs))
+        answered = True
+    except Exception:
+        answered = False
+    if answered != provides or (answered and any(v != 0.0 for v in instant)):
+        print(f"{path}: the standard's derivative answered {answered} (declared {provides})"
+              + (f": {list(instant)}" if answered else ""))
+        return 1
+    print(f"{path}: the standard's directional derivative at an instant "
+          + ("is zero" if provides else "is refused (feedthrough)"))
     failures = 0
     worst = 0.0
     for j in range(len(u)):

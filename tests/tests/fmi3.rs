@@ -170,7 +170,7 @@ fn an_fmi3_section_steps_as_its_fmi2_twin_and_gives_its_fields_as_arrays() {
     let again = steps(&mut three, &start, 60, 20);
     assert_eq!(first, again, "FMI 3.0 state restored");
 
-    // Directional derivatives through fmi3GetDirectionalDerivative: the
+    // Step derivatives through slender's extension (slenderGetStepDerivative): the
     // scalar outputs' rows as the FMI 2.0 twin gives them, the arrays' rows
     // refused (NaN: a master differences them if it couples one).
     let n_in = start.len();
@@ -212,7 +212,7 @@ fn scenes_of_fmi3_fmus_match_the_native_scenes_with_rollback() {
         // Aitken-accelerated, force/displacement coupling.
         "examples/b3_force_displacement.toml",
         // Three nonlinear sections, Newton on the cuts with the units'
-        // Jacobians through fmi3GetDirectionalDerivative.
+        // Jacobians through slender's extension slenderGetStepDerivative.
         "examples/structure_mooring.toml",
     ] {
         let dir = tempfile::tempdir().unwrap();

@@ -297,7 +297,9 @@ impl Layout {
                 max_output_derivative_order: 0,
                 can_get_and_set_fmu_state: caps.rollback,
                 can_serialize_fmu_state: caps.rollback,
-                provides_directional_derivative: caps.step_jacobian,
+                // The standard's derivatives at an instant: zero without
+                // feedthrough; the step Jacobian is the extension's.
+                provides_directional_derivative: !unit.has_feedthrough(),
             }),
             units,
             variables,

@@ -122,7 +122,7 @@ pub struct FmuUnit {
     slopes: Vec<f64>,
     orders: Vec<fmi2Integer>,
     outputs: Vec<f64>,
-    /// A seed of the directional derivative and its answer (scratch).
+    /// A seed of the step derivative and its answer (scratch).
     seed: Vec<f64>,
     column: Vec<f64>,
     /// Every FMU state handle handed out, freed with the instance.
@@ -153,18 +153,15 @@ impl FmuUnit {
         let three = model.fmi_version.starts_with('3');
         let binary = binary_for_this_platform(folder.path(), &cs.model_identifier, three, &label)?;
         let library = open_binary(&binary, &params.preload, &label)?;
-        let (states, derivatives) = (
-            cs.can_get_and_set_fmu_state,
-            cs.provides_directional_derivative,
-        );
+        let states = cs.can_get_and_set_fmu_state;
         let library_error = |message| LoadError::Library {
             fmu: label.clone(),
             message,
         };
         let calls = if three {
-            Calls::Three(Api3::bind(&library, states, derivatives).map_err(library_error)?)
+            Calls::Three(Api3::bind(&library, states).map_err(library_error)?)
         } else {
-            Calls::Two(Api::bind(&library, states, derivatives).map_err(library_error)?)
+            Calls::Two(Api::bind(&library, states).map_err(library_error)?)
         };
         let mut description = describe(&model, &label)?;
         let starts = start_values(&model, &params.start, &label)?;
@@ -183,6 +180,10 @@ impl FmuUnit {
                 (c, log, None)
             }
         };
+        // The step Jacobian where the FMU gives it (slender's extension), not
+        // the standard's derivative at an instant.
+        // SAFETY: a call on the live instance just made.
+        description.capabilities.step_jacobian = unsafe { calls.gives_step_derivative(component) };
         let mut unit = FmuUnit {
             label,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
@@ -218,7 +219,7 @@ impl FmuUnit {
         Ok(unit)
     }
 
-    /// The directional derivative of the output references `refs` (their
+    /// The step derivative (slender's extension) of the output references `refs` (their
     /// values from `first` in `column`) for the seed; the status.
     fn derivative(&mut self, refs: std::ops::Range<usize>, first: usize) -> fmi2Status {
         let size: usize = self.output_sizes[refs.clone()].iter().sum();
@@ -439,17 +440,17 @@ impl Unit for FmuUnit {
         out.copy_from_slice(&self.outputs);
     }
 
-    /// One directional derivative per input (seed: that input), every
-    /// output unknown; where the FMU refuses that, one output (or array) at
+    /// One step derivative (slender's extension) per input (seed: that
+    /// input), every output unknown; where the FMU refuses that, one output (or array) at
     /// a time, NaN for those it refuses (a master then differences the FMU).
     fn step_jacobian(
         &mut self,
         _inputs: Inputs<'_>,
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
-        if !self.calls.has_derivatives() {
+        if !self.description.capabilities.step_jacobian {
             return Err(UnitError::Unsupported(format!(
-                "FMU {}: no directional derivatives (the FMU does not provide them)",
+                "FMU {}: no step Jacobian (only an FMU made by slender gives one, through its extension slenderGetStepDerivative; the standard's directional derivative is the derivative at an instant)",
                 self.label
             )));
         }

@@ -41,17 +41,6 @@ type DoStep = unsafe extern "C" fn(
 ) -> Status;
 pub(super) type StateCall = unsafe extern "C" fn(Instance, *mut *mut c_void) -> Status;
 pub(super) type SetState = unsafe extern "C" fn(Instance, *mut c_void) -> Status;
-pub(super) type DirectionalDerivative = unsafe extern "C" fn(
-    Instance,
-    *const u32,
-    usize,
-    *const u32,
-    usize,
-    *const f64,
-    usize,
-    *mut f64,
-    usize,
-) -> Status;
 
 /// An FMI 3.0 FMU's entry points.
 pub(super) struct Api3 {
@@ -70,17 +59,14 @@ pub(super) struct Api3 {
     pub(super) get_fmu_state: Option<StateCall>,
     pub(super) set_fmu_state: Option<SetState>,
     pub(super) free_fmu_state: Option<StateCall>,
-    pub(super) get_directional_derivative: Option<DirectionalDerivative>,
+    /// slender's extension `slenderGetStepDerivative` (FMI 2.0's signature).
+    pub(super) step_derivative: Option<super::library::StepDerivative>,
 }
 
 impl Api3 {
-    /// Binds the entry points; the state calls when `states`, the directional
-    /// derivative when `derivatives` (as the model description declares them).
-    pub(super) fn bind(
-        library: &libloading::Library,
-        states: bool,
-        derivatives: bool,
-    ) -> Result<Api3, String> {
+    /// Binds the entry points; the state calls when `states` (as the model
+    /// description declares them), the step derivative where exported.
+    pub(super) fn bind(library: &libloading::Library, states: bool) -> Result<Api3, String> {
         Ok(Api3 {
             instantiate: symbol(library, "fmi3InstantiateCoSimulation")?,
             free_instance: symbol(library, "fmi3FreeInstance")?,
@@ -97,11 +83,7 @@ impl Api3 {
             get_fmu_state: optional(library, states, "fmi3GetFMUState")?,
             set_fmu_state: optional(library, states, "fmi3SetFMUState")?,
             free_fmu_state: optional(library, states, "fmi3FreeFMUState")?,
-            get_directional_derivative: optional(
-                library,
-                derivatives,
-                "fmi3GetDirectionalDerivative",
-            )?,
+            step_derivative: super::library::step_derivative(library),
         })
     }
 

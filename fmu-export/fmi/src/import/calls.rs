@@ -4,7 +4,7 @@
 //! arrays of the lengths given.
 
 use super::api3::Api3;
-use super::library::{Api, GetDirectionalDerivative};
+use super::library::{Api, StepDerivative};
 use crate::ffi::*;
 use std::ffi::{c_char, c_void};
 
@@ -33,11 +33,20 @@ impl Calls {
         }
     }
 
-    pub(super) fn has_derivatives(&self) -> bool {
+    /// slender's step-derivative extension, where the binary exports it.
+    fn step_derivative(&self) -> Option<StepDerivative> {
         match self {
-            Calls::Two(a) => a.get_directional_derivative.is_some(),
-            Calls::Three(a) => a.get_directional_derivative.is_some(),
+            Calls::Two(a) => a.step_derivative,
+            Calls::Three(a) => a.step_derivative,
         }
+    }
+
+    /// Whether instance `c` gives its step Jacobian (slender's extension,
+    /// asked of the instance: a slender FMU of a unit without one says no).
+    pub(super) unsafe fn gives_step_derivative(&self, c: *mut c_void) -> bool {
+        // SAFETY: a call on a live instance.
+        self.step_derivative()
+            .is_some_and(|d| unsafe { (d.gives)(c) } == FMI2_TRUE)
     }
 
     /// Real (Float64) values of `refs`, arrays flattened, into `values`.
@@ -254,8 +263,8 @@ impl Calls {
         }
     }
 
-    /// The derivative of the outputs `unknowns` (flattened into
-    /// `sensitivity`) along `seed` over the inputs `knowns`.
+    /// The step derivative (slender's extension) of the outputs `unknowns`
+    /// (flattened into `sensitivity`) along `seed` over the inputs `knowns`.
     pub(super) unsafe fn directional_derivative(
         &self,
         c: *mut c_void,
@@ -263,36 +272,17 @@ impl Calls {
         seed: &[f64],
         sensitivity: &mut [f64],
     ) -> fmi2Status {
-        unsafe {
-            match self {
-                Calls::Two(a) => {
-                    a.get_directional_derivative
-                        .map_or(ABSENT, |f: GetDirectionalDerivative| {
-                            f(
-                                c,
-                                unknowns.as_ptr(),
-                                unknowns.len(),
-                                knowns.as_ptr(),
-                                knowns.len(),
-                                seed.as_ptr(),
-                                sensitivity.as_mut_ptr(),
-                            )
-                        })
-                }
-                Calls::Three(a) => a.get_directional_derivative.map_or(ABSENT, |f| {
-                    f(
-                        c,
-                        unknowns.as_ptr(),
-                        unknowns.len(),
-                        knowns.as_ptr(),
-                        knowns.len(),
-                        seed.as_ptr(),
-                        seed.len(),
-                        sensitivity.as_mut_ptr(),
-                        sensitivity.len(),
-                    )
-                }),
-            }
-        }
+        // SAFETY: a call on a live instance; the arrays have the lengths passed.
+        self.step_derivative().map_or(ABSENT, |d| unsafe {
+            (d.get)(
+                c,
+                unknowns.as_ptr(),
+                unknowns.len(),
+                knowns.as_ptr(),
+                knowns.len(),
+                seed.as_ptr(),
+                sensitivity.as_mut_ptr(),
+            )
+        })
     }
 }

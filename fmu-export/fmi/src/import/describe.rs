@@ -74,9 +74,9 @@ pub(super) fn describe(
             } else {
                 HoldSupport::ZeroOrderOnly
             },
-            // The step Jacobian through the FMU's directional derivative,
-            // taken as with respect to the inputs at the end of the last step.
-            step_jacobian: cs.provides_directional_derivative,
+            // The step Jacobian only through slender's extension, set where
+            // the binary exports it (`FmuUnit::load`).
+            step_jacobian: false,
             step_correction: false,
         },
     })

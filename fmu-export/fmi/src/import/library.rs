@@ -135,6 +135,10 @@ pub(super) type GetDirectionalDerivative = unsafe extern "C" fn(
     *mut f64,
 ) -> fmi2Status;
 
+/// slender's extension `slenderGivesStepDerivative`: whether the instance's
+/// unit gives its step Jacobian (fmi2True) through `slenderGetStepDerivative`.
+pub(super) type GivesStepDerivative = unsafe extern "C" fn(fmi2Component) -> fmi2Boolean;
+
 /// The FMU's entry points, bound once.
 pub(super) struct Api {
     pub(super) instantiate: Instantiate,
@@ -154,7 +158,16 @@ pub(super) struct Api {
     pub(super) get_fmu_state: Option<StateCall>,
     pub(super) set_fmu_state: Option<SetState>,
     pub(super) free_fmu_state: Option<StateCall>,
-    pub(super) get_directional_derivative: Option<GetDirectionalDerivative>,
+    /// slender's extension (the step Jacobian), where the binary exports it.
+    pub(super) step_derivative: Option<StepDerivative>,
+}
+
+/// slender's step-derivative extension: whether an instance gives it, and
+/// the derivative itself (FMI 2.0's `GetDirectionalDerivative` signature).
+#[derive(Clone, Copy)]
+pub(super) struct StepDerivative {
+    pub(super) gives: GivesStepDerivative,
+    pub(super) get: GetDirectionalDerivative,
 }
 
 pub(super) fn symbol<T: Copy>(library: &libloading::Library, name: &str) -> Result<T, String> {
@@ -181,13 +194,9 @@ pub(super) fn optional<T: Copy>(
 }
 
 impl Api {
-    /// Binds the entry points; the state calls when `states`, the directional
-    /// derivative when `derivatives` (as the model description declares them).
-    pub(super) fn bind(
-        library: &libloading::Library,
-        states: bool,
-        derivatives: bool,
-    ) -> Result<Api, String> {
+    /// Binds the entry points; the state calls when `states` (as the model
+    /// description declares them), the step derivative where exported.
+    pub(super) fn bind(library: &libloading::Library, states: bool) -> Result<Api, String> {
         Ok(Api {
             instantiate: symbol(library, "fmi2Instantiate")?,
             free_instance: symbol(library, "fmi2FreeInstance")?,
@@ -206,13 +215,20 @@ impl Api {
             get_fmu_state: optional(library, states, "fmi2GetFMUstate")?,
             set_fmu_state: optional(library, states, "fmi2SetFMUstate")?,
             free_fmu_state: optional(library, states, "fmi2FreeFMUstate")?,
-            get_directional_derivative: optional(
-                library,
-                derivatives,
-                "fmi2GetDirectionalDerivative",
-            )?,
+            step_derivative: step_derivative(library),
         })
     }
+}
+
+/// slender's extension `slenderGetStepDerivative` where the binary exports
+/// it (an FMU made by slender): the step Jacobian. The standard's
+/// `GetDirectionalDerivative` is the derivative at an instant, which is not
+/// what an interface-Jacobian master needs over a step, so it is not used.
+pub(super) fn step_derivative(library: &libloading::Library) -> Option<StepDerivative> {
+    Some(StepDerivative {
+        gives: symbol(library, "slenderGivesStepDerivative").ok()?,
+        get: symbol(library, "slenderGetStepDerivative").ok()?,
+    })
 }
 
 /// Opens a shared library with every symbol bound now, so a missing one fails
