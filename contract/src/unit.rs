@@ -164,6 +164,11 @@ pub enum UnitError {
     /// The unit does not offer what was asked (e.g. rollback).
     #[error("not supported: {0}")]
     Unsupported(String),
+    /// The unit asked to end the simulation (an FMU's `terminateSimulation`,
+    /// FMI 2.0's `fmi2Terminated`): not a failure; the master's caller ends
+    /// the run at its last completed step.
+    #[error("asked to end the simulation: {0}")]
+    EndRequested(String),
     /// The driver was given the wrong number of input values.
     #[error("expected {expected} input values, got {got}")]
     InputCount {

@@ -1,6 +1,7 @@
-//! slender's FMI 3.0 importer on FMUs it did not write: two of the Modelica
+//! slender's FMI 3.0 importer on FMUs it did not write: three of the Modelica
 //! Association's Reference FMUs (`tests/reference-fmus/`), compiled here with
-//! the C compiler. StateSpace has array inputs and outputs sized by
+//! the C compiler. Stair counts seconds by time events and asks to end the
+//! simulation at 9 s (built as FMI 2.0 too, for `fmi2Terminated`). StateSpace has array inputs and outputs sized by
 //! structural parameters and a known solution (explicit Euler at 1 ms on
 //! dx/dt = x + u, y = x + u); Feedthrough has one variable of every FMI 3.0
 //! type, of which slender reads the Float64 ones as ports and sets the others
@@ -15,21 +16,22 @@ use std::process::Command;
 
 /// Compiles Reference FMU `model` into `dir/<model>.fmu` (FMI 3.0).
 fn build(model: &str, dir: &Path) -> PathBuf {
+    build_version(model, dir, 3)
+}
+
+/// Compiles Reference FMU `model` into `dir/<model>.fmu` for FMI `version`
+/// (2 or 3).
+fn build_version(model: &str, dir: &Path, version: u8) -> PathBuf {
     let source = root().join("tests/reference-fmus");
     let library = dir.join(format!("{model}.so"));
     let compiler = std::env::var("CC").unwrap_or_else(|_| "cc".into());
     let status = Command::new(&compiler)
-        .args([
-            "-shared",
-            "-fPIC",
-            "-O2",
-            "-DFMI_VERSION=3",
-            "-DDISABLE_PREFIX",
-        ])
+        .args(["-shared", "-fPIC", "-O2", "-DDISABLE_PREFIX"])
+        .arg(format!("-DFMI_VERSION={version}"))
         .arg(format!("-I{}", source.join("include").display()))
         .arg(format!("-I{}", source.join(model).display()))
         .arg(source.join(model).join("model.c"))
-        .arg(source.join("src/fmi3Functions.c"))
+        .arg(source.join(format!("src/fmi{version}Functions.c")))
         .arg(source.join("src/cosimulation.c"))
         .arg("-o")
         .arg(&library)
@@ -38,14 +40,19 @@ fn build(model: &str, dir: &Path) -> PathBuf {
         .unwrap_or_else(|e| panic!("{compiler}: {e} (a C compiler builds the Reference FMUs)"));
     assert!(status.success(), "compiling {model}");
     let fmu = dir.join(format!("{model}.fmu"));
+    let platform = if version == 2 {
+        "linux64"
+    } else {
+        "x86_64-linux"
+    };
     let mut zip = zip::ZipWriter::new(std::fs::File::create(&fmu).unwrap());
     let options = zip::write::SimpleFileOptions::default();
     for (name, file) in [
         (
             "modelDescription.xml".to_owned(),
-            source.join(model).join("FMI3.xml"),
+            source.join(model).join(format!("FMI{version}.xml")),
         ),
-        (format!("binaries/x86_64-linux/{model}.so"), library),
+        (format!("binaries/{platform}/{model}.so"), library),
     ] {
         zip.start_file(name, options).unwrap();
         zip.write_all(&std::fs::read(file).unwrap()).unwrap();
@@ -241,5 +248,51 @@ fn a_clocked_fmu_is_refused_naming_its_clocks() {
     assert!(
         error.contains("clocks") && error.contains("tick"),
         "{error}"
+    );
+}
+
+/// The Stair Reference FMU (an Int32 counter, no Float64 port) asks to end
+/// the simulation when its counter reaches 10, at t = 9 s: a run ends there,
+/// completed with a warning naming it (it failed before, where FMI masters
+/// end the simulation).
+#[test]
+fn a_reference_fmu_that_asks_to_end_the_simulation_ends_the_run_there() {
+    // FMI 3.0's terminateSimulation, and FMI 2.0's fmi2Discard with
+    // fmi2GetBooleanStatus(fmi2Terminated).
+    for version in [3, 2] {
+        let dir = tempfile::tempdir().unwrap();
+        stair_ends_the_run(&build_version("Stair", dir.path(), version), dir.path());
+    }
+}
+
+/// Stair at `fmu` asks to end at 9 s, alone and in a scene (in `dir`).
+fn stair_ends_the_run(fmu: &Path, dir: &Path) {
+    let mut unit = load(fmu, "");
+    assert!(unit.description().inputs.is_empty() && unit.description().outputs.is_empty());
+    unit.initialize(Time::ZERO).unwrap();
+    let h = Time::from_secs(0.2).unwrap();
+    let ended = (0..60).find_map(|n| unit.do_step(h * n, h).err().map(|e| (n, e)));
+    let (n, e) = ended.expect("Stair asks to end the simulation");
+    assert!(
+        matches!(e, slender_units::UnitError::EndRequested(_)),
+        "{e}"
+    );
+    assert_eq!(n, 44, "the step from 8.8 s reaches the event at 9 s");
+    let text = format!(
+        "[simulation]\nduration = 10.0\nstep = 0.2\n[master]\nscheme = \"jacobi\"\n[[units]]\nname = \"stair\"\nkind = \"fmu\"\nparameters = {{ file = {:?} }}\n",
+        fmu.display().to_string()
+    );
+    let scene = slender_scene::Scene::parse(&dir.join("stair.toml"), text)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let run = slender_tests::run(&scene);
+    assert!(run.error.is_none(), "{:?}", run.error);
+    let last = *run.time.last().unwrap();
+    assert!((last - 8.8).abs() < 1e-9, "the run ends at {last} s");
+    assert!(
+        run.warnings
+            .iter()
+            .any(|w| w.contains("unit `stair` asked to end the simulation")),
+        "{:?}",
+        run.warnings
     );
 }

@@ -425,8 +425,8 @@ impl Unit for FmuUnit {
         };
         self.check_with(status, call)?;
         if terminate {
-            return Err(UnitError::Numerical(format!(
-                "FMU {}: {} asked to end the simulation{}",
+            return Err(UnitError::EndRequested(format!(
+                "FMU {} in {}{}",
                 self.label,
                 call(),
                 log_tail(&self.log)

@@ -153,6 +153,51 @@ pub fn interpolate(time: &[f64], values: &[f64], t: f64) -> f64 {
     values[i - 1] + (values[i] - values[i - 1]) * (t - t0) / (t1 - t0)
 }
 
+/// The scene's indicators with references, measured on the recording; one
+/// whose window (`from`) holds less than two samples (a run shortened by
+/// `--duration`) is left out with a warning, not reported as NaN.
+pub fn of_scene(
+    scene: &slender_scene::Scene,
+    recorder: &crate::record::Recorder,
+    warnings: &mut Vec<String>,
+) -> Vec<Indicator> {
+    let end = recorder.time.last().copied().unwrap_or(f64::NAN);
+    scene
+        .spec
+        .output
+        .indicators
+        .iter()
+        .filter(|spec| !spec.reference.is_empty())
+        .filter(|spec| {
+            let window = window(&recorder.time, &[], spec.from).0;
+            if window.len() < 2 && !recorder.time.is_empty() {
+                warnings.push(format!(
+                    "output.indicators `{}`: from = {} s leaves less than two recorded samples before the recording's end ({end} s): not measured",
+                    spec.name,
+                    spec.from.unwrap_or(0.0)
+                ));
+            }
+            window.len() >= 2
+        })
+        .filter_map(|spec| {
+            let cols = |names: &[String]| {
+                names
+                    .iter()
+                    .map(|n| recorder.column(n))
+                    .collect::<Option<Vec<_>>>()
+            };
+            let x = spec.combine.apply(cols(&spec.signals)?);
+            let r = spec.combine.apply(cols(&spec.reference)?);
+            let (x, r): (Vec<&[f64]>, Vec<&[f64]>) =
+                (x.iter().map(|c| &**c).collect(), r.iter().map(|c| &**c).collect());
+            let named = (spec.name.as_str(), spec.signals.as_slice());
+            let (time, x) = window(&recorder.time, &x, spec.from);
+            let (_, r) = window(&recorder.time, &r, spec.from);
+            Some(measure(named, spec.norm, time, &x, &r))
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

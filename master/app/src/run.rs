@@ -129,7 +129,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunResult, RunEr
         (&mut outcome, &mut files),
         &mut warnings,
     );
-    let indicators = indicators(scene, &recorder, &mut warnings);
+    let indicators = crate::indicators::of_scene(scene, &recorder, &mut warnings);
     let summary = Summary {
         scene: scene.path.display().to_string(),
         overrides: scene.overrides.clone(),
@@ -200,51 +200,6 @@ fn status_of(outcome: &Result<(), String>) -> &'static str {
         Err(_) if crate::interrupt::requested() => "interrupted",
         Err(_) => "failed",
     }
-}
-
-/// The scene's indicators with references, measured on the recording; one
-/// whose window (`from`) holds less than two samples (a run shortened by
-/// `--duration`) is left out with a warning, not reported as NaN.
-fn indicators(
-    scene: &Scene,
-    recorder: &Recorder,
-    warnings: &mut Vec<String>,
-) -> Vec<crate::indicators::Indicator> {
-    let end = recorder.time.last().copied().unwrap_or(f64::NAN);
-    scene
-        .spec
-        .output
-        .indicators
-        .iter()
-        .filter(|spec| !spec.reference.is_empty())
-        .filter(|spec| {
-            let window = crate::indicators::window(&recorder.time, &[], spec.from).0;
-            if window.len() < 2 && !recorder.time.is_empty() {
-                warnings.push(format!(
-                    "output.indicators `{}`: from = {} s leaves less than two recorded samples before the recording's end ({end} s): not measured",
-                    spec.name,
-                    spec.from.unwrap_or(0.0)
-                ));
-            }
-            window.len() >= 2
-        })
-        .filter_map(|spec| {
-            let cols = |names: &[String]| {
-                names
-                    .iter()
-                    .map(|n| recorder.column(n))
-                    .collect::<Option<Vec<_>>>()
-            };
-            let x = spec.combine.apply(cols(&spec.signals)?);
-            let r = spec.combine.apply(cols(&spec.reference)?);
-            let (x, r): (Vec<&[f64]>, Vec<&[f64]>) =
-                (x.iter().map(|c| &**c).collect(), r.iter().map(|c| &**c).collect());
-            let named = (spec.name.as_str(), spec.signals.as_slice());
-            let (time, x) = crate::indicators::window(&recorder.time, &x, spec.from);
-            let (_, r) = crate::indicators::window(&recorder.time, &r, spec.from);
-            Some(crate::indicators::measure(named, spec.norm, time, &x, &r))
-        })
-        .collect()
 }
 
 /// Why a run could not be set up or stopped early: the scene does not build, the
@@ -402,7 +357,15 @@ fn step_all(
         if crate::interrupt::requested() {
             return Err(RunError::Interrupted(master.time().as_secs()));
         }
-        master.step()?;
+        if let Err(e) = master.step() {
+            match ended_by_unit(&e) {
+                Some(warning) => {
+                    warnings.push(warning);
+                    break;
+                }
+                None => return Err(e.into()),
+            }
+        }
         recorder.observe(master)?;
         let t = master.time().as_secs();
         watch.observe(master, t, warnings)?;
@@ -418,6 +381,23 @@ fn step_all(
         bar.finish_and_clear();
     }
     Ok(())
+}
+
+/// The warning for a unit that asked to end the simulation (an FMU's
+/// `terminateSimulation`): not a failure, the run ends at its last completed
+/// step, as FMI masters end it.
+fn ended_by_unit(e: &MasterError) -> Option<String> {
+    match e {
+        MasterError::Unit {
+            unit,
+            time,
+            source: slender_units::UnitError::EndRequested(why),
+            ..
+        } => Some(format!(
+            "unit `{unit}` asked to end the simulation in the step from t = {time} s ({why}): the run ends there, at its last completed step"
+        )),
+        _ => None,
+    }
 }
 
 fn update_progress(bar: &mut Option<ProgressBar>, elapsed: Duration, done: u64, total: u64) {

@@ -4,7 +4,7 @@
 //! arrays of the lengths given.
 
 use super::api3::Api3;
-use super::library::{Api, StepDerivative};
+use super::library::{Api, FMI2_TERMINATED, StepDerivative};
 use crate::ffi::*;
 use std::ffi::{c_char, c_void};
 
@@ -199,7 +199,8 @@ impl Calls {
     }
 
     /// One step; the status and whether the FMU asked to end the simulation
-    /// (FMI 3.0's `terminateSimulation`).
+    /// (FMI 3.0's `terminateSimulation`; FMI 2.0's `fmi2Discard` with
+    /// `fmi2GetBooleanStatus(fmi2Terminated)` true).
     pub(super) unsafe fn do_step(
         &self,
         c: *mut c_void,
@@ -210,7 +211,14 @@ impl Calls {
         match self {
             Calls::Two(a) => {
                 let no_prior = if no_prior { FMI2_TRUE } else { FMI2_FALSE };
-                (unsafe { (a.do_step)(c, t, h, no_prior) }, false)
+                let status = unsafe { (a.do_step)(c, t, h, no_prior) };
+                let mut terminated = FMI2_FALSE;
+                let asks_to_end = status == FMI2_DISCARD
+                    && a.get_boolean_status.is_some_and(|f| {
+                        let asked = unsafe { f(c, FMI2_TERMINATED, &mut terminated) };
+                        asked == FMI2_OK && terminated == FMI2_TRUE
+                    });
+                (if asks_to_end { FMI2_OK } else { status }, asks_to_end)
             }
             Calls::Three(a) => {
                 let (mut event, mut terminate, mut early, mut last) = (false, false, false, t);

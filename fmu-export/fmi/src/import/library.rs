@@ -135,6 +135,14 @@ pub(super) type GetDirectionalDerivative = unsafe extern "C" fn(
     *mut f64,
 ) -> fmi2Status;
 
+/// `fmi2GetBooleanStatus`: after an `fmi2DoStep` that returned `fmi2Discard`,
+/// whether the slave asks to end the simulation (`fmi2Terminated`).
+pub(super) type GetBooleanStatus =
+    unsafe extern "C" fn(fmi2Component, i32, *mut fmi2Boolean) -> fmi2Status;
+
+/// FMI 2.0's `fmi2StatusKind` `fmi2Terminated`.
+pub(super) const FMI2_TERMINATED: i32 = 3;
+
 /// slender's extension `slenderGivesStepDerivative`: whether the instance's
 /// unit gives its step Jacobian (fmi2True) through `slenderGetStepDerivative`.
 pub(super) type GivesStepDerivative = unsafe extern "C" fn(fmi2Component) -> fmi2Boolean;
@@ -155,6 +163,8 @@ pub(super) struct Api {
     pub(super) set_string: SetString,
     pub(super) set_real_input_derivatives: SetDerivatives,
     pub(super) do_step: DoStep,
+    /// `fmi2GetBooleanStatus` (co-simulation), where exported.
+    pub(super) get_boolean_status: Option<GetBooleanStatus>,
     pub(super) get_fmu_state: Option<StateCall>,
     pub(super) set_fmu_state: Option<SetState>,
     pub(super) free_fmu_state: Option<StateCall>,
@@ -212,6 +222,7 @@ impl Api {
             set_string: symbol(library, "fmi2SetString")?,
             set_real_input_derivatives: symbol(library, "fmi2SetRealInputDerivatives")?,
             do_step: symbol(library, "fmi2DoStep")?,
+            get_boolean_status: symbol(library, "fmi2GetBooleanStatus").ok(),
             get_fmu_state: optional(library, states, "fmi2GetFMUstate")?,
             set_fmu_state: optional(library, states, "fmi2SetFMUstate")?,
             free_fmu_state: optional(library, states, "fmi2FreeFMUstate")?,
