@@ -229,12 +229,8 @@ impl FmuUnit {
         );
         // SAFETY: a call on a live instance; the arrays have the lengths passed.
         unsafe {
-            self.calls.directional_derivative(
-                self.component,
-                (refs, &self.input_refs),
-                &self.seed,
-                column,
-            )
+            self.calls
+                .step_derivative(self.component, (refs, &self.input_refs), &self.seed, column)
         }
     }
 

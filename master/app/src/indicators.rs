@@ -162,40 +162,35 @@ pub fn of_scene(
     warnings: &mut Vec<String>,
 ) -> Vec<Indicator> {
     let end = recorder.time.last().copied().unwrap_or(f64::NAN);
-    scene
-        .spec
-        .output
-        .indicators
-        .iter()
-        .filter(|spec| !spec.reference.is_empty())
-        .filter(|spec| {
-            let window = window(&recorder.time, &[], spec.from).0;
-            if window.len() < 2 && !recorder.time.is_empty() {
+    let columns = |names: &[String]| {
+        (names.iter())
+            .map(|n| recorder.column(n))
+            .collect::<Option<Vec<_>>>()
+    };
+    let mut measured = Vec::new();
+    for spec in (scene.spec.output.indicators.iter()).filter(|s| !s.reference.is_empty()) {
+        if window(&recorder.time, &[], spec.from).0.len() < 2 {
+            if !recorder.time.is_empty() {
                 warnings.push(format!(
                     "output.indicators `{}`: from = {} s leaves less than two recorded samples before the recording's end ({end} s): not measured",
                     spec.name,
                     spec.from.unwrap_or(0.0)
                 ));
             }
-            window.len() >= 2
-        })
-        .filter_map(|spec| {
-            let cols = |names: &[String]| {
-                names
-                    .iter()
-                    .map(|n| recorder.column(n))
-                    .collect::<Option<Vec<_>>>()
-            };
-            let x = spec.combine.apply(cols(&spec.signals)?);
-            let r = spec.combine.apply(cols(&spec.reference)?);
-            let (x, r): (Vec<&[f64]>, Vec<&[f64]>) =
-                (x.iter().map(|c| &**c).collect(), r.iter().map(|c| &**c).collect());
-            let named = (spec.name.as_str(), spec.signals.as_slice());
-            let (time, x) = window(&recorder.time, &x, spec.from);
-            let (_, r) = window(&recorder.time, &r, spec.from);
-            Some(measure(named, spec.norm, time, &x, &r))
-        })
-        .collect()
+            continue;
+        }
+        let (Some(x), Some(r)) = (columns(&spec.signals), columns(&spec.reference)) else {
+            continue;
+        };
+        let (x, r) = (spec.combine.apply(x), spec.combine.apply(r));
+        let x: Vec<&[f64]> = x.iter().map(|c| &**c).collect();
+        let r: Vec<&[f64]> = r.iter().map(|c| &**c).collect();
+        let (time, x) = window(&recorder.time, &x, spec.from);
+        let (_, r) = window(&recorder.time, &r, spec.from);
+        let named = (spec.name.as_str(), spec.signals.as_slice());
+        measured.push(measure(named, spec.norm, time, &x, &r));
+    }
+    measured
 }
 
 #[cfg(test)]

@@ -34,7 +34,7 @@ impl Calls {
     }
 
     /// slender's step-derivative extension, where the binary exports it.
-    fn step_derivative(&self) -> Option<StepDerivative> {
+    fn extension(&self) -> Option<StepDerivative> {
         match self {
             Calls::Two(a) => a.step_derivative,
             Calls::Three(a) => a.step_derivative,
@@ -45,7 +45,7 @@ impl Calls {
     /// asked of the instance: a slender FMU of a unit without one says no).
     pub(super) unsafe fn gives_step_derivative(&self, c: *mut c_void) -> bool {
         // SAFETY: a call on a live instance.
-        self.step_derivative()
+        self.extension()
             .is_some_and(|d| unsafe { (d.gives)(c) } == FMI2_TRUE)
     }
 
@@ -273,7 +273,7 @@ impl Calls {
 
     /// The step derivative (slender's extension) of the outputs `unknowns`
     /// (flattened into `sensitivity`) along `seed` over the inputs `knowns`.
-    pub(super) unsafe fn directional_derivative(
+    pub(super) unsafe fn step_derivative(
         &self,
         c: *mut c_void,
         (unknowns, knowns): (&[u32], &[u32]),
@@ -281,7 +281,7 @@ impl Calls {
         sensitivity: &mut [f64],
     ) -> fmi2Status {
         // SAFETY: a call on a live instance; the arrays have the lengths passed.
-        self.step_derivative().map_or(ABSENT, |d| unsafe {
+        self.extension().map_or(ABSENT, |d| unsafe {
             (d.get)(
                 c,
                 unknowns.as_ptr(),
