@@ -68,6 +68,16 @@ fn cautions_follow_the_loo_error(report: &slender_app::uq::UqReport) {
     );
 }
 
+/// The runs' every value as bits (NaN compares equal to itself).
+fn bits(runs: &[Run]) -> Vec<u64> {
+    runs.iter()
+        .flat_map(|r| {
+            let onset = r.unstable_from.unwrap_or(f64::NAN);
+            (r.inputs.iter().chain(&r.outputs).map(|v| v.to_bits())).chain([onset.to_bits()])
+        })
+        .collect()
+}
+
 #[test]
 fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     let dir = tempfile::tempdir().unwrap();
@@ -102,18 +112,13 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
     cautions_follow_the_loo_error(&second);
     // One job: the same runs and the same expansions.
     let (again, runs1) = run_uq(&path, &plan(Some(32), 1), &[], |_, _, _| {}).unwrap();
-    let bits = |r: &[Run]| -> Vec<u64> {
-        r.iter()
-            .flat_map(|(x, y)| x.iter().chain(y).map(|v| v.to_bits()))
-            .collect()
-    };
     assert_eq!(bits(&runs1), bits(&more));
     assert_eq!(
         serde_json::to_string(&again.unwrap()).unwrap(),
         serde_json::to_string(&second).unwrap()
     );
     // Three shards, merged: the same runs and the same expansions.
-    let mut merged: Vec<Run> = vec![(Vec::new(), Vec::new()); 32];
+    let mut merged: Vec<Run> = vec![Run::default(); 32];
     for k in 1..=3 {
         let shard = UqPlan {
             max_runs: slender_app::DEFAULT_MAX_RUNS,
@@ -125,7 +130,7 @@ fn a_doubled_design_keeps_its_runs_and_jobs_do_not_change_the_results() {
         for (i, r) in rows
             .into_iter()
             .enumerate()
-            .filter(|(_, r)| !r.0.is_empty())
+            .filter(|(_, r)| !r.inputs.is_empty())
         {
             assert_eq!(i % 3, k - 1);
             merged[i] = r;
@@ -194,19 +199,101 @@ fn failed_runs_are_left_out_and_reported_with_their_reason() {
     let (report, runs) = run_uq(&path, &plan(None, 2), &[], |_, _, _| {}).unwrap();
     let report = report.unwrap();
     let failed: Vec<usize> = (0..runs.len())
-        .filter(|&k| runs[k].1.iter().any(|v| v.is_nan()))
+        .filter(|&k| runs[k].outputs.iter().any(|v| v.is_nan()))
         .collect();
     assert!(
         !failed.is_empty() && failed.len() < runs.len(),
         "{failed:?}"
     );
     assert_eq!(report.failed_runs, failed.len());
-    let listed: Vec<usize> = report.failures.iter().map(|f| f.0).collect();
+    let listed: Vec<usize> = report.failures.iter().map(|f| f.index).collect();
     assert_eq!(listed, failed);
-    for (k, why) in &report.failures {
-        assert!(runs[*k].0[7] >= 1.0, "run {k}: {why}");
-        assert!(why.contains("loss_probability"), "{why}");
+    for f in &report.failures {
+        assert!(
+            runs[f.index].inputs[7] >= 1.0,
+            "run {}: {}",
+            f.index,
+            f.reason
+        );
+        assert_eq!(f.inputs, runs[f.index].inputs);
+        assert!(f.reason.contains("loss_probability"), "{}", f.reason);
     }
+    // Refused inputs are failures, not an unstable loop; uq.md names each
+    // failed point's inputs.
+    assert!(report.stability.is_none() && report.conditional.is_empty());
+    let markdown = slender_app::uq::report::to_markdown(&report);
+    let first = &report.failures[0];
+    assert!(
+        markdown.contains(&format!("run {} (theta1 = ", first.index)),
+        "{markdown}"
+    );
+}
+
+/// Issue 49 #2: with delays up to 80 ms on both sides the hybrid loop goes
+/// unstable at some points (the physical part's velocity grows until the lower
+/// cable stops). Those points are detected as unstable, not failures; the
+/// probability of instability comes with its interval, the delays rank first
+/// among the inputs that drive it, and the expansions count the unstable
+/// points as failures of fidelity (phi = 0), beside the expansions over the
+/// stable points alone.
+#[test]
+fn unstable_loops_are_counted_and_their_drivers_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let delays = "distribution = { kind = \"uniform\", low = 0.0, high = 0.05 }";
+    let text = std::fs::read_to_string(scene(dir.path(), 32, None)).unwrap();
+    assert_eq!(text.matches(delays).count(), 2);
+    let wide = "distribution = { kind = \"uniform\", low = 0.0, high = 0.08 }";
+    let path = dir.path().join("unstable.toml");
+    std::fs::write(&path, text.replace(delays, wide)).unwrap();
+    let plan = UqPlan {
+        duration: Some(30.0),
+        ..plan(None, 2)
+    };
+    let (report, runs) = run_uq(&path, &plan, &[], |_, _, _| {}).unwrap();
+    let report = report.unwrap();
+    let unstable: Vec<&Run> = runs.iter().filter(|r| r.unstable()).collect();
+    assert!(
+        unstable.len() >= 3 && unstable.len() < 29,
+        "{} unstable",
+        unstable.len()
+    );
+    assert_eq!(report.failed_runs, 0, "{:?}", report.failures);
+    let s = report.stability.as_ref().unwrap();
+    assert_eq!(
+        (s.unstable_runs, s.stable_runs),
+        (unstable.len(), 32 - unstable.len())
+    );
+    assert!(s.interval.0 < s.probability && s.probability < s.interval.1);
+    for r in &unstable {
+        let t = r.unstable_from.unwrap();
+        assert!(t > 0.0 && t < 30.0, "{t}");
+    }
+    // The round-trip delay decides: theta7 (sensor) and theta10 (actuator).
+    let first = &s.drivers[0];
+    assert!(
+        ["theta7", "theta10"].contains(&first.input.as_str()),
+        "{:?}",
+        s.drivers
+    );
+    assert!(first.mean_unstable > first.mean_stable && first.p_value < 0.05);
+    // Counted as failures of fidelity the mean falls below the stable runs'.
+    assert_eq!(report.conditional.len(), report.outputs.len());
+    for (counted, stable) in report.outputs.iter().zip(&report.conditional) {
+        assert!(counted.mean < stable.mean, "{counted:?} {stable:?}");
+    }
+    let markdown = slender_app::uq::report::to_markdown(&report);
+    for says in [
+        "## Stability",
+        "probability of instability",
+        "conditional on stability",
+    ] {
+        assert!(markdown.contains(says), "{markdown}");
+    }
+    // A resumed study keeps the unstable runs as they were.
+    let fresh = Mutex::new(0);
+    let (_, again) = run_uq(&path, &plan, &runs, |_, _, _| *fresh.lock().unwrap() += 1).unwrap();
+    assert_eq!(*fresh.lock().unwrap(), 0);
+    assert_eq!(again.len(), runs.len());
 }
 
 #[test]
@@ -218,6 +305,14 @@ fn bad_uncertainty_tables_are_refused_with_the_key() {
             "phi3",
         ),
         (("sd = 0.015 } },", "sd = -1.0 } },"), "theta1"),
+        (
+            ("samples = 16", "samples = 16\nunstable_growth = 0.5"),
+            "unstable_growth",
+        ),
+        (
+            ("samples = 16", "samples = 16\nunstable_fidelity = nan"),
+            "unstable_fidelity",
+        ),
         (
             (
                 "units.sensor.parameters.scale.0",

@@ -10,11 +10,15 @@
 //!   and the mean, variance and first-order and total Sobol' indices from the
 //!   coefficients;
 //! - [`distribution`]: an expansion's output distribution (quantiles, density)
-//!   from the surrogate on a large Sobol' sample.
+//!   from the surrogate on a large Sobol' sample;
+//! - [`filtering`]: which inputs drive an outcome that splits the runs (Monte
+//!   Carlo filtering by Kolmogorov-Smirnov distances) and the outcome's
+//!   probability with its Wilson interval.
 pub mod basis;
 pub mod bootstrap;
 pub mod design;
 pub mod distribution;
+pub mod filtering;
 pub mod marginal;
 pub mod pce;
 

@@ -63,6 +63,20 @@ pub struct UncertaintySpec {
     pub scale: String,
     /// The uncertain inputs, each a distribution given to a scene key.
     pub inputs: Vec<UncertainInput>,
+    /// A run counts as unstable when an output's error grows past this many
+    /// times its reference's peak, or a unit stops it after a recorded signal
+    /// grew past this many times its median window peak (default 10): the
+    /// loop left the physics.
+    #[serde(default = "unstable_growth")]
+    pub unstable_growth: f64,
+    /// The phi an unstable run counts as in the expansions (default 0: an
+    /// error as large as the signal, no correct digit).
+    #[serde(default)]
+    pub unstable_fidelity: f64,
+}
+
+fn unstable_growth() -> f64 {
+    10.0
 }
 
 /// `uncertainty.design`: how the points of a study are placed in [0, 1)^d

@@ -20,6 +20,21 @@ pub(crate) fn problem(scene: &SceneSpec) -> Option<(String, String)> {
             "expected at least one input and one output".into(),
         ));
     }
+    if !(spec.unstable_growth.is_finite() && spec.unstable_growth > 1.0) {
+        return Some((
+            key("unstable_growth"),
+            format!(
+                "{}: expected a finite number above 1 (an error that many times its reference's peak marks an unstable loop)",
+                spec.unstable_growth
+            ),
+        ));
+    }
+    if !spec.unstable_fidelity.is_finite() {
+        return Some((
+            key("unstable_fidelity"),
+            format!("{}: expected a finite phi", spec.unstable_fidelity),
+        ));
+    }
     for (i, name) in spec.outputs.iter().enumerate() {
         if !scene.output.indicators.iter().any(|ind| &ind.name == name) {
             return Some((

@@ -62,7 +62,7 @@ pub(super) fn uq(
             let (_, runs) = run_appending((path, &inputs), &plan, &csv, &header, earlier)?;
             println!(
                 "shard {k} of {n}: {} runs",
-                runs.iter().filter(|r| !r.0.is_empty()).count()
+                runs.iter().filter(|r| !r.inputs.is_empty()).count()
             );
             Ok(())
         }
@@ -74,7 +74,7 @@ pub(super) fn uq(
                 earlier = merged(&dir, &read)?;
                 println!(
                     "merging: {} runs from the shards",
-                    earlier.iter().filter(|r| !r.0.is_empty()).count()
+                    earlier.iter().filter(|r| !r.inputs.is_empty()).count()
                 );
             }
             let (report, runs) = run_appending((path, &inputs), plan, &csv, &header, earlier)?;
@@ -160,7 +160,7 @@ fn run_appending(
 ) -> Result<(Option<uq::UqReport>, Vec<Run>), CliError> {
     let rows_text = |runs: &[Run]| -> String {
         (runs.iter().enumerate())
-            .filter(|(_, r)| !r.0.is_empty())
+            .filter(|(_, r)| !r.inputs.is_empty())
             .map(|(k, r)| uq::report::row(k, r))
             .collect()
     };
@@ -171,13 +171,12 @@ fn run_appending(
     let (report, runs) = uq::run_checked(path, plan, inputs, &earlier, |k, run, progress| {
         new_runs.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         log.append(&uq::report::row(k, run));
-        let outputs: Vec<String> = run.1.iter().map(|v| format!("{v:.4e}")).collect();
-        println!("{progress} design point {k}: {}", outputs.join(", "));
+        println!("{progress} design point {k}: {}", uq::report::outcome(run));
     })
     .map_err(CliError::of)?;
     // Only the earlier runs at this design's points count (a design of
     // another size may place its points elsewhere).
-    let made = runs.iter().filter(|r| !r.0.is_empty()).count();
+    let made = runs.iter().filter(|r| !r.inputs.is_empty()).count();
     let reused = made.saturating_sub(new_runs.into_inner());
     if reused > 0 {
         println!("reused {reused} runs already in {}", csv.display());
@@ -191,11 +190,11 @@ fn merged(dir: &Path, read: &dyn Fn(&Path) -> Vec<Run>) -> Result<Vec<Run>, CliE
     let mut all: Vec<Run> = Vec::new();
     for folder in super::cluster::shard_folders(dir, "uq")? {
         for (k, run) in read(&folder.join("runs.csv")).into_iter().enumerate() {
-            if run.0.is_empty() {
+            if run.inputs.is_empty() {
                 continue;
             }
             if all.len() <= k {
-                all.resize(k + 1, (Vec::new(), Vec::new()));
+                all.resize(k + 1, Run::default());
             }
             all[k] = run;
         }

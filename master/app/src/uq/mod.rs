@@ -8,6 +8,7 @@
 
 pub mod plot;
 pub mod report;
+pub mod stability;
 
 use crate::run::{RunOptions, run_scene};
 use crate::study::setting::Setting;
@@ -80,16 +81,66 @@ pub struct UqReport {
     pub design: String,
     /// The inputs' names.
     pub inputs: Vec<String>,
-    /// How many runs failed.
+    /// How many runs failed for another reason than an unstable loop (left
+    /// out of every expansion).
     pub failed_runs: usize,
-    /// Each failed run's design index and reason.
-    pub failures: Vec<(usize, String)>,
-    /// One result per output.
+    /// Each failed run: where and why.
+    pub failures: Vec<Failure>,
+    /// The runs whose loop went unstable and the inputs that drive it;
+    /// `None` when every run was stable.
+    pub stability: Option<stability::Stability>,
+    /// One result per output, unstable runs counted at
+    /// `uncertainty.unstable_fidelity` (the study's answer).
     pub outputs: Vec<OutputResult>,
+    /// One result per output over the stable runs only (conditional on
+    /// stability); empty when every run was stable.
+    pub conditional: Vec<OutputResult>,
 }
 
-/// One run: its inputs and its outputs' phi (NaN when it failed).
-pub type Run = (Vec<f64>, Vec<f64>);
+/// A run that failed for another reason than an unstable loop.
+#[derive(Clone, Debug, Serialize)]
+pub struct Failure {
+    /// Its design index.
+    pub index: usize,
+    /// Its inputs' values.
+    pub inputs: Vec<f64>,
+    /// Why it failed.
+    pub reason: String,
+}
+
+/// One design point's run.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Run {
+    /// The inputs' values (empty: not run).
+    pub inputs: Vec<f64>,
+    /// The outputs' phi as measured (NaN when the run failed before it
+    /// could be measured).
+    pub outputs: Vec<f64>,
+    /// When its loop's growth set in (s), if it went unstable.
+    pub unstable_from: Option<f64>,
+}
+
+impl Run {
+    /// Whether the loop went unstable.
+    pub fn unstable(&self) -> bool {
+        self.unstable_from.is_some()
+    }
+
+    /// Whether it ran on a stable loop and every output was measured.
+    pub fn stable(&self) -> bool {
+        !self.unstable() && self.outputs.iter().all(|v| v.is_finite())
+    }
+
+    /// Output `k` as an expansion counts it: the measured phi of a stable
+    /// run, `unstable` for an unstable one, `None` for one that failed.
+    pub fn counted(&self, k: usize, unstable: f64) -> Option<f64> {
+        if self.unstable() {
+            Some(unstable)
+        } else {
+            self.stable().then(|| self.outputs[k])
+        }
+    }
+}
 
 /// A study's scene checked before its first run: the table it varies, its
 /// `[uncertainty]` and each input's setting.
@@ -167,7 +218,7 @@ pub fn run_checked(
     let tasks: Vec<usize> = (0..order.len()).collect();
     // An earlier run of the same point is kept; a failed one is tried again.
     let kept = |k: usize| {
-        let same = |r: &&Run| r.0 == points[k] && r.1.iter().all(|v| v.is_finite());
+        let same = |r: &&Run| r.inputs == points[k] && (r.stable() || r.unstable());
         earlier.get(k).filter(same)
     };
     let counter =
@@ -176,20 +227,31 @@ pub fn run_checked(
         if let Some(run) = kept(k) {
             return (run.clone(), None);
         }
-        let outcome = run_one(draft, settings, &points[k], plan.duration, &spec.outputs);
-        let (values, why) = match outcome {
-            Ok(values) => (values, None),
-            Err(why) => (vec![f64::NAN; spec.outputs.len()], Some((k, why))),
+        let outcome = run_one(draft, settings, &points[k], plan.duration, spec);
+        let ((outputs, unstable_from), why) = match outcome {
+            Ok(measured) => (measured, None),
+            Err(reason) => {
+                let failure = Failure {
+                    index: k,
+                    inputs: points[k].clone(),
+                    reason,
+                };
+                ((vec![f64::NAN; spec.outputs.len()], None), Some(failure))
+            }
         };
-        let run = (points[k].clone(), values);
+        let run = Run {
+            inputs: points[k].clone(),
+            outputs,
+            unstable_from,
+        };
         // One writer at a time: the caller appends the row to its file.
         let _turn = fresh.lock().unwrap_or_else(|e| e.into_inner());
         done(k, &run, &counter.tick(true));
         (run, why)
     });
-    let failures: Vec<(usize, String)> = outcomes.iter().filter_map(|o| o.1.clone()).collect();
+    let failures: Vec<Failure> = outcomes.iter().filter_map(|o| o.1.clone()).collect();
     let runs: Vec<Run> = outcomes.into_iter().map(|o| o.0).collect();
-    crate::interrupt::stop_if_requested(&runs, |r| r.1.iter().all(|v| v.is_finite()))?;
+    crate::interrupt::stop_if_requested(&runs, |r| r.stable() || r.unstable())?;
     if plan.shard.is_some() {
         let shard: Vec<Run> = order.iter().zip(runs).map(|(_, r)| r).collect();
         return Ok((None, shard_rows(&order, shard)));
@@ -216,7 +278,7 @@ fn points_of(spec: &UncertaintySpec, samples: usize) -> Result<Vec<Vec<f64>>, St
 
 /// A shard's runs at their design indices (the others empty).
 fn shard_rows(order: &[usize], runs: Vec<Run>) -> Vec<Run> {
-    let mut all = vec![(Vec::new(), Vec::new()); order.last().map_or(0, |k| k + 1)];
+    let mut all = vec![Run::default(); order.last().map_or(0, |k| k + 1)];
     for (&k, run) in order.iter().zip(runs) {
         all[k] = run;
     }
@@ -291,14 +353,17 @@ fn check(scene: &Scene, spec: &UncertaintySpec) -> Result<Vec<Setting>, String> 
         .collect()
 }
 
-/// One run's outputs' phi; the error says why it cannot run or failed.
+/// One run's outputs' phi as measured and, when its loop went unstable
+/// (grown past `unstable_growth`: [`stability::divergence`], whether the
+/// run stopped or not), when the growth set in (s); the
+/// error says why it cannot run or failed for another reason.
 fn run_one(
     draft: &slender_scene::Draft,
     settings: &[Setting],
     point: &[f64],
     duration: Option<f64>,
-    outputs: &[String],
-) -> Result<Vec<f64>, String> {
+    spec: &UncertaintySpec,
+) -> Result<(Vec<f64>, Option<f64>), String> {
     let mut draft = draft.clone();
     let at: Vec<String> = (settings.iter().zip(point))
         .map(|(s, x)| format!("{s}={x}"))
@@ -316,19 +381,21 @@ fn run_one(
         realtime: false,
     };
     let r = run_scene(&scene, &options).map_err(|e| e.to_string())?;
-    if let Some(e) = r.summary.error {
+    let stopped = r.summary.error.is_some();
+    let unstable_from = stability::divergence(&scene, &r.recorder, (&spec.outputs, stopped))
+        .filter(|d| d.ratio >= spec.unstable_growth)
+        .map(|d| d.onset);
+    if let (Some(e), None) = (r.summary.error, unstable_from) {
         return Err(e);
     }
-    Ok(outputs
-        .iter()
+    let phi = (spec.outputs.iter())
         .map(|name| {
-            r.summary
-                .indicators
-                .iter()
+            (r.summary.indicators.iter())
                 .find(|i| &i.name == name)
                 .map_or(f64::NAN, |i| i.fidelity)
         })
-        .collect())
+        .collect();
+    Ok((phi, unstable_from))
 }
 
 /// The runs' inputs as the families' standard variables.
@@ -337,11 +404,21 @@ fn standard(spec: &UncertaintySpec, runs: &[&Run]) -> Vec<Vec<f64>> {
         .map(|r| {
             spec.inputs
                 .iter()
-                .zip(&r.0)
+                .zip(&r.inputs)
                 .map(|(i, &x)| i.distribution.to_standard(x))
                 .collect()
         })
         .collect()
+}
+
+/// Which value of an output an expansion fits for a run (`None`: left out).
+type Counted<'a> = &'a dyn Fn(&Run, usize) -> Option<f64>;
+
+/// The runs an expansion of output `k` fits and their values.
+fn fitted<'a>(runs: &'a [Run], k: usize, value: Counted) -> (Vec<&'a Run>, Vec<f64>) {
+    (runs.iter())
+        .filter_map(|r| value(r, k).map(|y| (r, y)))
+        .unzip()
 }
 
 /// Mean and sd of output `k` from each nested design smaller than the whole:
@@ -350,7 +427,7 @@ fn standard(spec: &UncertaintySpec, runs: &[&Run]) -> Vec<Vec<f64>> {
 fn convergence(
     spec: &UncertaintySpec,
     families: &[Family],
-    runs: &[Run],
+    (runs, value): (&[Run], Counted),
     k: usize,
 ) -> Result<Vec<(usize, f64, f64)>, String> {
     let mut out = Vec::new();
@@ -359,11 +436,7 @@ fn convergence(
     }
     let mut size = spec.samples;
     while size < runs.len() {
-        let ok: Vec<&Run> = runs[..size]
-            .iter()
-            .filter(|r| r.1.iter().all(|v| v.is_finite()))
-            .collect();
-        let y: Vec<f64> = ok.iter().map(|r| r.1[k]).collect();
+        let (ok, y) = fitted(&runs[..size], k, value);
         let pce = fit(families, &standard(spec, &ok), &y, Settings::default())
             .map_err(|e| format!("{} on {size} runs: {e}", spec.outputs[k]))?;
         out.push((size, pce.mean(), pce.variance().sqrt()));
@@ -372,29 +445,27 @@ fn convergence(
     Ok(out)
 }
 
-/// The expansion of each output over the runs that succeeded.
-fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport, String> {
-    let families: Vec<_> = spec
-        .inputs
-        .iter()
+/// The expansion of each output over the runs `value` counts.
+fn expansions(
+    spec: &UncertaintySpec,
+    runs: &[Run],
+    value: Counted,
+) -> Result<Vec<OutputResult>, String> {
+    let families: Vec<_> = (spec.inputs.iter())
         .map(|i| i.distribution.family())
         .collect();
-    let ok: Vec<&Run> = runs
-        .iter()
-        .filter(|r| r.1.iter().all(|v| v.is_finite()))
-        .collect();
-    let xi = standard(spec, &ok);
+    let marginals: Vec<_> = spec.inputs.iter().map(|i| i.distribution.clone()).collect();
     let mut outputs = Vec::new();
     for (k, name) in spec.outputs.iter().enumerate() {
-        let y: Vec<f64> = ok.iter().map(|r| r.1[k]).collect();
+        let (ok, y) = fitted(runs, k, value);
+        let xi = standard(spec, &ok);
         let pce =
             fit(&families, &xi, &y, Settings::default()).map_err(|e| format!("{name}: {e}"))?;
         let ci =
             intervals(&pce, (&xi, &y), 200, 0.95, spec.seed).map_err(|e| format!("{name}: {e}"))?;
-        let dims = families.len();
-        let marginals: Vec<_> = spec.inputs.iter().map(|i| i.distribution.clone()).collect();
         let spread = distribution(&pce, &marginals, 1 << 14, 40, spec.seed)
             .map_err(|e| format!("{name}: {e}"))?;
+        let dims = families.len();
         outputs.push(OutputResult {
             name: name.clone(),
             mean: pce.mean(),
@@ -405,13 +476,27 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
             degree: pce.degree,
             terms: pce.coefficients.len(),
             loo_error: pce.loo_error,
-            convergence: convergence(spec, &families, runs, k)?
+            convergence: convergence(spec, &families, (runs, value), k)?
                 .into_iter()
                 .chain([(runs.len(), pce.mean(), pce.variance().sqrt())])
                 .collect(),
             distribution: spread,
         });
     }
+    Ok(outputs)
+}
+
+/// The study's expansions: unstable runs counted at the scene's
+/// `unstable_fidelity` and, when there are any, the stable runs alone.
+fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport, String> {
+    let names: Vec<String> = spec.inputs.iter().map(|i| i.name.clone()).collect();
+    let floor = spec.unstable_fidelity;
+    let stability = stability::assess(&names, runs, spec.unstable_growth, floor);
+    let outputs = expansions(spec, runs, &|r, k| r.counted(k, floor))?;
+    let conditional = match stability {
+        Some(_) => expansions(spec, runs, &|r, k| r.stable().then(|| r.outputs[k]))?,
+        None => Vec::new(),
+    };
     Ok(UqReport {
         scene: path.display().to_string(),
         samples: runs.len(),
@@ -424,10 +509,12 @@ fn expand(path: &Path, spec: &UncertaintySpec, runs: &[Run]) -> Result<UqReport,
             ),
             (DesignKind::Sobol, _) => "Owen-scrambled Sobol' sequence".into(),
         },
-        inputs: spec.inputs.iter().map(|i| i.name.clone()).collect(),
-        failed_runs: runs.len() - ok.len(),
+        inputs: names,
+        failed_runs: runs.iter().filter(|r| !r.stable() && !r.unstable()).count(),
         failures: Vec::new(),
+        stability,
         outputs,
+        conditional,
     })
 }
 

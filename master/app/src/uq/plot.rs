@@ -94,7 +94,8 @@ pub fn sobol_bars(path: &Path, report: &UqReport) -> Result<(), PlotError> {
     root.present().map_err(|e| fail(&e))
 }
 
-/// Each output against each input over the runs that succeeded.
+/// Each output against each input: the stable runs in blue, the unstable
+/// ones in red at the phi the expansions count them at.
 pub fn scatter(path: &Path, report: &UqReport, runs: &[Run]) -> Result<(), PlotError> {
     let fail = |e: &dyn std::fmt::Display| PlotError::new(path, e);
     let (d, m) = (report.inputs.len(), report.outputs.len());
@@ -104,14 +105,15 @@ pub fn scatter(path: &Path, report: &UqReport, runs: &[Run]) -> Result<(), PlotE
         SVGBackend::new(path, (260 * cols as u32, 200 * rows.max(1) as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let cells = root.split_evenly((rows.max(1), cols));
-    let ok: Vec<&Run> = runs
-        .iter()
-        .filter(|r| r.1.iter().all(|v| v.is_finite()))
-        .collect();
+    let floor = report.stability.as_ref().map_or(0.0, |s| s.counted_as);
     for (k, o) in report.outputs.iter().enumerate() {
         for i in 0..d {
             let area = &cells[k * d.div_ceil(cols) * cols + i];
-            let points: Vec<(f64, f64)> = ok.iter().map(|r| (r.0[i], r.1[k])).collect();
+            let counted = |r: &Run| r.counted(k, floor).map(|y| (r.inputs[i], y));
+            let points: Vec<(f64, f64)> = runs.iter().filter_map(counted).collect();
+            let unstable: Vec<(f64, f64)> = (runs.iter().filter(|r| r.unstable()))
+                .filter_map(counted)
+                .collect();
             let range = |f: fn(&(f64, f64)) -> f64| {
                 let (lo, hi) = points
                     .iter()
@@ -137,6 +139,9 @@ pub fn scatter(path: &Path, report: &UqReport, runs: &[Run]) -> Result<(), PlotE
                 .map_err(|e| fail(&e))?;
             chart
                 .draw_series(points.iter().map(|&p| Circle::new(p, 2, BLUE.filled())))
+                .map_err(|e| fail(&e))?;
+            chart
+                .draw_series(unstable.iter().map(|&p| Cross::new(p, 3, RED)))
                 .map_err(|e| fail(&e))?;
         }
     }
@@ -253,11 +258,8 @@ pub fn distribution(path: &Path, report: &UqReport, runs: &[Run]) -> Result<(), 
     for (k, (area, o)) in panels.iter().zip(&report.outputs).enumerate() {
         let (area, legend) = area.split_horizontally(800);
         side_legend(&legend, "", &entries).map_err(|e| fail(&e))?;
-        let values: Vec<f64> = runs
-            .iter()
-            .map(|r| r.1[k])
-            .filter(|v| v.is_finite())
-            .collect();
+        let floor = report.stability.as_ref().map_or(0.0, |s| s.counted_as);
+        let values: Vec<f64> = runs.iter().filter_map(|r| r.counted(k, floor)).collect();
         density_chart(&area, o, &values).map_err(|e| fail(&e))?;
     }
     root.present().map_err(|e| fail(&e))
