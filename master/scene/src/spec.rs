@@ -240,6 +240,11 @@ pub struct OutputSpec {
     /// `--quantities` wins; default: the study's own.
     #[serde(default)]
     pub quantities: Vec<String>,
+    /// The time (s) from which a study measures the quantities' errors, the
+    /// build-up before it left out (`slender fidelity`'s `--from`, which
+    /// wins); the whole run when absent.
+    #[serde(default)]
+    pub quantities_from: Option<f64>,
 }
 
 /// `[output] watch = { factor, stop, breaking_load, energy_growth }`.
@@ -405,6 +410,7 @@ impl Default for OutputSpec {
             fatigue: Vec::new(),
             envelopes: None,
             quantities: Vec::new(),
+            quantities_from: None,
         }
     }
 }

@@ -56,8 +56,9 @@ pub struct FidelityPlan {
     pub repeats: usize,
     /// Scene keys set over the file first (`KEY=VALUE`, `--set`).
     pub overrides: Vec<String>,
-    /// The time (s) the errors are measured from (`--from`): the build-up
-    /// before it left out; the whole run when None.
+    /// The time (s) the errors are measured from (`--from`, else the
+    /// scene's `[output] quantities_from`): the build-up before it left
+    /// out; the whole run when None.
     pub from: Option<f64>,
     /// The reference and how its own error is estimated (`--reference`).
     pub reference: ReferenceMode,
@@ -183,7 +184,16 @@ pub fn run_fidelity_kept(
     let mut draft = crate::study::draft_of(path, &plan.overrides)?;
     // The scene must load as written, and `--from` lie in its runs.
     let scene = crate::study::scene_of(&draft, plan.duration)?;
-    window_in(plan.from, &scene)?;
+    let source = if plan.from.is_some() {
+        "--from"
+    } else {
+        "`[output] quantities_from`"
+    };
+    let plan = &FidelityPlan {
+        from: plan.from.or(scene.spec.output.quantities_from),
+        ..plan.clone()
+    };
+    window_in((source, plan.from), &scene)?;
     let subject = subject_of(draft.table())?;
     let subject = subject.as_ref();
     let sections = subject.sections();
@@ -304,12 +314,16 @@ fn report_of(
     }
 }
 
-/// Refuses a `--from` that is not a time before the runs' end.
-fn window_in(from: Option<f64>, scene: &slender_scene::Scene) -> Result<(), String> {
+/// Refuses a `--from` (or the scene's `quantities_from`, named by
+/// `source`) that is not a time before the runs' end.
+fn window_in(
+    (source, from): (&str, Option<f64>),
+    scene: &slender_scene::Scene,
+) -> Result<(), String> {
     let (start, end) = (scene.start.as_secs(), scene.end().as_secs());
     match from {
         Some(from) if !(from.is_finite() && from < end) => Err(format!(
-            "--from {from}: expected a time (s) before the runs' end, {end} (they start at {start})"
+            "{source} = {from}: expected a time (s) before the runs' end, {end} (they start at {start})"
         )),
         _ => Ok(()),
     }

@@ -176,7 +176,22 @@ fn errors_measured_from_a_time_leave_out_the_build_up() {
         .expect_err("past the end")
         .to_string();
     assert!(
-        e.contains("--from 2: expected a time (s) before the runs' end, 2"),
+        e.contains("--from = 2: expected a time (s) before the runs' end, 2"),
         "{e}"
     );
+    // The scene says when its quantities are judged from; `--from` wins.
+    plan.from = None;
+    plan.overrides = vec!["output.quantities_from=1.0".into()];
+    let declared = run_fidelity(&path, &plan, |_| {}).expect("the study");
+    assert_eq!(declared.from, Some(1.0));
+    assert_eq!(worst(&declared), worst(&late));
+    plan.from = Some(0.0);
+    let asked = run_fidelity(&path, &plan, |_| {}).expect("the study");
+    assert_eq!(asked.from, Some(0.0));
+    plan.from = None;
+    plan.overrides = vec!["output.quantities_from=3.0".into()];
+    let e = run_fidelity(&path, &plan, |_| {})
+        .expect_err("past the end")
+        .to_string();
+    assert!(e.contains("`[output] quantities_from` = 3"), "{e}");
 }
