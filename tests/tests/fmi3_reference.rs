@@ -148,14 +148,18 @@ fn the_feedthrough_reference_fmu_passes_its_float64s_and_takes_every_start_type(
     let mut unit = load(&fmu, starts);
     let d = unit.description();
     // Float32, the integer widths, Boolean, String, Binary and Enumeration
-    // variables are not ports.
+    // variables are not ports, but for an Int32 output (after the Float64s).
     assert_eq!(
         names(&d.inputs),
         ["Float64_continuous_input", "Float64_discrete_input"]
     );
     assert_eq!(
         names(&d.outputs),
-        ["Float64_continuous_output", "Float64_discrete_output"]
+        [
+            "Float64_continuous_output",
+            "Float64_discrete_output",
+            "Int32_output"
+        ]
     );
     assert_eq!(
         (&d.outputs[0].depends_on, &d.outputs[1].depends_on),
@@ -163,9 +167,10 @@ fn the_feedthrough_reference_fmu_passes_its_float64s_and_takes_every_start_type(
     );
     unit.set_inputs(&[1.25, -3.5]).unwrap();
     unit.initialize(Time::ZERO).unwrap();
-    let mut y = [0.0; 2];
+    let mut y = [0.0; 3];
     unit.outputs(&mut y).unwrap();
-    assert_eq!(y, [1.25, -3.5]);
+    // The Int32 output passes the Int32 input's start value through.
+    assert_eq!(y, [1.25, -3.5, 7.0]);
     let h = Time::from_secs(0.1).unwrap();
     for n in 0..20 {
         let x = (n as f64).sin();
@@ -254,7 +259,8 @@ fn a_clocked_fmu_is_refused_naming_its_clocks() {
 /// The Stair Reference FMU (an Int32 counter, no Float64 port) asks to end
 /// the simulation when its counter reaches 10, at t = 9 s: a run ends there,
 /// completed with a warning naming it (it failed before, where FMI masters
-/// end the simulation).
+/// end the simulation). Its counter is an output port (issue 49 #14: Integer
+/// outputs were not ports), recorded as the seconds it counts.
 #[test]
 fn a_reference_fmu_that_asks_to_end_the_simulation_ends_the_run_there() {
     // FMI 3.0's terminateSimulation, and FMI 2.0's fmi2Discard with
@@ -268,7 +274,11 @@ fn a_reference_fmu_that_asks_to_end_the_simulation_ends_the_run_there() {
 /// Stair at `fmu` asks to end at 9 s, alone and in a scene (in `dir`).
 fn stair_ends_the_run(fmu: &Path, dir: &Path) {
     let mut unit = load(fmu, "");
-    assert!(unit.description().inputs.is_empty() && unit.description().outputs.is_empty());
+    assert!(unit.description().inputs.is_empty());
+    let outputs: Vec<&str> = (unit.description().outputs.iter())
+        .map(|p| p.name.as_str())
+        .collect();
+    assert_eq!(outputs, ["counter"]);
     unit.initialize(Time::ZERO).unwrap();
     let h = Time::from_secs(0.2).unwrap();
     let ended = (0..60).find_map(|n| unit.do_step(h * n, h).err().map(|e| (n, e)));
@@ -288,6 +298,15 @@ fn stair_ends_the_run(fmu: &Path, dir: &Path) {
     assert!(run.error.is_none(), "{:?}", run.error);
     let last = *run.time.last().unwrap();
     assert!((last - 8.8).abs() < 1e-9, "the run ends at {last} s");
+    // One count a second from 1 (between the events, where the step's end
+    // does not meet one).
+    let counter = run.get("stair.counter");
+    for (t, c) in run.time.iter().zip(counter) {
+        if (t.fract() - 0.5).abs() < 0.35 {
+            assert_eq!(*c, 1.0 + t.floor(), "at {t} s");
+        }
+    }
+    assert_eq!(counter.last(), Some(&9.0));
     assert!(
         run.warnings
             .iter()

@@ -61,10 +61,11 @@ mod error;
 mod library;
 use archive::{binary_for_this_platform, unpack};
 
-use describe::{describe, real_refs, start_values};
+use describe::{describe, integer_output_refs, real_refs, start_values};
 pub use error::LoadError;
 mod api3;
 mod calls;
+mod exchange;
 use api3::Api3;
 use calls::Calls;
 use library::{Api, LogBook, instantiate, log_tail, open_binary};
@@ -115,6 +116,10 @@ pub struct FmuUnit {
     output_refs: Vec<u32>,
     /// How many values each output reference holds (1 for a scalar).
     output_sizes: Vec<usize>,
+    /// The scalar Integer outputs' references and their values (scratch):
+    /// their ports follow the Real outputs'.
+    integer_refs: Vec<u32>,
+    integers: Vec<i32>,
     /// The input values sent before a step: start values of ramped inputs, end
     /// values of held ones (scratch).
     values: Vec<f64>,
@@ -168,6 +173,7 @@ impl FmuUnit {
         given_input_starts(&mut description, &params.start);
         let (input_refs, _) = real_refs(&model, VariableCausality::Input);
         let (output_refs, output_sizes) = real_refs(&model, VariableCausality::Output);
+        let integer_refs = integer_output_refs(&model);
         let (n_in, n_out) = (description.inputs.len(), description.outputs.len());
         let (component, log, callbacks) = match &calls {
             Calls::Two(api) => {
@@ -202,6 +208,8 @@ impl FmuUnit {
             column: vec![0.0; n_out],
             output_refs,
             output_sizes,
+            integers: vec![0; integer_refs.len()],
+            integer_refs,
             states: Mutex::new(Vec::new()),
             log,
             _callbacks: callbacks,
@@ -259,96 +267,6 @@ impl FmuUnit {
                 log_tail(&self.log)
             ))),
         }
-    }
-
-    /// Sends the inputs for a step of `h` seconds (0: initialisation): under a ramp
-    /// the start value and the slope, under a zero-order hold the end value.
-    fn send_inputs(&mut self, inputs: Inputs<'_>, h: f64) -> Result<(), UnitError> {
-        let n = self.values.len();
-        if n == 0 {
-            return Ok(());
-        }
-        let ramped = h > 0.0 && (0..n).any(|i| inputs.hold(i) == Hold::Ramp);
-        for i in 0..n {
-            let ramp = ramped && inputs.hold(i) == Hold::Ramp;
-            self.slopes[i] = if ramp { inputs.rate(i, h) } else { 0.0 };
-            self.values[i] = if ramp {
-                inputs.start()[i]
-            } else {
-                inputs.end()[i]
-            };
-        }
-        // SAFETY: the input references and their n values.
-        let status = unsafe {
-            self.calls
-                .set_reals(self.component, &self.input_refs, &self.values)
-        };
-        self.check_with(status, || {
-            format!(
-                "{} (inputs)",
-                self.calls.name("fmi2SetReal", "fmi3SetFloat64")
-            )
-        })?;
-        if ramped {
-            // SAFETY: n references, orders and values (ramps exist only where
-            // the FMU interpolates inputs: FMI 2.0).
-            let status = unsafe {
-                self.calls.set_input_slopes(
-                    self.component,
-                    &self.input_refs,
-                    &self.orders,
-                    &self.slopes,
-                )
-            };
-            self.check("fmi2SetRealInputDerivatives", status)?;
-        }
-        Ok(())
-    }
-
-    fn read_outputs(&mut self) -> Result<(), UnitError> {
-        if self.outputs.is_empty() {
-            return Ok(());
-        }
-        // SAFETY: the output references and their values.
-        let status = unsafe {
-            self.calls
-                .get_reals(self.component, &self.output_refs, &mut self.outputs)
-        };
-        self.check_with(status, || {
-            format!(
-                "{} (outputs)",
-                self.calls.name("fmi2GetReal", "fmi3GetFloat64")
-            )
-        })
-    }
-
-    fn apply_start_values(&mut self) -> Result<(), UnitError> {
-        let calls = &self.calls;
-        for s in &self.starts {
-            // SAFETY: single values matching each setter's type.
-            let (call, status) = unsafe {
-                match s {
-                    StartValue::Real(vr, v) => (
-                        calls.name("fmi2SetReal", "fmi3SetFloat64"),
-                        calls.set_reals(self.component, &[*vr], &[*v]),
-                    ),
-                    StartValue::Integer(vr, v) => (
-                        calls.name("fmi2SetInteger", "fmi3SetInt32"),
-                        calls.set_integer(self.component, *vr, *v),
-                    ),
-                    StartValue::Boolean(vr, v) => (
-                        calls.name("fmi2SetBoolean", "fmi3SetBoolean"),
-                        calls.set_boolean(self.component, *vr, *v),
-                    ),
-                    StartValue::String(vr, v) => (
-                        calls.name("fmi2SetString", "fmi3SetString"),
-                        calls.set_string(self.component, *vr, v.as_ptr()),
-                    ),
-                }
-            };
-            self.check(&format!("{call} (start value)"), status)?;
-        }
-        Ok(())
     }
 }
 

@@ -71,6 +71,27 @@ impl Calls {
         }
     }
 
+    /// Integer (Int32) values of the scalar `refs` into `values`.
+    pub(super) unsafe fn get_integers(
+        &self,
+        c: *mut c_void,
+        refs: &[u32],
+        values: &mut [i32],
+    ) -> fmi2Status {
+        unsafe {
+            match self {
+                Calls::Two(a) => (a.get_integer)(c, refs.as_ptr(), refs.len(), values.as_mut_ptr()),
+                Calls::Three(a) => (a.get_int32)(
+                    c,
+                    refs.as_ptr(),
+                    refs.len(),
+                    values.as_mut_ptr(),
+                    values.len(),
+                ),
+            }
+        }
+    }
+
     pub(super) unsafe fn set_reals(
         &self,
         c: *mut c_void,

@@ -1,47 +1,24 @@
 //! What an FMU offers slender, read from its model description: Real inputs and
-//! outputs as ports (with kinds from their units), and the start values a scene
+//! outputs as ports (with kinds from their units), scalar Integer outputs as
+//! generic ports after them (a counter, a mode), and the start values a scene
 //! gives its parameters.
 
 use super::*;
 
 /// The unit description of an FMU: Real inputs and outputs as ports, an
-/// array one port per element (`name[1]`, ... row-major).
+/// array one port per element (`name[1]`, ... row-major), then the scalar
+/// Integer outputs (their values as reals: exact up to 2^53).
 pub(super) fn describe(
     model: &ModelDescription,
     label: &str,
 ) -> Result<UnitDescription, LoadError> {
-    let ports_of = |causality: VariableCausality| -> Vec<(usize, Port)> {
-        let mut ports = Vec::new();
-        for i in 0..model.variables.len() {
-            if !is_real(model, i, causality) {
-                continue;
-            }
-            let v = &model.variables[i];
-            let (kind, unit) = kind_of(model, v.unit.as_deref());
-            for k in 0..v.len() {
-                let name = if v.dimensions.is_empty() {
-                    v.name.clone()
-                } else {
-                    format!("{}[{}]", v.name, k + 1)
-                };
-                let port = if causality == VariableCausality::Input {
-                    // Its declared start value, where nothing drives it.
-                    let mut input = Port::input(&name, kind);
-                    if let (Value::Real(Some(start)), true) = (&v.value, v.dimensions.is_empty()) {
-                        input.start = Some(*start);
-                    }
-                    input
-                } else {
-                    Port::output(&name, kind)
-                };
-                ports.push((i, port.with_unit(&unit)));
-            }
-        }
-        ports
-    };
-    let inputs = ports_of(VariableCausality::Input);
+    let ports_of = |causality, integer| ports(model, causality, integer);
+    let inputs = ports_of(VariableCausality::Input, false);
     let mut outputs = Vec::new();
-    for (i, port) in ports_of(VariableCausality::Output) {
+    let output_ports = ports_of(VariableCausality::Output, false)
+        .into_iter()
+        .chain(ports_of(VariableCausality::Output, true));
+    for (i, port) in output_ports {
         let deps = model
             .outputs
             .iter()
@@ -82,9 +59,69 @@ pub(super) fn describe(
     })
 }
 
+/// The ports of the variables of `causality` with each variable's index:
+/// the Real ones (an array one port per element, `name[1]`, ... row-major;
+/// an input with its declared start value), or with `integer` the scalar
+/// Integer outputs.
+fn ports(
+    model: &ModelDescription,
+    causality: VariableCausality,
+    integer: bool,
+) -> Vec<(usize, Port)> {
+    let mut ports = Vec::new();
+    for i in 0..model.variables.len() {
+        let port = if integer {
+            causality == VariableCausality::Output && is_integer_output(model, i)
+        } else {
+            is_real(model, i, causality)
+        };
+        if !port {
+            continue;
+        }
+        let v = &model.variables[i];
+        let (kind, unit) = kind_of(model, v.unit.as_deref());
+        for k in 0..v.len() {
+            let name = if v.dimensions.is_empty() {
+                v.name.clone()
+            } else {
+                format!("{}[{}]", v.name, k + 1)
+            };
+            let port = if causality == VariableCausality::Input {
+                // Its declared start value, where nothing drives it.
+                let mut input = Port::input(&name, kind);
+                if let (Value::Real(Some(start)), true) = (&v.value, v.dimensions.is_empty()) {
+                    input.start = Some(*start);
+                }
+                input
+            } else {
+                Port::output(&name, kind)
+            };
+            ports.push((i, port.with_unit(&unit)));
+        }
+    }
+    ports
+}
+
 pub(super) fn is_real(model: &ModelDescription, i: usize, causality: VariableCausality) -> bool {
     let v = &model.variables[i];
     v.causality == causality && matches!(v.value, Value::Real(_))
+}
+
+/// Whether variable `i` is a scalar Integer (FMI 3.0: Int32) output.
+pub(super) fn is_integer_output(model: &ModelDescription, i: usize) -> bool {
+    let v = &model.variables[i];
+    v.causality == VariableCausality::Output
+        && matches!(v.value, Value::Integer(_))
+        && v.dimensions.is_empty()
+}
+
+/// The value references of the scalar Integer outputs, in the description's
+/// order (their ports follow the Real outputs').
+pub(super) fn integer_output_refs(model: &ModelDescription) -> Vec<u32> {
+    (0..model.variables.len())
+        .filter(|&i| is_integer_output(model, i))
+        .map(|i| model.variables[i].value_reference)
+        .collect()
 }
 
 /// The value references of the Real variables of `causality` and how many

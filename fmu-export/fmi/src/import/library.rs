@@ -101,6 +101,12 @@ pub(super) type SetupExperiment =
 pub(super) type Plain = unsafe extern "C" fn(fmi2Component) -> fmi2Status;
 pub(super) type GetReal =
     unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *mut f64) -> fmi2Status;
+pub(super) type GetInteger = unsafe extern "C" fn(
+    fmi2Component,
+    *const fmi2ValueReference,
+    usize,
+    *mut fmi2Integer,
+) -> fmi2Status;
 pub(super) type SetReal =
     unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *const f64) -> fmi2Status;
 pub(super) type SetInteger = unsafe extern "C" fn(
@@ -157,6 +163,7 @@ pub(super) struct Api {
     pub(super) terminate: Plain,
     pub(super) reset: Plain,
     pub(super) get_real: GetReal,
+    pub(super) get_integer: GetInteger,
     pub(super) set_real: SetReal,
     pub(super) set_integer: SetInteger,
     pub(super) set_boolean: SetInteger,
@@ -216,6 +223,7 @@ impl Api {
             terminate: symbol(library, "fmi2Terminate")?,
             reset: symbol(library, "fmi2Reset")?,
             get_real: symbol(library, "fmi2GetReal")?,
+            get_integer: symbol(library, "fmi2GetInteger")?,
             set_real: symbol(library, "fmi2SetReal")?,
             set_integer: symbol(library, "fmi2SetInteger")?,
             set_boolean: symbol(library, "fmi2SetBoolean")?,
