@@ -184,16 +184,11 @@ pub fn run_fidelity_kept(
     let mut draft = crate::study::draft_of(path, &plan.overrides)?;
     // The scene must load as written, and `--from` lie in its runs.
     let scene = crate::study::scene_of(&draft, plan.duration)?;
-    let source = if plan.from.is_some() {
-        "--from"
-    } else {
-        "`[output] quantities_from`"
-    };
+    window_in(plan.from, &scene)?;
     let plan = &FidelityPlan {
-        from: plan.from.or(scene.spec.output.quantities_from),
+        from: plan.from.or(declared_from(&scene, &progress)),
         ..plan.clone()
     };
-    window_in((source, plan.from), &scene)?;
     let subject = subject_of(draft.table())?;
     let subject = subject.as_ref();
     let sections = subject.sections();
@@ -314,16 +309,27 @@ fn report_of(
     }
 }
 
-/// Refuses a `--from` (or the scene's `quantities_from`, named by
-/// `source`) that is not a time before the runs' end.
-fn window_in(
-    (source, from): (&str, Option<f64>),
-    scene: &slender_scene::Scene,
-) -> Result<(), String> {
+/// The scene's `[output] quantities_from`, unless a run shortened by
+/// `--duration` ends before it: then the whole run is judged, said through
+/// `progress` (a scene's indicator past a shortened run is left out alike).
+fn declared_from(scene: &slender_scene::Scene, progress: &dyn Fn(&str)) -> Option<f64> {
+    let from = scene.spec.output.quantities_from?;
+    let end = scene.end().as_secs();
+    if from < end {
+        return Some(from);
+    }
+    progress(&format!(
+        "warning: `[output] quantities_from` = {from} s is not before the runs' end ({end} s): the errors are measured over the whole run"
+    ));
+    None
+}
+
+/// Refuses a `--from` that is not a time before the runs' end.
+fn window_in(from: Option<f64>, scene: &slender_scene::Scene) -> Result<(), String> {
     let (start, end) = (scene.start.as_secs(), scene.end().as_secs());
     match from {
         Some(from) if !(from.is_finite() && from < end) => Err(format!(
-            "{source} = {from}: expected a time (s) before the runs' end, {end} (they start at {start})"
+            "--from {from}: expected a time (s) before the runs' end, {end} (they start at {start})"
         )),
         _ => Ok(()),
     }

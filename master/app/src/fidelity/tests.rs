@@ -176,7 +176,7 @@ fn errors_measured_from_a_time_leave_out_the_build_up() {
         .expect_err("past the end")
         .to_string();
     assert!(
-        e.contains("--from = 2: expected a time (s) before the runs' end, 2"),
+        e.contains("--from 2: expected a time (s) before the runs' end, 2"),
         "{e}"
     );
     // The scene says when its quantities are judged from; `--from` wins.
@@ -188,10 +188,20 @@ fn errors_measured_from_a_time_leave_out_the_build_up() {
     plan.from = Some(0.0);
     let asked = run_fidelity(&path, &plan, |_| {}).expect("the study");
     assert_eq!(asked.from, Some(0.0));
+    // A run shortened past it judges the whole run and says so.
     plan.from = None;
     plan.overrides = vec!["output.quantities_from=3.0".into()];
-    let e = run_fidelity(&path, &plan, |_| {})
-        .expect_err("past the end")
-        .to_string();
-    assert!(e.contains("`[output] quantities_from` = 3"), "{e}");
+    let said = std::sync::Mutex::new(Vec::new());
+    let shortened = run_fidelity(&path, &plan, |line| {
+        said.lock().unwrap().push(line.to_owned())
+    })
+    .expect("the study");
+    assert_eq!(shortened.from, None);
+    assert_eq!(worst(&shortened), worst(&whole));
+    let said = said.into_inner().unwrap();
+    assert!(
+        said.iter()
+            .any(|l| l.contains("`[output] quantities_from` = 3 s is not before")),
+        "{said:?}"
+    );
 }
