@@ -99,15 +99,21 @@ class Run:
     def extremes(self) -> pd.DataFrame:
         """Each signal's most probable maximum over the duration
         ``statistics.extremes`` asks for: one row per signal (duration_s,
-        peaks, largest_seen, rayleigh_mpm, and the Weibull fit's
-        weibull_shape, weibull_scale, weibull_r_squared, weibull_mpm, NaN
-        without a fit); empty when the scene asks for none."""
+        peaks, largest_seen, rayleigh_mpm, the Weibull fit's weibull_shape,
+        weibull_scale, weibull_r_squared, weibull_mpm, and the peaks-over-
+        threshold fit's gpd_threshold, gpd_exceedances, gpd_shape, gpd_scale,
+        gpd_ks_distance, gpd_mpm; NaN without a fit); empty when the scene
+        asks for none."""
         rows = {}
         for signal, row in self.summary.get("extremes", {}).items():
-            fit = row.get("weibull") or {}
-            rows[signal] = {k: v for k, v in row.items() if k != "weibull"}
-            rows[signal].update({f"weibull_{k}": fit.get(k, float("nan"))
+            weibull = row.get("weibull") or {}
+            gpd = row.get("gpd") or {}
+            rows[signal] = {k: v for k, v in row.items() if k not in ("weibull", "gpd")}
+            rows[signal].update({f"weibull_{k}": weibull.get(k, float("nan"))
                                  for k in ("shape", "scale", "r_squared", "mpm")})
+            rows[signal].update({f"gpd_{k}": gpd.get(k, float("nan"))
+                                 for k in ("threshold", "exceedances", "shape", "scale",
+                                           "ks_distance", "mpm")})
         return _rows(rows, "signal")
 
     @property

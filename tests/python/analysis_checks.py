@@ -56,7 +56,23 @@ x = window["spar.x"]
 assert ext["largest_seen"] == x.max()
 assert ext["rayleigh_mpm"] > x.mean() + 3.0 * x.std(ddof=0), ext
 assert 0.5 < ext["weibull_shape"] < 4.0 and 0.0 < ext["weibull_r_squared"] <= 1.0, ext
-print(f"extremes: spar.x MPM {ext['rayleigh_mpm']:.3f} m (Rayleigh), {ext['weibull_mpm']:.3f} m (Weibull)")
+# Peaks over threshold: the peaks between up-crossings of the mean, counted
+# above mean + 1.4 sd, are the GPD fit's exceedances.
+values, mean = x.values, x.mean()
+ups = [k for k in range(1, len(values)) if values[k - 1] < mean <= values[k]]
+peaks = [values[a:b].max() for a, b in zip(ups, ups[1:])]
+threshold = mean + 1.4 * x.std(ddof=0)
+above = sum(p > threshold for p in peaks)
+assert len(peaks) == ext["peaks"], (len(peaks), ext)
+if above >= 10:
+    assert abs(ext["gpd_threshold"] - threshold) < 1e-9 * abs(threshold), (ext, threshold)
+    assert ext["gpd_exceedances"] == above, ext
+    assert ext["gpd_mpm"] > threshold and -0.5 < ext["gpd_shape"] < 0.5, ext
+else:
+    # Fewer than ten peaks over the threshold: no fit, NaN in the frame.
+    assert math.isnan(ext["gpd_mpm"]) and math.isnan(ext["gpd_shape"]), ext
+print(f"extremes: spar.x MPM {ext['rayleigh_mpm']:.3f} m (Rayleigh), {ext['weibull_mpm']:.3f} m (Weibull); "
+      f"{above} of {len(peaks)} peaks over mean + 1.4 sd, GPD MPM {ext['gpd_mpm']:.3f} m")
 
 # A load-case matrix through the reader: the fatigue over the scatter is the
 # table's damages weighed by the sea states' probabilities.

@@ -69,7 +69,8 @@ pub fn of(
                 analysis.statistics.insert(name.clone(), s);
             }
             if let Some(e) = asked.extremes
-                && let Some(x) = extremes::of(time, column, statistics_from, e.duration)
+                && let Some(x) =
+                    extremes::of((time, column), statistics_from, (e.duration, e.threshold))
             {
                 analysis.extremes.insert(name.clone(), x);
             }

@@ -9,10 +9,16 @@
 //!   Weibull plot to the peaks' heights above the mean, its most probable
 //!   largest of N peaks mean + scale (ln N)^(1/shape), with the fit's R^2; a
 //!   non-Gaussian response (a slack-taut line, drag) bends the plot and moves
-//!   the shape away from Rayleigh's 2.
+//!   the shape away from Rayleigh's 2;
+//! - **peaks over a threshold** ([`pot`]): a generalised Pareto distribution
+//!   fitted to the peaks' excesses over the mean plus a number of standard
+//!   deviations, the tail alone, its most probable maximum and the fit's
+//!   Kolmogorov-Smirnov distance.
 //!
 //! A peak is the largest sample between two successive up-crossings of the
 //! mean (one per wave cycle).
+
+pub mod pot;
 
 use serde::Serialize;
 
@@ -29,6 +35,9 @@ pub struct Extremes {
     pub rayleigh_mpm: f64,
     /// The Weibull fit of the peaks, with at least 10 of them.
     pub weibull: Option<WeibullFit>,
+    /// The generalised Pareto fit of the peaks over the threshold, with at
+    /// least 10 above it.
+    pub gpd: Option<pot::GpdFit>,
 }
 
 /// A two-parameter Weibull fit of the peaks' heights above the mean.
@@ -45,8 +54,14 @@ pub struct WeibullFit {
 }
 
 /// The extremes of `values` sampled at `time` (s) from `from` (s) on, over a
-/// duration of `duration` (s); None with fewer than two up-crossing cycles.
-pub fn of(time: &[f64], values: &[f64], from: f64, duration: f64) -> Option<Extremes> {
+/// duration of `duration` (s), the peaks over threshold above the mean plus
+/// `threshold_sd` standard deviations; None with fewer than two up-crossing
+/// cycles.
+pub fn of(
+    (time, values): (&[f64], &[f64]),
+    from: f64,
+    (duration, threshold_sd): (f64, f64),
+) -> Option<Extremes> {
     let first = time.partition_point(|&t| t < from);
     let n = values.len().min(time.len());
     if first + 2 > n {
@@ -76,6 +91,11 @@ pub fn of(time: &[f64], values: &[f64], from: f64, duration: f64) -> Option<Extr
             r_squared,
             mpm: mean + scale * expected_peaks.ln().powf(1.0 / shape),
         }),
+        gpd: pot::over_threshold(
+            &peaks,
+            (mean, sigma, threshold_sd),
+            (peaks.len() as f64, expected_peaks),
+        ),
     })
 }
 

@@ -29,13 +29,23 @@ pub struct StatisticsSpec {
     pub spectra: Option<SpectraSpec>,
 }
 
-/// `extremes = { duration = D }`: the storm the maxima are extrapolated to.
+/// `extremes = { duration = D, threshold = K }`: the storm the maxima are
+/// extrapolated to, and the peaks-over-threshold level.
 #[derive(Copy, Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExtremesSpec {
     /// The duration the most probable maximum is for (s; 10800 for the
     /// 3-hour storm of DNV-OS-E301).
     pub duration: f64,
+    /// The threshold of the peaks-over-threshold fit, in standard deviations
+    /// above the mean (default 1.4: about 38 % of a narrow-band Gaussian
+    /// process's peaks pass it).
+    #[serde(default = "default_threshold")]
+    pub threshold: f64,
+}
+
+fn default_threshold() -> f64 {
+    1.4
 }
 
 /// `spectra = { segment = L }`: Welch's averaged periodograms.
@@ -163,6 +173,12 @@ impl Scene {
             self.check_from("output.statistics.from", s.from)?;
             if let Some(e) = s.extremes {
                 self.check_positive("output.statistics.extremes.duration", Some(e.duration))?;
+                if !(e.threshold.is_finite() && e.threshold >= 0.0) {
+                    let key = "output.statistics.extremes.threshold";
+                    let expected =
+                        "expected a number of standard deviations above the mean, 0 or more";
+                    return Err(self.error(None, key, format!("{}: {expected}", e.threshold)));
+                }
             }
             if let Some(p) = s.spectra {
                 self.check_positive("output.statistics.spectra.segment", p.segment)?;

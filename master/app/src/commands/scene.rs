@@ -161,8 +161,14 @@ fn print_analysis(a: &slender_app::analysis::Analysis) {
                 w.mpm, w.shape, w.r_squared
             )
         });
+        let gpd = e.gpd.as_ref().map_or(String::new(), |g| {
+            format!(
+                ", {:.4e} (GPD over {} peaks, shape {:.2}, KS {:.3})",
+                g.mpm, g.exceedances, g.shape, g.ks_distance
+            )
+        });
         println!(
-            "extreme      {signal}: most probable maximum in {} s {:.4e} (Rayleigh){weibull}; largest seen {:.4e}",
+            "extreme      {signal}: most probable maximum in {} s {:.4e} (Rayleigh){weibull}{gpd}; largest seen {:.4e}",
             e.duration_s, e.rayleigh_mpm, e.largest_seen
         );
     }

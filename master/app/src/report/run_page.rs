@@ -88,7 +88,7 @@ fn extremes_and_spectra(summary: &Summary) -> String {
     if a.extremes.is_empty() && a.spectra.is_empty() {
         return String::new();
     }
-    let mut md = "\n| signal | peaks | largest seen | MPM Rayleigh | MPM Weibull | Weibull shape | Weibull R2 | m0 of spectrum | peak period (s) | Tz of spectrum (s) |\n|---|---|---|---|---|---|---|---|---|---|\n".to_owned();
+    let mut md = "\n| signal | peaks | largest seen | MPM Rayleigh | MPM Weibull | Weibull shape | Weibull R2 | MPM GPD | GPD shape | GPD KS | m0 of spectrum | peak period (s) | Tz of spectrum (s) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n".to_owned();
     let or_dash =
         |v: Option<f64>, digits: usize| v.map_or("-".to_owned(), |v| format!("{v:.digits$}"));
     for signal in summary.units.keys() {
@@ -97,15 +97,19 @@ fn extremes_and_spectra(summary: &Summary) -> String {
             continue;
         }
         let w = e.and_then(|e| e.weibull.as_ref());
+        let g = e.and_then(|e| e.gpd.as_ref());
         let sci = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.4e}"));
         md += &format!(
-            "| {signal} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            "| {signal} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
             e.map_or("-".to_owned(), |e| e.peaks.to_string()),
             sci(e.map(|e| e.largest_seen)),
             sci(e.map(|e| e.rayleigh_mpm)),
             sci(w.map(|w| w.mpm)),
             or_dash(w.map(|w| w.shape), 3),
             or_dash(w.map(|w| w.r_squared), 4),
+            sci(g.map(|g| g.mpm)),
+            or_dash(g.map(|g| g.shape), 3),
+            or_dash(g.map(|g| g.ks_distance), 3),
             sci(p.map(|p| p.m0)),
             or_dash(p.and_then(|p| p.peak_period_s), 3),
             or_dash(p.and_then(|p| p.zero_crossing_period_s), 3),
