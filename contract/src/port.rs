@@ -107,6 +107,9 @@ pub struct Port {
     /// For inputs: the value it takes where nothing drives it and the scene
     /// gives none (an imported FMU's declared start value); `None`: 0.
     pub start: Option<f64>,
+    /// Other names the port answers to in a scene (an imported FMI 3.0
+    /// variable's `<Alias>`es): the same port, not another one.
+    pub aliases: Vec<String>,
 }
 
 impl Port {
@@ -120,6 +123,7 @@ impl Port {
             depends_on: Vec::new(),
             hold: Hold::Ramp,
             start: None,
+            aliases: Vec::new(),
         }
     }
 
@@ -133,6 +137,7 @@ impl Port {
             depends_on: Vec::new(),
             hold: Hold::Ramp,
             start: None,
+            aliases: Vec::new(),
         }
     }
 
@@ -140,6 +145,11 @@ impl Port {
     pub fn with_feedthrough(mut self, inputs: &[usize]) -> Port {
         self.depends_on = inputs.to_vec();
         self
+    }
+
+    /// Whether the port is called `name`, by its name or an alias.
+    pub fn answers_to(&self, name: &str) -> bool {
+        self.name == name || self.aliases.iter().any(|a| a == name)
     }
 
     /// Use another unit of measure than the kind's SI default (e.g. "" for a ratio).

@@ -82,9 +82,9 @@ pub struct UnitDescription {
 }
 
 impl UnitDescription {
-    /// Index of the input called `name`.
+    /// Index of the input called `name` (by its name or an alias).
     pub fn input_index(&self, name: &str) -> Option<usize> {
-        self.inputs.iter().position(|p| p.name == name)
+        self.inputs.iter().position(|p| p.answers_to(name))
     }
 
     /// The inputs that are loads (forces and moments), in port order.
@@ -105,16 +105,16 @@ impl UnitDescription {
         }
     }
 
-    /// Index of the output called `name`.
+    /// Index of the output called `name` (by its name or an alias).
     pub fn output_index(&self, name: &str) -> Option<usize> {
-        self.outputs.iter().position(|p| p.name == name)
+        self.outputs.iter().position(|p| p.answers_to(name))
     }
 
     /// The port called `name` with the given causality.
     pub fn port(&self, causality: Causality, name: &str) -> Option<&Port> {
         match causality {
-            Causality::Input => self.inputs.iter().find(|p| p.name == name),
-            Causality::Output => self.outputs.iter().find(|p| p.name == name),
+            Causality::Input => self.inputs.iter().find(|p| p.answers_to(name)),
+            Causality::Output => self.outputs.iter().find(|p| p.answers_to(name)),
         }
     }
 

@@ -22,6 +22,12 @@ fn build(model: &str, dir: &Path) -> PathBuf {
 /// Compiles Reference FMU `model` into `dir/<model>.fmu` for FMI `version`
 /// (2 or 3).
 fn build_version(model: &str, dir: &Path, version: u8) -> PathBuf {
+    let xml = root().join(format!("tests/reference-fmus/{model}/FMI{version}.xml"));
+    build_described(model, dir, version, &std::fs::read_to_string(xml).unwrap())
+}
+
+/// [`build_version`] with the model description `xml`.
+fn build_described(model: &str, dir: &Path, version: u8, xml: &str) -> PathBuf {
     let source = root().join("tests/reference-fmus");
     let library = dir.join(format!("{model}.so"));
     let compiler = std::env::var("CC").unwrap_or_else(|_| "cc".into());
@@ -47,15 +53,15 @@ fn build_version(model: &str, dir: &Path, version: u8) -> PathBuf {
     };
     let mut zip = zip::ZipWriter::new(std::fs::File::create(&fmu).unwrap());
     let options = zip::write::SimpleFileOptions::default();
-    for (name, file) in [
+    for (name, bytes) in [
+        ("modelDescription.xml".to_owned(), xml.as_bytes().to_vec()),
         (
-            "modelDescription.xml".to_owned(),
-            source.join(model).join(format!("FMI{version}.xml")),
+            format!("binaries/{platform}/{model}.so"),
+            std::fs::read(library).unwrap(),
         ),
-        (format!("binaries/{platform}/{model}.so"), library),
     ] {
         zip.start_file(name, options).unwrap();
-        zip.write_all(&std::fs::read(file).unwrap()).unwrap();
+        zip.write_all(&bytes).unwrap();
     }
     zip.finish().unwrap();
     fmu
@@ -226,6 +232,96 @@ signals = ["through.Float64_continuous_output", "through.Float64_discrete_output
     for y in series.get("through.Float64_discrete_output") {
         assert_eq!(*y, 0.0);
     }
+}
+
+/// `xml` with an `<Alias name="{alias}"/>` in the empty Float64 element of
+/// `variable`.
+fn alias(xml: &str, variable: &str, alias: &str) -> String {
+    let open = format!("<Float64 name=\"{variable}\"");
+    let at = xml.find(&open).unwrap();
+    let end = at + xml[at..].find("/>").unwrap();
+    format!(
+        "{}><Alias name=\"{alias}\"/></Float64>{}",
+        &xml[..end],
+        &xml[end + 2..]
+    )
+}
+
+/// FMI 3.0 aliases are other names of the same variable (issue 49 #14:
+/// they could not be used): a scene drives the Feedthrough FMU's input by
+/// its alias, records its output by its alias and sets a start value by an
+/// alias; a description whose alias names another variable is refused.
+#[test]
+fn fmi3_aliases_name_the_same_ports() {
+    let dir = tempfile::tempdir().unwrap();
+    let xml =
+        std::fs::read_to_string(root().join("tests/reference-fmus/Feedthrough/FMI3.xml")).unwrap();
+    let xml = alias(&xml, "Float64_continuous_input", "u");
+    let xml = alias(&xml, "Float64_continuous_output", "y");
+    let xml = alias(&xml, "Float64_discrete_input", "v");
+    let fmu = build_described("Feedthrough", dir.path(), 3, &xml);
+    // The scene by the aliases (u, v, y) and by the variables' own names.
+    let run = |(u, v, y): (&str, &str, &str)| {
+        let scene = format!(
+            r#"
+[simulation]
+duration = 0.3
+step = 0.1
+
+[master]
+scheme = "jacobi"
+
+[[units]]
+name = "source"
+kind = "signal"
+parameters = {{ quantity = "displacement", sines = [{{ amplitude = 1.5, angular_frequency = 6.0 }}] }}
+
+[[units]]
+name = "through"
+kind = "fmu"
+parameters = {{ file = "{}", start = {{ {v} = 4.0 }} }}
+
+[[connections]]
+from = "source.value"
+to = "through.{u}"
+
+[output]
+signals = ["source.value", "through.{y}", "through.Float64_discrete_output"]
+"#,
+            fmu.display()
+        );
+        let path = dir.path().join("scene.toml");
+        std::fs::write(&path, scene).unwrap();
+        let scene = slender_scene::Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let series = slender_tests::run(&scene);
+        assert!(series.error.is_none(), "{:?}", series.error);
+        (
+            series.get(&format!("through.{y}")).to_vec(),
+            series.get("through.Float64_discrete_output").to_vec(),
+        )
+    };
+    let by_alias = run(("u", "v", "y"));
+    let by_name = run((
+        "Float64_continuous_input",
+        "Float64_discrete_input",
+        "Float64_continuous_output",
+    ));
+    assert_eq!(by_alias, by_name);
+    assert!(by_alias.0.iter().any(|y| *y != 0.0), "{by_alias:?}");
+    assert!(by_alias.1.iter().all(|y| *y == 4.0), "{by_alias:?}");
+    // An alias may not name another variable.
+    let clash = alias(
+        &std::fs::read_to_string(root().join("tests/reference-fmus/Feedthrough/FMI3.xml")).unwrap(),
+        "Float64_continuous_input",
+        "Float64_continuous_output",
+    );
+    let error = slender_fmi::model_description::ModelDescription::parse(&clash)
+        .expect_err("a clash")
+        .to_string();
+    assert!(
+        error.contains("`Float64_continuous_output` is used by two variables"),
+        "{error}"
+    );
 }
 
 /// An FMU with clocks is refused by name when loaded (its clocks were

@@ -396,6 +396,7 @@ fn variables(
             min: None,
             max: None,
             dimensions: Vec::new(),
+            aliases: Vec::new(),
         });
     }
     for (i, p) in unit.outputs.iter().enumerate() {
@@ -411,6 +412,7 @@ fn variables(
             min: None,
             max: None,
             dimensions: Vec::new(),
+            aliases: Vec::new(),
         });
     }
     for p in parameters {
@@ -454,6 +456,7 @@ fn parameter_variable(p: &ParameterVariable, kind: &KindInfo) -> ScalarVariable 
         min: info.min.filter(|_| number),
         max: info.max.filter(|_| number),
         dimensions: Vec::new(),
+        aliases: Vec::new(),
     }
 }
 

@@ -496,7 +496,8 @@ pub fn file_uri(path: &Path) -> String {
 /// it (the master sent 0 over it before).
 fn given_input_starts(description: &mut UnitDescription, given: &BTreeMap<String, toml::Value>) {
     for port in description.inputs.iter_mut() {
-        let value = given.get(&port.name);
+        let names = std::iter::once(&port.name).chain(&port.aliases);
+        let value = names.filter_map(|n| given.get(n)).next();
         if let Some(x) = value.and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))) {
             port.start = Some(x);
         }

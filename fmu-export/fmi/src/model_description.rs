@@ -127,6 +127,8 @@ pub struct ScalarVariable {
     /// An FMI 3.0 array's length in each dimension, row-major (empty: a
     /// scalar; FMI 2.0 has none). The FMI 2.0 description leaves arrays out.
     pub dimensions: Vec<usize>,
+    /// FMI 3.0 `<Alias>` names: other names of the same variable.
+    pub aliases: Vec<String>,
 }
 
 impl ScalarVariable {

@@ -268,14 +268,14 @@ impl System {
             Causality::Input => (&description.inputs, &description.outputs),
             Causality::Output => (&description.outputs, &description.inputs),
         };
-        if let Some(port) = ports.iter().position(|p| p.name == port_name) {
+        if let Some(port) = ports.iter().position(|p| p.answers_to(port_name)) {
             return Ok(PortRef { unit, port });
         }
         let wanted = match causality {
             Causality::Input => "input",
             Causality::Output => "output",
         };
-        if other.iter().any(|p| p.name == port_name) {
+        if other.iter().any(|p| p.answers_to(port_name)) {
             return Err(SystemError::WrongCausality {
                 path: path.to_owned(),
                 port: port_name.to_owned(),

@@ -30,6 +30,7 @@ pub(super) fn add(model: &mut ModelDescription, fields: &[Field], first: u32) {
             min: None,
             max: None,
             dimensions: vec![field.len],
+            aliases: Vec::new(),
         });
         let unknown = Unknown {
             index: model.variables.len(),

@@ -81,11 +81,14 @@ fn ports(
         let v = &model.variables[i];
         let (kind, unit) = kind_of(model, v.unit.as_deref());
         for k in 0..v.len() {
-            let name = if v.dimensions.is_empty() {
-                v.name.clone()
-            } else {
-                format!("{}[{}]", v.name, k + 1)
+            let element = |name: &String| {
+                if v.dimensions.is_empty() {
+                    name.clone()
+                } else {
+                    format!("{name}[{}]", k + 1)
+                }
             };
+            let name = element(&v.name);
             let port = if causality == VariableCausality::Input {
                 // Its declared start value, where nothing drives it.
                 let mut input = Port::input(&name, kind);
@@ -96,7 +99,9 @@ fn ports(
             } else {
                 Port::output(&name, kind)
             };
-            ports.push((i, port.with_unit(&unit)));
+            let mut port = port.with_unit(&unit);
+            port.aliases = v.aliases.iter().map(element).collect();
+            ports.push((i, port));
         }
     }
     ports
@@ -166,10 +171,8 @@ pub(super) fn start_values(
 ) -> Result<Vec<StartValue>, LoadError> {
     let mut out = Vec::new();
     for (name, value) in starts {
-        let v = model
-            .variables
-            .iter()
-            .find(|v| &v.name == name)
+        let v = (model.variables.iter())
+            .find(|v| &v.name == name || v.aliases.contains(name))
             .ok_or_else(|| LoadError::UnknownStart {
                 fmu: label.to_owned(),
                 name: name.clone(),

@@ -421,6 +421,7 @@ impl<'a> Parser<'a> {
             min: t.parsed("min", "a number")?,
             max: t.parsed("max", "a number")?,
             dimensions: Vec::new(),
+            aliases: Vec::new(),
             value,
         })
     }
@@ -472,6 +473,20 @@ impl<'a> Parser<'a> {
                     return Err(error(format!(
                         "input `{}` shares value reference {} with `{other}`",
                         v.name, v.value_reference
+                    )));
+                }
+            }
+        }
+        // A name (a variable's or an FMI 3.0 alias) stands for one variable.
+        let mut names = HashMap::new();
+        for (i, v) in md.variables.iter().enumerate() {
+            for name in std::iter::once(&v.name).chain(&v.aliases) {
+                if let Some(j) = names.insert(name.as_str(), i)
+                    && j != i
+                {
+                    return Err(error(format!(
+                        "the name `{name}` is used by two variables (`{}` and `{}`); each name, alias or not, names one variable",
+                        md.variables[j].name, v.name
                     )));
                 }
             }

@@ -68,6 +68,7 @@ fn sample_variables() -> Vec<ScalarVariable> {
             min: Some(-1.0),
             max: Some(2.5e6),
             dimensions: Vec::new(),
+            aliases: Vec::new(),
         },
         ScalarVariable {
             name: "x".into(),
@@ -81,6 +82,7 @@ fn sample_variables() -> Vec<ScalarVariable> {
             min: None,
             max: None,
             dimensions: Vec::new(),
+            aliases: Vec::new(),
         },
         ScalarVariable {
             name: "label".into(),
@@ -94,6 +96,7 @@ fn sample_variables() -> Vec<ScalarVariable> {
             min: None,
             max: None,
             dimensions: Vec::new(),
+            aliases: Vec::new(),
         },
     ]
 }

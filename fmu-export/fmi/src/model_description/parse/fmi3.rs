@@ -120,33 +120,7 @@ impl Parser<'_> {
                     m.co_simulation = Some(Self::co_simulation3(&attrs)?);
                 }
             }
-            ("ModelVariables", _) => {
-                note_clock(&attrs, state.md.as_mut());
-                if INTEGERS.contains(&name)
-                    && let Some(start) = attrs.optional("start")
-                    && let Some(vr) =
-                        attrs.parsed::<u32>("valueReference", "an unsigned integer")?
-                    && let Ok(start) = start.trim().parse::<i64>()
-                {
-                    pending.integers.insert(vr, start);
-                }
-                let typed = if READ.contains(&name) {
-                    let mut scalar = attrs.clone();
-                    // An array's start lists its values; the first stands for all.
-                    if let Some(start) = scalar.values.get_mut("start")
-                        && let Some(first) = start.split_whitespace().next()
-                    {
-                        *start = first.to_owned();
-                    }
-                    Some(Self::variable(&attrs, &scalar)?)
-                } else {
-                    None
-                };
-                state.variable = Some((attrs, typed));
-                if is_empty {
-                    self.finish_variable3(state)?;
-                }
-            }
+            ("ModelVariables", _) => self.variable3(attrs, is_empty, state)?,
             (_, "Dimension") => {
                 let line = attrs.line;
                 let variables = state.md.as_ref().map_or(0, |m| m.variables.len());
@@ -167,6 +141,11 @@ impl Parser<'_> {
                     }
                 }
             }
+            (_, "Alias") => {
+                if let Some((_, Some(v))) = state.variable.as_mut() {
+                    v.aliases.push(attrs.required("name")?.to_owned());
+                }
+            }
             ("String", "Start") => {
                 if let Some((_, Some(v))) = state.variable.as_mut() {
                     v.value = Value::String(attrs.optional("value").map(str::to_owned));
@@ -181,6 +160,47 @@ impl Parser<'_> {
             _ => return Ok(None),
         }
         Ok(Some(!is_empty))
+    }
+
+    /// A variable element of `ModelVariables`: an integer's start kept for
+    /// the arrays it sizes, a read type parsed and held open for its
+    /// `Dimension`, `Alias` and `Start` children.
+    fn variable3(
+        &mut self,
+        attrs: Attributes,
+        is_empty: bool,
+        state: &mut ParseState,
+    ) -> Result<(), DescriptionError> {
+        let name = attrs.element.as_str();
+        let pending = state
+            .fmi3
+            .as_mut()
+            .ok_or_else(|| attrs.error("not FMI 3.0".into()))?;
+        note_clock(&attrs, state.md.as_mut());
+        if INTEGERS.contains(&name)
+            && let Some(start) = attrs.optional("start")
+            && let Some(vr) = attrs.parsed::<u32>("valueReference", "an unsigned integer")?
+            && let Ok(start) = start.trim().parse::<i64>()
+        {
+            pending.integers.insert(vr, start);
+        }
+        let typed = if READ.contains(&name) {
+            let mut scalar = attrs.clone();
+            // An array's start lists its values; the first stands for all.
+            if let Some(start) = scalar.values.get_mut("start")
+                && let Some(first) = start.split_whitespace().next()
+            {
+                *start = first.to_owned();
+            }
+            Some(Self::variable(&attrs, &scalar)?)
+        } else {
+            None
+        };
+        state.variable = Some((attrs, typed));
+        if is_empty {
+            self.finish_variable3(state)?;
+        }
+        Ok(())
     }
 
     /// The end of a variable element: kept when its type is read.
