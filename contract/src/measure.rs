@@ -23,7 +23,8 @@ const NAMED: [(&str, Exponents); 13] = [
 ];
 
 /// The SI base-unit exponents of a unit written as products and quotients of named
-/// units with optional integer powers, e.g. "N.m", "m/s", "m/s^2", "kg/m", "1/s".
+/// units with optional integer powers, e.g. "N.m", "m/s", "m/s^2", "kg/m", "1/s",
+/// a space multiplying as a dot does ("N m^2", "N s/m^2").
 /// `None` for an empty name or a symbol it does not know.
 pub fn si_exponents(name: &str) -> Option<Exponents> {
     if name.trim().is_empty() {
@@ -55,7 +56,11 @@ pub fn si_exponents(name: &str) -> Option<Exponents> {
                     sign = -1;
                 }
             }
-            c if c.is_whitespace() => {}
+            // A space multiplies, as the docs write "N m^2" and "N s/m^2".
+            c if c.is_whitespace() => {
+                apply(&token, sign)?;
+                token.clear();
+            }
             c => token.push(c),
         }
     }
@@ -77,6 +82,11 @@ mod tests {
     #[test]
     fn compound_units_reduce_to_base_exponents() {
         assert_eq!(si_exponents("N.m").unwrap(), [1, 2, -2, 0, 0, 0, 0, 0]);
+        // Written with spaces, as the scene reference does (issue 49 #15).
+        assert_eq!(si_exponents("N m^2"), si_exponents("N.m^2"));
+        assert_eq!(si_exponents("N m^2").unwrap(), [1, 3, -2, 0, 0, 0, 0, 0]);
+        assert_eq!(si_exponents("N s/m^2"), si_exponents("kg/m.s"));
+        assert_eq!(si_exponents(" m / s "), si_exponents("m/s"));
         assert_eq!(si_exponents("m/s^2").unwrap(), [0, 1, -2, 0, 0, 0, 0, 0]);
         assert_eq!(si_exponents("1/s").unwrap(), [0, 0, -1, 0, 0, 0, 0, 0]);
         assert!(si_exponents("furlong").is_none());

@@ -114,5 +114,12 @@ mod tests {
         // "required" is no unit; a table is none either.
         assert_eq!(cable["current"].unit, "");
         assert!(parameters("no_such_kind").is_empty());
+        // The chord's units were in its prose alone (issue 49 #15).
+        let chord = parameters("chord");
+        assert_eq!(chord["tension"].unit, "N");
+        assert_eq!(chord["flexural_rigidity"].unit, "N m^2");
+        assert_eq!(chord["axial_stiffness"].unit, "N/m");
+        assert_eq!(chord["band"].unit, "rad/s");
+        assert_eq!(chord["elements"].unit, "");
     }
 }
