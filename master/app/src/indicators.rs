@@ -9,6 +9,7 @@
 
 use serde::Serialize;
 use slender_scene::spec::Norm;
+use std::borrow::Cow;
 
 /// One indicator's value.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
@@ -153,6 +154,23 @@ pub fn interpolate(time: &[f64], values: &[f64], t: f64) -> f64 {
     values[i - 1] + (values[i] - values[i - 1]) * (t - t0) / (t1 - t0)
 }
 
+/// An indicator's components on the recording: its signals and its
+/// references, each combined as the indicator asks (`combine`); `None`
+/// when one of them is not recorded.
+pub type Components<'a> = (Vec<Cow<'a, [f64]>>, Vec<Cow<'a, [f64]>>);
+
+/// [`Components`] of indicator `spec` in `recorder`.
+pub fn components<'a>(
+    spec: &slender_scene::spec::IndicatorSpec,
+    recorder: &'a crate::record::Recorder,
+) -> Option<Components<'a>> {
+    let columns = |names: &[String]| -> Option<Vec<&'a [f64]>> {
+        names.iter().map(|n| recorder.column(n)).collect()
+    };
+    let (x, r) = (columns(&spec.signals)?, columns(&spec.reference)?);
+    Some((spec.combine.apply(x), spec.combine.apply(r)))
+}
+
 /// The scene's indicators with references, measured on the recording; one
 /// whose window (`from`) holds less than two samples (a run shortened by
 /// `--duration`) is left out with a warning, not reported as NaN.
@@ -162,11 +180,6 @@ pub fn of_scene(
     warnings: &mut Vec<String>,
 ) -> Vec<Indicator> {
     let end = recorder.time.last().copied().unwrap_or(f64::NAN);
-    let columns = |names: &[String]| {
-        (names.iter())
-            .map(|n| recorder.column(n))
-            .collect::<Option<Vec<_>>>()
-    };
     let mut measured = Vec::new();
     for spec in (scene.spec.output.indicators.iter()).filter(|s| !s.reference.is_empty()) {
         if window(&recorder.time, &[], spec.from).0.len() < 2 {
@@ -179,10 +192,9 @@ pub fn of_scene(
             }
             continue;
         }
-        let (Some(x), Some(r)) = (columns(&spec.signals), columns(&spec.reference)) else {
+        let Some((x, r)) = components(spec, recorder) else {
             continue;
         };
-        let (x, r) = (spec.combine.apply(x), spec.combine.apply(r));
         let x: Vec<&[f64]> = x.iter().map(|c| &**c).collect();
         let r: Vec<&[f64]> = r.iter().map(|c| &**c).collect();
         let (time, x) = window(&recorder.time, &x, spec.from);

@@ -44,13 +44,9 @@ pub fn divergence(
     let mut found: Vec<Divergence> = Vec::new();
     let indicators = scene.spec.output.indicators.iter();
     for spec in indicators.filter(|s| outputs.contains(&s.name)) {
-        let columns = |names: &[String]| -> Option<Vec<&[f64]>> {
-            names.iter().map(|n| recorder.column(n)).collect()
-        };
-        let (Some(x), Some(r)) = (columns(&spec.signals), columns(&spec.reference)) else {
+        let Some((x, r)) = crate::indicators::components(spec, recorder) else {
             continue;
         };
-        let (x, r) = (spec.combine.apply(x), spec.combine.apply(r));
         found.extend(
             (x.iter().zip(&r)).filter_map(|(x, r)| against_reference(&recorder.time, x, r)),
         );
