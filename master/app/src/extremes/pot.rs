@@ -84,10 +84,9 @@ pub fn gpd_level(n: f64, shape: f64, scale: f64) -> f64 {
     }
 }
 
-/// The one-sample Kolmogorov-Smirnov distance of `excesses` from the GPD.
-fn ks_distance(excesses: &[f64], shape: f64, scale: f64) -> f64 {
-    let mut sorted = excesses.to_vec();
-    sorted.sort_by(f64::total_cmp);
+/// The one-sample Kolmogorov-Smirnov distance of `sorted` excesses (in
+/// ascending order) from the GPD.
+fn ks_distance(sorted: &[f64], shape: f64, scale: f64) -> f64 {
     let n = sorted.len() as f64;
     (sorted.iter().enumerate())
         .map(|(i, &y)| {
@@ -106,10 +105,11 @@ pub fn over_threshold(
     (cycles, storm_cycles): (f64, f64),
 ) -> Option<GpdFit> {
     let threshold = mean + threshold_sd * sigma;
-    let excesses: Vec<f64> = (peaks.iter())
+    let mut excesses: Vec<f64> = (peaks.iter())
         .map(|p| p - threshold)
         .filter(|y| *y > 0.0)
         .collect();
+    excesses.sort_by(f64::total_cmp);
     let (shape, scale) = gpd_fit(&excesses)?;
     // Exceedances expected in the storm: the window's rate carried to it.
     let expected = (excesses.len() as f64 * storm_cycles / cycles).max(1.0);

@@ -109,14 +109,17 @@ pub fn scatter(path: &Path, report: &UqReport, runs: &[Run]) -> Result<(), PlotE
     for (k, o) in report.outputs.iter().enumerate() {
         for i in 0..d {
             let area = &cells[k * d.div_ceil(cols) * cols + i];
-            let counted = |r: &Run| r.counted(k, floor).map(|y| (r.inputs[i], y));
-            let points: Vec<(f64, f64)> = runs.iter().filter_map(counted).collect();
-            let unstable: Vec<(f64, f64)> = (runs.iter().filter(|r| r.unstable()))
-                .filter_map(counted)
-                .collect();
+            // Stable runs as circles, unstable ones as crosses: each once.
+            let (unstable, stable): (Vec<&Run>, Vec<&Run>) =
+                runs.iter().partition(|r| r.unstable());
+            let at = |group: &[&Run]| -> Vec<(f64, f64)> {
+                (group.iter())
+                    .filter_map(|r| r.counted(k, floor).map(|y| (r.inputs[i], y)))
+                    .collect()
+            };
+            let (points, unstable) = (at(&stable), at(&unstable));
             let range = |f: fn(&(f64, f64)) -> f64| {
-                let (lo, hi) = points
-                    .iter()
+                let (lo, hi) = (points.iter().chain(&unstable))
                     .map(f)
                     .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
                         (a.min(v), b.max(v))
