@@ -98,5 +98,15 @@ for scene in examples/*.toml; do
 done
 cargo run --quiet --release -- run examples/truncation_signal_loss.toml --quiet --out target/example-results/truncation_signal_loss
 
+# Last: maturin links the command again without its debug information.
+step "the slender wheel (maturin): installed into a fresh venv and run from outside the repository"
+./scripts/wheel.sh
+rm -rf target/wheel-venv
+python3 -m venv target/wheel-venv
+target/wheel-venv/bin/python -m pip install --quiet --disable-pip-version-check target/wheels/slender-*.whl
+root="$PWD"
+(cd "$(mktemp -d)" && env -u SLENDER_BINARY PATH=/usr/bin:/bin \
+    "$root/target/wheel-venv/bin/python" "$root/tests/python/wheel_check.py" "$root")
+
 step "all checks passed"
 echo "tests: ${passed} passed, ${failed} failed, ${ignored} skipped"

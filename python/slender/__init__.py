@@ -14,7 +14,9 @@ here is the result the command wrote::
     rows = slender.study("examples/b3_force_displacement.toml",
                          vary={"step": [0.001, 0.002, 0.005]})
 
-The binary is ``$SLENDER_BINARY``, else ``slender`` on the ``PATH``, else
+The binary is ``$SLENDER_BINARY``, else the one installed with this package
+(the ``slender`` wheel puts it in the environment's scripts folder, beside
+the interpreter), else ``slender`` on the ``PATH``, else
 ``target/release/slender`` in the current folder or one above it. Without
 ``out``, a command writes into a temporary folder that is removed once read
 (``Run.folder`` is then ``None``).
@@ -26,6 +28,7 @@ import json
 import os
 import shutil
 import subprocess
+import sysconfig
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -142,6 +145,9 @@ def binary() -> str:
     given = os.environ.get("SLENDER_BINARY")
     if given:
         return given
+    installed = Path(sysconfig.get_path("scripts")) / "slender"
+    if installed.is_file():
+        return str(installed)
     found = shutil.which("slender")
     if found:
         return found
