@@ -5,11 +5,13 @@
 # self-contained) through cargo-zigbuild (from crates.io, into target/tools).
 # Prints the library's path; export with it:
 #   slender fmu export SCENE --unit NAME --binary "$(./scripts/portable-fmu.sh | tail -1)"
+# Usage: ./scripts/portable-fmu.sh [TARGET]  (default x86_64-unknown-linux-gnu;
+#        aarch64-unknown-linux-gnu for ARM hosts, after `rustup target add`)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 glibc=2.17
-target=x86_64-unknown-linux-gnu
+target="${1:-x86_64-unknown-linux-gnu}"
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
