@@ -19,10 +19,14 @@
 //!   E (3, 12.010; 5, 15.350), F (3, 11.855; 5, 15.091), F1 (3, 11.699; 5,
 //!   14.832); in seawater with cathodic protection B1 (4.0, 14.917), C (3,
 //!   12.192), D (3, 11.764), E (3, 11.610), F (3, 11.455), F1 (3, 11.299),
-//!   each with the same second slope as in air. No thickness correction: put
-//!   (t / 25 mm)^k in `scf` where DNV-RP-C203 asks for it.
+//!   each with the same second slope as in air; with DNV-RP-C203's
+//!   thickness effect (2.4.3: the range times (t / t_ref)^k for t above
+//!   t_ref = 25 mm, k from Tables 2-1 and 2-2: B1 0, C 0.05, D and E 0.20,
+//!   F and F1 0.25) and mean stress effect (2.5: the compressive part of a
+//!   cycle's range times 0.6 in base material, 0.8 in post-weld heat
+//!   treated welds) where the scene asks for them.
 
-use crate::rainflow;
+use crate::rainflow::{self, Cycle};
 use serde::Serialize;
 use slender_scene::spec::{FatigueCurve, FatigueSpec};
 
@@ -84,6 +88,47 @@ pub fn cycles_to_failure(curve: FatigueCurve, s: f64, mean_ratio: f64) -> f64 {
     }
 }
 
+/// DNV-RP-C203's thickness exponent k of `curve` (Tables 2-1 and 2-2, the
+/// same in air and in seawater); 0 for the chain and rope curves.
+pub fn thickness_exponent(curve: FatigueCurve) -> f64 {
+    use FatigueCurve::*;
+    match curve {
+        DnvC203CAir | DnvC203CSeawaterCp => 0.05,
+        DnvC203DAir | DnvC203DSeawaterCp | DnvC203EAir | DnvC203ESeawaterCp => 0.20,
+        DnvC203FAir | DnvC203FSeawaterCp | DnvC203F1Air | DnvC203F1SeawaterCp => 0.25,
+        _ => 0.0,
+    }
+}
+
+/// The factor DNV-RP-C203's thickness effect puts on every range:
+/// (max(t, t_ref) / t_ref)^k, 1 without a thickness.
+fn thickness_factor(spec: &FatigueSpec) -> f64 {
+    let Some(t) = spec.thickness else {
+        return 1.0;
+    };
+    let reference = spec.reference_thickness.unwrap_or(0.025);
+    let k = (spec.thickness_exponent).unwrap_or_else(|| thickness_exponent(spec.curve));
+    (t.max(reference) / reference).powf(k)
+}
+
+/// The range `cycle` enters the curve with: its compressive part reduced by
+/// the mean stress effect, then raised by the thickness effect (`thickness`
+/// is the latter's factor).
+fn effective_range(spec: &FatigueSpec, cycle: &Cycle, thickness: f64) -> f64 {
+    let range = match spec.mean_stress {
+        Some(effect) => {
+            let (top, bottom) = (
+                cycle.mean + cycle.range / 2.0,
+                cycle.mean - cycle.range / 2.0,
+            );
+            let tensile = top.max(0.0) - bottom.max(0.0);
+            tensile + effect.compressive_factor() * (cycle.range - tensile)
+        }
+        None => cycle.range,
+    };
+    range * thickness
+}
+
 /// The nominal area (m2) of `spec`: given, or a chain's two bars.
 fn nominal_area(spec: &FatigueSpec) -> f64 {
     spec.area.unwrap_or_else(|| {
@@ -127,11 +172,13 @@ pub fn damage(
         Some(b) => tension.iter().sum::<f64>() / tension.len().max(1) as f64 / b,
         None => 0.0,
     };
+    let thickness = thickness_factor(spec);
     let of_side = |history: &Vec<f64>| -> Damage {
         let cycles = rainflow::count(history);
         let damage: f64 = (cycles.iter())
-            .filter(|c| c.range > 0.0)
-            .map(|c| c.count / cycles_to_failure(spec.curve, c.range, mean_ratio))
+            .map(|c| (c.count, effective_range(spec, c, thickness)))
+            .filter(|(_, range)| *range > 0.0)
+            .map(|(count, range)| count / cycles_to_failure(spec.curve, range, mean_ratio))
             .sum();
         let per_year = damage * YEAR_S / window_s;
         Damage {

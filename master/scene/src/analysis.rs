@@ -102,6 +102,45 @@ pub struct FatigueSpec {
     /// The window's start (s); default the statistics' `from`, or the start.
     #[serde(default)]
     pub from: Option<f64>,
+    /// DNV-RP-C203's thickness effect (S-N curves): the thickness a crack
+    /// grows through (m); ranges are raised by (t / t_ref)^k above t_ref.
+    #[serde(default)]
+    pub thickness: Option<f64>,
+    /// The thickness effect's reference t_ref (m; default 0.025, welded
+    /// connections other than tubular joints; 0.016 for tubular joints).
+    #[serde(default)]
+    pub reference_thickness: Option<f64>,
+    /// The thickness exponent k (default the curve's, DNV-RP-C203 Tables
+    /// 2-1 and 2-2).
+    #[serde(default)]
+    pub thickness_exponent: Option<f64>,
+    /// DNV-RP-C203's mean stress effect (S-N curves): the compressive part of
+    /// each cycle's range reduced (default none, as welded).
+    #[serde(default)]
+    pub mean_stress: Option<MeanStress>,
+}
+
+/// Where DNV-RP-C203 (2.5) lets the compressive part of a stress range count
+/// less: the range becomes its tensile part plus a factor times its
+/// compressive part, f_m = (s_t + c s_c) / (s_t + s_c).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MeanStress {
+    /// Base material not significantly affected by welding residual
+    /// stresses (cut-outs, the pipe wall away from welds): c = 0.6.
+    BaseMaterial,
+    /// Welded connections after post-weld heat treatment: c = 0.8.
+    PostWeldHeatTreated,
+}
+
+impl MeanStress {
+    /// The factor on the compressive part of a range.
+    pub fn compressive_factor(self) -> f64 {
+        match self {
+            MeanStress::BaseMaterial => 0.6,
+            MeanStress::PostWeldHeatTreated => 0.8,
+        }
+    }
 }
 
 /// The fatigue curves slender knows, each with its source (parameters in
@@ -152,6 +191,27 @@ pub enum FatigueCurve {
 }
 
 impl FatigueCurve {
+    /// DNV-RP-C203's S-N curves (welded steel), the ones its thickness and
+    /// mean stress effects apply to.
+    pub fn is_dnv_c203(self) -> bool {
+        use FatigueCurve::*;
+        matches!(
+            self,
+            DnvC203B1Air
+                | DnvC203CAir
+                | DnvC203DAir
+                | DnvC203EAir
+                | DnvC203FAir
+                | DnvC203F1Air
+                | DnvC203B1SeawaterCp
+                | DnvC203CSeawaterCp
+                | DnvC203DSeawaterCp
+                | DnvC203ESeawaterCp
+                | DnvC203FSeawaterCp
+                | DnvC203F1SeawaterCp
+        )
+    }
+
     /// API RP 2SK's curves take the range over the breaking strength, not a stress.
     pub fn needs_breaking_load(self) -> bool {
         use FatigueCurve::*;
@@ -243,6 +303,8 @@ impl Scene {
             ("section_modulus", f.section_modulus),
             ("breaking_load", f.breaking_load),
             ("scf", f.scf),
+            ("thickness", f.thickness),
+            ("reference_thickness", f.reference_thickness),
         ];
         for (name, value) in given {
             self.check_positive(&format!("{key}.{name}"), value)?;
@@ -266,7 +328,44 @@ impl Scene {
                 "`moment` and `section_modulus` (m3) are given together or not at all",
             ));
         }
-        Ok(())
+        self.check_c203_effects(key, f)
+    }
+
+    /// DNV-RP-C203's thickness and mean stress effects: with its curves
+    /// only, the exponent with a thickness, k in [0, 1].
+    fn check_c203_effects(&self, key: &str, f: &FatigueSpec) -> Result<(), SceneError> {
+        let asked = [
+            ("thickness", f.thickness.is_some()),
+            ("reference_thickness", f.reference_thickness.is_some()),
+            ("thickness_exponent", f.thickness_exponent.is_some()),
+            ("mean_stress", f.mean_stress.is_some()),
+        ];
+        if let Some((name, _)) = asked.iter().find(|(_, given)| *given)
+            && !f.curve.is_dnv_c203()
+        {
+            return Err(self.error(
+                None,
+                &format!("{key}.{name}"),
+                "DNV-RP-C203's effects apply to its S-N curves (`dnv_c203_...`), not to a chain's or a rope's T-N curve",
+            ));
+        }
+        if f.thickness.is_none()
+            && (f.reference_thickness.is_some() || f.thickness_exponent.is_some())
+        {
+            return Err(self.error(
+                None,
+                &format!("{key}.thickness"),
+                "missing: `reference_thickness` and `thickness_exponent` need the `thickness` (m) a crack grows through",
+            ));
+        }
+        match f.thickness_exponent {
+            Some(k) if !(0.0..=1.0).contains(&k) => Err(self.error(
+                None,
+                &format!("{key}.thickness_exponent"),
+                format!("{k}: expected an exponent from 0 to 1 (DNV-RP-C203's run from 0 to 0.25)"),
+            )),
+            _ => Ok(()),
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 //! `docs/scene-reference.md` documents these types field by field.
 
 pub use crate::analysis::{
-    EnvelopesSpec, ExtremesSpec, FatigueCurve, FatigueSpec, SpectraSpec, StatisticsSpec,
+    EnvelopesSpec, ExtremesSpec, FatigueCurve, FatigueSpec, MeanStress, SpectraSpec, StatisticsSpec,
 };
 use serde::Deserialize;
 use slender_coupling::settings::MasterSettings;

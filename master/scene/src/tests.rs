@@ -250,6 +250,9 @@ fn extremes_spectra_and_fatigue_a_scene_can_give_are_accepted() {
         fatigue(
             "curve = \"dnv_c203_d_seawater_cp\"\narea = 0.02\nmoment = \"m.velocity\"\nsection_modulus = 1e-3\nscf = 1.2\nfrom = 2.0",
         ),
+        fatigue(
+            "curve = \"dnv_c203_f1_air\"\narea = 0.02\nthickness = 0.04\nreference_thickness = 0.016\nthickness_exponent = 0.3\nmean_stress = \"post_weld_heat_treated\"",
+        ),
     ] {
         assert_eq!(scene(&good), Ok(()), "{good}");
     }
@@ -326,6 +329,45 @@ fn extremes_spectra_and_fatigue_that_cannot_be_given_are_refused_before_the_run(
         (
             format!("{}\n{}", fatigue(chain), fatigue(chain)),
             "output.fatigue[1]: `f` is named twice",
+        ),
+    ] {
+        let error = scene(&bad).expect_err(&bad);
+        assert!(error.contains(says), "{bad}: {error}");
+    }
+}
+
+#[test]
+fn dnv_rp_c203_effects_that_cannot_be_given_are_refused_before_the_run() {
+    let (scene, fatigue) = (analysis_scene, analysis_fatigue);
+    let chain = "curve = \"dnv_studless_chain\"\nchain_diameter = 0.1";
+    for (bad, says) in [
+        (
+            fatigue(&format!("{chain}\nthickness = 0.03")),
+            "output.fatigue[0].thickness: DNV-RP-C203's effects apply to its S-N curves",
+        ),
+        (
+            fatigue(
+                "curve = \"api_studless_chain\"\nbreaking_load = 1e6\nmean_stress = \"base_material\"",
+            ),
+            "output.fatigue[0].mean_stress: DNV-RP-C203's effects apply",
+        ),
+        (
+            fatigue("curve = \"dnv_c203_d_air\"\narea = 0.02\nmean_stress = \"welded\""),
+            "unknown variant `welded`, expected `base_material` or `post_weld_heat_treated`",
+        ),
+        (
+            fatigue("curve = \"dnv_c203_d_air\"\narea = 0.02\nthickness = -0.03"),
+            "output.fatigue[0].thickness: -0.03: expected a positive number",
+        ),
+        (
+            fatigue("curve = \"dnv_c203_d_air\"\narea = 0.02\nreference_thickness = 0.016"),
+            "output.fatigue[0].thickness: missing: `reference_thickness` and `thickness_exponent` need",
+        ),
+        (
+            fatigue(
+                "curve = \"dnv_c203_d_air\"\narea = 0.02\nthickness = 0.05\nthickness_exponent = 2.0",
+            ),
+            "output.fatigue[0].thickness_exponent: 2: expected an exponent from 0 to 1",
         ),
     ] {
         let error = scene(&bad).expect_err(&bad);

@@ -1,5 +1,5 @@
-use super::{cycles_to_failure, damage};
-use slender_scene::spec::{FatigueCurve, FatigueSpec};
+use super::{cycles_to_failure, damage, thickness_exponent};
+use slender_scene::spec::{FatigueCurve, FatigueSpec, MeanStress};
 use std::f64::consts::PI;
 
 fn spec(curve: FatigueCurve) -> FatigueSpec {
@@ -14,6 +14,10 @@ fn spec(curve: FatigueCurve) -> FatigueSpec {
         breaking_load: None,
         scf: None,
         from: None,
+        thickness: None,
+        reference_thickness: None,
+        thickness_exponent: None,
+        mean_stress: None,
     }
 }
 
@@ -131,4 +135,106 @@ fn a_bending_moment_adds_its_fibre_stress_on_the_worse_side() {
     let without = damage(&s, &tension, None, 1000.0);
     assert_eq!(without.damage, 0.0);
     assert!(without.life_years.is_infinite());
+}
+
+/// Miner's sum by hand of `sine(mean, amplitude, 100)` when every range r
+/// from a valley v enters the curve as `effective(v, r)`: 99.5 cycles of the
+/// full range, then the first half cycle (mean up to the first peak) and the
+/// last (the last valley up to the mean).
+fn miner_of_sine(
+    curve: FatigueCurve,
+    mean: f64,
+    amplitude: f64,
+    effective: impl Fn(f64, f64) -> f64,
+) -> f64 {
+    let n = |range: f64| cycles_to_failure(curve, range, 0.0);
+    99.5 / n(effective(mean - amplitude, 2.0 * amplitude))
+        + 0.5 / n(effective(mean, amplitude))
+        + 0.5 / n(effective(mean - amplitude, amplitude))
+}
+
+#[test]
+fn dnv_rp_c203_thickness_effect_raises_ranges_above_the_reference_thickness() {
+    // A riser wall's stress, 40 +- 30 MPa (nominal area 1 m2, so the tension
+    // in N is 1e6 times the stress in MPa), on curve D in air: the full
+    // ranges above its knee (52.63 MPa), the end's half cycles below it.
+    let mut s = spec(FatigueCurve::DnvC203DAir);
+    s.area = Some(1.0);
+    let history = sine(40e6, 30e6, 100);
+    let plain = damage(&s, &history, None, 1000.0).damage;
+    let by_hand = |factor: f64| miner_of_sine(s.curve, 40.0, 30.0, |_, r| factor * r);
+    assert!((plain / by_hand(1.0) - 1.0).abs() < 1e-9);
+    // 50 mm against the 25 mm reference: ranges times 2^0.20.
+    s.thickness = Some(0.05);
+    let thick = damage(&s, &history, None, 1000.0).damage;
+    let expected = by_hand(2f64.powf(0.20));
+    assert!(
+        (thick / expected - 1.0).abs() < 1e-9,
+        "{thick} against {expected}"
+    );
+    assert!(
+        thick > 1.5 * plain,
+        "about 2^0.6 = 1.52 times: {}",
+        thick / plain
+    );
+    // Thinner than the reference counts as the reference.
+    s.thickness = Some(0.02);
+    assert_eq!(damage(&s, &history, None, 1000.0).damage, plain);
+    // A tubular joint's 16 mm reference and an exponent of 0.3 given.
+    (s.thickness, s.reference_thickness, s.thickness_exponent) =
+        (Some(0.032), Some(0.016), Some(0.3));
+    let given = damage(&s, &history, None, 1000.0).damage;
+    let expected = miner_of_sine(s.curve, 40.0, 30.0, |_, r| 2f64.powf(0.3) * r);
+    assert!((given / expected - 1.0).abs() < 1e-9);
+    // The tables' exponents.
+    use FatigueCurve::*;
+    let k = [
+        (DnvC203B1Air, 0.0),
+        (DnvC203CSeawaterCp, 0.05),
+        (DnvC203EAir, 0.20),
+        (DnvC203F1SeawaterCp, 0.25),
+        (DnvStudlessChain, 0.0),
+    ];
+    for (curve, expected) in k {
+        assert_eq!(thickness_exponent(curve), expected, "{curve:?}");
+    }
+}
+
+#[test]
+fn dnv_rp_c203_mean_stress_effect_reduces_the_compressive_part_of_each_range() {
+    let mut s = spec(FatigueCurve::DnvC203DAir);
+    s.area = Some(1.0);
+    let damage_of =
+        |s: &FatigueSpec, mean: f64| damage(s, &sine(mean * 1e6, 40e6, 100), None, 1000.0).damage;
+    // 80 MPa ranges: about a zero mean half of each range is compressive,
+    // so f_m = 0.5 + 0.6 x 0.5 = 0.8 in base material, 0.9 after heat
+    // treatment; wholly tensile (mean 50 MPa) no change; wholly compressive
+    // (-50 MPa) 0.6. The end's half cycles by the same rule: from the mean
+    // up to the peak and from the valley up to the mean.
+    let plain = damage_of(&s, 0.0);
+    for (effect, mean, f_full) in [
+        (MeanStress::BaseMaterial, 0.0, 0.8),
+        (MeanStress::PostWeldHeatTreated, 0.0, 0.9),
+        (MeanStress::BaseMaterial, 50.0, 1.0),
+        (MeanStress::BaseMaterial, -50.0, 0.6),
+    ] {
+        s.mean_stress = Some(effect);
+        let c = effect.compressive_factor();
+        let effective = |valley: f64, range: f64| {
+            if range == 80.0 {
+                return f_full * range;
+            }
+            let tensile = (valley + range).max(0.0) - valley.max(0.0);
+            tensile + c * (range - tensile)
+        };
+        let reduced = damage_of(&s, mean);
+        let miner = miner_of_sine(s.curve, mean, 40.0, effective);
+        assert!(
+            (reduced / miner - 1.0).abs() < 1e-9,
+            "{effect:?} {mean}: {reduced} against {miner}"
+        );
+        if mean == 0.0 {
+            assert!(reduced < 0.8 * plain, "{reduced} against {plain}");
+        }
+    }
 }
