@@ -105,6 +105,11 @@ pub struct Expression {
     pub fade_in: f64,
     /// An irregular sea whose sines were added to `sines` (kept to be checked).
     pub sea: Option<SeaState>,
+    /// The sine and `sines` as a series summed fast (a sea's components by
+    /// phasors), made when the expression is read; an expression built by
+    /// hand (`..Expression::default()`), whose series does not hold its
+    /// sines, sums them one by one. Boxed: most expressions are a sine.
+    pub series: Box<SineSeries>,
 }
 
 /// An expression as a scene writes it (a sea state's sines not among its
@@ -127,7 +132,7 @@ impl From<ExpressionSpec> for Expression {
     fn from(spec: ExpressionSpec) -> Expression {
         let mut sines = spec.sines;
         sines.extend(spec.sea.iter().flat_map(SeaState::sines));
-        Expression {
+        let mut e = Expression {
             offset: spec.offset,
             amplitude: spec.amplitude,
             angular_frequency: spec.angular_frequency,
@@ -137,6 +142,34 @@ impl From<ExpressionSpec> for Expression {
             sines,
             fade_in: spec.fade_in,
             sea: spec.sea,
+            series: Box::default(),
+        };
+        e.series = Box::new(SineSeries::new(&e.all_sines().collect::<Vec<_>>()));
+        e
+    }
+}
+
+impl Expression {
+    /// Its own sine, then `sines`.
+    fn all_sines(&self) -> impl Iterator<Item = Sine> + '_ {
+        let first = Sine {
+            amplitude: self.amplitude,
+            angular_frequency: self.angular_frequency,
+            phase: self.phase,
+            decay: 0.0,
+        };
+        std::iter::once(first).chain(self.sines.iter().cloned())
+    }
+
+    /// Adds the sum of its sines and its two time derivatives at t (s) to
+    /// `out`.
+    fn add_sines(&self, out: &mut [f64; 3], t: f64) {
+        if self.series.len() == 1 + self.sines.len() {
+            return self.series.add_to(out, t);
+        }
+        for s in self.all_sines() {
+            let v = s.eval(t);
+            (0..3).for_each(|i| out[i] += v[i]);
         }
     }
 }
@@ -164,6 +197,7 @@ impl From<Expression> for ExpressionSpec {
     }
 }
 
+use crate::signal::series::SineSeries;
 pub use crate::signal::sine::Sine;
 use crate::signal::sine::smoothstep;
 
@@ -174,12 +208,6 @@ impl TimeFunction {
             TimeFunction::Constant(c) => Some([*c, 0.0, 0.0]),
             TimeFunction::Input(_) => None,
             TimeFunction::Expression(e) => {
-                let first = Sine {
-                    amplitude: e.amplitude,
-                    angular_frequency: e.angular_frequency,
-                    phase: e.phase,
-                    decay: 0.0,
-                };
                 let ex = e.decay_amplitude * (-e.decay_rate * t).exp();
                 let [r, dr, ddr] = smoothstep(t, e.fade_in);
                 let faded = r < 1.0;
@@ -191,11 +219,7 @@ impl TimeFunction {
                         e.decay_rate * e.decay_rate * ex,
                     ],
                 };
-                for sine in std::iter::once(&first).chain(&e.sines) {
-                    for (v, s) in v.iter_mut().zip(sine.eval(t)) {
-                        *v += s;
-                    }
-                }
+                e.add_sines(&mut v, t);
                 if !faded {
                     return Some(v);
                 }

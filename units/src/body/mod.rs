@@ -33,7 +33,8 @@ use crate::contract::{
     Capabilities, HoldSupport, Inputs, StepReport, Time, Unit, UnitDescription, UnitError,
     require_step_jacobian_ready,
 };
-use crate::signal::sine::{Sine, faded_sum};
+use crate::signal::series::SineSeries;
+use crate::signal::sine::{faded_series, faded_sum};
 use dynamics::{Model, Motion, rate_map, rate_map_derivative};
 use motion_table::TableMotion;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
@@ -89,8 +90,8 @@ pub struct Body {
 /// as sines, faded in over `fade_in` (s).
 #[derive(Default)]
 struct Sea {
-    excitation: Option<[Vec<Sine>; 6]>,
-    motion: Option<[Vec<Sine>; 6]>,
+    excitation: Option<[SineSeries; 6]>,
+    motion: Option<[SineSeries; 6]>,
     fade_in: f64,
 }
 
@@ -99,7 +100,9 @@ impl Sea {
         let Some(waves) = &p.waves else {
             return Sea::default();
         };
-        let sines = |t: &Option<waves::RaoTable>| t.as_ref().map(|t| t.sines(waves, p.reference));
+        let sines = |t: &Option<waves::RaoTable>| {
+            (t.as_ref()).map(|t| t.sines(waves, p.reference).map(|s| SineSeries::new(&s)))
+        };
         Sea {
             excitation: sines(&p.force_rao),
             motion: sines(&p.motion_rao),
@@ -110,7 +113,7 @@ impl Sea {
     /// The excitation at `t` (s): force and moment at the reference point.
     fn excitation(&self, t: f64) -> Vector6<f64> {
         match &self.excitation {
-            Some(dofs) => Vector6::from_fn(|i, _| faded_sum(0.0, &dofs[i], self.fade_in, t)[0]),
+            Some(dofs) => Vector6::from_fn(|i, _| faded_series(0.0, &dofs[i], self.fade_in, t)[0]),
             None => Vector6::zeros(),
         }
     }
@@ -214,7 +217,7 @@ impl Body {
             let sines = p.motion.as_ref().map_or(&[][..], |m| &m[i]);
             *d = faded_sum(p.initial_offset[i], sines, p.fade_in, t);
             if let Some(sea) = &self.sea.motion {
-                add(d, faded_sum(0.0, &sea[i], self.sea.fade_in, t));
+                add(d, faded_series(0.0, &sea[i], self.sea.fade_in, t));
             }
             if let Some(table) = &table {
                 add(d, table[i]);

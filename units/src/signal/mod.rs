@@ -5,6 +5,7 @@ pub mod artefact;
 pub mod characteristic_load;
 pub mod compensation;
 pub mod prescribed;
+pub mod series;
 pub mod sine;
 pub mod source;
 

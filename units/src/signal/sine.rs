@@ -3,6 +3,7 @@
 //! decay, a damped free vibration, as the analytic solutions of the benchmark
 //! scenes have them).
 
+use super::series::SineSeries;
 use crate::contract::{UnitError, require_finite, require_non_negative};
 use serde::{Deserialize, Serialize};
 
@@ -86,6 +87,14 @@ pub fn faded_sum(base: f64, sines: &[Sine], fade_in: f64, t: f64) -> [f64; 3] {
         out[2] += ddr * x + 2.0 * dr * v + r * a;
     }
     out
+}
+
+/// [`faded_sum`] of a series (a sea's components summed by phasors):
+/// (r x)' = r' x + r v, (r x)'' = r'' x + 2 r' v + r a.
+pub fn faded_series(base: f64, series: &SineSeries, fade_in: f64, t: f64) -> [f64; 3] {
+    let [r, dr, ddr] = fade(fade_in, t);
+    let [x, v, a] = series.eval(t);
+    [base + r * x, dr * x + r * v, ddr * x + 2.0 * dr * v + r * a]
 }
 
 #[cfg(test)]
