@@ -2,7 +2,8 @@
 //! (`docs/guide/*.md`) show (a fenced line or an inline `slender ...` naming an
 //! example scene; not a ```console block, which shows a refusal) still works
 //! as written (the tutorials run in full in tutorials.rs). Runs
-//! and mode analyses run for real, over ten of their scene's steps; study,
+//! and mode analyses run for real, over ten of their scene's steps (a run's
+//! own `--duration` replaced); study,
 //! fidelity and uq commands are checked up to their first run (arguments,
 //! scene, every key and section they name) by `--max-runs 0`, which they
 //! refuse only after everything else was accepted, since their grids take
@@ -102,12 +103,14 @@ fn every_readme_command_with_an_example_scene_works_as_written() {
     for (k, words) in commands.iter().enumerate() {
         let out = dir.path().join(k.to_string());
         let out = out.to_str().unwrap();
-        // The results go to the test's folder, whatever the document names.
+        // The results go to the test's folder, whatever the document names;
+        // a run's own `--duration` (a 3-hour sea) gives way to ten steps.
         let mut args: Vec<String> = Vec::new();
         let mut given = words.iter();
         while let Some(word) = given.next() {
             match word.as_str() {
                 "--out" => _ = given.next(),
+                "--duration" if words[0] == "run" => _ = given.next(),
                 _ => args.push(word.clone()),
             }
         }
