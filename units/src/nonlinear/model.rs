@@ -30,6 +30,21 @@ pub struct Model {
     pub arc: Vec<f64>,
     /// The shortest element (m): the most a Newton correction moves a node.
     shortest: f64,
+    /// A linear section's axial forces, linear in each element's DOFs about
+    /// the static state (`linear.rs`); none for a nonlinear one.
+    pub linear_axial: Option<Vec<LinearAxial>>,
+}
+
+/// An element's axial force linearised about the static state: N = `axial`
+/// + `gradient` . (q_e - `at`) (N; the gradient in N/m and N/rad).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinearAxial {
+    /// The element's six DOFs at the static state (m, rad).
+    pub at: [f64; 6],
+    /// The axial force there (N).
+    pub axial: f64,
+    /// Its derivative with respect to each DOF.
+    pub gradient: [f64; 6],
 }
 
 /// The six DOFs of element `e` in `q`.
@@ -71,6 +86,7 @@ impl Model {
             reference,
             arc,
             shortest,
+            linear_axial: None,
         }
     }
 
@@ -163,9 +179,42 @@ impl Model {
         }
     }
 
-    /// Axial force, end moments and chord of every element at `q`.
+    /// Axial force, end moments and chord of every element at `q`; a
+    /// linear section's axial force from its linearisation (the element's own
+    /// on the linear state would count a rotation of its chord as stretch).
     pub fn local_forces(&self, q: &[f64], e: usize) -> LocalForces {
-        self.elements[e].local_forces(self.formulation, &element_dofs(q, e))
+        let dofs = element_dofs(q, e);
+        let mut local = self.elements[e].local_forces(self.formulation, &dofs);
+        if let Some(linear) = &self.linear_axial {
+            let l = &linear[e];
+            let change: f64 = (0..6).map(|i| l.gradient[i] * (dofs[i] - l.at[i])).sum();
+            local.axial = l.axial + change;
+        }
+        local
+    }
+
+    /// Each element's axial force linearised at `q` (central differences,
+    /// 1e-6 m or rad).
+    pub fn linearise_axial(&self, q: &[f64]) -> Vec<LinearAxial> {
+        const H: f64 = 1e-6;
+        (0..self.elements.len())
+            .map(|e| {
+                let at = element_dofs(q, e);
+                let axial_at =
+                    |dofs: &[f64; 6]| (self.elements[e].local_forces(self.formulation, dofs)).axial;
+                let gradient = std::array::from_fn(|i| {
+                    let (mut up, mut down) = (at, at);
+                    up[i] += H;
+                    down[i] -= H;
+                    (axial_at(&up) - axial_at(&down)) / (2.0 * H)
+                });
+                LinearAxial {
+                    at,
+                    axial: axial_at(&at),
+                    gradient,
+                }
+            })
+            .collect()
     }
 
     /// The mass matrix (structural plus added mass of `segments`, water density
