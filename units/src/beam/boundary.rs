@@ -3,6 +3,9 @@
 
 use crate::contract::UnitError;
 use crate::sea::SeaState;
+use crate::signal::series::SineSeries;
+pub use crate::signal::sine::Sine;
+use crate::signal::sine::smoothstep;
 use serde::{Deserialize, Serialize};
 
 /// The four end quantities. Moment is EI y'' (N m), shear EI y''' (N).
@@ -196,10 +199,6 @@ impl From<Expression> for ExpressionSpec {
         }
     }
 }
-
-use crate::signal::series::SineSeries;
-pub use crate::signal::sine::Sine;
-use crate::signal::sine::smoothstep;
 
 impl TimeFunction {
     /// Value and its first two time derivatives at t; `None` for an input.
