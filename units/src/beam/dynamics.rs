@@ -240,6 +240,7 @@ impl SecondOrderSystem for Beam {
             mass: &self.m,
             damping: Some(&self.c),
             stiffness: Some(&self.k),
+            varies: false,
         }
     }
 

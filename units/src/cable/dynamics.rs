@@ -160,6 +160,7 @@ impl SecondOrderSystem for CableStep<'_> {
             mass: &d.m_ff,
             damping: d.damped.then_some(&d.c_ff),
             stiffness: Some(&d.k_ff),
+            varies: false,
         }
     }
 

@@ -188,6 +188,7 @@ mod tests {
                 mass: &self.m,
                 damping: None,
                 stiffness: Some(&self.k),
+                varies: false,
             }
         }
         motion_fields!();

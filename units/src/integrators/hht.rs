@@ -23,6 +23,10 @@ pub struct Matrices<'a> {
     /// `None` when the whole restoring force is the nonlinear force (a
     /// geometrically nonlinear structure): no products with a zero matrix.
     pub stiffness: Option<&'a SymmetricBand>,
+    /// Whether the matrices change from step to step (a linear section's
+    /// drag linearised at each step's start in its damping): a linear step
+    /// then forms and factorises its matrix at every step, in place.
+    pub varies: bool,
 }
 
 /// How the nonlinear force's derivatives enter the Newton matrix: the tangent
@@ -304,8 +308,12 @@ impl HhtAlpha {
         self.frozen_h = f64::NAN;
     }
 
-    /// Forms and factorises the linear Newton matrix when `h` changed.
+    /// Forms and factorises the linear Newton matrix when `h` changed, or
+    /// at every step when the matrices vary.
     fn prepare_linear(&mut self, m: &Matrices<'_>, h: f64, held: &[(usize, [f64; 3])]) {
+        if m.varies {
+            return self.prepare_varying(m, h, held);
+        }
         if self.linear_h == h {
             return;
         }
@@ -321,6 +329,31 @@ impl HhtAlpha {
         }
         self.linear_factor = BandLdlt::new(&with_held);
         self.linear_h = h;
+    }
+
+    /// The linear Newton matrix of matrices that vary by step, formed and
+    /// factorised into the kept buffers (`jacobian` holds the held rows):
+    /// nothing allocated once they are sized.
+    fn prepare_varying(&mut self, m: &Matrices<'_>, h: f64, held: &[(usize, [f64; 3])]) {
+        let (alpha, beta, gamma) = self.parameters();
+        self.linear.set_present_combination(&[
+            (1.0 / (beta * h * h), Some(m.mass)),
+            ((1.0 - alpha) * gamma / (beta * h), m.damping),
+            (1.0 - alpha, m.stiffness),
+        ]);
+        self.jacobian.copy_from(&self.linear);
+        for (d, _) in held {
+            self.jacobian.set_identity_row(*d);
+        }
+        let (n, w) = (self.jacobian.size(), self.jacobian.half_bandwidth());
+        let factor = self
+            .linear_factor
+            .get_or_insert_with(|| BandLdlt::zeros(n, w));
+        if !factor.refactorise(&self.jacobian) {
+            self.linear_factor = None;
+        }
+        // The next constant matrices are formed anew.
+        self.linear_h = f64::NAN;
     }
 
     fn resize(&mut self, n: usize) {
@@ -387,7 +420,7 @@ impl HhtAlpha {
         self.a0.copy_from_slice(a);
         self.constant_part(&system.matrices(), loads);
         let linear = system.is_linear();
-        self.first_iterate(loads.held, h, linear);
+        self.first_iterate(loads.held, h, self.predicts && !linear);
         self.history.clear();
         self.last_linear = linear;
         let scales = TangentScales {
@@ -448,13 +481,13 @@ impl HhtAlpha {
     }
 
     /// Newton's first iterate: the guess if one was given, else the start
-    /// state carried on over `h` (s) where the system asked for it (a
-    /// `linear` step is solved exactly from anywhere), else the start state;
-    /// the held DOFs at their prescribed values.
-    fn first_iterate(&mut self, held: &[(usize, [f64; 3])], h: f64, linear: bool) {
+    /// state carried on over `h` (s) where asked (`predict`: a `linear` step
+    /// is solved exactly from anywhere), else the start state; the held DOFs
+    /// at their prescribed values.
+    fn first_iterate(&mut self, held: &[(usize, [f64; 3])], h: f64, predict: bool) {
         if self.guess.len() == self.q0.len() {
             self.y.copy_from_slice(&self.guess);
-        } else if self.predicts && !linear {
+        } else if predict {
             let carried = (self.q0.iter().zip(&self.v0).zip(&self.a0))
                 .map(|((q, v), a)| q + h * v + 0.5 * h * h * a);
             for (y, p) in self.y.iter_mut().zip(carried) {

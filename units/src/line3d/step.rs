@@ -511,6 +511,7 @@ impl SecondOrderSystem for Line3d {
             mass: &self.mass,
             damping: self.linear.as_ref().map(|l| &l.damping),
             stiffness: self.linear.as_ref().map(|l| &l.stiffness),
+            varies: false,
         }
     }
 

@@ -23,8 +23,9 @@ pub(super) struct StepWork {
     /// The state at the step's start, restored before sub-stepping.
     backup: Option<super::SectionState>,
     held: Vec<(usize, [f64; 3])>,
-    /// A linear section's drag at the step's start, and its step's loads.
-    pub(super) drag: Vec<f64>,
+    /// A linear section's drag remainder F_d(v_0) - D_0 v_0 at the step's
+    /// start, and its step's loads.
+    pub(super) drag_remainder: Vec<f64>,
     pub(super) linear_f0: Vec<f64>,
     pub(super) linear_f1: Vec<f64>,
     /// The outside force at the step's end (`energy::record_step`).
@@ -95,6 +96,7 @@ impl NonlinearSection {
             mass: &m,
             damping: None,
             stiffness: Some(&k),
+            varies: false,
         };
         // With held DOFs as identity rows their "frequency" is 1 rad/s: harmless.
         self.critical_step = CentralDifference::critical_step(&matrices, 300)?;
@@ -380,7 +382,7 @@ impl NonlinearSection {
         w.before_end.lambda.clone_from(&self.state.lambda);
         w.before_end.surface_jump = surface_jump;
         let q0 = self.energy_conserving().then_some(w.q0.as_slice());
-        self.restoring_forces(q0, Some(&w.drag));
+        self.restoring_forces(q0, Some(&w.drag_remainder));
         let surface_power = self.surface_power();
         self.finish(&w.f1, true).map_err(Failure::Other)?;
         let surface = (surface_power, surface_jump);
@@ -401,11 +403,11 @@ impl NonlinearSection {
     }
 
     /// The restoring force at the current state: the linear model's (with
-    /// the drag its step used) where the section is linear, else
-    /// [`Self::refresh_forces`].
-    fn restoring_forces(&mut self, step_start: Option<&[f64]>, step_drag: Option<&[f64]>) {
+    /// the drag its step used, from the step's drag `remainder`) where the
+    /// section is linear, else [`Self::refresh_forces`].
+    fn restoring_forces(&mut self, step_start: Option<&[f64]>, remainder: Option<&[f64]>) {
         if self.linear.is_some() {
-            self.linear_forces(step_drag);
+            self.linear_forces(remainder);
         } else {
             self.refresh_forces(step_start);
         }
@@ -492,10 +494,19 @@ impl SecondOrderSystem for NonlinearSection {
     }
 
     fn matrices(&self) -> Matrices<'_> {
-        Matrices {
-            mass: &self.m,
-            damping: self.c.as_ref(),
-            stiffness: self.linear.as_ref().map(|l| &l.stiffness),
+        match &self.linear {
+            Some(l) => Matrices {
+                mass: &self.m,
+                damping: (l.has_drag || self.c.is_some()).then_some(&l.damping),
+                stiffness: Some(&l.stiffness),
+                varies: l.has_drag,
+            },
+            None => Matrices {
+                mass: &self.m,
+                damping: self.c.as_ref(),
+                stiffness: None,
+                varies: false,
+            },
         }
     }
 

@@ -27,17 +27,18 @@ pub(super) struct EnergyLedger {
 impl NonlinearSection {
     /// Kinetic, strain and potential energy (J) at the current time; the
     /// potential is the contact energy plus that of the weight and the constant
-    /// end loads, -f . q (zero at the stress-free shape).
+    /// end loads, -f . q (zero at the stress-free shape). A linear section's strain energy is its linear model's potential
+    /// (with the contact springs in it, so its contact energy is not added).
     pub fn energies(&self) -> [f64; 3] {
         let kinetic = 0.5 * self.m.quadratic_form(&self.state.v);
-        let strain = (0..self.model.elements.len())
-            .map(|e| {
-                self.model.elements[e].strain_energy(
-                    self.model.formulation,
-                    &super::model::element_dofs(&self.state.q, e),
-                )
-            })
-            .sum();
+        let contact = match &self.linear {
+            Some(_) => 0.0,
+            None => self.state.contact.energy,
+        };
+        let strain = match &self.linear {
+            Some(l) => l.potential(&self.state.q),
+            None => self.strain_energy(),
+        };
         let mut work: f64 = self
             .weight
             .iter()
@@ -49,7 +50,19 @@ impl NonlinearSection {
                 work += f * self.state.q[r.dof];
             }
         }
-        [kinetic, strain, self.state.contact.energy - work]
+        [kinetic, strain, contact - work]
+    }
+
+    /// The elements' strain energy (J) at the current state.
+    fn strain_energy(&self) -> f64 {
+        (0..self.model.elements.len())
+            .map(|e| {
+                self.model.elements[e].strain_energy(
+                    self.model.formulation,
+                    &super::model::element_dofs(&self.state.q, e),
+                )
+            })
+            .sum()
     }
 
     /// Work (J) done on the section since the start of its dynamics by

@@ -100,6 +100,26 @@ impl Environment {
         }
     }
 
+    /// Whether any element has drag.
+    pub fn has_drag(&self) -> bool {
+        !self.drag.is_empty()
+    }
+
+    /// Adds the drag force at (q, v) to `out` and its velocity tangent
+    /// (N s/m) to `tangent`: a linear section's drag linearised at a step's
+    /// start.
+    pub fn add_drag_with_tangent(
+        &self,
+        model: &Model,
+        (q, v): (&[f64], &[f64]),
+        tangent: &mut SymmetricBand,
+        out: &mut [f64],
+    ) {
+        if !self.drag.is_empty() {
+            self.add_drag(model, (q, v), 1.0, Some((tangent, 1.0)), (out, None));
+        }
+    }
+
     /// Adds the drag and contact force at the state (q, v, t) with the
     /// contacts' parameters `lambda` to `out` as [`Self::add_force`] does
     /// (the laws stepped by their discrete gradient left out, no tangent),

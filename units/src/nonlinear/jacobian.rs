@@ -78,16 +78,19 @@ impl NonlinearSection {
         result
     }
 
-    /// The drag's tangent damping at the step's end state (zero without drag).
+    /// The drag's tangent damping at the step's end state (zero without
+    /// drag), or the one a linear section's step used.
     fn tangents(&mut self, w: &mut JacobianWork) {
         let n = self.model.dofs();
         let b = w
             .damping
             .get_or_insert_with(|| SymmetricBand::zeros(n, super::model::BAND));
-        b.fill_zero();
-        // A linear section's drag is explicit: no tangent damping.
-        if self.linear.is_none() {
-            self.add_drag_damping(b, &mut w.force);
+        match self.linear_drag_tangent() {
+            Some(d0) => b.copy_from(d0),
+            None => {
+                b.fill_zero();
+                self.add_drag_damping(b, &mut w.force);
+            }
         }
     }
 

@@ -171,6 +171,7 @@ impl SecondOrderSystem for ReducedSection {
             mass: &self.mass,
             damping: None,
             stiffness: self.stiffness.as_ref(),
+            varies: false,
         }
     }
 

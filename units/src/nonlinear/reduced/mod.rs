@@ -372,6 +372,7 @@ impl SecondOrderSystem for ReducedSystem<'_> {
             mass: &self.reduction.mass,
             damping: self.reduction.damping.as_ref(),
             stiffness: None,
+            varies: false,
         }
     }
 
