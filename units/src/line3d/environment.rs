@@ -225,6 +225,11 @@ impl Environment {
     }
 
     /// Whether the water moves or drags (else drag is skipped).
+    /// Whether the line has Morison drag (normal or tangential).
+    pub fn has_drag(&self) -> bool {
+        self.drag[0] + self.drag[1] > 0.0
+    }
+
     fn hydrodynamic(&self) -> bool {
         self.drag[0] + self.drag[1] > 0.0 || self.waves.is_some()
     }
@@ -332,12 +337,26 @@ impl Environment {
     /// and the waves' inertia, N) at (q, v, t) to `force`; returns whether
     /// there is any.
     pub fn add_hydrodynamic_force(&self, q: &[f64], v: &[f64], t: f64, force: &mut [f64]) -> bool {
+        self.add_hydrodynamic_force_with_tangent(q, v, t, force, None)
+    }
+
+    /// As [`Environment::add_hydrodynamic_force`], with minus the drag's
+    /// velocity derivative (N s/m) added to `tangent` when given.
+    pub fn add_hydrodynamic_force_with_tangent(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        force: &mut [f64],
+        mut tangent: Option<&mut SymmetricBand>,
+    ) -> bool {
         if !self.hydrodynamic() {
             return false;
         }
         for i in 0..self.tributary.len() {
             let at = self.at(q, node(v, i), t, i);
-            add_node(force, i, &self.hydrodynamics(&at, None), 1.0);
+            let band = tangent.as_deref_mut().map(|b| (b, 1.0));
+            add_node(force, i, &self.hydrodynamics(&at, band), 1.0);
         }
         true
     }

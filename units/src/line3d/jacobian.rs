@@ -47,7 +47,7 @@ pub(super) struct JacobianWork {
     /// The last whole step and its derivatives: the warm start of a
     /// repeated step.
     pub warm: WarmStart,
-    /// A linear line's Jacobian, the same at every step of one length with
+    /// A linear line's Jacobian (without drag), the same at every step of one length with
     /// the same ends held: (step length (s), released ends, the rows).
     linear: Option<(f64, [bool; 2], Vec<f64>)>,
 }
@@ -75,7 +75,7 @@ impl Line3d {
         let mut w = std::mem::take(&mut self.jacobian);
         let key = (w.h, self.state.released);
         if let Some((h, released, rows)) = &w.linear
-            && self.linear.is_some()
+            && self.linear.as_ref().is_some_and(|l| !l.has_drag)
             && (*h, *released) == key
             && rows.len() == jacobian.len()
         {
@@ -103,7 +103,7 @@ impl Line3d {
             w.warm.set_column(j, &w.change.dq);
         }
         w.warm.columns_done(result.is_ok());
-        if result.is_ok() && self.linear.is_some() {
+        if result.is_ok() && self.linear.as_ref().is_some_and(|l| !l.has_drag) {
             w.linear = Some((key.0, key.1, jacobian.to_vec()));
         }
         self.jacobian = w;
@@ -119,7 +119,7 @@ impl Line3d {
             .unwrap_or_else(|| SymmetricBand::zeros(n, BAND));
         band.fill_zero();
         if let Some(l) = &self.linear {
-            band.copy_from(&l.damping);
+            band.copy_from(&l.step_damping);
             w.damping = Some(band);
             return;
         }

@@ -8,11 +8,15 @@
 //! damping C of the axial damper, the seabed's dampers and friction at rest
 //! (mu N / stick_velocity: the sticking line) are formed once; the line's own
 //! force is then g(q, v) = g_s + K (q - q_s) + C v, and HHT-alpha solves each
-//! step with one back-substitution of a matrix factorised once per step size.
-//! The water's force (drag on the relative velocity and the waves' inertia) is
-//! evaluated at the step's start position and velocity, with the water's
-//! motion at the step's start and end, and held over the step (an O(h) lag on
-//! the line's velocity, which light drag damping tolerates). Outputs (tension,
+//! step with one back-substitution of a matrix factorised once per step size
+//! (once per step where the line has drag). The water's force (drag on the
+//! relative velocity and the waves' inertia) is evaluated at the step's start
+//! position and velocity, with the water's motion at the step's start and
+//! end, its drag linearised there: the drag's velocity tangent D_0 joins the
+//! step's damping and the rest F_w(v_0) + D_0 v_0 is a load, so the step's
+//! water force is F_w(v_0) - D_0 (v - v_0), implicit in the velocity. Held
+//! over the step instead, it lagged by O(h) (2.9e-2 of the fairlead force's
+//! change at 0.1 s) and blew up past h ~ 2 m / D_0 (issue 48 item 7). Outputs (tension,
 //! curvature, touchdown) are the nonlinear line's at the linear state; the
 //! energies are the linear model's.
 //!
@@ -47,6 +51,12 @@ pub(super) struct Linearised {
     pub damping: SymmetricBand,
     /// The axial damper's part of C.
     axial: SymmetricBand,
+    /// Whether the line has drag (else the step's damping is C throughout).
+    pub has_drag: bool,
+    /// The drag's velocity tangent D_0 at the step's start (N s/m).
+    pub water_tangent: SymmetricBand,
+    /// The step's damping: C + D_0 (N s/m).
+    pub step_damping: SymmetricBand,
     /// g_s - K q_s: the line's force is K q + C v + offset (N).
     offset: Vec<f64>,
     /// g_s: the bars', bending's and seabed springs' force at the start (N).
@@ -111,6 +121,9 @@ impl Line3d {
             .map_or(0.0, |s| self.environment.seabed_energy(s, q));
         self.linear = Some(Linearised {
             stiffness,
+            has_drag: self.environment.has_drag(),
+            water_tangent: SymmetricBand::zeros(n, BAND),
+            step_damping: damping.clone(),
             damping,
             axial,
             offset,
@@ -126,19 +139,48 @@ impl Line3d {
 }
 
 impl Linearised {
-    /// The line's force at (q, v) into `force`: g_s + K (q - q_s) + C v
-    /// (the displacement first, so the force keeps its digits), less the
-    /// water's force `water` (N) the step held.
+    /// The line's force at (q, v) into `force`: g_s + K (q - q_s) + (C +
+    /// D_0) v (the displacement first, so the force keeps its digits), less
+    /// the water's force's remainder `water` (N) the step took: with the
+    /// step's D_0 v, the water's force the step used.
     pub(super) fn force(&mut self, q: &[f64], v: &[f64], water: &[f64], force: &mut [f64]) {
         for ((d, x), s) in self.dq.iter_mut().zip(q).zip(&self.start) {
             *d = x - s;
         }
         force.copy_from_slice(&self.start_force);
         self.stiffness.mul_add(1.0, &self.dq, force);
-        self.damping.mul_add(1.0, v, force);
+        self.step_damping.mul_add(1.0, v, force);
         for (f, w) in force.iter_mut().zip(water) {
             *f -= w;
         }
+    }
+
+    /// Takes the drag's tangent D_0 (in `water_tangent`, from the water's
+    /// force at the step's start) into the step's damping C + D_0, and
+    /// D_0 v_0 into the water's forces `water` at the step's start and end
+    /// (N): each then the remainder F_w - D_0 v_0, so that the step's water
+    /// force is F_w(v_0) - D_0 (v - v_0), implicit in the velocity.
+    pub(super) fn linearise_water(&mut self, v0: &[f64], water: [&mut [f64]; 2]) {
+        if !self.has_drag {
+            return;
+        }
+        self.step_damping
+            .set_combination(&[(1.0, &self.damping), (1.0, &self.water_tangent)]);
+        for w in water {
+            self.water_tangent.mul_add(1.0, v0, w);
+        }
+    }
+
+    /// The power (W) of the water's force the step used at velocity `v`,
+    /// from its remainder `water` (N): (water - D_0 v) . v.
+    pub(super) fn water_power(&self, water: &[f64], v: &[f64]) -> f64 {
+        let held: f64 = water.iter().zip(v).map(|(f, u)| f * u).sum();
+        let drag = if self.has_drag {
+            self.water_tangent.quadratic_form(v)
+        } else {
+            0.0
+        };
+        held - drag
     }
 
     /// A step's loads for the linear model: `f` + `water` - offset (N).

@@ -76,19 +76,22 @@ fn a_linear_line_tends_to_the_nonlinear_one_as_its_motion_shrinks() {
 }
 
 #[test]
-fn a_linear_line_s_drag_lags_by_a_step() {
-    // Drag in a current across the plane, held from each step's start: a
-    // difference first order in the step that stays as the motion shrinks.
+fn a_linear_line_s_drag_does_not_lag() {
+    // Drag in a current across the plane, linearised at each step's start:
+    // the difference from the nonlinear line no longer depends on the step
+    // (the linearisation's own, first order in the motion). Held from each
+    // step's start the drag lagged by a step: 2.9e-2 at 0.1 s, 7e-3 at
+    // 0.025 s; now 3.9e-3 at each of 0.1, 0.05 and 0.025 s.
     let drag = "drag_normal = 1.2\nadded_mass_normal = 1.0\ncurrent = [{ depth = 0.0, speed = 0.3, heading_deg = 115.0 }]";
     let (nonlinear, _) = fairlead_forces(false, 0.05, drag, 0.025);
     let errors: Vec<f64> = [0.1, 0.05, 0.025]
         .iter()
         .map(|&h| relative_difference(&fairlead_forces(true, 0.05, drag, h).0, &nonlinear))
         .collect();
-    assert!(errors[0] < 0.05, "{errors:?}");
+    assert!(errors.iter().all(|e| *e < 6e-3), "{errors:?}");
     assert!(
-        errors[1] < 0.7 * errors[0] && errors[2] < 0.7 * errors[1],
-        "{errors:?}"
+        (errors[0] / errors[2] - 1.0).abs() < 0.05,
+        "the step does not matter: {errors:?}"
     );
 }
 
@@ -121,4 +124,63 @@ fn a_linear_line_without_damping_keeps_its_energy_balance() {
         largest_error < 1e-3 * largest_work,
         "energy error {largest_error} J against a kinetic energy up to {largest_work} J"
     );
+}
+
+/// The fairlead force's magnitude (N) at every step of `h` (s) over 600 s
+/// of the laid line with drag in a current across its plane, linear or
+/// not, its fairlead surging and swaying by 0.5 m at 0.6 rad/s (faded in
+/// over 20 s); None once a step fails or a force is not finite.
+fn long_step_forces(linear: bool, h: f64) -> Option<Vec<f64>> {
+    let drag = "drag_normal = 1.2\nadded_mass_normal = 1.0\ncurrent = [{ depth = 0.0, speed = 0.5, heading_deg = 115.0 }]";
+    let mut p = laid_line(6, 25.0, &format!("linear = {linear}\n{drag}"));
+    let sine = |a: f64| Sine {
+        amplitude: a,
+        angular_frequency: 0.6,
+        ..Sine::default()
+    };
+    let ([sx, sy], [wx, wy]) = (rotated([0.5, 0.0], 25.0), rotated([0.0, 0.5], 25.0));
+    p.end.condition = EndCondition::Motion;
+    p.end.motion = [
+        vec![sine(sx), sine(wx)],
+        vec![sine(sy), sine(wy)],
+        Vec::new(),
+    ];
+    p.end.fade_in = 20.0;
+    let mut d: Driver<Line3d> = started(p);
+    let step = Time::from_secs(h).unwrap();
+    let mut t = Time::ZERO;
+    let mut forces = Vec::new();
+    while t.as_secs() < 600.0 {
+        d.do_step(t, step).ok()?;
+        t += step;
+        let f = ["x", "y", "z"].map(|c| output(&d, &format!("end_force_{c}")));
+        let magnitude = f.iter().map(|x| x * x).sum::<f64>().sqrt();
+        magnitude.is_finite().then_some(())?;
+        forces.push(magnitude);
+    }
+    Some(forces)
+}
+
+#[test]
+fn a_linear_line_with_drag_stays_bounded_at_long_steps_as_the_nonlinear_one_does() {
+    // Issue 48 item 7 in 3D: the water's force held from each step's start
+    // blew up past h ~ 2 m / D of the drag's tangent D; linearised there
+    // (D_0 in the step's damping) the step is implicit in the velocity. The
+    // fairlead force's mean and largest value from 100 s on against the
+    // nonlinear line's at the same step: measured -1.6e-4 and -2.3e-3 at
+    // 2 s, -8.5e-5 and +2.0e-3 at 3 s (held, the linear line's force was
+    // not finite).
+    for h in [2.0, 3.0] {
+        let linear = long_step_forces(true, h).expect("the linear line stays finite");
+        let full = long_step_forces(false, h).expect("the nonlinear line stays finite");
+        let from = (100.0 / h) as usize;
+        let mean = |f: &[f64]| f[from..].iter().sum::<f64>() / (f.len() - from) as f64;
+        let largest = |f: &[f64]| f[from..].iter().fold(0.0, |m: f64, x| m.max(*x));
+        let off = [
+            mean(&linear) / mean(&full) - 1.0,
+            largest(&linear) / largest(&full) - 1.0,
+        ];
+        eprintln!("{h} s: mean {:+.3e}, largest {:+.3e}", off[0], off[1]);
+        assert!(off.iter().all(|o| o.abs() < 1e-2), "{h} s: {off:?}");
+    }
 }

@@ -401,8 +401,7 @@ impl Line3d {
             Some(l) => {
                 l.force(q, v, water, &mut force);
                 let [friction, damper] = l.seabed_dissipation(v);
-                let water_power = water.iter().zip(v).map(|(f, u)| f * u).sum();
-                [water_power, friction, damper]
+                [l.water_power(water, v), friction, damper]
             }
             None => {
                 self.mechanics.add_force(q, v, 1.0, None, &mut force);
@@ -483,19 +482,29 @@ impl Line3d {
 
     /// A linear line's step loads: f + water - offset at the step's start
     /// and end, the water's force at the start state with the water's motion
-    /// at `t0` and `t1` (no-op on a nonlinear line).
-    fn linear_loads(&self, t0: f64, t1: f64, w: &mut Work) {
-        let Some(l) = &self.linear else {
+    /// at `t0` and `t1`, its drag linearised there (its tangent D_0 in the
+    /// step's damping, the water's forces less D_0 v_0: no-op on a nonlinear
+    /// line).
+    fn linear_loads(&mut self, t0: f64, t1: f64, w: &mut Work) {
+        let Some(l) = &mut self.linear else {
             return;
         };
         let (q, v) = (&self.state.q, &self.state.v);
-        self.water(q, v, t0, &mut w.water0);
+        w.water0.clear();
+        w.water0.resize(q.len(), 0.0);
+        l.water_tangent.fill_zero();
+        let tangent = l.has_drag.then_some(&mut l.water_tangent);
+        (self.environment).add_hydrodynamic_force_with_tangent(q, v, t0, &mut w.water0, tangent);
         if self.environment.has_waves() {
-            self.water(q, v, t1, &mut w.water1);
+            w.water1.clear();
+            w.water1.resize(q.len(), 0.0);
+            self.environment
+                .add_hydrodynamic_force(q, v, t1, &mut w.water1);
         } else {
             // A current alone does not change over the step.
             w.water1.clone_from(&w.water0);
         }
+        l.linearise_water(v, [&mut w.water0, &mut w.water1]);
         l.step_loads(&w.f0, &w.water0, &mut w.linear_f0);
         l.step_loads(&w.f1, &w.water1, &mut w.linear_f1);
     }
@@ -509,9 +518,9 @@ impl SecondOrderSystem for Line3d {
     fn matrices(&self) -> Matrices<'_> {
         Matrices {
             mass: &self.mass,
-            damping: self.linear.as_ref().map(|l| &l.damping),
+            damping: self.linear.as_ref().map(|l| &l.step_damping),
             stiffness: self.linear.as_ref().map(|l| &l.stiffness),
-            varies: false,
+            varies: self.linear.as_ref().is_some_and(|l| l.has_drag),
         }
     }
 
