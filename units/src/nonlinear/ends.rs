@@ -180,20 +180,23 @@ pub const EXTRA_OUTPUTS: [(&str, &str); 15] = [
 
 /// Per end: position x, z, rotation, velocity x, z, angular velocity, and the force
 /// x, z and moment the end exerts on what holds it (a component loaded by a
-/// coupled input reports it: its one direct dependency); then the extras; then tension, moment, curvature,
-/// position x, z and the magnitude of the internal force per station.
+/// coupled input reports it: its one direct dependency); then the extras;
+/// then each end's tension, the magnitude of its force (x, z); then tension,
+/// moment, curvature, position x, z and the magnitude of the internal force
+/// per station.
 pub fn output_ports(resolved: &[Resolved], stations: usize) -> Vec<Port> {
+    // A component loaded by a coupled input reports that input.
+    let loads_of = |end: usize, components: &[usize]| -> Vec<usize> {
+        resolved
+            .iter()
+            .filter(|r| r.end == end && components.contains(&r.component))
+            .filter(|r| matches!(r.condition, DofCondition::Force(_)))
+            .filter_map(|r| r.input)
+            .collect()
+    };
     let mut out = Vec::new();
     for (end, side) in SIDES.iter().enumerate() {
-        // A component loaded by a coupled input reports that input.
-        let loads = |component: usize| -> Vec<usize> {
-            resolved
-                .iter()
-                .filter(|r| r.end == end && r.component == component)
-                .filter(|r| matches!(r.condition, DofCondition::Force(_)))
-                .filter_map(|r| r.input)
-                .collect()
-        };
+        let loads = |component: usize| loads_of(end, &[component]);
         out.push(Port::output(
             &format!("{side}_position_x"),
             PortKind::Displacement,
@@ -229,6 +232,10 @@ pub fn output_ports(resolved: &[Resolved], stations: usize) -> Vec<Port> {
     }
     for (name, unit) in EXTRA_OUTPUTS {
         out.push(Port::output(name, PortKind::Generic).with_unit(unit));
+    }
+    for (end, side) in SIDES.iter().enumerate() {
+        let tension = Port::output(&format!("{side}_tension"), PortKind::Force);
+        out.push(tension.with_feedthrough(&loads_of(end, &[0, 1])));
     }
     for i in 1..=stations {
         out.push(Port::output(&format!("tension_{i}"), PortKind::Force));

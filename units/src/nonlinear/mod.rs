@@ -528,6 +528,9 @@ impl Unit for NonlinearSection {
             finite_or_zero(self.state.contact.crossing[1]),
             self.external_work(),
             self.energy_error(energies),
+            // The magnitude of each end's force (x, z): a riser's top tension.
+            out[6].hypot(out[7]),
+            out[15].hypot(out[16]),
         ];
         let stations = 18 + extra.len();
         out[18..stations].copy_from_slice(&extra);
