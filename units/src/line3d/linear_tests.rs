@@ -15,20 +15,7 @@ use crate::signal::sine::Sine;
 fn fairlead_forces(linear: bool, amplitude: f64, extra: &str, h: f64) -> (Vec<[f64; 3]>, f64) {
     let extra = format!("linear = {linear}\n{extra}");
     let mut p = laid_line(40, 25.0, &extra);
-    let sine = |a: f64| Sine {
-        amplitude: a,
-        angular_frequency: 0.6,
-        ..Sine::default()
-    };
-    let [sx, sy] = rotated([amplitude, 0.0], 25.0);
-    let [wx, wy] = rotated([0.0, amplitude], 25.0);
-    p.end.condition = EndCondition::Motion;
-    p.end.motion = [
-        vec![sine(sx), sine(wx)],
-        vec![sine(sy), sine(wy)],
-        Vec::new(),
-    ];
-    p.end.fade_in = 5.0;
+    surge_and_sway(&mut p, amplitude, 5.0);
     let mut d: Driver<Line3d> = started(p);
     let per_row = (0.1 / h).round() as usize;
     let h = Time::from_secs(h).unwrap();
@@ -42,6 +29,25 @@ fn fairlead_forces(linear: bool, amplitude: f64, extra: &str, h: f64) -> (Vec<[f
         }
     }
     (rows, output(&d, "newton_iterations"))
+}
+
+/// Moves the fairlead of the line at 25 degrees in surge and sway by
+/// `amplitude` (m) each at 0.6 rad/s, faded in over `fade_in` (s).
+fn surge_and_sway(p: &mut super::params::Line3dParams, amplitude: f64, fade_in: f64) {
+    let sine = |a: f64| Sine {
+        amplitude: a,
+        angular_frequency: 0.6,
+        ..Sine::default()
+    };
+    let [sx, sy] = rotated([amplitude, 0.0], 25.0);
+    let [wx, wy] = rotated([0.0, amplitude], 25.0);
+    p.end.condition = EndCondition::Motion;
+    p.end.motion = [
+        vec![sine(sx), sine(wx)],
+        vec![sine(sy), sine(wy)],
+        Vec::new(),
+    ];
+    p.end.fade_in = fade_in;
 }
 
 /// The largest difference between two force histories over the largest
@@ -133,19 +139,7 @@ fn a_linear_line_without_damping_keeps_its_energy_balance() {
 fn long_step_forces(linear: bool, h: f64) -> Option<Vec<f64>> {
     let drag = "drag_normal = 1.2\nadded_mass_normal = 1.0\ncurrent = [{ depth = 0.0, speed = 0.5, heading_deg = 115.0 }]";
     let mut p = laid_line(6, 25.0, &format!("linear = {linear}\n{drag}"));
-    let sine = |a: f64| Sine {
-        amplitude: a,
-        angular_frequency: 0.6,
-        ..Sine::default()
-    };
-    let ([sx, sy], [wx, wy]) = (rotated([0.5, 0.0], 25.0), rotated([0.0, 0.5], 25.0));
-    p.end.condition = EndCondition::Motion;
-    p.end.motion = [
-        vec![sine(sx), sine(wx)],
-        vec![sine(sy), sine(wy)],
-        Vec::new(),
-    ];
-    p.end.fade_in = 20.0;
+    surge_and_sway(&mut p, 0.5, 20.0);
     let mut d: Driver<Line3d> = started(p);
     let step = Time::from_secs(h).unwrap();
     let mut t = Time::ZERO;

@@ -486,21 +486,22 @@ impl Line3d {
     /// step's damping, the water's forces less D_0 v_0: no-op on a nonlinear
     /// line).
     fn linear_loads(&mut self, t0: f64, t1: f64, w: &mut Work) {
+        let waves = self.environment.has_waves();
+        if waves {
+            self.water(&self.state.q, &self.state.v, t1, &mut w.water1);
+        }
         let Some(l) = &mut self.linear else {
             return;
         };
         let (q, v) = (&self.state.q, &self.state.v);
         w.water0.clear();
         w.water0.resize(q.len(), 0.0);
-        l.water_tangent.fill_zero();
-        let tangent = l.has_drag.then_some(&mut l.water_tangent);
+        let tangent = l.has_drag.then(|| {
+            l.water_tangent.fill_zero();
+            &mut l.water_tangent
+        });
         (self.environment).add_hydrodynamic_force_with_tangent(q, v, t0, &mut w.water0, tangent);
-        if self.environment.has_waves() {
-            w.water1.clear();
-            w.water1.resize(q.len(), 0.0);
-            self.environment
-                .add_hydrodynamic_force(q, v, t1, &mut w.water1);
-        } else {
+        if !waves {
             // A current alone does not change over the step.
             w.water1.clone_from(&w.water0);
         }

@@ -31,13 +31,9 @@ impl NonlinearSection {
     /// (with the contact springs in it, so its contact energy is not added).
     pub fn energies(&self) -> [f64; 3] {
         let kinetic = 0.5 * self.m.quadratic_form(&self.state.v);
-        let contact = match &self.linear {
-            Some(_) => 0.0,
-            None => self.state.contact.energy,
-        };
-        let strain = match &self.linear {
-            Some(l) => l.potential(&self.state.q),
-            None => self.strain_energy(),
+        let (strain, contact) = match &self.linear {
+            Some(l) => (l.potential(&self.state.q), 0.0),
+            None => (self.strain_energy(), self.state.contact.energy),
         };
         let mut work: f64 = self
             .weight
@@ -54,7 +50,7 @@ impl NonlinearSection {
     }
 
     /// The elements' strain energy (J) at the current state.
-    fn strain_energy(&self) -> f64 {
+    pub(super) fn strain_energy(&self) -> f64 {
         (0..self.model.elements.len())
             .map(|e| {
                 self.model.elements[e].strain_energy(

@@ -124,8 +124,7 @@ impl NonlinearSection {
         }
         stiffness.mul_add(-1.0, &s.q, &mut offset);
         self.model.linear_axial = Some(self.model.linearise_axial(&s.q));
-        let [_, strain, _] = self.energies();
-        let at_start = strain + self.state.contact.energy;
+        let at_start = self.strain_energy() + self.state.contact.energy;
         let s = &self.state;
         let band = stiffness.half_bandwidth();
         let damping = match &self.c {
