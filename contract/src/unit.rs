@@ -324,6 +324,14 @@ pub trait Unit: Send {
         Vec::new()
     }
 
+    /// An estimate of the local error of the last `do_step` in the unit's
+    /// displacements (m): the largest over its translational degrees of
+    /// freedom, for a master that chooses its step from it
+    /// (`[master.adaptive] displacement`). Default: `None` (no estimate).
+    fn local_error(&self) -> Option<f64> {
+        None
+    }
+
     /// The current values of field `index` of [`Unit::fields`] into `out`
     /// (its length); after `initialize`. Default: `Unsupported`.
     fn field_values(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
@@ -497,6 +505,10 @@ macro_rules! forward_unit {
 
             fn fields(&self) -> Vec<Field> {
                 (**self).fields()
+            }
+
+            fn local_error(&self) -> Option<f64> {
+                (**self).local_error()
             }
 
             fn field_values(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {

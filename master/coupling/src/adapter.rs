@@ -82,6 +82,11 @@ impl UnitAdapter {
         self.driver.unit().fields()
     }
 
+    /// The unit's estimate of its last step's local displacement error (m).
+    pub fn local_error(&self) -> Option<f64> {
+        self.driver.unit().local_error()
+    }
+
     /// The current values of the unit's field `index` into `out`.
     pub fn field_values(
         &self,

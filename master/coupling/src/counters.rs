@@ -56,8 +56,44 @@ pub struct Counters {
     /// unit solves its statics under a coupled load.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub start_load: Option<crate::coupler::StartLoad>,
+    /// The steps an adaptive coupling step took (`[master.adaptive]`);
+    /// absent with a fixed step.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adaptive: Option<StepSizes>,
     /// Per unit, in the system's order.
     pub units: Vec<UnitCounters>,
+}
+
+/// What an adaptive coupling step did: the steps accepted at each size, the
+/// steps rejected and why, the largest error estimate accepted.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct StepSizes {
+    /// `accepted[k]`: steps accepted at the synchronisation step / 2^k.
+    pub accepted: Vec<u64>,
+    /// The step sizes of `accepted` (s).
+    pub sizes_s: Vec<f64>,
+    /// Steps repeated at half the size because the error estimate exceeded
+    /// the tolerance.
+    pub rejected: u64,
+    /// Steps repeated at half the size because they failed (a unit's error,
+    /// no convergence within `max_iterations`, a non-finite value).
+    pub failed: u64,
+    /// Steps accepted at the smallest size with an estimate over the
+    /// tolerance (nothing smaller was allowed).
+    pub over_tolerance: u64,
+    /// The largest error estimate of an accepted step, relative to the
+    /// tolerance (<= 1 unless `over_tolerance` > 0).
+    pub largest_estimate: f64,
+    /// The connection that gave `largest_estimate` (absent while none did).
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub largest_at: String,
+}
+
+impl StepSizes {
+    /// All steps accepted, whatever their size.
+    pub fn accepted_steps(&self) -> u64 {
+        self.accepted.iter().sum()
+    }
 }
 
 fn is_zero(n: &u64) -> bool {

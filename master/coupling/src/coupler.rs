@@ -16,9 +16,11 @@ pub(crate) use crate::newton::Update;
 use crate::order::{derive_order, reached_by_torn, torn_connections, wiring};
 use crate::settings::{Extrapolation, MasterSettings, OnMaxIterations};
 use crate::system::{Connection, System};
-use slender_contract::{Causality, Hold, Time};
+use slender_contract::{Hold, Time};
 use std::time::Instant;
 
+mod access;
+mod adaptive;
 mod fields;
 mod initial;
 mod parallel;
@@ -28,7 +30,7 @@ mod tolerance;
 
 pub use start_check::StartLoad;
 
-use setup::{adapters, check_rollback, explicit_order};
+use setup::{adapters, check_setup, explicit_order};
 use tolerance::ConnectionTolerances;
 
 /// Convergence of one sweep: the largest change relative to its tolerance, and where.
@@ -68,9 +70,9 @@ pub struct Master {
     pub(crate) previous: Vec<f64>,
     /// Accepted values at the start of the current step, of the step before,
     /// and of the one before that.
-    accepted: Vec<f64>,
-    accepted_before: Vec<f64>,
-    accepted_earlier: Vec<f64>,
+    pub(crate) accepted: Vec<f64>,
+    pub(crate) accepted_before: Vec<f64>,
+    pub(crate) accepted_earlier: Vec<f64>,
     /// The torn iterate `x` (physical units), the sweep result `G(x)`, scaled copies.
     pub(crate) x: Vec<f64>,
     pub(crate) gx: Vec<f64>,
@@ -87,7 +89,16 @@ pub struct Master {
     pub(crate) pool: Option<rayon::ThreadPool>,
     pub(crate) newton: Option<crate::newton::NewtonWork>,
     pub(crate) time: Time,
+    /// The synchronisation step: each `step` advances the time by it.
     pub(crate) step_size: Time,
+    /// The coupling step in force: the synchronisation step, or a part of it
+    /// chosen by the adaptive step.
+    pub(crate) h: Time,
+    /// The adaptive step's state (`[master.adaptive]`).
+    adaptive: Option<adaptive::Adaptive>,
+    /// Weights of the accepted values (last, before, earlier) that predict
+    /// the next step's torn values when steps differ in size.
+    weights: Option<[f64; 3]>,
     pub(crate) counters: Counters,
     initialized: bool,
     /// True while `initialize` runs: sweeps call `initialize` instead of `do_step`.
@@ -105,17 +116,8 @@ impl Master {
         settings: MasterSettings,
         step_size: Time,
     ) -> Result<Master, MasterError> {
-        settings.validate()?;
-        if step_size <= Time::ZERO {
-            return Err(MasterError::Invalid(format!(
-                "synchronisation step {step_size}: expected > 0"
-            )));
-        }
+        check_setup(&system, &settings, step_size)?;
         let n_units = system.units.len();
-        if n_units == 0 {
-            return Err(MasterError::Invalid("the system has no units".into()));
-        }
-        check_rollback(&system, &settings)?;
         let order = if settings.order.is_empty() {
             derive_order(n_units, &system.connections)
         } else {
@@ -134,6 +136,9 @@ impl Master {
             .newton
             .map(|_| crate::newton::NewtonWork::new(n_torn, n_conn));
         let accelerator = accelerator(&settings.acceleration, n_torn);
+        let adaptive = (settings.adaptive.clone())
+            .map(|a| adaptive::Adaptive::new(a, step_size, &system.connections))
+            .transpose()?;
         // One unit has nothing to step beside it: no pool (its hand-over to a
         // pool thread cost the monolithic riser a third of its step).
         let sequential = settings.scheme.is_sequential() || n_units < 2;
@@ -169,6 +174,9 @@ impl Master {
             newton,
             time: Time::ZERO,
             step_size,
+            h: step_size,
+            adaptive,
+            weights: None,
             counters,
             initialized: false,
             initializing: false,
@@ -194,6 +202,16 @@ impl Master {
                 "Master::step called before Master::initialize".into(),
             ));
         }
+        if self.adaptive.is_some() {
+            return self.step_adaptive();
+        }
+        let solved = self.solve_step()?;
+        self.accept_step(solved)
+    }
+
+    /// Solves the step of size `h` from the current time: the prediction and
+    /// the scheme's sweeps; returns iterations, residual and convergence.
+    fn solve_step(&mut self) -> Result<(u32, f64, bool), MasterError> {
         self.tolerances.follow(
             &self.accepted,
             &self.connections,
@@ -202,19 +220,26 @@ impl Master {
         );
         self.predict();
         self.first_sweep_done = false;
-        let (iterations, residual, converged) = if !self.settings.scheme.is_iterative() {
+        if !self.settings.scheme.is_iterative() {
             self.sweep(1)?;
-            (1, 0.0, true)
+            Ok((1, 0.0, true))
         } else if self.newton.is_some() {
-            self.step_newton()?
+            self.step_newton()
         } else {
-            self.step_fixed_point()?
-        };
+            self.step_fixed_point()
+        }
+    }
+
+    /// Takes the solved step's values as accepted and moves the time on.
+    fn accept_step(
+        &mut self,
+        (iterations, residual, converged): (u32, f64, bool),
+    ) -> Result<(), MasterError> {
         self.counters.record_step(iterations, residual, converged);
         self.accepted_earlier.copy_from_slice(&self.accepted_before);
         self.accepted_before.copy_from_slice(&self.accepted);
         self.accepted.copy_from_slice(&self.value);
-        self.time += self.step_size;
+        self.time += self.h;
         if self.counters.steps == 1 {
             self.check_start()?;
         }
@@ -236,6 +261,15 @@ impl Master {
 
     /// First iterate of the torn values: extrapolated from accepted values.
     fn predict(&mut self) {
+        if let Some(w) = self.weights {
+            for (i, &c) in self.torn.iter().enumerate() {
+                self.x[i] = w[0] * self.accepted[c]
+                    + w[1] * self.accepted_before[c]
+                    + w[2] * self.accepted_earlier[c];
+            }
+            self.previous.copy_from_slice(&self.accepted);
+            return;
+        }
         for (i, &c) in self.torn.iter().enumerate() {
             self.x[i] = match self.settings.extrapolation {
                 Extrapolation::Constant => self.accepted[c],
@@ -258,7 +292,7 @@ impl Master {
         if self.pool.is_some() && !self.initializing {
             return self.sweep_parallel(iteration);
         }
-        let (t, h) = (self.time, self.step_size);
+        let (t, h) = (self.time, self.h);
         let mut stamp = Instant::now();
         let repeat = self.first_sweep_done;
         self.first_sweep_done = true;
@@ -463,127 +497,8 @@ impl Master {
         if self.initializing {
             self.time.as_secs()
         } else {
-            (self.time + self.step_size).as_secs()
+            (self.time + self.h).as_secs()
         }
-    }
-
-    /// Current synchronisation time.
-    pub fn time(&self) -> Time {
-        self.time
-    }
-
-    /// The synchronisation step.
-    pub fn step_size(&self) -> Time {
-        self.step_size
-    }
-
-    /// What the run did so far.
-    pub fn counters(&self) -> Counters {
-        let mut c = self.counters.clone();
-        c.units = self
-            .units
-            .iter()
-            .map(|u| {
-                let mut uc = u.counters.clone();
-                uc.step_time_s = u.step_time.as_secs_f64();
-                uc
-            })
-            .collect();
-        c
-    }
-
-    /// The settings in force.
-    pub fn settings(&self) -> &MasterSettings {
-        &self.settings
-    }
-
-    /// Unit names in the order they were added.
-    pub fn unit_names(&self) -> impl Iterator<Item = &str> {
-        self.units.iter().map(|u| u.name.as_str())
-    }
-
-    /// The order units are stepped in, by name.
-    pub fn order(&self) -> Vec<&str> {
-        self.order
-            .iter()
-            .map(|&u| self.units[u].name.as_str())
-            .collect()
-    }
-
-    /// Output values of unit `unit` at the current time.
-    pub fn outputs(&self, unit: usize) -> &[f64] {
-        &self.units[unit].outputs
-    }
-
-    /// Input values of unit `unit` as last given to it (after `initialize`: the
-    /// settled initial inputs).
-    pub fn inputs(&self, unit: usize) -> &[f64] {
-        &self.units[unit].inputs
-    }
-
-    /// Output value of "unit.port".
-    pub fn output(&self, path: &str) -> Result<f64, MasterError> {
-        let (unit, port) = self.find(path, Causality::Output)?;
-        Ok(self.units[unit].outputs[port])
-    }
-
-    /// The unit of measure of output "unit.port" (`""` where it has none), for
-    /// figures and headers.
-    pub fn output_unit(&self, path: &str) -> Result<&str, MasterError> {
-        let (unit, port) = self.find(path, Causality::Output)?;
-        Ok(&self.units[unit].description().outputs[port].unit)
-    }
-
-    /// Unit and port indices of "unit.port".
-    pub fn find(&self, path: &str, causality: Causality) -> Result<(usize, usize), MasterError> {
-        let not_found = || MasterError::Invalid(format!("no port `{path}`"));
-        let (u, p) = path.split_once('.').ok_or_else(not_found)?;
-        let unit = self
-            .units
-            .iter()
-            .position(|a| a.name == u)
-            .ok_or_else(not_found)?;
-        let d = self.units[unit].description();
-        let port = match causality {
-            Causality::Input => d.input_index(p),
-            Causality::Output => d.output_index(p),
-        }
-        .ok_or_else(not_found)?;
-        Ok((unit, port))
-    }
-
-    /// Labels and values of every connection, as accepted at the current time.
-    pub fn connection_values(&self) -> impl Iterator<Item = (&str, f64)> {
-        self.connections
-            .iter()
-            .zip(&self.accepted)
-            .map(|(c, &v)| (c.label.as_str(), v))
-    }
-
-    /// Number of connections.
-    pub fn connection_count(&self) -> usize {
-        self.connections.len()
-    }
-
-    /// Modal analysis of the unit called `name` about its initial state (after
-    /// `initialize`).
-    pub fn modes(
-        &self,
-        name: &str,
-        count: usize,
-    ) -> Result<slender_contract::ModalAnalysis, MasterError> {
-        let adapter = self.units.iter().find(|u| u.name == name).ok_or_else(|| {
-            MasterError::Invalid(format!(
-                "no unit named `{name}`{}",
-                crate::error::did_you_mean(name, self.unit_names())
-            ))
-        })?;
-        adapter.modes(count)
-    }
-
-    /// Description of unit `unit`.
-    pub fn description(&self, unit: usize) -> &slender_contract::UnitDescription {
-        self.units[unit].description()
     }
 }
 

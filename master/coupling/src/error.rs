@@ -14,12 +14,12 @@ pub enum MasterError {
     Settings(#[from] crate::settings::SettingsError),
     /// An iterative scheme needs a unit that cannot roll back.
     #[error(
-        "scheme `{scheme}` repeats steps, but unit `{unit}` cannot roll back: use `jacobi` or `gauss_seidel`, or a unit with rollback"
+        "{scheme} repeats steps, but unit `{unit}` cannot roll back: use `jacobi` or `gauss_seidel` with a fixed step, or a unit with rollback"
     )]
     RollbackUnsupported {
         /// The unit that cannot roll back.
         unit: String,
-        /// The scheme asked for.
+        /// What repeats steps: the scheme asked for, or the adaptive step.
         scheme: String,
     },
     /// A unit call returned an error.

@@ -61,6 +61,13 @@ impl NewtonWork {
     }
 }
 
+impl NewtonWork {
+    /// Drops the kept Jacobian (it belongs to another step size).
+    pub(crate) fn forget(&mut self) {
+        self.factorised = None;
+    }
+}
+
 impl Master {
     /// One synchronisation step (or the initialisation) solved by Newton on the
     /// torn values.
@@ -158,7 +165,7 @@ impl Master {
     /// moved state: the sweep's values move to the corrected ones, and the
     /// residual that follows compares the torn ones with `x`. `change`: scratch.
     fn correct_units(&mut self, change: &mut Vec<f64>, iteration: u32) -> Result<(), MasterError> {
-        let t_end = self.time + self.step_size;
+        let t_end = self.time + self.h;
         for i in 0..self.order.len() {
             let u = self.order[i];
             if !self.iterated[u] {
@@ -312,7 +319,7 @@ impl Master {
     /// the sweep threads when there are several: each unit alone, so the result
     /// is the same).
     fn unit_jacobians(&mut self, perturbation: f64, iteration: u32) -> Result<(), MasterError> {
-        let (t, h) = (self.time, self.step_size);
+        let (t, h) = (self.time, self.h);
         let evaluate = |unit: &mut crate::adapter::UnitAdapter| {
             unit.failure = unit.step_jacobian((t, h), perturbation, iteration).err();
         };

@@ -339,6 +339,58 @@ pub struct MasterSettings {
     /// started off its equilibrium (see the master's start check).
     #[serde(default = "default_start_tolerance")]
     pub start_tolerance: f64,
+    /// The coupling step chosen by the master within each synchronisation
+    /// step from an error estimate (`[master.adaptive]`); absent: every step
+    /// is the synchronisation step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub adaptive: Option<AdaptiveStep>,
+}
+
+/// An adaptive coupling step (`[master.adaptive]`). The synchronisation step
+/// (the scene's `step`, at which outputs are recorded) is the largest step;
+/// the master steps at it divided by 1, 2, 4, ... down to `min_step`,
+/// halving a step whose interface error estimate exceeds `tolerance` or whose
+/// iteration fails, and doubling again after `calm_steps` steps well within it
+/// (see `coupler::adaptive`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdaptiveStep {
+    /// The local error allowed per step: each connection's value against its
+    /// quadratic extrapolation from the three accepted values before it,
+    /// relative to the largest value the connection has carried (default 1e-3).
+    #[serde(default = "default_adaptive_tolerance")]
+    pub tolerance: f64,
+    /// The smallest step (s): the synchronisation step halved as often as it
+    /// stays at least this long.
+    pub min_step: f64,
+    /// Accepted steps in a row with an estimate below a sixteenth of the
+    /// tolerance (so that twice the step should pass) before the step doubles
+    /// (default 4).
+    #[serde(default = "default_calm_steps")]
+    pub calm_steps: u32,
+    /// The port kinds whose connections the estimate judges (default: all).
+    /// A cut of a beam carries moments and angular velocities with content
+    /// near the step's own frequency that no step resolves; judging its
+    /// forces (`["force"]`) follows the loads.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub kinds: Vec<PortKind>,
+    /// Whether the connections' estimate is judged at all (default true;
+    /// false: only the units' own, `displacement`).
+    #[serde(default = "yes")]
+    pub interface: bool,
+    /// The local displacement error allowed per step in each unit's own
+    /// estimate (m; `Unit::local_error`, the sections' and lines' HHT-alpha
+    /// steps); absent: the units' estimates are not judged.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub displacement: Option<f64>,
+}
+
+fn default_adaptive_tolerance() -> f64 {
+    1e-3
+}
+
+fn default_calm_steps() -> u32 {
+    4
 }
 
 fn default_start_tolerance() -> f64 {
@@ -367,6 +419,7 @@ impl MasterSettings {
             extrapolation: Extrapolation::default(),
             threads: one_thread(),
             start_tolerance: default_start_tolerance(),
+            adaptive: None,
         }
     }
 
@@ -407,6 +460,29 @@ impl MasterSettings {
             return Err(SettingsError(format!(
                 "tolerances.generic_relative: {relative} is not a fraction in [0, 1) (0: ports without a unit take the absolute tolerances.generic)"
             )));
+        }
+        Ok(())
+    }
+
+    /// An acceleration's relaxation factor in (0, 2].
+    fn check_acceleration(&self) -> Result<(), SettingsError> {
+        let factor_ok = |f: f64| f.is_finite() && f > 0.0 && f <= 2.0;
+        match self.acceleration {
+            Acceleration::None => {}
+            Acceleration::Constant { factor }
+            | Acceleration::Aitken {
+                initial_factor: factor,
+            }
+            | Acceleration::IqnIls {
+                initial_factor: factor,
+                ..
+            } => {
+                if !factor_ok(factor) {
+                    return Err(SettingsError(format!(
+                        "acceleration factor {factor}: expected a value in (0, 2]"
+                    )));
+                }
+            }
         }
         Ok(())
     }
@@ -471,23 +547,45 @@ impl MasterSettings {
                 ));
             }
         }
-        let factor_ok = |f: f64| f.is_finite() && f > 0.0 && f <= 2.0;
-        match self.acceleration {
-            Acceleration::None => {}
-            Acceleration::Constant { factor }
-            | Acceleration::Aitken {
-                initial_factor: factor,
-            }
-            | Acceleration::IqnIls {
-                initial_factor: factor,
-                ..
-            } => {
-                if !factor_ok(factor) {
-                    return Err(invalid(format!(
-                        "acceleration factor {factor}: expected a value in (0, 2]"
-                    )));
-                }
-            }
+        if let Some(adaptive) = &self.adaptive {
+            adaptive.validate()?;
+        }
+        self.check_acceleration()?;
+        Ok(())
+    }
+}
+
+impl AdaptiveStep {
+    /// A tolerance in (0, 1), a finite `min_step` > 0, at least one calm step.
+    fn validate(&self) -> Result<(), SettingsError> {
+        let tol = self.tolerance;
+        if !(tol.is_finite() && tol > 0.0 && tol < 1.0) {
+            return Err(SettingsError(format!(
+                "adaptive.tolerance {tol}: expected a relative error in (0, 1)"
+            )));
+        }
+        let min = self.min_step;
+        if !(min.is_finite() && min > 0.0) {
+            return Err(SettingsError(format!(
+                "adaptive.min_step {min}: expected a step > 0 in seconds"
+            )));
+        }
+        if self.calm_steps == 0 {
+            return Err(SettingsError(
+                "adaptive.calm_steps 0: expected at least 1".into(),
+            ));
+        }
+        if let Some(d) = self.displacement
+            && !(d.is_finite() && d > 0.0)
+        {
+            return Err(SettingsError(format!(
+                "adaptive.displacement {d}: expected a local displacement error > 0 in metres"
+            )));
+        }
+        if !self.interface && self.displacement.is_none() {
+            return Err(SettingsError(
+                "adaptive.interface = false: expected adaptive.displacement (m) then, or nothing would judge the step".into(),
+            ));
         }
         Ok(())
     }

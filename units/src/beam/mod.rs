@@ -436,6 +436,11 @@ impl Unit for Beam {
         Ok(())
     }
 
+    /// Over the nodes' deflections (DOFs 2j).
+    fn local_error(&self) -> Option<f64> {
+        Some(self.hht.local_error(|d| d % 2 == 0))
+    }
+
     fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {
         dynamics::modes(self, count)
     }

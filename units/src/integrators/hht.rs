@@ -202,6 +202,8 @@ pub struct HhtAlpha {
     /// Newton starts a step without a guess from the motion carried on
     /// (`predict_start`), not from the start state.
     predicts: bool,
+    /// The size of the last step (s).
+    last_h: f64,
 }
 
 impl Default for HhtAlpha {
@@ -243,7 +245,27 @@ impl HhtAlpha {
             kept: None,
             last_linear: false,
             predicts: false,
+            last_h: f64::NAN,
         }
+    }
+
+    /// The local error of the last step in the degrees of freedom `counted`
+    /// picks (their unit: m for translations): Zienkiewicz and Xie's estimate for
+    /// the Newmark family, h^2 |beta - 1/6| |a1 - a0|, the difference between
+    /// the step's displacement and a third-order one's from the same start
+    /// (Zienkiewicz & Xie 1991, Earthq. Eng. Struct. Dyn. 20). The largest
+    /// over them; 0 before any step.
+    pub fn local_error(&self, counted: impl Fn(usize) -> bool) -> f64 {
+        if !self.last_h.is_finite() {
+            return 0.0;
+        }
+        let (_, beta, _) = self.parameters();
+        let factor = self.last_h * self.last_h * (beta - 1.0 / 6.0).abs();
+        (self.a1.iter().zip(&self.a0).enumerate())
+            .filter(|(i, _)| counted(*i))
+            .fold(0.0, |worst, (_, (a1, a0))| {
+                worst.max(factor * (a1 - a0).abs())
+            })
     }
 
     /// (alpha, beta, gamma).
@@ -423,6 +445,7 @@ impl HhtAlpha {
         self.first_iterate(loads.held, h, self.predicts && !linear);
         self.history.clear();
         self.last_linear = linear;
+        self.last_h = h;
         let scales = TangentScales {
             stiffness: 1.0 - alpha,
             damping: (1.0 - alpha) * gamma / (beta * h),

@@ -16,6 +16,8 @@
 pub mod central_difference;
 pub mod hht;
 pub mod hht_sensitivity;
+#[cfg(test)]
+mod hht_tests;
 pub mod newmark;
 pub mod newmark_iterated;
 pub mod warm_start;

@@ -264,6 +264,11 @@ impl Unit for Line3d {
     fn field_values(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
         self.write_field(index, out)
     }
+
+    /// Every degree of freedom of a rotation-free line is a translation.
+    fn local_error(&self) -> Option<f64> {
+        Some(self.hht.local_error(|_| true))
+    }
 }
 
 #[cfg(test)]

@@ -369,6 +369,17 @@ impl NonlinearSection {
         Ok(iterations)
     }
 
+    /// The last step's local displacement error (m) over the nodes' x and z,
+    /// where HHT-alpha took it on the full coordinates (not the reduced or
+    /// explicit steps).
+    pub(super) fn local_displacement_error(&self) -> Option<f64> {
+        let hht = matches!(
+            self.params.integrator,
+            Integrator::Hht { .. } | Integrator::EnergyConserving { .. }
+        );
+        (hht && self.reduction.is_none()).then(|| self.hht.local_error(|d| d % 3 < 2))
+    }
+
     /// After a step of length `h` (s) from `w.q0` under `w.f1`: the restoring
     /// forces, reactions and contact summary at its end, and its entry in the
     /// energy balance (with the moving surfaces' `surface_jump`, J).

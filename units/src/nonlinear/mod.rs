@@ -472,6 +472,10 @@ impl Unit for NonlinearSection {
         self.write_field(index, out)
     }
 
+    fn local_error(&self) -> Option<f64> {
+        self.local_displacement_error()
+    }
+
     fn do_step(&mut self, t: Time, h: Time, inputs: Inputs<'_>) -> Result<StepReport, UnitError> {
         self.ensure_reduced()?;
         let iterations = self.step(inputs, t.as_secs(), (t + h).as_secs(), h.as_secs())?;

@@ -44,6 +44,27 @@ pub(super) fn run(
 }
 
 /// The computing times of a paced run: percentiles, histogram, overruns.
+/// The adaptive step's line: steps per size, rejected and failed ones.
+fn print_adaptive(simulated_s: f64, a: &slender_coupling::counters::StepSizes) {
+    let sizes: Vec<String> = (a.accepted.iter().zip(&a.sizes_s))
+        .filter(|(n, _)| **n > 0)
+        .map(|(n, h)| format!("{n} of {h} s"))
+        .collect();
+    println!(
+        "simulated    {simulated_s} s in {} adaptive steps ({}), {} rejected over the tolerance, {} repeated after a failure",
+        a.accepted_steps(),
+        sizes.join(", "),
+        a.rejected,
+        a.failed
+    );
+    if a.over_tolerance > 0 {
+        println!(
+            "             {} steps accepted at the smallest step over the tolerance (largest estimate {:.3} x, on {})",
+            a.over_tolerance, a.largest_estimate, a.largest_at
+        );
+    }
+}
+
 fn print_realtime(r: &slender_app::realtime::RealtimeReport) {
     let ms = |x: f64| x * 1e3;
     println!(
@@ -98,10 +119,13 @@ fn print_summary(result: &RunResult) {
         },
         s.order.join(" -> ")
     );
-    println!(
-        "simulated    {} s in {} steps of {} s",
-        s.simulated_s, c.steps, s.step_s
-    );
+    match &c.adaptive {
+        None => println!(
+            "simulated    {} s in {} steps of {} s",
+            s.simulated_s, c.steps, s.step_s
+        ),
+        Some(a) => print_adaptive(s.simulated_s, a),
+    }
     if s.simulated_s > 0.0 {
         println!(
             "cost         {:.3} s wall, {:.3e} s per simulated second ({:.0}x real time)",
@@ -224,6 +248,13 @@ pub(super) fn check(arg: &SceneArg) -> Result<(), CliError> {
         master.settings().scheme.name(),
         master.order().join(" -> ")
     );
+    if let Some(a) = &master.settings().adaptive {
+        println!(
+            "adaptive step: each step of {} s halved down to at least {} s where the estimate asks",
+            scene.step.as_secs(),
+            a.min_step
+        );
+    }
     Ok(())
 }
 

@@ -24,6 +24,9 @@ pub fn parts(summary: &Summary, figures: &[PathBuf]) -> Vec<Part> {
         c.non_converged_steps,
         c.rollbacks
     );
+    if let Some(a) = &c.adaptive {
+        md += &adaptive_steps(a);
+    }
     if let Some(error) = &summary.error {
         md += &format!("Error: {}\n\n", error.replace('\n', " "));
     }
@@ -47,6 +50,27 @@ pub fn parts(summary: &Summary, figures: &[PathBuf]) -> Vec<Part> {
     let mut parts = vec![Part::Heading(summary.title.clone()), Part::Markdown(md)];
     parts.extend(figures.iter().map(|f| Part::figure(f, Vec::new())));
     parts
+}
+
+/// The adaptive step's table: steps accepted per size, then the repeated ones.
+fn adaptive_steps(a: &slender_coupling::counters::StepSizes) -> String {
+    let mut md = "| adaptive step (s) | steps accepted |\n|---|---|\n".to_owned();
+    for (n, h) in a.accepted.iter().zip(&a.sizes_s) {
+        md += &format!("| {h} | {n} |\n");
+    }
+    md += &format!(
+        "\n{} steps repeated at half the size over the tolerance, {} after a failure, {} accepted at the smallest step over it; largest estimate {:.3} x the tolerance{}.\n\n",
+        a.rejected,
+        a.failed,
+        a.over_tolerance,
+        a.largest_estimate,
+        if a.largest_at.is_empty() {
+            String::new()
+        } else {
+            format!(" (on {})", a.largest_at)
+        }
+    );
+    md
 }
 
 /// A row per recorded signal: its unit, and with `[output] statistics` its

@@ -27,6 +27,9 @@ impl Master {
         self.accepted.copy_from_slice(&self.value);
         self.accepted_before.copy_from_slice(&self.value);
         self.accepted_earlier.copy_from_slice(&self.value);
+        if let Some(adaptive) = self.adaptive.as_mut() {
+            adaptive.start(t0, &self.value);
+        }
         self.record_static_loads();
         self.initialized = true;
         Ok(())

@@ -30,7 +30,7 @@ impl Master {
     /// [`Master::sweep`] with the units stepped on the pool; the first failure
     /// in the sweep order is the sweep's.
     pub(super) fn sweep_parallel(&mut self, iteration: u32) -> Result<(), MasterError> {
-        let (t, h) = (self.time, self.step_size);
+        let (t, h) = (self.time, self.h);
         let repeat = self.first_sweep_done;
         self.first_sweep_done = true;
         for (u, unit) in self.units.iter_mut().enumerate() {

@@ -1,10 +1,12 @@
 //! What the master checks and builds before its first step: the units'
-//! adapters, the rollback iterative schemes need, an explicit unit order.
+//! adapters, valid settings and the rollback repeated steps need, an explicit
+//! unit order.
 
 use crate::adapter::UnitAdapter;
 use crate::error::MasterError;
 use crate::settings::MasterSettings;
 use crate::system::{Connection, System};
+use slender_contract::Time;
 
 /// The master's side of every unit, with the tolerances of the connections
 /// feeding its inputs and the outputs that feed connections.
@@ -29,11 +31,36 @@ pub(super) fn adapters(
 }
 
 /// Iterative schemes repeat steps: every unit must roll back.
-pub(super) fn check_rollback(
+/// Valid settings, a step > 0, at least one unit, and rollback where steps
+/// repeat.
+pub(super) fn check_setup(
     system: &System,
     settings: &MasterSettings,
+    step_size: Time,
 ) -> Result<(), MasterError> {
-    if !settings.scheme.is_iterative() {
+    settings.validate()?;
+    if step_size <= Time::ZERO {
+        return Err(MasterError::Invalid(format!(
+            "synchronisation step {step_size}: expected > 0"
+        )));
+    }
+    if system.units.is_empty() {
+        return Err(MasterError::Invalid("the system has no units".into()));
+    }
+    if settings.adaptive.is_some()
+        && let Some(u) =
+            (system.units.iter()).find(|u| !u.unit.description().capabilities.variable_step)
+    {
+        return Err(MasterError::Invalid(format!(
+            "the adaptive step changes the step size, but unit `{}` cannot take a variable step (an FMU's canHandleVariableCommunicationStepSize = false): remove [master.adaptive]",
+            u.name
+        )));
+    }
+    check_rollback(system, settings)
+}
+
+fn check_rollback(system: &System, settings: &MasterSettings) -> Result<(), MasterError> {
+    if !settings.scheme.is_iterative() && settings.adaptive.is_none() {
         return Ok(());
     }
     match system
@@ -43,7 +70,11 @@ pub(super) fn check_rollback(
     {
         Some(u) => Err(MasterError::RollbackUnsupported {
             unit: u.name.clone(),
-            scheme: settings.scheme.name().into(),
+            scheme: if settings.scheme.is_iterative() {
+                format!("scheme `{}`", settings.scheme.name())
+            } else {
+                "the adaptive step".into()
+            },
         }),
         None => Ok(()),
     }
