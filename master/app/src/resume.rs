@@ -72,7 +72,7 @@ impl Kept {
             && !fresh
         {
             return Err(AppError::Asked(format!(
-                "{} holds another study ({}); this one asks {request}: give --out to keep both, or --fresh to replace it",
+                "{} holds another study, asked as\n  {}\nthis one is asked as\n  {request}\ngive --out to keep both, or --fresh to replace it",
                 folder.display(),
                 held.trim_end()
             )));

@@ -209,6 +209,21 @@ fn a_different_study_into_the_same_folder_is_refused_unless_fresh() {
         message.contains("holds another study") && message.contains("--out"),
         "{message}"
     );
+    // Both requests in the command line's words, not the plan's Debug.
+    let words = |choice: &str| {
+        format!(
+            "slender fidelity examples/structure_hanging_pipe.toml --section middle={choice} --tolerance 0.01 --reference estimate --duration 1"
+        )
+    };
+    assert!(
+        message.contains(&words("nonlinear:5")) && message.contains(&words("nonlinear:3")),
+        "{message}"
+    );
+    assert!(!message.contains("FidelityPlan"), "{message}");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("o/request.txt")).unwrap(),
+        words("nonlinear:5") + "\n"
+    );
     assert_eq!(
         std::fs::read_to_string(dir.join("o/fidelity.csv")).unwrap(),
         table

@@ -84,11 +84,7 @@ pub(super) fn study(
         "duration {:?}, repeats {}, cost units {:?}, set {:?}",
         plan.duration, plan.repeats, plan.cost_units, plan.overrides
     );
-    let request = {
-        let mut asked = plan.clone();
-        (asked.jobs, asked.max_runs) = (0, 0);
-        format!("study of {}: {asked:?}", path.display())
-    };
+    let request = super::request::study(path, plan);
     let kept = kept_runs(&dir, path, (&options, &request), fresh)?;
     let rows = study::run_study_resuming(path, plan, Some(&kept), |line| println!("{line}"))
         .map_err(CliError::of)?;
@@ -195,11 +191,7 @@ pub(super) fn fidelity(
         "duration {:?}, repeats {}, set {:?}",
         plan.duration, plan.repeats, plan.overrides
     );
-    let request = {
-        let mut asked = plan.clone();
-        (asked.jobs, asked.max_runs) = (0, 0);
-        format!("fidelity study of {}: {asked:?}", path.display())
-    };
+    let request = super::request::fidelity(path, plan);
     let kept = kept_runs(&dir, path, (&options, &request), fresh)?;
     let report = fidelity::run_fidelity_kept(path, plan, Some(&kept), |line| println!("{line}"))
         .map_err(CliError::of)?;

@@ -8,6 +8,7 @@ mod cluster;
 mod decay;
 mod fmu;
 mod lock;
+mod request;
 mod runs_csv;
 mod scene;
 mod span;
