@@ -105,7 +105,7 @@ fn a_matrix_run_whole_and_in_merged_shards_gives_the_same_table() {
     let out = cases(&scene, &split, &["--merge"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(text(&out.stdout).contains("merging: 8 cases from the shards"));
-    for file in ["cases.csv", "cases.json", "cases.md"] {
+    for file in ["cases.csv", "cases.json", "cases.md", "cases.svg"] {
         let a = std::fs::read(whole.join(file)).unwrap();
         let b = std::fs::read(split.join(file)).unwrap();
         assert!(
@@ -146,6 +146,17 @@ fn a_matrix_run_whole_and_in_merged_shards_gives_the_same_table() {
         .sum();
     assert!((f["damage_per_year"].as_f64().unwrap() - sum).abs() <= 1e-15 * sum);
     assert!(whole.join("report.html").exists());
+    // The figure: a panel per design value and per fatigue entry over the
+    // two sea states (Tp 9 and 10 s), the design value's cell outlined.
+    let svg = std::fs::read_to_string(whole.join("cases.svg")).unwrap();
+    let designs = report["design"].as_array().unwrap().len();
+    assert_eq!(
+        svg.matches("extreme per sea state (design value outlined)")
+            .count(),
+        designs
+    );
+    assert!(svg.contains("line1_fairlead: share of the damage per year (%)"));
+    assert!(svg.contains("peak period Tp (s)"));
 }
 
 /// Runs `slender cases ARGS --out DIR` and checks it is refused (exit 2)
@@ -179,6 +190,11 @@ fn a_matrix_that_cannot_run_is_refused_before_any_run() {
         "cases examples/structure_mooring.toml --sea 4,9,1",
         o,
         "no wave `spectrum` table",
+    );
+    refused(
+        &format!("{oc3} --sea 4,9,1 --duration 60"),
+        o,
+        "the statistics start at 60 s (`[output] statistics.from`), at or after the runs' end at 60 s",
     );
     refused(
         &format!("{oc3} --sea 4,9,1 --seeds 3 --max-runs 2"),

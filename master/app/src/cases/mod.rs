@@ -138,8 +138,17 @@ pub fn check(path: &Path, plan: &CasesPlan) -> Result<Checked, AppError> {
     }
     let master = scene.build().map_err(AppError::Scene)?;
     let columns = table::columns(&scene, &scene.signals(&master));
+    let (from, end) = (
+        crate::analysis::statistics_from(&scene),
+        scene.end().as_secs(),
+    );
+    if end <= from {
+        return Err(AppError::Asked(format!(
+            "the statistics start at {from} s (`[output] statistics.from`), at or after the runs' end at {end} s: every case's extremes and damage would be NaN; give a --duration that reaches past {from} s"
+        )));
+    }
     let durations = aggregate::Durations {
-        window_s: scene.end().as_secs() - crate::analysis::statistics_from(&scene),
+        window_s: end - from,
         storm_s: (scene.spec.output.statistics)
             .and_then(|s| s.extremes)
             .map(|e| e.duration),

@@ -144,8 +144,8 @@ fn merged(
     Ok(all)
 }
 
-/// Writes cases.json, cases.md and report.html beside the complete `csv`,
-/// prints the Markdown.
+/// Writes cases.json, cases.md, cases.svg and report.html beside the
+/// complete `csv`, prints the Markdown.
 fn write_matrix(
     dir: &Path,
     path: &Path,
@@ -155,8 +155,17 @@ fn write_matrix(
     let markdown = cases::markdown::to_markdown(report);
     let mut files = vec![csv];
     files.extend(write_report_files(dir, "cases", report, &markdown)?);
-    let parts = vec![slender_app::report::Part::Markdown(markdown.clone())];
     let title = format!("Load-case matrix of {}", path.display());
+    let svg = dir.join("cases.svg");
+    slender_app::whole::through(&svg, |f| {
+        slender_app::figures::cases::cases(f, &title, report)
+    })
+    .map_err(CliError::failure)?;
+    let parts = vec![
+        slender_app::report::Part::Markdown(markdown.clone()),
+        slender_app::report::Part::figure(&svg, Vec::new()),
+    ];
+    files.push(svg);
     files.push(super::write_report(dir, &title, &parts)?);
     print!("{markdown}");
     report_written(&files);

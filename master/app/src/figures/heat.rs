@@ -97,21 +97,13 @@ fn heat_map(
     what: &str,
 ) -> DrawResult {
     let (xs, ys) = (levels(&group.rows, 0), levels(&group.rows, 1));
-    let widest = ys.iter().map(String::len).max().unwrap_or(0) as i32;
-    let mut chart = ChartBuilder::on(area)
-        .caption(what, ("sans-serif", 14))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size((CHAR_WIDTH * widest + 40).clamp(75, 220))
-        .build_cartesian_2d(band_axis(xs.len()), band_axis(ys.len()))?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(axes[0].as_str())
-        .y_desc(axes[1].as_str())
-        .x_label_formatter(&|v| xs.get(band_of(*v)).cloned().unwrap_or_default())
-        .y_label_formatter(&|v| ys.get(band_of(*v)).cloned().unwrap_or_default())
-        .draw()?;
+    let mut grid = Cells {
+        caption: what,
+        axes: [axes[0].as_str(), axes[1].as_str()],
+        xs: &xs,
+        ys: &ys,
+        cells: Vec::with_capacity(values.len()),
+    };
     for (r, value) in group.rows.iter().zip(values) {
         let at = |i: usize, levels: &[String]| {
             levels
@@ -121,7 +113,6 @@ fn heat_map(
         let (Some(x), Some(y)) = (at(0, &xs), at(1, &ys)) else {
             continue;
         };
-        let (x, y) = (x as f64, y as f64);
         let (fill, text) = match (r.error.is_some(), value.is_finite() && *value > 0.0) {
             (true, _) => (RGBColor(200, 200, 200), "failed".to_owned()),
             (false, true) => (colour(*value, scale), format!("{value:.1e}")),
@@ -134,14 +125,73 @@ fn heat_map(
                 },
             ),
         };
-        let ink = if fill == WHITE || fill.1 > 150 {
+        grid.cells.push(Cell {
+            at: (x, y),
+            fill,
+            text,
+            outlined: false,
+        });
+    }
+    draw_cells(area, &grid)
+}
+
+/// One cell of a map: its column and row, colour, text and whether it is
+/// outlined (the one a caption points at).
+pub(super) struct Cell {
+    pub at: (usize, usize),
+    pub fill: RGBColor,
+    pub text: String,
+    pub outlined: bool,
+}
+
+/// A map of coloured cells over two sets of levels, each with its text.
+pub(super) struct Cells<'a> {
+    pub caption: &'a str,
+    /// The x and y axes' titles.
+    pub axes: [&'a str; 2],
+    pub xs: &'a [String],
+    pub ys: &'a [String],
+    pub cells: Vec<Cell>,
+}
+
+/// Draws `grid` on `area`: each cell a filled rectangle with its text in
+/// black or white, whichever reads on its colour.
+pub(super) fn draw_cells(area: &Area<'_>, grid: &Cells<'_>) -> DrawResult {
+    let (xs, ys) = (grid.xs, grid.ys);
+    let widest = ys.iter().map(String::len).max().unwrap_or(0) as i32;
+    let mut chart = ChartBuilder::on(area)
+        .caption(grid.caption, ("sans-serif", 14))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size((CHAR_WIDTH * widest + 40).clamp(75, 220))
+        .build_cartesian_2d(band_axis(xs.len()), band_axis(ys.len()))?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(grid.axes[0])
+        .y_desc(grid.axes[1])
+        .x_label_formatter(&|v| xs.get(band_of(*v)).cloned().unwrap_or_default())
+        .y_label_formatter(&|v| ys.get(band_of(*v)).cloned().unwrap_or_default())
+        .draw()?;
+    for cell in &grid.cells {
+        let (x, y) = (cell.at.0 as f64, cell.at.1 as f64);
+        let ink = if cell.fill == WHITE || cell.fill.1 > 150 {
             BLACK
         } else {
             WHITE
         };
-        chart.draw_series([Rectangle::new([(x, y), (x + 1.0, y + 1.0)], fill.filled())])?;
+        chart.draw_series([Rectangle::new(
+            [(x, y), (x + 1.0, y + 1.0)],
+            cell.fill.filled(),
+        )])?;
+        if cell.outlined {
+            chart.draw_series([Rectangle::new(
+                [(x + 0.02, y + 0.02), (x + 0.98, y + 0.98)],
+                RED.stroke_width(3),
+            )])?;
+        }
         chart.draw_series([Text::new(
-            text,
+            cell.text.clone(),
             (x + 0.5, y + 0.5),
             ("sans-serif", 11)
                 .into_font()

@@ -9,10 +9,13 @@
 //! - [`tradeoff`]: error against cost with the Pareto front (`error_cost.svg`
 //!   of a study, `fidelity.svg`);
 //! - [`units`]: a setting's unit for its axis;
-//! - [`curves`]: curves against one abscissa (a moored body's statics).
+//! - [`curves`]: curves against one abscissa (a moored body's statics);
+//! - [`cases`]: a load-case matrix's extremes and fatigue shares over the
+//!   Hs-Tp scatter (`cases.svg`).
 
 pub mod axes;
 mod bars;
+pub mod cases;
 pub mod curves;
 mod heat;
 pub mod labels;
