@@ -199,6 +199,12 @@ impl Line3d {
             "curvature at each node (0 at the ends), start first",
             nodes,
         ));
+        fields.push(Field::new(
+            "moment",
+            "N.m",
+            "bending moment at each node, EI times the curvature (0 at the ends), start first",
+            nodes,
+        ));
         fields
     }
 
@@ -225,7 +231,8 @@ impl Line3d {
                 0..=2 => q[DOF * k + index],
                 3 => self.mechanics.tension(q, v, k),
                 _ if k == 0 || k + 1 == field.len => 0.0,
-                _ => self.mechanics.curvature(q, k),
+                4 => self.mechanics.curvature(q, k),
+                _ => self.params.bending_stiffness * self.mechanics.curvature(q, k),
             };
         }
         Ok(())

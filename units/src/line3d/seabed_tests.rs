@@ -152,3 +152,29 @@ fn a_seabed_with_both_a_plane_and_a_grid_is_refused() {
         "{error}"
     );
 }
+
+/// The moment field is EI times the curvature field, and its largest value
+/// is the line's `largest_moment` output (the envelopes read it).
+#[test]
+fn the_moment_field_is_ei_times_the_curvature_and_holds_the_largest_moment() {
+    let d = started(laid_line(40, 25.0, "bending_stiffness = 1.0e6"));
+    let fields = d.unit().fields();
+    let index = |name: &str| fields.iter().position(|f| f.name == name).expect(name);
+    let (curvature, moment) = (index("curvature"), index("moment"));
+    assert_eq!(fields[moment].unit, "N.m");
+    let nodes = fields[moment].len;
+    let (mut kappa, mut m) = (vec![0.0; nodes], vec![0.0; nodes]);
+    d.unit().field_values(curvature, &mut kappa).unwrap();
+    d.unit().field_values(moment, &mut m).unwrap();
+    let ei = d.unit().params.bending_stiffness;
+    for (k, mk) in kappa.iter().zip(&m) {
+        assert!((mk - ei * k).abs() <= 1e-12 * (ei * k).abs().max(1.0));
+    }
+    let largest = m.iter().copied().fold(0.0, f64::max);
+    assert!(largest > 0.0);
+    let output = output(&d, "largest_moment");
+    assert!(
+        (largest - output).abs() <= 1e-9 * output,
+        "{largest} against {output}"
+    );
+}
