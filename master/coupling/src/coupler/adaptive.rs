@@ -299,6 +299,9 @@ impl Master {
             self.h = a.sizes[a.level];
             let t_end = (self.time + self.h).as_secs();
             self.weights = Some(a.weights(self.settings.extrapolation, t_end));
+            // A failed attempt's residual is not the run's: the step is
+            // repeated shorter.
+            let residuals = (self.counters.last_residual, self.counters.max_residual);
             let outcome = self.solve_step();
             if let Err(e) = &outcome
                 && !curable(e)
@@ -314,6 +317,7 @@ impl Master {
                     return outcome.map(|_| ());
                 }
                 Verdict::Repeat { failed } => {
+                    (self.counters.last_residual, self.counters.max_residual) = residuals;
                     self.restore_every_unit()?;
                     self.forget_step_history();
                     a.level += 1;
