@@ -207,31 +207,50 @@ fn a_tighter_tolerance_gives_a_smaller_error_at_more_steps() {
     assert!(tight.do_steps > loose.do_steps);
 }
 
-/// A unit whose step fails when longer than 20 ms between 0.5 s and 0.8 s
-/// (a solver that does not converge in a hard phase); its output is its time.
-struct Fragile {
-    description: UnitDescription,
-    time: f64,
+/// How a mock unit behaves.
+#[derive(Copy, Clone, PartialEq)]
+enum Behaviour {
+    /// Its step fails when longer than 20 ms between 0.5 s and 0.8 s (a
+    /// solver that does not converge in a hard phase); its output is its time.
+    Fragile,
+    /// `y = (h / 20 ms) u + cos(t)` at the step's end: a loop of two
+    /// converges by plain iteration only where (h / 20 ms)^2 < 1, as a stiff
+    /// coupling does at short steps only.
+    Stiff,
 }
 
-impl Fragile {
-    fn new(rollback: bool) -> Fragile {
-        Fragile {
+/// A mock unit keeping its time (its state) and its last step's gain.
+struct Mock {
+    description: UnitDescription,
+    behaviour: Behaviour,
+    time: f64,
+    gain: f64,
+}
+
+impl Mock {
+    fn new(behaviour: Behaviour, rollback: bool) -> Mock {
+        let output = match behaviour {
+            Behaviour::Fragile => Port::output("time", PortKind::Generic),
+            Behaviour::Stiff => Port::output("y", PortKind::Generic).with_feedthrough(&[0]),
+        };
+        Mock {
             description: UnitDescription {
-                kind: "fragile".into(),
+                kind: "mock".into(),
                 inputs: vec![Port::input("u", PortKind::Generic)],
-                outputs: vec![Port::output("time", PortKind::Generic)],
+                outputs: vec![output],
                 capabilities: Capabilities {
                     rollback,
                     ..Capabilities::default()
                 },
             },
+            behaviour,
             time: 0.0,
+            gain: 0.0,
         }
     }
 }
 
-impl Unit for Fragile {
+impl Unit for Mock {
     fn description(&self) -> &UnitDescription {
         &self.description
     }
@@ -241,14 +260,19 @@ impl Unit for Fragile {
     }
     fn do_step(&mut self, t: Time, h: Time, _i: Inputs<'_>) -> Result<StepReport, UnitError> {
         let start = t.as_secs();
-        if h.as_secs() > 0.02 && (0.5..0.8).contains(&start) {
+        let hard = (0.5..0.8).contains(&start) && h.as_secs() > 0.02;
+        if self.behaviour == Behaviour::Fragile && hard {
             return Err(UnitError::Numerical(format!("no convergence at {start} s")));
         }
         self.time = (t + h).as_secs();
+        self.gain = h.as_secs() / 0.02;
         Ok(StepReport::default())
     }
-    fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
-        out[0] = self.time;
+    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
+        out[0] = match self.behaviour {
+            Behaviour::Fragile => self.time,
+            Behaviour::Stiff => self.gain * inputs.end()[0] + self.time.cos(),
+        };
     }
     fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
         slot.store(&self.time);
@@ -261,10 +285,10 @@ impl Unit for Fragile {
 }
 
 fn fragile(rollback: bool, adaptive: Option<AdaptiveStep>) -> Result<Master, String> {
-    fragile_unit(Fragile::new(rollback), adaptive)
+    fragile_unit(Mock::new(Behaviour::Fragile, rollback), adaptive)
 }
 
-fn fragile_unit(unit: Fragile, adaptive: Option<AdaptiveStep>) -> Result<Master, String> {
+fn fragile_unit(unit: Mock, adaptive: Option<AdaptiveStep>) -> Result<Master, String> {
     let mut system = System::new();
     system
         .add_unit("fragile", Box::new(unit))
@@ -346,7 +370,7 @@ fn bad_adaptive_settings_are_refused_with_the_key_and_what_was_expected() {
         error.contains("the adaptive step repeats steps, but unit `fragile` cannot roll back"),
         "{error}"
     );
-    let mut fixed_step = Fragile::new(true);
+    let mut fixed_step = Mock::new(Behaviour::Fragile, true);
     fixed_step.description.capabilities.variable_step = false;
     let error = fragile_unit(fixed_step, Some(adaptive(1e-3, 0.01)))
         .err()
@@ -365,56 +389,9 @@ fn bad_adaptive_settings_are_refused_with_the_key_and_what_was_expected() {
     );
 }
 
-/// `y = (h / 20 ms) u + cos(t)` at the step's end: a loop of two converges by
-/// plain iteration only where (h / 20 ms)^2 < 1, as a stiff coupling does
-/// at short steps only.
-struct Stiff {
-    description: UnitDescription,
-    time: f64,
-    gain: f64,
-}
-
-impl Unit for Stiff {
-    fn description(&self) -> &UnitDescription {
-        &self.description
-    }
-    fn initialize(&mut self, t0: Time, _inputs: Inputs<'_>) -> Result<(), UnitError> {
-        self.time = t0.as_secs();
-        Ok(())
-    }
-    fn do_step(&mut self, t: Time, h: Time, _i: Inputs<'_>) -> Result<StepReport, UnitError> {
-        self.time = (t + h).as_secs();
-        self.gain = h.as_secs() / 0.02;
-        Ok(StepReport::default())
-    }
-    fn outputs(&self, inputs: Inputs<'_>, out: &mut [f64]) {
-        out[0] = self.gain * inputs.end()[0] + self.time.cos();
-    }
-    fn save_state(&self, slot: &mut StateSlot) -> Result<(), UnitError> {
-        slot.store(&self.time);
-        Ok(())
-    }
-    fn restore_state(&mut self, slot: &StateSlot) -> Result<(), UnitError> {
-        self.time = *slot.load::<f64>()?;
-        Ok(())
-    }
-}
-
 #[test]
 fn a_step_whose_iteration_does_not_converge_is_repeated_shorter_and_leaves_no_residual() {
-    let stiff = || Stiff {
-        description: UnitDescription {
-            kind: "stiff".into(),
-            inputs: vec![Port::input("u", PortKind::Generic)],
-            outputs: vec![Port::output("y", PortKind::Generic).with_feedthrough(&[0])],
-            capabilities: Capabilities {
-                rollback: true,
-                ..Capabilities::default()
-            },
-        },
-        time: 0.0,
-        gain: 0.0,
-    };
+    let stiff = || Mock::new(Behaviour::Stiff, true);
     let mut system = System::new();
     system
         .add_unit("one", Box::new(stiff()))
