@@ -101,9 +101,11 @@ impl Adaptive {
         let mut sizes = vec![step];
         while sizes.len() <= MAX_HALVINGS as usize {
             let last = sizes[sizes.len() - 1];
+            if 0.5 * last.as_secs() < min * (1.0 - 1e-12) {
+                break;
+            }
             match last.split(2) {
-                Some(half) if half.as_secs() >= min * (1.0 - 1e-12) => sizes.push(half),
-                Some(_) => break,
+                Some(half) => sizes.push(half),
                 None => {
                     return Err(MasterError::Invalid(format!(
                         "adaptive.min_step {min} s: {} s halved is not a whole number of nanoseconds; choose a synchronisation step with more factors of two or a larger min_step",
