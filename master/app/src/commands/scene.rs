@@ -43,7 +43,6 @@ pub(super) fn run(
     }
 }
 
-/// The computing times of a paced run: percentiles, histogram, overruns.
 /// The adaptive step's line: steps per size, rejected and failed ones.
 fn print_adaptive(simulated_s: f64, a: &slender_coupling::counters::StepSizes) {
     let sizes: Vec<String> = (a.accepted.iter().zip(&a.sizes_s))
@@ -65,6 +64,7 @@ fn print_adaptive(simulated_s: f64, a: &slender_coupling::counters::StepSizes) {
     }
 }
 
+/// The computing times of a paced run: percentiles, histogram, overruns.
 fn print_realtime(r: &slender_app::realtime::RealtimeReport) {
     let ms = |x: f64| x * 1e3;
     println!(

@@ -80,8 +80,14 @@ enum Source {
 
 /// What became of an attempted step.
 enum Verdict {
-    Accept { over_tolerance: bool },
-    Repeat { failed: bool },
+    Accept {
+        over_tolerance: bool,
+    },
+    Repeat {
+        failed: bool,
+    },
+    /// Failed at the smallest step: the run's error.
+    Fail,
 }
 
 impl Adaptive {
@@ -232,6 +238,7 @@ impl Adaptive {
     fn judge(&self, outcome: &Result<(u32, f64, bool), MasterError>, estimate: f64) -> Verdict {
         let finest = self.level + 1 == self.sizes.len();
         match outcome {
+            Err(_) if finest => Verdict::Fail,
             Err(_) => Verdict::Repeat { failed: true },
             Ok(_) if estimate > 1.0 && !finest => Verdict::Repeat { failed: false },
             Ok(_) => Verdict::Accept {
@@ -315,9 +322,7 @@ impl Master {
                 Err(_) => (f64::INFINITY, Source::Connection(0)),
             };
             match a.judge(&outcome, estimate.0) {
-                Verdict::Repeat { .. } if a.level + 1 == a.sizes.len() => {
-                    return outcome.map(|_| ());
-                }
+                Verdict::Fail => return outcome.map(|_| ()),
                 Verdict::Repeat { failed } => {
                     (self.counters.last_residual, self.counters.max_residual) = residuals;
                     self.restore_every_unit()?;
