@@ -235,6 +235,8 @@ impl Adaptive {
         };
     }
 
+    /// An attempt's fate: repeated at half the size while a smaller step
+    /// exists, else accepted (counted when over the tolerance) or the error.
     fn judge(&self, outcome: &Result<(u32, f64, bool), MasterError>, estimate: f64) -> Verdict {
         let finest = self.level + 1 == self.sizes.len();
         match outcome {
