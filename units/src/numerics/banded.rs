@@ -237,6 +237,14 @@ impl BandLdlt {
         true
     }
 
+    /// The number of negative pivots of D: by Sylvester's law of inertia, of
+    /// an indefinite factor (`refactorise_nonsingular`) of K - sigma M, the
+    /// number of eigenvalues of the pencil below sigma (a Sturm sequence check).
+    pub fn negative_pivots(&self) -> usize {
+        let s = self.w + 1;
+        (0..self.n).filter(|&i| self.band[i * s] < 0.0).count()
+    }
+
     /// Solves `A x = b` in place.
     pub fn solve_in_place(&self, b: &mut [f64]) {
         let (n, w, s) = (self.n, self.w, self.w + 1);

@@ -4,4 +4,5 @@ pub mod banded;
 pub mod bounded;
 pub mod lanczos;
 pub mod modal;
+pub mod subspace;
 pub mod table;
