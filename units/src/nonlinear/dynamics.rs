@@ -122,7 +122,7 @@ impl NonlinearSection {
         }
         let mut load = vec![0.0; n];
         self.external_load(inputs, (t, 1.0), &mut load);
-        self.restoring_forces(None, None);
+        let kept = self.restoring_forces(None, None);
         let mut rhs: Vec<f64> = load
             .iter()
             .zip(&self.state.force)
@@ -137,7 +137,11 @@ impl NonlinearSection {
         if self.params.reduced_modes.is_some() {
             self.reduced_start_rhs.clone_from(&rhs);
         }
-        if !self.reduced_start(&mut rhs)? {
+        let reduced = self.reduced_start(&mut rhs)?;
+        if reduced {
+            // The state follows the reduced coordinates: evaluated anew.
+            self.state.strain_energy = None;
+        } else {
             let mut m = self.m.clone();
             for &(d, _) in &held {
                 m.set_identity_row(d);
@@ -151,7 +155,7 @@ impl NonlinearSection {
             factor.solve_in_place(&mut rhs);
             self.state.a.copy_from_slice(&rhs);
         }
-        self.finish(&load, false)?;
+        self.finish(&load, false, kept && !reduced)?;
         self.open_ledger(&load);
         if self.params.static_start {
             // The force the section reports at its start is the equilibrium's
@@ -172,8 +176,9 @@ impl NonlinearSection {
 
     /// Reactions (M a + C v + g - f at the held DOFs), the contact summary (a
     /// node deeper than nodal contact represents is an error), the bend moments
-    /// and, after a step, the Lagrangian updates.
-    fn finish(&mut self, load: &[f64], after_step: bool) -> Result<(), UnitError> {
+    /// and, after a step, the Lagrangian updates; `kept`: `element_states`
+    /// holds the elements at the current displacements.
+    fn finish(&mut self, load: &[f64], after_step: bool, kept: bool) -> Result<(), UnitError> {
         let s = &mut self.state;
         for ((r, g), f) in s.reaction.iter_mut().zip(&s.force).zip(load) {
             *r = g - f;
@@ -189,7 +194,7 @@ impl NonlinearSection {
                 contacts.update_lambda(&self.model, (&s.q, s.t), &mut s.lambda);
             }
         }
-        let (largest, now) = self.extremes();
+        let (largest, now) = self.extremes(kept);
         let s = &mut self.state;
         s.largest = largest;
         if !after_step {
@@ -393,9 +398,9 @@ impl NonlinearSection {
         w.before_end.lambda.clone_from(&self.state.lambda);
         w.before_end.surface_jump = surface_jump;
         let q0 = self.energy_conserving().then_some(w.q0.as_slice());
-        self.restoring_forces(q0, Some(&w.drag_remainder));
+        let kept = self.restoring_forces(q0, Some(&w.drag_remainder));
         let surface_power = self.surface_power();
-        self.finish(&w.f1, true).map_err(Failure::Other)?;
+        self.finish(&w.f1, true, kept).map_err(Failure::Other)?;
         let surface = (surface_power, surface_jump);
         self.record_step(&w.f1, (&w.q0, h), surface, &mut w.outside);
         Ok(())
@@ -416,12 +421,17 @@ impl NonlinearSection {
     /// The restoring force at the current state: the linear model's (with
     /// the drag its step used, from the step's drag `remainder`) where the
     /// section is linear, else [`Self::refresh_forces`].
-    fn restoring_forces(&mut self, step_start: Option<&[f64]>, remainder: Option<&[f64]>) {
+    /// True when each element's state at the current displacements is kept
+    /// (`element_states`) for the extremes.
+    fn restoring_forces(&mut self, step_start: Option<&[f64]>, remainder: Option<&[f64]>) -> bool {
         if self.linear.is_some() {
+            self.state.strain_energy = None;
+            self.element_states.clear();
             self.linear_forces(remainder);
         } else {
             self.refresh_forces(step_start);
         }
+        !self.element_states.is_empty()
     }
 
     /// The elastic force at the current state as the integrator used it (the
@@ -429,6 +439,8 @@ impl NonlinearSection {
     /// q) - g0) and the total restoring force with drag and contact.
     fn refresh_forces(&mut self, step_start: Option<&[f64]>) {
         let s = &mut self.state;
+        self.element_states.clear();
+        s.strain_energy = None;
         if let Some(q0) = step_start {
             for g in s.elastic.iter_mut() {
                 *g = -*g;
@@ -437,8 +449,9 @@ impl NonlinearSection {
                 .add_discrete_gradient((q0, &s.q), 2.0, None, &mut s.elastic);
         } else {
             s.elastic.fill(0.0);
-            self.model
-                .add_internal_force(&s.q, 1.0, None, &mut s.elastic);
+            let states = &mut self.element_states;
+            (self.model).add_internal_force_keeping(&s.q, &mut s.elastic, states);
+            s.strain_energy = Some(states.iter().map(|e| e.strain_energy).sum());
         }
         s.force.copy_from_slice(&s.elastic);
         let contacts = &self.environment.contacts;

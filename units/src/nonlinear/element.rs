@@ -64,6 +64,18 @@ pub struct LocalForces {
     pub direction: [f64; 2],
 }
 
+/// An element at a state: its internal force (N, N m, global frame), local
+/// forces and strain energy (J).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ElementState {
+    /// Internal force on the element's six DOFs.
+    pub force: [f64; 6],
+    /// Axial force, end moments and chord.
+    pub local: LocalForces,
+    /// Strain energy (J).
+    pub strain_energy: f64,
+}
+
 /// Where a co-rotational element is: its local rotations (rad, wrapped to
 /// (-pi, pi]), stretch (m), chord length (m) and chord angle (rad).
 struct Kinematics {
@@ -115,16 +127,33 @@ impl Element {
         }
     }
 
-    /// Strain energy (J) at `p`.
-    pub fn strain_energy(&self, formulation: Formulation, p: &[f64; 6]) -> f64 {
+    /// Internal force, local forces and strain energy (J) at `p` from one
+    /// evaluation of the element's kinematics: what a state's bookkeeping
+    /// (reactions, extremes, energies) reads, as [`Element::force`],
+    /// [`Element::local_forces`] and [`Element::strain_energy`] give it.
+    pub fn evaluate(&self, formulation: Formulation, p: &[f64; 6]) -> ElementState {
         match formulation {
             Formulation::Corotational => {
                 let kinematics = self.corotational_kinematics(p);
-                let [t1, t2] = kinematics.rotations;
-                let (l0, strain) = (self.length, self.shallow_arch_strain(&kinematics));
-                0.5 * self.ea * l0 * strain * strain
-                    + self.ei / l0 * (2.0 * t1 * t1 + 2.0 * t1 * t2 + 2.0 * t2 * t2)
+                let local = self.corotational_local(&kinematics);
+                ElementState {
+                    force: self.corotational_from(&kinematics, &local, false).0,
+                    local,
+                    strain_energy: self.corotational_energy(&kinematics),
+                }
             }
+            Formulation::Seed002 => ElementState {
+                force: self.seed002(p, false).0,
+                local: self.seed002_local(p),
+                strain_energy: self.strain_energy(formulation, p),
+            },
+        }
+    }
+
+    /// Strain energy (J) at `p`.
+    pub fn strain_energy(&self, formulation: Formulation, p: &[f64; 6]) -> f64 {
+        match formulation {
+            Formulation::Corotational => self.corotational_energy(&self.corotational_kinematics(p)),
             Formulation::Seed002 => {
                 let v = self.local_dofs(p);
                 GAUSS5
@@ -140,6 +169,14 @@ impl Element {
                     .sum()
             }
         }
+    }
+
+    /// The co-rotational element's strain energy (J).
+    fn corotational_energy(&self, kinematics: &Kinematics) -> f64 {
+        let [t1, t2] = kinematics.rotations;
+        let (l0, strain) = (self.length, self.shallow_arch_strain(kinematics));
+        0.5 * self.ea * l0 * strain * strain
+            + self.ei / l0 * (2.0 * t1 * t1 + 2.0 * t1 * t2 + 2.0 * t2 * t2)
     }
 
     /// Local rotations (wrapped), stretch and the chord at `p`.
@@ -194,6 +231,16 @@ impl Element {
     fn corotational(&self, p: &[f64; 6], tangent: bool) -> ElementForce {
         let kinematics = self.corotational_kinematics(p);
         let local = self.corotational_local(&kinematics);
+        self.corotational_from(&kinematics, &local, tangent)
+    }
+
+    /// [`Element::corotational`] from the kinematics and local forces.
+    fn corotational_from(
+        &self,
+        kinematics: &Kinematics,
+        local: &LocalForces,
+        tangent: bool,
+    ) -> ElementForce {
         let (ln, [c, s]) = (local.chord, local.direction);
         let r = [-c, -s, 0.0, c, s, 0.0];
         let z = [s, -c, 0.0, -s, c, 0.0];

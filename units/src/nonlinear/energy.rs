@@ -33,7 +33,10 @@ impl NonlinearSection {
         let kinetic = 0.5 * self.m.quadratic_form(&self.state.v);
         let (strain, contact) = match &self.linear {
             Some(l) => (l.potential(&self.state.q), 0.0),
-            None => (self.strain_energy(), self.state.contact.energy),
+            None => (
+                (self.state.strain_energy).unwrap_or_else(|| self.strain_energy()),
+                self.state.contact.energy,
+            ),
         };
         let mut work: f64 = self
             .weight

@@ -83,6 +83,6 @@ impl NonlinearSection {
     /// Each node's bending moment (N m) into `out`, as
     /// `moments.rs` gives it (the extremes read the same).
     fn write_moments(&self, out: &mut [f64]) {
-        self.for_each_node_moment(|_| {}, |j, m, _| out[j] = m);
+        self.for_each_node_moment(false, |_| {}, |j, m, _| out[j] = m);
     }
 }

@@ -76,6 +76,9 @@ crate::state_struct! {
         bend_step: [f64; 2],
         /// Largest |moment| (N m) and tension (N) at the current time.
         largest: [f64; 2],
+        /// The elements' strain energy (J) when the last force evaluation
+        /// gave it (a nonlinear, not energy-conserving section).
+        strain_energy: Option<f64>,
         newton_iterations: u32,
         /// A reduced section's coordinates, velocities and accelerations
         /// (empty otherwise).
@@ -108,6 +111,7 @@ impl SectionState {
             bend_now: [0.0; 2],
             bend_step: [0.0; 2],
             largest: [0.0; 2],
+            strain_energy: None,
             newton_iterations: 0,
             reduced: Vec::new(),
             outside: Vec::new(),
@@ -141,6 +145,9 @@ pub struct NonlinearSection {
     /// The drag (N, N m per DOF) at the state of the last `refresh_forces`
     /// (zero without drag), for the energy balance.
     drag_at_state: Vec<f64>,
+    /// Each element's state at the last `refresh_forces` (local forces,
+    /// strain energy), read by the extremes right after it.
+    element_states: Vec<element::ElementState>,
     state: SectionState,
     // Scratch.
     hht: HhtAlpha,
@@ -218,6 +225,7 @@ impl NonlinearSection {
             held_nodes: Vec::new(),
             free_end_rotation: [true; 2],
             drag_at_state: vec![0.0; n],
+            element_states: Vec::new(),
             patterns,
             weight,
             ends,

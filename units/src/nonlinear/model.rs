@@ -8,7 +8,7 @@
 // Small dense element blocks read best indexed as in the formulas.
 #![allow(clippy::needless_range_loop)]
 
-use super::element::{Element, Formulation, LocalForces};
+use super::element::{Element, ElementState, Formulation, LocalForces};
 use super::params::{MassKind, NonlinearParams, Segment};
 use crate::numerics::banded::SymmetricBand;
 
@@ -136,6 +136,25 @@ impl Model {
                     }
                 }
             }
+        }
+    }
+
+    /// Adds the internal force at `q` to `out` and keeps each element's
+    /// state (local forces, strain energy) in `states`: one evaluation of
+    /// every element for what a step's end reads.
+    pub fn add_internal_force_keeping(
+        &self,
+        q: &[f64],
+        out: &mut [f64],
+        states: &mut Vec<ElementState>,
+    ) {
+        states.clear();
+        for (e, element) in self.elements.iter().enumerate() {
+            let state = element.evaluate(self.formulation, &element_dofs(q, e));
+            for (o, f) in out[3 * e..3 * e + 6].iter_mut().zip(&state.force) {
+                *o += f;
+            }
+            states.push(state);
         }
     }
 

@@ -18,7 +18,7 @@
 //! section's end, a support) has no density, and its element takes the other
 //! node's alone.
 
-use super::element::{Formulation, LocalForces};
+use super::element::{ElementState, Formulation, LocalForces};
 use super::model::Model;
 
 /// What the recovery reads of the loads: a node's net load (N, x and z;
@@ -71,6 +71,23 @@ impl Model {
         for e in 0..self.elements.len() {
             let local = self.local_forces(q, e);
             visit(e, &local, self.recovered_moments(e, &local, loads));
+        }
+    }
+
+    /// [`Model::for_each_recovered`] from the elements' states already
+    /// evaluated at the displacements (one per element, in order).
+    pub fn for_each_recovered_from(
+        &self,
+        states: &[ElementState],
+        loads: &impl Loads,
+        mut visit: impl FnMut(usize, &LocalForces, [f64; 2]),
+    ) {
+        for (e, state) in states.iter().enumerate() {
+            visit(
+                e,
+                &state.local,
+                self.recovered_moments(e, &state.local, loads),
+            );
         }
     }
 }
@@ -135,7 +152,8 @@ impl super::NonlinearSection {
     /// ends differ in dynamics by the element's own inertia (their larger one
     /// overstates the sag bend of the riser's 10 m mesh by 0.4 %, the mean by
     /// 0.05 %).
-    pub(super) fn extremes(&self) -> ([f64; 2], [f64; 2]) {
+    /// With `kept`, from the elements' states the force evaluation kept.
+    pub(super) fn extremes(&self, kept: bool) -> ([f64; 2], [f64; 2]) {
         let (mut moment, mut tension, mut bend) = (0.0f64, f64::NEG_INFINITY, [0.0f64; 2]);
         let element = |l: &LocalForces| tension = tension.max(l.axial);
         let node = |_, m: f64, forward: f64| {
@@ -148,7 +166,7 @@ impl super::NonlinearSection {
                 bend[1] = bend[1].max(m.abs());
             }
         };
-        self.for_each_node_moment(element, node);
+        self.for_each_node_moment(kept, element, node);
         ([moment, tension], bend)
     }
 
@@ -156,28 +174,34 @@ impl super::NonlinearSection {
     /// node's index, bending moment (N m: the mean of the recovered moments of
     /// the elements meeting there, one at each end of the section; positive
     /// turning the tangent counter-clockwise along the arc) and the mean x
-    /// direction cosine of those elements, in order.
+    /// direction cosine of those elements, in order; with `kept`, from the
+    /// elements' states the force evaluation kept at the current state.
     pub(super) fn for_each_node_moment(
         &self,
+        kept: bool,
         mut element: impl FnMut(&LocalForces),
         mut node: impl FnMut(usize, f64, f64),
     ) {
         // The previous element's end moment (as the node's) and direction.
         let mut previous: Option<(f64, f64)> = None;
         let last = self.model.elements.len() - 1;
-        self.model
-            .for_each_recovered(&self.state.q, self, |e, l, moments| {
-                element(l);
-                let forward = l.direction[0];
-                match previous {
-                    Some((m, f)) => node(e, 0.5 * (m - moments[0]), 0.5 * (f + forward)),
-                    None => node(e, -moments[0], forward),
-                }
-                if e == last {
-                    node(e + 1, moments[1], forward);
-                }
-                previous = Some((moments[1], forward));
-            });
+        let visit = |e, l: &LocalForces, moments: [f64; 2]| {
+            element(l);
+            let forward = l.direction[0];
+            match previous {
+                Some((m, f)) => node(e, 0.5 * (m - moments[0]), 0.5 * (f + forward)),
+                None => node(e, -moments[0], forward),
+            }
+            if e == last {
+                node(e + 1, moments[1], forward);
+            }
+            previous = Some((moments[1], forward));
+        };
+        if kept {
+            (self.model).for_each_recovered_from(&self.element_states, self, visit);
+        } else {
+            (self.model).for_each_recovered(&self.state.q, self, visit);
+        }
     }
 
     /// The load per length (N/m, x and z) along element `e` at time `t`: its
