@@ -108,6 +108,13 @@ impl Model {
         })
     }
 
+    /// Whether a correction no entry of which exceeds `largest` (m or rad)
+    /// is surely within [`Model::correction_limit`] (its factor 1), with a
+    /// margin over the sqrt(2) of a node's two translations.
+    pub fn surely_within_correction_limit(&self, largest: f64) -> bool {
+        1.5 * largest <= self.shortest.min(0.5)
+    }
+
     /// Number of DOFs.
     pub fn dofs(&self) -> usize {
         3 * self.reference.len()

@@ -5,8 +5,9 @@
 //! basis. A coupled end motion drives its constraint coordinate; a coupled end
 //! force loads the coordinates through its row of the basis.
 
+use super::products::times_rows;
 use super::sampled::{Hyper, Sample};
-use super::{Reduction, project, times};
+use super::{Reduction, project};
 use crate::contract::{Inputs, UnitError};
 use crate::integrators::hht_sensitivity::{Change, Drive, StepSensitivity};
 use crate::nonlinear::NonlinearSection;
@@ -197,10 +198,13 @@ impl NonlinearSection {
                 }
                 None => change.clear(m),
             }
+            // Only where the end rows read: the end nodes and their band.
+            let reach = (3 + crate::nonlinear::model::BAND).min(n);
+            let rows = [0..reach, (n - reach).max(reach)..n];
             for (full, reduced) in b.full.iter_mut().zip([&change.dq, &change.dv, &change.da]) {
                 full.clear();
                 full.resize(n, 0.0);
-                times(&r.basis, (n, m), reduced, full);
+                times_rows(&r.basis, (n, m), reduced, &rows, full);
             }
             let [dq, dv, _] = &b.full;
             let reaction = |dof| self.reaction_change(&b, dof);

@@ -41,7 +41,7 @@ use crate::integrators::hht::{
     HhtAlpha, Matrices, NewtonSettings, SecondOrderSystem, StepLoads, TangentScales,
 };
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
-use products::{project, times, transpose_times};
+use products::{column_largest, project, times, transpose_times};
 use sampled::Hyper;
 
 /// Newton iterations of a step on the tangent frozen at the start state
@@ -70,6 +70,9 @@ pub(super) struct Reduction {
     m: usize,
     /// The held DOF of each constraint coordinate (coordinates free..m).
     held: Vec<usize>,
+    /// The largest |entry| of each column of T: a bound of a correction's
+    /// full size without forming it.
+    column_largest: Vec<f64>,
     /// q_s: the displacements the basis is formed at (m, rad).
     start: Vec<f64>,
     /// T^T M T and T^T C T (banded as dense, half-bandwidth m - 1).
@@ -186,6 +189,7 @@ impl NonlinearSection {
             hyper: (self.params.reduced_sampling.as_ref()).map(|p| Hyper::new(p, self.state.t)),
             work: Work::default(),
             jacobian: jacobian::JacobianBuffers::default(),
+            column_largest: column_largest(&basis, (n, m)),
             basis,
         }));
         Ok(())
@@ -398,6 +402,14 @@ impl SecondOrderSystem for ReducedSystem<'_> {
     /// shortest element or turning it by more than 0.5 rad is scaled down.
     fn limit_correction(&self, dz: &mut [f64]) -> f64 {
         let r = &*self.reduction;
+        let bound: f64 = dz
+            .iter()
+            .zip(&r.column_largest)
+            .map(|(d, t)| d.abs() * t)
+            .sum();
+        if self.section.model.surely_within_correction_limit(bound) {
+            return 1.0;
+        }
         let mut dq = r.work.correction.borrow_mut();
         dq.clear();
         dq.resize(r.n, 0.0);

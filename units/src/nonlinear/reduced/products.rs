@@ -16,6 +16,29 @@ pub(super) fn times(basis: &[f64], (n, m): (usize, usize), z: &[f64], out: &mut 
     }
 }
 
+/// out[i] += (T z)[i] for the rows i in `rows` only.
+pub(super) fn times_rows(
+    basis: &[f64],
+    (n, m): (usize, usize),
+    z: &[f64],
+    rows: &[std::ops::Range<usize>],
+    out: &mut [f64],
+) {
+    for (column, &zj) in basis.chunks_exact(n).take(m).zip(z) {
+        for range in rows {
+            let (o, t) = (&mut out[range.clone()], &column[range.clone()]);
+            o.iter_mut().zip(t).for_each(|(o, t)| *o += t * zj);
+        }
+    }
+}
+
+/// The largest |entry| of each column of T.
+pub(super) fn column_largest(basis: &[f64], (n, m): (usize, usize)) -> Vec<f64> {
+    (basis.chunks_exact(n).take(m))
+        .map(|c| c.iter().fold(0.0f64, |a, t| a.max(t.abs())))
+        .collect()
+}
+
 /// out = T^T x.
 pub(super) fn transpose_times(basis: &[f64], (n, m): (usize, usize), x: &[f64], out: &mut [f64]) {
     for (o, column) in out.iter_mut().zip(basis.chunks_exact(n).take(m)) {
