@@ -173,6 +173,42 @@ fn sampled_sections_follow_the_twin_on_the_mooring_line_the_s_lay_and_the_riser(
 }
 
 #[test]
+fn a_long_section_sampled_on_two_modes_follows_the_twin() {
+    // The mooring line on 500 elements, its lower section (406) reduced to
+    // two modes (13 coordinates with the attachments, derivatives and the
+    // anchor's constraint modes) and sampled after 2 s: where the reduced
+    // fidelity pays (2.4x the full section, BENCHMARKS.md), the top force
+    // within 1e-3 of the twin's and the anchor's force within 1 % of its peak.
+    let series = run_edited(
+        "examples/structure_mooring.toml",
+        &[
+            ("duration = 60.0", "duration = 40.0"),
+            ("elements = 80", "elements = 500"),
+            (
+                "fidelity = \"cable\"",
+                "fidelity = { kind = \"reduced\", modes = 2, training = 2.0 }",
+            ),
+            (
+                "signals = [",
+                "signals = [\"line_lower.start_force_x\", \"line_lower.start_force_z\", ",
+            ),
+        ],
+    )
+    .unwrap();
+    let worst = worst_epsilon("mooring lower (406 elements) reduced:2 sampled", &series);
+    assert!(worst < 1e-3, "{worst}");
+    let from = series.time.iter().position(|&t| t >= 20.0).unwrap();
+    for axis in ["x", "z"] {
+        let reduced = &series.get(&format!("line_lower.start_force_{axis}"))[from..];
+        let twin = &series.get(&format!("line_reference.start_force_{axis}"))[from..];
+        let peak = twin.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let miss = (reduced.iter().zip(twin)).fold(0.0f64, |a, (r, t)| a.max((r - t).abs()));
+        eprintln!("anchor force {axis}: {:.2e} of its peak", miss / peak);
+        assert!(miss < 1e-2 * peak, "{axis}: {miss} of {peak}");
+    }
+}
+
+#[test]
 fn a_section_the_stingers_rollers_press_on_is_not_sampled() {
     // The S-lay's stinger section rides the rollers: its sample would drop
     // their force, so `check` refuses it with the roller it passes over.
