@@ -208,90 +208,135 @@ impl Envelope {
     }
 }
 
-/// Moves each structure section's arcs onto the structure's (its start
+/// Moves each structure section's arcs onto its structure's (its start
 /// added), so that they line up with the twin's.
-pub fn place(envelopes: &mut [Envelope], starts: &[(String, f64)]) {
+pub fn place(envelopes: &mut [Envelope], structures: &[Structure]) {
+    let starts = structures.iter().flat_map(|(_, starts)| starts);
     for e in envelopes {
-        if let Some((_, from)) = starts.iter().find(|(unit, _)| *unit == e.unit) {
+        if let Some((_, from)) = starts.clone().find(|(unit, _)| *unit == e.unit) {
             e.arc.iter_mut().for_each(|a| *a += from);
         }
     }
 }
 
+/// A structure's name: its twin's without `_reference`.
+fn structure_name((twin, _): &Structure) -> String {
+    twin.strip_suffix("_reference").unwrap_or(twin).to_owned()
+}
+
 /// A structure's twin unit and its sections' units with the arc of their
-/// start (`Scene::structure_sections`).
-pub type Structure = (String, Vec<(String, f64)>);
+/// start (`Scene::sectioned_structures`): a `[structure]`, or a line of a
+/// `[mooring]`.
+pub type Structure = slender_scene::analysis::SectionStarts;
 
 /// A structure's sections' envelope of one field joined along the structure:
-/// arc, min and max.
-type Joined = (String, Vec<f64>, Vec<f64>, Vec<f64>);
+/// the field and, per run of consecutive sections that have it, arc, min and
+/// max (a section without the field, a `static` one, breaks the curve).
+type Joined = (String, Vec<[Vec<f64>; 3]>);
 
-/// Per field of the twin, the sections' envelopes of it joined in order.
+/// Per enveloped field, the sections' envelopes of it joined in order.
 fn joined(envelopes: &[Envelope], (twin, starts): &Structure) -> Vec<Joined> {
-    let fields = envelopes
+    let has =
+        |unit: &str, field: &str| (envelopes.iter()).find(|e| e.unit == unit && e.field == field);
+    ENVELOPED
         .iter()
-        .filter(|e| &e.unit == twin)
-        .map(|e| &e.field);
-    fields
+        .filter(|field| {
+            has(twin, field).is_some() || starts.iter().any(|(u, _)| has(u, field).is_some())
+        })
         .map(|field| {
-            let (mut arc, mut min, mut max) = (Vec::new(), Vec::new(), Vec::new());
+            let mut runs: Vec<[Vec<f64>; 3]> = Vec::new();
+            let mut open = false;
             for (unit, _) in starts {
-                if let Some(e) = envelopes
-                    .iter()
-                    .find(|e| &e.unit == unit && &e.field == field)
-                {
-                    arc.extend(&e.arc);
-                    min.extend(&e.min);
-                    max.extend(&e.max);
+                match has(unit, field) {
+                    Some(e) => {
+                        if !open {
+                            runs.push(Default::default());
+                        }
+                        if let Some([arc, min, max]) = runs.last_mut() {
+                            arc.extend(&e.arc);
+                            min.extend(&e.min);
+                            max.extend(&e.max);
+                        }
+                        open = true;
+                    }
+                    None => open = false,
                 }
             }
-            (field.clone(), arc, min, max)
+            (field.to_string(), runs)
         })
         .collect()
 }
 
-/// The figure's panels: with a structure, per field the sections' envelope
-/// beside the twin's along the structure; then each other unit's own.
+/// The figure's panels: per structure and field its sections' envelope along
+/// it, beside its twin's where it has one; then each other unit's own.
 fn panels<'a>(
     envelopes: &'a [Envelope],
-    structure: Option<&Structure>,
-    joined: &'a [Joined],
+    structures: &[Structure],
+    joined: &'a [(String, Vec<Joined>)],
 ) -> Vec<Profile<'a>> {
     let x_title = "arc length (m)";
-    let range = |arc: &[f64]| {
-        let (lo, hi) = (
-            arc.first().copied().unwrap_or(0.0),
-            arc.last().copied().unwrap_or(1.0),
-        );
-        (lo, hi.max(lo + 1e-9))
-    };
+    let range = |lo: f64, hi: f64| (lo, hi.max(lo + 1e-9));
     let curve = |name: String, x: &'a [f64], y: &'a [f64]| Curve { name, x, y };
     let mut panels = Vec::new();
-    for (field, arc, min, max) in joined {
-        let Some(twin) = structure
-            .and_then(|(t, _)| envelopes.iter().find(|e| &e.unit == t && &e.field == field))
-        else {
-            continue;
-        };
-        panels.push(Profile {
-            x_range: range(&twin.arc),
-            x_title,
-            y_title: format!("{field} ({})", twin.unit_of_measure),
-            series: vec![
-                curve("twin max".into(), &twin.arc, &twin.max),
-                curve("twin min".into(), &twin.arc, &twin.min),
-                curve("sections max".into(), arc, max),
-                curve("sections min".into(), arc, min),
-            ],
-        });
+    let named = structures.len() > 1;
+    for ((twin_name, _), (structure, fields)) in structures.iter().zip(joined) {
+        for (field, runs) in fields {
+            let twin = (envelopes.iter()).find(|e| &e.unit == twin_name && &e.field == field);
+            let arcs = twin
+                .map(|t| &t.arc)
+                .into_iter()
+                .chain(runs.iter().map(|r| &r[0]));
+            let lo = arcs
+                .clone()
+                .filter_map(|a| a.first())
+                .fold(f64::INFINITY, |m, &v| m.min(v));
+            let hi = arcs
+                .filter_map(|a| a.last())
+                .fold(f64::NEG_INFINITY, |m, &v| m.max(v));
+            let mut series = Vec::new();
+            if let Some(t) = twin {
+                series.push(curve("twin max".into(), &t.arc, &t.max));
+                series.push(curve("twin min".into(), &t.arc, &t.min));
+            }
+            for (k, [arc, min, max]) in runs.iter().enumerate() {
+                let part = if k == 0 {
+                    String::new()
+                } else {
+                    format!(" {}", k + 1)
+                };
+                series.push(curve(format!("sections max{part}"), arc, max));
+                series.push(curve(format!("sections min{part}"), arc, min));
+            }
+            let Some(unit_of_measure) = (envelopes.iter())
+                .find(|e| &e.field == field)
+                .map(|e| &e.unit_of_measure)
+            else {
+                continue;
+            };
+            let prefix = if named {
+                format!("{structure} ")
+            } else {
+                String::new()
+            };
+            panels.push(Profile {
+                x_range: range(lo, hi),
+                x_title,
+                y_title: format!("{prefix}{field} ({unit_of_measure})"),
+                series,
+            });
+        }
     }
-    let shown = |e: &Envelope| {
-        structure
-            .is_none_or(|(t, starts)| &e.unit != t && !starts.iter().any(|(u, _)| *u == e.unit))
+    let in_a_structure = |e: &Envelope| {
+        (structures.iter())
+            .any(|(t, starts)| &e.unit == t || starts.iter().any(|(u, _)| *u == e.unit))
     };
-    for e in envelopes.iter().filter(|e| shown(e)) {
+    for e in envelopes.iter().filter(|e| !in_a_structure(e)) {
+        let (lo, hi) = (
+            e.arc.first().copied().unwrap_or(0.0),
+            e.arc.last().copied().unwrap_or(1.0),
+        );
         panels.push(Profile {
-            x_range: range(&e.arc),
+            x_range: range(lo, hi),
             x_title,
             y_title: format!("{} {} ({})", e.unit, e.field, e.unit_of_measure),
             series: vec![
@@ -305,13 +350,14 @@ fn panels<'a>(
 }
 
 /// Writes `envelopes.csv` (a row per unit, field and point: arc, min, max,
-/// mean) and `envelopes.svg` into `dir`: with a structure, per field its
-/// sections' envelope beside its twin's along it, then any other unit's.
+/// mean) and `envelopes.svg` into `dir`: per structure (a `[structure]`, or
+/// each line of a `[mooring]`) and field its sections' envelope along it,
+/// beside its twin's where it has one, then any other unit's.
 pub fn write(
     dir: &Path,
     title: &str,
     envelopes: &[Envelope],
-    structure: Option<&Structure>,
+    structures: &[Structure],
 ) -> Result<Vec<PathBuf>, PlotError> {
     if envelopes.is_empty() {
         return Ok(Vec::new());
@@ -327,8 +373,10 @@ pub fn write(
     }
     let csv_path = dir.join("envelopes.csv");
     crate::whole::write(&csv_path, csv).map_err(|e| PlotError::new(&csv_path, &e))?;
-    let joined = structure.map_or(Vec::new(), |s| joined(envelopes, s));
-    let panels = panels(envelopes, structure, &joined);
+    let joined: Vec<(String, Vec<Joined>)> = (structures.iter())
+        .map(|s| (structure_name(s), joined(envelopes, s)))
+        .collect();
+    let panels = panels(envelopes, structures, &joined);
     let svg_path = dir.join("envelopes.svg");
     let title = format!("{title}: envelopes along the line");
     crate::whole::through(&svg_path, |p| crate::plot::profiles(p, &title, &panels))?;

@@ -431,12 +431,11 @@ fn analyse_and_draw(
     warnings: &mut Vec<String>,
 ) -> crate::analysis::Analysis {
     let mut envelopes = recorder.take_envelopes();
-    let structure = (!envelopes.is_empty())
-        .then(|| scene.structure_sections())
-        .flatten();
-    if let Some((_, starts)) = &structure {
-        crate::envelopes::place(&mut envelopes, starts);
-    }
+    let structures = match envelopes.is_empty() {
+        true => Vec::new(),
+        false => scene.sectioned_structures(),
+    };
+    crate::envelopes::place(&mut envelopes, &structures);
     let (analysis, spectra) = crate::analysis::of(scene, recorder, &envelopes, warnings);
     if let Some(dir) = dir
         && recorder.time.len() > 1
@@ -444,7 +443,7 @@ fn analyse_and_draw(
         let drawn = Drawn {
             spectra: &spectra,
             envelopes: &envelopes,
-            structure: structure.as_ref(),
+            structures: &structures,
         };
         match write_plots(scene, recorder, dir, &drawn) {
             Ok(plots) => files.extend(plots),
@@ -462,7 +461,7 @@ fn analyse_and_draw(
 struct Drawn<'a> {
     spectra: &'a [(String, crate::spectrum::Spectrum)],
     envelopes: &'a [crate::envelopes::Envelope],
-    structure: Option<&'a crate::envelopes::Structure>,
+    structures: &'a [crate::envelopes::Structure],
 }
 
 /// The scene's figures, and the spectra's and envelopes' tables and figures
@@ -479,7 +478,7 @@ fn write_plots(
         dir,
         title,
         drawn.envelopes,
-        drawn.structure,
+        drawn.structures,
     )?);
     if scene.spec.output.plots.is_empty() {
         let path = dir.join("timeseries.svg");

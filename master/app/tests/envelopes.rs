@@ -108,3 +108,66 @@ fn a_units_envelope_holds_its_extreme_outputs_and_the_sections_agree_with_the_tw
     }
     assert!(out.join("envelopes.csv").exists() && out.join("envelopes.svg").exists());
 }
+
+/// The OC3 spar's three lines (`[mooring]`, no twins): each line's upper
+/// section's envelopes are placed on the line's arc from its anchor (the
+/// section starts at 450 m) and drawn per line, and the largest tension is
+/// the line's `largest_tension` output's largest.
+#[test]
+fn a_moorings_sections_are_placed_along_each_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("oc3");
+    let signals: Vec<String> = (1..=3)
+        .map(|k| format!("\"line{k}_upper.largest_tension\""))
+        .collect();
+    let run = slender(&[
+        "run",
+        "examples/oc3_hywind.toml",
+        "--duration",
+        "10",
+        "--set",
+        &format!("output.signals=[{}]", signals.join(", ")),
+        "--set",
+        "output.plots=[]",
+        "--set",
+        "output.envelopes={}",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let s = summary(&out);
+    let csv = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let envelopes = std::fs::read_to_string(out.join("envelopes.csv")).unwrap();
+    for k in 1..=3 {
+        let unit = format!("line{k}_upper");
+        let arcs: Vec<f64> = (envelopes.lines())
+            .filter(|l| l.starts_with(&format!("{unit},tension,")))
+            .map(|l| l.split(',').nth(3).unwrap().parse().unwrap())
+            .collect();
+        // Element midpoints from the cut at 450 m to the fairlead (902.2 m
+        // unstretched, 18 m elements), in order.
+        assert!(arcs[0] > 450.0 && arcs[0] < 470.0, "{unit}: {arcs:?}");
+        assert!(*arcs.last().unwrap() < 905.0, "{unit}: {arcs:?}");
+        assert!(arcs.windows(2).all(|w| w[1] > w[0]), "{unit}: {arcs:?}");
+        let envelope = (s["envelopes"].as_array().unwrap().iter())
+            .find(|e| e["unit"] == unit.as_str() && e["field"] == "tension")
+            .unwrap();
+        let i = (header.iter())
+            .position(|h| h.starts_with(&format!("{unit}.largest_tension")))
+            .unwrap();
+        let recorded = (csv.lines().skip(1))
+            .map(|l| l.split(',').nth(i).unwrap().parse::<f64>().unwrap())
+            .fold(f64::NEG_INFINITY, f64::max);
+        let max = envelope["max"].as_f64().unwrap();
+        assert!(
+            (max - recorded).abs() <= 1e-12 * recorded,
+            "{unit}: {max} against {recorded}"
+        );
+    }
+    let svg = std::fs::read_to_string(out.join("envelopes.svg")).unwrap();
+    for k in 1..=3 {
+        assert!(svg.contains(&format!("line{k} tension")), "line{k}'s panel");
+    }
+    assert!(svg.contains("sections max"));
+}
