@@ -373,16 +373,18 @@ pub(crate) enum Command {
     Cases {
         scene: PathBuf,
         /// A sea state: significant height (m), peak period (s) and its
-        /// probability, `HS,TP,P`; repeat it for a scatter.
-        #[arg(long = "sea", value_parser = parse_sea, required = true)]
+        /// probability, `HS,TP,P`; repeat it for a scatter. Without it, the
+        /// scene's `[cases]` table.
+        #[arg(long = "sea", value_parser = parse_sea)]
         seas: Vec<(f64, f64, f64)>,
         /// A wave heading (deg), `DEG` or `DEG,P` with its probability
         /// (default: equal shares); repeat it; default: the scene's heading.
         #[arg(long = "heading", value_parser = parse_heading, allow_negative_numbers = true)]
         headings: Vec<(f64, Option<f64>)>,
-        /// Seeds of each sea state and heading (1 to N).
-        #[arg(long, default_value_t = 1)]
-        seeds: u64,
+        /// Seeds of each sea state and heading (1 to N; default the scene's
+        /// `[cases] seeds`, else 1).
+        #[arg(long)]
+        seeds: Option<u64>,
         /// Results folder (default: results/<scene name>-cases).
         #[arg(long)]
         out: Option<PathBuf>,

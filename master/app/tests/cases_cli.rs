@@ -229,6 +229,52 @@ fn a_matrix_that_cannot_run_is_refused_before_any_run() {
     refused(&without, o, "judges each case by its statistics");
 }
 
+/// The riser's own scatter (`[cases]` in examples/riser_sea.toml, five sea
+/// states): run when the command line gives no `--sea`, replaced by one
+/// that does; a scene with neither, or with headings half weighted, is
+/// refused saying what to give.
+#[test]
+fn the_scenes_own_scatter_runs_without_sea_states_on_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let riser = "examples/riser_sea.toml";
+    let rows = |out: &Path| {
+        let csv = std::fs::read_to_string(out.join("cases.csv")).unwrap();
+        csv.lines().count() - 1
+    };
+    let own = dir.path().join("own");
+    let short = ["--duration", "70", "--jobs", "1", "--out"];
+    let run = slender(&[&["cases", riser], &short[..], &[own.to_str().unwrap()]].concat());
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_eq!(rows(&own), 5);
+    let md = std::fs::read_to_string(own.join("cases.md")).unwrap();
+    assert!(md.contains("| Hs 6 m, Tp 12 s | 0.05 |"), "{md}");
+    let given = dir.path().join("given");
+    let args = [
+        &["cases", riser, "--sea", "4,10,1"],
+        &short[..],
+        &[given.to_str().unwrap()],
+    ];
+    let run = slender(&args.concat());
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_eq!(rows(&given), 1);
+    let o = &dir.path().join("bad");
+    refused(
+        "cases examples/oc3_hywind_jonswap.toml",
+        o,
+        "no sea state: give at least one --sea HS,TP,PROBABILITY, or a `[cases]` table",
+    );
+    let mixed = common::variant_in(
+        dir.path(),
+        riser,
+        &[("seeds = 1\n", "seeds = 1\nheadings = [0.0, [30.0, 0.5]]\n")],
+    );
+    refused(
+        &format!("cases {}", mixed.display()),
+        o,
+        "`cases.headings`: give every heading as [DEG, PROBABILITY]",
+    );
+}
+
 /// Waits (at most `limit`) until the merge has written `cases.json` and no
 /// job of ours is queued.
 fn wait_for_slurm(dir: &Path, limit: std::time::Duration) {

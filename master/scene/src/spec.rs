@@ -40,6 +40,36 @@ pub struct SceneSpec {
     /// `[mooring]`: a body and its lines, written out the same way.
     #[serde(default)]
     pub mooring: Option<toml::Value>,
+    /// `[cases]`: the load-case matrix `slender cases` runs (a run ignores it).
+    #[serde(default)]
+    pub cases: Option<CasesSpec>,
+}
+
+/// `[cases]`: the scatter of sea states, the headings and the seeds of the
+/// load-case matrix `slender cases SCENE` runs when its command line gives
+/// no `--sea` (what the command line gives replaces the table's).
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CasesSpec {
+    /// Sea states: `[HS (m), TP (s), probability]` each.
+    pub seas: Vec<[f64; 3]>,
+    /// Wave headings (deg), each a number (equal shares) or `[deg,
+    /// probability]` (all or none); none: the scene's own heading.
+    #[serde(default)]
+    pub headings: Vec<CasesHeading>,
+    /// Seeds of each sea state and heading (1 to `seeds`; default 1).
+    #[serde(default)]
+    pub seeds: Option<u64>,
+}
+
+/// A heading of `[cases]`: its angle (deg), with its probability or not.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum CasesHeading {
+    /// An equal share.
+    Shared(f64),
+    /// `[deg, probability]`.
+    Weighted([f64; 2]),
 }
 
 /// `[uncertainty]`: distributions given to scene keys, and the indicators whose

@@ -13,6 +13,7 @@ pub mod table;
 
 use crate::AppError;
 use crate::run::{RunOptions, run_scene};
+use slender_scene::spec::CasesHeading;
 use slender_scene::{Draft, Scene};
 use std::path::Path;
 use std::sync::Mutex;
@@ -160,6 +161,66 @@ pub fn check(path: &Path, plan: &CasesPlan) -> Result<Checked, AppError> {
     })
 }
 
+/// `plan` with the scene's `[cases]` (with `plan.overrides` set) where the
+/// command line gave no sea state: its seas, its headings unless the command
+/// line gave some, and its seeds unless `seeds` (the command line's) is
+/// given; a scene without the table is refused with what to give.
+pub fn with_scene_matrix(
+    path: &Path,
+    mut plan: CasesPlan,
+    seeds: Option<u64>,
+) -> Result<CasesPlan, AppError> {
+    plan.seeds = seeds.unwrap_or(1);
+    if !plan.seas.is_empty() {
+        return Ok(plan);
+    }
+    let scene = crate::study::scene_of(&crate::study::draft_of(path, &plan.overrides)?, None)?;
+    let Some(matrix) = scene.spec.cases else {
+        return Err(AppError::Asked(format!(
+            "no sea state: give at least one --sea HS,TP,PROBABILITY, or a `[cases]` table (`seas = [[HS, TP, P], ...]`) in {}",
+            path.display()
+        )));
+    };
+    plan.seas = (matrix.seas.iter())
+        .map(|&[hs, tp, p]| SeaState {
+            significant_height: hs,
+            peak_period: tp,
+            probability: p,
+        })
+        .collect();
+    if plan.headings.is_empty() {
+        plan.headings = scene_headings(&matrix.headings)?;
+    }
+    plan.seeds = seeds.or(matrix.seeds).unwrap_or(1);
+    Ok(plan)
+}
+
+/// `[cases] headings`: all with their probability or none (equal shares).
+fn scene_headings(given: &[CasesHeading]) -> Result<Vec<Heading>, AppError> {
+    let weighted = given
+        .iter()
+        .filter(|h| matches!(h, CasesHeading::Weighted(_)))
+        .count();
+    if weighted != 0 && weighted != given.len() {
+        return Err(AppError::Asked(
+            "`cases.headings`: give every heading as [DEG, PROBABILITY] or every one as DEG (equal shares)".into(),
+        ));
+    }
+    let equal = 1.0 / given.len().max(1) as f64;
+    Ok((given.iter())
+        .map(|h| match *h {
+            CasesHeading::Shared(degrees) => Heading {
+                degrees,
+                probability: equal,
+            },
+            CasesHeading::Weighted([degrees, probability]) => Heading {
+                degrees,
+                probability,
+            },
+        })
+        .collect())
+}
+
 /// Positive heights, periods and probabilities; seeds and sea states given.
 fn check_plan(plan: &CasesPlan) -> Result<(), AppError> {
     let bad = |what: String| Err(AppError::Asked(what));
@@ -167,13 +228,13 @@ fn check_plan(plan: &CasesPlan) -> Result<(), AppError> {
         return bad("no sea state: give at least one --sea HS,TP,PROBABILITY".into());
     }
     if plan.seeds == 0 {
-        return bad("--seeds 0: expected at least 1".into());
+        return bad("seeds = 0 (--seeds or `cases.seeds`): expected at least 1".into());
     }
     let positive = |v: f64| v.is_finite() && v > 0.0;
     for s in &plan.seas {
         if !(positive(s.significant_height) && positive(s.peak_period) && positive(s.probability)) {
             return bad(format!(
-                "--sea {},{},{}: expected a positive height (m), period (s) and probability",
+                "sea state {},{},{} (--sea or `cases.seas`): expected a positive height (m), period (s) and probability",
                 s.significant_height, s.peak_period, s.probability
             ));
         }
@@ -181,7 +242,7 @@ fn check_plan(plan: &CasesPlan) -> Result<(), AppError> {
     for h in &plan.headings {
         if !(h.degrees.is_finite() && positive(h.probability)) {
             return bad(format!(
-                "--heading {},{}: expected a heading (deg) and a positive probability",
+                "heading {},{} (--heading or `cases.headings`): expected a heading (deg) and a positive probability",
                 h.degrees, h.probability
             ));
         }

@@ -187,13 +187,14 @@ fn load_cases(command: Command, overrides: Vec<String>) -> Result<(), CliError> 
             })
             .collect(),
         headings: headings_of(&headings)?,
-        seeds,
+        seeds: 1,
         jobs: jobs_or_cores(runs.jobs),
         duration: runs.duration,
         shard: None,
         max_runs: runs.max_runs,
         overrides,
     };
+    let plan = slender_app::cases::with_scene_matrix(&scene, plan, seeds).map_err(CliError::of)?;
     cases::cases(&scene, &plan, out, uq_mode(&runs)?)
 }
 
