@@ -190,7 +190,7 @@ fn a_long_section_sampled_on_two_modes_follows_the_twin() {
             ),
             (
                 "signals = [",
-                "signals = [\"line_lower.start_force_x\", \"line_lower.start_force_z\", ",
+                "signals = [\"line_lower.sampled_terms\", \"line_lower.start_force_x\", \"line_lower.start_force_z\", ",
             ),
         ],
     )
@@ -206,6 +206,15 @@ fn a_long_section_sampled_on_two_modes_follows_the_twin() {
         eprintln!("anchor force {axis}: {:.2e} of its peak", miss / peak);
         assert!(miss < 1e-2 * peak, "{axis}: {miss} of {peak}");
     }
+    // The sample's size, an output: none during the 2 s of training, then
+    // under a tenth of the section's 406 elements (what makes it cheap:
+    // 16 here).
+    let sampled = series.get("line_lower.sampled_terms");
+    let at = |t: f64| sampled[series.time.iter().position(|&s| s >= t).unwrap()];
+    assert_eq!(at(1.0), 0.0);
+    let picked = *sampled.last().unwrap();
+    eprintln!("sampled terms: {picked} of 406 elements");
+    assert!((1.0..406.0 / 10.0).contains(&picked), "{picked}");
 }
 
 #[test]

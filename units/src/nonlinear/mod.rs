@@ -31,7 +31,7 @@ mod statics;
 mod validation;
 
 use crate::contract::{
-    Capabilities, Field, Inputs, StepReport, Time, Unit, UnitDescription, UnitError,
+    Capabilities, Field, Inputs, Port, PortKind, StepReport, Time, Unit, UnitDescription, UnitError,
 };
 use crate::integrators::central_difference::CentralDifference;
 use crate::integrators::hht::HhtAlpha;
@@ -178,7 +178,11 @@ impl NonlinearSection {
         let model = Model::new(&params);
         let n = model.dofs();
         let (ends, inputs) = ends::resolve(&params, model.reference.len());
-        let outputs = ends::output_ports(&ends, params.stations.len());
+        let mut outputs = ends::output_ports(&ends, params.stations.len());
+        if params.reduced_sampling.is_some() {
+            // How many terms the sample holds: what a sampled section costs.
+            outputs.push(Port::output("sampled_terms", PortKind::Generic).with_unit("1"));
+        }
         let mut weight = vec![0.0; n];
         for (i, s) in params.segments.iter().enumerate() {
             let range = segment_range(&model, i);
@@ -551,6 +555,11 @@ impl Unit for NonlinearSection {
             out[base..base + 3].copy_from_slice(&self.section_forces(s));
             out[base + 3..base + 5].copy_from_slice(&self.position_at(s));
             out[base + 5] = self.internal_force(s);
+        }
+        if self.params.reduced_sampling.is_some() {
+            // 0 until the training window ends.
+            let picked = self.sample_size().map_or(0, |(picked, _)| picked);
+            out[stations + STATION_OUTPUTS * self.params.stations.len()] = picked as f64;
         }
     }
 
