@@ -211,7 +211,7 @@ impl Envelope {
 /// Moves each structure section's arcs onto its structure's (its start
 /// added), so that they line up with the twin's.
 pub fn place(envelopes: &mut [Envelope], structures: &[Structure]) {
-    let starts = structures.iter().flat_map(|(_, starts)| starts);
+    let starts = structures.iter().flat_map(|s| &s.sections);
     for e in envelopes {
         if let Some((_, from)) = starts.clone().find(|(unit, _)| *unit == e.unit) {
             e.arc.iter_mut().for_each(|a| *a += from);
@@ -219,34 +219,36 @@ pub fn place(envelopes: &mut [Envelope], structures: &[Structure]) {
     }
 }
 
-/// A structure's name: its twin's without `_reference`.
-fn structure_name((twin, _): &Structure) -> String {
-    twin.strip_suffix("_reference").unwrap_or(twin).to_owned()
-}
-
-/// A structure's twin unit and its sections' units with the arc of their
-/// start (`Scene::sectioned_structures`): a `[structure]`, or a line of a
-/// `[mooring]`.
-pub type Structure = slender_scene::analysis::SectionStarts;
+/// A structure cut into sections (`Scene::sectioned_structures`): a
+/// `[structure]`, or a line of a `[mooring]`.
+pub type Structure = slender_scene::analysis::SectionedStructure;
 
 /// A structure's sections' envelope of one field joined along the structure:
 /// the field and, per run of consecutive sections that have it, arc, min and
 /// max (a section without the field, a `static` one, breaks the curve).
 type Joined = (String, Vec<[Vec<f64>; 3]>);
 
+/// The envelope of `unit`'s `field`, if it has one.
+fn envelope_of<'a>(envelopes: &'a [Envelope], unit: &str, field: &str) -> Option<&'a Envelope> {
+    envelopes
+        .iter()
+        .find(|e| e.unit == unit && e.field == field)
+}
+
 /// Per enveloped field, the sections' envelopes of it joined in order.
-fn joined(envelopes: &[Envelope], (twin, starts): &Structure) -> Vec<Joined> {
-    let has =
-        |unit: &str, field: &str| (envelopes.iter()).find(|e| e.unit == unit && e.field == field);
+fn joined(envelopes: &[Envelope], structure: &Structure) -> Vec<Joined> {
+    let has = |unit: &str, field: &str| envelope_of(envelopes, unit, field);
+    let sections = &structure.sections;
     ENVELOPED
         .iter()
         .filter(|field| {
-            has(twin, field).is_some() || starts.iter().any(|(u, _)| has(u, field).is_some())
+            has(&structure.twin, field).is_some()
+                || sections.iter().any(|(u, _)| has(u, field).is_some())
         })
         .map(|field| {
             let mut runs: Vec<[Vec<f64>; 3]> = Vec::new();
             let mut open = false;
-            for (unit, _) in starts {
+            for (unit, _) in sections {
                 match has(unit, field) {
                     Some(e) => {
                         if !open {
@@ -267,82 +269,95 @@ fn joined(envelopes: &[Envelope], (twin, starts): &Structure) -> Vec<Joined> {
         .collect()
 }
 
+/// The x range of a panel from its curves' arcs.
+fn range<'a>(arcs: impl Iterator<Item = &'a Vec<f64>> + Clone) -> (f64, f64) {
+    let lo = (arcs.clone().filter_map(|a| a.first())).fold(f64::INFINITY, |m, &v| m.min(v));
+    let hi = (arcs.filter_map(|a| a.last())).fold(f64::NEG_INFINITY, |m, &v| m.max(v));
+    if lo.is_finite() && hi.is_finite() {
+        (lo, hi.max(lo + 1e-9))
+    } else {
+        (0.0, 1.0)
+    }
+}
+
+/// One structure's field along it: its sections' runs, beside its twin's
+/// envelope where it has one; `prefix` before the field's name.
+fn structure_panel<'a>(
+    envelopes: &'a [Envelope],
+    structure: &Structure,
+    (field, runs): &'a Joined,
+    prefix: &str,
+) -> Option<Profile<'a>> {
+    let unit_of_measure = &envelopes
+        .iter()
+        .find(|e| &e.field == field)?
+        .unit_of_measure;
+    let twin = envelope_of(envelopes, &structure.twin, field);
+    let curve = |name: String, x: &'a [f64], y: &'a [f64]| Curve { name, x, y };
+    let mut series = Vec::new();
+    if let Some(t) = twin {
+        series.push(curve("twin max".into(), &t.arc, &t.max));
+        series.push(curve("twin min".into(), &t.arc, &t.min));
+    }
+    for (k, [arc, min, max]) in runs.iter().enumerate() {
+        let part = if k == 0 {
+            String::new()
+        } else {
+            format!(" {}", k + 1)
+        };
+        series.push(curve(format!("sections max{part}"), arc, max));
+        series.push(curve(format!("sections min{part}"), arc, min));
+    }
+    let arcs = twin
+        .map(|t| &t.arc)
+        .into_iter()
+        .chain(runs.iter().map(|r| &r[0]));
+    Some(Profile {
+        x_range: range(arcs),
+        x_title: "arc length (m)",
+        y_title: format!("{prefix}{field} ({unit_of_measure})"),
+        series,
+    })
+}
+
 /// The figure's panels: per structure and field its sections' envelope along
 /// it, beside its twin's where it has one; then each other unit's own.
 fn panels<'a>(
     envelopes: &'a [Envelope],
     structures: &[Structure],
-    joined: &'a [(String, Vec<Joined>)],
+    joined: &'a [Vec<Joined>],
 ) -> Vec<Profile<'a>> {
-    let x_title = "arc length (m)";
-    let range = |lo: f64, hi: f64| (lo, hi.max(lo + 1e-9));
-    let curve = |name: String, x: &'a [f64], y: &'a [f64]| Curve { name, x, y };
-    let mut panels = Vec::new();
     let named = structures.len() > 1;
-    for ((twin_name, _), (structure, fields)) in structures.iter().zip(joined) {
-        for (field, runs) in fields {
-            let twin = (envelopes.iter()).find(|e| &e.unit == twin_name && &e.field == field);
-            let arcs = twin
-                .map(|t| &t.arc)
-                .into_iter()
-                .chain(runs.iter().map(|r| &r[0]));
-            let lo = arcs
-                .clone()
-                .filter_map(|a| a.first())
-                .fold(f64::INFINITY, |m, &v| m.min(v));
-            let hi = arcs
-                .filter_map(|a| a.last())
-                .fold(f64::NEG_INFINITY, |m, &v| m.max(v));
-            let mut series = Vec::new();
-            if let Some(t) = twin {
-                series.push(curve("twin max".into(), &t.arc, &t.max));
-                series.push(curve("twin min".into(), &t.arc, &t.min));
-            }
-            for (k, [arc, min, max]) in runs.iter().enumerate() {
-                let part = if k == 0 {
-                    String::new()
-                } else {
-                    format!(" {}", k + 1)
-                };
-                series.push(curve(format!("sections max{part}"), arc, max));
-                series.push(curve(format!("sections min{part}"), arc, min));
-            }
-            let Some(unit_of_measure) = (envelopes.iter())
-                .find(|e| &e.field == field)
-                .map(|e| &e.unit_of_measure)
-            else {
-                continue;
-            };
-            let prefix = if named {
-                format!("{structure} ")
-            } else {
-                String::new()
-            };
-            panels.push(Profile {
-                x_range: range(lo, hi),
-                x_title,
-                y_title: format!("{prefix}{field} ({unit_of_measure})"),
-                series,
-            });
-        }
+    let mut panels = Vec::new();
+    for (structure, fields) in structures.iter().zip(joined) {
+        let prefix = if named {
+            format!("{} ", structure.name)
+        } else {
+            String::new()
+        };
+        let drawn = fields
+            .iter()
+            .filter_map(|f| structure_panel(envelopes, structure, f, &prefix));
+        panels.extend(drawn);
     }
     let in_a_structure = |e: &Envelope| {
         (structures.iter())
-            .any(|(t, starts)| &e.unit == t || starts.iter().any(|(u, _)| *u == e.unit))
+            .any(|s| e.unit == s.twin || s.sections.iter().any(|(u, _)| *u == e.unit))
+    };
+    let curve = |name: &str, x: &'a [f64], y: &'a [f64]| Curve {
+        name: name.into(),
+        x,
+        y,
     };
     for e in envelopes.iter().filter(|e| !in_a_structure(e)) {
-        let (lo, hi) = (
-            e.arc.first().copied().unwrap_or(0.0),
-            e.arc.last().copied().unwrap_or(1.0),
-        );
         panels.push(Profile {
-            x_range: range(lo, hi),
-            x_title,
+            x_range: range(std::iter::once(&e.arc)),
+            x_title: "arc length (m)",
             y_title: format!("{} {} ({})", e.unit, e.field, e.unit_of_measure),
             series: vec![
-                curve("max".into(), &e.arc, &e.max),
-                curve("mean".into(), &e.arc, &e.mean),
-                curve("min".into(), &e.arc, &e.min),
+                curve("max", &e.arc, &e.max),
+                curve("mean", &e.arc, &e.mean),
+                curve("min", &e.arc, &e.min),
             ],
         });
     }
@@ -373,9 +388,7 @@ pub fn write(
     }
     let csv_path = dir.join("envelopes.csv");
     crate::whole::write(&csv_path, csv).map_err(|e| PlotError::new(&csv_path, &e))?;
-    let joined: Vec<(String, Vec<Joined>)> = (structures.iter())
-        .map(|s| (structure_name(s), joined(envelopes, s)))
-        .collect();
+    let joined: Vec<Vec<Joined>> = structures.iter().map(|s| joined(envelopes, s)).collect();
     let panels = panels(envelopes, structures, &joined);
     let svg_path = dir.join("envelopes.svg");
     let title = format!("{title}: envelopes along the line");

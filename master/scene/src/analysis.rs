@@ -456,41 +456,43 @@ fn spectra_in(table: &toml::Table) -> Vec<Spectrum> {
     found
 }
 
-/// A structure's twin unit (which a scene without `reference` does not
-/// have) and each section's unit with the arc length (m) of its start.
-pub type SectionStarts = (String, Vec<(String, f64)>);
+/// A structure cut into sections: a `[structure]`, or a line of a
+/// `[mooring]`, so that what a section reports along itself (an envelope)
+/// can be placed on the structure beside the twin's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SectionedStructure {
+    /// Its name (`structure.name`, a mooring line's `name`).
+    pub name: String,
+    /// Its twin's unit (which a structure without `reference` does not have).
+    pub twin: String,
+    /// Each section's unit with the arc length (m) of its start.
+    pub sections: Vec<(String, f64)>,
+}
 
 impl Scene {
-    /// The `[structure]`'s twin unit (`structure.reference`, starting at 0)
-    /// and each section's unit with the arc length (m) of its start along the
-    /// structure, so that what a section reports along itself (an envelope)
-    /// can be placed on the structure beside the twin's; None without one.
-    pub fn structure_sections(&self) -> Option<SectionStarts> {
-        let table = self.keys().ok()?;
-        let layout = crate::structure::layout(&table).ok()??;
-        Some(section_starts(layout))
-    }
-
-    /// What [`Scene::structure_sections`] gives, for the `[structure]` or
-    /// for each line of the `[mooring]` (from its anchor): every structure
-    /// whose sections line up along it.
-    pub fn sectioned_structures(&self) -> Vec<SectionStarts> {
-        if let Some(structure) = self.structure_sections() {
-            return vec![structure];
+    /// The `[structure]`, or each line of the `[mooring]` (its arc from its
+    /// anchor): every structure whose sections line up along it.
+    pub fn sectioned_structures(&self) -> Vec<SectionedStructure> {
+        let structure =
+            (self.keys().ok()).and_then(|table| crate::structure::layout(&table).ok().flatten());
+        if let Some(layout) = structure {
+            return vec![sectioned(layout)];
         }
         match crate::mooring::of_scene(self) {
             Ok(Some(mooring)) => (mooring.line_layouts().into_iter())
-                .map(|(_, layout)| section_starts(layout))
+                .map(|(_, layout)| sectioned(layout))
                 .collect(),
             _ => Vec::new(),
         }
     }
 }
 
-fn section_starts(layout: crate::structure::Layout) -> SectionStarts {
-    let twin = crate::structure::reference_name(&layout.name);
-    let starts = (layout.sections.into_iter())
-        .map(|s| (s.unit, s.from))
-        .collect();
-    (twin, starts)
+fn sectioned(layout: crate::structure::Layout) -> SectionedStructure {
+    SectionedStructure {
+        twin: crate::structure::reference_name(&layout.name),
+        sections: (layout.sections.into_iter())
+            .map(|s| (s.unit, s.from))
+            .collect(),
+        name: layout.name,
+    }
 }

@@ -13,7 +13,8 @@ pub mod table;
 
 use crate::AppError;
 use crate::run::{RunOptions, run_scene};
-use slender_scene::spec::CasesHeading;
+use serde::Deserialize;
+use slender_scene::spec::{CasesHeading, CasesSpec};
 use slender_scene::{Draft, Scene};
 use std::path::Path;
 use std::sync::Mutex;
@@ -174,8 +175,11 @@ pub fn with_scene_matrix(
     if !plan.seas.is_empty() {
         return Ok(plan);
     }
-    let scene = crate::study::scene_of(&crate::study::draft_of(path, &plan.overrides)?, None)?;
-    let Some(matrix) = scene.spec.cases else {
+    // Only the table is read here: `check` builds the scene, once.
+    let draft = crate::study::draft_of(path, &plan.overrides)?;
+    let table = draft.table().get("cases").cloned();
+    let read = table.map(CasesSpec::deserialize).transpose();
+    let Some(matrix) = read.map_err(|e| AppError::Asked(format!("`cases`: {e}")))? else {
         return Err(AppError::Asked(format!(
             "no sea state: give at least one --sea HS,TP,PROBABILITY, or a `[cases]` table (`seas = [[HS, TP, P], ...]`) in {}",
             path.display()
