@@ -323,3 +323,29 @@ fn one_sea_reaches_the_lines_and_the_body() {
         largest(&s, "spar.pitch")
     );
 }
+
+/// The spar and its lines stepped on two or three threads give the same bits
+/// as on one: the sweep's units step alone, and a line's wave sums, shared
+/// out among the threads that are idle, take each node alone.
+#[test]
+fn the_moored_spar_on_threads_is_bit_identical_to_one_thread() {
+    let path = slender_tests::root().join("examples/oc3_hywind_jonswap.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let run_on = |threads: u32| {
+        let text = text.replacen("[master]\n", &format!("[master]\nthreads = {threads}\n"), 1);
+        let mut scene = Scene::parse(&path, text).unwrap();
+        scene.set_duration(20.0).unwrap();
+        run(&scene)
+    };
+    let one = run_on(1);
+    assert!(one.error.is_none(), "{:?}", one.error);
+    for threads in [2, 3] {
+        let many = run_on(threads);
+        assert_eq!(one.names, many.names);
+        for (name, (a, b)) in one.names.iter().zip(one.columns.iter().zip(&many.columns)) {
+            let same = a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+            assert!(same, "{threads} threads differ on {name}");
+        }
+        assert_eq!(one.counters.iterations, many.counters.iterations);
+    }
+}

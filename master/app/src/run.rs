@@ -338,7 +338,19 @@ fn simulate(
     (outcome, pacer.map(|p| p.report()))
 }
 
+/// Initialises and steps the whole run, recording every step; on a thread of
+/// the master's pool when it has one ([`Master::on_pool`]).
 fn step_all(
+    scene: &Scene,
+    (master, recorder): (&mut Master, &mut Recorder),
+    progress: bool,
+    pacer: Option<&mut Pacer>,
+    warnings: &mut Vec<String>,
+) -> Result<(), RunError> {
+    master.on_pool(|master| step_all_here(scene, (master, recorder), progress, pacer, warnings))
+}
+
+fn step_all_here(
     scene: &Scene,
     (master, recorder): (&mut Master, &mut Recorder),
     progress: bool,
@@ -538,9 +550,12 @@ pub fn benchmark(scene: &Scene, repeats: usize) -> Result<Benchmark, RunError> {
         let connections = master.connection_count();
         master.initialize(scene.start)?;
         let started = Instant::now();
-        for _ in 0..scene.steps {
-            master.step()?;
-        }
+        master.on_pool(|master| {
+            for _ in 0..scene.steps {
+                master.step()?;
+            }
+            Ok::<(), RunError>(())
+        })?;
         let wall = started.elapsed().as_secs_f64();
         if run == 0 {
             continue; // warm-up

@@ -13,7 +13,6 @@ use crate::coupler::{Master, link_value};
 use crate::error::MasterError;
 use crate::settings::{Derivatives, JacobianUpdate, NewtonSettings};
 use nalgebra::{DMatrix, DVector, Dyn, linalg::LU};
-use rayon::prelude::*;
 
 /// What an iteration's update did: proposed the next iterate to sweep with,
 /// or closed the step itself by the units' linear correction
@@ -317,7 +316,7 @@ impl Master {
 impl Master {
     /// Every iterated unit's interface Jacobian of the step it just took (on
     /// the sweep threads when there are several: each unit alone, so the result
-    /// is the same).
+    /// is the same), shared out as a sweep's steps are.
     fn unit_jacobians(&mut self, perturbation: f64, iteration: u32) -> Result<(), MasterError> {
         let (t, h) = (self.time, self.h);
         let evaluate = |unit: &mut crate::adapter::UnitAdapter| {
@@ -326,11 +325,8 @@ impl Master {
         let iterated = &self.iterated;
         match &self.pool {
             Some(pool) => pool.install(|| {
-                self.units
-                    .par_iter_mut()
-                    .enumerate()
-                    .filter(|(u, _)| iterated[*u])
-                    .for_each(|(_, unit)| evaluate(unit));
+                let threads = rayon::current_num_threads();
+                crate::coupler::share_out(&mut self.units, threads, &|u| iterated[u], &evaluate);
             }),
             None => self
                 .units

@@ -8,9 +8,14 @@
 use super::bathymetry::Bathymetry;
 use super::mechanics::{Tangent, add_block, add_node, node, normal_projector};
 use super::params::{Line3dParams, Seabed};
-use super::waves::AiryWaves;
+use super::waves::{AiryWaves, Kinematics};
 use crate::numerics::banded::SymmetricBand;
 use nalgebra::{Matrix3, Vector3};
+use rayon::prelude::*;
+
+/// The fewest nodes whose wave kinematics one task of the sweep pool takes
+/// (about 30 us of wave sums with 100 components: well above a task's cost).
+const NODES_PER_TASK: usize = 4;
 
 /// Penetration (m) over which the seabed's spring stiffens from 0 to its
 /// stiffness.
@@ -131,7 +136,7 @@ pub struct Environment {
 #[derive(Clone, Debug)]
 struct HeldWaves {
     t: f64,
-    at_nodes: Vec<Option<super::waves::Kinematics>>,
+    at_nodes: Vec<Option<Kinematics>>,
 }
 
 impl Environment {
@@ -168,6 +173,12 @@ impl Environment {
     /// `q` (m: a step's predicted end), for every evaluation at `t` until the
     /// next call: Newton's iterations then cost no wave sums. The positions
     /// differ from the converged ones by the predictor's error, O(h^3).
+    ///
+    /// On a thread of the master's sweep pool (`[master] threads` > 1) the
+    /// nodes are shared out with the pool's idle threads: the wave sums are
+    /// most of a line's step, and three lines on two threads would otherwise
+    /// leave one idle through the third. Each node's kinematics are computed
+    /// alone, so the result is the same on any thread count.
     pub fn hold_waves(&mut self, q: &[f64], t: f64) {
         let Some(waves) = &self.waves else { return };
         let mut held = self.held.take().unwrap_or(HeldWaves {
@@ -175,9 +186,17 @@ impl Environment {
             at_nodes: Vec::new(),
         });
         held.t = t;
-        held.at_nodes.clear();
-        held.at_nodes
-            .extend((0..self.tributary.len()).map(|i| waves.at(&node(q, i), t)));
+        held.at_nodes.resize(self.tributary.len(), None);
+        let at_node = |(i, held): (usize, &mut Option<Kinematics>)| {
+            *held = waves.at(&node(q, i), t);
+        };
+        if rayon::current_thread_index().is_some() {
+            (held.at_nodes.par_iter_mut().enumerate())
+                .with_min_len(NODES_PER_TASK)
+                .for_each(at_node);
+        } else {
+            held.at_nodes.iter_mut().enumerate().for_each(at_node);
+        }
         self.held = Some(held);
     }
 

@@ -2,11 +2,13 @@
 //! unit reads another's fresh outputs and the units step side by side on the
 //! master's thread pool (`[master] threads`). Each unit steps exactly as it
 //! would alone, so the results are bit-identical to stepping them one after
-//! another, for any thread count.
+//! another, for any thread count. How the units are shared out among the
+//! threads: [`share_out`].
 
 use super::{Master, link_value};
+use crate::adapter::UnitAdapter;
 use crate::error::MasterError;
-use rayon::prelude::*;
+use std::sync::Mutex;
 use std::time::Instant;
 
 impl Master {
@@ -15,7 +17,7 @@ impl Master {
     pub(super) fn thread_pool(
         threads: u32,
         sequential: bool,
-    ) -> Result<Option<rayon::ThreadPool>, MasterError> {
+    ) -> Result<Option<std::sync::Arc<rayon::ThreadPool>>, MasterError> {
         if threads <= 1 || sequential {
             return Ok(None);
         }
@@ -23,7 +25,7 @@ impl Master {
             .num_threads(threads as usize)
             .thread_name(|i| format!("slender-sweep-{i}"))
             .build()
-            .map(Some)
+            .map(|pool| Some(std::sync::Arc::new(pool)))
             .map_err(|e| MasterError::Invalid(format!("threads {threads}: {e}")))
     }
 
@@ -55,11 +57,10 @@ impl Master {
         let pool = pool
             .as_ref()
             .ok_or_else(|| MasterError::Invalid("parallel sweep without a pool".into()))?;
+        let stepping = |u: usize| !repeat || iterated[u];
         pool.install(|| {
-            units.par_iter_mut().enumerate().for_each(|(u, unit)| {
-                if repeat && !iterated[u] {
-                    return;
-                }
+            let threads = rayon::current_num_threads();
+            share_out(units, threads, &stepping, &|unit: &mut UnitAdapter| {
                 let started = Instant::now();
                 unit.failure = unit.step(t, h, iteration).err();
                 unit.step_time += started.elapsed();
@@ -85,4 +86,46 @@ impl Master {
         }
         Ok(())
     }
+}
+
+/// Runs `work` on every unit that `takes_part`, each unit alone, on
+/// `threads` threads of the pool the caller runs on. The threads take the
+/// units in their order from one shared queue, each taking the next as it
+/// finishes one; a unit is never a job of the pool's, so a thread waiting
+/// inside a unit for help (a 3D line's wave sums) takes only such small work,
+/// never a whole unit, and the threads that run out of units help with the
+/// last ones' shared work. The caller takes part and carries on with the
+/// step when all are done.
+pub(crate) fn share_out(
+    units: &mut [UnitAdapter],
+    threads: usize,
+    takes_part: &(impl Fn(usize) -> bool + Sync),
+    work: &(impl Fn(&mut UnitAdapter) + Sync),
+) {
+    let queue = Mutex::new(
+        (units.iter_mut().enumerate())
+            .filter(|(u, _)| takes_part(*u))
+            .map(|(_, unit)| unit),
+    );
+    let take_units = || {
+        loop {
+            // The guard is dropped at the end of the statement: the unit
+            // steps outside the lock.
+            let next = queue.lock().unwrap_or_else(|e| e.into_inner()).next();
+            match next {
+                Some(unit) => work(unit),
+                None => break,
+            }
+        }
+    };
+    on_threads(threads, &take_units);
+}
+
+/// Runs `work` on `threads` threads of the current pool (the caller's one
+/// of them), returning when all are done.
+fn on_threads(threads: usize, work: &(impl Fn() + Sync)) {
+    if threads <= 1 {
+        return work();
+    }
+    rayon::join(work, || on_threads(threads - 1, work));
 }
