@@ -23,7 +23,7 @@ pub use port::{Causality, Hold, Port, PortKind};
 pub use state::{NestedSlot, StateSlot, StateVector};
 pub use time::Time;
 pub use unit::{
-    Capabilities, Field, HoldSupport, ModalAnalysis, Mode, StepReport, Unit, UnitDescription,
-    UnitError, require_finite, require_finite_state, require_in_range, require_non_negative,
-    require_positive, require_step_jacobian_ready,
+    Capabilities, Field, FieldSupport, HoldSupport, ModalAnalysis, Mode, StepReport, Unit,
+    UnitDescription, UnitError, require_finite, require_finite_state, require_in_range,
+    require_non_negative, require_positive, require_step_jacobian_ready,
 };

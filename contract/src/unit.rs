@@ -212,16 +212,40 @@ pub struct Field {
     pub description: String,
     /// Number of values.
     pub len: usize,
+    /// What it has one value for: its length follows the unit's mesh (an
+    /// FMI 3.0 export sizes its array by the structural parameter counting
+    /// these).
+    pub per: FieldSupport,
+}
+
+/// What a field has one value for.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum FieldSupport {
+    /// One value per node of the unit's mesh.
+    Node,
+    /// One value per element of the unit's mesh.
+    Element,
 }
 
 impl Field {
-    /// A field called `name` of `len` values in `unit`.
-    pub fn new(name: &str, unit: &str, description: &str, len: usize) -> Field {
+    /// A field called `name` in `unit` with one value per node (`nodes`).
+    pub fn per_node(name: &str, unit: &str, description: &str, nodes: usize) -> Field {
+        Field::new(name, unit, description, nodes, FieldSupport::Node)
+    }
+
+    /// A field called `name` in `unit` with one value per element
+    /// (`elements`).
+    pub fn per_element(name: &str, unit: &str, description: &str, elements: usize) -> Field {
+        Field::new(name, unit, description, elements, FieldSupport::Element)
+    }
+
+    fn new(name: &str, unit: &str, description: &str, len: usize, per: FieldSupport) -> Field {
         Field {
             name: name.to_owned(),
             unit: unit.to_owned(),
             description: description.to_owned(),
             len,
+            per,
         }
     }
 }

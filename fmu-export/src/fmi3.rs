@@ -273,6 +273,39 @@ pub(crate) unsafe extern "C" fn fmi3SetInt32(
     })
 }
 
+/// `fmi3GetUInt64`: the array sizes (structural parameters `n_nodes`,
+/// `n_elements`).
+#[unsafe(no_mangle)]
+pub(crate) unsafe extern "C" fn fmi3GetUInt64(
+    c: Instance3,
+    vr: *const u32,
+    n_vr: usize,
+    value: *mut u64,
+    n_values: usize,
+) -> Status {
+    guarded(c, "fmi3GetUInt64", |i| {
+        // SAFETY: FMI array arguments of the lengths given.
+        let (vr, value) = unsafe { (refs(vr, n_vr)?, values_mut(value, n_values)?) };
+        i.get_sizes(vr, value)
+    })
+}
+
+/// `fmi3SetUInt64`: the array sizes, before initialisation.
+#[unsafe(no_mangle)]
+pub(crate) unsafe extern "C" fn fmi3SetUInt64(
+    c: Instance3,
+    vr: *const u32,
+    n_vr: usize,
+    value: *const u64,
+    n_values: usize,
+) -> Status {
+    guarded(c, "fmi3SetUInt64", |i| {
+        // SAFETY: FMI array arguments of the lengths given.
+        let (vr, value) = unsafe { (refs(vr, n_vr)?, values(value, n_values)?) };
+        i.set_sizes(vr, value)
+    })
+}
+
 /// `fmi3GetBoolean`: Boolean parameters (`effects.<name>`; C `bool`s).
 #[unsafe(no_mangle)]
 pub(crate) unsafe extern "C" fn fmi3GetBoolean(

@@ -53,6 +53,11 @@ pub(crate) struct Instance {
     /// Inputs set since the outputs were last computed (direct feedthrough).
     inputs_changed: bool,
     parameters: Vec<Value>,
+    /// The FMI 3.0 array sizes (`Layout::sizes`) as set before
+    /// initialisation (None: not set), and each field's length in the unit
+    /// as built.
+    sizes: Vec<Option<u64>>,
+    field_lengths: Vec<usize>,
     strings: Vec<CString>,
     /// The unit's step Jacobian, kept for the step it was taken after
     /// (`fmi2GetDirectionalDerivative` may ask one output at a time).
@@ -168,6 +173,8 @@ impl Instance {
             .collect();
         let parameters = layout.parameters.iter().map(|p| p.start.clone()).collect();
         let start_time = Time::from_secs(config.start_time).unwrap_or(Time::ZERO);
+        let sizes = vec![None; layout.sizes.len()];
+        let field_lengths = layout.fields.iter().map(|f| f.len).collect();
         Ok(Instance {
             name,
             callbacks,
@@ -190,6 +197,8 @@ impl Instance {
             end: vec![0.0; n_in],
             inputs_changed: false,
             parameters,
+            sizes,
+            field_lengths,
             strings: Vec::new(),
             jacobian: Vec::new(),
             generation: 0,
@@ -227,6 +236,7 @@ impl Instance {
                 .config
                 .driver()
                 .map_err(|e| format!("building the unit: {e}"))?;
+            self.check_sizes(&unit.fields())?;
             self.unit = Some(unit);
             self.rebuild = false;
             self.reinitialize = true;
@@ -290,6 +300,7 @@ impl Instance {
             .iter()
             .map(|p| self.config.inputs.get(&p.name).copied().unwrap_or(0.0))
             .collect();
+        self.sizes.fill(None);
         self.unit = None;
         self.rebuild = true;
         self.phase = Phase::Instantiated;

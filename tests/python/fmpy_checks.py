@@ -7,6 +7,11 @@
     fmpy_checks.py arrays FMU STOP STEP       a section's (nonlinear or cable) FMI 3.0 array
                                               outputs (x, z, tension) against its end and
                                               extreme outputs
+    fmpy_checks.py resize FMU PARAMETER VALUE an FMI 3.0 section's mesh changed by an Int32
+                                              parameter: arrays read at the sizes the FMU
+                                              reports (n_nodes, n_elements), the sizes set
+                                              before initialisation (a wrong one refused),
+                                              and simulate_fmu with the description's sizes
     fmpy_checks.py derivatives FMU ROWS       slender's step derivative (the extension
                                               slenderGetStepDerivative) against central
                                               differences of fmi2DoStep for the outputs
@@ -57,8 +62,9 @@ class Slave3:
         self.s.instantiate()
         self.s.enterInitializationMode(startTime=0.0)
         self.s.exitInitializationMode()
-        # How many values each array variable holds (fixed dimensions).
-        self.sizes = {v.valueReference: math.prod(int(d.start) for d in v.dimensions)
+        # How many values each array variable holds (its shape: FMPy takes a
+        # size given by a structural parameter from that parameter's start).
+        self.sizes = {v.valueReference: math.prod(v.shape)
                       for v in md.modelVariables if v.dimensions}
 
     def setReal(self, vr, values):
@@ -266,6 +272,77 @@ def arrays(path, stop, step):
     return failures
 
 
+def end_checks(row, names):
+    """A row's array ends against its scalar outputs, bit for bit: a cable's
+    end tensions, a 3D line's end positions (the names present decide)."""
+    if "bottom_tension" in names:
+        return [(row["tension"][0], row["bottom_tension"]), (row["tension"][-1], row["top_tension"])]
+    return [(row["x"][0], row["start_position_x"]), (row["x"][-1], row["end_position_x"]),
+            (row["z"][-1], row["end_position_z"])]
+
+
+def resize(path, parameter, value):
+    """Changes an FMI 3.0 section's mesh through `parameter` and reads its
+    arrays as an importer that follows FMI 3.0's structural parameters would:
+    (1) the sizes read after initialisation, (2) set before it (and a wrong
+    one refused), (3) FMPy's simulate_fmu, whose array shapes come from the
+    description's starts, given a description with the sizes read in (1)."""
+    md = read_model_description(path)
+    folder = extract(path)
+    vrs = {v.name: v.valueReference for v in md.modelVariables}
+    exported = {v.name: int(v.start) for v in md.modelVariables if v.name in ("n_nodes", "n_elements")}
+
+    def slave(sizes):
+        s = FMU3Slave(guid=md.guid, unzipDirectory=folder,
+                      modelIdentifier=md.coSimulation.modelIdentifier, instanceName="resized")
+        s.instantiate()
+        s.setInt32([vrs[parameter]], [int(value)])
+        if sizes:
+            s.setUInt64([vrs["n_nodes"], vrs["n_elements"]], list(sizes))
+        s.enterInitializationMode(startTime=0.0)
+        s.exitInitializationMode()
+        return s
+
+    failures = 0
+    s = slave(None)
+    nodes, elements = s.getUInt64([vrs["n_nodes"], vrs["n_elements"]])
+    s.doStep(0.0, 0.01)
+    x = s.getFloat64([vrs["x"]], nValues=nodes)
+    tension = s.getFloat64([vrs["tension"]], nValues=elements)
+    s.terminate()
+    s.freeInstance()
+    print(f"{path}: {parameter} = {value}: {nodes} nodes, {elements} elements "
+          f"(exported {exported['n_nodes']}, {exported['n_elements']}), "
+          f"{len(x)} x and {len(tension)} tension values")
+    failures += (nodes != elements + 1) + (nodes == exported["n_nodes"])
+    failures += (len(x) != nodes) + (not all(math.isfinite(v) for v in x + tension))
+    s = slave((nodes, elements))
+    s.terminate()
+    s.freeInstance()
+    try:
+        slave((exported["n_nodes"], exported["n_elements"]))
+        print("a wrong n_nodes was taken")
+        failures += 1
+    except Exception as e:
+        print(f"a wrong n_nodes refused: {e}")
+    sized = read_model_description(path)
+    for v in sized.modelVariables:
+        if v.name in ("n_nodes", "n_elements"):
+            v.start = str(nodes if v.name == "n_nodes" else elements)
+    for v in sized.modelVariables:
+        if v.dimensions:
+            v.shape = tuple(int(d.variable.start) for d in v.dimensions)
+    result = simulate_fmu(path, model_description=sized, stop_time=0.5, output_interval=0.01,
+                          start_values={parameter: int(value)})
+    names = result.dtype.names
+    disagreements = sum(1 for row in result for a, b in end_checks(row, names) if a != b)
+    print(f"simulate_fmu: {len(result)} rows of {len(result[0]['x'])} nodes, "
+          f"{disagreements} disagreements")
+    failures += disagreements + (len(result[0]["x"]) != nodes)
+    print(f"{failures} failures")
+    return failures
+
+
 if __name__ == "__main__":
     command, args = sys.argv[1], sys.argv[2:]
     if command == "validate":
@@ -276,6 +353,8 @@ if __name__ == "__main__":
         sys.exit(state(args[0]))
     if command == "arrays":
         sys.exit(arrays(args[0], args[1], args[2]))
+    if command == "resize":
+        sys.exit(resize(args[0], args[1], args[2]))
     if command == "derivatives":
         sys.exit(derivatives(args[0], args[1]))
     sys.exit(f"unknown command {command}")

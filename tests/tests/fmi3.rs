@@ -297,3 +297,42 @@ fn a_cable_s_fields_end_at_its_end_tensions() {
         "wrong length refused"
     );
 }
+
+/// A section's arrays are sized by FMI 3.0 structural parameters (`n_nodes`,
+/// `n_elements`: UInt64, fixed, after the arrays) so that a mesh changed
+/// through the parameters can be read; the FMI 2.0 description has neither.
+#[test]
+fn fmi3_arrays_are_sized_by_structural_parameters_fmi2_leaves_them_out() {
+    use slender_fmi::model_description::{ModelDescription, VariableCausality};
+    let config = ExportConfig::from_scene(&load("examples/structure_mooring.toml"), "line_upper")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let layout = config.layout().unwrap_or_else(|e| panic!("{e}"));
+    let sizes: Vec<(&str, usize)> = (layout.sizes.iter())
+        .map(|s| (s.name.as_str(), s.start))
+        .collect();
+    assert_eq!(sizes, [("n_nodes", 16), ("n_elements", 15)]);
+    let xml = layout.model.to_xml_fmi3();
+    for size in &layout.sizes {
+        let declared = format!(
+            r#"<UInt64 name="{}" valueReference="{}""#,
+            size.name, size.value_reference
+        );
+        assert!(xml.contains(&declared), "{declared}");
+    }
+    let structural =
+        layout.model.variables.iter().filter(|v| {
+            v.causality == VariableCausality::StructuralParameter && v.value_reference > 0
+        });
+    assert_eq!(structural.count(), 2);
+    // Read back (slender's reader keeps a UInt64 only to size the arrays).
+    let read = ModelDescription::parse(&xml).unwrap_or_else(|e| panic!("{e}"));
+    let by_name = |name: &str| read.variables.iter().find(|v| v.name == name).unwrap();
+    for (array, k, len) in [("x", 0, 16), ("tension", 1, 15), ("moment", 0, 16)] {
+        let array = by_name(array);
+        let size = &layout.sizes[k];
+        assert_eq!(array.sized_by, Some(size.value_reference), "{}", array.name);
+        assert_eq!(array.len(), len, "{}", array.name);
+    }
+    let two = layout.model.to_xml();
+    assert!(!two.contains("n_nodes") && !two.contains("structuralParameter"));
+}

@@ -446,3 +446,30 @@ fn scalar_columns(csv: &str, arrays: usize) -> String {
     }
     kept
 }
+
+/// A section exported as FMI 3.0 whose mesh a parameter changes (issue 49
+/// #13): its arrays read in FMPy at the sizes the FMU reports after
+/// initialisation (`n_nodes`, `n_elements`), the sizes set before it taken
+/// and a wrong one refused, and FMPy's `simulate_fmu` given the sizes (it
+/// takes array shapes from the description's starts) bit-identical at the
+/// arrays' ends to the scalar outputs: a cable (its end tensions) and a 3D
+/// line (its end positions).
+#[test]
+#[ignore = "needs FMPy in .venv: ./scripts/test.sh runs it"]
+fn fmi3_arrays_follow_a_mesh_changed_by_a_parameter_in_fmpy() {
+    let dir = tempfile::tempdir().unwrap();
+    for (scene, unit, elements) in [
+        ("examples/truncation_substructured.toml", "n", "160"),
+        ("examples/polyester_line_3d.toml", "line", "120"),
+    ] {
+        let fmu = export_version(scene, unit, dir.path(), FmiVersion::Three);
+        let out = python_script(&["resize", &fmu.display().to_string(), "elements", elements]);
+        let text = String::from_utf8_lossy(&out.stdout);
+        println!("{text}");
+        assert!(
+            out.status.success() && text.contains("0 failures"),
+            "{unit}: {text}"
+        );
+        assert!(text.contains("a wrong n_nodes refused"), "{text}");
+    }
+}

@@ -155,6 +155,9 @@ pub struct Layout {
     pub fields: Vec<Field>,
     /// Value reference of the first field (array) output.
     pub first_field_reference: u32,
+    /// The FMI 3.0 structural parameters that size the fields' arrays (after
+    /// the fields).
+    pub sizes: Vec<ArraySize>,
     /// The model description written into the FMU.
     pub model: ModelDescription,
 }
@@ -314,18 +317,20 @@ impl Layout {
             clocks: Vec::new(),
         };
         let first_field_reference = (n_in + n_out + parameters.len()) as u32;
-        arrays::add(&mut model, &fields, first_field_reference);
+        let sizes = arrays::add(&mut model, &fields, first_field_reference);
         Layout {
             unit,
             parameters,
             fields,
             first_field_reference,
+            sizes,
             model,
         }
     }
 }
 
 mod arrays;
+pub use arrays::{ArraySize, size_name};
 mod binary;
 mod describe;
 mod package;
@@ -396,6 +401,7 @@ fn variables(
             min: None,
             max: None,
             dimensions: Vec::new(),
+            sized_by: None,
             aliases: Vec::new(),
         });
     }
@@ -412,6 +418,7 @@ fn variables(
             min: None,
             max: None,
             dimensions: Vec::new(),
+            sized_by: None,
             aliases: Vec::new(),
         });
     }
@@ -456,6 +463,7 @@ fn parameter_variable(p: &ParameterVariable, kind: &KindInfo) -> ScalarVariable 
         min: info.min.filter(|_| number),
         max: info.max.filter(|_| number),
         dimensions: Vec::new(),
+        sized_by: None,
         aliases: Vec::new(),
     }
 }

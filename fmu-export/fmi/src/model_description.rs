@@ -24,8 +24,11 @@ pub struct DescriptionError {
 /// Where a variable sits in the model: FMI 2.0 `causality`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum VariableCausality {
-    /// A parameter (FMI 3.0 structural parameters too).
+    /// A parameter.
     Parameter,
+    /// An FMI 3.0 structural parameter: one that sizes arrays (FMI 2.0 has
+    /// none; its description leaves them out).
+    StructuralParameter,
     /// A parameter the FMU computes.
     CalculatedParameter,
     /// An input.
@@ -41,8 +44,8 @@ pub enum VariableCausality {
 impl VariableCausality {
     fn parse(s: &str) -> Option<Self> {
         Some(match s {
-            // FMI 3.0's parameters that size arrays.
-            "parameter" | "structuralParameter" => Self::Parameter,
+            "parameter" => Self::Parameter,
+            "structuralParameter" => Self::StructuralParameter,
             "calculatedParameter" => Self::CalculatedParameter,
             "input" => Self::Input,
             "output" => Self::Output,
@@ -55,6 +58,7 @@ impl VariableCausality {
     fn name(self) -> &'static str {
         match self {
             Self::Parameter => "parameter",
+            Self::StructuralParameter => "structuralParameter",
             Self::CalculatedParameter => "calculatedParameter",
             Self::Input => "input",
             Self::Output => "output",
@@ -127,6 +131,9 @@ pub struct ScalarVariable {
     /// An FMI 3.0 array's length in each dimension, row-major (empty: a
     /// scalar; FMI 2.0 has none). The FMI 2.0 description leaves arrays out.
     pub dimensions: Vec<usize>,
+    /// The value reference of the structural parameter that sizes a
+    /// one-dimensional array (`dimensions` then holds its start).
+    pub sized_by: Option<u32>,
     /// FMI 3.0 `<Alias>` names: other names of the same variable.
     pub aliases: Vec<String>,
 }
@@ -313,10 +320,11 @@ impl ModelDescription {
             );
         }
         self.write_declarations(&mut x);
-        // Arrays are FMI 3.0's and come after every scalar, so leaving them
-        // out keeps the scalars' indices.
+        // Arrays and the structural parameters that size them are FMI 3.0's
+        // and come after every scalar, so leaving them out keeps the
+        // scalars' indices.
         for (i, v) in self.variables.iter().enumerate() {
-            if v.dimensions.is_empty() {
+            if v.dimensions.is_empty() && v.causality != VariableCausality::StructuralParameter {
                 write_variable(&mut x, i, v);
             }
         }

@@ -16,7 +16,7 @@ macro_rules! unsupported {
             #[allow(unreachable_pub)]
             pub unsafe extern "C" fn $name(c: Instance3) -> std::ffi::c_int {
                 guarded(c, stringify!($name), |_| {
-                    Err("not offered: this FMU is event-free co-simulation with Float64 ports and Int32, Boolean and String parameters".into())
+                    Err("not offered: this FMU is event-free co-simulation with Float64 ports, Int32, Boolean and String parameters and UInt64 array sizes".into())
                 })
             }
         )*
@@ -52,7 +52,6 @@ unsupported!(
     fmi3GetShiftFraction,
     fmi3GetUInt16,
     fmi3GetUInt32,
-    fmi3GetUInt64,
     fmi3GetUInt8,
     fmi3GetVariableDependencies,
     fmi3SetBinary,
@@ -69,7 +68,6 @@ unsupported!(
     fmi3SetTime,
     fmi3SetUInt16,
     fmi3SetUInt32,
-    fmi3SetUInt64,
     fmi3SetUInt8,
     fmi3UpdateDiscreteStates,
 );

@@ -9,21 +9,20 @@ impl Cable {
     /// Node x and z (m, bottom first) and each element's tension (N).
     pub(super) fn field_list(&self) -> Vec<Field> {
         let elements = self.element_count();
-        let field = Field::new;
         vec![
-            field(
+            Field::per_node(
                 "x",
                 "m",
                 "horizontal position of each node, bottom first",
                 elements + 1,
             ),
-            field(
+            Field::per_node(
                 "z",
                 "m",
                 "vertical position of each node (up), bottom first",
                 elements + 1,
             ),
-            field(
+            Field::per_element(
                 "tension",
                 "N",
                 "tension of each element, bottom first",

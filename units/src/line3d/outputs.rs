@@ -185,21 +185,21 @@ impl Line3d {
         let nodes = self.mechanics.nodes;
         let mut fields: Vec<Field> = AXES
             .iter()
-            .map(|a| Field::new(a, "m", "position of each node, start first", nodes))
+            .map(|a| Field::per_node(a, "m", "position of each node, start first", nodes))
             .collect();
-        fields.push(Field::new(
+        fields.push(Field::per_element(
             "tension",
             "N",
             "axial force of each element (tension positive), start first",
             nodes - 1,
         ));
-        fields.push(Field::new(
+        fields.push(Field::per_node(
             "curvature",
             "1/m",
             "curvature at each node (0 at the ends), start first",
             nodes,
         ));
-        fields.push(Field::new(
+        fields.push(Field::per_node(
             "moment",
             "N.m",
             "bending moment at each node, EI times the curvature (0 at the ends), start first",

@@ -17,27 +17,26 @@ impl NonlinearSection {
     /// (N m).
     pub(super) fn field_list(&self) -> Vec<Field> {
         let nodes = self.model.reference.len();
-        let field = Field::new;
         vec![
-            field(
+            Field::per_node(
                 "x",
                 "m",
                 "horizontal position of each node, first end first",
                 nodes,
             ),
-            field(
+            Field::per_node(
                 "z",
                 "m",
                 "vertical position of each node (up), first end first",
                 nodes,
             ),
-            field(
+            Field::per_element(
                 "tension",
                 "N",
                 "axial force of each element (tension positive), first end first",
                 self.model.elements.len(),
             ),
-            field(
+            Field::per_node(
                 "moment",
                 "N.m",
                 "bending moment at each node, the mean of its elements' ends (positive turning the tangent counter-clockwise along the arc), first end first",

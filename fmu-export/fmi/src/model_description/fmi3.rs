@@ -77,6 +77,8 @@ impl ModelDescription {
 fn write_variable3(x: &mut String, v: &ScalarVariable) {
     let e = |s: &str| escape(s).into_owned();
     let element = match &v.value {
+        // FMI 3.0: a structural parameter that sizes an array is a UInt64.
+        Value::Integer(_) if v.causality == VariableCausality::StructuralParameter => "UInt64",
         Value::Real(_) => "Float64",
         Value::Integer(_) | Value::Enumeration(_) => "Int32",
         Value::Boolean(_) => "Boolean",
@@ -105,8 +107,15 @@ fn write_variable3(x: &mut String, v: &ScalarVariable) {
         }
         (_, None) => {}
     }
-    for n in &v.dimensions {
-        let _ = write!(children, r#"<Dimension start="{n}"/>"#);
+    match v.sized_by {
+        Some(vr) => {
+            let _ = write!(children, r#"<Dimension valueReference="{vr}"/>"#);
+        }
+        None => {
+            for n in &v.dimensions {
+                let _ = write!(children, r#"<Dimension start="{n}"/>"#);
+            }
+        }
     }
     if children.is_empty() {
         x.push_str("/>\n");

@@ -421,6 +421,7 @@ impl<'a> Parser<'a> {
             min: t.parsed("min", "a number")?,
             max: t.parsed("max", "a number")?,
             dimensions: Vec::new(),
+            sized_by: None,
             aliases: Vec::new(),
             value,
         })
@@ -442,7 +443,9 @@ impl<'a> Parser<'a> {
         })?;
         let needs_start = matches!(
             variable.causality,
-            VariableCausality::Input | VariableCausality::Parameter
+            VariableCausality::Input
+                | VariableCausality::Parameter
+                | VariableCausality::StructuralParameter
         );
         if needs_start && !variable.value.has_start() {
             return Err(attrs.error(format!(

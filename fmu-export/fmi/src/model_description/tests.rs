@@ -68,6 +68,7 @@ fn sample_variables() -> Vec<ScalarVariable> {
             min: Some(-1.0),
             max: Some(2.5e6),
             dimensions: Vec::new(),
+            sized_by: None,
             aliases: Vec::new(),
         },
         ScalarVariable {
@@ -82,6 +83,7 @@ fn sample_variables() -> Vec<ScalarVariable> {
             min: None,
             max: None,
             dimensions: Vec::new(),
+            sized_by: None,
             aliases: Vec::new(),
         },
         ScalarVariable {
@@ -96,6 +98,7 @@ fn sample_variables() -> Vec<ScalarVariable> {
             min: None,
             max: None,
             dimensions: Vec::new(),
+            sized_by: None,
             aliases: Vec::new(),
         },
     ]
@@ -179,9 +182,13 @@ fn fmi3_arrays_are_sized_and_unread_types_left_out() {
     assert_eq!(md.guid, "{t}");
     let names: Vec<&str> = md.variables.iter().map(|v| v.name.as_str()).collect();
     assert_eq!(names, ["time", "n", "u", "y", "grid", "label"]);
-    assert_eq!(md.variables[1].causality, VariableCausality::Parameter);
+    assert_eq!(
+        md.variables[1].causality,
+        VariableCausality::StructuralParameter
+    );
     let (y, grid) = (&md.variables[3], &md.variables[4]);
     assert_eq!((y.dimensions.clone(), y.len()), (vec![4], 4));
+    assert_eq!((y.sized_by, grid.sized_by), (Some(1), None));
     assert_eq!((grid.dimensions.clone(), grid.len()), (vec![2, 3], 6));
     assert_eq!(grid.value, Value::Real(Some(1.0)));
     assert_eq!(md.variables[5].value, Value::String(Some("a<b".into())));

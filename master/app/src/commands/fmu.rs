@@ -103,7 +103,12 @@ fn export(
     // FMI 3.0 carries the unit's fields as array outputs; FMI 2.0 has none.
     let arrays = match version {
         FmiVersion::Three if !layout.fields.is_empty() => {
-            format!(", {} array outputs", layout.fields.len())
+            let sizes: Vec<&str> = layout.sizes.iter().map(|s| s.name.as_str()).collect();
+            format!(
+                ", {} array outputs sized by {}",
+                layout.fields.len(),
+                sizes.join(" and ")
+            )
         }
         _ => String::new(),
     };

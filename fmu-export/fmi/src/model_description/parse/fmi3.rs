@@ -53,12 +53,13 @@ impl Pending {
                 message: format!("<Dimension>: size {size} of valueReference {vr}"),
             })?;
             // (A variable left unfinished by a truncated file has no entry.)
-            if let Some(d) = md
-                .variables
-                .get_mut(variable)
-                .and_then(|v| v.dimensions.get_mut(dimension))
+            if let Some(v) = md.variables.get_mut(variable)
+                && let Some(d) = v.dimensions.get_mut(dimension)
             {
                 *d = size;
+                if v.dimensions.len() == 1 {
+                    v.sized_by = Some(vr);
+                }
             }
         }
         for v in &md.variables {
