@@ -273,6 +273,22 @@ pub(crate) unsafe extern "C" fn fmi3SetInt32(
     })
 }
 
+/// `fmi3EnterConfigurationMode`: where the array sizes are set.
+#[unsafe(no_mangle)]
+pub(crate) unsafe extern "C" fn fmi3EnterConfigurationMode(c: Instance3) -> Status {
+    guarded(
+        c,
+        "fmi3EnterConfigurationMode",
+        Instance::enter_configuration,
+    )
+}
+
+/// `fmi3ExitConfigurationMode`: back to the Instantiated state.
+#[unsafe(no_mangle)]
+pub(crate) unsafe extern "C" fn fmi3ExitConfigurationMode(c: Instance3) -> Status {
+    guarded(c, "fmi3ExitConfigurationMode", Instance::exit_configuration)
+}
+
 /// `fmi3GetUInt64`: the array sizes (structural parameters `n_nodes`,
 /// `n_elements`).
 #[unsafe(no_mangle)]

@@ -20,6 +20,9 @@ enum Phase {
     Initialization,
     Stepping,
     Terminated,
+    /// FMI 3.0's Configuration Mode (from and back to `Instantiated`): the
+    /// structural parameters (array sizes) may be set.
+    Configuration,
 }
 
 /// An exported unit behind the FMI 2.0 entry points.

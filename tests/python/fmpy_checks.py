@@ -284,8 +284,8 @@ def end_checks(row, names):
 def resize(path, parameter, value):
     """Changes an FMI 3.0 section's mesh through `parameter` and reads its
     arrays as an importer that follows FMI 3.0's structural parameters would:
-    (1) the sizes read after initialisation, (2) set before it (and a wrong
-    one refused), (3) FMPy's simulate_fmu, whose array shapes come from the
+    (1) the sizes read after initialisation, (2) set in Configuration Mode
+    before it (and a wrong one refused), (3) FMPy's simulate_fmu, whose array shapes come from the
     description's starts, given a description with the sizes read in (1)."""
     md = read_model_description(path)
     folder = extract(path)
@@ -298,7 +298,10 @@ def resize(path, parameter, value):
         s.instantiate()
         s.setInt32([vrs[parameter]], [int(value)])
         if sizes:
+            # FMI 3.0: structural parameters are set in Configuration Mode.
+            s.enterConfigurationMode()
             s.setUInt64([vrs["n_nodes"], vrs["n_elements"]], list(sizes))
+            s.exitConfigurationMode()
         s.enterInitializationMode(startTime=0.0)
         s.exitInitializationMode()
         return s

@@ -1,5 +1,5 @@
 //! The FMI 3.0 functions this FMU does not offer (model exchange, scheduled
-//! execution, event mode, clocks, configuration mode, other number types):
+//! execution, event mode, clocks, reconfiguration, other number types):
 //! every FMU exports the whole interface, so these are present and answer
 //! `fmi3Error` with a message naming the function. Only the first argument
 //! (the instance) is read; the C calling convention leaves the rest unused.
@@ -26,11 +26,9 @@ macro_rules! unsupported {
 unsupported!(
     fmi3ActivateModelPartition,
     fmi3CompletedIntegratorStep,
-    fmi3EnterConfigurationMode,
     fmi3EnterContinuousTimeMode,
     fmi3EnterEventMode,
     fmi3EvaluateDiscreteStates,
-    fmi3ExitConfigurationMode,
     fmi3GetAdjointDerivative,
     fmi3GetBinary,
     fmi3GetClock,

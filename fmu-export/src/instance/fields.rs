@@ -87,15 +87,17 @@ impl Instance {
         Ok(FMI2_OK)
     }
 
-    /// `fmi3SetUInt64`: the array sizes, before initialisation only (they
-    /// are fixed structural parameters), checked when the unit is built.
+    /// `fmi3SetUInt64`: the array sizes, in Configuration Mode as FMI 3.0
+    /// has it (or, as FMPy does, in the Instantiated state), before
+    /// initialisation only (they are fixed structural parameters); checked
+    /// when the unit is built.
     pub(crate) fn set_sizes(&mut self, vr: &[u32], values: &[u64]) -> Result<fmi2Status, String> {
         for (r, value) in vr.iter().zip(values) {
             let k = self.size_of(*r)?;
             let name = &self.layout.sizes[k].name;
-            if self.phase != Phase::Instantiated {
+            if !matches!(self.phase, Phase::Configuration | Phase::Instantiated) {
                 return Err(format!(
-                    "`{name}` is a fixed structural parameter: set it before fmi3EnterInitializationMode"
+                    "`{name}` is a fixed structural parameter: set it in Configuration Mode, before fmi3EnterInitializationMode"
                 ));
             }
             if *value == 0 {
@@ -103,6 +105,28 @@ impl Instance {
             }
             self.sizes[k] = Some(*value);
         }
+        Ok(FMI2_OK)
+    }
+
+    /// `fmi3EnterConfigurationMode`: from the Instantiated state, where the
+    /// FMU has array sizes to set.
+    pub(crate) fn enter_configuration(&mut self) -> Result<fmi2Status, String> {
+        if self.layout.sizes.is_empty() {
+            return Err("this FMU has no structural parameter to configure".into());
+        }
+        if self.phase != Phase::Instantiated {
+            return Err("only allowed after fmi3InstantiateCoSimulation or fmi3Reset".into());
+        }
+        self.phase = Phase::Configuration;
+        Ok(FMI2_OK)
+    }
+
+    /// `fmi3ExitConfigurationMode`: back to the Instantiated state.
+    pub(crate) fn exit_configuration(&mut self) -> Result<fmi2Status, String> {
+        if self.phase != Phase::Configuration {
+            return Err("only allowed in Configuration Mode".into());
+        }
+        self.phase = Phase::Instantiated;
         Ok(FMI2_OK)
     }
 }
