@@ -132,11 +132,13 @@ pub struct Environment {
     held: Option<HeldWaves>,
 }
 
-/// The water's motion at every node at time `t` (s); None above the surface.
+/// The water's motion at every node at time `t` (s); None above the surface;
+/// and the positions (m) it was taken at.
 #[derive(Clone, Debug)]
 struct HeldWaves {
     t: f64,
     at_nodes: Vec<Option<Kinematics>>,
+    positions: Vec<[u64; 3]>,
 }
 
 impl Environment {
@@ -178,24 +180,40 @@ impl Environment {
     /// nodes are shared out with the pool's idle threads: the wave sums are
     /// most of a line's step, and three lines on two threads would otherwise
     /// leave one idle through the third. Each node's kinematics are computed
-    /// alone, so the result is the same on any thread count.
+    /// alone, so the result is the same on any thread count. A step taken
+    /// again (a coupling iteration, a rollback) predicts the same positions
+    /// but at its driven ends: a node at the same time and position (bit for
+    /// bit) keeps what it has.
     pub fn hold_waves(&mut self, q: &[f64], t: f64) {
         let Some(waves) = &self.waves else { return };
+        let nodes = self.tributary.len();
         let mut held = self.held.take().unwrap_or(HeldWaves {
-            t,
+            t: f64::NAN,
             at_nodes: Vec::new(),
+            positions: Vec::new(),
         });
+        let same_time = held.t.to_bits() == t.to_bits() && held.positions.len() == nodes;
         held.t = t;
-        held.at_nodes.resize(self.tributary.len(), None);
-        let at_node = |(i, held): (usize, &mut Option<Kinematics>)| {
-            *held = waves.at(&node(q, i), t);
+        held.at_nodes.resize(nodes, None);
+        held.positions.resize(nodes, [0; 3]);
+        let at_node = |(i, (kept, at)): (usize, (&mut Option<Kinematics>, &mut [u64; 3]))| {
+            let p = node(q, i);
+            let bits = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+            if !(same_time && *at == bits) {
+                *kept = waves.at(&p, t);
+                *at = bits;
+            }
         };
+        let (at_nodes, positions) = (&mut held.at_nodes, &mut held.positions);
         if rayon::current_thread_index().is_some() {
-            (held.at_nodes.par_iter_mut().enumerate())
-                .with_min_len(NODES_PER_TASK)
-                .for_each(at_node);
+            (at_nodes
+                .par_iter_mut()
+                .zip(positions.par_iter_mut())
+                .enumerate())
+            .with_min_len(NODES_PER_TASK)
+            .for_each(at_node);
         } else {
-            held.at_nodes.iter_mut().enumerate().for_each(at_node);
+            (at_nodes.iter_mut().zip(positions.iter_mut()).enumerate()).for_each(at_node);
         }
         self.held = Some(held);
     }
