@@ -96,11 +96,11 @@ impl Master {
 /// never a whole unit, and the threads that run out of units help with the
 /// last ones' shared work. The caller takes part and carries on with the
 /// step when all are done.
-pub(crate) fn share_out(
-    units: &mut [UnitAdapter],
+pub(crate) fn share_out<U: Send>(
+    units: &mut [U],
     threads: usize,
     takes_part: &(impl Fn(usize) -> bool + Sync),
-    work: &(impl Fn(&mut UnitAdapter) + Sync),
+    work: &(impl Fn(&mut U) + Sync),
 ) {
     let queue = Mutex::new(
         (units.iter_mut().enumerate())
@@ -128,4 +128,50 @@ fn on_threads(threads: usize, work: &(impl Fn() + Sync)) {
         return work();
     }
     rayon::join(work, || on_threads(threads - 1, work));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::share_out;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// Every unit that takes part is worked once and only those, on any
+    /// number of threads, more or fewer than the units; and the work is
+    /// spread over the threads when each unit waits for the others.
+    #[test]
+    fn each_unit_that_takes_part_is_worked_once_on_any_thread_count() {
+        for threads in 1..=4 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            for n in [0, 1, 3, 10] {
+                let mut units = vec![0u32; n];
+                pool.install(|| {
+                    share_out(&mut units, threads, &|u| u % 3 != 1, &|unit| *unit += 1);
+                });
+                let expected: Vec<u32> = (0..n).map(|u| u32::from(u % 3 != 1)).collect();
+                assert_eq!(units, expected, "{threads} threads, {n} units");
+            }
+            // Each unit waits until `threads` units are running at once: on
+            // one thread that would hang, so only from two.
+            if threads >= 2 {
+                let running = AtomicUsize::new(0);
+                let mut units = vec![0u32; threads];
+                pool.install(|| {
+                    share_out(&mut units, threads, &|_| true, &|unit| {
+                        running.fetch_add(1, Ordering::SeqCst);
+                        let started = std::time::Instant::now();
+                        while running.load(Ordering::SeqCst) < threads
+                            && started.elapsed().as_secs() < 10
+                        {
+                            std::thread::yield_now();
+                        }
+                        *unit = running.load(Ordering::SeqCst) as u32;
+                    });
+                });
+                assert!(units.iter().all(|&u| u as usize == threads), "{units:?}");
+            }
+        }
+    }
 }
