@@ -2,7 +2,9 @@
 //! riser (laid as its static section, sag bend `nonlinear`, top `linear:30`)
 //! and the mooring line (lower `nonlinear:16`) follow their iterated runs to
 //! the coupling tolerance, at the sweeps per step (at most 1.2), and
-//! so does the OC3 spar on its three lines (1.00 sweeps per step); a
+//! so does the OC3 spar on its three lines (1.00 sweeps per step) and the
+//! S-lay, whose rollers make a first correction miss (a later sweep is
+//! corrected in turn: 1.10 sweeps per step); a
 //! section that cannot correct its step leaves every step iterated.
 
 use slender_tests::Series;
@@ -129,4 +131,56 @@ fn the_moored_spar_in_one_sweep_per_step_follows_its_iterated_run() {
     }
     let d = largest_difference(&one, &iterated, "spar.x");
     assert!(d < 1e-5, "surge {d} m");
+}
+
+#[test]
+fn the_s_lay_in_one_sweep_per_step_follows_its_iterated_run() {
+    // The stinger's rollers (penalty contact, 1e6 N/m) engage and leave
+    // inside steps, so a correction after the first sweep can miss the
+    // tolerance; the step is then swept again and that sweep corrected in
+    // turn. Measured: 1.10 sweeps per step (2.07 iterated), the top force
+    // within 0.18 N and the sag-bend moment within 0.11 N m (of about
+    // 1e5 N m) of the iterated run (tolerance 1 N).
+    let (iterated, one) = both("examples/structure_slay.toml", &[]);
+    eprintln!(
+        "S-lay: {:.3} sweeps per step (iterated {:.3}), {} of {} steps corrected",
+        sweeps(&one),
+        sweeps(&iterated),
+        one.counters.corrected_steps,
+        one.counters.steps
+    );
+    assert!(sweeps(&one) <= 1.2, "{}", sweeps(&one));
+    assert!(one.counters.max_residual <= 1.0);
+    for signal in ["pipe_stinger.end_force_x", "pipe_stinger.end_force_z"] {
+        let d = largest_difference(&one, &iterated, signal);
+        eprintln!("{signal}: {d:.3e} N");
+        assert!(d < 1.0, "{signal}: {d} N");
+    }
+    let d = largest_difference(&one, &iterated, "pipe_sagbend.sagbend_moment");
+    eprintln!("sag-bend moment: {d:.3e} N m");
+    assert!(d < 1.0, "{d} N m");
+}
+
+#[test]
+fn a_step_whose_first_correction_misses_is_corrected_after_its_next_sweep() {
+    // The S-lay at the tolerances it shipped with before (1e-7 m/s,
+    // 1e-2 N: 1e-7 of its tension): what a correction leaves after the
+    // first sweep is 3-1000 tolerances on the stinger's cut force on most
+    // steps. Corrected after the first sweep only, 226 of 600 steps closed
+    // by a correction and 2.13 sweeps per step; corrected after later
+    // sweeps too, 531 and 1.62.
+    let tight = [(
+        "velocity = 1e-6, force = 1.0, generic = 1e-6",
+        "velocity = 1e-7, force = 1e-2, generic = 1e-7",
+    )];
+    let (_, one) = both("examples/structure_slay.toml", &tight);
+    eprintln!(
+        "S-lay at 1e-2 N: {:.3} sweeps per step, {} of {} steps corrected",
+        sweeps(&one),
+        one.counters.corrected_steps,
+        one.counters.steps
+    );
+    assert!(one.counters.max_residual <= 1.0);
+    assert!(sweeps(&one) < 1.8, "{}", sweeps(&one));
+    assert!(one.counters.corrected_steps > 400);
 }

@@ -131,7 +131,7 @@ impl Master {
             for (i, &c) in m.torn.iter().enumerate() {
                 m.x[i] += work.correction[i] * m.tolerance[c];
             }
-            if settings.one_sweep && k == 1 && m.units_can_correct() {
+            if settings.one_sweep && m.units_can_correct() {
                 m.correct_units(&mut work.change, k)?;
                 return Ok(Update::Corrected);
             }

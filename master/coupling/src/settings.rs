@@ -115,14 +115,16 @@ pub struct NewtonSettings {
     /// repeated sweep costs a Newton iteration or two instead of a whole solve.
     #[serde(default = "yes")]
     pub warm_start: bool,
-    /// With `derivatives = "units"`: a step whose first sweep is not within
-    /// tolerance is closed by one linear correction instead of a second
-    /// sweep (default false). The Newton update of the torn values moves
-    /// every unit's end state by its own step derivatives
-    /// (`Unit::correct_step`); the step is accepted when the residual after
-    /// the correction (the units' forces at the moved state against the
-    /// updated values) is within tolerance, and iterated as usual otherwise
-    /// or when a unit cannot correct its step.
+    /// With `derivatives = "units"`: a sweep not within tolerance is closed
+    /// by a linear correction instead of another sweep (default false). The
+    /// Newton update of the torn values moves every unit's end state by its
+    /// own step derivatives (`Unit::correct_step`); the step is accepted when
+    /// the residual after the correction (the units' forces at the moved
+    /// state against the updated values) is within tolerance. Otherwise the
+    /// step is swept again at the updated values and that sweep is corrected
+    /// in turn, from the units' Jacobians of it (so only with a Jacobian
+    /// evaluated at every iteration); a unit that cannot correct its step
+    /// leaves every step iterated.
     #[serde(default)]
     pub one_sweep: bool,
 }
