@@ -5,13 +5,14 @@ current or, with --current, with polyester_line_3d.toml's current across the
 line's plane (0.5 m/s along +y at the surface, none at the anchor, linear
 between: MoorDyn's steady current grid, `Currents = 1`), the fairlead tension's mean, standard deviation, maximum and minimum over
 40-120 s, and the cost per simulated second (median of 3 runs, MoorDyn driven
-from Python every 0.1 s). MoorDyn's line type maps slender's parameters: its
+from Python every 0.1 s, or every --call seconds: its coupling step, of
+which its own time step is a divisor). MoorDyn's line type maps slender's parameters: its
 volume diameter from the weight in water (0.2091 m), its drag and added-mass
 coefficients rescaled to the hydrodynamic diameter 0.264 m; axial damping at
 80 % of critical (MoorDyn needs it; slender's line has none).
 
 Usage: python -m venv /tmp/md && /tmp/md/bin/pip install moordyn &&
-       /tmp/md/bin/python scripts/moordyn-polyester.py [--current] SEGMENTS DT [SEGMENTS DT ...]"""
+       /tmp/md/bin/python scripts/moordyn-polyester.py [--current] [--call STEP] SEGMENTS DT [SEGMENTS DT ...]"""
 
 import math, os, statistics, sys, tempfile, time
 
@@ -66,7 +67,7 @@ def fairlead(t):
     return [1529.11 + fade * 3 * s, 0.0, 0.0], [rate * 3 * s + fade * 1.8 * c, 0.0, 0.0]
 
 
-def run(segments, dt, current):
+def run(segments, dt, current, call=0.1):
     folder = tempfile.mkdtemp()
     path = os.path.join(folder, "line.txt")
     currents = "1        Currents  - steady current grid from current_profile.txt" if current else ""
@@ -78,9 +79,10 @@ def run(segments, dt, current):
     system = moordyn.Create(path)
     moordyn.Init(system, *fairlead(0.0))
     tensions, t, wall = [], 0.0, time.perf_counter()
-    for k in range(1, 1201):
-        t1 = 0.1 * k
-        force = moordyn.Step(system, *fairlead(t1), t, 0.1)
+    calls = round(120.0 / call)
+    for k in range(1, calls + 1):
+        t1 = call * k
+        force = moordyn.Step(system, *fairlead(t1), t, call)
         t = t1
         if t1 >= 40 - 1e-9:
             tensions.append(math.sqrt(sum(x * x for x in force)))
@@ -93,12 +95,17 @@ def run(segments, dt, current):
 def main():
     args = sys.argv[1:]
     current = "--current" in args
+    call = 0.1
+    if "--call" in args:
+        i = args.index("--call")
+        call = float(args[i + 1])
+        del args[i : i + 2]
     args = [a for a in args if a != "--current"]
     for segments, dt in zip(args[::2], args[1::2]):
-        runs = [run(int(segments), float(dt), current) for _ in range(3)]
+        runs = [run(int(segments), float(dt), current, call) for _ in range(3)]
         stats = runs[0][0]
         cost = statistics.median(c for _, c in runs)
-        print(f"\nRESULT {segments} {dt} mean {stats[0]:.1f} sd {stats[1]:.1f} max {stats[2]:.1f} min {stats[3]:.1f} cost {cost:.3e}")
+        print(f"\nRESULT {segments} {dt} call {call} mean {stats[0]:.1f} sd {stats[1]:.1f} max {stats[2]:.1f} min {stats[3]:.1f} cost {cost:.3e}")
 
 
 if __name__ == "__main__":
