@@ -9,7 +9,7 @@
 
 use crate::instance::{Instance, guarded};
 use crate::states;
-use crate::{refs, values, values_mut};
+use crate::{refs, texts, values, values_mut};
 use slender_fmi::ffi::*;
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
 
@@ -388,14 +388,8 @@ pub(crate) unsafe extern "C" fn fmi3SetString(
     guarded(c, "fmi3SetString", |i| {
         // SAFETY: FMI array arguments of the lengths given.
         let (vr, value) = unsafe { (refs(vr, n_vr)?, values(value, n_values)?) };
-        let mut texts = Vec::with_capacity(value.len());
-        for p in value {
-            if p.is_null() {
-                return Err("null string".into());
-            }
-            // SAFETY: FMI passes NUL-terminated strings.
-            texts.push(unsafe { CStr::from_ptr(*p) }.to_string_lossy().into_owned());
-        }
+        // SAFETY: FMI passes NUL-terminated strings.
+        let texts = unsafe { texts(value)? };
         i.set_string(vr, &texts)
     })
 }

@@ -194,6 +194,23 @@ pub(crate) unsafe fn values<'a, T>(p: *const T, n: usize) -> Result<&'a [T], Str
     }
 }
 
+/// The NUL-terminated strings of an FMI string array (FMI 2.0 and 3.0
+/// alike), copied; a null entry is refused.
+///
+/// # Safety
+/// Each non-null entry points to a NUL-terminated string.
+pub(crate) unsafe fn texts(value: &[*const c_char]) -> Result<Vec<String>, String> {
+    let mut texts = Vec::with_capacity(value.len());
+    for p in value {
+        if p.is_null() {
+            return Err("null string".into());
+        }
+        // SAFETY: FMI passes NUL-terminated strings.
+        texts.push(unsafe { CStr::from_ptr(*p) }.to_string_lossy().into_owned());
+    }
+    Ok(texts)
+}
+
 pub(crate) unsafe fn values_mut<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T], String> {
     if n == 0 {
         Ok(&mut [])
@@ -321,14 +338,8 @@ pub unsafe extern "C" fn fmi2SetString(
     guarded(c, "fmi2SetString", |i| {
         // SAFETY: FMI array arguments of length n.
         let (vr, value) = unsafe { (refs(vr, n)?, values(value, n)?) };
-        let mut texts = Vec::with_capacity(n);
-        for p in value {
-            if p.is_null() {
-                return Err("null string".into());
-            }
-            // SAFETY: FMI passes NUL-terminated strings.
-            texts.push(unsafe { CStr::from_ptr(*p) }.to_string_lossy().into_owned());
-        }
+        // SAFETY: FMI passes NUL-terminated strings.
+        let texts = unsafe { texts(value)? };
         i.set_string(vr, &texts)
     })
 }
@@ -571,3 +582,6 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
 ) -> fmi2Status {
     guarded(c, "fmi2GetStringStatus", |_| Ok(FMI2_DISCARD))
 }
+
+#[cfg(test)]
+mod tests;

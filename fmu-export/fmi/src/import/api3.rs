@@ -138,7 +138,6 @@ impl Api3 {
     }
 }
 
-/// The entry point `name` when `wanted`.
 /// FMI 3.0's `logMessage`: the message into the unit's log.
 unsafe extern "C" fn log_message(
     environment: *mut c_void,
@@ -146,13 +145,7 @@ unsafe extern "C" fn log_message(
     category: *const c_char,
     message: *const c_char,
 ) {
-    let _ = std::panic::catch_unwind(|| {
-        if environment.is_null() {
-            return;
-        }
-        // SAFETY: the environment is the unit's LogBook, which outlives the
-        // instance (dropped after fmi3FreeInstance).
-        let book = unsafe { &*(environment as *const LogBook) };
-        book.push(std::ptr::null(), status, category, message);
-    });
+    // SAFETY: the environment is the unit's LogBook, which outlives the
+    // instance (dropped after fmi3FreeInstance).
+    unsafe { LogBook::push_to(environment, std::ptr::null(), status, category, message) }
 }

@@ -37,18 +37,35 @@ pub(super) extern "C" fn slender_fmi_log_sink(
     category: *const c_char,
     message: *const c_char,
 ) {
-    let _ = std::panic::catch_unwind(|| {
-        if environment.is_null() {
-            return;
-        }
-        // SAFETY: the environment is the LogBook the unit registered and outlives
-        // the FMU instance (dropped after fmi2FreeInstance).
-        let book = unsafe { &*(environment as *const LogBook) };
-        book.push(instance, status, category, message);
-    });
+    // SAFETY: the environment is the LogBook the unit registered and outlives
+    // the FMU instance (dropped after fmi2FreeInstance).
+    unsafe { LogBook::push_to(environment, instance, status, category, message) }
 }
 
 impl LogBook {
+    /// A logger callback's message into the LogBook its `environment` points
+    /// to (nothing when null), FMI 2.0 and 3.0 alike; never unwinds into the
+    /// FMU.
+    ///
+    /// # Safety
+    /// A non-null `environment` is a `LogBook` that outlives the call.
+    pub(super) unsafe fn push_to(
+        environment: *mut c_void,
+        instance: *const c_char,
+        status: c_int,
+        category: *const c_char,
+        message: *const c_char,
+    ) {
+        let _ = std::panic::catch_unwind(|| {
+            if environment.is_null() {
+                return;
+            }
+            // SAFETY: by the caller.
+            let book = unsafe { &*(environment as *const LogBook) };
+            book.push(instance, status, category, message);
+        });
+    }
+
     /// Keeps one message (the last [`LOG_KEPT`]); the strings are
     /// NUL-terminated or null.
     pub(super) fn push(
