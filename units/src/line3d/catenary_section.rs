@@ -8,9 +8,9 @@
 //!
 //! What it leaves out, by design: the line's inertia, drag, added mass and
 //! waves (a quasi-static line), bending, the seabed's friction and a sloped
-//! seabed (refused). It takes the same parameters as `line3d` (`elements` and
-//! the dynamic coefficients are not used), so a structure's section changes
-//! fidelity by one word.
+//! seabed (refused). It takes the same parameters as `line3d` (the dynamic
+//! coefficients are not used; `elements` places the stations its fields are
+//! reported at), so a structure's section changes fidelity by one word.
 //!
 //! A coupled end follows its velocity inputs by Newmark's rule with the
 //! `alpha` of the 3D line (from its own start motion), as the dynamic line
@@ -21,7 +21,7 @@ use super::outputs::{AXES, CATENARY_OUTPUTS, EXTRA_OUTPUTS};
 use super::params::{EndCondition, Line3dParams};
 use super::step::{end_motion, follow_velocity};
 use crate::contract::{
-    Capabilities, Inputs, Port, PortKind, StepReport, Time, Unit, UnitDescription, UnitError,
+    Capabilities, Field, Inputs, Port, PortKind, StepReport, Time, Unit, UnitDescription, UnitError,
 };
 use crate::integrators::hht::parameters_of;
 use nalgebra::Vector3;
@@ -201,6 +201,66 @@ impl CatenarySection {
         Ok(k)
     }
 
+    /// The catenary the state holds.
+    fn current(&self) -> Catenary {
+        Catenary {
+            line: self.line,
+            horizontal: self.state.tensions[0],
+            vertical: self.state.tensions[1],
+        }
+    }
+
+    /// x, y, z per station (`elements + 1`, evenly spaced in unstretched
+    /// arc, the anchor first) and the effective tension per element: the
+    /// 3D line's fields but its bending ones, which a catenary has none of.
+    fn field_list(&self) -> Vec<Field> {
+        let nodes = self.params.elements + 1;
+        let mut fields: Vec<Field> = AXES
+            .iter()
+            .map(|a| {
+                let what =
+                    "position of each station (evenly spaced in unstretched arc), anchor first";
+                Field::per_node(a, "m", what, nodes)
+            })
+            .collect();
+        fields.push(Field::per_element(
+            "tension",
+            "N",
+            "effective tension at each element's middle, anchor first (the closed form)",
+            nodes - 1,
+        ));
+        fields
+    }
+
+    /// The current values of field `index` into `out`.
+    fn write_field(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
+        let fields = self.field_list();
+        let field = fields.get(index).ok_or_else(|| {
+            UnitError::Unsupported(format!("field {index} of a catenary (it has 4)"))
+        })?;
+        if out.len() != field.len {
+            return Err(UnitError::Numerical(format!(
+                "field {}: {} values asked for, the catenary has {}",
+                field.name,
+                out.len(),
+                field.len
+            )));
+        }
+        let c = self.current();
+        let ds = self.line.length / self.params.elements as f64;
+        let (u, _) = self.plan(&self.state.end[0]);
+        let anchor = &self.params.start.position;
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = if index == 3 {
+                c.tension((k as f64 + 0.5) * ds)
+            } else {
+                let [across, up] = c.point(k as f64 * ds);
+                anchor[index] + [u[0] * across, u[1] * across, up][index]
+            };
+        }
+        Ok(())
+    }
+
     /// The end's motion at the step's end: prescribed, or by Newmark from
     /// its start motion and the velocity input at the step's end.
     fn moved(&self, t1: f64, h: f64, inputs: &Inputs<'_>) -> [[f64; 3]; 3] {
@@ -273,11 +333,7 @@ impl Unit for CatenarySection {
 
     fn outputs(&self, _inputs: Inputs<'_>, out: &mut [f64]) {
         let end = &self.state.end;
-        let c = Catenary {
-            line: self.line,
-            horizontal: self.state.tensions[0],
-            vertical: self.state.tensions[1],
-        };
+        let c = self.current();
         let (u, _) = self.plan(&end[0]);
         let forces = self.forces_of(&c, u);
         let start = &self.params.start.position;
@@ -310,6 +366,14 @@ impl Unit for CatenarySection {
     }
 
     slender_contract::state_in_field!(state: CatenaryState);
+
+    fn fields(&self) -> Vec<Field> {
+        self.field_list()
+    }
+
+    fn field_values(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
+        self.write_field(index, out)
+    }
 
     /// Exact: the end's motion follows the changed velocity by Newmark (as
     /// the step moved it) and the catenary is solved again at its position.
