@@ -227,6 +227,16 @@ pub enum FieldSupport {
     Element,
 }
 
+impl FieldSupport {
+    /// What it counts, in the plural ("nodes", "elements").
+    pub fn counted(self) -> &'static str {
+        match self {
+            FieldSupport::Node => "nodes",
+            FieldSupport::Element => "elements",
+        }
+    }
+}
+
 impl Field {
     /// A field called `name` in `unit` with one value per node (`nodes`).
     pub fn per_node(name: &str, unit: &str, description: &str, nodes: usize) -> Field {

@@ -7,7 +7,7 @@
 
 use super::{Instance, Phase};
 use slender_fmi::ffi::{FMI2_OK, fmi2Status};
-use slender_units::contract::{Field, FieldSupport};
+use slender_units::contract::Field;
 
 impl Instance {
     /// The field whose array variable has value reference `vr`.
@@ -47,14 +47,12 @@ impl Instance {
             if let (Some(set), Some(built)) = (*set, built)
                 && set != built as u64
             {
-                let what = match size.per {
-                    FieldSupport::Node => "nodes",
-                    FieldSupport::Element => "elements",
-                };
                 return Err(format!(
-                    "`{}` = {set}, but the parameters give {built} {what}: set `{}` = {built} \
+                    "`{}` = {set}, but the parameters give {built} {}: set `{}` = {built} \
                      with them, or leave it unset and read it after initialisation",
-                    size.name, size.name
+                    size.name,
+                    size.per.counted(),
+                    size.name
                 ));
             }
         }

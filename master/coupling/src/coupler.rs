@@ -202,10 +202,7 @@ impl Master {
     /// sweeps' units are shared out from inside the pool: the calling thread
     /// is handed over once a step instead of at every sweep and Jacobian.
     pub fn step(&mut self) -> Result<(), MasterError> {
-        match self.pool.clone() {
-            Some(pool) => pool.install(|| self.step_here()),
-            None => self.step_here(),
-        }
+        self.on_pool(Master::step_here)
     }
 
     /// Runs `work` (a run's loop of steps) on a thread of the master's pool

@@ -325,8 +325,7 @@ impl Master {
         let iterated = &self.iterated;
         match &self.pool {
             Some(pool) => pool.install(|| {
-                let threads = rayon::current_num_threads();
-                crate::coupler::share_out(&mut self.units, threads, &|u| iterated[u], &evaluate);
+                crate::coupler::share_out(&mut self.units, &|u| iterated[u], &evaluate);
             }),
             None => self
                 .units

@@ -17,7 +17,7 @@
 //! beside it moves the node that drives it: the cut stays closed.
 
 use super::catenary::{Catenary, CatenaryLine};
-use super::outputs::{AXES, CATENARY_OUTPUTS, EXTRA_OUTPUTS};
+use super::outputs::{AXES, CATENARY_OUTPUTS, EXTRA_OUTPUTS, check_field_request};
 use super::params::{EndCondition, Line3dParams};
 use super::step::{end_motion, follow_velocity};
 use crate::contract::{
@@ -234,18 +234,16 @@ impl CatenarySection {
 
     /// The current values of field `index` into `out`.
     fn write_field(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
-        let fields = self.field_list();
-        let field = fields.get(index).ok_or_else(|| {
-            UnitError::Unsupported(format!("field {index} of a catenary (it has 4)"))
-        })?;
-        if out.len() != field.len {
-            return Err(UnitError::Numerical(format!(
-                "field {}: {} values asked for, the catenary has {}",
-                field.name,
-                out.len(),
-                field.len
-            )));
-        }
+        let stations = self.params.elements + 1;
+        let lengths = [stations, stations, stations, stations - 1];
+        let names = ["x", "y", "z", "tension"];
+        check_field_request(
+            ("a catenary", "the catenary"),
+            &names,
+            &lengths,
+            index,
+            out.len(),
+        )?;
         let c = self.current();
         let ds = self.line.length / self.params.elements as f64;
         let (u, _) = self.plan(&self.state.end[0]);

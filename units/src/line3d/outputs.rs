@@ -210,31 +210,52 @@ impl Line3d {
 
     /// The current values of field `index` into `out`.
     pub(super) fn write_field(&self, index: usize, out: &mut [f64]) -> Result<(), UnitError> {
-        let fields = self.field_list();
-        let Some(field) = fields.get(index) else {
-            return Err(UnitError::Unsupported(format!(
-                "field {index} of a 3D line (it has {})",
-                fields.len()
-            )));
-        };
-        if out.len() != field.len {
-            return Err(UnitError::Numerical(format!(
-                "field {}: {} values asked for, the line has {}",
-                field.name,
-                out.len(),
-                field.len
-            )));
-        }
+        let nodes = self.mechanics.nodes;
+        let lengths = [nodes, nodes, nodes, nodes - 1, nodes, nodes];
+        let names = ["x", "y", "z", "tension", "curvature", "moment"];
+        check_field_request(
+            ("a 3D line", "the line"),
+            &names,
+            &lengths,
+            index,
+            out.len(),
+        )?;
+        let len = lengths[index];
         let (q, v) = (&self.state.q, &self.state.v);
         for (k, o) in out.iter_mut().enumerate() {
             *o = match index {
                 0..=2 => q[DOF * k + index],
                 3 => self.mechanics.tension(q, v, k),
-                _ if k == 0 || k + 1 == field.len => 0.0,
+                _ if k == 0 || k + 1 == len => 0.0,
                 4 => self.mechanics.curvature(q, k),
                 _ => self.params.bending_stiffness * self.mechanics.curvature(q, k),
             };
         }
         Ok(())
     }
+}
+
+/// Checks a request for field `index` (of `names`, each `lengths` long) into
+/// `room` values, without building the unit's field list (a run's envelopes
+/// read the fields every step); `(of, owner)` name the unit in the errors
+/// ("a 3D line", "the line").
+pub(super) fn check_field_request(
+    (of, owner): (&str, &str),
+    names: &[&str],
+    lengths: &[usize],
+    index: usize,
+    room: usize,
+) -> Result<(), UnitError> {
+    let (Some(name), Some(&len)) = (names.get(index), lengths.get(index)) else {
+        return Err(UnitError::Unsupported(format!(
+            "field {index} of {of} (it has {})",
+            names.len()
+        )));
+    };
+    if room != len {
+        return Err(UnitError::Numerical(format!(
+            "field {name}: {room} values asked for, {owner} has {len}"
+        )));
+    }
+    Ok(())
 }

@@ -92,10 +92,7 @@ fn sizes(fields: &[Field], first: u32) -> Vec<ArraySize> {
 }
 
 fn size_variable(size: &ArraySize) -> ScalarVariable {
-    let what = match size.per {
-        FieldSupport::Node => "nodes",
-        FieldSupport::Element => "elements",
-    };
+    let what = size.per.counted();
     let start = i32::try_from(size.start).unwrap_or(i32::MAX);
     ScalarVariable {
         name: size.name.clone(),

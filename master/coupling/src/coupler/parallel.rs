@@ -59,8 +59,7 @@ impl Master {
             .ok_or_else(|| MasterError::Invalid("parallel sweep without a pool".into()))?;
         let stepping = |u: usize| !repeat || iterated[u];
         pool.install(|| {
-            let threads = rayon::current_num_threads();
-            share_out(units, threads, &stepping, &|unit: &mut UnitAdapter| {
+            share_out(units, &stepping, &|unit: &mut UnitAdapter| {
                 let started = Instant::now();
                 unit.failure = unit.step(t, h, iteration).err();
                 unit.step_time += started.elapsed();
@@ -88,8 +87,8 @@ impl Master {
     }
 }
 
-/// Runs `work` on every unit that `takes_part`, each unit alone, on
-/// `threads` threads of the pool the caller runs on. The threads take the
+/// Runs `work` on every unit that `takes_part`, each unit alone, on every
+/// thread of the pool the caller runs on. The threads take the
 /// units in their order from one shared queue, each taking the next as it
 /// finishes one; a unit is never a job of the pool's, so a thread waiting
 /// inside a unit for help (a 3D line's wave sums) takes only such small work,
@@ -98,7 +97,6 @@ impl Master {
 /// step when all are done.
 pub(crate) fn share_out<U: Send>(
     units: &mut [U],
-    threads: usize,
     takes_part: &(impl Fn(usize) -> bool + Sync),
     work: &(impl Fn(&mut U) + Sync),
 ) {
@@ -118,7 +116,7 @@ pub(crate) fn share_out<U: Send>(
             }
         }
     };
-    on_threads(threads, &take_units);
+    on_threads(rayon::current_num_threads(), &take_units);
 }
 
 /// Runs `work` on `threads` threads of the current pool (the caller's one
@@ -148,7 +146,7 @@ mod tests {
             for n in [0, 1, 3, 10] {
                 let mut units = vec![0u32; n];
                 pool.install(|| {
-                    share_out(&mut units, threads, &|u| u % 3 != 1, &|unit| *unit += 1);
+                    share_out(&mut units, &|u| u % 3 != 1, &|unit| *unit += 1);
                 });
                 let expected: Vec<u32> = (0..n).map(|u| u32::from(u % 3 != 1)).collect();
                 assert_eq!(units, expected, "{threads} threads, {n} units");
@@ -159,7 +157,7 @@ mod tests {
                 let running = AtomicUsize::new(0);
                 let mut units = vec![0u32; threads];
                 pool.install(|| {
-                    share_out(&mut units, threads, &|_| true, &|unit| {
+                    share_out(&mut units, &|_| true, &|unit| {
                         running.fetch_add(1, Ordering::SeqCst);
                         let started = std::time::Instant::now();
                         while running.load(Ordering::SeqCst) < threads
