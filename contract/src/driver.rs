@@ -335,6 +335,21 @@ impl<U: Unit> Driver<U> {
         self.unit.correct_step(self.held.view(), change)
     }
 
+    /// Hints the unit that the next step will be corrected
+    /// ([`Unit::defer_step_end`]); only a unit that can correct its step is
+    /// told, so one in sub-steps never defers.
+    pub fn defer_step_end(&mut self, coupled: &[usize]) {
+        if self.can_correct_step() {
+            self.unit.defer_step_end(coupled);
+        }
+    }
+
+    /// Takes a deferred step end ([`Unit::complete_step`]); whether one was
+    /// pending.
+    pub fn complete_step(&mut self) -> Result<bool, UnitError> {
+        self.unit.complete_step()
+    }
+
     /// The same derivative by forward differences of the unit's own step: for
     /// each input `j`, the step from `start` (a state saved at the step's start)
     /// is repeated with end inputs `end` but `end[j] + delta[j]`, and the

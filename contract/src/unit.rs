@@ -352,6 +352,24 @@ pub trait Unit: Send {
         )))
     }
 
+    /// A hint from a master that closes the next step by `correct_step`
+    /// (`newton.one_sweep`): the unit may leave the end of that step partly
+    /// taken, with only `coupled` (the output indices the master reads before
+    /// correcting) brought to the step's end, since the correction takes the
+    /// end again at the moved state. The master then calls `correct_step` or
+    /// `complete_step` before it reads the other outputs or saves the state;
+    /// a restore drops a pending end. Default: ignored.
+    fn defer_step_end(&mut self, coupled: &[usize]) {
+        let _ = coupled;
+    }
+
+    /// Takes the end of a step left pending by [`Unit::defer_step_end`], at
+    /// the state the step reached; returns whether one was pending (the
+    /// outputs changed). Default: none is ever pending.
+    fn complete_step(&mut self) -> Result<bool, UnitError> {
+        Ok(false)
+    }
+
     /// The quantities along the unit it can report (constant over its life,
     /// known before `initialize`). Default: none.
     fn fields(&self) -> Vec<Field> {
@@ -531,6 +549,14 @@ macro_rules! forward_unit {
 
             fn correct_step(&mut self, inputs: Inputs<'_>, change: &[f64]) -> Result<(), UnitError> {
                 (**self).correct_step(inputs, change)
+            }
+
+            fn defer_step_end(&mut self, coupled: &[usize]) {
+                (**self).defer_step_end(coupled)
+            }
+
+            fn complete_step(&mut self) -> Result<bool, UnitError> {
+                (**self).complete_step()
             }
 
             fn static_inputs(&self) -> Vec<usize> {

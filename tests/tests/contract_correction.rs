@@ -168,3 +168,78 @@ fn a_step_correction_is_refused_in_sub_steps_and_by_a_unit_that_does_not_declare
     let error = cable.correct_step(&vec![0.0; start.len()]).unwrap_err();
     assert!(error.to_string().contains("step correction"), "{error}");
 }
+
+/// The outputs after `driver` steps from `slot` with `inputs`, told (or not)
+/// that the step will be corrected; then, after `finish` (a correction, or
+/// taking a pending end), and after one more step: the three output vectors
+/// and whether an end was pending.
+fn stepped_with_end(
+    driver: &mut Driver,
+    slot: &DriverSlot,
+    (t, h): (Time, Time),
+    (inputs, deferred): (&[f64], bool),
+    finish: &dyn Fn(&mut Driver) -> bool,
+) -> ([Vec<f64>; 3], bool) {
+    let n_out = driver.description().outputs.len();
+    let ends: Vec<usize> = (0..n_out.min(18)).collect();
+    driver.restore(slot).unwrap();
+    driver.set_inputs(inputs).unwrap();
+    if deferred {
+        driver.defer_step_end(&ends);
+    }
+    driver.do_step(t, h).unwrap();
+    let mut out = [vec![0.0; n_out], vec![0.0; n_out], vec![0.0; n_out]];
+    driver.outputs(&mut out[0]).unwrap();
+    let pending = finish(driver);
+    driver.outputs(&mut out[1]).unwrap();
+    driver.do_step(t + h, h).unwrap();
+    driver.outputs(&mut out[2]).unwrap();
+    (out, pending)
+}
+
+#[test]
+fn a_step_end_left_pending_for_its_correction_is_the_whole_end_to_the_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut deferring = Vec::new();
+    for sample in stepped_samples(dir.path(), |c| c.step_correction) {
+        let SteppedSample {
+            kind,
+            mut driver,
+            slot,
+            step,
+            inputs,
+            ..
+        } = sample;
+        let change: Vec<f64> = (inputs.iter().enumerate())
+            .map(|(j, u)| 1e-4 * u.abs().max(1.0) * [1.0, -0.7, 0.4][j % 3])
+            .collect();
+        let complete = |d: &mut Driver| d.complete_step().unwrap();
+        let correct = |d: &mut Driver| {
+            let n = d.description().outputs.len() * change.len();
+            d.step_jacobian(&mut vec![0.0; n]).unwrap();
+            d.correct_step(&change).unwrap();
+            false
+        };
+        for (finish, what) in [
+            (&complete as &dyn Fn(&mut Driver) -> bool, "taken"),
+            (&correct, "corrected"),
+        ] {
+            let (whole, none) =
+                stepped_with_end(&mut driver, &slot, step, (&inputs, false), finish);
+            let (left, pending) =
+                stepped_with_end(&mut driver, &slot, step, (&inputs, true), finish);
+            assert!(!none, "{kind}: an end pending without the hint");
+            // Before its end is taken, a pending step gives its end outputs.
+            let ends = whole[0].len().min(18);
+            assert_eq!(left[0][..ends], whole[0][..ends], "{kind}: end outputs");
+            assert_eq!(left[1], whole[1], "{kind}: outputs after the end {what}");
+            assert_eq!(left[2], whole[2], "{kind}: outputs a step later ({what})");
+            if pending {
+                deferring.push(kind);
+            }
+        }
+    }
+    // The planar section evaluates its whole length at a step's end: it
+    // leaves that end pending (the kinds whose end is cheap do not).
+    assert!(deferring.contains(&"nonlinear"), "{deferring:?}");
+}

@@ -43,6 +43,13 @@ pub struct UnitAdapter {
     delta: Vec<f64>,
     /// The last `step_jacobian` was the unit's own (not finite differences).
     pub own_jacobian: bool,
+    /// The master will close its steps by correcting them (`newton.one_sweep`):
+    /// the unit is told it may leave each step's end pending
+    /// ([`slender_contract::Unit::defer_step_end`]).
+    pub defer_end: bool,
+    /// The last step was taken with `defer_end`: its end may be pending until
+    /// a correction or [`UnitAdapter::complete_step`].
+    end_deferred: bool,
 }
 
 impl UnitAdapter {
@@ -69,6 +76,8 @@ impl UnitAdapter {
             coupled_outputs: Vec::new(),
             delta: vec![0.0; n_in],
             own_jacobian: false,
+            defer_end: false,
+            end_deferred: false,
         }
     }
 
@@ -173,6 +182,10 @@ impl UnitAdapter {
         self.driver
             .set_inputs(&self.inputs)
             .map_err(|e| self.fail("set_inputs", t + h, iteration, e))?;
+        if self.defer_end {
+            self.driver.defer_step_end(&self.coupled_outputs);
+        }
+        self.end_deferred = self.defer_end;
         let result = self.driver.do_step(t, h);
         self.counters.do_step_calls += 1;
         let report = result.map_err(|e| self.fail("do_step", t + h, iteration, e))?;
@@ -283,6 +296,7 @@ impl UnitAdapter {
     ) -> Result<(), MasterError> {
         let started = Instant::now();
         self.own_jacobian = false;
+        self.end_deferred = false;
         self.driver
             .correct_step(change)
             .map_err(|e| self.fail("correct_step", t_end, iteration, e))?;
@@ -294,8 +308,32 @@ impl UnitAdapter {
         read
     }
 
+    /// Takes the end of the last step if the unit left it pending (a step
+    /// accepted without a correction), and reads the outputs at it.
+    pub fn complete_step(&mut self, t_end: Time, iteration: u32) -> Result<(), MasterError> {
+        if !std::mem::take(&mut self.end_deferred) {
+            return Ok(());
+        }
+        let started = Instant::now();
+        let pending = (self.driver.complete_step())
+            .map_err(|e| self.fail("complete_step", t_end, iteration, e))?;
+        let read = if pending {
+            self.read_outputs(t_end, iteration)
+        } else {
+            Ok(())
+        };
+        self.step_time += started.elapsed();
+        read
+    }
+
     /// Saves the unit's state for a later `restore`.
     pub fn save(&mut self, t: Time) -> Result<(), MasterError> {
+        if self.end_deferred {
+            return Err(MasterError::Invalid(format!(
+                "unit `{}`: state saved while its last step's end is pending",
+                self.name
+            )));
+        }
         self.driver
             .save(&mut self.saved)
             .map_err(|e| self.fail("save_state", t, 0, e))
@@ -315,6 +353,7 @@ impl UnitAdapter {
                 self.name
             )));
         }
+        self.end_deferred = false;
         let restored = if warm {
             self.driver.restore_warm(&self.saved)
         } else {

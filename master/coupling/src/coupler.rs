@@ -391,6 +391,16 @@ impl Master {
         Ok(())
     }
 
+    /// Takes the step ends the units left pending for a correction that did
+    /// not come (the step closed without one, or not for that unit).
+    fn complete_steps(&mut self, iteration: u32) -> Result<(), MasterError> {
+        let t_end = self.time + self.h;
+        for unit in &mut self.units {
+            unit.complete_step(t_end, iteration)?;
+        }
+        Ok(())
+    }
+
     /// Rolls every unit back to the start of the step.
     pub(crate) fn restore_all(&mut self, iteration: u32) -> Result<(), MasterError> {
         if self.initializing {
@@ -422,15 +432,18 @@ impl Master {
             self.sweep(k)?;
             let residual = self.residual();
             if residual.scaled <= 1.0 {
+                self.complete_steps(k)?;
                 return Ok((k, residual.scaled, true));
             }
             if k == max {
+                self.complete_steps(k)?;
                 return self.give_up(k, residual);
             }
             if update(self, k)? == Update::Corrected {
                 let corrected = self.residual();
                 if corrected.scaled <= 1.0 {
                     self.counters.corrected_steps += 1;
+                    self.complete_steps(k)?;
                     return Ok((k, corrected.scaled, true));
                 }
             }

@@ -89,10 +89,12 @@ impl Master {
         }
         work.age += 1;
         work.last_residual = f64::INFINITY;
-        self.warm_repeats =
-            settings.warm_start && settings.derivatives == Derivatives::Units && !self.initializing;
+        let own_derivatives = settings.derivatives == Derivatives::Units && !self.initializing;
+        self.warm_repeats = settings.warm_start && own_derivatives;
+        self.defer_step_ends(settings.one_sweep && own_derivatives);
         let result = self.newton_iterations(&mut work, settings);
         self.warm_repeats = false;
+        self.defer_step_ends(false);
         self.newton = Some(work);
         result
     }
@@ -149,6 +151,15 @@ impl Master {
         (self.units.iter().enumerate())
             .find(|(u, unit)| self.iterated[*u] && !unit.declares_step_correction())
             .map(|(_, unit)| unit.name.as_str())
+    }
+
+    /// With `on`, tells every iterated unit that can correct its steps that
+    /// they will be corrected, so it may leave each step's end pending (the
+    /// correction takes it again at the moved state).
+    fn defer_step_ends(&mut self, on: bool) {
+        for (u, unit) in self.units.iter_mut().enumerate() {
+            unit.defer_end = on && self.iterated[u] && unit.declares_step_correction();
+        }
     }
 
     /// Whether every iterated unit can move its last step to the new iterate

@@ -49,7 +49,11 @@ impl NonlinearSection {
         self.add_end_load_moments((&w.q0, t1), 1.0, &mut w.f1);
         self.state.ledger = w.before_end.ledger;
         self.state.lambda.clone_from(&w.before_end.lambda);
-        std::mem::swap(&mut self.state.outside, &mut w.outside);
+        // A pending end left the step start's outside force in place.
+        if !std::mem::take(&mut w.end_pending) {
+            std::mem::swap(&mut self.state.outside, &mut w.outside);
+        }
+        w.defer_this = false;
         let jump = w.before_end.surface_jump;
         let ended = self.end_step(&mut w, h, jump);
         let start = w.before_end.bend_start;

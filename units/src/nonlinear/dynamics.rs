@@ -12,40 +12,7 @@ use crate::integrators::hht::{
 };
 use crate::numerics::banded::{BandLdlt, SymmetricBand};
 
-/// The buffers of one step, kept between steps.
-#[derive(Default)]
-pub(super) struct StepWork {
-    pub(super) f0: Vec<f64>,
-    pub(super) f1: Vec<f64>,
-    g0: Vec<f64>,
-    /// Displacements at the step's start.
-    pub(super) q0: Vec<f64>,
-    /// The state at the step's start, restored before sub-stepping.
-    backup: Option<super::SectionState>,
-    held: Vec<(usize, [f64; 3])>,
-    /// A linear section's drag remainder F_d(v_0) - D_0 v_0 at the step's
-    /// start, and its step's loads.
-    pub(super) drag_remainder: Vec<f64>,
-    pub(super) linear_f0: Vec<f64>,
-    pub(super) linear_f1: Vec<f64>,
-    /// The outside force at the step's end (`energy::record_step`).
-    pub(super) outside: Vec<f64>,
-    /// What the last step's end changed, kept to take that end again at a
-    /// corrected state (`correction.rs`): the energy ledger and the
-    /// contacts' Lagrangian parameters before it, the bend moments at the
-    /// step's start, the moving surfaces' energy jump.
-    pub(super) before_end: EndOfStep,
-}
-
-/// The section's ledger and Lagrangian parameters before a step's end was
-/// taken, the bend moments at the step's start and its surfaces' jump.
-#[derive(Default)]
-pub(super) struct EndOfStep {
-    pub(super) ledger: super::energy::EnergyLedger,
-    pub(super) lambda: Vec<f64>,
-    pub(super) bend_start: [f64; 2],
-    pub(super) surface_jump: f64,
-}
+pub(super) use super::step_work::StepWork;
 
 impl NonlinearSection {
     /// The tangent stiffness (elements and environment, without velocity terms)
@@ -215,7 +182,10 @@ impl NonlinearSection {
         t1: f64,
         h: f64,
     ) -> Result<u32, UnitError> {
+        // A pending end the master did not take (it always does): taken now.
+        self.complete_pending_end()?;
         let mut w = std::mem::take(&mut self.work);
+        w.defer_this = std::mem::take(&mut w.defer_next);
         self.jacobian_work.ready = false;
         let offers = self.offers_jacobian();
         if let (Some(guess), true) = (self.jacobian_work.warm.guess(t0, inputs.end()), offers) {
@@ -276,6 +246,8 @@ impl NonlinearSection {
     ) -> Result<u32, Failure> {
         let mut bend = self.state.bend_now;
         w.before_end.bend_start = bend;
+        // Only a whole step's end can be taken again by a correction.
+        w.defer_this &= pieces == 1;
         let mut total = 0;
         for k in 0..pieces {
             let (s0, s1) = (
@@ -397,6 +369,13 @@ impl NonlinearSection {
         w.before_end.ledger = self.state.ledger;
         w.before_end.lambda.clone_from(&self.state.lambda);
         w.before_end.surface_jump = surface_jump;
+        if w.defer_this {
+            let load = std::mem::take(&mut w.f1);
+            self.end_reactions(w, &load);
+            w.f1 = load;
+            w.end_pending = true;
+            return Ok(());
+        }
         let q0 = self.energy_conserving().then_some(w.q0.as_slice());
         let kept = self.restoring_forces(q0, Some(&w.drag_remainder));
         let surface_power = self.surface_power();

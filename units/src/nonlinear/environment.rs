@@ -154,27 +154,78 @@ impl Environment {
         (out, mut also): (&mut [f64], Option<&mut [f64]>),
     ) {
         for e in 0..self.drag.len() {
-            let b = 3 * e;
-            let (i, j) = (b, b + 3);
-            let local = |x: &[f64]| [x[i], x[i + 1], x[i + 2], x[j], x[j + 1], x[j + 2]];
-            let (f, k) = self.element_drag(model, e, (&local(q), &local(v)), tangent.is_some());
-            for node in [i, j] {
-                out[node] += scale * 0.5 * f[0];
-                out[node + 1] += scale * 0.5 * f[1];
-                if let Some(also) = also.as_deref_mut() {
-                    also[node] += scale * 0.5 * f[0];
-                    also[node + 1] += scale * 0.5 * f[1];
-                }
+            let tangent = tangent.as_mut().map(|(b, f)| (&mut **b, *f));
+            self.add_element_drag(model, e, (q, v), scale, tangent, (out, also.as_deref_mut()));
+        }
+    }
+
+    /// The drag of the elements `elements` alone and the whole contact force
+    /// at (q, v, t), added to `out` as [`Self::add_force_keeping_drag`] adds
+    /// them (same order of sums): their rows at the end nodes of a section
+    /// whose `elements` are its end elements are the whole force's.
+    pub fn add_end_force(
+        &self,
+        model: &Model,
+        (q, v, t): (&[f64], &[f64], f64),
+        lambda: &[f64],
+        elements: &[usize],
+        out: &mut [f64],
+    ) {
+        for &e in elements.iter().filter(|&&e| e < self.drag.len()) {
+            self.add_element_drag(model, e, (q, v), 1.0, None, (out, None));
+        }
+        if !self.contacts.is_empty() {
+            (self.contacts).add_force(model, (q, t, lambda), 1.0, true, None, out);
+        }
+    }
+
+    /// The drag's damping tangent (N s/m) of the elements `elements` alone at
+    /// (q, v), added to `band`: the entries a step's interface sensitivity
+    /// reads at its end nodes come from their elements only, so the rest of
+    /// the section need not be evaluated again.
+    pub fn add_drag_damping_of(
+        &self,
+        model: &Model,
+        (q, v): (&[f64], &[f64]),
+        elements: &[usize],
+        band: &mut SymmetricBand,
+        scratch: &mut [f64],
+    ) {
+        for &e in elements.iter().filter(|&&e| e < self.drag.len()) {
+            self.add_element_drag(model, e, (q, v), 1.0, Some((band, 1.0)), (scratch, None));
+        }
+    }
+
+    /// Element `e`'s part of [`Self::add_drag`].
+    fn add_element_drag(
+        &self,
+        model: &Model,
+        e: usize,
+        (q, v): (&[f64], &[f64]),
+        scale: f64,
+        tangent: Option<(&mut SymmetricBand, f64)>,
+        (out, mut also): (&mut [f64], Option<&mut [f64]>),
+    ) {
+        let b = 3 * e;
+        let (i, j) = (b, b + 3);
+        let local = |x: &[f64]| [x[i], x[i + 1], x[i + 2], x[j], x[j + 1], x[j + 2]];
+        let (f, k) = self.element_drag(model, e, (&local(q), &local(v)), tangent.is_some());
+        for node in [i, j] {
+            out[node] += scale * 0.5 * f[0];
+            out[node + 1] += scale * 0.5 * f[1];
+            if let Some(also) = also.as_deref_mut() {
+                also[node] += scale * 0.5 * f[0];
+                also[node + 1] += scale * 0.5 * f[1];
             }
-            if let Some((band, factor)) = tangent.as_mut() {
-                // Each node's velocity enters vr with 1/2, each node takes half the force.
-                for a in [i, j] {
-                    for bn in [i, j] {
-                        for r in 0..2 {
-                            for c in 0..2 {
-                                if a + r >= bn + c {
-                                    band.add(a + r, bn + c, *factor * 0.25 * k[r][c]);
-                                }
+        }
+        if let Some((band, factor)) = tangent {
+            // Each node's velocity enters vr with 1/2, each node takes half the force.
+            for a in [i, j] {
+                for bn in [i, j] {
+                    for r in 0..2 {
+                        for c in 0..2 {
+                            if a + r >= bn + c {
+                                band.add(a + r, bn + c, factor * 0.25 * k[r][c]);
                             }
                         }
                     }

@@ -79,7 +79,10 @@ impl NonlinearSection {
     }
 
     /// The drag's tangent damping at the step's end state (zero without
-    /// drag), or the one a linear section's step used.
+    /// drag), or the one a linear section's step used. The sensitivity reads
+    /// it only at the end nodes' rows and columns (the held DOFs and the
+    /// reactions are there), so only the two end elements are evaluated:
+    /// those entries are the whole section's, in the same order of sums.
     fn tangents(&mut self, w: &mut JacobianWork) {
         let n = self.model.dofs();
         let b = w
@@ -89,7 +92,18 @@ impl NonlinearSection {
             Some(d0) => b.copy_from(d0),
             None => {
                 b.fill_zero();
-                self.add_drag_damping(b, &mut w.force);
+                w.force.clear();
+                w.force.resize(n, 0.0);
+                let last = self.model.elements.len().saturating_sub(1);
+                let ends: &[usize] = if last == 0 { &[0] } else { &[0, last] };
+                let s = &self.state;
+                (self.environment).add_drag_damping_of(
+                    &self.model,
+                    (&s.q, &s.v),
+                    ends,
+                    b,
+                    &mut w.force,
+                );
             }
         }
     }

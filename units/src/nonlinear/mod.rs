@@ -11,6 +11,7 @@
 
 pub mod contact;
 mod correction;
+mod deferred_end;
 pub mod element;
 pub mod ends;
 pub mod environment;
@@ -28,6 +29,7 @@ mod moments;
 mod reduced;
 mod start_shape;
 mod statics;
+mod step_work;
 mod validation;
 
 use crate::contract::{
@@ -378,39 +380,6 @@ impl NonlinearSection {
         self.ends.iter().filter(|r| r.is_kinematic())
     }
 
-    /// Tension (N), bending moment (N m) and curvature (1/m) at arc length `s`,
-    /// the moment interpolated linearly between the element's recovered end
-    /// moments (see `moments.rs`).
-    pub fn section_forces(&self, s: f64) -> [f64; 3] {
-        let (e, xi) = self.model.locate(s);
-        let local = self.model.local_forces(&self.state.q, e);
-        let ends = self.model.recovered_moments(e, &local, self);
-        let moment = (1.0 - xi) * -ends[0] + xi * ends[1];
-        [local.axial, moment, moment / self.model.elements[e].ei]
-    }
-
-    /// The magnitude (N) of the internal force at arc length `s`: the element's
-    /// axial force and its shear (m0 + m1) / l, frame-free, so any section's end
-    /// force can be compared with it. At a node between two elements, the mean
-    /// of theirs: what a cut at that node transmits, each side carrying half of
-    /// its element's weight and inertia there.
-    pub fn internal_force(&self, s: f64) -> f64 {
-        let magnitude = |e: usize| {
-            let local = self.model.local_forces(&self.state.q, e);
-            let shear = (local.moments[0] + local.moments[1]) / local.chord;
-            local.axial.hypot(shear)
-        };
-        let (e, xi) = self.model.locate(s);
-        // At a node to round-off of the arc lengths.
-        if xi < 1e-9 && e > 0 {
-            0.5 * (magnitude(e - 1) + magnitude(e))
-        } else if xi > 1.0 - 1e-9 && e + 1 < self.model.elements.len() {
-            0.5 * (magnitude(e) + magnitude(e + 1))
-        } else {
-            magnitude(e)
-        }
-    }
-
     /// The touchdown point (m of arc) as a continuous function of the state:
     /// where the seabed gap crosses zero, linear between the nodes; None
     /// without seabed contact.
@@ -565,6 +534,7 @@ impl Unit for NonlinearSection {
 
     slender_contract::state_in_field!(state: SectionState, |unit| {
         unit.jacobian_work.ready = false;
+        unit.work.end_pending = false;
     });
 
     fn step_jacobian(&mut self, inputs: Inputs<'_>, jacobian: &mut [f64]) -> Result<(), UnitError> {
@@ -577,6 +547,14 @@ impl Unit for NonlinearSection {
 
     fn warm_repeat(&mut self) {
         self.jacobian_work.warm.warm = true;
+    }
+
+    fn defer_step_end(&mut self, coupled: &[usize]) {
+        self.work.defer_next = self.can_defer_end(coupled);
+    }
+
+    fn complete_step(&mut self) -> Result<bool, UnitError> {
+        self.complete_pending_end()
     }
 
     fn modes(&self, count: usize) -> Result<crate::contract::ModalAnalysis, UnitError> {

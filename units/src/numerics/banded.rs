@@ -121,6 +121,25 @@ impl SymmetricBand {
         }
     }
 
+    /// Row `i` of [`Self::mul_add`]: `y_i + alpha (A x)_i`, summed in the
+    /// order `mul_add` sums it (the same value to the bit), for a caller that
+    /// needs a few rows of the product.
+    pub fn mul_add_row(&self, alpha: f64, x: &[f64], i: usize, y_i: f64) -> f64 {
+        let w = self.w;
+        let row = &self.band[i * (w + 1)..(i + 1) * (w + 1)];
+        let mut sum = row[0] * x[i];
+        for k in 1..=w.min(i) {
+            sum += row[k] * x[i - k];
+        }
+        let mut y = y_i + alpha * sum;
+        let below = &x[i + 1..=(i + w).min(self.n - 1)];
+        for (k, xj) in below.iter().enumerate() {
+            let j = i + 1 + k;
+            y += self.band[j * (w + 1) + k + 1] * (alpha * xj);
+        }
+        y
+    }
+
     /// x^T A x, without allocating.
     pub fn quadratic_form(&self, x: &[f64]) -> f64 {
         let w = self.w;
@@ -306,6 +325,22 @@ mod tests {
         a.mul_add(1.0, &x, &mut y);
         for i in 0..17 {
             assert!((y[i] - b[i]).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_row_of_the_product_is_the_whole_product_s_to_the_bit() {
+        let a = sample(11, 3);
+        let x: Vec<f64> = (0..11).map(|i| (1.3 * i as f64).cos()).collect();
+        let y0: Vec<f64> = (0..11).map(|i| 0.1 * i as f64 - 0.4).collect();
+        let mut y = y0.clone();
+        a.mul_add(-0.7, &x, &mut y);
+        for i in 0..11 {
+            assert_eq!(
+                a.mul_add_row(-0.7, &x, i, y0[i]).to_bits(),
+                y[i].to_bits(),
+                "{i}"
+            );
         }
     }
 

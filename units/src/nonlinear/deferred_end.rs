@@ -1,0 +1,87 @@
+//! A step's end left pending for the correction that follows it
+//! (`Unit::defer_step_end`, `newton.one_sweep`). A step's end evaluates every
+//! element, its drag and the contacts at the reached state (forces,
+//! reactions, bend moments, energy ledger); a step the master then corrects
+//! takes that end again at the moved state (`correction.rs`), so the first
+//! one is wasted. Deferred, the step's end takes only what the master reads
+//! before correcting: the reactions at the end nodes, from the two end
+//! elements, their drag and the contacts, summed in the order the whole end
+//! sums them (the same values to the bit). The rest is taken by the
+//! correction or by `complete_step`.
+
+use super::NonlinearSection;
+use super::dynamics::{Failure, StepWork};
+use super::model::element_dofs;
+use crate::contract::UnitError;
+
+/// The outputs at the two ends (position, velocity and force, x, z and
+/// rotation at each): what a deferred end brings to the step's end.
+const END_OUTPUTS: usize = 18;
+
+impl NonlinearSection {
+    /// Whether the section can leave a step's end pending with `coupled`
+    /// (the outputs the master reads before correcting) exact: a section that
+    /// corrects its steps, on its nonlinear restoring force (not linearised),
+    /// coupled by its end outputs alone.
+    pub(super) fn can_defer_end(&self, coupled: &[usize]) -> bool {
+        self.offers_correction()
+            && self.linear.is_none()
+            && coupled.iter().all(|&o| o < END_OUTPUTS)
+    }
+
+    /// The support reactions at the end nodes at the current state under the
+    /// step's end `load`, as the whole end forms them; the other DOFs' are
+    /// left as they were.
+    pub(super) fn end_reactions(&mut self, w: &mut StepWork, load: &[f64]) {
+        let n = self.model.dofs();
+        let nodes = self.model.reference.len();
+        let last = self.model.elements.len() - 1;
+        let elements: &[usize] = if last == 0 { &[0] } else { &[0, last] };
+        let g = &mut w.end_force;
+        g.clear();
+        g.resize(n, 0.0);
+        let s = &self.state;
+        for &e in elements {
+            let element = &self.model.elements[e];
+            let state = element.evaluate(self.model.formulation, &element_dofs(&s.q, e));
+            for (o, f) in g[3 * e..3 * e + 6].iter_mut().zip(&state.force) {
+                *o += f;
+            }
+        }
+        if !self.environment.is_empty() {
+            let at = (s.q.as_slice(), s.v.as_slice(), s.t);
+            (self.environment).add_end_force(&self.model, at, &s.lambda, elements, g);
+        }
+        let s = &mut self.state;
+        for node in [0, nodes - 1] {
+            for d in 3 * node..3 * node + 3 {
+                let mut r = g[d] - load[d];
+                r = self.m.mul_add_row(1.0, &s.a, d, r);
+                if let Some(c) = &self.c {
+                    r = c.mul_add_row(1.0, &s.v, d, r);
+                }
+                s.reaction[d] = r;
+            }
+        }
+    }
+
+    /// Takes the end of the last step if it was left pending; whether it was.
+    pub(super) fn complete_pending_end(&mut self) -> Result<bool, UnitError> {
+        if !self.work.end_pending {
+            return Ok(false);
+        }
+        let mut w = std::mem::take(&mut self.work);
+        w.end_pending = false;
+        w.defer_this = false;
+        let (h, jump) = (self.jacobian_work.h, w.before_end.surface_jump);
+        let ended = self.end_step(&mut w, h, jump);
+        let start = w.before_end.bend_start;
+        self.work = w;
+        let s = &mut self.state;
+        s.bend_step = [start[0].max(s.bend_now[0]), start[1].max(s.bend_now[1])];
+        match ended {
+            Ok(()) => Ok(true),
+            Err(Failure::Newton(e) | Failure::Other(e)) => Err(e),
+        }
+    }
+}
