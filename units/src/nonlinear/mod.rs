@@ -488,6 +488,10 @@ impl Unit for NonlinearSection {
                 out[base + 6 + c.component] = -c.load(inputs, self.state.t, 1.0);
             }
         }
+        if self.work.end_pending {
+            // The rest is the step's end's, taken with it (`deferred_end.rs`).
+            return;
+        }
         let energies = self.energies();
         let [kinetic, strain, potential] = energies;
         let [max_moment, max_tension] = self.state.largest;
