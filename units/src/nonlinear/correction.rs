@@ -7,7 +7,6 @@
 //! last entry, from what they were before that end.
 
 use super::NonlinearSection;
-use super::dynamics::Failure;
 use crate::contract::{Inputs, UnitError};
 use crate::integrators::hht_sensitivity::Drive;
 
@@ -53,17 +52,8 @@ impl NonlinearSection {
         if !std::mem::take(&mut w.end_pending) {
             std::mem::swap(&mut self.state.outside, &mut w.outside);
         }
-        w.defer_this = false;
-        let jump = w.before_end.surface_jump;
-        let ended = self.end_step(&mut w, h, jump);
-        let start = w.before_end.bend_start;
-        self.work = w;
-        let s = &mut self.state;
-        s.bend_step = [start[0].max(s.bend_now[0]), start[1].max(s.bend_now[1])];
-        match ended {
-            Ok(()) => crate::contract::require_finite_state("nonlinear section", &s.q),
-            Err(Failure::Newton(e) | Failure::Other(e)) => Err(e),
-        }
+        self.take_end(w, h)?;
+        crate::contract::require_finite_state("nonlinear section", &self.state.q)
     }
 
     /// Moves q by `dq`, v and a by Newmark's relations for a change of the

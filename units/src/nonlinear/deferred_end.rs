@@ -72,15 +72,23 @@ impl NonlinearSection {
         }
         let mut w = std::mem::take(&mut self.work);
         w.end_pending = false;
+        let h = self.jacobian_work.h;
+        self.take_end(w, h).map(|()| true)
+    }
+
+    /// The end of the step of `h` seconds in `w` taken whole at the current
+    /// state (after a pending end, or again after a correction), its bend
+    /// moments the largest of the step's start and end; `w` back in place.
+    pub(super) fn take_end(&mut self, mut w: StepWork, h: f64) -> Result<(), UnitError> {
         w.defer_this = false;
-        let (h, jump) = (self.jacobian_work.h, w.before_end.surface_jump);
+        let jump = w.before_end.surface_jump;
         let ended = self.end_step(&mut w, h, jump);
         let start = w.before_end.bend_start;
         self.work = w;
         let s = &mut self.state;
         s.bend_step = [start[0].max(s.bend_now[0]), start[1].max(s.bend_now[1])];
         match ended {
-            Ok(()) => Ok(true),
+            Ok(()) => Ok(()),
             Err(Failure::Newton(e) | Failure::Other(e)) => Err(e),
         }
     }
