@@ -94,6 +94,21 @@ impl Equilibrium {
         }
     }
 
+    /// The equilibrium's nodes (x, z in m) with x moved by `shift` (m) times
+    /// their arc fraction: the start shape of a nearby equilibrium's solve,
+    /// its end moved by `shift` in x (the hang-off's next trial).
+    pub(super) fn nodes_moved_by(&self, shift: f64) -> Vec<[f64; 2]> {
+        let section = self.section.unit();
+        let arc = &section.model().arc;
+        let length = arc.last().copied().unwrap_or(1.0);
+        (arc.iter())
+            .map(|&s| {
+                let [x, z] = section.position_at(s);
+                [x + shift * s / length, z]
+            })
+            .collect()
+    }
+
     /// The angle (deg) between the vertical and the pipe's tangent line at
     /// the structure's end (0 hanging straight down or standing straight up).
     pub(super) fn end_angle_from_vertical(&self) -> f64 {
