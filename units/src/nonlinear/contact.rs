@@ -99,6 +99,19 @@ fn for_each_point(
     model: &Model,
     tributary: &[f64],
     (q, t): (&[f64], f64),
+    visit: impl FnMut(Point),
+) {
+    for_each_point_of(contact, model, tributary, (q, t), None, visit);
+}
+
+/// [`for_each_point`], with `ends` the nodal points of those two nodes alone
+/// (every roller still).
+fn for_each_point_of(
+    contact: &NodalContact,
+    model: &Model,
+    tributary: &[f64],
+    (q, t): (&[f64], f64),
+    ends: Option<[usize; 2]>,
     mut visit: impl FnMut(Point),
 ) {
     if let Shape::Rollers { .. } = &contact.surface.shape {
@@ -110,7 +123,19 @@ fn for_each_point(
         }
         return;
     }
-    for j in (0..model.reference.len()).rev() {
+    let nodes = model.reference.len();
+    let (all, pair) = match ends {
+        None => (0..nodes, None),
+        Some([a, b]) => (
+            0..0,
+            Some(if a == b {
+                vec![a]
+            } else {
+                vec![b.max(a), a.min(b)]
+            }),
+        ),
+    };
+    for j in all.rev().chain(pair.into_iter().flatten()) {
         let r = model.reference[j];
         let x = r[0] + q[3 * j];
         let Some((f, _)) = contact.surface.at(x, t) else {
@@ -259,6 +284,34 @@ impl NodalContacts {
         (q, t, lambda): (&[f64], f64, &[f64]),
         scale: f64,
         skip_discrete: bool,
+        tangent: ContactTangent<'_>,
+        out: &mut [f64],
+    ) {
+        let at = (q, t, lambda, None);
+        self.add_force_of(model, at, scale, skip_discrete, tangent, out);
+    }
+
+    /// The contact force at `q` (time t) added to `out` as
+    /// [`Self::add_force`] adds it, the laws stepped by their discrete
+    /// gradient left out, from every roller and the nodal points of nodes
+    /// `ends` alone: their DOFs' rows are the whole force's (a section's
+    /// step end left for its correction).
+    pub fn add_force_at_ends(
+        &self,
+        model: &Model,
+        (q, t, lambda): (&[f64], f64, &[f64]),
+        ends: [usize; 2],
+        out: &mut [f64],
+    ) {
+        self.add_force_of(model, (q, t, lambda, Some(ends)), 1.0, true, None, out);
+    }
+
+    fn add_force_of(
+        &self,
+        model: &Model,
+        (q, t, lambda, ends): (&[f64], f64, &[f64], Option<[usize; 2]>),
+        scale: f64,
+        skip_discrete: bool,
         mut tangent: ContactTangent<'_>,
         out: &mut [f64],
     ) {
@@ -267,7 +320,7 @@ impl NodalContacts {
                 continue;
             }
             let lambda = &lambda[self.offsets[c]..];
-            for_each_point(contact, model, &self.tributary, (q, t), |p| {
+            for_each_point_of(contact, model, &self.tributary, (q, t), ends, |p| {
                 let (_, g, k) = contact.method.evaluate(p.gap, lambda[p.index]);
                 if g == 0.0 && k == 0.0 {
                     return;

@@ -159,10 +159,11 @@ impl Environment {
         }
     }
 
-    /// The drag of the elements `elements` alone and the whole contact force
-    /// at (q, v, t), added to `out` as [`Self::add_force_keeping_drag`] adds
-    /// them (same order of sums): their rows at the end nodes of a section
-    /// whose `elements` are its end elements are the whole force's.
+    /// The drag of the elements `elements` alone and the contact force at the
+    /// end nodes (and of every roller) at (q, v, t), added to `out` as
+    /// [`Self::add_force_keeping_drag`] adds them (same order of sums): their
+    /// rows at the end nodes of a section whose `elements` are its end
+    /// elements are the whole force's.
     pub fn add_end_force(
         &self,
         model: &Model,
@@ -175,7 +176,8 @@ impl Environment {
             self.add_element_drag(model, e, (q, v), 1.0, None, (out, None));
         }
         if !self.contacts.is_empty() {
-            (self.contacts).add_force(model, (q, t, lambda), 1.0, true, None, out);
+            let ends = [0, model.reference.len() - 1];
+            (self.contacts).add_force_at_ends(model, (q, t, lambda), ends, out);
         }
     }
 
