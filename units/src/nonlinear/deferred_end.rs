@@ -11,7 +11,6 @@
 
 use super::NonlinearSection;
 use super::dynamics::{Failure, StepWork};
-use super::model::element_dofs;
 use crate::contract::UnitError;
 
 /// The outputs at the two ends (position, velocity and force, x, z and
@@ -30,23 +29,18 @@ impl NonlinearSection {
     }
 
     /// The support reactions at the end nodes at the current state under the
-    /// step's end `load`, as the whole end forms them; the other DOFs' are
-    /// left as they were.
-    pub(super) fn end_reactions(&mut self, w: &mut StepWork, load: &[f64]) {
+    /// step's end `load`, as the whole end forms them (`g`: scratch for the
+    /// restoring force); the other DOFs' are left as they were.
+    pub(super) fn end_reactions(&mut self, load: &[f64], g: &mut Vec<f64>) {
         let n = self.model.dofs();
         let nodes = self.model.reference.len();
-        let last = self.model.elements.len() - 1;
-        let elements: &[usize] = if last == 0 { &[0] } else { &[0, last] };
-        let g = &mut w.end_force;
+        let (ends, count) = self.model.end_elements();
+        let elements = &ends[..count];
         g.clear();
         g.resize(n, 0.0);
         let s = &self.state;
         for &e in elements {
-            let element = &self.model.elements[e];
-            let state = element.evaluate(self.model.formulation, &element_dofs(&s.q, e));
-            for (o, f) in g[3 * e..3 * e + 6].iter_mut().zip(&state.force) {
-                *o += f;
-            }
+            self.model.add_element_force(e, &s.q, g);
         }
         if !self.environment.is_empty() {
             let at = (s.q.as_slice(), s.v.as_slice(), s.t);
@@ -80,9 +74,8 @@ impl NonlinearSection {
     /// state (after a pending end, or again after a correction), its bend
     /// moments the largest of the step's start and end; `w` back in place.
     pub(super) fn take_end(&mut self, mut w: StepWork, h: f64) -> Result<(), UnitError> {
-        w.defer_this = false;
         let jump = w.before_end.surface_jump;
-        let ended = self.end_step(&mut w, h, jump);
+        let ended = self.end_step(&mut w, h, jump, false);
         let start = w.before_end.bend_start;
         self.work = w;
         let s = &mut self.state;

@@ -185,7 +185,7 @@ impl NonlinearSection {
         // A pending end the master did not take (it always does): taken now.
         self.complete_pending_end()?;
         let mut w = std::mem::take(&mut self.work);
-        w.defer_this = std::mem::take(&mut w.defer_next);
+        let defer = std::mem::take(&mut w.defer_next);
         self.jacobian_work.ready = false;
         let offers = self.offers_jacobian();
         if let (Some(guess), true) = (self.jacobian_work.warm.guess(t0, inputs.end()), offers) {
@@ -198,7 +198,7 @@ impl NonlinearSection {
         // copy for sub-stepping is only taken then (nothing per ordinary step).
         let mut pieces = 1;
         let result = loop {
-            match self.step_in_pieces(inputs, &mut w, (t0, t1, h), pieces) {
+            match self.step_in_pieces(inputs, &mut w, (t0, t1, h), (pieces, defer)) {
                 Ok(iterations) => break Ok(iterations),
                 Err(failure) => {
                     if pieces > 1 {
@@ -237,17 +237,18 @@ impl NonlinearSection {
     }
 
     /// The step as `pieces` equal sub-steps; the bend moments' maxima over all.
+    /// With `defer`, a whole step's end is left pending (`deferred_end.rs`;
+    /// only a whole step's end can be taken again by a correction).
     fn step_in_pieces(
         &mut self,
         inputs: Inputs<'_>,
         w: &mut StepWork,
         (t0, t1, h): (f64, f64, f64),
-        pieces: u32,
+        (pieces, defer): (u32, bool),
     ) -> Result<u32, Failure> {
         let mut bend = self.state.bend_now;
         w.before_end.bend_start = bend;
-        // Only a whole step's end can be taken again by a correction.
-        w.defer_this &= pieces == 1;
+        let defer = defer && pieces == 1;
         let mut total = 0;
         for k in 0..pieces {
             let (s0, s1) = (
@@ -258,7 +259,7 @@ impl NonlinearSection {
             let b = if k + 1 == pieces { t1 } else { t0 + s1 * h };
             // The coupling step's own length when whole (bit-identical to before).
             let length = h / f64::from(pieces);
-            total += self.step_with(inputs, w, (a, b, length), (s0, s1))?;
+            total += self.step_with(inputs, w, (a, b, length), (s0, s1), defer)?;
             bend = [
                 bend[0].max(self.state.bend_now[0]),
                 bend[1].max(self.state.bend_now[1]),
@@ -275,6 +276,7 @@ impl NonlinearSection {
         w: &mut StepWork,
         (t0, t1, h): (f64, f64, f64),
         (s0, s1): (f64, f64),
+        defer: bool,
     ) -> Result<u32, Failure> {
         let n = self.model.dofs();
         w.f0.resize(n, 0.0);
@@ -342,7 +344,7 @@ impl NonlinearSection {
             }
         };
         self.state.t = t1;
-        self.end_step(w, h, surface_jump)?;
+        self.end_step(w, h, surface_jump, defer)?;
         Ok(iterations)
     }
 
@@ -359,20 +361,20 @@ impl NonlinearSection {
 
     /// After a step of length `h` (s) from `w.q0` under `w.f1`: the restoring
     /// forces, reactions and contact summary at its end, and its entry in the
-    /// energy balance (with the moving surfaces' `surface_jump`, J).
+    /// energy balance (with the moving surfaces' `surface_jump`, J). With
+    /// `defer`, the end reactions alone, the rest left pending.
     pub(super) fn end_step(
         &mut self,
         w: &mut StepWork,
         h: f64,
         surface_jump: f64,
+        defer: bool,
     ) -> Result<(), Failure> {
         w.before_end.ledger = self.state.ledger;
         w.before_end.lambda.clone_from(&self.state.lambda);
         w.before_end.surface_jump = surface_jump;
-        if w.defer_this {
-            let load = std::mem::take(&mut w.f1);
-            self.end_reactions(w, &load);
-            w.f1 = load;
+        if defer {
+            self.end_reactions(&w.f1, &mut w.end_force);
             w.end_pending = true;
             return Ok(());
         }

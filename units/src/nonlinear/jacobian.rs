@@ -94,13 +94,12 @@ impl NonlinearSection {
                 b.fill_zero();
                 w.force.clear();
                 w.force.resize(n, 0.0);
-                let last = self.model.elements.len().saturating_sub(1);
-                let ends: &[usize] = if last == 0 { &[0] } else { &[0, last] };
+                let (ends, count) = self.model.end_elements();
                 let s = &self.state;
                 (self.environment).add_drag_damping_of(
                     &self.model,
                     (&s.q, &s.v),
-                    ends,
+                    &ends[..count],
                     b,
                     &mut w.force,
                 );

@@ -156,13 +156,27 @@ impl Model {
         states: &mut Vec<ElementState>,
     ) {
         states.clear();
-        for (e, element) in self.elements.iter().enumerate() {
-            let state = element.evaluate(self.formulation, &element_dofs(q, e));
-            for (o, f) in out[3 * e..3 * e + 6].iter_mut().zip(&state.force) {
-                *o += f;
-            }
-            states.push(state);
+        for e in 0..self.elements.len() {
+            states.push(self.add_element_force(e, q, out));
         }
+    }
+
+    /// Adds element `e`'s internal force at `q` to `out` as
+    /// [`Self::add_internal_force_keeping`] adds it, and returns its state.
+    pub fn add_element_force(&self, e: usize, q: &[f64], out: &mut [f64]) -> ElementState {
+        let state = self.elements[e].evaluate(self.formulation, &element_dofs(q, e));
+        for (o, f) in out[3 * e..3 * e + 6].iter_mut().zip(&state.force) {
+            *o += f;
+        }
+        state
+    }
+
+    /// The elements at the two ends (the first `count` of them: one where
+    /// the model has a single element): the only ones that load the end
+    /// nodes.
+    pub fn end_elements(&self) -> ([usize; 2], usize) {
+        let last = self.elements.len().saturating_sub(1);
+        ([0, last], if last == 0 { 1 } else { 2 })
     }
 
     /// Adds `scale` times the discrete gradient of the strain energy between `q0`

@@ -27,8 +27,6 @@ pub(super) struct StepWork {
     pub(super) before_end: EndOfStep,
     /// The master will correct the next step (`deferred_end.rs`).
     pub(super) defer_next: bool,
-    /// This step's end is to be left pending (a whole step, deferred).
-    pub(super) defer_this: bool,
     /// The last step's end is pending: only the end reactions were taken.
     pub(super) end_pending: bool,
     /// Scratch of a pending end: the restoring force at the end nodes.

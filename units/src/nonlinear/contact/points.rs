@@ -78,19 +78,8 @@ pub(super) fn for_each_point_of(
         }
         return;
     }
-    let nodes = model.reference.len();
-    let (all, pair) = match ends {
-        None => (0..nodes, None),
-        Some([a, b]) => (
-            0..0,
-            Some(if a == b {
-                vec![a]
-            } else {
-                vec![b.max(a), a.min(b)]
-            }),
-        ),
-    };
-    for j in all.rev().chain(pair.into_iter().flatten()) {
+    let visited = |j: usize| ends.is_none_or(|[a, b]| j == a || j == b);
+    for j in (0..model.reference.len()).rev().filter(|&j| visited(j)) {
         let r = model.reference[j];
         let x = r[0] + q[3 * j];
         let Some((f, _)) = contact.surface.at(x, t) else {
