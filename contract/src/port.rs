@@ -115,23 +115,20 @@ pub struct Port {
 impl Port {
     /// An input port with the SI unit of its kind and a ramp hold.
     pub fn input(name: &str, kind: PortKind) -> Port {
-        Port {
-            name: name.to_owned(),
-            causality: Causality::Input,
-            kind,
-            unit: kind.si_unit().to_owned(),
-            depends_on: Vec::new(),
-            hold: Hold::Ramp,
-            start: None,
-            aliases: Vec::new(),
-        }
+        Port::of(name, Causality::Input, kind)
     }
 
     /// An output port with the SI unit of its kind and no direct feedthrough.
     pub fn output(name: &str, kind: PortKind) -> Port {
+        Port::of(name, Causality::Output, kind)
+    }
+
+    /// A port of the SI unit of its kind, no feedthrough, a ramp hold, no
+    /// start value and no aliases.
+    fn of(name: &str, causality: Causality, kind: PortKind) -> Port {
         Port {
             name: name.to_owned(),
-            causality: Causality::Output,
+            causality,
             kind,
             unit: kind.si_unit().to_owned(),
             depends_on: Vec::new(),

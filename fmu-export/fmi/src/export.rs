@@ -389,37 +389,23 @@ fn variables(
         None => None,
     };
     for (i, p) in unit.inputs.iter().enumerate() {
+        let start = config.inputs.get(&p.name).copied().unwrap_or(0.0);
         variables.push(ScalarVariable {
-            name: input_variable_name(unit, i),
-            value_reference: i as u32,
-            description: describe::input(p),
-            causality: VariableCausality::Input,
-            variability: "continuous".into(),
-            initial: None,
-            value: Value::Real(Some(config.inputs.get(&p.name).copied().unwrap_or(0.0))),
             unit: unit_attribute(&p.unit),
-            min: None,
-            max: None,
-            dimensions: Vec::new(),
-            sized_by: None,
-            aliases: Vec::new(),
+            ..ScalarVariable::new(
+                input_variable_name(unit, i),
+                i as u32,
+                describe::input(p),
+                VariableCausality::Input,
+                Value::Real(Some(start)),
+            )
         });
     }
     for (i, p) in unit.outputs.iter().enumerate() {
+        let (name, reference) = (p.name.clone(), (n_in + i) as u32);
         variables.push(ScalarVariable {
-            name: p.name.clone(),
-            value_reference: (n_in + i) as u32,
-            description: describe::output(p),
-            causality: VariableCausality::Output,
-            variability: "continuous".into(),
-            initial: Some("calculated".into()),
-            value: Value::Real(None),
             unit: unit_attribute(&p.unit),
-            min: None,
-            max: None,
-            dimensions: Vec::new(),
-            sized_by: None,
-            aliases: Vec::new(),
+            ..ScalarVariable::calculated_output(name, reference, describe::output(p))
         });
     }
     for p in parameters {
@@ -452,19 +438,16 @@ fn parameter_variable(p: &ParameterVariable, kind: &KindInfo) -> ScalarVariable 
     }
     description.push_str("; fixed at instantiation");
     ScalarVariable {
-        name: p.name.clone(),
-        value_reference: p.value_reference,
-        description,
-        causality: VariableCausality::Parameter,
-        variability: "fixed".into(),
-        initial: Some("exact".into()),
-        value: p.start.clone(),
         unit: (number && !info.unit.is_empty()).then(|| info.unit.clone()),
         min: info.min.filter(|_| number),
         max: info.max.filter(|_| number),
-        dimensions: Vec::new(),
-        sized_by: None,
-        aliases: Vec::new(),
+        ..ScalarVariable::fixed(
+            p.name.clone(),
+            p.value_reference,
+            description,
+            VariableCausality::Parameter,
+            p.start.clone(),
+        )
     }
 }
 

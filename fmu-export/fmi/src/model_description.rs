@@ -139,6 +139,63 @@ pub struct ScalarVariable {
 }
 
 impl ScalarVariable {
+    /// A scalar of `causality` holding `value`, continuous, with no `initial`,
+    /// unit, bounds, dimensions or aliases: the fields that differ are set
+    /// over it (`ScalarVariable { unit, ..ScalarVariable::new(..) }`).
+    pub fn new(
+        name: String,
+        value_reference: u32,
+        description: String,
+        causality: VariableCausality,
+        value: Value,
+    ) -> ScalarVariable {
+        ScalarVariable {
+            name,
+            value_reference,
+            description,
+            causality,
+            variability: "continuous".into(),
+            initial: None,
+            value,
+            unit: None,
+            min: None,
+            max: None,
+            dimensions: Vec::new(),
+            sized_by: None,
+            aliases: Vec::new(),
+        }
+    }
+
+    /// A continuous output the FMU calculates (a Real with no start value).
+    pub fn calculated_output(name: String, value_reference: u32, description: String) -> Self {
+        ScalarVariable {
+            initial: Some("calculated".into()),
+            ..ScalarVariable::new(
+                name,
+                value_reference,
+                description,
+                VariableCausality::Output,
+                Value::Real(None),
+            )
+        }
+    }
+
+    /// A variable fixed at instantiation with an exact start value (a
+    /// parameter or a structural parameter).
+    pub fn fixed(
+        name: String,
+        value_reference: u32,
+        description: String,
+        causality: VariableCausality,
+        value: Value,
+    ) -> ScalarVariable {
+        ScalarVariable {
+            variability: "fixed".into(),
+            initial: Some("exact".into()),
+            ..ScalarVariable::new(name, value_reference, description, causality, value)
+        }
+    }
+
     /// How many values the variable holds (1 for a scalar).
     pub fn len(&self) -> usize {
         self.dimensions.iter().product()

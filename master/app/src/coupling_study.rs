@@ -10,13 +10,13 @@
 
 use crate::span_study::{
     Drive, StudyError, StudyScene, UnitText, cheapest_as_accurate, engine_rows, number,
-    report_order, span_properties, span_unit, sweep,
+    report_order, span_beam, span_properties, span_unit, sweep,
 };
 use crate::study::{self, Design};
 use serde::Serialize;
 use slender_units::UnitError;
+use slender_units::beam::Beam;
 use slender_units::beam::boundary::{Boundary, Condition, InputMarker, Quantity, TimeFunction};
-use slender_units::beam::{Beam, BeamParams};
 use slender_units::span::transfer::Span;
 use std::path::{Path, PathBuf};
 
@@ -37,18 +37,14 @@ pub fn fe_span(span: &Span, elements: usize, alpha: f64) -> Result<Beam, UnitErr
         quantity,
         value: TimeFunction::Input(InputMarker::Input),
     };
-    let mut p = BeamParams::new(
-        span.length,
+    let mut p = span_beam(
+        span,
         elements,
-        span.flexural_rigidity,
-        span.mass_per_length,
         Boundary {
             left: [cond(Quantity::Deflection), cond(Quantity::Rotation)],
             right: [cond(Quantity::Moment), cond(Quantity::Shear)],
         },
     );
-    p.damping_per_length = span.damping_per_length;
-    p.tension = span.tension;
     p.static_start = true;
     p.alpha = alpha;
     Beam::new(p)

@@ -48,19 +48,14 @@ pub(super) fn add(model: &mut ModelDescription, fields: &[Field], first: u32) ->
             .iter()
             .find(|s| s.per == field.per && s.start == field.len);
         model.variables.push(ScalarVariable {
-            name: field.name.clone(),
-            value_reference: first + k as u32,
-            description: field.description.clone(),
-            causality: VariableCausality::Output,
-            variability: "continuous".into(),
-            initial: Some("calculated".into()),
-            value: Value::Real(None),
             unit,
-            min: None,
-            max: None,
             dimensions: vec![field.len],
             sized_by: sized_by.map(|s| s.value_reference),
-            aliases: Vec::new(),
+            ..ScalarVariable::calculated_output(
+                field.name.clone(),
+                first + k as u32,
+                field.description.clone(),
+            )
         });
         let unknown = Unknown {
             index: model.variables.len(),
@@ -94,24 +89,17 @@ fn sizes(fields: &[Field], first: u32) -> Vec<ArraySize> {
 fn size_variable(size: &ArraySize) -> ScalarVariable {
     let what = size.per.counted();
     let start = i32::try_from(size.start).unwrap_or(i32::MAX);
-    ScalarVariable {
-        name: size.name.clone(),
-        value_reference: size.value_reference,
-        description: format!(
-            "number of {what} of the unit's mesh, the length of the arrays with one value per {}: \
+    let description = format!(
+        "number of {what} of the unit's mesh, the length of the arrays with one value per {}: \
              follows the parameters (read it after initialisation), or set it with parameters \
              that change the mesh and the FMU checks it; fixed at instantiation",
-            &what[..what.len() - 1]
-        ),
-        causality: VariableCausality::StructuralParameter,
-        variability: "fixed".into(),
-        initial: Some("exact".into()),
-        value: Value::Integer(Some(start)),
-        unit: None,
-        min: None,
-        max: None,
-        dimensions: Vec::new(),
-        sized_by: None,
-        aliases: Vec::new(),
-    }
+        &what[..what.len() - 1]
+    );
+    ScalarVariable::fixed(
+        size.name.clone(),
+        size.value_reference,
+        description,
+        VariableCausality::StructuralParameter,
+        Value::Integer(Some(start)),
+    )
 }

@@ -20,11 +20,9 @@ pub(crate) use scenes::{
 /// rotation at x = 0 as input, a free lower end.
 pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, UnitError> {
     let cond = |quantity, value| Condition { quantity, value };
-    let mut p = BeamParams::new(
-        span.length,
+    let mut p = span_beam(
+        span,
         elements,
-        span.flexural_rigidity,
-        span.mass_per_length,
         Boundary {
             left: [
                 cond(Quantity::Deflection, TimeFunction::Constant(0.0)),
@@ -36,10 +34,23 @@ pub fn fe_span(span: &Span, elements: usize) -> Result<Beam, UnitError> {
             ],
         },
     );
-    p.damping_per_length = span.damping_per_length;
-    p.tension = span.tension;
     p.newton_max_iterations = 5;
     Beam::new(p)
+}
+
+/// The span's properties (length, EI, mass, damping, tension) as a beam of
+/// `elements` elements under `boundary`.
+pub(crate) fn span_beam(span: &Span, elements: usize, boundary: Boundary) -> BeamParams {
+    let mut p = BeamParams::new(
+        span.length,
+        elements,
+        span.flexural_rigidity,
+        span.mass_per_length,
+        boundary,
+    );
+    p.damping_per_length = span.damping_per_length;
+    p.tension = span.tension;
+    p
 }
 
 /// Why a span study could not run: the span's properties are refused, or the
