@@ -239,7 +239,11 @@ fn a_step_end_left_pending_for_its_correction_is_the_whole_end_to_the_bit() {
             }
         }
     }
-    // The planar section evaluates its whole length at a step's end: it
-    // leaves that end pending (the kinds whose end is cheap do not).
-    assert!(deferring.contains(&"nonlinear"), "{deferring:?}");
+    // The planar section evaluates its whole length at a step's end, its
+    // `linear` fidelity too (band products, forces and moments for the
+    // outputs): both leave that end pending (the kinds whose end is cheap do
+    // not).
+    for kind in ["nonlinear", "nonlinear linear"] {
+        assert!(deferring.contains(&kind), "{kind}: {deferring:?}");
+    }
 }

@@ -105,29 +105,74 @@ impl StepSensitivity<'_> {
     /// The change of every DOF's motion under `drive`; `held` lists the DOFs
     /// the step held.
     pub fn solve(&self, drive: Drive, held: &[usize], out: &mut Change) {
+        out.clear(self.newton.size());
+        self.load_of(drive, held, &mut out.dq);
+        self.factor.solve_in_place(&mut out.dq);
+        self.rates(drive, held, out);
+    }
+
+    /// The displacements' change under each of `drives` (None: no change),
+    /// into `columns` (column-major, one of every DOF per drive), solved
+    /// together: each column to the bit what [`Self::solve`] gives, at less
+    /// cost. [`Self::change_of`] then gives each column's whole motion.
+    pub fn solve_columns(&self, drives: &[Option<Drive>], held: &[usize], columns: &mut Vec<f64>) {
         let n = self.newton.size();
-        let (alpha, beta, gamma) = self.parameters;
-        let h = self.h;
-        out.clear(n);
-        match drive {
-            Drive::Load { dof, weight } => out.dq[dof] = weight,
-            Drive::Motion {
-                dof: d,
-                change: [dq, dv, da],
-            } => {
-                for f in self.rows(d) {
-                    out.dq[f] = -(self.newton.get(f, d) * dq
-                        + self.mass.get(f, d) * (da - dq / (beta * h * h))
-                        + (1.0 - alpha) * (self.damping)(f, d) * (dv - gamma / (beta * h) * dq));
-                }
-                for &k in held {
-                    out.dq[k] = 0.0;
-                }
-                out.dq[d] = dq;
+        columns.clear();
+        columns.resize(n * drives.len(), 0.0);
+        for (drive, column) in drives.iter().zip(columns.chunks_exact_mut(n.max(1))) {
+            if let Some(drive) = drive {
+                self.load_of(*drive, held, column);
             }
         }
-        self.factor.solve_in_place(&mut out.dq);
-        for i in 0..n {
+        self.factor.solve_columns_in_place(columns);
+    }
+
+    /// The whole motion's change under `drive` from its solved displacements
+    /// `column` (by [`Self::solve_columns`]), into `out`.
+    pub fn change_of(
+        &self,
+        drive: Option<Drive>,
+        held: &[usize],
+        column: &[f64],
+        out: &mut Change,
+    ) {
+        out.clear(self.newton.size());
+        if let Some(drive) = drive {
+            out.dq.copy_from_slice(column);
+            self.rates(drive, held, out);
+        }
+    }
+
+    /// The right-hand side of the displacements' change under `drive` into
+    /// `dq` (zero on entry).
+    fn load_of(&self, drive: Drive, held: &[usize], dq: &mut [f64]) {
+        let (alpha, beta, gamma) = self.parameters;
+        let h = self.h;
+        match drive {
+            Drive::Load { dof, weight } => dq[dof] = weight,
+            Drive::Motion {
+                dof: d,
+                change: [q, v, a],
+            } => {
+                for f in self.rows(d) {
+                    dq[f] = -(self.newton.get(f, d) * q
+                        + self.mass.get(f, d) * (a - q / (beta * h * h))
+                        + (1.0 - alpha) * (self.damping)(f, d) * (v - gamma / (beta * h) * q));
+                }
+                for &k in held {
+                    dq[k] = 0.0;
+                }
+                dq[d] = q;
+            }
+        }
+    }
+
+    /// The velocities' and accelerations' change by Newmark from the solved
+    /// `out.dq`, a held DOF's as `drive` moves it.
+    fn rates(&self, drive: Drive, held: &[usize], out: &mut Change) {
+        let (_, beta, gamma) = self.parameters;
+        let h = self.h;
+        for i in 0..out.dq.len() {
             out.da[i] = out.dq[i] / (beta * h * h);
             out.dv[i] = gamma / (beta * h) * out.dq[i];
         }

@@ -7,7 +7,9 @@
 //! before correcting: the reactions at the end nodes, from the two end
 //! elements, their drag and the contacts, summed in the order the whole end
 //! sums them (the same values to the bit). The rest is taken by the
-//! correction or by `complete_step`.
+//! correction or by `complete_step`. A `linear` section's end reactions are
+//! rows of its band products (K_t q + offset, the drag its step used, M a,
+//! C v), taken the same way.
 
 use super::NonlinearSection;
 use super::dynamics::{Failure, StepWork};
@@ -20,24 +22,52 @@ const END_OUTPUTS: usize = 18;
 impl NonlinearSection {
     /// Whether the section can leave a step's end pending with `coupled`
     /// (the outputs the master reads before correcting) exact: a section that
-    /// corrects its steps, on its nonlinear restoring force (not linearised),
-    /// coupled by its end outputs alone.
+    /// corrects its steps, coupled by its end outputs alone.
     pub(super) fn can_defer_end(&self, coupled: &[usize]) -> bool {
-        self.offers_correction()
-            && self.linear.is_none()
-            && coupled.iter().all(|&o| o < END_OUTPUTS)
+        self.offers_correction() && coupled.iter().all(|&o| o < END_OUTPUTS)
     }
 
     /// The support reactions at the end nodes at the current state under the
     /// step's end `load`, as the whole end forms them (`g`: scratch for the
-    /// restoring force); the other DOFs' are left as they were.
-    pub(super) fn end_reactions(&mut self, load: &[f64], g: &mut Vec<f64>) {
-        let n = self.model.dofs();
+    /// restoring force; `remainder`: the drag remainder a linear step used);
+    /// the other DOFs' are left as they were.
+    pub(super) fn end_reactions(&mut self, load: &[f64], remainder: &[f64], g: &mut Vec<f64>) {
         let nodes = self.model.reference.len();
+        if self.linear.is_none() {
+            self.end_restoring_force(g);
+        }
+        let s = &mut self.state;
+        for node in [0, nodes - 1] {
+            for d in 3 * node..3 * node + 3 {
+                let force = match &self.linear {
+                    // The rows of `linear_forces`, summed as it sums them.
+                    Some(l) => {
+                        let elastic = l.stiffness.mul_add_row(1.0, &s.q, d, l.offset[d]);
+                        let force = elastic + remainder[d];
+                        match l.has_drag {
+                            true => l.drag_tangent.mul_add_row(1.0, &s.v, d, force),
+                            false => force,
+                        }
+                    }
+                    None => g[d],
+                };
+                let mut r = force - load[d];
+                r = self.m.mul_add_row(1.0, &s.a, d, r);
+                if let Some(c) = &self.c {
+                    r = c.mul_add_row(1.0, &s.v, d, r);
+                }
+                s.reaction[d] = r;
+            }
+        }
+    }
+
+    /// The restoring force at the end nodes (into `g`, the other entries
+    /// left zero): the two end elements' forces, their drag and the contacts.
+    fn end_restoring_force(&self, g: &mut Vec<f64>) {
         let (ends, count) = self.model.end_elements();
         let elements = &ends[..count];
         g.clear();
-        g.resize(n, 0.0);
+        g.resize(self.model.dofs(), 0.0);
         let s = &self.state;
         for &e in elements {
             self.model.add_element_force(e, &s.q, g);
@@ -45,17 +75,6 @@ impl NonlinearSection {
         if !self.environment.is_empty() {
             let at = (s.q.as_slice(), s.v.as_slice(), s.t);
             (self.environment).add_end_force(&self.model, at, &s.lambda, elements, g);
-        }
-        let s = &mut self.state;
-        for node in [0, nodes - 1] {
-            for d in 3 * node..3 * node + 3 {
-                let mut r = g[d] - load[d];
-                r = self.m.mul_add_row(1.0, &s.a, d, r);
-                if let Some(c) = &self.c {
-                    r = c.mul_add_row(1.0, &s.v, d, r);
-                }
-                s.reaction[d] = r;
-            }
         }
     }
 

@@ -374,7 +374,7 @@ impl NonlinearSection {
         w.before_end.lambda.clone_from(&self.state.lambda);
         w.before_end.surface_jump = surface_jump;
         if defer {
-            self.end_reactions(&w.f1, &mut w.end_force);
+            self.end_reactions(&w.f1, &w.drag_remainder, &mut w.end_force);
             w.end_pending = true;
             return Ok(());
         }

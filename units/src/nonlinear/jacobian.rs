@@ -1,6 +1,7 @@
 //! The section's interface Jacobian over its last step (`Unit::step_jacobian`):
 //! the derivative of its end outputs (positions, velocities, forces) with
-//! respect to its coupled end inputs, by one back-substitution per input with
+//! respect to its coupled end inputs, by one back-substitution per input (all
+//! inputs in one pass, `BandLdlt::solve_columns_in_place`) with
 //! the step's factorised HHT-alpha Newton matrix; no new factorisation. The
 //! other outputs (energies, stations, extremes) are left NaN: a master that
 //! needs one takes it by finite differences.
@@ -32,6 +33,10 @@ pub(super) struct JacobianWork {
     force: Vec<f64>,
     held: Vec<usize>,
     change: Change,
+    /// How each input drives the step, and the displacements' change
+    /// solved for them (a column each).
+    drives: Vec<Option<Drive>>,
+    columns: Vec<f64>,
 }
 
 impl NonlinearSection {
@@ -61,18 +66,9 @@ impl NonlinearSection {
         self.tangents(&mut w);
         w.held.clear();
         w.held.extend(self.held().map(|r| r.dof));
-        let n_in = inputs.len();
-        let n = self.model.dofs();
         jacobian.fill(f64::NAN);
-        w.warm.begin_columns(n_in, n);
-        let mut result = Ok(());
-        for j in 0..n_in {
-            if let Err(e) = self.input_column(inputs, &mut w, j, jacobian) {
-                result = Err(e);
-                break;
-            }
-            w.warm.set_column(j, &w.change.dq);
-        }
+        w.warm.begin_columns(inputs.len(), self.model.dofs());
+        let result = self.input_columns(inputs, &mut w, jacobian);
         w.warm.columns_done(result.is_ok());
         self.jacobian_work = w;
         result
@@ -144,15 +140,15 @@ impl NonlinearSection {
         })
     }
 
-    /// Column `j`: the motion's change for input `j` into `w.change`, then
-    /// the end outputs' rows: positions and velocities directly, a force as
-    /// minus the change of the support reaction, or of the applied load where
-    /// the end is loaded.
-    fn input_column(
+    /// Every input's column: the motion's change (its displacements solved
+    /// for all inputs together, into the warm start's columns too), then the
+    /// end outputs' rows: positions and velocities directly, a force as
+    /// minus the change of the support reaction, or of the applied load
+    /// where the end is loaded.
+    fn input_columns(
         &self,
         inputs: Inputs<'_>,
         w: &mut JacobianWork,
-        j: usize,
         jacobian: &mut [f64],
     ) -> Result<(), UnitError> {
         let n_in = inputs.len();
@@ -161,6 +157,9 @@ impl NonlinearSection {
             held,
             change,
             h,
+            drives,
+            columns,
+            warm,
             ..
         } = w;
         let c = self.c.as_ref();
@@ -173,12 +172,16 @@ impl NonlinearSection {
             (&self.m, &damping_at),
             *h,
         )?;
-        match self.drive_of(inputs, j, *h) {
-            Some(drive) => sensitivity.solve(drive, held, change),
-            None => change.clear(self.model.dofs()),
+        drives.clear();
+        drives.extend((0..n_in).map(|j| self.drive_of(inputs, j, *h)));
+        sensitivity.solve_columns(drives, held, columns);
+        let n = self.model.dofs();
+        for (j, drive) in drives.iter().enumerate() {
+            sensitivity.change_of(*drive, held, &columns[j * n..(j + 1) * n], change);
+            let reaction = |dof| sensitivity.reaction_change(change, dof);
+            self.end_rows((&change.dq, &change.dv), &reaction, (j, n_in), jacobian);
+            warm.set_column(j, &change.dq);
         }
-        let reaction = |dof| sensitivity.reaction_change(change, dof);
-        self.end_rows((&change.dq, &change.dv), &reaction, (j, n_in), jacobian);
         Ok(())
     }
 
