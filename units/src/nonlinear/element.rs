@@ -42,6 +42,9 @@ pub struct Element {
     pub ea: f64,
     /// Bending stiffness EI (N m^2).
     pub ei: f64,
+    /// The stress-free chord's angle, atan2(sin0, cos0) (rad): kept, so
+    /// that the corotational kinematics take one arctangent, not two.
+    angle0: f64,
 }
 
 /// Internal force (N, N m) and tangent stiffness of one element, global frame.
@@ -103,6 +106,20 @@ fn wrap(angle: f64) -> f64 {
 }
 
 impl Element {
+    /// An element of unstretched `length` (m) along the stress-free chord's
+    /// direction `(cos0, sin0)`, of axial stiffness `ea` (N) and bending
+    /// stiffness `ei` (N m^2).
+    pub fn new(length: f64, (cos0, sin0): (f64, f64), ea: f64, ei: f64) -> Element {
+        Element {
+            length,
+            cos0,
+            sin0,
+            ea,
+            ei,
+            angle0: sin0.atan2(cos0),
+        }
+    }
+
     /// Current chord (dx, dz) from the stress-free chord and the displacements.
     fn chord(&self, p: &[f64; 6]) -> (f64, f64) {
         (
@@ -184,7 +201,7 @@ impl Element {
         let (dx, dz) = self.chord(p);
         let ln = dx.hypot(dz);
         let beta = dz.atan2(dx);
-        let beta0 = self.sin0.atan2(self.cos0);
+        let beta0 = self.angle0;
         let t1 = wrap(p[2] + beta0 - beta);
         let t2 = wrap(p[5] + beta0 - beta);
         Kinematics {

@@ -65,13 +65,8 @@ impl Model {
             let (sin0, cos0) = s.angle_deg.to_radians().sin_cos();
             let l = s.length / s.elements as f64;
             for _ in 0..s.elements {
-                elements.push(Element {
-                    length: l,
-                    cos0,
-                    sin0,
-                    ea: s.axial_stiffness,
-                    ei: s.bending_stiffness,
-                });
+                let (ea, ei) = (s.axial_stiffness, s.bending_stiffness);
+                elements.push(Element::new(l, (cos0, sin0), ea, ei));
                 segment_of.push(i);
                 let [x, z] = reference[reference.len() - 1];
                 reference.push([x + l * cos0, z + l * sin0]);

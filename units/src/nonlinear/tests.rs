@@ -5,13 +5,7 @@ use super::element::{Element, Formulation};
 
 fn sample() -> Element {
     let (s, c) = 0.4f64.sin_cos();
-    Element {
-        length: 2.0,
-        cos0: c,
-        sin0: s,
-        ea: 3.0e5,
-        ei: 2.0e3,
-    }
+    Element::new(2.0, (c, s), 3.0e5, 2.0e3)
 }
 
 fn displacement() -> [f64; 6] {
