@@ -199,7 +199,7 @@ impl Element {
     /// Local rotations (wrapped), stretch and the chord at `p`.
     fn corotational_kinematics(&self, p: &[f64; 6]) -> Kinematics {
         let (dx, dz) = self.chord(p);
-        let ln = dx.hypot(dz);
+        let ln = (dx * dx + dz * dz).sqrt();
         let beta = dz.atan2(dx);
         let beta0 = self.angle0;
         let t1 = wrap(p[2] + beta0 - beta);
@@ -359,7 +359,7 @@ impl Element {
         // The end moments are the rotational entries of the nodal force.
         let (f, _) = self.seed002(p, false);
         let (dx, dz) = self.chord(p);
-        let chord = dx.hypot(dz);
+        let chord = (dx * dx + dz * dz).sqrt();
         LocalForces {
             axial: self.ea * (u1 + 0.5 * w1 * w1),
             moments: [f[2], f[5]],

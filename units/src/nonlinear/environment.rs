@@ -254,14 +254,14 @@ impl Environment {
         let el = &model.elements[e];
         let dx = el.length * el.cos0 + q[j] - q[i];
         let dz = el.length * el.sin0 + q[j + 1] - q[i + 1];
-        let ln = dx.hypot(dz).max(1e-12);
+        let ln = (dx * dx + dz * dz).sqrt().max(1e-12);
         let tv = [dx / ln, dz / ln];
         let zmid = 0.5 * (model.reference[e][1] + model.reference[e + 1][1] + q[i + 1] + q[j + 1]);
         let u = self.current.as_ref().map_or(0.0, |c| c.at(zmid));
         let vr = [0.5 * (v[i] + v[j]) - u, 0.5 * (v[i + 1] + v[j + 1])];
         let vt = vr[0] * tv[0] + vr[1] * tv[1];
         let vn = [vr[0] - vt * tv[0], vr[1] - vt * tv[1]];
-        let an = vn[0].hypot(vn[1]);
+        let an = (vn[0] * vn[0] + vn[1] * vn[1]).sqrt();
         let f = [
             d.normal * an * vn[0] + d.tangential * vt.abs() * vt * tv[0],
             d.normal * an * vn[1] + d.tangential * vt.abs() * vt * tv[1],
