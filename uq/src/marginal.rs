@@ -91,15 +91,27 @@ impl Marginal {
             Marginal::Uniform { low, high } => low + u * (high - low),
             Marginal::Normal { mean, sd } => mean + sd * z(),
             Marginal::Lognormal { mu, sigma } => (mu + sigma * z()).exp(),
+            Marginal::TruncatedNormal { mean, sd, .. } => {
+                let (a, b) = self.truncation();
+                mean + sd * standard().inverse_cdf(a + u * (b - a))
+            }
+        }
+    }
+
+    /// The standard normal's CDF at a truncated normal's bounds ((0, 1)
+    /// for the others: no truncation).
+    fn truncation(&self) -> (f64, f64) {
+        match *self {
             Marginal::TruncatedNormal {
                 mean,
                 sd,
                 low,
                 high,
             } => {
-                let (a, b) = truncation(mean, sd, low, high);
-                mean + sd * standard().inverse_cdf(a + u * (b - a))
+                let n = standard();
+                (n.cdf((low - mean) / sd), n.cdf((high - mean) / sd))
             }
+            _ => (0.0, 1.0),
         }
     }
 
@@ -109,24 +121,13 @@ impl Marginal {
             Marginal::Uniform { low, high } => 2.0 * (x - low) / (high - low) - 1.0,
             Marginal::Normal { mean, sd } => (x - mean) / sd,
             Marginal::Lognormal { mu, sigma } => (x.ln() - mu) / sigma,
-            Marginal::TruncatedNormal {
-                mean,
-                sd,
-                low,
-                high,
-            } => {
-                let (a, b) = truncation(mean, sd, low, high);
+            Marginal::TruncatedNormal { mean, sd, .. } => {
+                let (a, b) = self.truncation();
                 let u = (standard().cdf((x - mean) / sd) - a) / (b - a);
                 2.0 * u - 1.0
             }
         }
     }
-}
-
-/// The standard normal's CDF at a truncated normal's bounds.
-fn truncation(mean: f64, sd: f64, low: f64, high: f64) -> (f64, f64) {
-    let n = standard();
-    (n.cdf((low - mean) / sd), n.cdf((high - mean) / sd))
 }
 
 #[cfg(test)]

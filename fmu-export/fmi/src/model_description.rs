@@ -355,13 +355,9 @@ impl ModelDescription {
         let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
         let _ = writeln!(
             x,
-            r#"<fmiModelDescription fmiVersion="{}" modelName="{}" guid="{}" description="{}" generationTool="{}"{} variableNamingConvention="flat" numberOfEventIndicators="0">"#,
+            r#"<fmiModelDescription fmiVersion="{}" {} variableNamingConvention="flat" numberOfEventIndicators="0">"#,
             e(&self.fmi_version),
-            e(&self.model_name),
-            e(&self.guid),
-            e(&self.description),
-            e(&self.generation_tool),
-            self.about_attributes()
+            self.root_attributes("guid"),
         );
         if let Some(cs) = &self.co_simulation {
             let _ = writeln!(
@@ -392,6 +388,21 @@ impl ModelDescription {
     }
 
     /// The [`About`] attributes that are given, each with a leading space.
+    /// The root element's `modelName`, the token (FMI 2.0 `guid`, FMI 3.0
+    /// `instantiationToken`), `description`, `generationTool` and the
+    /// attributes on who made it, escaped.
+    fn root_attributes(&self, token: &str) -> String {
+        let e = |s: &str| escape(s).into_owned();
+        format!(
+            r#"modelName="{}" {token}="{}" description="{}" generationTool="{}"{}"#,
+            e(&self.model_name),
+            e(&self.guid),
+            e(&self.description),
+            e(&self.generation_tool),
+            self.about_attributes()
+        )
+    }
+
     fn about_attributes(&self) -> String {
         let a = &self.about;
         let date = a.generation_date_and_time.as_deref().unwrap_or("");

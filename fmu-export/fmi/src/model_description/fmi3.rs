@@ -24,12 +24,8 @@ impl ModelDescription {
         let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
         let _ = writeln!(
             x,
-            r#"<fmiModelDescription fmiVersion="3.0" modelName="{}" instantiationToken="{}" description="{}" generationTool="{}"{} variableNamingConvention="flat">"#,
-            e(&self.model_name),
-            e(&self.guid),
-            e(&self.description),
-            e(&self.generation_tool),
-            self.about_attributes()
+            r#"<fmiModelDescription fmiVersion="3.0" {} variableNamingConvention="flat">"#,
+            self.root_attributes("instantiationToken"),
         );
         if let Some(cs) = &self.co_simulation {
             let _ = writeln!(
