@@ -515,10 +515,23 @@ impl ModelDescription {
 /// One `<ScalarVariable>` (numbered `i + 1` in a comment) with its type element.
 fn write_variable(x: &mut String, i: usize, v: &ScalarVariable) {
     let e = |s: &str| escape(s).into_owned();
+    let _ = write!(x, "    <!-- {} --><ScalarVariable", i + 1);
+    write_variable_attributes(x, v);
+    let _ = write!(x, "><{}{}", v.value.type_name(), type_attributes(v));
+    if let Some(start) = start_text(&v.value) {
+        let _ = write!(x, r#" start="{}""#, e(&start));
+    }
+    x.push_str("/></ScalarVariable>\n");
+}
+
+/// A variable's `name`, `valueReference`, `description`, `causality`,
+/// `variability` and `initial` attributes (each with a leading space), the
+/// same in FMI 2.0's `<ScalarVariable>` and FMI 3.0's variable element.
+fn write_variable_attributes(x: &mut String, v: &ScalarVariable) {
+    let e = |s: &str| escape(s).into_owned();
     let _ = write!(
         x,
-        r#"    <!-- {} --><ScalarVariable name="{}" valueReference="{}" description="{}" causality="{}" variability="{}""#,
-        i + 1,
+        r#" name="{}" valueReference="{}" description="{}" causality="{}" variability="{}""#,
         e(&v.name),
         v.value_reference,
         e(&v.description),
@@ -528,11 +541,6 @@ fn write_variable(x: &mut String, i: usize, v: &ScalarVariable) {
     if let Some(initial) = &v.initial {
         let _ = write!(x, r#" initial="{}""#, e(initial));
     }
-    let _ = write!(x, "><{}{}", v.value.type_name(), type_attributes(v));
-    if let Some(start) = start_text(&v.value) {
-        let _ = write!(x, r#" start="{}""#, e(&start));
-    }
-    x.push_str("/></ScalarVariable>\n");
 }
 
 /// A variable's `unit`, `min` and `max` attributes (each with a leading space),

@@ -80,18 +80,8 @@ fn write_variable3(x: &mut String, v: &ScalarVariable) {
         Value::Boolean(_) => "Boolean",
         Value::String(_) => "String",
     };
-    let _ = write!(
-        x,
-        r#"    <{element} name="{}" valueReference="{}" description="{}" causality="{}" variability="{}""#,
-        e(&v.name),
-        v.value_reference,
-        e(&v.description),
-        v.causality.name(),
-        e(&v.variability)
-    );
-    if let Some(initial) = &v.initial {
-        let _ = write!(x, r#" initial="{}""#, e(initial));
-    }
+    let _ = write!(x, "    <{element}");
+    write_variable_attributes(x, v);
     x.push_str(&type_attributes(v));
     let mut children = String::new();
     match (&v.value, start_text(&v.value)) {
