@@ -441,13 +441,14 @@ fn parameter_variable(p: &ParameterVariable, kind: &KindInfo) -> ScalarVariable 
         unit: (number && !info.unit.is_empty()).then(|| info.unit.clone()),
         min: info.min.filter(|_| number),
         max: info.max.filter(|_| number),
-        ..ScalarVariable::fixed(
+        ..ScalarVariable::new(
             p.name.clone(),
             p.value_reference,
             description,
             VariableCausality::Parameter,
             p.start.clone(),
         )
+        .fixed()
     }
 }
 

@@ -180,19 +180,13 @@ impl ScalarVariable {
         }
     }
 
-    /// A variable fixed at instantiation with an exact start value (a
+    /// The variable fixed at instantiation, its start value exact (a
     /// parameter or a structural parameter).
-    pub fn fixed(
-        name: String,
-        value_reference: u32,
-        description: String,
-        causality: VariableCausality,
-        value: Value,
-    ) -> ScalarVariable {
+    pub fn fixed(self) -> ScalarVariable {
         ScalarVariable {
             variability: "fixed".into(),
             initial: Some("exact".into()),
-            ..ScalarVariable::new(name, value_reference, description, causality, value)
+            ..self
         }
     }
 

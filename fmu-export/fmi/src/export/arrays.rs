@@ -95,11 +95,12 @@ fn size_variable(size: &ArraySize) -> ScalarVariable {
              that change the mesh and the FMU checks it; fixed at instantiation",
         &what[..what.len() - 1]
     );
-    ScalarVariable::fixed(
+    ScalarVariable::new(
         size.name.clone(),
         size.value_reference,
         description,
         VariableCausality::StructuralParameter,
         Value::Integer(Some(start)),
     )
+    .fixed()
 }
