@@ -167,7 +167,11 @@ impl ScalarVariable {
     }
 
     /// A continuous output the FMU calculates (a Real with no start value).
-    pub fn calculated_output(name: String, value_reference: u32, description: String) -> Self {
+    pub fn calculated_output(
+        name: String,
+        value_reference: u32,
+        description: String,
+    ) -> ScalarVariable {
         ScalarVariable {
             initial: Some("calculated".into()),
             ..ScalarVariable::new(

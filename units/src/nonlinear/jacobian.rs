@@ -175,9 +175,9 @@ impl NonlinearSection {
         drives.clear();
         drives.extend((0..n_in).map(|j| self.drive_of(inputs, j, *h)));
         sensitivity.solve_columns(drives, held, columns);
-        let n = self.model.dofs();
-        for (j, drive) in drives.iter().enumerate() {
-            sensitivity.change_of(*drive, held, &columns[j * n..(j + 1) * n], change);
+        let solved = drives.iter().zip(columns.chunks_exact(self.model.dofs()));
+        for (j, (drive, column)) in solved.enumerate() {
+            sensitivity.change_of(*drive, held, column, change);
             let reaction = |dof| sensitivity.reaction_change(change, dof);
             self.end_rows((&change.dq, &change.dv), &reaction, (j, n_in), jacobian);
             warm.set_column(j, &change.dq);
