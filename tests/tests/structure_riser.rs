@@ -1,6 +1,7 @@
 //! The steel catenary riser of issue 26 (`examples/structure_riser.toml`): its
 //! static start from the defaults at any mesh, its top placed by the hang-off
-//! angle, a start time other than zero, and a structure's keys checked.
+//! angle, a start time other than zero, a structure's keys checked, and the
+//! warning where the touchdown point leaves its section for a `static` one.
 
 use slender_scene::Scene;
 use slender_tests::{root, run, units_and_links};
@@ -239,4 +240,30 @@ fn a_structure_refuses_unknown_keys_and_an_unreachable_hang_off() {
     // lie flat at the top.
     let e = parse(&text.replace("angle_deg = 12.0 }", "angle_deg = 89.0 }")).unwrap_err();
     assert!(e.contains("`structure.hang_off"), "{e}");
+}
+
+#[test]
+fn a_touchdown_point_that_leaves_its_section_for_a_static_one_is_a_warning() {
+    // The point moves over 730-780 m of arc under the example's heave and
+    // surge: a laid `static` section cut at 745 m takes it from the sag bend
+    // (at 10.7 s), one cut at 700 m (the example's) never does, and a laid
+    // `nonlinear` section at 745 m follows it, so neither of those warns.
+    let warnings = |cut: &str, laid: &str| {
+        let text = riser(200, 20.0).replace("to = 700.0", cut).replace(
+            "name = \"laid\"",
+            &format!("name = \"laid\"\nfidelity = \"{laid}\""),
+        );
+        let s = run(&parse(&text).unwrap());
+        assert!(s.error.is_none(), "{:?}", s.error);
+        s.warnings
+    };
+    let left = warnings("to = 745.0", "static");
+    assert!(
+        left.iter().any(|w| w.starts_with(
+            "the touchdown point left `riser_sagbend`: from t = 10.7 s none of it lies on the seabed"
+        ) && w.contains("the section below it, `riser_laid`, is `static`")),
+        "{left:?}"
+    );
+    assert_eq!(warnings("to = 700.0", "static"), Vec::<String>::new());
+    assert_eq!(warnings("to = 745.0", "nonlinear"), Vec::<String>::new());
 }

@@ -359,7 +359,7 @@ fn step_all_here(
 ) -> Result<(), RunError> {
     master.initialize(scene.start)?;
     recorder.observe(master)?;
-    let mut watch = Watch::new(master, scene.spec.output.watch);
+    let mut watch = Watch::new(master, scene);
     let started = Instant::now();
     let mut bar: Option<ProgressBar> = None;
     for i in 0..scene.steps {

@@ -4,27 +4,32 @@
 //! start and a breaking load ([`tension`]), and each section's energy
 //! balance against the energy exchanged ([`energy`]). What goes beyond a
 //! bound is a warning with the unit, port, value and time (once per port),
-//! kept in `summary.json`; with `stop` it ends the run instead.
+//! kept in `summary.json`; with `stop` it ends the run instead. It also says
+//! where a section that held the touchdown point lost it ([`touchdown`]),
+//! a warning that never stops the run.
 
 mod energy;
 mod tension;
+mod touchdown;
 
 use slender_coupling::coupler::Master;
-use slender_scene::spec::WatchSpec;
 
 /// The watch over a run.
 pub struct Watch {
     tension: tension::TensionWatch,
     energy: energy::EnergyWatch,
+    touchdown: touchdown::TouchdownWatch,
     stop: bool,
 }
 
 impl Watch {
-    /// The watched outputs (after `Master::initialize`).
-    pub fn new(master: &Master, spec: WatchSpec) -> Watch {
+    /// The watched outputs of `scene` (after `Master::initialize`).
+    pub fn new(master: &Master, scene: &slender_scene::Scene) -> Watch {
+        let spec = scene.spec.output.watch;
         Watch {
             tension: tension::TensionWatch::new(master, &spec),
             energy: energy::EnergyWatch::new(master, &spec),
+            touchdown: touchdown::TouchdownWatch::new(master, touchdown::guarded(scene)),
             stop: spec.stop,
         }
     }
@@ -41,7 +46,9 @@ impl Watch {
         let before = warnings.len();
         self.tension.observe(master, t, warnings);
         self.energy.observe(master, t, warnings);
-        match warnings.get(before).cloned() {
+        let first = warnings.get(before).cloned();
+        self.touchdown.observe(master, t, warnings);
+        match first {
             Some(first) if self.stop => {
                 warnings.truncate(before);
                 Err(crate::run::RunError::Bound(first))
