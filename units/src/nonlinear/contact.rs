@@ -19,6 +19,40 @@ use crate::contract::UnitError;
 use crate::numerics::banded::SymmetricBand;
 use points::{Point, for_each_point, for_each_point_of, roller_point, surface_slope};
 
+/// A roller's load on the section at one state: its element, where along
+/// it the roller meets it (0 to 1), and what it adds to the internal force
+/// (the contact energy's gradient; the force on the pipe is its negative) at
+/// the element's six DOFs (N, N m).
+#[derive(Copy, Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RollerLoad {
+    /// The element the roller meets.
+    pub element: usize,
+    /// Where along it (0 at its start node, 1 at its end).
+    pub xi: f64,
+    /// The element's end DOFs (x, z, rotation of each node).
+    pub dofs: [usize; 6],
+    /// What the roller adds to the internal force there (N, N m).
+    pub force: [f64; 6],
+}
+
+impl RollerLoad {
+    /// The force on the pipe (N, x and z).
+    pub fn on_pipe(&self) -> [f64; 2] {
+        [
+            -(self.force[0] + self.force[3]),
+            -(self.force[1] + self.force[4]),
+        ]
+    }
+
+    /// What it adds to the internal force at DOF `dof` (N).
+    pub fn at(&self, dof: usize) -> f64 {
+        (self.dofs.iter().zip(&self.force))
+            .filter(|(d, _)| **d == dof)
+            .map(|(_, f)| f)
+            .sum()
+    }
+}
+
 /// What the contact did at one state.
 #[derive(Copy, Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactSummary {
@@ -190,6 +224,36 @@ impl NodalContacts {
                 p.add_force(scale * p.weight * g, out);
                 if let Some((band, factor)) = tangent.as_mut() {
                     p.add_tangent(band, *factor * p.weight * k);
+                }
+            });
+        }
+    }
+
+    /// Each pressing roller's load at `q` (time t) into `out` (cleared
+    /// first): what the moment recovery takes as a point load
+    /// (`moments.rs`).
+    pub fn roller_loads(
+        &self,
+        model: &Model,
+        (q, t, lambda): (&[f64], f64, &[f64]),
+        out: &mut Vec<RollerLoad>,
+    ) {
+        out.clear();
+        for (c, contact) in self.list.iter().enumerate() {
+            if !matches!(contact.surface.shape, Shape::Rollers { .. }) {
+                continue;
+            }
+            let lambda = &lambda[self.offsets[c]..];
+            for_each_point(contact, model, &self.tributary, (q, t), |p| {
+                let (_, g, _) = contact.method.evaluate(p.gap, lambda[p.index]);
+                if let (Some((element, xi)), true) = (p.on, g != 0.0) {
+                    let f = p.weight * g;
+                    out.push(RollerLoad {
+                        element,
+                        xi,
+                        dofs: p.dofs,
+                        force: std::array::from_fn(|k| f * p.grad[k]),
+                    });
                 }
             });
         }
@@ -410,8 +474,7 @@ fn start_point(
     (q0, t): (&[f64], f64),
     p1: &Point,
 ) -> Option<Point> {
-    if p1.count == 4 {
-        let e = p1.dofs[0] / 3;
+    if let Some((e, _)) = p1.on {
         let (xr, top) = contact.surface.roller(p1.index, t)?;
         Some(roller_point(model, q0, e, (p1.index, xr, top)))
     } else {
@@ -421,7 +484,7 @@ fn start_point(
         let (f, _) = contact.surface.at(x, t)?;
         Some(Point {
             gap: r[1] + q0[3 * j + 1] - f,
-            grad: [-surface_slope(contact, x, t), 1.0, 0.0, 0.0],
+            grad: [-surface_slope(contact, x, t), 1.0, 0.0, 0.0, 0.0, 0.0],
             ..*p1
         })
     }

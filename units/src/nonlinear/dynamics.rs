@@ -157,6 +157,7 @@ impl NonlinearSection {
         let contacts = &self.environment.contacts;
         if !contacts.is_empty() {
             s.contact = contacts.summary(&self.model, (&s.q, s.t, &s.lambda));
+            contacts.roller_loads(&self.model, (&s.q, s.t, &s.lambda), &mut s.rollers);
             if after_step {
                 contacts.update_lambda(&self.model, (&s.q, s.t), &mut s.lambda);
             }

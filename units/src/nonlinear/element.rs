@@ -196,14 +196,19 @@ impl Element {
             + self.ei / l0 * (2.0 * t1 * t1 + 2.0 * t1 * t2 + 2.0 * t2 * t2)
     }
 
+    /// The end rotations (rad) relative to the chord at angle `beta` (rad),
+    /// from the nodes' rotation displacements `r1` and `r2`: the
+    /// co-rotational element's local rotations.
+    pub fn local_rotations(&self, r1: f64, r2: f64, beta: f64) -> [f64; 2] {
+        [wrap(r1 + self.angle0 - beta), wrap(r2 + self.angle0 - beta)]
+    }
+
     /// Local rotations (wrapped), stretch and the chord at `p`.
     fn corotational_kinematics(&self, p: &[f64; 6]) -> Kinematics {
         let (dx, dz) = self.chord(p);
         let ln = (dx * dx + dz * dz).sqrt();
         let beta = dz.atan2(dx);
-        let beta0 = self.angle0;
-        let t1 = wrap(p[2] + beta0 - beta);
-        let t2 = wrap(p[5] + beta0 - beta);
+        let [t1, t2] = self.local_rotations(p[2], p[5], beta);
         Kinematics {
             rotations: [t1, t2],
             // ln - l0 without cancellation.

@@ -72,6 +72,9 @@ crate::state_struct! {
         /// Lagrangian parameters of the contacts, per surface and node.
         lambda: Vec<f64>,
         contact: ContactSummary,
+        /// The rollers' loads at the current state (the moment recovery's
+        /// point loads).
+        rollers: Vec<contact::RollerLoad>,
         /// Largest sag-bend and overbend moments (N m) at the current time and
         /// over the last step (its start and end).
         bend_now: [f64; 2],
@@ -110,6 +113,7 @@ impl SectionState {
                 crossing: [f64::NAN; 2],
                 ..ContactSummary::default()
             },
+            rollers: Vec::new(),
             bend_now: [0.0; 2],
             bend_step: [0.0; 2],
             largest: [0.0; 2],

@@ -18,6 +18,7 @@
 //! section's end, a support) has no density, and its element takes the other
 //! node's alone.
 
+use super::contact::RollerLoad;
 use super::element::{ElementState, Formulation, LocalForces};
 use super::model::Model;
 
@@ -29,6 +30,11 @@ pub trait Loads {
     fn net_load(&self, j: usize) -> Option<[f64; 2]>;
     /// The load along element `e`.
     fn element_load(&self, e: usize) -> [f64; 2];
+    /// The point loads on the elements (rollers), left out of the nodes'
+    /// net loads: each element takes its own fixed-end moments.
+    fn point_loads(&self) -> &[RollerLoad] {
+        &[]
+    }
 }
 
 impl Model {
@@ -57,7 +63,33 @@ impl Model {
             (None, None) => normal_part(loads.element_load(e), local),
         };
         let fixed = load * local.chord * local.chord / 12.0;
-        [local.moments[0] - fixed, local.moments[1] + fixed]
+        let mut ends = [local.moments[0] - fixed, local.moments[1] + fixed];
+        // A point load P at xi: fixed-end moments P l xi (1 - xi)^2 and
+        // P l xi^2 (1 - xi).
+        for p in loads.point_loads().iter().filter(|p| p.element == e) {
+            let (pn, l, xi) = (normal_part(p.on_pipe(), local), local.chord, p.xi);
+            ends[0] -= pn * l * xi * (1.0 - xi) * (1.0 - xi);
+            ends[1] += pn * l * xi * xi * (1.0 - xi);
+        }
+        ends
+    }
+
+    /// The bending moment (N m, as a node's) under each point load, from
+    /// its element's recovered end moments and the load's own peak
+    /// `P l xi (1 - xi)`, with the element's x direction cosine.
+    pub fn for_each_point_moment(
+        &self,
+        q: &[f64],
+        loads: &impl Loads,
+        mut visit: impl FnMut(f64, f64),
+    ) {
+        for p in loads.point_loads() {
+            let local = self.local_forces(q, p.element);
+            let ends = self.recovered_moments(p.element, &local, loads);
+            let (pn, l, xi) = (normal_part(p.on_pipe(), &local), local.chord, p.xi);
+            let moment = (1.0 - xi) * -ends[0] + xi * ends[1] - pn * l * xi * (1.0 - xi);
+            visit(moment, local.direction[0]);
+        }
     }
 
     /// Calls `visit` with every element's index, local forces and recovered
@@ -156,7 +188,7 @@ impl super::NonlinearSection {
     pub(super) fn extremes(&self, kept: bool) -> ([f64; 2], [f64; 2]) {
         let (mut moment, mut tension, mut bend) = (0.0f64, f64::NEG_INFINITY, [0.0f64; 2]);
         let element = |l: &LocalForces| tension = tension.max(l.axial);
-        let node = |_, m: f64, forward: f64| {
+        let mut node = |m: f64, forward: f64| {
             moment = moment.max(m.abs());
             // Positive m turns the tangent counter-clockwise along the arc.
             let concave = m * forward;
@@ -166,7 +198,9 @@ impl super::NonlinearSection {
                 bend[1] = bend[1].max(m.abs());
             }
         };
-        self.for_each_node_moment(kept, element, node);
+        self.for_each_node_moment(kept, element, |_, m, forward| node(m, forward));
+        // The peaks under the rollers, between the nodes.
+        (self.model).for_each_point_moment(&self.state.q, self, &mut node);
         ([moment, tension], bend)
     }
 
@@ -229,7 +263,21 @@ impl Loads for super::NonlinearSection {
             return None;
         }
         let (g, r) = (&self.state.elastic, &self.state.reaction);
-        Some([g[3 * j] - r[3 * j], g[3 * j + 1] - r[3 * j + 1]])
+        // A roller's share is its element's point load, not the node's.
+        let on_node = |p: &&RollerLoad| p.element == j || p.element + 1 == j;
+        let roller = |dof: usize| {
+            (self.state.rollers.iter().filter(on_node))
+                .map(|p| p.at(dof))
+                .sum::<f64>()
+        };
+        Some([
+            g[3 * j] - r[3 * j] + roller(3 * j),
+            g[3 * j + 1] - r[3 * j + 1] + roller(3 * j + 1),
+        ])
+    }
+
+    fn point_loads(&self) -> &[RollerLoad] {
+        &self.state.rollers
     }
 
     /// The weight and distributed loads along element `e` at the state's time.
