@@ -265,8 +265,9 @@ fn a_touchdown_point_that_leaves_its_section_for_a_static_one_is_a_warning() {
         "{left:?}"
     );
     assert_eq!(warnings("to = 700.0", "static"), Vec::<String>::new());
-    // The sag bend ending at 760 m under the example's `linear:30` top: the
-    // point reaches the top, which keeps its start's contact state (none).
+    // The sag bend ending at 760 m under a `linear:30` top (the example's
+    // study's choice): the point reaches the top, which keeps its start's
+    // contact state (none).
     let text = riser(200, 20.0)
         .replace("to = 950.0", "to = 760.0")
         .replace("name = \"top\"", "name = \"top\"\nfidelity = \"linear:30\"");

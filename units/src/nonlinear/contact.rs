@@ -29,9 +29,8 @@ pub struct RollerLoad {
     pub element: usize,
     /// Where along it (0 at its start node, 1 at its end).
     pub xi: f64,
-    /// The element's end DOFs (x, z, rotation of each node).
-    pub dofs: [usize; 6],
-    /// What the roller adds to the internal force there (N, N m).
+    /// What the roller adds to the internal force at the element's DOFs
+    /// (`3 element` to `3 element + 5`: x, z, rotation of each node; N, N m).
     pub force: [f64; 6],
 }
 
@@ -44,12 +43,12 @@ impl RollerLoad {
         ]
     }
 
-    /// What it adds to the internal force at DOF `dof` (N).
+    /// What it adds to the internal force at DOF `dof` (N; 0 off its
+    /// element).
     pub fn at(&self, dof: usize) -> f64 {
-        (self.dofs.iter().zip(&self.force))
-            .filter(|(d, _)| **d == dof)
-            .map(|(_, f)| f)
-            .sum()
+        (dof.checked_sub(3 * self.element))
+            .and_then(|k| self.force.get(k))
+            .map_or(0.0, |f| *f)
     }
 }
 
@@ -235,44 +234,47 @@ impl NodalContacts {
     pub fn roller_loads(
         &self,
         model: &Model,
-        (q, t, lambda): (&[f64], f64, &[f64]),
+        at: (&[f64], f64, &[f64]),
         out: &mut Vec<RollerLoad>,
     ) {
         out.clear();
-        for (c, contact) in self.list.iter().enumerate() {
-            if !matches!(contact.surface.shape, Shape::Rollers { .. }) {
-                continue;
+        self.for_each_roller(model, at, |p, g| {
+            if let (Some((element, xi)), true) = (p.on, g != 0.0) {
+                let f = p.weight * g;
+                out.push(RollerLoad {
+                    element,
+                    xi,
+                    force: std::array::from_fn(|k| f * p.grad[k]),
+                });
             }
-            let lambda = &lambda[self.offsets[c]..];
-            for_each_point(contact, model, &self.tributary, (q, t), |p| {
-                let (_, g, _) = contact.method.evaluate(p.gap, lambda[p.index]);
-                if let (Some((element, xi)), true) = (p.on, g != 0.0) {
-                    let f = p.weight * g;
-                    out.push(RollerLoad {
-                        element,
-                        xi,
-                        dofs: p.dofs,
-                        force: std::array::from_fn(|k| f * p.grad[k]),
-                    });
-                }
-            });
-        }
+        });
     }
 
     /// Whether any roller presses on the section at `q` (time t): a force
     /// that no fixed sample of nodes holds (see [`Self::node_force`]).
-    pub fn rollers_press(&self, model: &Model, (q, t, lambda): (&[f64], f64, &[f64])) -> bool {
+    pub fn rollers_press(&self, model: &Model, at: (&[f64], f64, &[f64])) -> bool {
         let mut pressed = false;
+        self.for_each_roller(model, at, |_, g| pressed |= g != 0.0);
+        pressed
+    }
+
+    /// Calls `visit` with every roller's point at `q` (time t) and its law's
+    /// force per unit weight (N; 0 where it does not press).
+    fn for_each_roller(
+        &self,
+        model: &Model,
+        (q, t, lambda): (&[f64], f64, &[f64]),
+        mut visit: impl FnMut(&Point, f64),
+    ) {
         for (c, contact) in self.list.iter().enumerate() {
             if !matches!(contact.surface.shape, Shape::Rollers { .. }) {
                 continue;
             }
             let lambda = &lambda[self.offsets[c]..];
             for_each_point(contact, model, &self.tributary, (q, t), |p| {
-                pressed |= contact.method.evaluate(p.gap, lambda[p.index]).1 != 0.0;
+                visit(&p, contact.method.evaluate(p.gap, lambda[p.index]).1);
             });
         }
-        pressed
     }
 
     /// The force (N, on the node's x and z) of the continuous surfaces on node

@@ -264,12 +264,7 @@ impl Loads for super::NonlinearSection {
         }
         let (g, r) = (&self.state.elastic, &self.state.reaction);
         // A roller's share is its element's point load, not the node's.
-        let on_node = |p: &&RollerLoad| p.element == j || p.element + 1 == j;
-        let roller = |dof: usize| {
-            (self.state.rollers.iter().filter(on_node))
-                .map(|p| p.at(dof))
-                .sum::<f64>()
-        };
+        let roller = |dof: usize| self.state.rollers.iter().map(|p| p.at(dof)).sum::<f64>();
         Some([
             g[3 * j] - r[3 * j] + roller(3 * j),
             g[3 * j + 1] - r[3 * j + 1] + roller(3 * j + 1),

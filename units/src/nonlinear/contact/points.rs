@@ -147,7 +147,7 @@ pub(super) fn roller_point(
     let linear = [-slope * (1.0 - xi), 1.0 - xi, -slope * xi, xi];
     // Seed 002's element has no co-rotational frame: its chord alone.
     let bend = match model.formulation {
-        Formulation::Corotational => Bend::at(model, q, e, xi),
+        Formulation::Corotational => Bend::at(model, q, (e, xi), (dx, dz)),
         Formulation::Seed002 => Bend::NONE,
     };
     let grad = [
@@ -185,10 +185,9 @@ impl Bend {
         by_rotation: [0.0; 2],
     };
 
-    fn at(model: &Model, q: &[f64], e: usize, xi: f64) -> Bend {
+    /// At `xi` along element `e`, whose chord is `(dx, dz)` (m).
+    fn at(model: &Model, q: &[f64], (e, xi): (usize, f64), (dx, dz): (f64, f64)) -> Bend {
         let (a, b) = (e, e + 1);
-        let dx = node_x(model, q, b) - node_x(model, q, a);
-        let dz = (model.reference[b][1] + q[3 * b + 1]) - (model.reference[a][1] + q[3 * a + 1]);
         let chord = (dx * dx + dz * dz).sqrt();
         let (cos, tan) = (dx / chord, dz / dx);
         // The end rotations relative to the chord (rad).
