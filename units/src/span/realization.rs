@@ -128,28 +128,41 @@ fn real_modal_form(groups: &[C64], x: &[f64]) -> (DMatrix<f64>, DVector<f64>, DV
     let mut cm = DVector::zeros(n);
     let (mut row, mut k) = (0, 0);
     for &p in groups {
-        if p.im == 0.0 {
-            am[(row, row)] = p.re;
-            bm[row] = 1.0;
-            cm[row] = x[k];
-            row += 1;
-            k += 1;
+        let pair = p.im != 0.0;
+        let r = if pair {
+            C64::new(x[k], x[k + 1])
         } else {
-            // r/(s-p) + conj as z' = p z + u, y = 2 Re(r z), z = x1 + i x2: the
-            // rotation form keeps entries of size |p| (well conditioned for exp).
-            let r = C64::new(x[k], x[k + 1]);
-            am[(row, row)] = p.re;
-            am[(row, row + 1)] = -p.im;
-            am[(row + 1, row)] = p.im;
-            am[(row + 1, row + 1)] = p.re;
-            bm[row] = 1.0;
-            cm[row] = 2.0 * r.re;
-            cm[row + 1] = -2.0 * r.im;
-            row += 2;
-            k += 2;
-        }
+            C64::new(x[k], 0.0)
+        };
+        row = put_modal_block((&mut am, &mut bm, &mut cm), row, p, r, pair);
+        k += if pair { 2 } else { 1 };
     }
     (am, bm, cm)
+}
+
+/// Writes the modal block of pole `p` with residue `r` at `row` of (A, B, C)
+/// and returns the next row: 1x1 for a real pole; for a conjugate `pair`,
+/// r/(s-p) + conj as z' = p z + u, y = 2 Re(r z), z = x1 + i x2, a 2x2
+/// rotation block (entries of size |p|, well conditioned for the exponential).
+fn put_modal_block(
+    (a, b, c): (&mut DMatrix<f64>, &mut DVector<f64>, &mut DVector<f64>),
+    row: usize,
+    p: C64,
+    r: C64,
+    pair: bool,
+) -> usize {
+    a[(row, row)] = p.re;
+    b[row] = 1.0;
+    if !pair {
+        c[row] = r.re;
+        return row + 1;
+    }
+    a[(row, row + 1)] = -p.im;
+    a[(row + 1, row)] = p.im;
+    a[(row + 1, row + 1)] = p.re;
+    c[row] = 2.0 * r.re;
+    c[row + 1] = -2.0 * r.im;
+    row + 2
 }
 
 /// Stable poles in place of an approximation's poles, some in the right half-plane:
@@ -322,27 +335,15 @@ impl StateSpace {
                 return None;
             }
             let r = horner(&numerator, p) / slope;
-            if p.im.abs() <= 1e-9 * p.norm() {
-                if row >= n {
-                    return None;
-                }
-                a[(row, row)] = p.re;
-                b[row] = 1.0;
-                c[row] = r.re;
-                row += 1;
-            } else if p.im > 0.0 {
-                if row + 1 >= n {
-                    return None;
-                }
-                a[(row, row)] = p.re;
-                a[(row, row + 1)] = -p.im;
-                a[(row + 1, row)] = p.im;
-                a[(row + 1, row + 1)] = p.re;
-                b[row] = 1.0;
-                c[row] = 2.0 * r.re;
-                c[row + 1] = -2.0 * r.im;
-                row += 2;
+            let pair = p.im.abs() > 1e-9 * p.norm();
+            if pair && p.im < 0.0 {
+                // The conjugate's block is its partner's.
+                continue;
             }
+            if row + usize::from(pair) >= n {
+                return None;
+            }
+            row = put_modal_block((&mut a, &mut b, &mut c), row, p, r, pair);
         }
         (row == n).then_some(StateSpace {
             a,
