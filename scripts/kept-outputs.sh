@@ -8,7 +8,7 @@
 # Usage: ./scripts/kept-outputs.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SLENDER_KEEP=1 cargo test --quiet --release -p slender-tests --test kept_outputs > /dev/null
+SLENDER_KEEP=1 cargo test --quiet --release -p slender-tests --test integration -- kept_outputs:: > /dev/null
 kept=tests/reference/examples
 if git diff --quiet -- "$kept" && [ -z "$(git ls-files --others --exclude-standard -- "$kept")" ]; then
     echo "kept results unchanged"

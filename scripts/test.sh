@@ -43,14 +43,14 @@ failed=$(count failed)
 ignored=$(count ignored)
 
 step "cross-checks with FMPy, pythonfmu, libcosim, chaospy, MoorPy and the Python reader (ignored above: they need .venv)"
-cargo test --release -p slender-tests --test fmi_python --test uq_python --test ssp --test python_reader --test moorpy --test body_pythonfmu -- --ignored 2>&1 | tee "$log"
+cargo test --release -p slender-tests --test integration -- --ignored fmi_python:: uq_python:: ssp:: python_reader:: moorpy:: body_pythonfmu:: 2>&1 | tee "$log"
 python_passed=$(count passed)
 passed=$((passed + python_passed))
 ignored=$((ignored - python_passed))
 
 step "portable FMU library: built against glibc 2.17 with zig (ignored above)"
 ./scripts/portable-fmu.sh
-cargo test --release -p slender-tests --test fmi_portable -- --ignored 2>&1 | tee "$log"
+cargo test --release -p slender-tests --test integration -- --ignored fmi_portable:: 2>&1 | tee "$log"
 portable_passed=$(count passed)
 passed=$((passed + portable_passed))
 ignored=$((ignored - portable_passed))
@@ -58,8 +58,8 @@ ignored=$((ignored - portable_passed))
 step "cluster tests: a UQ study and a load-case matrix through a local single-node Slurm (ignored above)"
 if [ "$(id -u)" = 0 ]; then
     ./scripts/slurm-up.sh
-    { cargo test --release -p slender-tests --test uq_slurm -- --ignored
-      cargo test --release -p slender-app --test cases_cli -- --ignored; } 2>&1 | tee "$log"
+    { cargo test --release -p slender-tests --test integration -- --ignored uq_slurm::
+      cargo test --release -p slender-app --test integration -- --ignored cases_cli::; } 2>&1 | tee "$log"
     slurm_passed=$(count passed)
     passed=$((passed + slurm_passed))
     ignored=$((ignored - slurm_passed))
@@ -74,7 +74,7 @@ if [ ! -x /usr/bin/chromium ] && [ "$(id -u)" = 0 ]; then
         || { apt-get update >/dev/null && apt-get install -y --no-install-recommends chromium >/dev/null; }
 fi
 if [ -x /usr/bin/chromium ]; then
-    cargo test --release -p slender-tests --test report_browser -- --ignored 2>&1 | tee "$log"
+    cargo test --release -p slender-tests --test integration -- --ignored report_browser:: 2>&1 | tee "$log"
     browser_passed=$(count passed)
     passed=$((passed + browser_passed))
     ignored=$((ignored - browser_passed))

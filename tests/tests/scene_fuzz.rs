@@ -5,7 +5,7 @@
 //!
 //! The suite runs `SLENDER_FUZZ_MUTANTS` mutants (default 5000); the ignored test
 //! `hundred_thousand_scene_mutants_never_panic_or_hang` runs 100 000:
-//! `cargo test --release -p slender-tests --test scene_fuzz -- --ignored --nocapture`.
+//! `cargo test --release -p slender-tests --test integration -- scene_fuzz:: --ignored --nocapture`.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

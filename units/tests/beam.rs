@@ -2,8 +2,6 @@
 //! the analytical solution, static distributed load against eq. 6.2, and the
 //! static contact reference problem (eq. 4.41) for each contact method.
 
-mod support;
-
 use crate::support::published;
 use slender_units::Driver;
 use slender_units::Time;

@@ -2,8 +2,6 @@
 //! repeated impacts, the reference shape of sec. 6.2.2, a moving support with long
 //! steps, stiff penalties, Newton failures, and energy conservation.
 
-mod support;
-
 use crate::support::beams::{cond, contact_params, params, reference_distance};
 use slender_units::Driver;
 use slender_units::Time;

@@ -4,8 +4,6 @@
 //! (EI -> 0) n pi / L sqrt(T / mu), and the static deflection under a uniform
 //! load against the closed form.
 
-mod support;
-
 use crate::support::beams::{cond, params};
 use slender_units::beam::Beam;
 use slender_units::beam::boundary::{Boundary, Quantity};

@@ -1,8 +1,6 @@
 //! Eigenperiods of the 1934 m polyester line (seed 000 Table 3) from the cable
 //! unit's modal analysis at its static state.
 
-mod support;
-
 use crate::support::published;
 use slender_units::Driver;
 use slender_units::Time;

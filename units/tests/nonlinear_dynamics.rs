@@ -3,8 +3,6 @@
 //! seed 000's Table 3 eigenperiods about the static state, energy over long free
 //! vibration (implicit and explicit) and the critical step of central differences.
 
-mod support;
-
 use crate::support::published;
 use crate::support::section;
 use slender_units::nonlinear::NonlinearSection;

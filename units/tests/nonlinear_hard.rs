@@ -3,8 +3,6 @@
 //! snapping from slack to taut; each runs its full duration with finite, bounded
 //! values. Bad input stops with the time and the reason.
 
-mod support;
-
 use crate::support::slay::{Slay, TENSION, output};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::{Driver, Time};

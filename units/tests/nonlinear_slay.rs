@@ -4,8 +4,6 @@
 //! 004's touchdown estimate in its own regime; energy kept with energy-conserving
 //! contact on rollers and seabed.
 
-mod support;
-
 use crate::support::slay::{BENDING_STIFFNESS, STINGER_RADIUS, Slay, TENSION, output};
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::{Driver, Time};

@@ -3,8 +3,6 @@
 //! moment rolling a cantilever into a circle, and the elastic catenary against
 //! Irvine's closed form.
 
-mod support;
-
 use crate::support::published;
 use slender_units::nonlinear::{NonlinearParams, NonlinearSection};
 use slender_units::{Driver, Time};

@@ -5,8 +5,6 @@
 //! novel ones, and the frame's dependent derivatives at N = 6 and 7; Ritz
 //! vectors and the shifted modes of a free-free section.
 
-mod support;
-
 use crate::support::{random_vector, section};
 use nalgebra::DMatrix;
 use slender_units::nonlinear::seed002::{cable, frame};

@@ -7,8 +7,6 @@
 //! 6.1e-6 s), so it runs on demand; BENCHMARKS.md holds its figures beside the
 //! step's cost.
 
-mod support;
-
 use crate::support::rms;
 use crate::support::section;
 use nalgebra::{DMatrix, DVector};

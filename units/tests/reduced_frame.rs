@@ -4,8 +4,6 @@
 //! 118-DOF model under p = 3 sin(6.401 t) N/m on the beam member; the beam's
 //! midpoint (arc 15 m) over 10 s.
 
-mod support;
-
 use crate::support::rms;
 use crate::support::section;
 use nalgebra::{DMatrix, DVector};

@@ -4,8 +4,6 @@
 //! (CRD3) against the full 59-DOF model, with the Taylor coordinate relations
 //! that only the novel derivatives satisfy (the frame: `reduced_frame.rs`).
 
-mod support;
-
 use crate::support::rms;
 use crate::support::{random_vector, section};
 use nalgebra::{DMatrix, DVector};

@@ -3,7 +3,7 @@
 //! merged: the same table, byte for byte; a bad sea state or a scene without
 //! a sea is refused before any run.
 
-mod common;
+use crate::common;
 
 use common::{slender, text};
 use std::path::{Path, PathBuf};

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-mod common;
+use crate::common;
 use common::{slender, text};
 
 /// A reader that closes the pipe early (`slender expand ... | head -1`) ends

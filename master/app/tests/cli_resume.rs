@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-mod common;
+use crate::common;
 use common::{slender, text};
 
 /// A study of seven runs on the truncation scene (a copy in `dir`).

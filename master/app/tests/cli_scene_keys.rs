@@ -1,7 +1,7 @@
 //! Scene keys over the file (`--set`) on every command that reads a scene,
 //! and the checks a study makes before its first run (issue 28).
 
-mod common;
+use crate::common;
 use common::{slender, summary, text};
 
 /// Issue 28: `run --set KEY=VALUE` sets scene keys over the file (a TOML

@@ -3,7 +3,7 @@
 //! output of the same unit, and the sections' envelopes, placed on the
 //! structure's arc, agree with the twin's (the same mesh, coupled at the cuts).
 
-mod common;
+use crate::common;
 
 use common::{slender, summary, text};
 

@@ -3,7 +3,7 @@
 //! and far enough apart not to run into each other; axes carry their units;
 //! no figure is empty; point numbers and keys stay on the page.
 
-mod common;
+use crate::common;
 
 use slender_app::figures::{study, tradeoff};
 use slender_app::study::StudyRow;

@@ -12,7 +12,7 @@
 //! the span commands (span_cli.rs) are left out. Every figure the README shows
 //! is made again by its command, in full (seconds).
 
-mod common;
+use crate::common;
 
 use common::{slender, text};
 use std::path::Path;

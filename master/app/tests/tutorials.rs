@@ -8,7 +8,7 @@
 //!
 //! The files a tutorial names under `results/` must then exist.
 
-mod common;
+use crate::common;
 
 use common::text;
 use std::path::{Path, PathBuf};

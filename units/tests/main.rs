@@ -1,0 +1,19 @@
+//! The units' own integration tests, one binary: each module below was a test binary of its own; one
+//! binary links the workspace once instead of once per file (`cargo test -p
+//! PACKAGE --test integration -- MODULE::` runs one module).
+
+mod artefacts;
+mod beam;
+mod beam_dynamic_contact;
+mod beam_tension;
+mod cable_modes;
+mod moment_recovery;
+mod nonlinear_dynamics;
+mod nonlinear_hard;
+mod nonlinear_slay;
+mod nonlinear_statics;
+mod reduced_bases;
+mod reduced_capacity;
+mod reduced_frame;
+mod reduced_lrbf;
+mod support;
