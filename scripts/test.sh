@@ -42,15 +42,18 @@ passed=$(count passed)
 failed=$(count failed)
 ignored=$(count ignored)
 
+# The ignored tests below run by module filters over the whole workspace's
+# test binaries: the build the test step made, reused as it is (`-p` on one
+# package builds slender-fmu, a cdylib and an rlib, again: 70 s each time).
 step "cross-checks with FMPy, pythonfmu, libcosim, chaospy, MoorPy and the Python reader (ignored above: they need .venv)"
-cargo test --release -p slender-tests --test integration -- --ignored fmi_python:: uq_python:: ssp:: python_reader:: moorpy:: body_pythonfmu:: 2>&1 | tee "$log"
+cargo test --release --workspace --tests -- --ignored fmi_python:: uq_python:: ssp:: python_reader:: moorpy:: body_pythonfmu:: 2>&1 | tee "$log"
 python_passed=$(count passed)
 passed=$((passed + python_passed))
 ignored=$((ignored - python_passed))
 
 step "portable FMU library: built against glibc 2.17 with zig (ignored above)"
 ./scripts/portable-fmu.sh
-cargo test --release -p slender-tests --test integration -- --ignored fmi_portable:: 2>&1 | tee "$log"
+cargo test --release --workspace --tests -- --ignored fmi_portable:: 2>&1 | tee "$log"
 portable_passed=$(count passed)
 passed=$((passed + portable_passed))
 ignored=$((ignored - portable_passed))
@@ -58,8 +61,7 @@ ignored=$((ignored - portable_passed))
 step "cluster tests: a UQ study and a load-case matrix through a local single-node Slurm (ignored above)"
 if [ "$(id -u)" = 0 ]; then
     ./scripts/slurm-up.sh
-    { cargo test --release -p slender-tests --test integration -- --ignored uq_slurm::
-      cargo test --release -p slender-app --test integration -- --ignored cases_cli::; } 2>&1 | tee "$log"
+    cargo test --release --workspace --tests -- --ignored uq_slurm:: cases_cli:: 2>&1 | tee "$log"
     slurm_passed=$(count passed)
     passed=$((passed + slurm_passed))
     ignored=$((ignored - slurm_passed))
@@ -74,7 +76,7 @@ if [ ! -x /usr/bin/chromium ] && [ "$(id -u)" = 0 ]; then
         || { apt-get update >/dev/null && apt-get install -y --no-install-recommends chromium >/dev/null; }
 fi
 if [ -x /usr/bin/chromium ]; then
-    cargo test --release -p slender-tests --test integration -- --ignored report_browser:: 2>&1 | tee "$log"
+    cargo test --release --workspace --tests -- --ignored report_browser:: 2>&1 | tee "$log"
     browser_passed=$(count passed)
     passed=$((passed + browser_passed))
     ignored=$((ignored - browser_passed))
