@@ -8,7 +8,8 @@
 # Usage: ./scripts/kept-outputs.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SLENDER_KEEP=1 cargo test --quiet --release -p slender-tests --test integration -- kept_outputs:: > /dev/null
+# Over the workspace's test build, as test.sh runs it (a `-p` build rebuilds slender-fmu).
+SLENDER_KEEP=1 cargo test --quiet --release --workspace --tests -- kept_outputs:: > /dev/null
 kept=tests/reference/examples
 if git diff --quiet -- "$kept" && [ -z "$(git ls-files --others --exclude-standard -- "$kept")" ]; then
     echo "kept results unchanged"

@@ -1,6 +1,7 @@
-//! Workspace-level verification, stability and cross-tool tests, one binary: each module below was a test binary of its own; one
-//! binary links the workspace once instead of once per file (`cargo test -p
-//! PACKAGE --test integration -- MODULE::` runs one module).
+//! Workspace-level verification, stability and cross-tool tests, in one binary: each module was a
+//! test binary of its own, and one binary links the workspace once instead of
+//! once per file. One module: `cargo test --release -p slender-tests --test
+//! integration -- MODULE::`.
 
 mod active_truncation;
 mod adaptive_riser;

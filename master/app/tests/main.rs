@@ -1,6 +1,7 @@
-//! The command line's and the app's own integration tests, one binary: each module below was a test binary of its own; one
-//! binary links the workspace once instead of once per file (`cargo test -p
-//! PACKAGE --test integration -- MODULE::` runs one module).
+//! The command line's and the app's own integration tests, in one binary: each module was a
+//! test binary of its own, and one binary links the workspace once instead of
+//! once per file. One module: `cargo test --release -p slender-app --test
+//! integration -- MODULE::`.
 
 mod cases_cli;
 mod cli;

@@ -1,6 +1,7 @@
-//! The coupling master's integration tests, one binary: each module below was a test binary of its own; one
-//! binary links the workspace once instead of once per file (`cargo test -p
-//! PACKAGE --test integration -- MODULE::` runs one module).
+//! The coupling master's integration tests, in one binary: each module was a
+//! test binary of its own, and one binary links the workspace once instead of
+//! once per file. One module: `cargo test --release -p slender-coupling --test
+//! integration -- MODULE::`.
 
 mod adaptive;
 mod generic_tolerance;
